@@ -1,0 +1,76 @@
+//! Slice forms: run an 8-wide warp over an array-of-structs batch of any length.
+//!
+//! Full groups of 8 are transposed into SIMD lanes, warped and transposed back; the last
+//! `len % 8` elements are padded with zeros (a valid input) and run through the same 8-wide
+//! body, so every element of a slice gets exactly the bits the scalar form gives (the lanes of
+//! one body never interact). There is no indexing that can panic: lengths are reconciled with
+//! `get`, and groups come from `as_chunks`.
+
+use wide::{f32x8, u32x8};
+
+/// Applies `f` to `input[i]`, writing `output[i]`, for `i < min(input.len(), output.len())`;
+/// returns that count. Extra elements of the longer slice are not read or written.
+#[inline(always)]
+pub(crate) fn map<const I: usize, const O: usize>(
+    input: &[[f32; I]],
+    output: &mut [[f32; O]],
+    f: impl Fn([f32x8; I]) -> [f32x8; O],
+) -> usize {
+    let n = input.len().min(output.len());
+    let input = input.get(..n).unwrap_or(&[]);
+    let output = output.get_mut(..n).unwrap_or(&mut []);
+    let (in_groups, in_rest) = input.as_chunks::<8>();
+    let (out_groups, out_rest) = output.as_chunks_mut::<8>();
+    for (src, dst) in in_groups.iter().zip(out_groups) {
+        *dst = store(f(load(src)));
+    }
+    if !in_rest.is_empty() {
+        let mut pad = [[0.0f32; I]; 8];
+        for (p, s) in pad.iter_mut().zip(in_rest) {
+            *p = *s;
+        }
+        let res = store(f(load(&pad)));
+        for (d, r) in out_rest.iter_mut().zip(res.iter()) {
+            *d = *r;
+        }
+    }
+    n
+}
+
+/// Fills `output[i]` with `f` at the index `start + i` (wrapping), eight indices at a time;
+/// for the index-driven sequences and constructions. Returns `output.len()`.
+#[cfg_attr(not(any(feature = "triangle", feature = "pmj02bn")), allow(dead_code))]
+#[inline(always)]
+pub(crate) fn fill_indexed<const O: usize>(
+    start: u32,
+    output: &mut [[f32; O]],
+    f: impl Fn(u32x8) -> [f32x8; O],
+) -> usize {
+    let lane = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
+    let mut index = u32x8::splat(start) + lane;
+    let (groups, rest) = output.as_chunks_mut::<8>();
+    for dst in groups {
+        *dst = store(f(index));
+        index += u32x8::splat(8);
+    }
+    if !rest.is_empty() {
+        let res = store(f(index));
+        for (d, r) in rest.iter_mut().zip(res.iter()) {
+            *d = *r;
+        }
+    }
+    output.len()
+}
+
+/// Eight array-of-structs elements into one SIMD vector per component.
+#[inline(always)]
+pub(crate) fn load<const I: usize>(group: &[[f32; I]; 8]) -> [f32x8; I] {
+    core::array::from_fn(|k| f32x8::new(core::array::from_fn(|j| group[j][k])))
+}
+
+/// One SIMD vector per component back into eight array-of-structs elements.
+#[inline(always)]
+pub(crate) fn store<const O: usize>(v: [f32x8; O]) -> [[f32; O]; 8] {
+    let cols: [[f32; 8]; O] = v.map(|c| c.to_array());
+    core::array::from_fn(|j| core::array::from_fn(|k| cols[k][j]))
+}

@@ -1,0 +1,398 @@
+//! The lane abstraction: every warp in this crate is written once, generically over [`Lane`],
+//! and instantiated for `f32` (one sample) and [`f32x8`] (eight samples in SIMD lanes).
+//!
+//! The trait holds only operations whose result is fully specified by IEEE 754 (add, sub,
+//! mul, div, sqrt, compare, bit operations), so the scalar and the 8-wide instantiations of
+//! one body produce the same bits by construction:
+//!
+//! * no fused multiply-add (`mul_add` fuses on some builds only);
+//! * no approximate reciprocal or reciprocal square root;
+//! * no `min`/`max`: their treatment of NaN and of `-0.0` vs `+0.0` differs between instruction
+//!   sets. Warps clamp with compare + select on inputs already free of NaN, see
+//!   [`unit_interval`] and [`signed_unit`].
+//!
+//! The square root is correctly rounded on every path: `libm::sqrtf` for scalars, and for
+//! `f32x8` the hardware instruction where `wide` has one (SSE/AVX, wasm `simd128`, aarch64
+//! NEON) and `libm::sqrtf` per lane elsewhere (never `wide`'s no-std software fallback).
+
+use core::num::Wrapping;
+use core::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
+use wide::{f32x8, u32x8};
+
+/// `1 - 2^-24`, the largest `f32` below one: the top of every warp's input range.
+pub(crate) const ONE_MINUS_EPSILON: f32 = 1.0 - 1.0 / 16_777_216.0;
+
+/// A per-lane boolean: `bool` for scalars, all-ones/all-zeros `u32` lanes for `f32x8`.
+pub(crate) trait Mask:
+    Copy + BitAnd<Output = Self> + BitOr<Output = Self> + Not<Output = Self>
+{
+}
+
+/// The unsigned-integer lane paired with a [`Lane`]: `Wrapping<u32>` or [`u32x8`].
+/// Arithmetic wraps (it never panics); shifts take the count modulo 32.
+pub(crate) trait UintLane:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + BitAnd<Output = Self>
+    + BitOr<Output = Self>
+    + BitXor<Output = Self>
+    + Not<Output = Self>
+{
+    type Mask: Mask;
+    fn splat(x: u32) -> Self;
+    fn shl(self, n: u32) -> Self;
+    #[allow(dead_code)] // for the integer-driven families (sequences, Basu-Owen)
+    fn shr(self, n: u32) -> Self;
+    fn simd_eq(self, rhs: Self) -> Self::Mask;
+    fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
+}
+
+/// The float lane: `f32` or [`f32x8`]. See the module docs for what it may and may not hold.
+pub(crate) trait Lane:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    type Mask: Mask;
+    type U: UintLane<Mask = Self::Mask>;
+
+    fn splat(x: f32) -> Self;
+    /// Correctly rounded square root.
+    fn sqrt(self) -> Self;
+    fn simd_lt(self, rhs: Self) -> Self::Mask;
+    fn simd_le(self, rhs: Self) -> Self::Mask;
+    fn simd_eq(self, rhs: Self) -> Self::Mask;
+    fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
+    fn to_bits(self) -> Self::U;
+    fn from_bits(bits: Self::U) -> Self;
+    /// Truncating conversion; only used for `0 <= self < 2^24`.
+    fn to_uint(self) -> Self::U;
+    /// Conversion of an integer below `2^24` (exact there).
+    fn from_uint(u: Self::U) -> Self;
+
+    /// `|self|`, by clearing the sign bit (so `abs(-0.0) = +0.0` and NaN stays NaN).
+    #[inline(always)]
+    fn abs(self) -> Self {
+        Self::from_bits(self.to_bits() & Self::U::splat(0x7fff_ffff))
+    }
+    /// The sign bit of `self` (`0x8000_0000` or `0`) as an integer lane.
+    #[inline(always)]
+    fn sign_bit(self) -> Self::U {
+        self.to_bits() & Self::U::splat(0x8000_0000)
+    }
+    /// `self` with its sign bit xor-ed with `sign` (a lane holding `0x8000_0000` or `0`).
+    #[inline(always)]
+    fn flip_sign(self, sign: Self::U) -> Self {
+        Self::from_bits(self.to_bits() ^ sign)
+    }
+}
+
+impl Mask for bool {}
+
+impl UintLane for Wrapping<u32> {
+    type Mask = bool;
+    #[inline(always)]
+    fn splat(x: u32) -> Self {
+        Wrapping(x)
+    }
+    #[inline(always)]
+    fn shl(self, n: u32) -> Self {
+        Wrapping(self.0.wrapping_shl(n))
+    }
+    #[inline(always)]
+    fn shr(self, n: u32) -> Self {
+        Wrapping(self.0.wrapping_shr(n))
+    }
+    #[inline(always)]
+    fn simd_eq(self, rhs: Self) -> bool {
+        self == rhs
+    }
+    #[inline(always)]
+    fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
+        if mask { if_true } else { if_false }
+    }
+}
+
+impl Lane for f32 {
+    type Mask = bool;
+    type U = Wrapping<u32>;
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        libm::sqrtf(self)
+    }
+    #[inline(always)]
+    fn simd_lt(self, rhs: Self) -> bool {
+        self < rhs
+    }
+    #[inline(always)]
+    fn simd_le(self, rhs: Self) -> bool {
+        self <= rhs
+    }
+    #[inline(always)]
+    fn simd_eq(self, rhs: Self) -> bool {
+        self == rhs
+    }
+    #[inline(always)]
+    fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
+        if mask { if_true } else { if_false }
+    }
+    #[inline(always)]
+    fn to_bits(self) -> Wrapping<u32> {
+        Wrapping(f32::to_bits(self))
+    }
+    #[inline(always)]
+    fn from_bits(bits: Wrapping<u32>) -> Self {
+        f32::from_bits(bits.0)
+    }
+    #[inline(always)]
+    fn to_uint(self) -> Wrapping<u32> {
+        Wrapping(self as i32 as u32)
+    }
+    #[inline(always)]
+    fn from_uint(u: Wrapping<u32>) -> Self {
+        // Through i32 like the SIMD conversion, so both agree on every input.
+        u.0 as i32 as f32
+    }
+}
+
+/// Lane mask of [`f32x8`]/[`u32x8`] comparisons: each lane all ones (true) or all zeros.
+#[derive(Clone, Copy)]
+pub(crate) struct Mask8(u32x8);
+
+impl BitAnd for Mask8 {
+    type Output = Self;
+    #[inline(always)]
+    fn bitand(self, rhs: Self) -> Self {
+        Mask8(self.0 & rhs.0)
+    }
+}
+impl BitOr for Mask8 {
+    type Output = Self;
+    #[inline(always)]
+    fn bitor(self, rhs: Self) -> Self {
+        Mask8(self.0 | rhs.0)
+    }
+}
+impl Not for Mask8 {
+    type Output = Self;
+    #[inline(always)]
+    fn not(self) -> Self {
+        Mask8(!self.0)
+    }
+}
+impl Mask for Mask8 {}
+
+impl UintLane for u32x8 {
+    type Mask = Mask8;
+    #[inline(always)]
+    fn splat(x: u32) -> Self {
+        u32x8::splat(x)
+    }
+    #[inline(always)]
+    fn shl(self, n: u32) -> Self {
+        self << (n & 31)
+    }
+    #[inline(always)]
+    fn shr(self, n: u32) -> Self {
+        self >> (n & 31)
+    }
+    #[inline(always)]
+    fn simd_eq(self, rhs: Self) -> Mask8 {
+        Mask8(u32x8::simd_eq(self, rhs))
+    }
+    #[inline(always)]
+    fn select(mask: Mask8, if_true: Self, if_false: Self) -> Self {
+        mask.0.select(if_true, if_false)
+    }
+}
+
+impl Lane for f32x8 {
+    type Mask = Mask8;
+    type U = u32x8;
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        f32x8::splat(x)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        #[cfg(any(
+            target_feature = "sse",
+            target_feature = "simd128",
+            all(target_arch = "aarch64", target_feature = "neon")
+        ))]
+        {
+            f32x8::sqrt(self)
+        }
+        #[cfg(not(any(
+            target_feature = "sse",
+            target_feature = "simd128",
+            all(target_arch = "aarch64", target_feature = "neon")
+        )))]
+        {
+            f32x8::new(self.to_array().map(libm::sqrtf))
+        }
+    }
+    #[inline(always)]
+    fn simd_lt(self, rhs: Self) -> Mask8 {
+        Mask8(bytemuck::cast(f32x8::simd_lt(self, rhs)))
+    }
+    #[inline(always)]
+    fn simd_le(self, rhs: Self) -> Mask8 {
+        Mask8(bytemuck::cast(f32x8::simd_le(self, rhs)))
+    }
+    #[inline(always)]
+    fn simd_eq(self, rhs: Self) -> Mask8 {
+        Mask8(bytemuck::cast(f32x8::simd_eq(self, rhs)))
+    }
+    #[inline(always)]
+    fn select(mask: Mask8, if_true: Self, if_false: Self) -> Self {
+        bytemuck::cast::<u32x8, f32x8>(mask.0).select(if_true, if_false)
+    }
+    #[inline(always)]
+    fn to_bits(self) -> u32x8 {
+        bytemuck::cast(self)
+    }
+    #[inline(always)]
+    fn from_bits(bits: u32x8) -> Self {
+        bytemuck::cast(bits)
+    }
+    #[inline(always)]
+    fn to_uint(self) -> u32x8 {
+        bytemuck::cast(self.trunc_int())
+    }
+    #[inline(always)]
+    fn from_uint(u: u32x8) -> Self {
+        f32x8::from_i32x8(bytemuck::cast(u))
+    }
+}
+
+/// Maps any `f32` onto a warp's input range `[0, 1 - 2^-24]`: values in `[0, 1)` pass
+/// unchanged, values `>= 1` and `+inf` become `1 - 2^-24`, and NaN, `-0.0`, negatives and
+/// `-inf` become `+0.0`. This is the documented out-of-range rule of every forward warp.
+#[inline(always)]
+pub(crate) fn unit_interval<L: Lane>(x: L) -> L {
+    let zero = L::splat(0.0);
+    let top = L::splat(ONE_MINUS_EPSILON);
+    // `0 < x` is false for NaN and for -0.0, so both become +0.0.
+    L::select(
+        zero.simd_lt(x),
+        L::select(x.simd_lt(top), x, top),
+        zero,
+    )
+}
+
+/// Maps any `f32` onto `[-1, 1]`: NaN becomes `+0.0` (and `-0.0` stays `-0.0`), values beyond
+/// the ends clamp to them. The out-of-range rule of the inverse warps' coordinates.
+#[inline(always)]
+pub(crate) fn signed_unit<L: Lane>(x: L) -> L {
+    let one = L::splat(1.0);
+    let x = L::select(x.simd_eq(x), x, L::splat(0.0));
+    L::select(
+        x.simd_lt(-one),
+        -one,
+        L::select(one.simd_lt(x), one, x),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn specials() -> [f32; 14] {
+        [
+            0.0,
+            -0.0,
+            0.5,
+            ONE_MINUS_EPSILON,
+            1.0,
+            -1.0,
+            f32::NAN,
+            -f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::from_bits(1),
+            -f32::from_bits(1),
+            f32::MAX,
+            1.5,
+        ]
+    }
+
+    #[test]
+    fn unit_interval_rule() {
+        for x in specials() {
+            let y = unit_interval(x);
+            assert!((0.0..1.0).contains(&y), "{x} -> {y}");
+            assert_eq!(y.to_bits() >> 31, 0, "{x} -> {y} keeps a sign bit");
+            if (0.0..1.0).contains(&x) && x.to_bits() >> 31 == 0 {
+                assert_eq!(y.to_bits(), x.to_bits());
+            }
+        }
+        assert_eq!(unit_interval(f32::NAN), 0.0);
+        assert_eq!(unit_interval(2.0), ONE_MINUS_EPSILON);
+        assert_eq!(unit_interval(-3.0), 0.0);
+    }
+
+    #[test]
+    fn signed_unit_rule() {
+        for x in specials() {
+            let y = signed_unit(x);
+            assert!((-1.0..=1.0).contains(&y), "{x} -> {y}");
+        }
+        assert_eq!(signed_unit(f32::NAN), 0.0);
+        assert_eq!(signed_unit(f32::NEG_INFINITY), -1.0);
+        assert_eq!(signed_unit(0.25), 0.25);
+    }
+
+    /// Every lane operation gives the same bits for f32 and f32x8, special values included.
+    #[test]
+    fn lanes_agree() {
+        let xs = specials();
+        for &a in &xs {
+            for &b in &xs {
+                let (va, vb) = (f32x8::splat(a), f32x8::splat(b));
+                let same = |s: f32, v: f32x8| {
+                    let v = v.to_array()[3];
+                    assert!(s.to_bits() == v.to_bits(), "{a} {b}: {s} vs {v}");
+                };
+                same(a + b, va + vb);
+                same(a - b, va - vb);
+                same(a * b, va * vb);
+                same(a / b, va / vb);
+                same(Lane::sqrt(a), Lane::sqrt(va));
+                same(unit_interval(a), unit_interval(va));
+                same(signed_unit(a), signed_unit(va));
+                same(Lane::abs(a), Lane::abs(va));
+                same(
+                    f32::select(a.simd_lt(b), 1.0, 2.0),
+                    f32x8::select(va.simd_lt(vb), f32x8::ONE, f32x8::splat(2.0)),
+                );
+                same(
+                    f32::select(a.simd_le(b), 1.0, 2.0),
+                    f32x8::select(va.simd_le(vb), f32x8::ONE, f32x8::splat(2.0)),
+                );
+            }
+        }
+        for u in [0u32, 1, 3, 1 << 23, (1 << 24) - 1] {
+            let s = <f32 as Lane>::from_uint(Wrapping(u));
+            let v = <f32x8 as Lane>::from_uint(u32x8::splat(u)).to_array()[0];
+            assert_eq!(s.to_bits(), v.to_bits());
+            assert_eq!(s as u32, u);
+            assert_eq!(Lane::to_uint(s).0, u);
+            assert_eq!(Lane::to_uint(f32x8::splat(s)).to_array()[5], u);
+        }
+        for k in [0, 1, 5, 31, 32, 33] {
+            let w = Wrapping(0x8000_0001u32);
+            assert_eq!(w.shl(k).0, u32x8::splat(w.0).shl(k).to_array()[0]);
+            assert_eq!(w.shr(k).0, u32x8::splat(w.0).shr(k).to_array()[0]);
+        }
+    }
+}

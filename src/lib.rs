@@ -1,0 +1,61 @@
+//! # warpcore
+//!
+//! Sample warps for renderers: turn points of the unit square (or sample indices) into
+//! well-distributed points on the domains a renderer integrates over — the disk, the triangle,
+//! the sphere — with scalar, 8-wide SIMD ([`f32x8`]) and slice entry points that give
+//! **bit-identical** results.
+//!
+//! `#![no_std]`, no allocation, `#![forbid(unsafe_code)]`; depends only on `libm`, `wide` and
+//! `bytemuck`. Each warp family is a Cargo feature, so a scene links only what it samples.
+//!
+//! ```
+//! use warpcore::disk;
+//!
+//! // One point, eight points, or a whole batch: the same bits either way.
+//! let p = disk::concentric([0.25, 0.75]);
+//! let mut batch = [[0.0f32; 2]; 3];
+//! disk::concentric_slice(&[[0.25, 0.75], [0.5, 0.5], [0.9, 0.1]], &mut batch);
+//! assert_eq!(p, batch[0]);
+//! assert!(p[0] * p[0] + p[1] * p[1] <= 1.0);
+//! ```
+//!
+//! ## Guarantees
+//!
+//! * **Determinism.** Every warp is written once, generically over a small lane trait
+//!   implemented for `f32` and [`f32x8`]; `_x8` and `_slice` forms are thin wrappers, so they
+//!   agree with the scalar form bit for bit. The bodies use only correctly rounded IEEE
+//!   operations (add, mul, div, sqrt), compares and bit operations: no fused multiply-add, no
+//!   approximate reciprocals, no libm transcendentals (our own polynomials instead), no
+//!   `min`/`max` (their NaN and signed-zero rules differ between instruction sets). The same
+//!   input therefore gives the same bits on x86 (SSE2, AVX2, AVX-512), aarch64, wasm (with or
+//!   without `simd128`) and thumbv7em.
+//! * **Totality.** Every function accepts any `f32` — NaN, infinities, negatives, values
+//!   `>= 1`, subnormals — and returns finite values inside the closed target domain; nothing
+//!   panics. Forward warps first map each coordinate onto `[0, 1 - 2^-24]`: NaN, `-0.0`,
+//!   negatives and `-inf` become `0`; values `>= 1` and `+inf` become `1 - 2^-24`. Each
+//!   module documents its inverses' rule.
+//! * **Slices** accept any lengths: they process `min(input.len(), output.len())` elements
+//!   and return that count.
+//!
+//! ## Features
+//!
+//! | feature | module | default |
+//! |---|---|---|
+//! | `disk` | [`disk`]: polar, concentric, polar4 | yes |
+//! | `std` | forwards `wide/std`; the library never needs it | no |
+
+#![no_std]
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub use wide::{f32x8, u32x8};
+
+#[cfg_attr(not(feature = "disk"), allow(dead_code))]
+mod batch;
+#[cfg_attr(not(feature = "disk"), allow(dead_code))]
+mod kernels;
+#[cfg_attr(not(feature = "disk"), allow(dead_code))]
+mod lanes;
+
+#[cfg(feature = "disk")]
+pub mod disk;
