@@ -283,11 +283,7 @@ pub(crate) fn unit_interval<L: Lane>(x: L) -> L {
     let zero = L::splat(0.0);
     let top = L::splat(ONE_MINUS_EPSILON);
     // `0 < x` is false for NaN and for -0.0, so both become +0.0.
-    L::select(
-        zero.simd_lt(x),
-        L::select(x.simd_lt(top), x, top),
-        zero,
-    )
+    L::select(zero.simd_lt(x), L::select(x.simd_lt(top), x, top), zero)
 }
 
 /// Maps any `f32` onto `[-1, 1]`: NaN becomes `+0.0` (and `-0.0` stays `-0.0`), values beyond
@@ -296,11 +292,7 @@ pub(crate) fn unit_interval<L: Lane>(x: L) -> L {
 pub(crate) fn signed_unit<L: Lane>(x: L) -> L {
     let one = L::splat(1.0);
     let x = L::select(x.simd_eq(x), x, L::splat(0.0));
-    L::select(
-        x.simd_lt(-one),
-        -one,
-        L::select(one.simd_lt(x), one, x),
-    )
+    L::select(x.simd_lt(-one), -one, L::select(one.simd_lt(x), one, x))
 }
 
 #[cfg(test)]

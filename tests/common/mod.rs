@@ -1,0 +1,72 @@
+//! Helpers shared by the integration tests: the chi-square module, a seeded generator,
+//! the special `f32` inputs every warp must survive, and bit-identity checks.
+#![allow(dead_code)]
+
+pub mod chi2;
+
+use rand::{RngExt, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+/// A seeded generator: every statistical test is reproducible.
+pub fn rng(seed: u64) -> Xoshiro256PlusPlus {
+    Xoshiro256PlusPlus::seed_from_u64(seed)
+}
+
+/// A uniform `f32` in `[0, 1)` with all 24 bits random (the top of `[0, 1)` is reachable).
+pub fn unit(r: &mut Xoshiro256PlusPlus) -> f32 {
+    (r.random::<u32>() >> 8) as f32 * (1.0 / 16_777_216.0)
+}
+
+pub fn unit2(r: &mut Xoshiro256PlusPlus) -> [f32; 2] {
+    [unit(r), unit(r)]
+}
+
+pub const ONE_MINUS_EPS: f32 = 1.0 - 1.0 / 16_777_216.0;
+
+/// Inputs every total function must survive: signed zeros, the ends of [0, 1), NaNs with
+/// both signs and a payload, infinities, subnormals, huge and negative values.
+pub fn specials() -> Vec<f32> {
+    vec![
+        0.0,
+        -0.0,
+        0.5,
+        0.25,
+        0.75,
+        ONE_MINUS_EPS,
+        1.0,
+        1.0 + f32::EPSILON,
+        -1.0,
+        2.0,
+        f32::NAN,
+        -f32::NAN,
+        f32::from_bits(0x7fc0_1234),
+        f32::from_bits(0xffa0_0001),
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::MIN_POSITIVE,
+        f32::from_bits(1),
+        -f32::from_bits(1),
+        f32::from_bits(0x007f_ffff),
+        f32::MAX,
+        f32::MIN,
+        1e-30,
+        1.0 / 16_777_216.0,
+    ]
+}
+
+/// Bit equality of float arrays (NaN-safe, sign-of-zero-sensitive).
+pub fn same_bits<const N: usize>(a: [f32; N], b: [f32; N]) -> bool {
+    a.iter()
+        .zip(b.iter())
+        .all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
+/// Lane `j` of a SIMD result as a plain array.
+pub fn lane<const N: usize>(v: [warpcore::f32x8; N], j: usize) -> [f32; N] {
+    std::array::from_fn(|k| v[k].to_array()[j])
+}
+
+/// Eight points as SIMD lanes (structure of arrays).
+pub fn soa<const N: usize>(points: &[[f32; N]; 8]) -> [warpcore::f32x8; N] {
+    std::array::from_fn(|k| warpcore::f32x8::new(std::array::from_fn(|j| points[j][k])))
+}
