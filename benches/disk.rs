@@ -1,1 +1,129 @@
-fn main() {}
+//! Disk warps: throughput of warpcore's scalar loop, `_x8` and slice forms against the peers
+//! a Rust user would reach for — `rand_distr::UnitDisc` (rejection sampling, with the fast
+//! Xoshiro128++ generator) and the textbook formula in scalar code with `libm` sin/cos.
+//!
+//! Run: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench disk`
+//! (without the flag the x86-64 baseline is SSE2 and `f32x8` runs as two SSE halves).
+
+mod common;
+
+use common::{BATCH, peer_fill, peer_scalar, warp_group};
+use rand::SeedableRng;
+use rand_distr::{Distribution, UnitDisc};
+use rand_xoshiro::Xoshiro128PlusPlus;
+use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
+use warpcore::disk;
+
+/// Shirley-Chiu as published, two branches, libm sin/cos.
+fn concentric_libm(u: [f32; 2]) -> [f32; 2] {
+    let a = 2.0 * u[0] - 1.0;
+    let b = 2.0 * u[1] - 1.0;
+    if a == 0.0 && b == 0.0 {
+        return [0.0, 0.0];
+    }
+    let (r, phi) = if a.abs() > b.abs() {
+        (a, FRAC_PI_4 * (b / a))
+    } else {
+        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
+    };
+    [r * libm::cosf(phi), r * libm::sinf(phi)]
+}
+
+fn polar_libm(u: [f32; 2]) -> [f32; 2] {
+    let (r, t) = (libm::sqrtf(u[0]), TAU * u[1]);
+    [r * libm::cosf(t), r * libm::sinf(t)]
+}
+
+fn polar4_libm(u: [f32; 2], q: u32) -> [f32; 2] {
+    let (r, t) = (libm::sqrtf(u[0]), FRAC_PI_2 * (u[1] + (q % 4) as f32));
+    [r * libm::cosf(t), r * libm::sinf(t)]
+}
+
+/// `rand_distr::UnitDisc`: draws its own uniforms, so it includes generator time — which is
+/// what a user of it pays per disk sample.
+fn unit_disc(out: &mut [[f32; 2]]) {
+    let mut rng = Xoshiro128PlusPlus::seed_from_u64(1);
+    for o in out {
+        *o = UnitDisc.sample(&mut rng);
+    }
+}
+
+fn main() {
+    let mut c = common::criterion();
+    let mut g = warp_group(
+        &mut c,
+        "disk/concentric",
+        disk::concentric,
+        disk::concentric_x8,
+        disk::concentric_slice,
+    );
+    peer_scalar(&mut g, "libm textbook (scalar)", concentric_libm);
+    peer_fill(&mut g, "rand_distr::UnitDisc (Xoshiro128++)", unit_disc);
+    g.finish();
+
+    let mut g = warp_group(
+        &mut c,
+        "disk/polar",
+        disk::polar,
+        disk::polar_x8,
+        disk::polar_slice,
+    );
+    peer_scalar(&mut g, "libm textbook (scalar)", polar_libm);
+    peer_fill(&mut g, "rand_distr::UnitDisc (Xoshiro128++)", unit_disc);
+    g.finish();
+
+    // polar4: the natural batch is "N/4 points -> N disk samples" (polar4_slice).
+    let points = common::uniform_points(BATCH / 4, 3);
+    let mut g = c.benchmark_group("disk/polar4");
+    g.throughput(criterion::Throughput::Elements(BATCH as u64));
+    let mut out = vec![[0.0f32; 2]; BATCH];
+    g.bench_function("warpcore scalar loop", |b| {
+        b.iter(|| {
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = disk::polar4(points[i / 4], i as u32 % 4);
+            }
+            std::hint::black_box(&mut out);
+        })
+    });
+    let soa = common::to_soa(&points);
+    let mut out8 = vec![[warpcore::f32x8::ZERO; 2]; BATCH / 8];
+    g.bench_function("warpcore x8", |b| {
+        let q = [
+            warpcore::u32x8::splat(0),
+            warpcore::u32x8::splat(1),
+            warpcore::u32x8::splat(2),
+            warpcore::u32x8::splat(3),
+        ];
+        b.iter(|| {
+            for (k, o) in out8.chunks_exact_mut(4).enumerate() {
+                let p = soa[k];
+                for (j, oo) in o.iter_mut().enumerate() {
+                    *oo = disk::polar4_x8(p, q[j]);
+                }
+            }
+            std::hint::black_box(&mut out8);
+        })
+    });
+    g.bench_function("warpcore slice (polar4_slice)", |b| {
+        b.iter(|| {
+            disk::polar4_slice(std::hint::black_box(&points), &mut out);
+            std::hint::black_box(&mut out);
+        })
+    });
+    g.bench_function("libm textbook (scalar)", |b| {
+        b.iter(|| {
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = polar4_libm(points[i / 4], i as u32 % 4);
+            }
+            std::hint::black_box(&mut out);
+        })
+    });
+    g.bench_function("rand_distr::UnitDisc (Xoshiro128++)", |b| {
+        b.iter(|| {
+            unit_disc(&mut out);
+            std::hint::black_box(&mut out);
+        })
+    });
+    g.finish();
+    c.final_summary();
+}

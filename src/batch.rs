@@ -63,14 +63,39 @@ pub(crate) fn fill_indexed<const O: usize>(
 }
 
 /// Eight array-of-structs elements into one SIMD vector per component.
+///
+/// The group is `8 I` consecutive floats: read them as `I` whole vectors and deinterleave with
+/// constant lane permutes. (Gathering element by element, `group[j][k]`, compiles to `8 I`
+/// scalar loads and inserts, which made the slice forms slower than a plain scalar loop.)
 #[inline(always)]
 pub(crate) fn load<const I: usize>(group: &[[f32; I]; 8]) -> [f32x8; I] {
-    core::array::from_fn(|k| f32x8::new(core::array::from_fn(|j| group[j][k])))
+    let rows: &[[u32; 8]; I] = bytemuck::cast_ref(group);
+    let src: [u32x8; I] = core::array::from_fn(|m| u32x8::new(rows[m]));
+    // Component k of element j sits at flat position j I + k.
+    core::array::from_fn(|k| bytemuck::cast(permute(&src, |j| ((j * I + k) / 8, (j * I + k) % 8))))
 }
 
 /// One SIMD vector per component back into eight array-of-structs elements.
 #[inline(always)]
 pub(crate) fn store<const O: usize>(v: [f32x8; O]) -> [[f32; O]; 8] {
-    let cols: [[f32; 8]; O] = v.map(|c| c.to_array());
-    core::array::from_fn(|j| core::array::from_fn(|k| cols[k][j]))
+    let src: [u32x8; O] = v.map(bytemuck::cast);
+    // Flat position 8 m + l holds component (8 m + l) % O of element (8 m + l) / O.
+    let rows: [[u32; 8]; O] =
+        core::array::from_fn(|m| permute(&src, |l| ((8 * m + l) % O, (8 * m + l) / O)).to_array());
+    bytemuck::cast(rows)
+}
+
+/// A vector whose lane `l` is lane `pick(l).1` of `src[pick(l).0]`. With `pick` constant after
+/// inlining, this folds into one or two permute instructions per source.
+#[inline(always)]
+fn permute<const S: usize>(src: &[u32x8; S], pick: impl Fn(usize) -> (usize, usize)) -> u32x8 {
+    let mut acc = u32x8::ZERO;
+    for (s, v) in src.iter().enumerate() {
+        let index = u32x8::new(core::array::from_fn(|l| pick(l).1 as u32));
+        let take = u32x8::new(core::array::from_fn(|l| {
+            if pick(l).0 == s { u32::MAX } else { 0 }
+        }));
+        acc = take.select(v.shuffle(index), acc);
+    }
+    acc
 }

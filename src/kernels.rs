@@ -23,6 +23,7 @@ use crate::lanes::{Lane, UintLane};
 // pi/4): a search over such nudges (best of 2450, scored on 276k arguments, then checked
 // exhaustively) cut the largest excess of sin^2 + cos^2 over 1 from 2.1e-7 to 8e-8 at the
 // cost of a few tenths of an ulp. That excess is what `MAX_RADIUS` has to absorb.
+#[allow(clippy::approx_constant)] // deliberately the f32 just below pi/4, see above
 const S0: f32 = 0.785_398_1;
 const S1: f32 = -0.080_745_43;
 const S2: f32 = 0.002_490_001;
@@ -157,6 +158,7 @@ pub(crate) fn atan2_turns<L: Lane>(y: L, x: L) -> L {
 }
 
 #[cfg(test)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     extern crate std;
     use super::*;

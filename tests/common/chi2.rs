@@ -53,10 +53,8 @@ impl Histogram {
     /// Adds one point given by its parameters `s` in `[0, 1]^2` (1.0 counts in the last cell).
     pub fn add(&mut self, s: [f64; 2]) {
         self.total += 1;
-        if !(s[0].is_finite() && s[1].is_finite())
-            || !(0.0..=1.0).contains(&s[0])
-            || !(0.0..=1.0).contains(&s[1])
-        {
+        let inside = |x: f64| (0.0..=1.0).contains(&x); // false for NaN
+        if !(inside(s[0]) && inside(s[1])) {
             self.outside += 1;
             return;
         }
