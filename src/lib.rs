@@ -59,3 +59,8 @@ mod lanes;
 
 #[cfg(feature = "disk")]
 pub mod disk;
+
+// The README's examples compile and run as doctests.
+#[cfg(all(doctest, feature = "disk"))]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
