@@ -19,7 +19,9 @@ pub fn words(data: &[u8]) -> Vec<u32> {
 }
 
 fn same<const N: usize>(a: [f32; N], b: [f32; N]) -> bool {
-    a.iter().zip(b.iter()).all(|(x, y)| x.to_bits() == y.to_bits())
+    a.iter()
+        .zip(b.iter())
+        .all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
 /// Points of `D` coordinates from the words, padded to a multiple of 8 points.
@@ -43,13 +45,17 @@ pub fn widths<const I: usize, const O: usize>(
     let mut out = vec![[0.0f32; O]; pts.len()];
     assert_eq!(slice(pts, &mut out), pts.len());
     for (g, group) in pts.chunks_exact(8).enumerate() {
-        let v: [f32x8; I] = std::array::from_fn(|d| f32x8::new(std::array::from_fn(|j| group[j][d])));
+        let v: [f32x8; I] =
+            std::array::from_fn(|d| f32x8::new(std::array::from_fn(|j| group[j][d])));
         let r = x8(v);
         for (j, u) in group.iter().enumerate() {
             let s = scalar(*u);
             let lane: [f32; O] = std::array::from_fn(|k| r[k].to_array()[j]);
             assert!(valid(s), "{name}: {u:?} -> {s:?} outside the domain");
-            assert!(same(s, lane), "{name}: scalar {s:?} != x8 {lane:?} for {u:?}");
+            assert!(
+                same(s, lane),
+                "{name}: scalar {s:?} != x8 {lane:?} for {u:?}"
+            );
             assert!(same(s, out[g * 8 + j]), "{name}: scalar != slice for {u:?}");
         }
     }
@@ -69,18 +75,50 @@ pub fn disk(data: &[u8]) {
     use warpcore::disk;
     let w = words(data);
     let pts = points::<2>(&w);
-    widths("polar", &pts, disk::polar, disk::polar_x8, disk::polar_slice, in_disk);
-    widths("concentric", &pts, disk::concentric, disk::concentric_x8, disk::concentric_slice, in_disk);
-    widths("polar_inverse", &pts, disk::polar_inverse, disk::polar_inverse_x8, disk::polar_inverse_slice, in_unit_square);
-    widths("concentric_inverse", &pts, disk::concentric_inverse, disk::concentric_inverse_x8, disk::concentric_inverse_slice, in_unit_square);
+    widths(
+        "polar",
+        &pts,
+        disk::polar,
+        disk::polar_x8,
+        disk::polar_slice,
+        in_disk,
+    );
+    widths(
+        "concentric",
+        &pts,
+        disk::concentric,
+        disk::concentric_x8,
+        disk::concentric_slice,
+        in_disk,
+    );
+    widths(
+        "polar_inverse",
+        &pts,
+        disk::polar_inverse,
+        disk::polar_inverse_x8,
+        disk::polar_inverse_slice,
+        in_unit_square,
+    );
+    widths(
+        "concentric_inverse",
+        &pts,
+        disk::concentric_inverse,
+        disk::concentric_inverse_x8,
+        disk::concentric_inverse_slice,
+        in_unit_square,
+    );
     let q = w.first().copied().unwrap_or(0);
     let quads = warpcore::u32x8::new(std::array::from_fn(|j| q.wrapping_add(j as u32)));
     for (g, group) in pts.chunks_exact(8).enumerate() {
-        let v: [f32x8; 2] = std::array::from_fn(|d| f32x8::new(std::array::from_fn(|j| group[j][d])));
+        let v: [f32x8; 2] =
+            std::array::from_fn(|d| f32x8::new(std::array::from_fn(|j| group[j][d])));
         let r = disk::polar4_x8(v, quads);
         for (j, u) in group.iter().enumerate() {
             let s = disk::polar4(*u, q.wrapping_add(j as u32));
-            assert!(in_disk(s) && same(s, [r[0].to_array()[j], r[1].to_array()[j]]), "polar4 {u:?}");
+            assert!(
+                in_disk(s) && same(s, [r[0].to_array()[j], r[1].to_array()[j]]),
+                "polar4 {u:?}"
+            );
             let (back, quadrant) = disk::polar4_inverse(*u);
             assert!(in_unit_square(back) && quadrant < 4, "polar4_inverse {u:?}");
         }
@@ -88,7 +126,10 @@ pub fn disk(data: &[u8]) {
         let n = disk::polar4_slice(group, &mut out);
         assert_eq!(n, out.len().min(32));
         for (i, p) in out.iter().enumerate() {
-            assert!(same(*p, disk::polar4(group[i / 4], i as u32 % 4)), "polar4_slice {i}");
+            assert!(
+                same(*p, disk::polar4(group[i / 4], i as u32 % 4)),
+                "polar4_slice {i}"
+            );
         }
     }
 }

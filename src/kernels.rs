@@ -183,7 +183,11 @@ mod tests {
     /// the rest, and the cross-target fingerprint test proves the bits are the same.
     fn sweep(stride: u32, f: impl Fn(f32) -> [f64; 4] + Sync) -> [f64; 4] {
         let end = 1.0f32.to_bits();
-        let (threads, stride) = if cfg!(target_family = "wasm") { (1u32, stride.max(61)) } else { (4u32, stride) };
+        let (threads, stride) = if cfg!(target_family = "wasm") {
+            (1u32, stride.max(61))
+        } else {
+            (4u32, stride)
+        };
         let run = |k: u32| {
             let mut m = [0.0f64; 4];
             let mut bits = k * stride;
@@ -207,7 +211,10 @@ mod tests {
         }
         std::thread::scope(|scope| {
             let handles: Vec<_> = (0..threads).map(|k| scope.spawn(move || run(k))).collect();
-            handles.into_iter().map(|h| h.join().unwrap()).fold([0.0f64; 4], merge)
+            handles
+                .into_iter()
+                .map(|h| h.join().unwrap())
+                .fold([0.0f64; 4], merge)
         })
     }
 

@@ -361,7 +361,10 @@ mod tests {
                 // sign and payload between instruction sets: any NaN equals any NaN here.
                 let same = |s: f32, v: f32x8| {
                     let v = v.to_array()[3];
-                    assert!(s.to_bits() == v.to_bits() || s.is_nan() && v.is_nan(), "{a} {b}: {s} vs {v}");
+                    assert!(
+                        s.to_bits() == v.to_bits() || s.is_nan() && v.is_nan(),
+                        "{a} {b}: {s} vs {v}"
+                    );
                 };
                 same(a + b, va + vb);
                 same(a - b, va - vb);

@@ -16,7 +16,10 @@ mod fingerprint;
 fn output_bits_match_the_golden_fingerprint() {
     let golden = include_str!("golden/fingerprint.txt").trim();
     let got = format!("{:016x}", fingerprint::fingerprint());
-    assert_eq!(got, golden, "warp output bits changed on this target (or the golden file is stale)");
+    assert_eq!(
+        got, golden,
+        "warp output bits changed on this target (or the golden file is stale)"
+    );
 }
 
 /// The fingerprint is sensitive: flipping one output bit of one warp changes it.
@@ -24,7 +27,12 @@ fn output_bits_match_the_golden_fingerprint() {
 fn fingerprint_detects_a_one_bit_change() {
     let mut a = fingerprint::Hasher::new();
     let mut b = fingerprint::Hasher::new();
-    fingerprint::warp(&mut a, warpcore::disk::polar, warpcore::disk::polar_x8, warpcore::disk::polar_slice);
+    fingerprint::warp(
+        &mut a,
+        warpcore::disk::polar,
+        warpcore::disk::polar_x8,
+        warpcore::disk::polar_slice,
+    );
     fingerprint::warp(
         &mut b,
         |u| {

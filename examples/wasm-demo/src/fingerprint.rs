@@ -60,7 +60,11 @@ pub fn input<const D: usize>(i: usize) -> [f32; D] {
     let s = SPECIALS.len();
     core::array::from_fn(|d| {
         if i < s * s {
-            SPECIALS[if d % 2 == 0 { i % s } else { (i / s + d / 2) % s }]
+            SPECIALS[if d % 2 == 0 {
+                i % s
+            } else {
+                (i / s + d / 2) % s
+            }]
         } else {
             unit((i * D + d) as u32)
         }
@@ -83,7 +87,10 @@ pub fn warp<const I: usize, const O: usize>(
         for (k, slot) in chunk_in.iter_mut().enumerate().take(n) {
             *slot = input(i + k);
         }
-        let (src, dst) = (chunk_in.get(..n).unwrap_or(&[]), chunk_out.get_mut(..n).unwrap_or(&mut []));
+        let (src, dst) = (
+            chunk_in.get(..n).unwrap_or(&[]),
+            chunk_out.get_mut(..n).unwrap_or(&mut []),
+        );
         h.word(slice(src, dst) as u32);
         for (u, o) in src.iter().zip(dst.iter()) {
             h.floats(&scalar(*u));
@@ -93,7 +100,8 @@ pub fn warp<const I: usize, const O: usize>(
     }
     let mut g = 0;
     while g + 8 <= N {
-        let v: [f32x8; I] = core::array::from_fn(|d| f32x8::new(core::array::from_fn(|j| input::<I>(g + j)[d])));
+        let v: [f32x8; I] =
+            core::array::from_fn(|d| f32x8::new(core::array::from_fn(|j| input::<I>(g + j)[d])));
         for c in x8(v) {
             h.floats(&c.to_array());
         }
@@ -108,16 +116,36 @@ pub fn fingerprint() -> u64 {
     {
         use warpcore::disk;
         warp(&mut h, disk::polar, disk::polar_x8, disk::polar_slice);
-        warp(&mut h, disk::concentric, disk::concentric_x8, disk::concentric_slice);
-        warp(&mut h, disk::polar_inverse, disk::polar_inverse_x8, disk::polar_inverse_slice);
-        warp(&mut h, disk::concentric_inverse, disk::concentric_inverse_x8, disk::concentric_inverse_slice);
+        warp(
+            &mut h,
+            disk::concentric,
+            disk::concentric_x8,
+            disk::concentric_slice,
+        );
+        warp(
+            &mut h,
+            disk::polar_inverse,
+            disk::polar_inverse_x8,
+            disk::polar_inverse_slice,
+        );
+        warp(
+            &mut h,
+            disk::concentric_inverse,
+            disk::concentric_inverse_x8,
+            disk::concentric_inverse_slice,
+        );
         for q in 0..4u32 {
-            warp(&mut h, |u| disk::polar4(u, q), |u| disk::polar4_x8(u, warpcore::u32x8::splat(q)), |u, o| {
-                for (a, b) in u.iter().zip(o.iter_mut()) {
-                    *b = disk::polar4(*a, q);
-                }
-                u.len().min(o.len())
-            });
+            warp(
+                &mut h,
+                |u| disk::polar4(u, q),
+                |u| disk::polar4_x8(u, warpcore::u32x8::splat(q)),
+                |u, o| {
+                    for (a, b) in u.iter().zip(o.iter_mut()) {
+                        *b = disk::polar4(*a, q);
+                    }
+                    u.len().min(o.len())
+                },
+            );
         }
         let pts: [[f32; 2]; 9] = core::array::from_fn(input);
         let mut out = [[0.0f32; 2]; 35];
