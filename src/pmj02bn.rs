@@ -136,16 +136,31 @@ static TABLES: [Aligned<[u8; 8 * POINTS]>; SETS] = sets!("4096");
 )))]
 static TABLES: [Aligned<[u8; 8 * POINTS]>; SETS] = sets!("1024");
 
-/// Table point `index` of set `set` (both already reduced), decoded from little endian.
+/// The sets as `[u32; 2]` slices of their embedded bytes (words still little endian).
+#[inline(always)]
+fn views() -> [&'static [[u32; 2]]; SETS] {
+    // The casts cannot fail (64-byte alignment, length a multiple of 8); on the impossible
+    // failure the empty view yields [0, 0] below, not a panic.
+    core::array::from_fn(|s| {
+        TABLES
+            .get(s)
+            .and_then(|t| bytemuck::try_cast_slice(&t.0[..]).ok())
+            .unwrap_or(&[])
+    })
+}
+
+/// Point `index` of a set's view, decoded from little endian (a no-op on little-endian
+/// targets, a byte swap on big-endian ones).
+#[inline(always)]
+fn decode(view: &[[u32; 2]], index: usize) -> [u32; 2] {
+    view.get(index)
+        .map_or([0, 0], |p| [u32::from_le(p[0]), u32::from_le(p[1])])
+}
+
+/// Table point `index` of set `set` (both already reduced).
 #[inline(always)]
 fn lookup(set: usize, index: usize) -> [u32; 2] {
-    let bytes: &[u8] = TABLES.get(set).map_or(&[], |t| &t.0[..]);
-    // The cast cannot fail (64-byte alignment, length a multiple of 8); on the impossible
-    // failure the empty view yields [0, 0], not a panic.
-    let words: &[[u32; 2]] = bytemuck::try_cast_slice(bytes).unwrap_or(&[]);
-    words
-        .get(index)
-        .map_or([0, 0], |p| [u32::from_le(p[0]), u32::from_le(p[1])])
+    views().get(set).map_or([0, 0], |v| decode(v, index))
 }
 
 /// Table point `index` of set `set`, unscrambled, as 0.32 fixed point (`x / 2^32`).
@@ -162,22 +177,48 @@ const KEY_Y: u32 = 0xb529_7a4d;
 const KEY_SET: u32 = 0x1b56_c4e9;
 const KEY_BLOCK: u32 = 0x9e37_79b9;
 
+/// What a seed and a block of [`POINTS`] indices choose: the set (pre-shifted, as the high
+/// bits of a flat table index) and the two scramble keys.
+#[derive(Clone, Copy)]
+struct Keys<U> {
+    set: U,
+    x: U,
+    y: U,
+}
+
+#[inline(always)]
+fn keys<U: UintLane>(seed: U, block: U) -> Keys<U> {
+    // Block 0 uses the seed's own keys; block q > 0 re-keys (mix(0) = 0 keeps block 0 as is).
+    let key = mix(seed) ^ mix(block * U::splat(KEY_BLOCK));
+    Keys {
+        set: (mix(key ^ U::splat(KEY_SET)) & U::splat(SETS as u32 - 1)).shl(LOG2_POINTS),
+        x: mix(key ^ U::splat(KEY_X)),
+        y: mix(key ^ U::splat(KEY_Y)),
+    }
+}
+
+/// Table point `r < POINTS` under `keys`: lane-wise lookup, Owen scrambles, conversion.
+#[inline(always)]
+fn point<L: Lane>(r: L::U, keys: Keys<L::U>) -> [L; 2] {
+    let views = views();
+    // SETS * POINTS <= 2^18: the flat index holds set and point.
+    let [x, y] = (keys.set | r).gather_pairs(|i| {
+        let i = i as usize;
+        let set = (i >> LOG2_POINTS) & (SETS - 1);
+        views
+            .get(set)
+            .map_or([0, 0], |v| decode(v, i & (POINTS - 1)))
+    });
+    [
+        to_unit(owen_scramble(x, keys.x)),
+        to_unit(owen_scramble(y, keys.y)),
+    ]
+}
+
 #[inline(always)]
 fn sample_body<L: Lane>(index: L::U, seed: L::U) -> [L; 2] {
-    let block = index.shr(LOG2_POINTS);
     let r = index & L::U::splat(POINTS as u32 - 1);
-    // Block 0 uses the seed's own keys; block q > 0 re-keys (mix(0) = 0 keeps block 0 as is).
-    let key = mix(seed) ^ mix(block * L::U::splat(KEY_BLOCK));
-    let set = mix(key ^ L::U::splat(KEY_SET)) & L::U::splat(SETS as u32 - 1);
-    // Lane-wise lookup of (set, r): SETS * POINTS <= 2^18, so the flat index fits.
-    let flat = set.shl(LOG2_POINTS) | r;
-    let [x, y] = flat.gather_pairs(|i| {
-        let i = i as usize;
-        lookup(i >> LOG2_POINTS, i & (POINTS - 1))
-    });
-    let x = owen_scramble(x, mix(key ^ L::U::splat(KEY_X)));
-    let y = owen_scramble(y, mix(key ^ L::U::splat(KEY_Y)));
-    [to_unit(x), to_unit(y)]
+    point(r, keys(seed, index.shr(LOG2_POINTS)))
 }
 
 /// Point `index` of the pmj02bn sequence for `seed`: a table point (set chosen by the seed),
@@ -202,8 +243,22 @@ pub fn sample_x8(index: u32x8, seed: u32x8) -> [f32x8; 2] {
 /// `out.len()`. Bit-identical to the scalar form.
 #[inline]
 pub fn sample_slice(start: u32, seed: u32, out: &mut [[f32; 2]]) -> usize {
-    let seed = u32x8::splat(seed);
-    batch::fill_indexed(start, out, |i| sample_x8(i, seed))
+    // Run by run within one block of POINTS indices, so the keys are derived once per run
+    // (the same values `sample_body` derives per call: bit-identical).
+    let n = out.len();
+    let mut index = start;
+    let mut rest = out;
+    while !rest.is_empty() {
+        let in_block = POINTS - (index as usize & (POINTS - 1));
+        let (run, tail) = rest.split_at_mut(in_block.min(rest.len()));
+        let k = keys(u32x8::splat(seed), u32x8::splat(index >> LOG2_POINTS));
+        batch::fill_indexed(index, run, |i| {
+            point(i & u32x8::splat(POINTS as u32 - 1), k)
+        });
+        index = index.wrapping_add(run.len() as u32);
+        rest = tail;
+    }
+    n
 }
 
 /// A permutation of sample indices for decorrelating several 2D dimensions: pass
