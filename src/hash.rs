@@ -22,11 +22,11 @@ pub(crate) fn mix<U: UintLane>(x: U) -> U {
 /// Owen scrambling (JCGT 2020).
 #[inline(always)]
 fn lk_hash<U: UintLane>(x: U, seed: U) -> U {
-    let x = x ^ x * U::splat(0x3d20_adea);
+    let x = x ^ (x * U::splat(0x3d20_adea));
     let x = x + seed;
     let x = x * (seed.shr(16) | U::splat(1));
-    let x = x ^ x * U::splat(0x0552_6c56);
-    x ^ x * U::splat(0x53a2_2864)
+    let x = x ^ (x * U::splat(0x0552_6c56));
+    x ^ (x * U::splat(0x53a2_2864))
 }
 
 /// Nested uniform (Owen) scramble of a 0.32 fixed-point coordinate, keyed by `seed`.

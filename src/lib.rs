@@ -72,6 +72,6 @@ pub mod pmj02bn;
 pub mod sequence;
 
 // The README's examples compile and run as doctests.
-#[cfg(all(doctest, feature = "disk"))]
+#[cfg(all(doctest, feature = "disk", feature = "pmj02bn", feature = "sequence"))]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
