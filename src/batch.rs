@@ -39,7 +39,10 @@ pub(crate) fn map<const I: usize, const O: usize>(
 
 /// Fills `output[i]` with `f` at the index `start + i` (wrapping), eight indices at a time;
 /// for the index-driven sequences and constructions. Returns `output.len()`.
-#[cfg_attr(not(any(feature = "triangle", feature = "pmj02bn")), allow(dead_code))]
+#[cfg_attr(
+    not(any(feature = "triangle", feature = "pmj02bn", feature = "sequence")),
+    allow(dead_code)
+)]
 #[inline(always)]
 pub(crate) fn fill_indexed<const O: usize>(
     start: u32,

@@ -42,6 +42,10 @@
 //! | feature | module | default |
 //! |---|---|---|
 //! | `disk` | [`disk`]: polar, concentric, polar4 | yes |
+//! | `pmj02bn` | [`pmj02bn`]: Owen-scrambled pmj02bn points; alone 1024 points x 1 set (8 KiB of tables) | yes |
+//! | `pmj02bn-4096`, `pmj02bn-16384`, `pmj02bn-65536` | points per set (largest enabled wins; 4096 by default) | 4096 |
+//! | `pmj02bn-4-sets` | 4 sets instead of 1; tables take `8 * POINTS * SETS` bytes (128 KiB by default) | yes |
+//! | `sequence` | [`sequence`]: baseline `random` and `stratified` samplers (no tables) | yes |
 //! | `std` | forwards `wide/std`; the library never needs it | no |
 
 #![no_std]
@@ -52,6 +56,9 @@ pub use wide::{f32x8, u32x8};
 
 #[cfg_attr(not(feature = "disk"), allow(dead_code))]
 mod batch;
+#[cfg(any(feature = "pmj02bn", feature = "sequence"))]
+#[cfg_attr(not(feature = "pmj02bn"), allow(dead_code))]
+mod hash;
 #[cfg_attr(not(feature = "disk"), allow(dead_code))]
 mod kernels;
 #[cfg_attr(not(feature = "disk"), allow(dead_code))]
@@ -59,8 +66,12 @@ mod lanes;
 
 #[cfg(feature = "disk")]
 pub mod disk;
+#[cfg(feature = "pmj02bn")]
+pub mod pmj02bn;
+#[cfg(feature = "sequence")]
+pub mod sequence;
 
 // The README's examples compile and run as doctests.
-#[cfg(all(doctest, feature = "disk"))]
+#[cfg(all(doctest, feature = "disk", feature = "pmj02bn", feature = "sequence"))]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
