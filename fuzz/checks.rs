@@ -133,3 +133,54 @@ pub fn disk(data: &[u8]) {
         }
     }
 }
+
+/// pmj02bn and the baseline sequences on arbitrary (index, seed, count) words: outputs in
+/// [0, 1) (never 1.0), scalar == x8 == slice, `raw` total.
+#[cfg(feature = "pmj02bn")]
+pub fn pmj02bn(data: &[u8]) {
+    use warpcore::{pmj02bn, sequence, u32x8};
+    let w = words(data);
+    let unit = |p: [f32; 2]| p.iter().all(|c| (0.0..1.0).contains(c));
+    for chunk in w.chunks(10) {
+        let get = |k: usize| chunk.get(k).copied().unwrap_or(0);
+        let (start, seed, count) = (get(0), get(1), get(2));
+        let idx: [u32; 8] = std::array::from_fn(|j| get(2 + j));
+        let _ = pmj02bn::raw(start as usize, seed as usize);
+        type Scalar = fn(u32, u32) -> [f32; 2];
+        let forms: [(&str, Scalar); 2] =
+            [("pmj02bn", pmj02bn::sample), ("random", sequence::random)];
+        for (name, f) in forms {
+            let v = match name {
+                "pmj02bn" => pmj02bn::sample_x8(u32x8::new(idx), u32x8::splat(seed)),
+                _ => sequence::random_x8(u32x8::new(idx), u32x8::splat(seed)),
+            };
+            for (j, &i) in idx.iter().enumerate() {
+                let s = f(i, seed);
+                assert!(unit(s), "{name}({i}, {seed}) = {s:?}");
+                assert!(
+                    same(s, [v[0].to_array()[j], v[1].to_array()[j]]),
+                    "{name} x8 {i} {seed}"
+                );
+            }
+        }
+        let mut out = [[0.0f32; 2]; 13];
+        pmj02bn::sample_slice(start, seed, &mut out);
+        for (k, o) in out.iter().enumerate() {
+            assert!(
+                same(*o, pmj02bn::sample(start.wrapping_add(k as u32), seed)),
+                "pmj02bn slice"
+            );
+        }
+        sequence::stratified_slice(start, count, seed, &mut out);
+        for (k, o) in out.iter().enumerate() {
+            let i = start.wrapping_add(k as u32);
+            let s = sequence::stratified(i, count, seed);
+            assert!(same(*o, s), "stratified slice");
+            // Documented: a jittered point can round onto its cell's upper edge, never past 1.
+            assert!(
+                s.iter().all(|c| (0.0..=1.0).contains(c)),
+                "stratified({i}, {count}, {seed}) = {s:?}"
+            );
+        }
+    }
+}

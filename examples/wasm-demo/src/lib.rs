@@ -29,6 +29,13 @@ pub extern "C" fn disk_polar4(u0: f32, u1: f32, quadrant: u32, k: u32) -> f32 {
     if k == 0 { p[0] } else { p[1] }
 }
 
+#[cfg(feature = "pmj02bn")]
+#[unsafe(no_mangle)]
+pub extern "C" fn pmj02bn_sample(index: u32, seed: u32, k: u32) -> f32 {
+    let p = warpcore::pmj02bn::sample(index, seed);
+    if k == 0 { p[0] } else { p[1] }
+}
+
 // The no-panic proof: this function is never defined. If any code path that can panic is
 // linked into the module, the panic handler (and with it this symbol) is kept, and the wasm
 // module gains an import `env.warpcore_panic_path_reached`. `tools/wasm-demo.mjs` loads the
