@@ -245,6 +245,12 @@ impl UintLane for u32x8 {
         mask.0.select(if_true, if_false)
     }
     #[inline(always)]
+    fn reverse_bits(self) -> Self {
+        // Lane by lane, so LLVM emits its vector bit-reverse (PSHUFB nibble tables on
+        // SSSE3/AVX2, GFNI where available) instead of the 20-instruction swap network.
+        u32x8::new(self.to_array().map(u32::reverse_bits))
+    }
+    #[inline(always)]
     fn gather_pairs(self, f: impl Fn(u32) -> [u32; 2]) -> [Self; 2] {
         let pairs = self.to_array().map(f);
         [
