@@ -42,6 +42,7 @@
 //! | feature | module | default |
 //! |---|---|---|
 //! | `disk` | [`disk`]: polar, concentric, polar4 | yes |
+//! | `triangle` | [`triangle`]: low-distortion (Heitz), sqrt map, Basu-Owen (scrambled) | yes |
 //! | `std` | forwards `wide/std`; the library never needs it | no |
 
 #![no_std]
@@ -50,7 +51,7 @@
 
 pub use wide::{f32x8, u32x8};
 
-#[cfg_attr(not(feature = "disk"), allow(dead_code))]
+#[cfg_attr(not(any(feature = "disk", feature = "triangle")), allow(dead_code))]
 mod batch;
 #[cfg_attr(not(feature = "disk"), allow(dead_code))]
 mod kernels;
@@ -59,6 +60,8 @@ mod lanes;
 
 #[cfg(feature = "disk")]
 pub mod disk;
+#[cfg(feature = "triangle")]
+pub mod triangle;
 
 // The README's examples compile and run as doctests.
 #[cfg(all(doctest, feature = "disk"))]
