@@ -64,6 +64,6 @@ pub mod disk;
 pub mod triangle;
 
 // The README's examples compile and run as doctests.
-#[cfg(all(doctest, feature = "disk"))]
+#[cfg(all(doctest, feature = "disk", feature = "triangle"))]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;

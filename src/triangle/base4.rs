@@ -97,11 +97,11 @@ pub(super) fn nested_scramble<U: UintLane>(index: U, seed: U) -> U {
     let m = (k3.shr(8) * U::splat(3)).shr(24);
     let x = rotate_digits(index, m);
     // Constants: fractional parts of the golden ratio, sqrt(2), sqrt(3), made even.
-    let x = x ^ x * U::splat(0x9e37_79b8);
+    let x = x ^ (x * U::splat(0x9e37_79b8));
     let x = x + k1;
     let x = x * (k2 | U::splat(1));
-    let x = x ^ x * U::splat(0x6a09_e666);
-    let x = x ^ x * U::splat(0xbb67_ae84);
+    let x = x ^ (x * U::splat(0x6a09_e666));
+    let x = x ^ (x * U::splat(0xbb67_ae84));
     U::select(seed.simd_eq(U::splat(0)), index, x)
 }
 
