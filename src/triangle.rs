@@ -192,8 +192,9 @@ fn sqrt_map_inverse_body<L: Lane>(b: [L; 3]) -> [L; 2] {
 /// The classic square-root map: `b0 = 1 - sqrt(u0)`, `b1 = u1 sqrt(u0)`,
 /// `b2 = (1 - u1) sqrt(u0)`.
 ///
-/// `u0` picks a segment parallel to the edge `v1 v2` (at distance `1 - sqrt(u0)` of the way
-/// from `v0`; the square root makes it uniform) and `u1` a point on it. Uniform on the
+/// `u0` picks a segment parallel to the edge `v1 v2`, a fraction `sqrt(u0)` of the way from
+/// `v0` to that edge (the square root compensates for the segments' growing length), and `u1`
+/// a point on it. Uniform on the
 /// triangle, density `1 / area`, but strata near `v0` become long slivers: kept for
 /// comparison with [`uniform`], which is also cheaper.
 ///
@@ -315,8 +316,9 @@ fn basu_owen_body<L: Lane>(index: L::U, seed: L::U) -> [L; 3] {
 /// `seed != 0` applies a nested base-4 digit scramble (Owen scrambling, hash-based in the
 /// manner of Burley 2020): each node of the subdivision tree permutes its four children by a
 /// permutation drawn from all 24, independently per seed. Every point is then uniformly
-/// distributed over the triangle (density `1 / area`) and the one-point-per-sub-triangle
-/// property above still holds, so different seeds give independent, equally stratified point
+/// distributed over the triangle at the construction's resolution (equally likely to be the
+/// centroid of any of the `4^16` level-16 sub-triangles: density `1 / area` at any scale above
+/// `2^-16`) and the one-point-per-sub-triangle property above still holds, so different seeds give independent, equally stratified point
 /// sets. Use one seed per pixel (or per light sample stream) and consecutive indices within
 /// it.
 #[inline]
