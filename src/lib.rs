@@ -42,6 +42,7 @@
 //! | feature | module | default |
 //! |---|---|---|
 //! | `disk` | [`disk`]: polar, concentric, polar4 | yes |
+//! | `sphere` | [`sphere`]: equal-area octahedral (+ wrap), lat-long, uniform sphere, uniform and cosine hemisphere; enables `disk` | yes |
 //! | `std` | forwards `wide/std`; the library never needs it | no |
 
 #![no_std]
@@ -50,15 +51,17 @@
 
 pub use wide::{f32x8, u32x8};
 
-#[cfg_attr(not(feature = "disk"), allow(dead_code))]
+#[cfg_attr(not(any(feature = "disk", feature = "sphere")), allow(dead_code))]
 mod batch;
-#[cfg_attr(not(feature = "disk"), allow(dead_code))]
+#[cfg_attr(not(any(feature = "disk", feature = "sphere")), allow(dead_code))]
 mod kernels;
-#[cfg_attr(not(feature = "disk"), allow(dead_code))]
+#[cfg_attr(not(any(feature = "disk", feature = "sphere")), allow(dead_code))]
 mod lanes;
 
 #[cfg(feature = "disk")]
 pub mod disk;
+#[cfg(feature = "sphere")]
+pub mod sphere;
 
 // The README's examples compile and run as doctests.
 #[cfg(all(doctest, feature = "disk"))]
