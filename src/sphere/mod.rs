@@ -5,7 +5,7 @@
 //! | [`equal_area`] | octahedral layout: the square's centre is `+z`, the rotated inner square the upper hemisphere, the four corner triangles the lower one | [`UNIFORM_PDF`] `= 1/(4 pi)` | Clarberg 2008, "Fast Equal-Area Mapping of the (Hemi)Sphere using SIMD" |
 //! | [`equirect`] | lat-long: `phi = 2 pi u0`, `theta = pi u1` | `1 / (2 pi^2 sin theta)` ([`equirect_pdf_to_solid_angle`]) | textbook |
 //! | [`uniform`] | `z = 1 - 2 u0`, `phi = 2 pi u1` (Archimedes' hat-box) | [`UNIFORM_PDF`] | textbook; pbrt-v4 `SampleUniformSphere` |
-//! | [`uniform_hemisphere`] | concentric disk, then Lambert's equal-area lift | [`HEMISPHERE_PDF`] `= 1/(2 pi)` | Shirley and Chiu 1997 + Lambert azimuthal projection, as in Clarberg 2008 and Mitsuba 3 |
+//! | [`uniform_hemisphere`] | concentric disk, then Lambert's equal-area lift | [`HEMISPHERE_PDF`] `= 1/(2 pi)` | Shirley and Chiu 1997 + Lambert azimuthal projection; Mitsuba 3 `square_to_uniform_hemisphere` |
 //! | [`cosine_hemisphere`] | concentric disk, then `z = sqrt(1 - r^2)` (Malley's method) | [`cosine_hemisphere_pdf`] `= cos theta / pi` | Malley 1988; Shirley and Chiu 1997 |
 //!
 //! Every warp has an inverse, an 8-wide `_x8` form and a `_slice` form, all bit-identical to
@@ -15,6 +15,25 @@
 //! look a direction up, [`equal_area_wrap`] / [`equal_area_wrap_texel`] to filter across the
 //! octahedral map's edges, and the `*_pdf_to_solid_angle` conversions to turn a density over
 //! the image square into one over directions.
+//!
+//! ```
+//! use warpcore::sphere;
+//!
+//! // Sample a direction from an octahedral environment map's square, and look it up again.
+//! let d = sphere::equal_area([0.3, 0.8]);
+//! let u = sphere::equal_area_inverse(d);
+//! assert!((u[0] - 0.3).abs() < 5e-7 && (u[1] - 0.8).abs() < 5e-7);
+//! // A texel's density over the square, as a density over solid angle.
+//! let pdf = sphere::equal_area_pdf_to_solid_angle(2.0); // 2 / (4 pi)
+//! assert!((pdf - 0.5 / std::f32::consts::PI).abs() < 1e-7);
+//! // Bilinear filtering across the map's left edge: texel (-1, 5) of a 64 x 64 map is (0, 58).
+//! assert_eq!(sphere::equal_area_wrap_texel([-1, 5], 64), [0, 58]);
+//! // Cosine-weighted directions for diffuse bounces, eight at a time or in a batch.
+//! let mut dirs = [[0.0f32; 3]; 3];
+//! sphere::cosine_hemisphere_slice(&[[0.1, 0.2], [0.5, 0.5], [0.9, 0.7]], &mut dirs);
+//! assert_eq!(dirs[1], [0.0, 0.0, 1.0]);
+//! assert!(dirs.iter().all(|d| d[2] > 0.0));
+//! ```
 //!
 //! **Out-of-range input** (every function here is total). Forward warps first map each
 //! coordinate onto `[0, 1 - 2^-24]`: NaN, `-0.0`, negatives and `-inf` become `0`, values
