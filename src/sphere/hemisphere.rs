@@ -172,7 +172,7 @@ pub fn cosine_hemisphere_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
 /// 1.2e-7). `cosine_hemisphere(cosine_hemisphere_inverse(d))` is within 1e-6 rad of `d` away
 /// from the horizon; near it the map's conditioning (`d theta / d r = 1 / z`) magnifies the
 /// rounding of the disk radius (steps of `2^-23` there), and the bound is
-/// `1e-6 + 3 * 2^-23 / z` rad (measured 2.1 steps at most).
+/// `1e-6 + 3 * 2^-23 / z` rad (measured 1e-6 + 2.07 steps at most).
 #[inline]
 pub fn cosine_hemisphere_inverse(d: [f32; 3]) -> [f32; 2] {
     cosine_hemisphere_inverse_body(d)
