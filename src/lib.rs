@@ -43,6 +43,7 @@
 //! |---|---|---|
 //! | `disk` | [`disk`]: polar, concentric, polar4 | yes |
 //! | `triangle` | [`triangle`]: low-distortion (Heitz), sqrt map, Basu-Owen (scrambled) | yes |
+//! | `sphere` | [`sphere`]: equal-area octahedral (+ wrap), lat-long, uniform sphere, uniform and cosine hemisphere; enables `disk` | yes |
 //! | `pmj02bn` | [`pmj02bn`]: Owen-scrambled pmj02bn points; alone 1024 points x 1 set (8 KiB of tables) | yes |
 //! | `pmj02bn-4096`, `pmj02bn-16384`, `pmj02bn-65536` | points per set (largest enabled wins; 4096 by default) | 4096 |
 //! | `pmj02bn-4-sets` | 4 sets instead of 1; tables take `8 * POINTS * SETS` bytes (128 KiB by default) | yes |
@@ -58,23 +59,47 @@ pub use wide::{f32x8, u32x8};
 // Shared internals. A build with only some families leaves parts of them unused, which is
 // expected there; the full build still reports real dead code.
 #[cfg_attr(
-    not(all(feature = "disk", feature = "triangle", feature = "pmj02bn", feature = "sequence")),
+    not(all(
+        feature = "disk",
+        feature = "triangle",
+        feature = "sphere",
+        feature = "pmj02bn",
+        feature = "sequence"
+    )),
     allow(dead_code)
 )]
 mod batch;
 #[cfg(any(feature = "pmj02bn", feature = "sequence"))]
 #[cfg_attr(
-    not(all(feature = "disk", feature = "triangle", feature = "pmj02bn", feature = "sequence")),
+    not(all(
+        feature = "disk",
+        feature = "triangle",
+        feature = "sphere",
+        feature = "pmj02bn",
+        feature = "sequence"
+    )),
     allow(dead_code)
 )]
 mod hash;
 #[cfg_attr(
-    not(all(feature = "disk", feature = "triangle", feature = "pmj02bn", feature = "sequence")),
+    not(all(
+        feature = "disk",
+        feature = "triangle",
+        feature = "sphere",
+        feature = "pmj02bn",
+        feature = "sequence"
+    )),
     allow(dead_code)
 )]
 mod kernels;
 #[cfg_attr(
-    not(all(feature = "disk", feature = "triangle", feature = "pmj02bn", feature = "sequence")),
+    not(all(
+        feature = "disk",
+        feature = "triangle",
+        feature = "sphere",
+        feature = "pmj02bn",
+        feature = "sequence"
+    )),
     allow(dead_code)
 )]
 mod lanes;
@@ -85,6 +110,8 @@ pub mod disk;
 pub mod pmj02bn;
 #[cfg(feature = "sequence")]
 pub mod sequence;
+#[cfg(feature = "sphere")]
+pub mod sphere;
 #[cfg(feature = "triangle")]
 pub mod triangle;
 
@@ -93,6 +120,7 @@ pub mod triangle;
     doctest,
     feature = "disk",
     feature = "triangle",
+    feature = "sphere",
     feature = "pmj02bn",
     feature = "sequence"
 ))]

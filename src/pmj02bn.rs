@@ -283,8 +283,8 @@ mod tests {
     /// (Runs under miri in CI: the cast and the reads are checked for soundness there.)
     fn table_view_is_complete() {
         let le = |b: &[u8]| u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
-        for set in 0..SETS {
-            let bytes = &TABLES[set].0;
+        for (set, table) in TABLES.iter().enumerate() {
+            let bytes = &table.0;
             let v = view(set);
             assert_eq!(core::mem::size_of_val(v), bytes.len());
             for k in [0, 1, POINTS / 2 + 3, POINTS - 1] {
