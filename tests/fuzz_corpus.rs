@@ -34,3 +34,15 @@ fn disk_corpus() {
 fn pmj02bn_corpus() {
     replay("pmj02bn", checks::pmj02bn);
 }
+
+#[cfg(feature = "triangle")]
+#[test]
+fn triangle_corpus() {
+    replay("triangle", checks::triangle);
+}
+
+#[cfg(feature = "sphere")]
+#[test]
+fn sphere_corpus() {
+    replay("sphere", checks::sphere);
+}

@@ -1235,3 +1235,19 @@ fn chi2_rejects_wrong_warps() {
         .p_value;
     assert!(p < chi2::per_test_alpha(), "{p}");
 }
+
+/// Found by the `sphere` fuzz target: the smallest negative subnormal halves to -0.0 in the
+/// modulo-2 reduction and used to come back unchanged (outside the square). It must fold like
+/// any other tiny negative coordinate: (-e, v) -> (e, 1 - v).
+#[test]
+fn wrap_folds_the_smallest_negative_subnormal() {
+    let tiny = -f32::from_bits(1);
+    for v in [0.0f32, 2.350_989e-38, 0.25, 0.999] {
+        let w = sphere::equal_area_wrap([tiny, v]);
+        assert!(w.iter().all(|c| (0.0..=1.0).contains(c)), "{v}: {w:?}");
+        assert_eq!(w, sphere::equal_area_wrap([-1e-30, v]), "{v}");
+        let w = sphere::equal_area_wrap([v, tiny]);
+        assert!(w.iter().all(|c| (0.0..=1.0).contains(c)), "{v}: {w:?}");
+    }
+    assert_eq!(sphere::equal_area_wrap([-0.0, 0.5])[0].to_bits(), (-0.0f32).to_bits());
+}

@@ -6,6 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../examples/wasm-demo"
 probes=(
   "probe-concentric:only disk::concentric"
+  "probe-equal-area:only sphere::equal_area"
   "probe-pmj02bn-1024:only pmj02bn::sample, 1024 points x 1 set"
   "probe-pmj02bn-4096:only pmj02bn::sample, 4096 points x 1 set"
   "probe-pmj02bn-16384:only pmj02bn::sample, 16384 points x 1 set"

@@ -112,17 +112,17 @@ pub fn warp<const I: usize, const O: usize>(
 /// Hashes an index-driven sequence: `scalar(index, seed)` over a fixed set of (index, seed)
 /// pairs (small, near `2^k` boundaries, past any table, and extremes), `x8` on groups of 8
 /// and `slice(start, seed, out)` filling 37 consecutive points from several starts.
-pub fn indexed(
+pub fn indexed<const O: usize>(
     h: &mut Hasher,
-    scalar: impl Fn(u32, u32) -> [f32; 2],
-    x8: impl Fn(warpcore::u32x8, warpcore::u32x8) -> [f32x8; 2],
-    slice: impl Fn(u32, u32, &mut [[f32; 2]]) -> usize,
+    scalar: impl Fn(u32, u32) -> [f32; O],
+    x8: impl Fn(warpcore::u32x8, warpcore::u32x8) -> [f32x8; O],
+    slice: impl Fn(u32, u32, &mut [[f32; O]]) -> usize,
 ) {
     let seeds = [0u32, 1, 0x9e37_79b9, u32::MAX];
     let starts = [0u32, 5, 1023, 4090, 65530, 1 << 20, u32::MAX - 20];
     for &seed in &seeds {
         for &start in &starts {
-            let mut out = [[0.0f32; 2]; 37];
+            let mut out = [[0.0f32; O]; 37];
             h.word(slice(start, seed, &mut out) as u32);
             for (k, o) in out.iter().enumerate() {
                 let i = start.wrapping_add(k as u32);
@@ -215,6 +215,93 @@ pub fn fingerprint() -> u64 {
                 |i, s| sequence::stratified_x8(i, count, s),
                 |st, s, o| sequence::stratified_slice(st, count, s, o),
             );
+        }
+    }
+    #[cfg(feature = "triangle")]
+    {
+        use warpcore::triangle as t;
+        warp(&mut h, t::uniform, t::uniform_x8, t::uniform_slice);
+        warp(
+            &mut h,
+            t::uniform_inverse,
+            t::uniform_inverse_x8,
+            t::uniform_inverse_slice,
+        );
+        warp(&mut h, t::sqrt_map, t::sqrt_map_x8, t::sqrt_map_slice);
+        warp(
+            &mut h,
+            t::sqrt_map_inverse,
+            t::sqrt_map_inverse_x8,
+            t::sqrt_map_inverse_slice,
+        );
+        indexed(&mut h, t::basu_owen, t::basu_owen_x8, t::basu_owen_slice);
+    }
+    #[cfg(feature = "sphere")]
+    {
+        use warpcore::sphere as s;
+        warp(&mut h, s::equal_area, s::equal_area_x8, s::equal_area_slice);
+        warp(
+            &mut h,
+            s::equal_area_inverse,
+            s::equal_area_inverse_x8,
+            s::equal_area_inverse_slice,
+        );
+        warp(
+            &mut h,
+            s::equal_area_wrap,
+            s::equal_area_wrap_x8,
+            s::equal_area_wrap_slice,
+        );
+        warp(&mut h, s::equirect, s::equirect_x8, s::equirect_slice);
+        warp(
+            &mut h,
+            s::equirect_inverse,
+            s::equirect_inverse_x8,
+            s::equirect_inverse_slice,
+        );
+        warp(&mut h, s::uniform, s::uniform_x8, s::uniform_slice);
+        warp(
+            &mut h,
+            s::uniform_inverse,
+            s::uniform_inverse_x8,
+            s::uniform_inverse_slice,
+        );
+        warp(
+            &mut h,
+            s::uniform_hemisphere,
+            s::uniform_hemisphere_x8,
+            s::uniform_hemisphere_slice,
+        );
+        warp(
+            &mut h,
+            s::uniform_hemisphere_inverse,
+            s::uniform_hemisphere_inverse_x8,
+            s::uniform_hemisphere_inverse_slice,
+        );
+        warp(
+            &mut h,
+            s::cosine_hemisphere,
+            s::cosine_hemisphere_x8,
+            s::cosine_hemisphere_slice,
+        );
+        warp(
+            &mut h,
+            s::cosine_hemisphere_inverse,
+            s::cosine_hemisphere_inverse_x8,
+            s::cosine_hemisphere_inverse_slice,
+        );
+        for i in 0..N {
+            let d: [f32; 3] = input(i);
+            let [p]: [f32; 1] = input(i);
+            h.floats(&[
+                s::equirect_pdf_to_solid_angle(p, d),
+                s::equal_area_pdf_to_solid_angle(p),
+                s::cosine_hemisphere_pdf(p),
+            ]);
+            let t: [f32; 2] = input(i);
+            for w in s::equal_area_wrap_texel(t.map(|c| ((c * 64.0) as i32).wrapping_sub(16)), 32) {
+                h.word(w);
+            }
         }
     }
     h.finish()
