@@ -1249,5 +1249,8 @@ fn wrap_folds_the_smallest_negative_subnormal() {
         let w = sphere::equal_area_wrap([v, tiny]);
         assert!(w.iter().all(|c| (0.0..=1.0).contains(c)), "{v}: {w:?}");
     }
-    assert_eq!(sphere::equal_area_wrap([-0.0, 0.5])[0].to_bits(), (-0.0f32).to_bits());
+    assert_eq!(
+        sphere::equal_area_wrap([-0.0, 0.5])[0].to_bits(),
+        (-0.0f32).to_bits()
+    );
 }
