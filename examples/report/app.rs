@@ -1,0 +1,128 @@
+//! The report as a function of its options: runs every scene, prints the tables, writes the
+//! CSV files, the plots and the strata pictures.
+
+use crate::area::AreaScene;
+use crate::output;
+use crate::plots;
+use crate::run::{self, Config, Scene, SceneResult};
+use crate::strata;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Fewer pixels and shorter timings: a smoke run (under 15 s).
+    pub quick: bool,
+    pub out: PathBuf,
+    /// Pixels per area-light scene (default 16384, quick 1024).
+    pub pixels: Option<usize>,
+    /// Largest sample count: powers of 4 from 4 up to it (default 1024).
+    pub max_spp: usize,
+    pub threads: usize,
+    /// Only scenes whose name starts with one of these (all when empty).
+    pub scenes: Vec<String>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            quick: false,
+            out: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/report"),
+            pixels: None,
+            max_spp: 1024,
+            threads: std::thread::available_parallelism().map_or(2, |n| n.get()),
+            scenes: Vec::new(),
+        }
+    }
+}
+
+impl Options {
+    pub fn spps(&self) -> Vec<usize> {
+        std::iter::successors(Some(4usize), |n| n.checked_mul(4))
+            .take_while(|&n| n <= self.max_spp.max(4))
+            .collect()
+    }
+
+    fn wants(&self, scene: &str) -> bool {
+        self.scenes.is_empty() || self.scenes.iter().any(|s| scene.starts_with(s.as_str()))
+    }
+
+    fn config(&self, pixels: usize) -> Config {
+        Config {
+            pixels,
+            spps: self.spps(),
+            threads: self.threads.max(1),
+            timing_samples: if self.quick { 1 << 14 } else { 1 << 18 },
+            timing_reps: if self.quick { 2 } else { 5 },
+        }
+    }
+}
+
+fn bar(len: u64, what: &str, name: &str) -> ProgressBar {
+    let b = ProgressBar::new(len);
+    b.set_style(
+        ProgressStyle::with_template(&format!(
+            "{{msg:>22}} [{{bar:32}}] {{pos:>6}}/{{len}} {what} {{elapsed}}"
+        ))
+        .unwrap_or_else(|_| ProgressStyle::default_bar())
+        .progress_chars("=> "),
+    );
+    b.set_message(name.to_string());
+    b
+}
+
+/// Runs one scene: errors, then timings; prints its table.
+pub fn run_scene<S: Scene>(scene: &S, cfg: &Config) -> SceneResult {
+    let name = scene.name();
+    let b = bar(cfg.pixels as u64, "pixels", &name);
+    let mut result = run::errors(scene, cfg, &b);
+    b.finish_and_clear();
+    let b = bar(result.rows.len() as u64, "timings", &name);
+    let t = Instant::now();
+    run::timings(scene, cfg, &mut result, &b);
+    b.finish_and_clear();
+    if !std::io::stderr().is_terminal() {
+        eprintln!(
+            "{name}: {} pixels in {:.1} s, timings in {:.1} s",
+            result.pixels,
+            result.seconds,
+            t.elapsed().as_secs_f64()
+        );
+    }
+    print!("{}", output::terminal(&result));
+    result
+}
+
+/// The whole report. Returns the scene results (also written to `opts.out`).
+pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error>> {
+    let start = Instant::now();
+    std::fs::create_dir_all(&opts.out)?;
+    let area_pixels = opts.pixels.unwrap_or(if opts.quick { 1024 } else { 16384 });
+    let mut results = Vec::new();
+    for scene in AreaScene::all() {
+        if opts.wants(scene.name) {
+            results.push(run_scene(&scene, &opts.config(area_pixels)));
+        }
+    }
+
+    let csv = opts.out.join("results.csv");
+    output::write(&csv, &output::csv(&results))?;
+    output::write(
+        &opts.out.join("details.csv"),
+        &output::details_csv(&results),
+    )?;
+    let tables: String = results.iter().map(|r| output::markdown(r) + "\n").collect();
+    output::write(&opts.out.join("tables.md"), &tables)?;
+    for r in &results {
+        plots::scene_plot(r, &opts.out)?;
+    }
+    output::write(&opts.out.join("strata.svg"), &strata::disk_triangle_svg())?;
+    println!(
+        "\nwrote {} (and details.csv, tables.md, one SVG plot per scene, strata.svg) in {:.1} s",
+        csv.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(results)
+}

@@ -1,0 +1,467 @@
+//! Area-light scenes: a shading point under a planar light of unit area, with an occluder
+//! edge crossing the light, and their exact references.
+//!
+//! **Geometry.** The light lies in the plane `z = 0`, centred at the origin, facing up; the
+//! shading point is `(q, h)` at height `h = 1`, its normal facing down, parallel to the light.
+//! With unit radiance the irradiance is
+//!
+//! ```text
+//! E = int_visible cos(theta) cos(theta') / r^2 dA = int_visible h^2 / (h^2 + |x - q|^2)^2 dA(x)
+//! ```
+//!
+//! An occluding half-plane between the point and the light hides every light point behind
+//! the line where its edge projects onto the light plane (the line through the point and the
+//! occluder's edge meets the plane in a line), so visibility is a half-plane cut of the
+//! light: `x` is visible when `e . x >= k` (unit normal `e`, offset `k`).
+//!
+//! **Pixels.** Pixel `i` of a scene draws, from a hash of `(scene, i)`: `q` uniform in
+//! `[-1/2, 1/2]^2`; a point `c` uniform in the light's bounding box scaled by 1.5 about its
+//! centre; the edge through `c` with a uniform direction, visible side `e . (x - c) >= 0`.
+//! The pixel is in **penumbra** when that line cuts the light's interior (otherwise the
+//! light is fully visible or fully hidden).
+//!
+//! **Estimator.** `E_N = (A / N) sum f(x_i) V(x_i)` with `x_i` the warped samples, uniform on
+//! the light (density `1 / A`, `A = 1`).
+//!
+//! **Reference** (exact). By Green's theorem the integral of `h^2 / (h^2 + |x - q|^2)^2`
+//! over a region is the contour integral `1/2 oint (X dY - Y dX) / (h^2 + X^2 + Y^2)`, with
+//! `(X, Y) = x - q` (the planar form of Lambert's polygon formula). Along a straight edge
+//! from `A` to `B` it has the closed form [`edge_term`]; along a circular arc its integrand
+//! is analytic and periodic, integrated by 16-point Gauss-Legendre on pieces of at most
+//! `pi / 8` (converged to rounding: `tests/report.rs` checks it against an independent 2D
+//! quadrature and the closed form of the whole disk).
+
+use crate::math::{Rng, cross2, dot2, gl16, hash, integrate, sub2};
+use crate::run::{Scene, Scratch};
+use crate::samplers::{Sampler, hash_x8};
+use std::f64::consts::{PI, TAU};
+use warpcore::{disk, triangle, u32x8};
+
+/// Height of the shading point over the light plane.
+pub const HEIGHT: f64 = 1.0;
+
+/// A light's shape, centred at the origin of the light plane, area 1.
+#[derive(Clone, Debug)]
+pub enum Shape {
+    /// `[-hx, hx] x [-hy, hy]`.
+    Rect { hx: f64, hy: f64 },
+    /// Radius `r`.
+    Disk { r: f64 },
+    /// Vertices `v0, v1, v2`, counter-clockwise.
+    Triangle { v: [[f64; 2]; 3] },
+}
+
+impl Shape {
+    pub fn area(&self) -> f64 {
+        match self {
+            Shape::Rect { hx, hy } => 4.0 * hx * hy,
+            Shape::Disk { r } => PI * r * r,
+            Shape::Triangle { v } => 0.5 * cross2(sub2(v[1], v[0]), sub2(v[2], v[0])),
+        }
+    }
+
+    /// Half extents of the bounding box (centred at the origin).
+    pub fn half_extents(&self) -> [f64; 2] {
+        match self {
+            Shape::Rect { hx, hy } => [*hx, *hy],
+            Shape::Disk { r } => [*r, *r],
+            Shape::Triangle { v } => {
+                let m = |k: usize| v.iter().map(|p| p[k].abs()).fold(0.0, f64::max);
+                [m(0), m(1)]
+            }
+        }
+    }
+
+    /// The boundary polygon, counter-clockwise (`None` for the disk).
+    pub fn polygon(&self) -> Option<Vec<[f64; 2]>> {
+        match self {
+            Shape::Rect { hx, hy } => Some(vec![[-hx, -hy], [*hx, -hy], [*hx, *hy], [-hx, *hy]]),
+            Shape::Disk { .. } => None,
+            Shape::Triangle { v } => Some(v.to_vec()),
+        }
+    }
+
+    pub fn contains(&self, x: [f64; 2]) -> bool {
+        match self {
+            Shape::Rect { hx, hy } => x[0].abs() <= *hx && x[1].abs() <= *hy,
+            Shape::Disk { r } => dot2(x, x) <= r * r,
+            Shape::Triangle { v } => {
+                (0..3).all(|i| cross2(sub2(v[(i + 1) % 3], v[i]), sub2(x, v[i])) >= 0.0)
+            }
+        }
+    }
+}
+
+/// The unit-area lights of the report.
+pub fn square() -> Shape {
+    Shape::Rect { hx: 0.5, hy: 0.5 }
+}
+
+/// 16:1, long along `x` (driven by `u[0]`).
+pub fn skinny() -> Shape {
+    Shape::Rect { hx: 2.0, hy: 0.125 }
+}
+
+pub fn disk() -> Shape {
+    Shape::Disk {
+        r: (1.0 / PI).sqrt(),
+    }
+}
+
+/// Equilateral, centroid at the origin, `v0` at the top.
+pub fn triangle() -> Shape {
+    let rc = (4.0 / (3.0 * 3f64.sqrt())).sqrt();
+    let at = |deg: f64| {
+        let a = deg.to_radians();
+        [rc * a.cos(), rc * a.sin()]
+    };
+    Shape::Triangle {
+        v: [at(90.0), at(210.0), at(330.0)],
+    }
+}
+
+/// How samples reach the light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AreaWarp {
+    /// Rectangles: `x = (2 u0 - 1) hx, (2 u1 - 1) hy`.
+    Identity,
+    Polar,
+    Concentric,
+    /// Point `i / 4` of the sampler, quadrant `i % 4` (`disk::polar4_slice`).
+    Polar4,
+    /// Heitz's low-distortion map, `triangle::uniform`.
+    Uniform,
+    Sqrt,
+    /// `triangle::basu_owen(index, pixel seed)`: index-driven, see [`AreaScene::draw`].
+    BasuOwen,
+}
+
+impl AreaWarp {
+    pub fn name(self) -> &'static str {
+        match self {
+            AreaWarp::Identity => "identity",
+            AreaWarp::Polar => "polar",
+            AreaWarp::Concentric => "concentric",
+            AreaWarp::Polar4 => "polar4",
+            AreaWarp::Uniform => "uniform",
+            AreaWarp::Sqrt => "sqrt",
+            AreaWarp::BasuOwen => "basu_owen",
+        }
+    }
+}
+
+/// The visible side of the occluder's edge: `e . x >= k`.
+#[derive(Clone, Copy, Debug)]
+pub struct Cut {
+    pub e: [f64; 2],
+    pub k: f64,
+}
+
+impl Cut {
+    pub fn visible(&self, x: [f64; 2]) -> bool {
+        dot2(self.e, x) >= self.k
+    }
+}
+
+/// One pixel: shading point, edge and exact reference.
+#[derive(Clone, Debug)]
+pub struct AreaPixel {
+    pub q: [f64; 2],
+    pub cut: Cut,
+    pub reference: f64,
+    pub penumbra: bool,
+}
+
+/// `h^2 / (h^2 + |x - q|^2)^2`: the unoccluded integrand.
+#[inline]
+pub fn integrand(x: [f64; 2], q: [f64; 2], h: f64) -> f64 {
+    let (dx, dy) = (x[0] - q[0], x[1] - q[1]);
+    let h2 = h * h;
+    let d = h2 + dx * dx + dy * dy;
+    h2 / (d * d)
+}
+
+/// `1/2 int (X dY - Y dX) / (h^2 + X^2 + Y^2)` along the segment from `a` to `b` (relative to
+/// the shading point's foot), in closed form:
+/// `(a x b) / (2 s) * atan2(|d|^2 s, s^2 + (a . d)(b . d))`, `d = b - a`,
+/// `s = sqrt(|d|^2 h^2 + (a x b)^2)` — the difference of the two arctangents of the
+/// antiderivative, combined into one `atan2` (no cancellation).
+pub fn edge_term(a: [f64; 2], b: [f64; 2], h: f64) -> f64 {
+    let d = sub2(b, a);
+    let dd = dot2(d, d);
+    let axb = cross2(a, b);
+    if dd == 0.0 || axb == 0.0 {
+        return 0.0;
+    }
+    let s = (dd * h * h + axb * axb).sqrt();
+    0.5 * axb / s * (dd * s).atan2(s * s + dot2(a, d) * dot2(b, d))
+}
+
+/// The same contour integral along the arc `x = r (cos t, sin t)`, `t` from `t0` to `t1`.
+pub fn arc_term(r: f64, t0: f64, t1: f64, q: [f64; 2], h: f64) -> f64 {
+    let pieces = ((t1 - t0).abs() / (PI / 8.0)).ceil().max(1.0) as usize;
+    let dt = (t1 - t0) / pieces as f64;
+    let k = h * h + dot2(q, q) + r * r;
+    (0..pieces)
+        .map(|i| {
+            let a = t0 + i as f64 * dt;
+            integrate(gl16(), a, a + dt, |t| {
+                let (s, c) = t.sin_cos();
+                let m = q[0] * c + q[1] * s;
+                0.5 * (r * r - r * m) / (k - 2.0 * r * m)
+            })
+        })
+        .sum()
+}
+
+/// Clips a convex counter-clockwise polygon to `cut` (Sutherland-Hodgman, one plane).
+pub fn clip(polygon: &[[f64; 2]], cut: Cut) -> Vec<[f64; 2]> {
+    let mut out = Vec::with_capacity(polygon.len() + 1);
+    let side = |p: [f64; 2]| dot2(cut.e, p) - cut.k;
+    for (i, &p) in polygon.iter().enumerate() {
+        let n = polygon[(i + 1) % polygon.len()];
+        let (sp, sn) = (side(p), side(n));
+        if sp >= 0.0 {
+            out.push(p);
+        }
+        if (sp >= 0.0) != (sn >= 0.0) {
+            let t = sp / (sp - sn);
+            out.push([p[0] + t * (n[0] - p[0]), p[1] + t * (n[1] - p[1])]);
+        }
+    }
+    out
+}
+
+/// Exact irradiance from the visible part of `shape` at the point over `q`.
+pub fn irradiance(shape: &Shape, q: [f64; 2], h: f64, cut: Cut) -> f64 {
+    match shape {
+        Shape::Disk { r } => {
+            let r = *r;
+            // Visible arc: cos(t - alpha) >= k / r.
+            let alpha = cut.e[1].atan2(cut.e[0]);
+            let ratio = cut.k / r;
+            if ratio >= 1.0 {
+                return 0.0;
+            }
+            if ratio <= -1.0 {
+                return arc_term(r, 0.0, TAU, q, h);
+            }
+            let beta = ratio.acos();
+            let (t0, t1) = (alpha - beta, alpha + beta);
+            let at = |t: f64| [r * t.cos() - q[0], r * t.sin() - q[1]];
+            arc_term(r, t0, t1, q, h) + edge_term(at(t1), at(t0), h)
+        }
+        _ => {
+            let poly = clip(&shape.polygon().unwrap_or_default(), cut);
+            (0..poly.len())
+                .map(|i| {
+                    let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+                    edge_term(sub2(a, q), sub2(b, q), h)
+                })
+                .sum()
+        }
+    }
+}
+
+/// Whether the edge's line cuts the light's interior.
+pub fn cuts(shape: &Shape, cut: Cut) -> bool {
+    match shape {
+        Shape::Disk { r } => cut.k.abs() < *r,
+        _ => {
+            let s: Vec<f64> = shape
+                .polygon()
+                .unwrap_or_default()
+                .iter()
+                .map(|&p| dot2(cut.e, p) - cut.k)
+                .collect();
+            s.iter().any(|&x| x > 0.0) && s.iter().any(|&x| x < 0.0)
+        }
+    }
+}
+
+/// One area-light scene.
+pub struct AreaScene {
+    pub name: &'static str,
+    pub shape: Shape,
+    pub warps: Vec<AreaWarp>,
+    pub id: u64,
+}
+
+impl AreaScene {
+    pub fn all() -> Vec<AreaScene> {
+        use AreaWarp::*;
+        vec![
+            AreaScene {
+                name: "square",
+                shape: square(),
+                warps: vec![Identity],
+                id: 1,
+            },
+            AreaScene {
+                name: "skinny",
+                shape: skinny(),
+                warps: vec![Identity],
+                id: 2,
+            },
+            AreaScene {
+                name: "disk",
+                shape: disk(),
+                warps: vec![Polar, Concentric, Polar4],
+                id: 3,
+            },
+            AreaScene {
+                name: "triangle",
+                shape: triangle(),
+                warps: vec![Uniform, Sqrt, BasuOwen],
+                id: 4,
+            },
+        ]
+    }
+
+    /// Pixel `index`'s geometry (see the module docs), without its reference.
+    pub fn geometry(&self, index: u64) -> (/* q */ [f64; 2], Cut) {
+        let mut rng = Rng::new(hash(&[self.id, index]));
+        let q = [rng.uniform() - 0.5, rng.uniform() - 0.5];
+        let [hx, hy] = self.shape.half_extents();
+        let c = [
+            1.5 * hx * (2.0 * rng.uniform() - 1.0),
+            1.5 * hy * (2.0 * rng.uniform() - 1.0),
+        ];
+        let a = TAU * rng.uniform();
+        let e = [a.cos(), a.sin()];
+        (q, Cut { e, k: dot2(e, c) })
+    }
+
+    /// Maps a warped sample to the light plane.
+    #[inline]
+    fn to_plane2(&self, p: [f32; 2]) -> [f64; 2] {
+        match &self.shape {
+            Shape::Rect { hx, hy } => [
+                (2.0 * p[0] as f64 - 1.0) * hx,
+                (2.0 * p[1] as f64 - 1.0) * hy,
+            ],
+            Shape::Disk { r } => [p[0] as f64 * r, p[1] as f64 * r],
+            Shape::Triangle { .. } => [0.0, 0.0],
+        }
+    }
+
+    #[inline]
+    fn to_plane3(&self, b: [f32; 3]) -> [f64; 2] {
+        match &self.shape {
+            Shape::Triangle { v } => {
+                let (b0, b1, b2) = (b[0] as f64, b[1] as f64, b[2] as f64);
+                [
+                    b0 * v[0][0] + b1 * v[1][0] + b2 * v[2][0],
+                    b0 * v[0][1] + b1 * v[1][1] + b2 * v[2][1],
+                ]
+            }
+            _ => [0.0, 0.0],
+        }
+    }
+}
+
+impl Scene for AreaScene {
+    type Pixel = AreaPixel;
+
+    fn name(&self) -> String {
+        self.name.to_string()
+    }
+
+    fn warps(&self) -> Vec<&'static str> {
+        self.warps.iter().map(|w| w.name()).collect()
+    }
+
+    fn pixel(&self, index: u64) -> AreaPixel {
+        let (q, cut) = self.geometry(index);
+        AreaPixel {
+            q,
+            cut,
+            reference: irradiance(&self.shape, q, HEIGHT, cut),
+            penumbra: cuts(&self.shape, cut),
+        }
+    }
+
+    fn reference(&self, pixel: &AreaPixel) -> f64 {
+        pixel.reference
+    }
+
+    fn penumbra(&self, pixel: &AreaPixel) -> bool {
+        pixel.penumbra
+    }
+
+    /// Basu-Owen is index-driven: `random` draws independent random indices (uniform points
+    /// on the triangle, as the scrambled construction is uniform for any index), while
+    /// `stratified` and `pmj02bn` both mean the construction itself, indices `0..n` with the
+    /// pixel's scramble seed — the same estimator, reported once under each name.
+    fn alias(&self, warp: usize, sampler: Sampler) -> Option<Sampler> {
+        (self.warps[warp] == AreaWarp::BasuOwen && sampler == Sampler::Pmj02bn)
+            .then_some(Sampler::Stratified)
+    }
+
+    fn draw(&self, warp: usize, sampler: Sampler, spp: usize, seed: u32, s: &mut Scratch) {
+        s.reserve(spp);
+        let pts = &mut s.points[..spp];
+        match self.warps[warp] {
+            AreaWarp::Identity => sampler.fill(seed, pts),
+            AreaWarp::Polar => {
+                sampler.fill(seed, pts);
+                disk::polar_slice(pts, &mut s.out2[..spp]);
+            }
+            AreaWarp::Concentric => {
+                sampler.fill(seed, pts);
+                disk::concentric_slice(pts, &mut s.out2[..spp]);
+            }
+            AreaWarp::Polar4 => {
+                let pts = &mut s.points[..spp / 4];
+                sampler.fill(seed, pts);
+                disk::polar4_slice(pts, &mut s.out2[..spp]);
+            }
+            AreaWarp::Uniform => {
+                sampler.fill(seed, pts);
+                triangle::uniform_slice(pts, &mut s.out3[..spp]);
+            }
+            AreaWarp::Sqrt => {
+                sampler.fill(seed, pts);
+                triangle::sqrt_map_slice(pts, &mut s.out3[..spp]);
+            }
+            AreaWarp::BasuOwen => match sampler {
+                Sampler::Random => {
+                    let lanes = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
+                    let (key, scramble) = (u32x8::splat(seed), u32x8::splat(seed | 1));
+                    for (g, out) in s.out3[..spp].chunks_mut(8).enumerate() {
+                        let index = hash_x8((u32x8::splat(8 * g as u32) + lanes) ^ hash_x8(key));
+                        let b = triangle::basu_owen_x8(index, scramble);
+                        let [b0, b1, b2] = b.map(|c| c.to_array());
+                        for (j, o) in out.iter_mut().enumerate() {
+                            *o = [b0[j], b1[j], b2[j]];
+                        }
+                    }
+                }
+                _ => {
+                    triangle::basu_owen_slice(0, seed | 1, &mut s.out3[..spp]);
+                }
+            },
+        }
+    }
+
+    fn evaluate(&self, pixel: &AreaPixel, warp: usize, spp: usize, s: &Scratch) -> f64 {
+        let (q, cut, h) = (pixel.q, pixel.cut, HEIGHT);
+        let f = |x: [f64; 2]| {
+            if cut.visible(x) {
+                integrand(x, q, h)
+            } else {
+                0.0
+            }
+        };
+        let sum: f64 = match self.warps[warp] {
+            AreaWarp::Identity => s.points[..spp].iter().map(|&p| f(self.to_plane2(p))).sum(),
+            AreaWarp::Polar | AreaWarp::Concentric | AreaWarp::Polar4 => {
+                s.out2[..spp].iter().map(|&p| f(self.to_plane2(p))).sum()
+            }
+            AreaWarp::Uniform | AreaWarp::Sqrt | AreaWarp::BasuOwen => {
+                s.out3[..spp].iter().map(|&b| f(self.to_plane3(b))).sum()
+            }
+        };
+        self.shape.area() * sum / spp as f64
+    }
+}
