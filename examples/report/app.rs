@@ -2,6 +2,8 @@
 //! CSV files, the plots and the strata pictures.
 
 use crate::area::AreaScene;
+#[cfg(feature = "envmap")]
+use crate::envscene::EnvScene;
 use crate::output;
 use crate::plots;
 use crate::run::{self, Config, Scene, SceneResult};
@@ -18,6 +20,10 @@ pub struct Options {
     pub out: PathBuf,
     /// Pixels per area-light scene (default 16384, quick 1024).
     pub pixels: Option<usize>,
+    /// Pixels per environment-map scene (default 4096, quick 256).
+    pub env_pixels: Option<usize>,
+    /// Extra lat-long PFM maps, scenes `envmap:<stem>`.
+    pub envmaps: Vec<PathBuf>,
     /// Largest sample count: powers of 4 from 4 up to it (default 1024).
     pub max_spp: usize,
     pub threads: usize,
@@ -31,6 +37,8 @@ impl Default for Options {
             quick: false,
             out: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/report"),
             pixels: None,
+            env_pixels: None,
+            envmaps: Vec::new(),
             max_spp: 1024,
             threads: std::thread::available_parallelism().map_or(2, |n| n.get()),
             scenes: Vec::new(),
@@ -106,6 +114,31 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
             results.push(run_scene(&scene, &opts.config(area_pixels)));
         }
     }
+    #[cfg(feature = "envmap")]
+    {
+        let env_pixels = opts.env_pixels.unwrap_or(if opts.quick { 256 } else { 4096 });
+        let mut envs = Vec::new();
+        if opts.scenes.is_empty()
+            || opts
+                .scenes
+                .iter()
+                .any(|s| s.starts_with("envmap:") || "envmap:".starts_with(s.as_str()))
+        {
+            envs = EnvScene::builtin();
+        }
+        for path in &opts.envmaps {
+            envs.push(load_envmap(path)?);
+        }
+        for scene in &envs {
+            if opts.wants(&scene.name) {
+                results.push(run_scene(scene, &opts.config(env_pixels)));
+            }
+        }
+    }
+    #[cfg(not(feature = "envmap"))]
+    if !opts.envmaps.is_empty() || opts.env_pixels.is_some() {
+        eprintln!("report: built without the envmap feature: no environment-map scenes");
+    }
 
     let csv = opts.out.join("results.csv");
     output::write(&csv, &output::csv(&results))?;
@@ -125,4 +158,18 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         start.elapsed().as_secs_f64()
     );
     Ok(results)
+}
+
+/// A lat-long PFM map as a scene named by its file stem.
+#[cfg(feature = "envmap")]
+fn load_envmap(path: &std::path::Path) -> Result<EnvScene, Box<dyn std::error::Error>> {
+    let img = crate::pfm::read(path)?;
+    let mut lum = vec![0.0f32; img.rgb.len()];
+    warpcore::envmap::image::luminance_slice(&img.rgb, &mut lum);
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "map".into());
+    EnvScene::from_latlong(&stem, img.width, img.height, lum)
+        .map_err(|e| format!("{}: {e:?}", path.display()).into())
 }

@@ -81,6 +81,7 @@ impl Shape {
         }
     }
 
+    #[allow(dead_code)]
     pub fn contains(&self, x: [f64; 2]) -> bool {
         match self {
             Shape::Rect { hx, hy } => x[0].abs() <= *hx && x[1].abs() <= *hy,
@@ -360,6 +361,20 @@ impl AreaScene {
     }
 }
 
+impl AreaScene {
+    /// The light-plane points `draw` left in `s` (for the tests).
+    #[allow(dead_code)]
+    pub fn points(&self, warp: usize, spp: usize, s: &Scratch) -> Vec<[f64; 2]> {
+        match self.warps[warp] {
+            AreaWarp::Identity => s.points[..spp].iter().map(|&p| self.to_plane2(p)).collect(),
+            AreaWarp::Polar | AreaWarp::Concentric | AreaWarp::Polar4 => {
+                s.out2[..spp].iter().map(|&p| self.to_plane2(p)).collect()
+            }
+            _ => s.out3[..spp].iter().map(|&b| self.to_plane3(b)).collect(),
+        }
+    }
+}
+
 impl Scene for AreaScene {
     type Pixel = AreaPixel;
 
@@ -381,7 +396,7 @@ impl Scene for AreaScene {
         }
     }
 
-    fn reference(&self, pixel: &AreaPixel) -> f64 {
+    fn reference(&self, pixel: &AreaPixel, _warp: usize) -> f64 {
         pixel.reference
     }
 
@@ -445,6 +460,7 @@ impl Scene for AreaScene {
     }
 
     fn evaluate(&self, pixel: &AreaPixel, warp: usize, spp: usize, s: &Scratch) -> f64 {
+        // (The loops below are `points` fused with the integrand.)
         let (q, cut, h) = (pixel.q, pixel.cut, HEIGHT);
         let f = |x: [f64; 2]| {
             if cut.visible(x) {

@@ -8,11 +8,18 @@
 
 mod app;
 mod area;
+#[cfg(feature = "envmap")]
+mod envscene;
 mod math;
 mod output;
+#[cfg(feature = "envmap")]
+#[path = "../../tests/common/pfm.rs"]
+mod pfm;
 mod plots;
 mod run;
 mod samplers;
+#[cfg(feature = "envmap")]
+mod sphere_ref;
 mod strata;
 
 use clap::{Arg, ArgAction, Command, value_parser};
@@ -60,6 +67,21 @@ fn main() {
                 ),
         )
         .arg(
+            Arg::new("envmap")
+                .long("envmap")
+                .value_name("PATH.pfm")
+                .value_parser(value_parser!(PathBuf))
+                .action(ArgAction::Append)
+                .help("add a lat-long PFM environment map as scene envmap:<file stem> (repeatable)"),
+        )
+        .arg(
+            Arg::new("env-pixels")
+                .long("env-pixels")
+                .value_name("N")
+                .value_parser(value_parser!(usize))
+                .help("pixels per environment-map scene [default: 4096; quick: 256]"),
+        )
+        .arg(
             Arg::new("scene")
                 .long("scene")
                 .value_name("PREFIX")
@@ -75,6 +97,11 @@ fn main() {
         opts.out = out.clone();
     }
     opts.pixels = m.get_one::<usize>("pixels").copied();
+    opts.env_pixels = m.get_one::<usize>("env-pixels").copied();
+    opts.envmaps = m
+        .get_many::<PathBuf>("envmap")
+        .map(|v| v.cloned().collect())
+        .unwrap_or_default();
     if let Some(&n) = m.get_one::<usize>("max-spp") {
         opts.max_spp = n;
     }

@@ -28,6 +28,8 @@ pub struct Scratch {
     pub points: Vec<[f32; 2]>,
     pub out2: Vec<[f32; 2]>,
     pub out3: Vec<[f32; 3]>,
+    #[cfg(feature = "envmap")]
+    pub env: crate::envscene::EnvScratch,
 }
 
 impl Scratch {
@@ -36,6 +38,8 @@ impl Scratch {
             self.points.resize(n, [0.0; 2]);
             self.out2.resize(n, [0.0; 2]);
             self.out3.resize(n, [0.0; 3]);
+            #[cfg(feature = "envmap")]
+            self.env.reserve(n);
         }
     }
 }
@@ -47,7 +51,9 @@ pub trait Scene: Sync {
     fn warps(&self) -> Vec<&'static str>;
     /// Pixel `index`: its geometry and exact reference.
     fn pixel(&self, index: u64) -> Self::Pixel;
-    fn reference(&self, pixel: &Self::Pixel) -> f64;
+    /// The exact value the estimates of `warp` converge to (the environment-map scenes have
+    /// one map, and so one reference, per parameterization).
+    fn reference(&self, pixel: &Self::Pixel, warp: usize) -> f64;
     fn penumbra(&self, pixel: &Self::Pixel) -> bool;
     /// `Some(other)` when `(sampler, warp)` is the same estimator as `(other, warp)`.
     fn alias(&self, _warp: usize, _sampler: Sampler) -> Option<Sampler> {
@@ -192,7 +198,6 @@ pub fn errors<S: Scene>(scene: &S, cfg: &Config, bar: &ProgressBar) -> SceneResu
                     let last = (first + chunk).min(cfg.pixels);
                     for i in first..last {
                         let px = scene.pixel(i as u64);
-                        let reference = scene.reference(&px);
                         penumbra += scene.penumbra(&px) as usize;
                         for (k, &spp) in cfg.spps.iter().enumerate() {
                             for sampler in SAMPLERS {
@@ -204,7 +209,7 @@ pub fn errors<S: Scene>(scene: &S, cfg: &Config, bar: &ProgressBar) -> SceneResu
                                     scene.draw(w, sampler, spp, seed, &mut s);
                                     let est = scene.evaluate(&px, w, spp, &s);
                                     let c = w * SAMPLERS.len() + sampler.index();
-                                    stats[c * ns + k].add(est - reference);
+                                    stats[c * ns + k].add(est - scene.reference(&px, w));
                                 }
                             }
                         }

@@ -1,0 +1,404 @@
+//! The report example (`examples/report`), tested through its own modules: the references
+//! are right (closed forms, limit cases, an independent quadrature, Monte Carlo), the
+//! estimators are unbiased, and the `--quick` run works end to end.
+// The report is a native desktop tool (threads, files): not run under wasm.
+#![cfg(all(
+    feature = "disk",
+    feature = "triangle",
+    feature = "pmj02bn",
+    feature = "sequence",
+    not(target_family = "wasm")
+))]
+#![allow(dead_code)]
+
+#[path = "../examples/report/app.rs"]
+mod app;
+#[path = "../examples/report/area.rs"]
+mod area;
+#[cfg(feature = "envmap")]
+#[path = "../examples/report/envscene.rs"]
+mod envscene;
+#[path = "../examples/report/math.rs"]
+mod math;
+#[path = "../examples/report/output.rs"]
+mod output;
+#[cfg(feature = "envmap")]
+#[path = "common/pfm.rs"]
+mod pfm;
+#[path = "../examples/report/plots.rs"]
+mod plots;
+#[path = "../examples/report/run.rs"]
+mod run;
+#[path = "../examples/report/samplers.rs"]
+mod samplers;
+#[cfg(feature = "envmap")]
+#[path = "../examples/report/sphere_ref.rs"]
+mod sphere_ref;
+#[path = "../examples/report/strata.rs"]
+mod strata;
+
+use area::{AreaScene, Cut, Shape};
+use math::{Rng, dot2, dot3, gl32, integrate, tanh_sinh};
+use run::{Config, Scene, Scratch};
+use samplers::{SAMPLERS, Sampler};
+use statrs::distribution::{ContinuousCDF, Normal};
+use std::f64::consts::PI;
+
+// ----------------------------------------------------------------------------------------
+// Statistics
+
+/// The two-sided bound on a standard normal statistic for one of `family` tests at
+/// suite-wide level 1% (Sidak): `Phi^-1(1 - alpha' / 2)`, `alpha' = 1 - 0.99^(1 / family)`.
+fn sidak_bound(family: u32) -> f64 {
+    let alpha = 1.0 - 0.99f64.powf(1.0 / family as f64);
+    Normal::standard().inverse_cdf(1.0 - alpha / 2.0)
+}
+
+// ----------------------------------------------------------------------------------------
+// Area-light references
+
+/// The irradiance by an independent method: Fubini over the clipped light (convex), the
+/// outer integral in `x` by tanh-sinh between the `x` of its corners (square-root endpoint
+/// behaviour at a disk's extreme `x` is what tanh-sinh handles), the inner one in `y` by
+/// 32-point Gauss-Legendre (the integrand is analytic), the `y` range found directly from
+/// the shape and the cut at each `x`.
+fn irradiance_fubini(shape: &Shape, q: [f64; 2], h: f64, cut: Cut) -> f64 {
+    // y-range of the shape at x.
+    let shape_range = |x: f64| -> Option<(f64, f64)> {
+        match shape {
+            Shape::Rect { hx, hy } => (x.abs() <= *hx).then_some((-hy, *hy)),
+            Shape::Disk { r } => (x.abs() <= *r).then(|| {
+                let s = (r * r - x * x).max(0.0).sqrt();
+                (-s, s)
+            }),
+            Shape::Triangle { v } => {
+                let mut ys = Vec::new();
+                for i in 0..3 {
+                    let (a, b) = (v[i], v[(i + 1) % 3]);
+                    if (a[0] - x) * (b[0] - x) <= 0.0 && a[0] != b[0] {
+                        let t = (x - a[0]) / (b[0] - a[0]);
+                        ys.push(a[1] + t * (b[1] - a[1]));
+                    }
+                }
+                let lo = ys.iter().copied().fold(f64::MAX, f64::min);
+                let hi = ys.iter().copied().fold(f64::MIN, f64::max);
+                (lo <= hi).then_some((lo, hi))
+            }
+        }
+    };
+    // The cut e . p >= k at fixed x: e1 y >= k - e0 x.
+    let range = |x: f64| -> Option<(f64, f64)> {
+        let (mut lo, mut hi) = shape_range(x)?;
+        let rhs = cut.k - cut.e[0] * x;
+        if cut.e[1] > 0.0 {
+            lo = lo.max(rhs / cut.e[1]);
+        } else if cut.e[1] < 0.0 {
+            hi = hi.min(rhs / cut.e[1]);
+        } else if rhs > 0.0 {
+            return None;
+        }
+        (lo < hi).then_some((lo, hi))
+    };
+    // Breakpoints: the shape's x-extent, its corners, and where the cut meets the boundary.
+    let [hx, _] = shape.half_extents();
+    let mut xs = vec![-hx, hx];
+    if let Some(poly) = shape.polygon() {
+        xs.extend(poly.iter().map(|p| p[0]));
+        xs.extend(area::clip(&poly, cut).iter().map(|p| p[0]));
+    } else if let Shape::Disk { r } = shape {
+        let d = cut.k;
+        if d.abs() < *r {
+            let s = (r * r - d * d).sqrt();
+            let t = [-cut.e[1], cut.e[0]];
+            xs.push(d * cut.e[0] + s * t[0]);
+            xs.push(d * cut.e[0] - s * t[0]);
+        }
+    }
+    xs.sort_by(f64::total_cmp);
+    xs.dedup_by(|a, b| (*a - *b).abs() < 1e-15);
+    let inner = |x: f64| match range(x) {
+        Some((lo, hi)) => integrate(gl32(), lo, hi, |y| area::integrand([x, y], q, h)),
+        None => 0.0,
+    };
+    xs.windows(2)
+        .filter(|w| w[1] > w[0])
+        .map(|w| tanh_sinh(w[0], w[1], 1.0 / 64.0, inner))
+        .sum()
+}
+
+#[test]
+fn area_references_match_an_independent_quadrature() {
+    let mut worst: f64 = 0.0;
+    for scene in AreaScene::all() {
+        for i in 0..300 {
+            let (q, cut) = scene.geometry(i);
+            let exact = area::irradiance(&scene.shape, q, area::HEIGHT, cut);
+            let fubini = irradiance_fubini(&scene.shape, q, area::HEIGHT, cut);
+            let err = (exact - fubini).abs();
+            worst = worst.max(err);
+            assert!(err < 1e-10, "{} pixel {i}: contour {exact} vs quadrature {fubini}", scene.name);
+        }
+    }
+    println!("contour references vs Fubini quadrature: max |difference| {worst:.2e}");
+}
+
+#[test]
+fn area_references_limit_cases() {
+    let h = area::HEIGHT;
+    for scene in AreaScene::all() {
+        let mut rng = Rng::new(3);
+        for _ in 0..100 {
+            let q = [rng.uniform() - 0.5, rng.uniform() - 0.5];
+            let a = std::f64::consts::TAU * rng.uniform();
+            let e = [a.cos(), a.sin()];
+            // A line beyond the light: all visible, or nothing.
+            let all = area::irradiance(&scene.shape, q, h, Cut { e, k: -10.0 });
+            let none = area::irradiance(&scene.shape, q, h, Cut { e, k: 10.0 });
+            assert_eq!(none, 0.0);
+            let full = irradiance_fubini(&scene.shape, q, h, Cut { e, k: -10.0 });
+            assert!((all - full).abs() < 1e-10, "{}: {all} vs {full}", scene.name);
+            // Both sides of any line add up to the whole light.
+            let k = 0.8 * (rng.uniform() - 0.5);
+            let (s0, s1) = (
+                area::irradiance(&scene.shape, q, h, Cut { e, k }),
+                area::irradiance(&scene.shape, q, h, Cut { e: [-e[0], -e[1]], k: -k }),
+            );
+            assert!((s0 + s1 - all).abs() < 1e-13, "{}: {s0} + {s1} vs {all}", scene.name);
+        }
+    }
+    // The whole disk in closed form: E = (pi/2)(1 - (h^2 + d^2 - R^2) / sqrt((h^2 + d^2 +
+    // R^2)^2 - 4 d^2 R^2)) at distance d from the axis (the off-axis parallel disk).
+    let r = (1.0 / PI).sqrt();
+    for &d in &[0.0, 0.1, 0.3, 0.56, 0.7] {
+        let e = area::irradiance(&area::disk(), [d, 0.0], h, Cut { e: [1.0, 0.0], k: -10.0 });
+        let (a, b) = (h * h + d * d - r * r, h * h + d * d + r * r);
+        let closed = 0.5 * PI * (1.0 - a / (b * b - 4.0 * d * d * r * r).sqrt());
+        assert!((e - closed).abs() < 1e-13, "d = {d}: {e} vs {closed}");
+    }
+    // A unit square straight below, small: E -> area / h^2 as the light shrinks relative to h.
+    let tiny = Shape::Rect { hx: 1e-4, hy: 1e-4 };
+    let e = area::irradiance(&tiny, [0.0, 0.0], h, Cut { e: [1.0, 0.0], k: -1.0 });
+    assert!((e / 4e-8 - 1.0).abs() < 1e-7, "{e}");
+}
+
+/// Every light has unit area, and every warp's samples land on it.
+#[test]
+fn area_scenes_samples_land_on_the_light() {
+    for scene in AreaScene::all() {
+        assert!((scene.shape.area() - 1.0).abs() < 1e-14, "{}", scene.name);
+        // The shape grown by 1e-6, for the f32 rounding of the warps.
+        let grown = |x: [f64; 2]| {
+            let r = (x[0] * x[0] + x[1] * x[1]).sqrt();
+            let k = if r > 0.0 { (r - 1e-6).max(0.0) / r } else { 1.0 };
+            scene.shape.contains([x[0] * k, x[1] * k])
+        };
+        let mut s = Scratch::default();
+        for (w, name) in scene.warps().iter().enumerate() {
+            for sampler in SAMPLERS {
+                for seed in 0..8 {
+                    scene.draw(w, sampler, 1024, seed, &mut s);
+                    for x in scene.points(w, 1024, &s) {
+                        assert!(grown(x), "{} {name} {}: {x:?}", scene.name, sampler.name());
+                    }
+                }
+            }
+        }
+    }
+}
+
+// ----------------------------------------------------------------------------------------
+// Unbiasedness
+
+/// Number of unbiasedness tests in this file (the Sidak family): every (scene, warp,
+/// sampler) of the area scenes (8 warps x 3 samplers) and of the two built-in
+/// environment-map scenes (2 x 4 x 3).
+const BIAS_FAMILY: u32 = 48;
+
+/// Mean over `pixels` pixels of `estimate - reference` at `spp` samples, in units of its
+/// standard error: a standard normal variable (by the central limit theorem over
+/// independent pixels) when the estimator is unbiased.
+fn bias_z<S: Scene>(scene: &S, warp: usize, sampler: Sampler, spp: usize, pixels: usize) -> f64 {
+    let mut stat = run::Stat::default();
+    let mut s = Scratch::default();
+    let name = scene.name();
+    for i in 0..pixels as u64 {
+        let px = scene.pixel(i);
+        // Seeds independent of the report's own.
+        let seed = run::seed(&name, i, spp, sampler) ^ 0x5bd1_e995;
+        scene.draw(warp, sampler, spp, seed, &mut s);
+        stat.add(scene.evaluate(&px, warp, spp, &s) - scene.reference(&px, warp));
+    }
+    stat.bias_z()
+}
+
+/// For each area scene, warp and sampler, the mean error over 4096 pixels at 16 samples per
+/// pixel is within the Sidak bound (3.8 standard errors for 48 tests at 1% overall).
+#[test]
+fn area_estimators_are_unbiased() {
+    let bound = sidak_bound(BIAS_FAMILY);
+    for scene in AreaScene::all() {
+        for (w, name) in scene.warps().iter().enumerate() {
+            for sampler in SAMPLERS {
+                if scene.alias(w, sampler).is_some() {
+                    continue;
+                }
+                let z = bias_z(&scene, w, sampler, 16, 4096);
+                println!("{} {name} {}: z = {z:+.2} (bound {bound:.2})", scene.name, sampler.name());
+                assert!(z.abs() < bound, "{} {name} {}: z = {z}", scene.name, sampler.name());
+            }
+        }
+    }
+}
+
+/// The same test rejects a wrong warp (by far: z > 3 bounds): the polar map with `r = u0` instead of `sqrt(u0)`
+/// (points crowd the centre, and the estimator, still weighted by the uniform density,
+/// overestimates).
+#[test]
+fn bias_test_rejects_a_wrong_warp() {
+    let scene = AreaScene::all().into_iter().find(|s| s.name == "disk").unwrap();
+    let r = (1.0 / PI).sqrt();
+    let mut stat = run::Stat::default();
+    for i in 0..4096u64 {
+        let px = scene.pixel(i);
+        let mut sum = 0.0;
+        for k in 0..16u32 {
+            let u = warpcore::sequence::random(k, i as u32);
+            let t = std::f64::consts::TAU * u[1] as f64;
+            let x = [r * u[0] as f64 * t.cos(), r * u[0] as f64 * t.sin()];
+            if px.cut.visible(x) {
+                sum += area::integrand(x, px.q, area::HEIGHT);
+            }
+        }
+        stat.add(sum / 16.0 - px.reference);
+    }
+    let z = stat.bias_z();
+    println!("wrong polar warp: z = {z:.1}");
+    assert!(z > 3.0 * sidak_bound(BIAS_FAMILY), "{z}");
+}
+
+// ----------------------------------------------------------------------------------------
+// The quick run, end to end
+
+#[test]
+fn quick_run_writes_a_well_formed_csv() {
+    let out = std::env::temp_dir().join(format!("warpcore-report-{}", std::process::id()));
+    let opts = app::Options {
+        quick: true,
+        out: out.clone(),
+        ..app::Options::default()
+    };
+    let t = std::time::Instant::now();
+    let results = app::run(&opts).expect("the quick run");
+    println!("quick run: {:.1} s", t.elapsed().as_secs_f64());
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("scene,sampler,warp,spp,mse,ns_per_sample"));
+    let mut warps_of: Vec<(&str, Vec<&str>)> = vec![
+        ("square", vec!["identity"]),
+        ("skinny", vec!["identity"]),
+        ("disk", vec!["polar", "concentric", "polar4"]),
+        ("triangle", vec!["uniform", "sqrt", "basu_owen"]),
+    ];
+    if cfg!(feature = "envmap") {
+        let env = vec![
+            "marginal_equirect",
+            "hierarchical_equirect",
+            "marginal_equal_area",
+            "hierarchical_equal_area",
+        ];
+        warps_of.push(("envmap:sky", env.clone()));
+        warps_of.push(("envmap:interior", env));
+    }
+    let spps = ["4", "16", "64", "256", "1024"];
+    let mut seen = std::collections::HashSet::new();
+    for line in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        assert_eq!(f.len(), 6, "{line}");
+        let warps = &warps_of.iter().find(|(s, _)| *s == f[0]).expect(line).1;
+        assert!(["random", "stratified", "pmj02bn"].contains(&f[1]), "{line}");
+        assert!(warps.contains(&f[2]), "{line}");
+        assert!(spps.contains(&f[3]), "{line}");
+        let mse: f64 = f[4].parse().unwrap();
+        let ns: f64 = f[5].parse().unwrap();
+        assert!(mse.is_finite() && mse > 0.0, "{line}");
+        assert!(ns.is_finite() && ns > 0.0, "{line}");
+        assert!(seen.insert((f[0], f[1], f[2], f[3])), "duplicate row {line}");
+    }
+    let expected: usize = warps_of.iter().map(|(_, w)| w.len() * 3 * spps.len()).sum();
+    assert_eq!(seen.len(), expected);
+    assert_eq!(results.len(), warps_of.len());
+    for (scene, _) in &warps_of {
+        assert!(out.join(plots::file_name(scene)).exists(), "{scene} plot");
+    }
+    assert!(out.join("strata.svg").exists());
+    // Converging: every row's MSE falls by at least 20x from 4 to 1024 samples.
+    for r in &results {
+        for row in &r.rows {
+            let (first, last) = (row.mse(0), row.mse(r.spps.len() - 1));
+            assert!(last < first / 20.0, "{} {} {}: {first} -> {last}", r.scene, row.sampler.name(), row.warp);
+        }
+    }
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+// ----------------------------------------------------------------------------------------
+// Environment-map references
+
+#[cfg(feature = "envmap")]
+mod env {
+use super::*;
+use sphere_ref::{EqualArea, Grid, LatLong, Param};
+
+/// A uniform map: `int_{n . w >= 0, m . w >= 0} n . w dw = (pi / 2)(1 + n . m)` (the lune
+/// between the two hemispheres; Stokes with the two half-circles as its boundary).
+fn uniform_map_case<P: Param>(param: P, w: usize, h: usize) -> f64 {
+    let grid = Grid::new(param, w, h);
+    let ones = vec![1.0; w * h];
+    let mut rng = Rng::new(7);
+    let mut worst: f64 = 0.0;
+    for _ in 0..40 {
+        let (n, m) = (rng.direction(), rng.direction());
+        let exact = 0.5 * PI * (1.0 + dot3(n, m));
+        let got = grid.integral(&ones, n, m);
+        worst = worst.max((got - exact).abs());
+    }
+    worst
+}
+
+#[test]
+fn envmap_reference_uniform_map_latlong() {
+    let e = uniform_map_case(LatLong, 64, 32);
+    println!("lat-long 64x32: max |error| {e:.2e}");
+    assert!(e < 1e-12, "{e}");
+}
+
+#[test]
+fn envmap_reference_uniform_map_equal_area() {
+    for s in [31, 32] {
+        let e = uniform_map_case(EqualArea, s, s);
+        println!("equal-area {s}x{s}: max |error| {e:.2e}");
+        assert!(e < 1e-12, "{e}");
+    }
+}
+
+#[test]
+#[ignore]
+fn envmap_reference_speed() {
+    let scenes = envscene::EnvScene::builtin();
+    let s = &scenes[0];
+    let t = std::time::Instant::now();
+    let mut acc = 0.0;
+    for i in 0..300 {
+        let (n, m) = s.geometry(i);
+        acc += s.latlong.grid.integral(&s.latlong.radiance, n, m);
+    }
+    let ll = t.elapsed().as_secs_f64() / 300.0;
+    let t = std::time::Instant::now();
+    for i in 0..300 {
+        let (n, m) = s.geometry(i);
+        acc += s.equal_area.grid.integral(&s.equal_area.radiance, n, m);
+    }
+    let ea = t.elapsed().as_secs_f64() / 300.0;
+    println!("per pixel: lat-long {:.2} ms, equal-area {:.2} ms ({acc})", ll * 1e3, ea * 1e3);
+}
+}
