@@ -47,6 +47,12 @@ pub(crate) trait UintLane:
     fn shr(self, n: u32) -> Self;
     fn simd_eq(self, rhs: Self) -> Self::Mask;
     fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
+    /// Unsigned `self < rhs`, lane by lane.
+    fn simd_lt(self, rhs: Self) -> Self::Mask;
+    /// Lane-wise table lookup of `N`-word records: lane `j` gets `table[idx_j]`. An index past
+    /// the end reads zeros, so the lookup can never panic (callers index in range; SIMD lanes
+    /// are loaded one by one, there is no gather instruction on the baseline targets).
+    fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N];
 }
 
 /// The float lane: `f32` or [`f32x8`]. See the module docs for what it may and may not hold.
@@ -70,7 +76,8 @@ pub(crate) trait Lane:
     fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
     fn to_bits(self) -> Self::U;
     fn from_bits(bits: Self::U) -> Self;
-    /// Truncating conversion; only used for `0 <= self < 2^24`.
+    /// Truncating conversion; only used for `0 <= self < 2^31` (where both instantiations
+    /// agree exactly).
     fn to_uint(self) -> Self::U;
     /// Conversion of an integer below `2^24` (exact there).
     fn from_uint(u: Self::U) -> Self;
@@ -115,6 +122,18 @@ impl UintLane for Wrapping<u32> {
     #[inline(always)]
     fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
         if mask { if_true } else { if_false }
+    }
+    #[inline(always)]
+    fn simd_lt(self, rhs: Self) -> bool {
+        self < rhs
+    }
+    #[inline(always)]
+    fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N] {
+        table
+            .get(idx.0 as usize)
+            .copied()
+            .unwrap_or([0; N])
+            .map(Wrapping)
     }
 }
 
@@ -212,6 +231,17 @@ impl UintLane for u32x8 {
     #[inline(always)]
     fn select(mask: Mask8, if_true: Self, if_false: Self) -> Self {
         mask.0.select(if_true, if_false)
+    }
+    #[inline(always)]
+    fn simd_lt(self, rhs: Self) -> Mask8 {
+        Mask8(u32x8::simd_lt(self, rhs))
+    }
+    #[inline(always)]
+    fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N] {
+        let idx = idx.to_array();
+        let rows: [[u32; N]; 8] =
+            core::array::from_fn(|j| table.get(idx[j] as usize).copied().unwrap_or([0; N]));
+        core::array::from_fn(|k| u32x8::new(core::array::from_fn(|j| rows[j][k])))
     }
 }
 
@@ -381,10 +411,42 @@ mod tests {
             assert_eq!(Lane::to_uint(s).0, u);
             assert_eq!(Lane::to_uint(f32x8::splat(s)).to_array()[5], u);
         }
+        // Truncation agrees up to 2^31 (the envmap fixed-point keys go that high).
+        for x in [16_777_217.0f32, 2_147_483_520.0, 1.5e9] {
+            assert_eq!(Lane::to_uint(x).0, x as u32);
+            assert_eq!(Lane::to_uint(f32x8::splat(x)).to_array()[2], x as u32);
+        }
         for k in [0, 1, 5, 31, 32, 33] {
             let w = Wrapping(0x8000_0001u32);
             assert_eq!(w.shl(k).0, u32x8::splat(w.0).shl(k).to_array()[0]);
             assert_eq!(w.shr(k).0, u32x8::splat(w.0).shr(k).to_array()[0]);
         }
+    }
+
+    /// Unsigned compares (the top bit is a value, not a sign) and panic-free gathers.
+    #[test]
+    fn uint_compare_and_gather() {
+        let vals = [0u32, 1, 0x7fff_ffff, 0x8000_0000, 0x8000_0001, u32::MAX];
+        for &a in &vals {
+            for &b in &vals {
+                let s = UintLane::simd_lt(Wrapping(a), Wrapping(b));
+                let v = UintLane::simd_lt(u32x8::splat(a), u32x8::splat(b));
+                let v = <u32x8 as UintLane>::select(v, u32x8::splat(1), u32x8::splat(0)).to_array();
+                assert_eq!(s, a < b);
+                assert_eq!(v, [(a < b) as u32; 8]);
+            }
+        }
+        let table = [[1u32, 2], [3, 4], [5, 6]];
+        assert_eq!(
+            <Wrapping<u32> as UintLane>::gather(&table, Wrapping(1)),
+            [Wrapping(3), Wrapping(4)]
+        );
+        assert_eq!(
+            <Wrapping<u32> as UintLane>::gather(&table, Wrapping(3)),
+            [Wrapping(0), Wrapping(0)]
+        );
+        let g = u32x8::gather(&table, u32x8::new([0, 1, 2, 3, u32::MAX, 2, 1, 0]));
+        assert_eq!(g[0].to_array(), [1, 3, 5, 0, 0, 5, 3, 1]);
+        assert_eq!(g[1].to_array(), [2, 4, 6, 0, 0, 6, 4, 2]);
     }
 }

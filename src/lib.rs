@@ -42,6 +42,7 @@
 //! | feature | module | default |
 //! |---|---|---|
 //! | `disk` | [`disk`]: polar, concentric, polar4 | yes |
+//! | `envmap` | [`envmap`]: marginal-conditional and hierarchical image distributions, caller-owned storage | yes |
 //! | `std` | forwards `wide/std`; the library never needs it | no |
 
 #![no_std]
@@ -50,8 +51,9 @@
 
 pub use wide::{f32x8, u32x8};
 
-#[cfg_attr(not(feature = "disk"), allow(dead_code))]
+#[cfg_attr(not(any(feature = "disk", feature = "envmap")), allow(dead_code))]
 mod batch;
+// envmap alone uses only part of the kernels and lanes.
 #[cfg_attr(not(feature = "disk"), allow(dead_code))]
 mod kernels;
 #[cfg_attr(not(feature = "disk"), allow(dead_code))]
@@ -59,6 +61,8 @@ mod lanes;
 
 #[cfg(feature = "disk")]
 pub mod disk;
+#[cfg(feature = "envmap")]
+pub mod envmap;
 
 // The README's examples compile and run as doctests.
 #[cfg(all(doctest, feature = "disk"))]
