@@ -49,6 +49,8 @@ pub(crate) trait UintLane:
     fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
     /// Unsigned `self < rhs`, lane by lane.
     fn simd_lt(self, rhs: Self) -> Self::Mask;
+    /// The high 32 bits of the 64-bit product `self * rhs`, lane by lane.
+    fn mul_high(self, rhs: Self) -> Self;
     /// Lane-wise table lookup of `N`-word records: lane `j` gets `table[idx_j]`. An index past
     /// the end reads zeros, so the lookup can never panic (callers index in range; SIMD lanes
     /// are loaded one by one, there is no gather instruction on the baseline targets).
@@ -126,6 +128,10 @@ impl UintLane for Wrapping<u32> {
     #[inline(always)]
     fn simd_lt(self, rhs: Self) -> bool {
         self < rhs
+    }
+    #[inline(always)]
+    fn mul_high(self, rhs: Self) -> Self {
+        Wrapping(((u64::from(self.0) * u64::from(rhs.0)) >> 32) as u32)
     }
     #[inline(always)]
     fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N] {
@@ -235,6 +241,10 @@ impl UintLane for u32x8 {
     #[inline(always)]
     fn simd_lt(self, rhs: Self) -> Mask8 {
         Mask8(u32x8::simd_lt(self, rhs))
+    }
+    #[inline(always)]
+    fn mul_high(self, rhs: Self) -> Self {
+        self.mul_keep_high(rhs)
     }
     #[inline(always)]
     fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N] {
@@ -434,6 +444,15 @@ mod tests {
                 let v = <u32x8 as UintLane>::select(v, u32x8::splat(1), u32x8::splat(0)).to_array();
                 assert_eq!(s, a < b);
                 assert_eq!(v, [(a < b) as u32; 8]);
+            }
+        }
+        for &a in &vals {
+            for &b in &vals {
+                let s = Wrapping(a).mul_high(Wrapping(b)).0;
+                assert_eq!(s, ((a as u64 * b as u64) >> 32) as u32);
+                let v = u32x8::new([a, b, a, b, 1, a, 0, b])
+                    .mul_high(u32x8::new([b, a, b, a, a, 1, b, 0]));
+                assert_eq!(v.to_array(), [s, s, s, s, 0, 0, 0, 0]);
             }
         }
         let table = [[1u32, 2], [3, 4], [5, 6]];

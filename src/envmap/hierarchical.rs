@@ -13,42 +13,52 @@
 //! Sampling is the warp of McCool and Harwood (1997) and Clarberg et al. (2005) as in
 //! Mitsuba 3's `Hierarchical2D`: the current sample rectangle splits vertically at `px`, then
 //! the chosen half splits horizontally at its `py`. Instead of rescaling `u` at every level
-//! (one division per axis per level, and a rounded copy of `u` each time), we keep the
-//! sample fixed and narrow an interval `[lo, hi)` around it on each axis: the split point is
-//! `lo + (hi - lo) p`, a comparison picks the child, and after the last level
-//! `(u - lo) / (hi - lo)` is the position inside the texel. The warp is piecewise affine and
-//! local — compact strata of the square land on compact sets of texels, the point of the
-//! method. Exactness rules: `p = 0` puts the split at `lo` and `p = 1` at `hi` (so a
-//! zero-weight child gets an empty interval and is never chosen), and a positive child's
-//! fraction is kept strictly inside `(0, 1)`.
+//! (a division per axis per level, and a rounded copy of `u` each time), we keep the sample
+//! fixed and narrow an interval `[lo, hi)` around it on each axis, in the same 0.31 fixed
+//! point as the marginal-conditional keys (`key = floor(u * 2^31)`, exact): the split point is
+//! `lo + floor((hi - lo) p)` (one 32x32-bit multiply-high, fractions being 0.32 fixed point),
+//! a comparison picks the child, and after the last level `(key - lo) / (hi - lo)` is the
+//! position inside the texel. The warp is piecewise affine and local — compact strata of the
+//! square land on compact sets of texels, the point of the method.
 //!
-//! The pdf is the product of the fractions along the texel's path (times `width * height`),
-//! so it reports the quantized distribution that is actually sampled; against the weights
-//! it is exact to `f32` rounding: every fraction is a ratio of two sums taken pairwise up the
-//! pyramid, relative error at most about `2 log2(texels) * 2^-24` whatever the dynamic range.
-//! Sums are `f32`, rescaled by a power of two when the total would overflow (weights below
-//! `2^-149` of that scale then count as 0).
+//! Exactness: `p = 0` puts the split at `lo` and `p = 1` (stored as `u32::MAX`) at `hi`, so a
+//! zero-weight child gets an empty interval and is never chosen; a positive child's fraction
+//! is kept strictly inside `(0, 1)`. A texel's preimage in the sample square is the rectangle
+//! of its two final intervals, so its probability *is* `(hi_x - lo_x)(hi_y - lo_y) 2^-62`,
+//! which is what the pdf reports — `pdf(uv)` repeats the walk, following the texel's bits
+//! instead of comparing keys, and gets the same integers. Against the weights: fractions are
+//! ratios of `f64` sums of `f32` node sums taken pairwise up the pyramid (relative error
+//! about `2^-24` per level, whatever the dynamic range), rounded to `2^-32`, and each split
+//! point truncates by less than one unit, so a texel whose interval on an axis is `d` long is
+//! within about `levels * 2^-31 / d` (relative) of its share on that axis: 1e-5 on the
+//! real 512 x 256 maps, for texels down to a sixteenth of the average (measured). A texel so
+//! faint that its interval would be shorter than one unit (probability below about `2^-31`
+//! per axis) can be unreachable; its pdf then says 0, consistently. Node sums are `f32`,
+//! rescaled by a power of two when the total would overflow (weights below `2^-149` of that
+//! scale then count as 0).
 //!
-//! Cost: one 16-byte node read per level (`max(a, b)` levels), a handful of `f32` operations
-//! and no division until the last step.
+//! Cost: one 16-byte node read per level (`max(a, b)` levels), a handful of integer
+//! operations per level and one division per axis at the end.
 
 use super::{
     Error, Sample, SampleX8, Word, carve, check_size, checked_len, clean, edges, pdf_batch,
     sample_batch, scalar_sample, simd_sample, take,
 };
+use super::{fixed_key, u32_to_f32};
 use crate::lanes::{Lane, UintLane, unit_interval};
 use wide::f32x8;
 
 /// Hierarchical (MIP-pyramid) 2D distribution over a `width x height` weight map (see the
 /// [module docs](super) for the guarantees and the bad-input rules).
 ///
-/// Storage: 4 words per internal node of the padded pyramid (about `4/3` of the padded texel
-/// count) plus the texel edges: `(4/3) * 4` bytes per padded texel, 42.7 MiB for
-/// 4096 x 2048, and for non-power-of-two maps up to 4 times that of the unpadded map.
+/// Storage: 4 words per internal node of the padded pyramid (a third as many nodes as padded
+/// texels) plus the texel edges: `16/3` bytes per padded texel, 42.7 MiB for 4096 x 2048.
+/// Padding to powers of two costs up to (just under) 4 times that on unlucky sizes.
 #[derive(Clone, Copy, Debug)]
 pub struct Hierarchical<'a> {
-    /// `[px, py0, py1, sum]` as `f32` bits, level by level from the root; the children of node
-    /// `i` of a level are nodes `i * branching + (bx | by << split_x)` of the next.
+    /// `[px, py0, py1, sum]`, level by level from the root: 0.32 fixed-point fractions
+    /// (`u32::MAX` meaning 1) and the node's `f32` sum (used while building). The children of
+    /// node `i` of a level are nodes `i * branching + (bx | by << split_x)` of the next.
     nodes: &'a [[u32; 4]],
     edges_x: &'a [[u32; 1]],
     edges_y: &'a [[u32; 1]],
@@ -57,8 +67,9 @@ pub struct Hierarchical<'a> {
     /// The padded map is `2^xbits x 2^ybits` texels.
     xbits: u32,
     ybits: u32,
-    /// `width * height`: the density of the whole map before any split.
-    area_scale: f32,
+    /// `width * height * 2^-62`: turns the product of the two final interval lengths into a
+    /// density.
+    pdf_scale: f32,
 }
 
 /// `ceil(log2 n)` for `n >= 1` (saturating at 64 for huge `n`, which `checked_len` rejects).
@@ -100,21 +111,18 @@ fn node_index(level: u32, x: u32, y: u32, xbits: u32, ybits: u32) -> u32 {
     index
 }
 
-/// `a / (a + b)` as an `f32` fraction, kept strictly inside `(0, 1)` when both are positive,
-/// `0` when `a = 0 < b`, and `1` when `b = 0` (also for an empty node, which is never reached).
-fn fraction(a: f64, b: f64) -> f32 {
-    let s = a + b;
-    if s <= 0.0 {
-        return 1.0;
+/// `a / (a + b)` as a 0.32 fixed-point fraction: `u32::MAX` (meaning 1) when `b = 0` (also
+/// for an empty node, which is never reached), `0` when `a = 0 < b`, and strictly inside
+/// `[1, 2^32 - 2]` when both are positive.
+fn fraction(a: f64, b: f64) -> u32 {
+    if b <= 0.0 {
+        return u32::MAX;
     }
-    let p = (a / s) as f32;
-    if a > 0.0 && p <= 0.0 {
-        f32::from_bits(1)
-    } else if b > 0.0 && p >= 1.0 {
-        1.0 - 1.0 / 16_777_216.0
-    } else {
-        p
+    if a <= 0.0 {
+        return 0;
     }
+    let p = (a / (a + b) * 4_294_967_296.0 + 0.5) as u64;
+    p.clamp(1, u64::from(u32::MAX) - 1) as u32
 }
 
 /// The node record of children sums `s[bx][by]`.
@@ -122,20 +130,19 @@ fn record(s: [[f32; 2]; 2]) -> [u32; 4] {
     let c = s.map(|col| col.map(f64::from));
     let (left, right) = (c[0][0] + c[0][1], c[1][0] + c[1][1]);
     [
-        fraction(left, right).to_bits(),
-        fraction(c[0][0], c[0][1]).to_bits(),
-        fraction(c[1][0], c[1][1]).to_bits(),
+        fraction(left, right),
+        fraction(c[0][0], c[0][1]),
+        fraction(c[1][0], c[1][1]),
         ((left + right) as f32).to_bits(),
     ]
 }
 
-/// Where the split at fraction `p` falls in `[lo, hi)`: exactly `lo` for `p = 0`, exactly `hi`
-/// for `p = 1`, never outside.
+/// Where the split at fraction `p` falls in `[lo, hi)`: `lo + floor((hi - lo) p 2^-32)`, which
+/// is `lo` for `p = 0` and below `hi` otherwise; `p = u32::MAX` means 1 and gives `hi`.
 #[inline(always)]
-fn split_point<L: Lane>(lo: L, hi: L, p: L) -> L {
-    let t = lo + (hi - lo) * p;
-    let t = L::select(hi.simd_lt(t), hi, t);
-    L::select(p.simd_eq(L::splat(1.0)), hi, t)
+fn split_point<U: UintLane>(lo: U, hi: U, p: U) -> U {
+    let t = lo + (hi - lo).mul_high(p);
+    U::select(p.simd_eq(U::splat(u32::MAX)), hi, t)
 }
 
 impl<'a> Hierarchical<'a> {
@@ -274,7 +281,7 @@ impl<'a> Hierarchical<'a> {
             height: h as u32,
             xbits,
             ybits,
-            area_scale: (w as f64 * h as f64) as f32,
+            pdf_scale: (w as f64 * h as f64 / (1u64 << 62) as f64) as f32,
         })
     }
 
@@ -290,105 +297,101 @@ impl<'a> Hierarchical<'a> {
         self.height as usize
     }
 
+    /// Walks the pyramid from the root to a texel. At each split, `left(shift, t, axis)` says
+    /// (per lane) whether to take the lower half, given the split point `t` and the bit
+    /// position `shift` of this level in the texel coordinates: the sampler compares its key
+    /// with `t`, the pdf lookup reads the bit of the texel it was given. Both therefore compute
+    /// the same intervals.
     #[inline(always)]
-    fn sample_body<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
-        let (zero, one) = (L::splat(0.0), L::splat(1.0));
-        let (uzero, uone) = (L::U::splat(0), L::U::splat(1));
-        let (ux, uy) = (unit_interval(u[0]), unit_interval(u[1]));
-        let (mut lox, mut hix, mut loy, mut hiy) = (zero, one, zero, one);
-        let (mut column, mut row, mut index) = (uzero, uzero, uzero);
-        let mut density = L::splat(self.area_scale);
+    fn descend<U: UintLane>(&self, mut left: impl FnMut(u32, U, usize) -> U::Mask) -> Walk<U> {
+        let (zero, one) = (U::splat(0), U::splat(1));
+        let mut walk = Walk {
+            lo: [zero; 2],
+            hi: [U::splat(1 << 31); 2],
+            texel: [zero; 2],
+        };
+        let mut index = zero;
         let levels = self.xbits.max(self.ybits);
         let (mut offset, mut count) = (0u32, 1u32);
         for level in 0..levels {
             let (sx, sy) = splits(level, self.xbits, self.ybits);
-            let node = L::U::gather(self.nodes, L::U::splat(offset) + index);
-            let [px, py0, py1, _] = node.map(L::from_bits);
-            let mut step = uzero;
+            let shift = levels - 1 - level;
+            let [px, py0, py1, _] = U::gather(self.nodes, U::splat(offset) + index);
+            let mut step = zero;
             let mut py = py0;
             if sx {
-                let t = split_point(lox, hix, px);
-                let left = ux.simd_lt(t);
-                lox = L::select(left, lox, t);
-                hix = L::select(left, t, hix);
-                density = density * L::select(left, px, one - px);
-                let bx = L::U::select(left, uzero, uone);
-                column = column.shl(1) | bx;
+                let t = split_point(walk.lo[0], walk.hi[0], px);
+                let go = left(shift, t, 0);
+                walk.lo[0] = U::select(go, walk.lo[0], t);
+                walk.hi[0] = U::select(go, t, walk.hi[0]);
+                let bx = U::select(go, zero, one);
+                walk.texel[0] = walk.texel[0].shl(1) | bx;
                 step = bx;
-                py = L::select(left, py0, py1);
+                py = U::select(go, py0, py1);
             }
             if sy {
-                let t = split_point(loy, hiy, py);
-                let low = uy.simd_lt(t);
-                loy = L::select(low, loy, t);
-                hiy = L::select(low, t, hiy);
-                density = density * L::select(low, py, one - py);
-                let by = L::U::select(low, uzero, uone);
-                row = row.shl(1) | by;
+                let t = split_point(walk.lo[1], walk.hi[1], py);
+                let go = left(shift, t, 1);
+                walk.lo[1] = U::select(go, walk.lo[1], t);
+                walk.hi[1] = U::select(go, t, walk.hi[1]);
+                let by = U::select(go, zero, one);
+                walk.texel[1] = walk.texel[1].shl(1) | by;
                 step = step | by.shl(u32::from(sx));
             }
             index = index.shl(u32::from(sx) + u32::from(sy)) | step;
             offset += count;
             count <<= u32::from(sx) + u32::from(sy);
         }
-        // The sample's position inside the final interval is its position inside the texel.
-        let fx = unit_interval((ux - lox) / (hix - lox));
-        let fy = unit_interval((uy - loy) / (hiy - loy));
+        walk
+    }
+
+    /// The density of the texel a walk ended in: `(hi_x - lo_x)(hi_y - lo_y) 2^-62`, its exact
+    /// probability, times `width * height`; 0 for an empty rectangle (a zero-weight texel).
+    #[inline(always)]
+    fn density<L: Lane>(&self, walk: &Walk<L::U>) -> L {
+        let dx = u32_to_f32::<L>(walk.hi[0] - walk.lo[0]);
+        let dy = u32_to_f32::<L>(walk.hi[1] - walk.lo[1]);
+        dy * dx * L::splat(self.pdf_scale)
+    }
+
+    #[inline(always)]
+    fn sample_body<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
+        let key = [fixed_key(u[0]), fixed_key(u[1])];
+        let walk = self.descend(|_, t: L::U, axis| match axis {
+            0 => key[0].simd_lt(t),
+            _ => key[1].simd_lt(t),
+        });
+        // The key's offset inside its final interval is the position inside the texel.
+        let f = |k: usize| {
+            let (lo, hi) = (walk.lo[k], walk.hi[k]);
+            unit_interval(u32_to_f32::<L>(key[k] - lo) / u32_to_f32::<L>(hi - lo))
+        };
         let uv = [
-            edges::point(self.edges_x, column, fx, self.width as f32),
-            edges::point(self.edges_y, row, fy, self.height as f32),
+            edges::point(self.edges_x, walk.texel[0], f(0), self.width as f32),
+            edges::point(self.edges_y, walk.texel[1], f(1), self.height as f32),
         ];
-        (uv, floor_density(density), [column, row])
+        (uv, self.density(&walk), walk.texel)
     }
 
     #[inline(always)]
     fn pdf_body<L: Lane>(&self, uv: [L; 2]) -> L {
-        let one = L::splat(1.0);
-        let (uzero, uone) = (L::U::splat(0), L::U::splat(1));
-        let column = edges::texel(self.edges_x, uv[0], self.width);
-        let row = edges::texel(self.edges_y, uv[1], self.height);
-        let mut index = uzero;
-        let mut density = L::splat(self.area_scale);
-        let mut empty = L::splat(0.0).simd_lt(L::splat(0.0));
-        let levels = self.xbits.max(self.ybits);
-        let (mut offset, mut count) = (0u32, 1u32);
-        for level in 0..levels {
-            let (sx, sy) = splits(level, self.xbits, self.ybits);
-            let node = L::U::gather(self.nodes, L::U::splat(offset) + index);
-            let [px, py0, py1, _] = node.map(L::from_bits);
-            let shift = levels - 1 - level;
-            let mut step = uzero;
-            let mut py = py0;
-            if sx {
-                let bx = column.shr(shift) & uone;
-                let left = bx.simd_eq(uzero);
-                let p = L::select(left, px, one - px);
-                density = density * p;
-                empty = empty | p.simd_le(L::splat(0.0));
-                step = bx;
-                py = L::select(left, py0, py1);
-            }
-            if sy {
-                let by = row.shr(shift) & uone;
-                let low = by.simd_eq(uzero);
-                let p = L::select(low, py, one - py);
-                density = density * p;
-                empty = empty | p.simd_le(L::splat(0.0));
-                step = step | by.shl(u32::from(sx));
-            }
-            index = index.shl(u32::from(sx) + u32::from(sy)) | step;
-            offset += count;
-            count <<= u32::from(sx) + u32::from(sy);
-        }
-        L::select(empty, L::splat(0.0), floor_density(density))
+        let texel = [
+            edges::texel(self.edges_x, uv[0], self.width),
+            edges::texel(self.edges_y, uv[1], self.height),
+        ];
+        let (zero, one) = (L::U::splat(0), L::U::splat(1));
+        let walk = self.descend(|shift, _: L::U, axis| {
+            let t = if axis == 0 { texel[0] } else { texel[1] };
+            (t.shr(shift) & one).simd_eq(zero)
+        });
+        self.density(&walk)
     }
 
     /// Draws a texel with probability proportional to its weight and a uniform point in it.
     ///
     /// Each coordinate is first mapped onto `[0, 1 - 2^-24]` by the forward rule. Cost: one
     /// node read per pyramid level (`ceil(log2(max(width, height)))` levels) and one division
-    /// per axis. The pdf equals [`pdf`](Self::pdf)`(uv)` bit for bit. A texel so unlikely that
-    /// its density underflows `f32` reports `f32::MIN_POSITIVE` rather than 0.
+    /// per axis. The pdf equals [`pdf`](Self::pdf)`(uv)` bit for bit.
     #[inline]
     pub fn sample(&self, u: [f32; 2]) -> Sample {
         scalar_sample(self.sample_body(u))
@@ -428,9 +431,10 @@ impl<'a> Hierarchical<'a> {
     }
 }
 
-/// A reachable texel's density, never below `f32::MIN_POSITIVE` (an underflowed product).
-#[inline(always)]
-fn floor_density<L: Lane>(d: L) -> L {
-    let min = L::splat(f32::MIN_POSITIVE);
-    L::select(d.simd_lt(min), min, d)
+/// Where a walk down the pyramid ended: the final interval of each axis (0.31 fixed point)
+/// and the texel.
+struct Walk<U> {
+    lo: [U; 2],
+    hi: [U; 2],
+    texel: [U; 2],
 }

@@ -15,15 +15,16 @@
 use super::Error;
 use crate::kernels::sin_cos_turns;
 use crate::lanes::{Lane, unit_interval};
+use core::f64::consts::PI;
 use wide::f32x8;
 
 /// Rec. 709 / sRGB luminance coefficients of linear `[R, G, B]`.
 pub const LUMINANCE: [f32; 3] = [0.2126, 0.7152, 0.0722];
 
-/// `1 / (2 pi^2)`.
-const INV_2_PI_SQ: f32 = 0.050_660_592;
-/// `1 / (4 pi)`.
-const INV_4_PI: f32 = 0.079_577_47;
+/// `1 / (2 pi^2)`, rounded once from `f64`.
+const INV_2_PI_SQ: f32 = (1.0 / (2.0 * PI * PI)) as f32;
+/// `1 / (4 pi)`, rounded once from `f64`.
+const INV_4_PI: f32 = (1.0 / (4.0 * PI)) as f32;
 
 #[inline(always)]
 fn luminance_body<L: Lane>(rgb: [L; 3]) -> [L; 1] {
