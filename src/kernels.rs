@@ -178,35 +178,43 @@ mod tests {
     }
 
     /// Runs `f` over every `stride`-th f32 in `[0, 1]`, split over threads; returns the
-    /// per-thread maxima merged by `max`.
+    /// per-thread maxima merged by `max`. On wasm (no threads under WASI preview 1) it runs
+    /// on one thread with the stride raised to at least 61: the exhaustive native run covers
+    /// the rest, and the cross-target fingerprint test proves the bits are the same.
     fn sweep(stride: u32, f: impl Fn(f32) -> [f64; 4] + Sync) -> [f64; 4] {
         let end = 1.0f32.to_bits();
-        let threads = 4u32;
-        std::thread::scope(|scope| {
-            let handles: Vec<_> = (0..threads)
-                .map(|k| {
-                    let f = &f;
-                    scope.spawn(move || {
-                        let mut m = [0.0f64; 4];
-                        let mut bits = k * stride;
-                        while bits <= end {
-                            let r = f(f32::from_bits(bits));
-                            for i in 0..4 {
-                                m[i] = m[i].max(r[i]);
-                            }
-                            bits += threads * stride;
-                        }
-                        m
-                    })
-                })
-                .collect();
-            handles.into_iter().fold([0.0f64; 4], |mut acc, h| {
-                let m = h.join().unwrap();
+        let (threads, stride) = if cfg!(target_family = "wasm") {
+            (1u32, stride.max(61))
+        } else {
+            (4u32, stride)
+        };
+        let run = |k: u32| {
+            let mut m = [0.0f64; 4];
+            let mut bits = k * stride;
+            while bits <= end {
+                let r = f(f32::from_bits(bits));
                 for i in 0..4 {
-                    acc[i] = acc[i].max(m[i]);
+                    m[i] = m[i].max(r[i]);
                 }
-                acc
-            })
+                bits += threads * stride;
+            }
+            m
+        };
+        let merge = |mut acc: [f64; 4], m: [f64; 4]| {
+            for i in 0..4 {
+                acc[i] = acc[i].max(m[i]);
+            }
+            acc
+        };
+        if threads == 1 {
+            return run(0);
+        }
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = (0..threads).map(|k| scope.spawn(move || run(k))).collect();
+            handles
+                .into_iter()
+                .map(|h| h.join().unwrap())
+                .fold([0.0f64; 4], merge)
         })
     }
 

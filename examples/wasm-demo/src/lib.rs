@@ -1,0 +1,46 @@
+//! warpcore in a minimal `no_std` WebAssembly module: no imports, no allocator.
+//!
+//! Exports: `fingerprint()` (see `fingerprint.rs`), and small per-family entry points that a
+//! browser or Node can call directly, e.g. `disk_concentric(u0, u1, k)` returns coordinate
+//! `k` (0 or 1) of the concentric map.
+#![cfg_attr(target_arch = "wasm32", no_std)]
+
+#[cfg(feature = "all")]
+pub mod fingerprint;
+
+/// The determinism fingerprint of every family compiled in.
+#[cfg(feature = "all")]
+#[unsafe(no_mangle)]
+pub extern "C" fn fingerprint() -> u64 {
+    fingerprint::fingerprint()
+}
+
+#[cfg(feature = "disk")]
+#[unsafe(no_mangle)]
+pub extern "C" fn disk_concentric(u0: f32, u1: f32, k: u32) -> f32 {
+    let p = warpcore::disk::concentric([u0, u1]);
+    if k == 0 { p[0] } else { p[1] }
+}
+
+#[cfg(feature = "all")]
+#[unsafe(no_mangle)]
+pub extern "C" fn disk_polar4(u0: f32, u1: f32, quadrant: u32, k: u32) -> f32 {
+    let p = warpcore::disk::polar4([u0, u1], quadrant);
+    if k == 0 { p[0] } else { p[1] }
+}
+
+// The no-panic proof: this function is never defined. If any code path that can panic is
+// linked into the module, the panic handler (and with it this symbol) is kept, and the wasm
+// module gains an import `env.warpcore_panic_path_reached`. `tools/wasm-demo.mjs` loads the
+// module with an empty import object, so any such path fails CI.
+#[cfg(all(target_arch = "wasm32", not(test)))]
+unsafe extern "C" {
+    fn warpcore_panic_path_reached() -> !;
+}
+
+#[cfg(all(target_arch = "wasm32", not(test)))]
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    // SAFETY: never called at run time; see above.
+    unsafe { warpcore_panic_path_reached() }
+}

@@ -1,0 +1,49 @@
+//! Determinism across targets: the hash of every warp's output bits over a fixed input set
+//! (`examples/wasm-demo/src/fingerprint.rs`) must equal the committed golden value. CI runs this
+//! test natively, under wasm32-wasip1 with and without simd128, and the same code runs in the
+//! native `fingerprint` binary built with `-C target-cpu=native` and in the wasm32-unknown-unknown
+//! cdylib (`tools/wasm-demo.mjs`) — one golden file for all of them.
+//!
+//! The golden value covers the default feature set; when a change is *meant* to alter output
+//! bits, regenerate it with `cargo run --release --manifest-path examples/wasm-demo/Cargo.toml
+//! --bin fingerprint > tests/golden/fingerprint.txt` and say why in the commit.
+#![cfg(feature = "disk")]
+
+#[path = "../examples/wasm-demo/src/fingerprint.rs"]
+mod fingerprint;
+
+#[test]
+fn output_bits_match_the_golden_fingerprint() {
+    let golden = include_str!("golden/fingerprint.txt").trim();
+    let got = format!("{:016x}", fingerprint::fingerprint());
+    assert_eq!(
+        got, golden,
+        "warp output bits changed on this target (or the golden file is stale)"
+    );
+}
+
+/// The fingerprint is sensitive: flipping one output bit of one warp changes it.
+#[test]
+fn fingerprint_detects_a_one_bit_change() {
+    let mut a = fingerprint::Hasher::new();
+    let mut b = fingerprint::Hasher::new();
+    fingerprint::warp(
+        &mut a,
+        warpcore::disk::polar,
+        warpcore::disk::polar_x8,
+        warpcore::disk::polar_slice,
+    );
+    fingerprint::warp(
+        &mut b,
+        |u| {
+            let mut p = warpcore::disk::polar(u);
+            if u == [0.25, 0.75] {
+                p[0] = f32::from_bits(p[0].to_bits() ^ 1);
+            }
+            p
+        },
+        warpcore::disk::polar_x8,
+        warpcore::disk::polar_slice,
+    );
+    assert_ne!(a.finish(), b.finish());
+}

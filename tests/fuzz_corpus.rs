@@ -1,0 +1,30 @@
+//! Replays the checked-in fuzz corpus (`fuzz/corpus/<target>/`) through the same checks the
+//! fuzz targets run (`fuzz/checks.rs`), on stable, in every `cargo test`: every input a fuzzing
+//! run ever found interesting stays a regression test forever.
+#![cfg(feature = "disk")]
+
+#[path = "../fuzz/checks.rs"]
+mod checks;
+
+use std::path::Path;
+
+fn replay(target: &str, check: fn(&[u8])) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fuzz/corpus")
+        .join(target);
+    let mut entries: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("corpus {}: {e}", dir.display()))
+        .map(|e| e.unwrap().path())
+        .collect();
+    entries.sort();
+    assert!(!entries.is_empty(), "empty corpus for {target}");
+    for path in &entries {
+        check(&std::fs::read(path).unwrap());
+    }
+    eprintln!("{target}: replayed {} corpus inputs", entries.len());
+}
+
+#[test]
+fn disk_corpus() {
+    replay("disk", checks::disk);
+}
