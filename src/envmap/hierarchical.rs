@@ -122,7 +122,7 @@ fn fraction(a: f64, b: f64) -> u32 {
         return 0;
     }
     let p = (a / (a + b) * 4_294_967_296.0 + 0.5) as u64;
-    p.clamp(1, u64::from(u32::MAX) - 1) as u32
+    p.max(1).min(u64::from(u32::MAX) - 1) as u32
 }
 
 /// The node record of children sums `s[bx][by]`.

@@ -83,7 +83,7 @@ pub fn latlong_solid_angle_weights(
         });
     }
     let h = height as f64;
-    for (r, row) in weights.chunks_exact_mut(width).enumerate() {
+    for (r, row) in weights.chunks_exact_mut(width.max(1)).enumerate() {
         let v = ((r as f64 + 0.5) / h) as f32;
         let s: f32 = sin_pi(v);
         for x in row {

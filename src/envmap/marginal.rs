@@ -88,8 +88,8 @@ impl<'a> MarginalConditional<'a> {
         let mut positive_rows = 0u32;
         let mut index = 0usize;
         for (((row, cdf), lo), hi) in weights
-            .chunks_exact(w)
-            .zip(columns.chunks_exact_mut(w + 1))
+            .chunks_exact(w.max(1))
+            .zip(columns.chunks_exact_mut(w.max(1) + 1))
             .zip(rows.iter_mut().skip(1))
             .zip(edges_y.iter_mut())
         {
@@ -290,7 +290,7 @@ impl Quantizer {
             self.remaining = self.remaining.saturating_sub(1);
             let ideal = (self.acc / self.total * ONE as f64 + 0.5) as u64;
             let hi = ONE.saturating_sub(self.remaining);
-            self.prev = ideal.clamp(self.prev + 1, hi.max(self.prev + 1));
+            self.prev = ideal.min(hi).max(self.prev + 1);
         }
         self.prev as u32
     }
