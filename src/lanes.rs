@@ -23,7 +23,7 @@
 
 use core::num::Wrapping;
 use core::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
-use wide::{f32x8, u32x8};
+use wide::{f32x8, u32x4, u32x8};
 
 /// `1 - 2^-24`, the largest `f32` below one: the top of every warp's input range.
 pub(crate) const ONE_MINUS_EPSILON: f32 = 1.0 - 1.0 / 16_777_216.0;
@@ -61,6 +61,10 @@ pub(crate) trait UintLane:
     /// the end reads zeros, so the lookup can never panic (callers index in range; SIMD lanes
     /// are loaded one by one, there is no gather instruction on the baseline targets).
     fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N];
+    /// Lane-wise read of four consecutive words: lane `j` gets `table[start_j..start_j + 4]`
+    /// (zeros where that range is out of bounds, never a panic). For `u32x8` each lane is one
+    /// 16-byte load and two 4x4 transposes make the four vectors.
+    fn gather4(table: &[u32], start: Self) -> [Self; 4];
 }
 
 /// The float lane: `f32` or [`f32x8`]. See the module docs for what it may and may not hold.
@@ -147,6 +151,20 @@ impl UintLane for Wrapping<u32> {
             .unwrap_or([0; N])
             .map(Wrapping)
     }
+    #[inline(always)]
+    fn gather4(table: &[u32], start: Self) -> [Self; 4] {
+        words(table, start.0).map(Wrapping)
+    }
+}
+
+/// `table[start..start + N]` as an array, zeros when out of bounds.
+#[inline(always)]
+fn words<const N: usize>(table: &[u32], start: u32) -> [u32; N] {
+    let start = start as usize;
+    table
+        .get(start..start.wrapping_add(N))
+        .and_then(|s| <[u32; N]>::try_from(s).ok())
+        .unwrap_or([0; N])
 }
 
 impl Lane for f32 {
@@ -258,6 +276,14 @@ impl UintLane for u32x8 {
         let rows: [[u32; N]; 8] =
             core::array::from_fn(|j| table.get(idx[j] as usize).copied().unwrap_or([0; N]));
         core::array::from_fn(|k| u32x8::new(core::array::from_fn(|j| rows[j][k])))
+    }
+    #[inline(always)]
+    fn gather4(table: &[u32], start: Self) -> [Self; 4] {
+        let start = start.to_array();
+        let row = |j: usize| u32x4::new(words(table, start[j]));
+        let low = u32x4::transpose([row(0), row(1), row(2), row(3)]);
+        let high = u32x4::transpose([row(4), row(5), row(6), row(7)]);
+        core::array::from_fn(|k| bytemuck::cast([low[k], high[k]]))
     }
 }
 
@@ -475,6 +501,14 @@ mod tests {
             <Wrapping<u32> as UintLane>::gather(&table, Wrapping(3)),
             [Wrapping(0), Wrapping(0)]
         );
+        let flat = [1u32, 2, 3, 4, 5, 6];
+        let w = <Wrapping<u32> as UintLane>::gather4(&flat, Wrapping(2));
+        assert_eq!(w, [3, 4, 5, 6].map(Wrapping));
+        let w = <Wrapping<u32> as UintLane>::gather4(&flat, Wrapping(3));
+        assert_eq!(w, [Wrapping(0); 4]);
+        let v = u32x8::gather4(&flat, u32x8::new([0, 2, 3, 1, u32::MAX, 1, 2, 0]));
+        assert_eq!(v[0].to_array(), [1, 3, 0, 2, 0, 2, 3, 1]);
+        assert_eq!(v[3].to_array(), [4, 6, 0, 5, 0, 5, 6, 4]);
         let g = u32x8::gather(&table, u32x8::new([0, 1, 2, 3, u32::MAX, 2, 1, 0]));
         assert_eq!(g[0].to_array(), [1, 3, 5, 0, 0, 5, 3, 1]);
         assert_eq!(g[1].to_array(), [2, 4, 6, 0, 0, 6, 4, 2]);

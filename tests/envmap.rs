@@ -906,24 +906,34 @@ fn an_8192_x_4096_map() {
     });
 }
 
-/// NaN, negative, -0.0 and -inf weigh exactly 0: the tables equal those of the map with zeros
-/// written in their place, word for word, and those texels are never sampled.
+/// NaN, negative, -0.0 and -inf weigh exactly 0: the distributions behave exactly like
+/// those of the map with zeros written in their place (same samples and pdfs, bit for bit),
+/// and those texels are never sampled.
 #[test]
 fn bad_values_weigh_zero() {
     let (m, w, h) = irregular_map();
     let zeroed: Vec<f32> = m.iter().map(|&x| clean(x) as f32).collect();
-    let build_m = |x: &[f32]| {
-        let mut s = vec![0 as Word; MarginalConditional::storage_len(w, h)];
-        MarginalConditional::new(x, w, h, &mut s).unwrap();
-        s
+    let mut r = rng(23);
+    let mut probes: Vec<[f32; 2]> = (0..10_000).map(|_| unit2(&mut r)).collect();
+    probes.extend(centres(w, h));
+    let outputs = |x: &[f32]| {
+        let mut out = Vec::new();
+        with_both(x, w, h, |d| {
+            for &u in &probes {
+                let s = d.sample(u);
+                out.push([
+                    s.uv[0].to_bits(),
+                    s.uv[1].to_bits(),
+                    s.pdf.to_bits(),
+                    s.texel[0],
+                    s.texel[1],
+                    d.pdf(u).to_bits(),
+                ]);
+            }
+        });
+        out
     };
-    let build_h = |x: &[f32]| {
-        let mut s = vec![0 as Word; Hierarchical::storage_len(w, h)];
-        Hierarchical::new(x, w, h, &mut s).unwrap();
-        s
-    };
-    assert_eq!(build_m(&m), build_m(&zeroed));
-    assert_eq!(build_h(&m), build_h(&zeroed));
+    assert_eq!(outputs(&m), outputs(&zeroed));
     with_both(&m, w, h, |d| {
         check_many(d, &m, w, h, 100_000, 22);
         let p = reported_probabilities(d, w, h);
@@ -1079,9 +1089,16 @@ fn errors() {
         MarginalConditional::storage_len(4096, 2048),
         4097 * 2048 + 2 * 2049 + 4097
     );
-    assert_eq!(Hierarchical::storage_len(1, 1), 2 + 2);
-    assert_eq!(Hierarchical::storage_len(2, 2), 4 + 3 + 3);
-    assert_eq!(Hierarchical::storage_len(4, 2), 4 * 3 + 5 + 3);
+    // Hierarchical: 16-word blocks for every other level, 15 words of alignment slack, edges.
+    assert_eq!(Hierarchical::storage_len(1, 1), 15 + 2 + 2);
+    assert_eq!(Hierarchical::storage_len(2, 2), 16 + 15 + 3 + 3);
+    assert_eq!(Hierarchical::storage_len(4, 2), 16 + 15 + 5 + 3);
+    assert_eq!(Hierarchical::storage_len(8, 8), 16 * (1 + 4) + 15 + 9 + 9);
+    let blocks_4096 = 1 + 8 + 128 + 2048 + 32768 + 524_288;
+    assert_eq!(
+        Hierarchical::storage_len(4096, 2048),
+        16 * blocks_4096 + 15 + 4097 + 2049
+    );
     assert_eq!(MarginalConditional::storage_len(0, 5), 0);
     assert_eq!(Hierarchical::storage_len(7, 0), 0);
     assert_eq!(Hierarchical::storage_len(MAX_SIDE + 1, 1), usize::MAX);
@@ -1193,6 +1210,32 @@ fn solid_angle_conversions() {
             assert!(e.is_finite() && e >= 0.0);
             let v = image::equal_area_pdf_to_solid_angle_x8(f32x8::splat(a));
             assert_eq!(v.to_array()[6].to_bits(), e.to_bits());
+        }
+    }
+}
+
+/// The hierarchical blocks are aligned to 64 bytes inside the caller's storage, wherever it
+/// starts: the results do not depend on that placement.
+#[test]
+fn results_do_not_depend_on_storage_placement() {
+    let (m, w, h) = irregular_map();
+    let n = Hierarchical::storage_len(w, h);
+    let mut big = vec![0 as Word; n + 16];
+    let mut r = rng(24);
+    let probes: Vec<[f32; 2]> = (0..1000).map(|_| unit2(&mut r)).collect();
+    let mut reference: Option<Vec<Sample>> = None;
+    for start in 0..16 {
+        let d = Hierarchical::new(&m, w, h, &mut big[start..]).unwrap();
+        let got: Vec<Sample> = probes.iter().map(|&u| d.sample(u)).collect();
+        match &reference {
+            None => reference = Some(got),
+            Some(want) => assert!(
+                want.iter().zip(&got).all(|(a, b)| same_bits(
+                    [a.uv[0], a.uv[1], a.pdf],
+                    [b.uv[0], b.uv[1], b.pdf]
+                ) && a.texel == b.texel),
+                "start {start}"
+            ),
         }
     }
 }

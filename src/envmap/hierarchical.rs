@@ -37,29 +37,42 @@
 //! rescaled by a power of two when the total would overflow (weights below `2^-149` of that
 //! scale then count as 0).
 //!
-//! Cost: one 16-byte node read per level (`max(a, b)` levels), a handful of integer
-//! operations per level and one division per axis at the end.
+//! Layout: levels are stored in pairs, as 64-byte blocks aligned to cache lines — a node's
+//! three fractions, its (up to) four children's three fractions each, and its sum (used
+//! while building). A walk reads one block per two levels, so on a map too large for the
+//! caches it waits for half as many dependent memory loads. (When the level count is odd, the
+//! root block's first level is an empty one-child level.)
+//!
+//! Cost: one 64-byte block per two levels (`ceil(max(a, b) / 2)` blocks), a handful of
+//! integer operations per level and one division per axis at the end.
 
 use super::{
-    Error, Sample, SampleX8, Word, carve, check_size, checked_len, clean, edges, pdf_batch,
-    sample_batch, scalar_sample, simd_sample, take,
+    Error, Sample, SampleX8, Word, carve, check_size, checked_len, clean, edges, fixed_key,
+    pdf_batch, sample_batch, scalar_sample, simd_sample, take, u32_to_f32,
 };
-use super::{fixed_key, u32_to_f32};
 use crate::lanes::{Lane, UintLane, unit_interval};
 use wide::f32x8;
+
+/// Words per block: own fractions (3), four children's fractions (12), the block's sum (1).
+const BLOCK: usize = 16;
+/// Words of slack in the storage for aligning the blocks to 64 bytes.
+const ALIGN_SLACK: usize = 15;
 
 /// Hierarchical (MIP-pyramid) 2D distribution over a `width x height` weight map (see the
 /// [module docs](super) for the guarantees and the bad-input rules).
 ///
-/// Storage: 4 words per internal node of the padded pyramid (a third as many nodes as padded
-/// texels) plus the texel edges: `16/3` bytes per padded texel, 42.7 MiB for 4096 x 2048.
-/// Padding to powers of two costs up to (just under) 4 times that on unlucky sizes.
+/// Storage: one 16-word block per node of every other level of the padded pyramid (a
+/// sixteenth of the padded texel count at the finest block level, plus a fifteenth of that
+/// above), the texel edges and 15 words of alignment slack: about 4.3 bytes per padded texel,
+/// 34.1 MiB for 4096 x 2048. Padding to powers of two costs up to (just under) 4 times that on
+/// unlucky sizes.
 #[derive(Clone, Copy, Debug)]
 pub struct Hierarchical<'a> {
-    /// `[px, py0, py1, sum]`, level by level from the root: 0.32 fixed-point fractions
-    /// (`u32::MAX` meaning 1) and the node's `f32` sum (used while building). The children of
-    /// node `i` of a level are nodes `i * branching + (bx | by << split_x)` of the next.
-    nodes: &'a [[u32; 4]],
+    /// The blocks, block level by block level from the root, 64-byte aligned. Block `i`:
+    /// `[px, py0, py1]` of its node, then `[px, py0, py1]` of child `c` at `3 + 3c`, then the
+    /// node's `f32` sum. Fractions are 0.32 fixed point (`u32::MAX` meaning 1). The children
+    /// of node `i` of a level are nodes `i * branching + (bx | by << split_x)` of the next.
+    blocks: &'a [u32],
     edges_x: &'a [[u32; 1]],
     edges_y: &'a [[u32; 1]],
     width: u32,
@@ -78,37 +91,58 @@ fn bits(n: u64) -> u32 {
         .map_or(u64::BITS, |p| p.trailing_zeros())
 }
 
-/// Which axes level `level` (0 = root) splits, for a `2^xbits x 2^ybits` pyramid: the finest
-/// `xbits` levels split x, the finest `ybits` split y.
-#[inline(always)]
-fn splits(level: u32, xbits: u32, ybits: u32) -> (bool, bool) {
-    let levels = xbits.max(ybits);
-    (level + xbits >= levels, level + ybits >= levels)
+/// The level structure of a `2^xbits x 2^ybits` pyramid, in *virtual* levels: the real levels
+/// (0 = root; the finest `xbits` split x, the finest `ybits` split y) preceded by one empty
+/// level when their count is odd, so that virtual levels pair up into blocks.
+#[derive(Clone, Copy, Debug)]
+struct Shape {
+    xbits: u32,
+    ybits: u32,
 }
 
-/// Internal nodes of the pyramid.
-fn node_count(xbits: u32, ybits: u32) -> u64 {
-    let (mut total, mut count) = (0u64, 1u64);
-    for level in 0..xbits.max(ybits) {
-        let (sx, sy) = splits(level, xbits, ybits);
-        total += count;
-        count <<= u32::from(sx) + u32::from(sy);
+impl Shape {
+    #[inline(always)]
+    fn levels(self) -> u32 {
+        self.xbits.max(self.ybits)
     }
-    total
-}
-
-/// Position of node `(x, y)` of level `level` within its level: the path from the root, one
-/// or two bits per level (x bit low), most significant first.
-fn node_index(level: u32, x: u32, y: u32, xbits: u32, ybits: u32) -> u32 {
-    let mut index = 0u32;
-    for l in 0..level {
-        let (sx, sy) = splits(l, xbits, ybits);
-        let shift = level - 1 - l;
-        let bx = if sx { (x >> shift) & 1 } else { 0 };
-        let by = if sy { (y >> shift) & 1 } else { 0 };
-        index = (index << (u32::from(sx) + u32::from(sy))) | bx | (by << u32::from(sx));
+    /// Virtual levels: the real ones rounded up to an even count.
+    #[inline(always)]
+    fn virtual_levels(self) -> u32 {
+        (self.levels() + 1) & !1
     }
-    index
+    /// Which axes virtual level `k` splits.
+    #[inline(always)]
+    fn splits(self, k: u32) -> (bool, bool) {
+        let pad = self.virtual_levels() - self.levels();
+        if k < pad {
+            return (false, false);
+        }
+        let (level, levels) = (k - pad, self.levels());
+        (level + self.xbits >= levels, level + self.ybits >= levels)
+    }
+    /// `log2` of the branching of virtual level `k`.
+    #[inline(always)]
+    fn branch_bits(self, k: u32) -> u32 {
+        let (sx, sy) = self.splits(k);
+        u32::from(sx) + u32::from(sy)
+    }
+    /// The bit of a texel coordinate that virtual level `k` decides (when it splits that
+    /// axis): the splitting levels of an axis are the finest ones, so it is the distance to
+    /// the finest level.
+    #[inline(always)]
+    fn shift(self, k: u32) -> u32 {
+        self.virtual_levels() - 1 - k
+    }
+    /// Nodes at virtual level `k`.
+    fn nodes(self, k: u32) -> u64 {
+        (0..k).fold(1u64, |n, l| n << self.branch_bits(l))
+    }
+    /// Blocks in all block levels (block level `b` holds the nodes of virtual level `2b`).
+    fn block_count(self) -> u64 {
+        (0..self.virtual_levels() / 2)
+            .map(|b| self.nodes(2 * b))
+            .sum()
+    }
 }
 
 /// `a / (a + b)` as a 0.32 fixed-point fraction: `u32::MAX` (meaning 1) when `b = 0` (also
@@ -125,16 +159,18 @@ fn fraction(a: f64, b: f64) -> u32 {
     p.max(1).min(u64::from(u32::MAX) - 1) as u32
 }
 
-/// The node record of children sums `s[bx][by]`.
-fn record(s: [[f32; 2]; 2]) -> [u32; 4] {
+/// The fractions of a node with children sums `s[bx][by]`, and its sum.
+fn node(s: [[f32; 2]; 2]) -> ([u32; 3], f32) {
     let c = s.map(|col| col.map(f64::from));
     let (left, right) = (c[0][0] + c[0][1], c[1][0] + c[1][1]);
-    [
-        fraction(left, right),
-        fraction(c[0][0], c[0][1]),
-        fraction(c[1][0], c[1][1]),
-        ((left + right) as f32).to_bits(),
-    ]
+    (
+        [
+            fraction(left, right),
+            fraction(c[0][0], c[0][1]),
+            fraction(c[1][0], c[1][1]),
+        ],
+        (left + right) as f32,
+    )
 }
 
 /// Where the split at fraction `p` falls in `[lo, hi)`: `lo + floor((hi - lo) p 2^-32)`, which
@@ -145,19 +181,44 @@ fn split_point<U: UintLane>(lo: U, hi: U, p: U) -> U {
     U::select(p.simd_eq(U::splat(u32::MAX)), hi, t)
 }
 
+/// Children sums `s[bx][by]` of a node, from `child(bx, by)`, zero where the level does not
+/// split that axis.
+fn children(sx: bool, sy: bool, mut child: impl FnMut(u32, u32) -> f32) -> [[f32; 2]; 2] {
+    let mut s = [[0.0f32; 2]; 2];
+    for (bx, col) in (0u32..).zip(s.iter_mut()) {
+        for (by, v) in (0u32..).zip(col.iter_mut()) {
+            if (bx == 0 || sx) && (by == 0 || sy) {
+                *v = child(bx, by);
+            }
+        }
+    }
+    s
+}
+
+/// Writes a node's fractions at `at` in `block`.
+fn put(block: &mut [u32], at: usize, fractions: [u32; 3]) {
+    if let Some(d) = block.get_mut(at..at + 3) {
+        d.copy_from_slice(&fractions);
+    }
+}
+
 impl<'a> Hierarchical<'a> {
     /// Words of storage `new` needs for a `width x height` map; `usize::MAX` when the map is
     /// too large ([`Error::TooLarge`]), `0` for a zero side.
     pub fn storage_len(width: usize, height: usize) -> usize {
         checked_len(width, height, |w, h| {
-            4 * node_count(bits(w), bits(h)) + (w + 1) + (h + 1)
+            let shape = Shape {
+                xbits: bits(w),
+                ybits: bits(h),
+            };
+            BLOCK as u64 * shape.block_count() + ALIGN_SLACK as u64 + (w + 1) + (h + 1)
         })
     }
 
     /// Builds the distribution of `weights` (row-major, `width * height` values) in `storage`.
     ///
     /// Time `O(width * height)`: one pass to validate and total the weights, one over the
-    /// finest level of the pyramid, then the levels above (a third as many nodes). Errors:
+    /// finest block level, then the block levels above (a sixteenth as many). Errors:
     /// [`Error::ZeroSize`], [`Error::TooLarge`], [`Error::LengthMismatch`],
     /// [`Error::StorageTooSmall`], [`Error::InfiniteWeight`]; see the [module docs](super)
     /// for how other bad values are treated.
@@ -171,15 +232,19 @@ impl<'a> Hierarchical<'a> {
         check_size(weights, width, height, needed)?;
         let storage = take(storage, needed)?;
         let (w, h) = (width, height);
-        let (xbits, ybits) = (bits(w as u64), bits(h as u64));
-        let levels = xbits.max(ybits);
-        let nodes_len = usize::try_from(4 * node_count(xbits, ybits)).unwrap_or(usize::MAX);
-        let [nodes, edges_x, edges_y] =
-            carve(storage, [nodes_len, w + 1, h + 1]).ok_or(Error::StorageTooSmall {
+        let shape = Shape {
+            xbits: bits(w as u64),
+            ybits: bits(h as u64),
+        };
+        let blocks_len = usize::try_from(BLOCK as u64 * shape.block_count()).unwrap_or(0);
+        // Align the blocks to 64 bytes (the address only picks where in `storage` they
+        // start; the results do not depend on it).
+        let skip = (64 - storage.as_ptr() as usize % 64) % 64 / 4;
+        let [_, blocks, edges_x, edges_y] = carve(storage, [skip, blocks_len, w + 1, h + 1])
+            .ok_or(Error::StorageTooSmall {
                 needed,
                 got: needed,
             })?;
-        let (nodes, _) = nodes.as_chunks_mut::<4>();
 
         let mut total = 0.0f64;
         for (index, &x) in weights.iter().enumerate() {
@@ -207,80 +272,79 @@ impl<'a> Hierarchical<'a> {
             clean(x.unwrap_or(0.0)) * scale
         };
 
-        // Level offsets (in nodes) and sizes.
-        let mut offsets = [0u32; 26];
-        let mut count = 1u32;
-        let mut offset = 0u32;
-        for level in 0..levels {
-            if let Some(o) = offsets.get_mut(level as usize) {
-                *o = offset;
-            }
-            let (sx, sy) = splits(level, xbits, ybits);
-            offset += count;
-            count <<= u32::from(sx) + u32::from(sy);
+        // Block offsets (in blocks) per block level.
+        let block_levels = shape.virtual_levels() / 2;
+        let mut offsets = [0usize; 14];
+        let mut offset = 0usize;
+        for (b, o) in (0..block_levels).zip(offsets.iter_mut()) {
+            *o = offset;
+            offset += shape.nodes(2 * b) as usize;
         }
+        let (all, _) = blocks.as_chunks_mut::<BLOCK>();
 
-        if levels > 0 {
-            // The finest level: children are texels. Walk it row by row (reads stay
-            // sequential), writing each record at its path index.
-            let bottom = levels - 1;
-            let (sx, sy) = splits(bottom, xbits, ybits);
-            let base = offsets.get(bottom as usize).copied().unwrap_or(0);
-            let (cols, rows) = (
-                1u32 << (xbits - u32::from(sx)),
-                1u32 << (ybits - u32::from(sy)),
-            );
-            for y in 0..rows {
-                for x in 0..cols {
-                    let child = |bx: u32, by: u32| -> f32 {
-                        if (bx == 1 && !sx) || (by == 1 && !sy) {
-                            return 0.0;
+        // Bottom-up. A block at virtual level k = 2b holds its node and the children at k + 1;
+        // the grandchildren are texels (finest block level) or blocks of level b + 1.
+        for b in (0..block_levels).rev() {
+            let k = 2 * b;
+            let (sx, sy) = shape.splits(k);
+            let (csx, csy) = shape.splits(k + 1);
+            let here = offsets.get(b as usize).copied().unwrap_or(0);
+            let next = if b + 1 < block_levels {
+                offsets.get(b as usize + 1).copied().unwrap_or(0)
+            } else {
+                all.len()
+            };
+            let (upper, lower) = all.split_at_mut(next.min(all.len()));
+            let upper = upper.get_mut(here..).unwrap_or(&mut []);
+            let finest = b + 1 == block_levels;
+            for (i, block) in upper.iter_mut().enumerate() {
+                // Texel coordinates of this node (finest level only): walk its index bits.
+                let (x, y) = if finest {
+                    node_coords(shape, k, i as u32)
+                } else {
+                    (0, 0)
+                };
+                let own = children(sx, sy, |bx, by| {
+                    let c = bx | (by << u32::from(sx));
+                    let grand = children(csx, csy, |gx, gy| {
+                        if finest {
+                            let cx = (x << u32::from(sx)) | bx;
+                            let cy = (y << u32::from(sy)) | by;
+                            weight((cx << u32::from(csx)) | gx, (cy << u32::from(csy)) | gy)
+                        } else {
+                            let j = (i << shape.branch_bits(k)) | c as usize;
+                            let g = (j << shape.branch_bits(k + 1))
+                                | (gx | (gy << u32::from(csx))) as usize;
+                            lower
+                                .get(g)
+                                .map_or(0.0, |blk| f32::from_bits(blk[BLOCK - 1]))
                         }
-                        let tx = (x << u32::from(sx)) | bx;
-                        let ty = (y << u32::from(sy)) | by;
-                        weight(tx, ty)
-                    };
-                    let s = [[child(0, 0), child(0, 1)], [child(1, 0), child(1, 1)]];
-                    let i = base + node_index(bottom, x, y, xbits, ybits);
-                    if let Some(n) = nodes.get_mut(i as usize) {
-                        *n = record(s);
-                    }
-                }
-            }
-            // The levels above, from their children's sums.
-            for level in (0..bottom).rev() {
-                let (sx, sy) = splits(level, xbits, ybits);
-                let here = offsets.get(level as usize).copied().unwrap_or(0) as usize;
-                let next = offsets.get(level as usize + 1).copied().unwrap_or(0) as usize;
-                let (upper, lower) = nodes.split_at_mut(next.min(nodes.len()));
-                let shift = u32::from(sx) + u32::from(sy);
-                let upper = upper.get_mut(here..).unwrap_or(&mut []);
-                for (i, n) in upper.iter_mut().enumerate() {
-                    let child = |bx: usize, by: usize| -> f32 {
-                        if (bx == 1 && !sx) || (by == 1 && !sy) {
-                            return 0.0;
-                        }
-                        let c = (i << shift) | bx | (by << usize::from(sx));
-                        lower.get(c).map_or(0.0, |r| f32::from_bits(r[3]))
-                    };
-                    *n = record([[child(0, 0), child(0, 1)], [child(1, 0), child(1, 1)]]);
+                    });
+                    let (fr, sum) = node(grand);
+                    put(block, 3 + 3 * c as usize, fr);
+                    sum
+                });
+                let (fr, sum) = node(own);
+                put(block, 0, fr);
+                if let Some(last) = block.last_mut() {
+                    *last = sum.to_bits();
                 }
             }
         }
         edges::fill(edges_x, w as u32);
         edges::fill(edges_y, h as u32);
 
-        let nodes: &'a [[u32; 4]] = nodes;
+        let blocks: &'a [u32] = blocks;
         let (edges_x, _) = edges_x.as_chunks::<1>();
         let (edges_y, _) = edges_y.as_chunks::<1>();
         Ok(Hierarchical {
-            nodes,
+            blocks,
             edges_x,
             edges_y,
             width: w as u32,
             height: h as u32,
-            xbits,
-            ybits,
+            xbits: shape.xbits,
+            ybits: shape.ybits,
             pdf_scale: (w as f64 * h as f64 / (1u64 << 62) as f64) as f32,
         })
     }
@@ -304,43 +368,35 @@ impl<'a> Hierarchical<'a> {
     /// the same intervals.
     #[inline(always)]
     fn descend<U: UintLane>(&self, mut left: impl FnMut(u32, U, usize) -> U::Mask) -> Walk<U> {
-        let (zero, one) = (U::splat(0), U::splat(1));
+        let shape = Shape {
+            xbits: self.xbits,
+            ybits: self.ybits,
+        };
+        let zero = U::splat(0);
         let mut walk = Walk {
             lo: [zero; 2],
             hi: [U::splat(1 << 31); 2],
             texel: [zero; 2],
         };
         let mut index = zero;
-        let levels = self.xbits.max(self.ybits);
+        // Blocks before this block level, and blocks in it.
         let (mut offset, mut count) = (0u32, 1u32);
-        for level in 0..levels {
-            let (sx, sy) = splits(level, self.xbits, self.ybits);
-            let shift = levels - 1 - level;
-            let [px, py0, py1, _] = U::gather(self.nodes, U::splat(offset) + index);
-            let mut step = zero;
-            let mut py = py0;
-            if sx {
-                let t = split_point(walk.lo[0], walk.hi[0], px);
-                let go = left(shift, t, 0);
-                walk.lo[0] = U::select(go, walk.lo[0], t);
-                walk.hi[0] = U::select(go, t, walk.hi[0]);
-                let bx = U::select(go, zero, one);
-                walk.texel[0] = walk.texel[0].shl(1) | bx;
-                step = bx;
-                py = U::select(go, py0, py1);
-            }
-            if sy {
-                let t = split_point(walk.lo[1], walk.hi[1], py);
-                let go = left(shift, t, 1);
-                walk.lo[1] = U::select(go, walk.lo[1], t);
-                walk.hi[1] = U::select(go, t, walk.hi[1]);
-                let by = U::select(go, zero, one);
-                walk.texel[1] = walk.texel[1].shl(1) | by;
-                step = step | by.shl(u32::from(sx));
-            }
-            index = index.shl(u32::from(sx) + u32::from(sy)) | step;
+        for b in 0..shape.virtual_levels() / 2 {
+            let k = 2 * b;
+            let base = (U::splat(offset) + index).shl(4);
+            let (b0, b1) = (shape.branch_bits(k), shape.branch_bits(k + 1));
+            let (sx0, sx1) = (
+                u32::from(shape.splits(k).0),
+                u32::from(shape.splits(k + 1).0),
+            );
+            let [px, py0, py1, _] = U::gather4(self.blocks, base);
+            let c = walk.level(shape.shift(k), sx0, [px, py0, py1], &mut left);
+            // The fourth word is the next child's px (or the block's sum): unused.
+            let [px, py0, py1, _] = U::gather4(self.blocks, base + U::splat(3) + c + c + c);
+            let g = walk.level(shape.shift(k + 1), sx1, [px, py0, py1], &mut left);
+            index = (index.shl(b0) | c).shl(b1) | g;
             offset += count;
-            count <<= u32::from(sx) + u32::from(sy);
+            count <<= b0 + b1;
         }
         walk
     }
@@ -431,10 +487,68 @@ impl<'a> Hierarchical<'a> {
     }
 }
 
-/// Where a walk down the pyramid ended: the final interval of each axis (0.31 fixed point)
-/// and the texel.
+/// Where a walk down the pyramid is: the current interval of each axis (0.31 fixed point)
+/// and the texel coordinates decided so far.
 struct Walk<U> {
     lo: [U; 2],
     hi: [U; 2],
     texel: [U; 2],
+}
+
+impl<U: UintLane> Walk<U> {
+    /// One level: split x at `px`, then y at the chosen column's fraction. Branch-free and
+    /// the same for every level: an axis the level does not split has fraction 1 (stored
+    /// `u32::MAX`), so the walk goes "left" with an unchanged interval and appends a leading
+    /// zero bit to the texel coordinate. Both candidate y split points are computed before the
+    /// x decision, which keeps them off the dependency chain. Returns the child's local index
+    /// `bx | by << sx` (`sx` = 1 if the level splits x).
+    #[inline(always)]
+    fn level(
+        &mut self,
+        shift: u32,
+        sx: u32,
+        [px, py0, py1]: [U; 3],
+        left: &mut impl FnMut(u32, U, usize) -> U::Mask,
+    ) -> U {
+        let (zero, one) = (U::splat(0), U::splat(1));
+        let ty0 = split_point(self.lo[1], self.hi[1], py0);
+        let ty1 = split_point(self.lo[1], self.hi[1], py1);
+        let tx = split_point(self.lo[0], self.hi[0], px);
+        let go = left(shift, tx, 0);
+        self.lo[0] = U::select(go, self.lo[0], tx);
+        self.hi[0] = U::select(go, tx, self.hi[0]);
+        let bx = U::select(go, zero, one);
+        self.texel[0] = self.texel[0].shl(1) | bx;
+        let ty = U::select(go, ty0, ty1);
+        let go = left(shift, ty, 1);
+        self.lo[1] = U::select(go, self.lo[1], ty);
+        self.hi[1] = U::select(go, ty, self.hi[1]);
+        let by = U::select(go, zero, one);
+        self.texel[1] = self.texel[1].shl(1) | by;
+        bx | by.shl(sx)
+    }
+}
+
+/// Coordinates `(x, y)` of node `i` of virtual level `k`: node indices are paths from the
+/// root, `bx | by << split_x` per level, most significant first.
+fn node_coords(shape: Shape, k: u32, i: u32) -> (u32, u32) {
+    let (mut x, mut y) = (0u32, 0u32);
+    let mut rest = k;
+    let mut index = i;
+    // Peel the path from the finest level up.
+    while rest > 0 {
+        rest -= 1;
+        let (sx, sy) = shape.splits(rest);
+        let bits = shape.branch_bits(rest);
+        let local = index & ((1 << bits) - 1);
+        index >>= bits;
+        let shift = k - 1 - rest;
+        if sx {
+            x |= (local & 1) << shift;
+        }
+        if sy {
+            y |= ((local >> u32::from(sx)) & 1) << shift;
+        }
+    }
+    (x, y)
 }
