@@ -133,3 +133,252 @@ pub fn disk(data: &[u8]) {
         }
     }
 }
+
+/// pmj02bn and the baseline sequences on arbitrary (index, seed, count) words: outputs in
+/// [0, 1) (never 1.0), scalar == x8 == slice, `raw` total.
+#[cfg(feature = "pmj02bn")]
+pub fn pmj02bn(data: &[u8]) {
+    use warpcore::{pmj02bn, sequence, u32x8};
+    let w = words(data);
+    let unit = |p: [f32; 2]| p.iter().all(|c| (0.0..1.0).contains(c));
+    for chunk in w.chunks(10) {
+        let get = |k: usize| chunk.get(k).copied().unwrap_or(0);
+        let (start, seed, count) = (get(0), get(1), get(2));
+        let idx: [u32; 8] = std::array::from_fn(|j| get(2 + j));
+        let _ = pmj02bn::raw(start as usize, seed as usize);
+        type Scalar = fn(u32, u32) -> [f32; 2];
+        let forms: [(&str, Scalar); 2] =
+            [("pmj02bn", pmj02bn::sample), ("random", sequence::random)];
+        for (name, f) in forms {
+            let v = match name {
+                "pmj02bn" => pmj02bn::sample_x8(u32x8::new(idx), u32x8::splat(seed)),
+                _ => sequence::random_x8(u32x8::new(idx), u32x8::splat(seed)),
+            };
+            for (j, &i) in idx.iter().enumerate() {
+                let s = f(i, seed);
+                assert!(unit(s), "{name}({i}, {seed}) = {s:?}");
+                assert!(
+                    same(s, [v[0].to_array()[j], v[1].to_array()[j]]),
+                    "{name} x8 {i} {seed}"
+                );
+            }
+        }
+        let mut out = [[0.0f32; 2]; 13];
+        pmj02bn::sample_slice(start, seed, &mut out);
+        for (k, o) in out.iter().enumerate() {
+            assert!(
+                same(*o, pmj02bn::sample(start.wrapping_add(k as u32), seed)),
+                "pmj02bn slice"
+            );
+        }
+        sequence::stratified_slice(start, count, seed, &mut out);
+        for (k, o) in out.iter().enumerate() {
+            let i = start.wrapping_add(k as u32);
+            let s = sequence::stratified(i, count, seed);
+            assert!(same(*o, s), "stratified slice");
+            // Documented: a jittered point can round onto its cell's upper edge, never past 1.
+            assert!(
+                s.iter().all(|c| (0.0..=1.0).contains(c)),
+                "stratified({i}, {count}, {seed}) = {s:?}"
+            );
+        }
+    }
+}
+
+fn barycentric(b: [f32; 3]) -> bool {
+    // Each >= 0 and finite; the sum within 2^-24 of 1 (the documented bound is 2^-25 + 2^-49).
+    b.iter().all(|c| c.is_finite() && *c >= 0.0)
+        && ((b[0] as f64 + b[1] as f64 + b[2] as f64) - 1.0).abs() <= 2f64.powi(-24)
+}
+
+/// Triangle warps, inverses on arbitrary barycentric triples, and Basu-Owen on arbitrary
+/// (index, seed).
+#[cfg(feature = "triangle")]
+pub fn triangle(data: &[u8]) {
+    use warpcore::{triangle as t, u32x8};
+    let w = words(data);
+    let p2 = points::<2>(&w);
+    let p3 = points::<3>(&w);
+    widths(
+        "uniform",
+        &p2,
+        t::uniform,
+        t::uniform_x8,
+        t::uniform_slice,
+        barycentric,
+    );
+    widths(
+        "sqrt_map",
+        &p2,
+        t::sqrt_map,
+        t::sqrt_map_x8,
+        t::sqrt_map_slice,
+        barycentric,
+    );
+    widths(
+        "uniform_inverse",
+        &p3,
+        t::uniform_inverse,
+        t::uniform_inverse_x8,
+        t::uniform_inverse_slice,
+        in_unit_square,
+    );
+    widths(
+        "sqrt_map_inverse",
+        &p3,
+        t::sqrt_map_inverse,
+        t::sqrt_map_inverse_x8,
+        t::sqrt_map_inverse_slice,
+        in_unit_square,
+    );
+    for chunk in w.chunks(9) {
+        let get = |k: usize| chunk.get(k).copied().unwrap_or(0);
+        let seed = get(0);
+        let idx: [u32; 8] = std::array::from_fn(|j| get(1 + j));
+        let v = t::basu_owen_x8(u32x8::new(idx), u32x8::splat(seed));
+        for (j, &i) in idx.iter().enumerate() {
+            let b = t::basu_owen(i, seed);
+            assert!(
+                barycentric(b) && b[0] + b[1] + b[2] == 1.0,
+                "basu_owen({i}, {seed}) = {b:?}"
+            );
+            assert!(
+                same(b, std::array::from_fn(|k| v[k].to_array()[j])),
+                "basu_owen x8"
+            );
+        }
+        let mut out = [[0.0f32; 3]; 11];
+        t::basu_owen_slice(idx[0], seed, &mut out);
+        for (k, o) in out.iter().enumerate() {
+            assert!(
+                same(*o, t::basu_owen(idx[0].wrapping_add(k as u32), seed)),
+                "basu_owen slice"
+            );
+        }
+    }
+}
+
+fn unit_vector(d: [f32; 3]) -> bool {
+    let n = d.iter().map(|c| (*c as f64).powi(2)).sum::<f64>().sqrt();
+    d.iter().all(|c| c.is_finite()) && (n - 1.0).abs() <= 2e-7
+}
+
+fn upper_unit_vector(d: [f32; 3]) -> bool {
+    unit_vector(d) && d[2] >= 0.0
+}
+
+/// Sphere warps on arbitrary 2D input, inverses on arbitrary 3D input, the wraps, and the
+/// density conversions.
+#[cfg(feature = "sphere")]
+pub fn sphere(data: &[u8]) {
+    use warpcore::sphere as s;
+    let w = words(data);
+    let p2 = points::<2>(&w);
+    let p3 = points::<3>(&w);
+    widths(
+        "equal_area",
+        &p2,
+        s::equal_area,
+        s::equal_area_x8,
+        s::equal_area_slice,
+        unit_vector,
+    );
+    widths(
+        "equirect",
+        &p2,
+        s::equirect,
+        s::equirect_x8,
+        s::equirect_slice,
+        unit_vector,
+    );
+    widths(
+        "uniform",
+        &p2,
+        s::uniform,
+        s::uniform_x8,
+        s::uniform_slice,
+        unit_vector,
+    );
+    widths(
+        "uniform_hemisphere",
+        &p2,
+        s::uniform_hemisphere,
+        s::uniform_hemisphere_x8,
+        s::uniform_hemisphere_slice,
+        upper_unit_vector,
+    );
+    widths(
+        "cosine_hemisphere",
+        &p2,
+        s::cosine_hemisphere,
+        s::cosine_hemisphere_x8,
+        s::cosine_hemisphere_slice,
+        upper_unit_vector,
+    );
+    widths(
+        "equal_area_inverse",
+        &p3,
+        s::equal_area_inverse,
+        s::equal_area_inverse_x8,
+        s::equal_area_inverse_slice,
+        in_unit_square,
+    );
+    widths(
+        "equirect_inverse",
+        &p3,
+        s::equirect_inverse,
+        s::equirect_inverse_x8,
+        s::equirect_inverse_slice,
+        in_unit_square,
+    );
+    widths(
+        "uniform_inverse",
+        &p3,
+        s::uniform_inverse,
+        s::uniform_inverse_x8,
+        s::uniform_inverse_slice,
+        in_unit_square,
+    );
+    widths(
+        "uniform_hemisphere_inverse",
+        &p3,
+        s::uniform_hemisphere_inverse,
+        s::uniform_hemisphere_inverse_x8,
+        s::uniform_hemisphere_inverse_slice,
+        in_unit_square,
+    );
+    widths(
+        "cosine_hemisphere_inverse",
+        &p3,
+        s::cosine_hemisphere_inverse,
+        s::cosine_hemisphere_inverse_x8,
+        s::cosine_hemisphere_inverse_slice,
+        in_unit_square,
+    );
+    let closed_square = |u: [f32; 2]| u.iter().all(|c| (0.0..=1.0).contains(c));
+    widths(
+        "equal_area_wrap",
+        &p2,
+        s::equal_area_wrap,
+        s::equal_area_wrap_x8,
+        s::equal_area_wrap_slice,
+        closed_square,
+    );
+    for (k, d) in p3.iter().enumerate() {
+        let pdf = d[0];
+        for v in [
+            s::equirect_pdf_to_solid_angle(pdf, *d),
+            s::equal_area_pdf_to_solid_angle(pdf),
+            s::cosine_hemisphere_pdf(pdf),
+        ] {
+            assert!(!v.is_nan(), "pdf conversion of {pdf} at {d:?} is NaN");
+        }
+        let size = w.get(k).copied().unwrap_or(1) % 4097;
+        let texel = [d[1].to_bits() as i32, d[2].to_bits() as i32];
+        let t = s::equal_area_wrap_texel(texel, size);
+        assert!(
+            size == 0 && t == [0, 0] || t[0] < size && t[1] < size,
+            "wrap_texel {texel:?} {size} -> {t:?}"
+        );
+    }
+}

@@ -39,7 +39,10 @@ pub(crate) fn map<const I: usize, const O: usize>(
 
 /// Fills `output[i]` with `f` at the index `start + i` (wrapping), eight indices at a time;
 /// for the index-driven sequences and constructions. Returns `output.len()`.
-#[cfg_attr(not(any(feature = "triangle", feature = "pmj02bn")), allow(dead_code))]
+#[cfg_attr(
+    not(any(feature = "triangle", feature = "pmj02bn", feature = "sequence")),
+    allow(dead_code)
+)]
 #[inline(always)]
 pub(crate) fn fill_indexed<const O: usize>(
     start: u32,
@@ -70,9 +73,16 @@ pub(crate) fn fill_indexed<const O: usize>(
 #[inline(always)]
 pub(crate) fn load<const I: usize>(group: &[[f32; I]; 8]) -> [f32x8; I] {
     let rows: &[[u32; 8]; I] = bytemuck::cast_ref(group);
-    let src: [u32x8; I] = core::array::from_fn(|m| u32x8::new(rows[m]));
+    // Plain loops rather than `core::array::from_fn`: with three components LLVM left the
+    // `from_fn` closure out of line, and the round trip through the stack (narrow stores read
+    // back as one wide load) made 3-component slices 6-10x slower than the `_x8` form.
+    let src: [u32x8; I] = rows.map(u32x8::new);
     // Component k of element j sits at flat position j I + k.
-    core::array::from_fn(|k| bytemuck::cast(permute(&src, |j| ((j * I + k) / 8, (j * I + k) % 8))))
+    let mut out = [f32x8::ZERO; I];
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = bytemuck::cast(permute(&src, |j| ((j * I + k) / 8, (j * I + k) % 8)));
+    }
+    out
 }
 
 /// One SIMD vector per component back into eight array-of-structs elements.
@@ -80,8 +90,11 @@ pub(crate) fn load<const I: usize>(group: &[[f32; I]; 8]) -> [f32x8; I] {
 pub(crate) fn store<const O: usize>(v: [f32x8; O]) -> [[f32; O]; 8] {
     let src: [u32x8; O] = v.map(bytemuck::cast);
     // Flat position 8 m + l holds component (8 m + l) % O of element (8 m + l) / O.
-    let rows: [[u32; 8]; O] =
-        core::array::from_fn(|m| permute(&src, |l| ((8 * m + l) % O, (8 * m + l) / O)).to_array());
+    // Plain loops rather than `core::array::from_fn`: see `load`.
+    let mut rows = [[0u32; 8]; O];
+    for (m, row) in rows.iter_mut().enumerate() {
+        *row = permute(&src, |l| ((8 * m + l) % O, (8 * m + l) / O)).to_array();
+    }
     bytemuck::cast(rows)
 }
 

@@ -111,6 +111,19 @@ pub fn polar_inverse_slice(p: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
 
 #[inline(always)]
 fn concentric_body<L: Lane>(u: [L; 2]) -> [L; 2] {
+    let (r, c, s) = concentric_parts(u);
+    [r * c, r * s]
+}
+
+/// The concentric map in polar form: `(r, c, s)` with `concentric(u) = [r * c, r * s]`.
+///
+/// `r` is the signed radius of Shirley and Chiu (`a` or `b`, clamped in magnitude to
+/// `MAX_RADIUS`), and `(c, s)` the direction for that sign convention (`c^2 + s^2` is 1 up to
+/// the kernels' error). The sphere warps lift the disk point to the hemisphere from `|r|`
+/// directly, where `1 - r^2 = (1 - |r|)(1 + |r|)` keeps its relative precision at the rim.
+#[cfg_attr(not(feature = "sphere"), allow(dead_code))]
+#[inline(always)]
+pub(crate) fn concentric_parts<L: Lane>(u: [L; 2]) -> (L, L, L) {
     let one = L::splat(1.0);
     let two = L::splat(2.0);
     let a = two * unit_interval(u[0]) - one;
@@ -125,11 +138,11 @@ fn concentric_body<L: Lane>(u: [L; 2]) -> [L; 2] {
     let r = clamp_radius(r.abs()).flip_sign(r.sign_bit());
     // cos(pi/2 - x) = sin(x): the b-major wedges swap sin and cos.
     let (s, c) = sin_cos_pi4(t);
-    [r * L::select(a_major, c, s), r * L::select(a_major, s, c)]
+    (r, L::select(a_major, c, s), L::select(a_major, s, c))
 }
 
 #[inline(always)]
-fn concentric_inverse_body<L: Lane>(p: [L; 2]) -> [L; 2] {
+pub(crate) fn concentric_inverse_body<L: Lane>(p: [L; 2]) -> [L; 2] {
     let (x, y) = (signed_unit(p[0]), signed_unit(p[1]));
     let (ax, ay) = (x.abs(), y.abs());
     let x_major = ay.simd_lt(ax);

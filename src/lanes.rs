@@ -49,7 +49,6 @@ pub(crate) trait UintLane:
     type Mask: Mask;
     fn splat(x: u32) -> Self;
     fn shl(self, n: u32) -> Self;
-    #[allow(dead_code)] // for the integer-driven families (sequences, Basu-Owen)
     fn shr(self, n: u32) -> Self;
     fn simd_eq(self, rhs: Self) -> Self::Mask;
     fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
@@ -65,6 +64,24 @@ pub(crate) trait UintLane:
     /// (zeros where that range is out of bounds, never a panic). For `u32x8` each lane is one
     /// 16-byte load and two 4x4 transposes make the four vectors.
     fn gather4(table: &[u32], start: Self) -> [Self; 4];
+
+    /// Per lane, `f(lane)` split into two lanes: the table lookups of the sequences.
+    #[allow(dead_code)] // for the table-driven families (pmj02bn)
+    fn gather_pairs(self, f: impl Fn(u32) -> [u32; 2]) -> [Self; 2];
+
+    /// The bits of each lane in reverse order (bit 0 <-> bit 31): the swap network of
+    /// Warren's *Hacker's Delight*, 7-1. Integer results, so every lane type agrees.
+    #[allow(dead_code)] // for the scrambled sequences (pmj02bn)
+    #[inline(always)]
+    fn reverse_bits(self) -> Self {
+        let swap =
+            |x: Self, n: u32, m: u32| (x.shr(n) & Self::splat(m)) | (x & Self::splat(m)).shl(n);
+        let x = swap(self, 1, 0x5555_5555);
+        let x = swap(x, 2, 0x3333_3333);
+        let x = swap(x, 4, 0x0f0f_0f0f);
+        let x = swap(x, 8, 0x00ff_00ff);
+        x.shr(16) | x.shl(16)
+    }
 }
 
 /// The float lane: `f32` or [`f32x8`]. See the module docs for what it may and may not hold.
@@ -135,6 +152,16 @@ impl UintLane for Wrapping<u32> {
     fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
         if mask { if_true } else { if_false }
     }
+    #[inline(always)]
+    fn gather_pairs(self, f: impl Fn(u32) -> [u32; 2]) -> [Self; 2] {
+        f(self.0).map(Wrapping)
+    }
+    #[inline(always)]
+    fn reverse_bits(self) -> Self {
+        // One instruction on aarch64 and thumbv7em; the same bits as the swap network.
+        Wrapping(self.0.reverse_bits())
+    }
+
     #[inline(always)]
     fn simd_lt(self, rhs: Self) -> bool {
         self < rhs
@@ -261,6 +288,20 @@ impl UintLane for u32x8 {
     #[inline(always)]
     fn select(mask: Mask8, if_true: Self, if_false: Self) -> Self {
         mask.0.select(if_true, if_false)
+    }
+    #[inline(always)]
+    fn reverse_bits(self) -> Self {
+        // Lane by lane, so LLVM emits its vector bit-reverse (PSHUFB nibble tables on
+        // SSSE3/AVX2, GFNI where available) instead of the 20-instruction swap network.
+        u32x8::new(self.to_array().map(u32::reverse_bits))
+    }
+    #[inline(always)]
+    fn gather_pairs(self, f: impl Fn(u32) -> [u32; 2]) -> [Self; 2] {
+        let pairs = self.to_array().map(f);
+        [
+            u32x8::new(pairs.map(|p| p[0])),
+            u32x8::new(pairs.map(|p| p[1])),
+        ]
     }
     #[inline(always)]
     fn simd_lt(self, rhs: Self) -> Mask8 {
@@ -462,6 +503,16 @@ mod tests {
         for x in [16_777_217.0f32, 2_147_483_520.0, 1.5e9] {
             assert_eq!(Lane::to_uint(x).0, x as u32);
             assert_eq!(Lane::to_uint(f32x8::splat(x)).to_array()[2], x as u32);
+        }
+        for w in [0u32, 1, 0x8000_0000, 0x1234_5678, 0xdead_beef, u32::MAX] {
+            let v = u32x8::splat(w).reverse_bits().to_array();
+            assert!(v.iter().all(|&r| r == w.reverse_bits()), "{w:#x}");
+            assert_eq!(Wrapping(w).reverse_bits().0, w.reverse_bits());
+            let g = u32x8::splat(w).gather_pairs(|x| [x ^ 1, x.rotate_left(3)]);
+            assert_eq!(
+                [g[0].to_array()[2], g[1].to_array()[7]],
+                [w ^ 1, w.rotate_left(3)]
+            );
         }
         for k in [0, 1, 5, 31, 32, 33] {
             let w = Wrapping(0x8000_0001u32);

@@ -42,7 +42,13 @@
 //! | feature | module | default |
 //! |---|---|---|
 //! | `disk` | [`disk`]: polar, concentric, polar4 | yes |
-//! | `envmap` | [`envmap`]: marginal-conditional and hierarchical image distributions, caller-owned storage | yes |
+//! | `triangle` | [`triangle`]: low-distortion (Heitz), sqrt map, Basu-Owen (scrambled) | yes |
+//! | `sphere` | [`sphere`]: equal-area octahedral (+ wrap), lat-long, uniform sphere, uniform and cosine hemisphere; enables `disk` | yes |
+//! | `pmj02bn` | [`pmj02bn`]: Owen-scrambled pmj02bn points; alone 1024 points x 1 set (8 KiB of tables) | yes |
+//! | `pmj02bn-4096`, `pmj02bn-16384`, `pmj02bn-65536` | points per set (largest enabled wins; 4096 by default) | 4096 |
+//! | `pmj02bn-4-sets` | 4 sets instead of 1; tables take `8 * POINTS * SETS` bytes (128 KiB by default) | yes |
+//! | `sequence` | [`sequence`]: baseline `random` and `stratified` samplers (no tables) | yes |
+//! | `envmap` | [`envmap`]: marginal-conditional and hierarchical image distributions, caller-owned storage; enables `sphere` | yes |
 //! | `std` | forwards `wide/std`; the library never needs it | no |
 
 #![no_std]
@@ -51,20 +57,79 @@
 
 pub use wide::{f32x8, u32x8};
 
-#[cfg_attr(not(any(feature = "disk", feature = "envmap")), allow(dead_code))]
+// Shared internals. A build with only some families leaves parts of them unused, which is
+// expected there; the full build still reports real dead code.
+#[cfg_attr(
+    not(all(
+        feature = "disk",
+        feature = "triangle",
+        feature = "sphere",
+        feature = "pmj02bn",
+        feature = "sequence",
+        feature = "envmap"
+    )),
+    allow(dead_code)
+)]
 mod batch;
-// envmap alone uses only part of the kernels and lanes.
-#[cfg_attr(not(feature = "disk"), allow(dead_code))]
+#[cfg(any(feature = "pmj02bn", feature = "sequence"))]
+#[cfg_attr(
+    not(all(
+        feature = "disk",
+        feature = "triangle",
+        feature = "sphere",
+        feature = "pmj02bn",
+        feature = "sequence",
+        feature = "envmap"
+    )),
+    allow(dead_code)
+)]
+mod hash;
+#[cfg_attr(
+    not(all(
+        feature = "disk",
+        feature = "triangle",
+        feature = "sphere",
+        feature = "pmj02bn",
+        feature = "sequence",
+        feature = "envmap"
+    )),
+    allow(dead_code)
+)]
 mod kernels;
-#[cfg_attr(not(feature = "disk"), allow(dead_code))]
+#[cfg_attr(
+    not(all(
+        feature = "disk",
+        feature = "triangle",
+        feature = "sphere",
+        feature = "pmj02bn",
+        feature = "sequence",
+        feature = "envmap"
+    )),
+    allow(dead_code)
+)]
 mod lanes;
 
 #[cfg(feature = "disk")]
 pub mod disk;
 #[cfg(feature = "envmap")]
 pub mod envmap;
+#[cfg(feature = "pmj02bn")]
+pub mod pmj02bn;
+#[cfg(feature = "sequence")]
+pub mod sequence;
+#[cfg(feature = "sphere")]
+pub mod sphere;
+#[cfg(feature = "triangle")]
+pub mod triangle;
 
-// The README's examples compile and run as doctests.
-#[cfg(all(doctest, feature = "disk"))]
+// The README's examples compile and run as doctests (they use every default family).
+#[cfg(all(
+    doctest,
+    feature = "disk",
+    feature = "triangle",
+    feature = "sphere",
+    feature = "pmj02bn",
+    feature = "sequence"
+))]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;

@@ -7,7 +7,13 @@
 //! The golden value covers the default feature set; when a change is *meant* to alter output
 //! bits, regenerate it with `cargo run --release --manifest-path examples/wasm-demo/Cargo.toml
 //! --bin fingerprint > tests/golden/fingerprint.txt` and say why in the commit.
-#![cfg(feature = "disk")]
+#![cfg(all(
+    feature = "disk",
+    feature = "triangle",
+    feature = "sphere",
+    feature = "pmj02bn",
+    feature = "sequence"
+))]
 
 #[path = "../examples/wasm-demo/src/fingerprint.rs"]
 mod fingerprint;

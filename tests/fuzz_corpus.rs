@@ -28,3 +28,21 @@ fn replay(target: &str, check: fn(&[u8])) {
 fn disk_corpus() {
     replay("disk", checks::disk);
 }
+
+#[cfg(all(feature = "pmj02bn", feature = "sequence"))]
+#[test]
+fn pmj02bn_corpus() {
+    replay("pmj02bn", checks::pmj02bn);
+}
+
+#[cfg(feature = "triangle")]
+#[test]
+fn triangle_corpus() {
+    replay("triangle", checks::triangle);
+}
+
+#[cfg(feature = "sphere")]
+#[test]
+fn sphere_corpus() {
+    replay("sphere", checks::sphere);
+}

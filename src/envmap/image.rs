@@ -1,5 +1,6 @@
 //! Helpers around the distributions: weights from an RGB image, the solid-angle factor of a
-//! lat-long map, and the conversions of an area pdf on `[0, 1]^2` to a pdf over directions.
+//! lat-long map, the conversions of an area pdf on `[0, 1]^2` to a pdf over directions, and
+//! the resampling of a lat-long image into an equal-area (octahedral) square image.
 //!
 //! Conventions (DESIGN section 3): a **lat-long** (equirectangular) map puts `phi = 2 pi u`,
 //! `theta = pi v`, direction `(sin theta cos phi, sin theta sin phi, cos theta)`, so row 0 is
@@ -7,24 +8,30 @@
 //! (Clarberg's octahedral square, `sphere::equal_area`) has the constant Jacobian
 //! `d(omega) = 4 pi du dv`.
 //!
-//! Recipe for a lat-long map: `luminance_slice` -> `latlong_solid_angle_weights` ->
-//! `Hierarchical::new` -> `sample` -> direction from `uv` -> `latlong_pdf_to_solid_angle(pdf,
-//! uv[1])`. For an equal-area map no row factor is needed (every texel covers the same solid
-//! angle) and the pdf converts with `equal_area_pdf_to_solid_angle`.
+//! Recipes:
+//!
+//! * **lat-long**: [`luminance_slice`] -> [`latlong_solid_angle_weights`] ->
+//!   [`Hierarchical::new`](super::Hierarchical::new) -> `sample` -> direction
+//!   [`sphere::equirect`]`(uv)` -> density [`latlong_pdf_to_solid_angle`]`(pdf, uv[1])`;
+//! * **equal-area** (the better parameterization: no pole distortion, every texel the same
+//!   solid angle, so no row factor): [`latlong_to_equal_area`] (once, from your lat-long
+//!   image) -> [`luminance_slice`] -> `Hierarchical::new` -> `sample` -> direction
+//!   [`sphere::equal_area`]`(uv)` -> density [`equal_area_pdf_to_solid_angle`]`(pdf)`.
 
-use super::Error;
+use super::{Error, MAX_SIDE};
 use crate::kernels::sin_cos_turns;
 use crate::lanes::{Lane, unit_interval};
+use crate::sphere;
 use core::f64::consts::PI;
 use wide::f32x8;
+
+pub use crate::sphere::{equal_area_pdf_to_solid_angle, equal_area_pdf_to_solid_angle_x8};
 
 /// Rec. 709 / sRGB luminance coefficients of linear `[R, G, B]`.
 pub const LUMINANCE: [f32; 3] = [0.2126, 0.7152, 0.0722];
 
 /// `1 / (2 pi^2)`, rounded once from `f64`.
 const INV_2_PI_SQ: f32 = (1.0 / (2.0 * PI * PI)) as f32;
-/// `1 / (4 pi)`, rounded once from `f64`.
-const INV_4_PI: f32 = (1.0 / (4.0 * PI)) as f32;
 
 #[inline(always)]
 fn luminance_body<L: Lane>(rgb: [L; 3]) -> [L; 1] {
@@ -97,16 +104,25 @@ pub fn latlong_solid_angle_weights(
 fn latlong_body<L: Lane>(pdf: L, v: L) -> L {
     let zero = L::splat(0.0);
     let max = L::splat(f32::MAX);
-    let p = L::select(zero.simd_lt(pdf), pdf, zero);
+    let p = L::select(
+        zero.simd_lt(pdf),
+        L::select(pdf.simd_lt(max), pdf, max),
+        zero,
+    );
     let s = sin_pi(unit_interval(v));
-    let r = p * L::splat(INV_2_PI_SQ) / s;
-    // At the pole itself (s = 0) the density is unbounded: f32::MAX (0 for p = 0).
-    let r = L::select(s.simd_eq(zero), L::select(p.simd_eq(zero), zero, max), r);
+    let pole = s.simd_eq(zero);
+    let r = p * L::splat(INV_2_PI_SQ) / L::select(pole, L::splat(1.0), s);
+    // At the pole itself (sin theta = 0, only v = 0 can give it) the density is unbounded:
+    // 0, the pbrt / Mitsuba convention that `sphere::equirect_pdf_to_solid_angle` follows.
+    let r = L::select(pole, zero, r);
     L::select(max.simd_lt(r), max, r)
 }
 
 /// Converts an area pdf on a lat-long map's `[0, 1]^2` to a pdf with respect to solid angle
-/// at the sampled point: `pdf / (2 pi^2 sin(pi v))`.
+/// at the sampled point: `pdf / (2 pi^2 sin(pi v))` — what
+/// [`sphere::equirect_pdf_to_solid_angle`] computes from the direction, here from the
+/// sample's `v = uv[1]` (no direction needed, and `sin` keeps full relative precision near
+/// both poles).
 ///
 /// **The `sin(theta)` is the point's, not the texel row's.** The distributions sample `uv`
 /// uniformly inside the chosen texel, so the density over directions varies across the
@@ -114,12 +130,13 @@ fn latlong_body<L: Lane>(pdf: L, v: L) -> L {
 /// direction, which is what MIS weights and `f / pdf` need. The row centre's sine would be
 /// the density of a different sampler (uniform in solid angle inside the texel): in the
 /// polar rows it is off by up to a factor of 2 at the row's far edge, and without bound
-/// towards the pole. (The weights still use the row centre, see
-/// [`latlong_solid_angle_weights`]: that one is the texel's exact solid angle.)
+/// towards the pole. (The weights do use the row centre, see
+/// [`latlong_solid_angle_weights`]: there it is the texel's exact solid angle.)
 ///
-/// Total: `v` is clamped by the forward rule; a NaN or negative `pdf` gives 0; at `v = 0`
-/// (the pole, where the density is unbounded) and on overflow the result is `f32::MAX`
-/// (0 when `pdf` is 0). Error: about 3 ulp over the polynomial sine's.
+/// Total: `v` is clamped by the forward rule; a NaN or negative `pdf` gives 0, `+inf` counts
+/// as `f32::MAX`; at the pole itself (`v = 0`) the result is 0 (the sample should be
+/// discarded, as in pbrt and Mitsuba), and an overflowing result is `f32::MAX`. Error: within
+/// 3 ulp of the `f64` formula (the sine's 2 ulp plus two roundings).
 #[inline]
 pub fn latlong_pdf_to_solid_angle(pdf: f32, v: f32) -> f32 {
     latlong_body(pdf, v)
@@ -131,25 +148,91 @@ pub fn latlong_pdf_to_solid_angle_x8(pdf: f32x8, v: f32x8) -> f32x8 {
     latlong_body(pdf, v)
 }
 
-#[inline(always)]
-fn equal_area_body<L: Lane>(pdf: L) -> L {
-    let zero = L::splat(0.0);
-    let max = L::splat(f32::MAX);
-    let p = L::select(zero.simd_lt(pdf), pdf, zero);
-    let r = p * L::splat(INV_4_PI);
-    L::select(max.simd_lt(r), max, r)
-}
+/// Largest supersampling factor [`latlong_to_equal_area`] accepts (per axis).
+pub const MAX_SUPERSAMPLE: usize = 64;
 
-/// Converts an area pdf on an equal-area map's `[0, 1]^2` to a pdf with respect to solid
-/// angle: `pdf / (4 pi)` (the map preserves area, so this is exact everywhere). A NaN or
-/// negative `pdf` gives 0, `+inf` gives `f32::MAX`.
-#[inline]
-pub fn equal_area_pdf_to_solid_angle(pdf: f32) -> f32 {
-    equal_area_body(pdf)
-}
-
-/// [`equal_area_pdf_to_solid_angle`] on eight lanes; bit-identical to eight scalar calls.
-#[inline]
-pub fn equal_area_pdf_to_solid_angle_x8(pdf: f32x8) -> f32x8 {
-    equal_area_body(pdf)
+/// Resamples a lat-long (equirectangular) image into an equal-area octahedral square image
+/// of `size x size` texels, for importance sampling in the better parameterization.
+///
+/// Each output texel `(column, row)` covers `[column/size, (column+1)/size) x [row/size,
+/// (row+1)/size)` of the square of [`sphere::equal_area`]. It is the average of
+/// `supersample^2` stratified point samples (cell centres of a `supersample x supersample`
+/// grid over the texel), each mapped to a direction with [`sphere::equal_area`], looked up
+/// with [`sphere::equirect_inverse`] and read from the source texel holding that point (a
+/// box filter over the output texel, nearest-texel reads of the source). Every output texel
+/// covers `4 pi / size^2` of solid angle, so the averages are directly the weights of an
+/// equal-area distribution (no row factor), and `4 pi / size^2 * sum(dst)` estimates the
+/// source's integral over the sphere.
+///
+/// Choose `size` so that `size^2` is about the source's texel count or more, and
+/// `supersample >= 2`: a source texel smaller than an output texel's samples can be missed.
+/// `src` is row-major, row 0 around `+z` (`v` in `[0, 1/src_height)`). Values are taken as
+/// they are, except that NaN and negative channels count as 0 (the weight rule, so a bad
+/// source texel cannot spoil its neighbours' averages); `+inf` stays infinite.
+///
+/// Errors: [`Error::ZeroSize`] (a zero size or `supersample`), [`Error::LengthMismatch`]
+/// (`src.len() != src_width * src_height`, or `dst.len() != size * size`, reported for
+/// `dst`), [`Error::TooLarge`] (a side above [`MAX_SIDE`] or `supersample` above
+/// [`MAX_SUPERSAMPLE`]).
+pub fn latlong_to_equal_area<const C: usize>(
+    src: &[[f32; C]],
+    src_width: usize,
+    src_height: usize,
+    dst: &mut [[f32; C]],
+    size: usize,
+    supersample: usize,
+) -> Result<(), Error> {
+    if src_width == 0 || src_height == 0 || size == 0 || supersample == 0 {
+        return Err(Error::ZeroSize);
+    }
+    if src_width > MAX_SIDE
+        || src_height > MAX_SIDE
+        || size > MAX_SIDE
+        || supersample > MAX_SUPERSAMPLE
+    {
+        return Err(Error::TooLarge);
+    }
+    let expected = src_width * src_height;
+    if src.len() != expected {
+        return Err(Error::LengthMismatch {
+            expected,
+            got: src.len(),
+        });
+    }
+    let expected = size * size;
+    if dst.len() != expected {
+        return Err(Error::LengthMismatch {
+            expected,
+            got: dst.len(),
+        });
+    }
+    let (sw, sh) = (src_width as f64, src_height as f64);
+    let inv = 1.0 / (size * supersample) as f64;
+    let norm = 1.0 / (supersample * supersample) as f64;
+    let clean = |x: f32| if x > 0.0 { f64::from(x) } else { 0.0 };
+    for (row, out_row) in dst.chunks_exact_mut(size.max(1)).enumerate() {
+        for (column, out) in out_row.iter_mut().enumerate() {
+            let mut acc = [0.0f64; C];
+            for b in 0..supersample {
+                let v = ((row * supersample + b) as f64 + 0.5) * inv;
+                for a in 0..supersample {
+                    let u = ((column * supersample + a) as f64 + 0.5) * inv;
+                    let d = sphere::equal_area([u as f32, v as f32]);
+                    let [su, sv] = sphere::equirect_inverse(d);
+                    // `su, sv` are in [0, 1): the products floor into range.
+                    let x = ((f64::from(su) * sw) as usize).min(src_width - 1);
+                    let y = ((f64::from(sv) * sh) as usize).min(src_height - 1);
+                    if let Some(texel) = src.get(y * src_width + x) {
+                        for (s, &t) in acc.iter_mut().zip(texel) {
+                            *s += clean(t);
+                        }
+                    }
+                }
+            }
+            for (o, s) in out.iter_mut().zip(acc) {
+                *o = (s * norm) as f32;
+            }
+        }
+    }
+    Ok(())
 }

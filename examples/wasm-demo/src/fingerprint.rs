@@ -109,6 +109,36 @@ pub fn warp<const I: usize, const O: usize>(
     }
 }
 
+/// Hashes an index-driven sequence: `scalar(index, seed)` over a fixed set of (index, seed)
+/// pairs (small, near `2^k` boundaries, past any table, and extremes), `x8` on groups of 8
+/// and `slice(start, seed, out)` filling 37 consecutive points from several starts.
+pub fn indexed<const O: usize>(
+    h: &mut Hasher,
+    scalar: impl Fn(u32, u32) -> [f32; O],
+    x8: impl Fn(warpcore::u32x8, warpcore::u32x8) -> [f32x8; O],
+    slice: impl Fn(u32, u32, &mut [[f32; O]]) -> usize,
+) {
+    let seeds = [0u32, 1, 0x9e37_79b9, u32::MAX];
+    let starts = [0u32, 5, 1023, 4090, 65530, 1 << 20, u32::MAX - 20];
+    for &seed in &seeds {
+        for &start in &starts {
+            let mut out = [[0.0f32; O]; 37];
+            h.word(slice(start, seed, &mut out) as u32);
+            for (k, o) in out.iter().enumerate() {
+                let i = start.wrapping_add(k as u32);
+                h.floats(&scalar(i, seed));
+                h.floats(o);
+            }
+            let idx =
+                warpcore::u32x8::new(core::array::from_fn(|j| start.wrapping_add(3 * j as u32)));
+            let sd = warpcore::u32x8::new(core::array::from_fn(|j| seed ^ j as u32));
+            for c in x8(idx, sd) {
+                h.floats(&c.to_array());
+            }
+        }
+    }
+}
+
 /// The fingerprint of every family compiled in.
 pub fn fingerprint() -> u64 {
     let mut h = Hasher::new();
@@ -152,6 +182,126 @@ pub fn fingerprint() -> u64 {
         h.word(disk::polar4_slice(&pts, &mut out) as u32);
         for p in out {
             h.floats(&p);
+        }
+    }
+    #[cfg(feature = "pmj02bn")]
+    {
+        use warpcore::pmj02bn;
+        indexed(
+            &mut h,
+            pmj02bn::sample,
+            pmj02bn::sample_x8,
+            pmj02bn::sample_slice,
+        );
+        for (set, index) in [(0usize, 0usize), (1, 1), (3, 4095), (7, 1 << 30)] {
+            for w in pmj02bn::raw(set, index) {
+                h.word(w);
+            }
+        }
+    }
+    #[cfg(feature = "sequence")]
+    {
+        use warpcore::sequence;
+        indexed(
+            &mut h,
+            sequence::random,
+            sequence::random_x8,
+            sequence::random_slice,
+        );
+        for count in [1u32, 16, 17, 1024] {
+            indexed(
+                &mut h,
+                |i, s| sequence::stratified(i, count, s),
+                |i, s| sequence::stratified_x8(i, count, s),
+                |st, s, o| sequence::stratified_slice(st, count, s, o),
+            );
+        }
+    }
+    #[cfg(feature = "triangle")]
+    {
+        use warpcore::triangle as t;
+        warp(&mut h, t::uniform, t::uniform_x8, t::uniform_slice);
+        warp(
+            &mut h,
+            t::uniform_inverse,
+            t::uniform_inverse_x8,
+            t::uniform_inverse_slice,
+        );
+        warp(&mut h, t::sqrt_map, t::sqrt_map_x8, t::sqrt_map_slice);
+        warp(
+            &mut h,
+            t::sqrt_map_inverse,
+            t::sqrt_map_inverse_x8,
+            t::sqrt_map_inverse_slice,
+        );
+        indexed(&mut h, t::basu_owen, t::basu_owen_x8, t::basu_owen_slice);
+    }
+    #[cfg(feature = "sphere")]
+    {
+        use warpcore::sphere as s;
+        warp(&mut h, s::equal_area, s::equal_area_x8, s::equal_area_slice);
+        warp(
+            &mut h,
+            s::equal_area_inverse,
+            s::equal_area_inverse_x8,
+            s::equal_area_inverse_slice,
+        );
+        warp(
+            &mut h,
+            s::equal_area_wrap,
+            s::equal_area_wrap_x8,
+            s::equal_area_wrap_slice,
+        );
+        warp(&mut h, s::equirect, s::equirect_x8, s::equirect_slice);
+        warp(
+            &mut h,
+            s::equirect_inverse,
+            s::equirect_inverse_x8,
+            s::equirect_inverse_slice,
+        );
+        warp(&mut h, s::uniform, s::uniform_x8, s::uniform_slice);
+        warp(
+            &mut h,
+            s::uniform_inverse,
+            s::uniform_inverse_x8,
+            s::uniform_inverse_slice,
+        );
+        warp(
+            &mut h,
+            s::uniform_hemisphere,
+            s::uniform_hemisphere_x8,
+            s::uniform_hemisphere_slice,
+        );
+        warp(
+            &mut h,
+            s::uniform_hemisphere_inverse,
+            s::uniform_hemisphere_inverse_x8,
+            s::uniform_hemisphere_inverse_slice,
+        );
+        warp(
+            &mut h,
+            s::cosine_hemisphere,
+            s::cosine_hemisphere_x8,
+            s::cosine_hemisphere_slice,
+        );
+        warp(
+            &mut h,
+            s::cosine_hemisphere_inverse,
+            s::cosine_hemisphere_inverse_x8,
+            s::cosine_hemisphere_inverse_slice,
+        );
+        for i in 0..N {
+            let d: [f32; 3] = input(i);
+            let [p]: [f32; 1] = input(i);
+            h.floats(&[
+                s::equirect_pdf_to_solid_angle(p, d),
+                s::equal_area_pdf_to_solid_angle(p),
+                s::cosine_hemisphere_pdf(p),
+            ]);
+            let t: [f32; 2] = input(i);
+            for w in s::equal_area_wrap_texel(t.map(|c| ((c * 64.0) as i32).wrapping_sub(16)), 32) {
+                h.word(w);
+            }
         }
     }
     h.finish()

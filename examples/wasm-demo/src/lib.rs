@@ -22,10 +22,28 @@ pub extern "C" fn disk_concentric(u0: f32, u1: f32, k: u32) -> f32 {
     if k == 0 { p[0] } else { p[1] }
 }
 
+#[cfg(feature = "sphere")]
+#[unsafe(no_mangle)]
+pub extern "C" fn sphere_equal_area(u0: f32, u1: f32, k: u32) -> f32 {
+    let d = warpcore::sphere::equal_area([u0, u1]);
+    match k {
+        0 => d[0],
+        1 => d[1],
+        _ => d[2],
+    }
+}
+
 #[cfg(feature = "all")]
 #[unsafe(no_mangle)]
 pub extern "C" fn disk_polar4(u0: f32, u1: f32, quadrant: u32, k: u32) -> f32 {
     let p = warpcore::disk::polar4([u0, u1], quadrant);
+    if k == 0 { p[0] } else { p[1] }
+}
+
+#[cfg(feature = "pmj02bn")]
+#[unsafe(no_mangle)]
+pub extern "C" fn pmj02bn_sample(index: u32, seed: u32, k: u32) -> f32 {
+    let p = warpcore::pmj02bn::sample(index, seed);
     if k == 0 { p[0] } else { p[1] }
 }
 

@@ -1,0 +1,240 @@
+//! Sphere warps: throughput of warpcore's scalar loop, `_x8` and slice forms against the
+//! textbook formulas in plain scalar code with `libm` sin/cos/atan/acos (what a port of pbrt's
+//! or Mitsuba's scalar code does), and `rand_distr::UnitSphere` for the uniform sphere.
+//!
+//! Run: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench sphere`
+//! (without the flag the x86-64 baseline is SSE2 and `f32x8` runs as two SSE halves).
+
+mod common;
+
+use common::{BATCH, peer_fill, peer_scalar, to_soa, uniform_points, warp_group};
+use criterion::measurement::WallTime;
+use criterion::{BenchmarkGroup, Criterion, Throughput};
+use rand::SeedableRng;
+use rand_distr::{Distribution, UnitSphere};
+use rand_xoshiro::Xoshiro128PlusPlus;
+use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
+use std::hint::black_box;
+use warpcore::{f32x8, sphere};
+
+// ----------------------------------------------------------------------------------------
+// Textbook peers: the published formulas, branches and libm calls, in f32.
+
+/// Clarberg's equal-area map as written in the paper.
+fn equal_area_libm(u: [f32; 2]) -> [f32; 3] {
+    let (a, b) = (2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
+    let (ua, ub) = (a.abs(), b.abs());
+    let sd = 1.0 - (ua + ub);
+    let r = 1.0 - sd.abs();
+    let phi = if r == 0.0 {
+        FRAC_PI_4
+    } else {
+        ((ub - ua) / r + 1.0) * FRAC_PI_4
+    };
+    let z = libm::copysignf(1.0 - r * r, sd);
+    let s = r * libm::sqrtf(2.0 - r * r);
+    [
+        libm::copysignf(s * libm::cosf(phi), a),
+        libm::copysignf(s * libm::sinf(phi), b),
+        z,
+    ]
+}
+
+/// Its inverse as published: r = sqrt(1 - |z|), phi from atan.
+fn equal_area_inverse_libm(d: [f32; 3]) -> [f32; 2] {
+    let (x, y, z) = (d[0].abs(), d[1].abs(), d[2].abs());
+    let r = libm::sqrtf(1.0 - z);
+    let phi = libm::atan2f(y, x) / FRAC_PI_2;
+    let q = r * phi;
+    let p = r - q;
+    let (ua, ub) = if d[2] < 0.0 {
+        (1.0 - q, 1.0 - p)
+    } else {
+        (p, q)
+    };
+    [
+        0.5 * (libm::copysignf(ua, d[0]) + 1.0),
+        0.5 * (libm::copysignf(ub, d[1]) + 1.0),
+    ]
+}
+
+fn equirect_libm(u: [f32; 2]) -> [f32; 3] {
+    let (phi, theta) = (TAU * u[0], PI * u[1]);
+    let s = libm::sinf(theta);
+    [s * libm::cosf(phi), s * libm::sinf(phi), libm::cosf(theta)]
+}
+
+fn equirect_inverse_libm(d: [f32; 3]) -> [f32; 2] {
+    let phi = libm::atan2f(d[1], d[0]);
+    let phi = if phi < 0.0 { phi + TAU } else { phi };
+    [phi / TAU, libm::acosf(d[2].clamp(-1.0, 1.0)) / PI]
+}
+
+fn uniform_libm(u: [f32; 2]) -> [f32; 3] {
+    let z = 1.0 - 2.0 * u[0];
+    let r = libm::sqrtf((1.0 - z * z).max(0.0));
+    let phi = TAU * u[1];
+    [r * libm::cosf(phi), r * libm::sinf(phi), z]
+}
+
+/// Shirley-Chiu concentric disk (two branches) lifted by Malley's method.
+fn cosine_hemisphere_libm(u: [f32; 2]) -> [f32; 3] {
+    let (a, b) = (2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
+    if a == 0.0 && b == 0.0 {
+        return [0.0, 0.0, 1.0];
+    }
+    let (r, phi) = if a.abs() > b.abs() {
+        (a, FRAC_PI_4 * (b / a))
+    } else {
+        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
+    };
+    let (x, y) = (r * libm::cosf(phi), r * libm::sinf(phi));
+    [x, y, libm::sqrtf((1.0 - x * x - y * y).max(0.0))]
+}
+
+/// `rand_distr::UnitSphere` (Marsaglia's rejection method): draws its own uniforms, so it
+/// includes generator time, which is what a user of it pays per direction.
+fn unit_sphere(out: &mut [[f32; 3]]) {
+    let mut rng = Xoshiro128PlusPlus::seed_from_u64(1);
+    for o in out {
+        *o = UnitSphere.sample(&mut rng);
+    }
+}
+
+// ----------------------------------------------------------------------------------------
+// Inverse groups: the same four warpcore variants as `warp_group`, on unit directions.
+
+/// Unit directions, uniform on the sphere (the equal-area map of uniform points, in f64).
+fn unit_directions(n: usize) -> Vec<[f32; 3]> {
+    uniform_points::<2>(n, 2)
+        .into_iter()
+        .map(|u| {
+            let z = 1.0 - 2.0 * u[0] as f64;
+            let s = (1.0 - z * z).max(0.0).sqrt();
+            let phi = std::f64::consts::TAU * u[1] as f64;
+            [(s * phi.cos()) as f32, (s * phi.sin()) as f32, z as f32]
+        })
+        .collect()
+}
+
+fn inverse_group<'c>(
+    c: &'c mut Criterion,
+    name: &str,
+    scalar: impl Fn([f32; 3]) -> [f32; 2],
+    x8: impl Fn([f32x8; 3]) -> [f32x8; 2],
+    slice: impl Fn(&[[f32; 3]], &mut [[f32; 2]]) -> usize,
+    peer: impl Fn([f32; 3]) -> [f32; 2],
+) -> BenchmarkGroup<'c, WallTime> {
+    let input = unit_directions(BATCH);
+    let soa = to_soa(&input);
+    let mut out = vec![[0.0f32; 2]; BATCH];
+    let mut out8 = vec![[f32x8::ZERO; 2]; BATCH / 8];
+    let mut g = c.benchmark_group(name);
+    g.throughput(Throughput::Elements(BATCH as u64));
+    g.bench_function("warpcore scalar loop", |b| {
+        b.iter(|| {
+            for (o, d) in out.iter_mut().zip(black_box(&input)) {
+                *o = scalar(*d);
+            }
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("warpcore scalar, one call at a time", |b| {
+        b.iter(|| {
+            for (o, d) in out.iter_mut().zip(&input) {
+                *o = scalar(black_box(*d));
+            }
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("warpcore x8", |b| {
+        b.iter(|| {
+            for (o, d) in out8.iter_mut().zip(black_box(&soa)) {
+                *o = x8(*d);
+            }
+            black_box(&mut out8);
+        })
+    });
+    g.bench_function("warpcore slice", |b| {
+        b.iter(|| {
+            slice(black_box(&input), &mut out);
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("libm textbook (scalar)", |b| {
+        b.iter(|| {
+            for (o, d) in out.iter_mut().zip(black_box(&input)) {
+                *o = peer(*d);
+            }
+            black_box(&mut out);
+        })
+    });
+    g
+}
+
+fn main() {
+    let mut c = common::criterion();
+
+    let mut g = warp_group(
+        &mut c,
+        "sphere/equal_area",
+        sphere::equal_area,
+        sphere::equal_area_x8,
+        sphere::equal_area_slice,
+    );
+    peer_scalar(&mut g, "libm textbook (scalar)", equal_area_libm);
+    g.finish();
+
+    inverse_group(
+        &mut c,
+        "sphere/equal_area_inverse",
+        sphere::equal_area_inverse,
+        sphere::equal_area_inverse_x8,
+        sphere::equal_area_inverse_slice,
+        equal_area_inverse_libm,
+    )
+    .finish();
+
+    let mut g = warp_group(
+        &mut c,
+        "sphere/equirect",
+        sphere::equirect,
+        sphere::equirect_x8,
+        sphere::equirect_slice,
+    );
+    peer_scalar(&mut g, "libm textbook (scalar)", equirect_libm);
+    g.finish();
+
+    inverse_group(
+        &mut c,
+        "sphere/equirect_inverse",
+        sphere::equirect_inverse,
+        sphere::equirect_inverse_x8,
+        sphere::equirect_inverse_slice,
+        equirect_inverse_libm,
+    )
+    .finish();
+
+    let mut g = warp_group(
+        &mut c,
+        "sphere/cosine_hemisphere",
+        sphere::cosine_hemisphere,
+        sphere::cosine_hemisphere_x8,
+        sphere::cosine_hemisphere_slice,
+    );
+    peer_scalar(&mut g, "libm textbook (scalar)", cosine_hemisphere_libm);
+    g.finish();
+
+    let mut g = warp_group(
+        &mut c,
+        "sphere/uniform",
+        sphere::uniform,
+        sphere::uniform_x8,
+        sphere::uniform_slice,
+    );
+    peer_scalar(&mut g, "libm textbook (scalar)", uniform_libm);
+    peer_fill(&mut g, "rand_distr::UnitSphere (Xoshiro128++)", unit_sphere);
+    g.finish();
+
+    c.final_summary();
+}

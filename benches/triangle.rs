@@ -1,0 +1,155 @@
+//! Triangle warps: throughput of warpcore's scalar loop, `_x8` and slice forms against the
+//! textbook formulas in plain scalar code (branches, `libm::sqrtf`), as a user would write them.
+//!
+//! Run: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench triangle`
+//! (without the flag the x86-64 baseline is SSE2 and `f32x8` runs as two SSE halves).
+
+mod common;
+
+use common::{BATCH, peer_scalar, warp_group};
+use criterion::Throughput;
+use std::hint::black_box;
+use warpcore::triangle;
+use warpcore::{f32x8, u32x8};
+
+/// Heitz 2019 as published (one branch), `b2 = 1 - b0 - b1`.
+fn uniform_textbook(u: [f32; 2]) -> [f32; 3] {
+    let (b0, b1) = if u[0] < u[1] {
+        (u[0] / 2.0, u[1] - u[0] / 2.0)
+    } else {
+        (u[0] - u[1] / 2.0, u[1] / 2.0)
+    };
+    [b0, b1, 1.0 - b0 - b1]
+}
+
+/// The inverse of Heitz's map as published.
+fn uniform_inverse_textbook(b: [f32; 3]) -> [f32; 2] {
+    if b[0] < b[1] {
+        [2.0 * b[0], b[0] + b[1]]
+    } else {
+        [b[0] + b[1], 2.0 * b[1]]
+    }
+}
+
+/// The classic square-root warp with `libm::sqrtf`.
+fn sqrt_map_libm(u: [f32; 2]) -> [f32; 3] {
+    let s = libm::sqrtf(u[0]);
+    let (b0, b1) = (1.0 - s, u[1] * s);
+    [b0, b1, 1.0 - b0 - b1]
+}
+
+/// The Basu-Owen walk as usually written: a loop over the 16 base-4 digits with branches,
+/// in f32, unscrambled.
+fn basu_owen_textbook(index: u32) -> [f32; 3] {
+    let (mut cx, mut cy, mut w) = (0.0f32, 0.0f32, 0.5f32);
+    let mut i = index;
+    for _ in 0..16 {
+        let d = i & 3;
+        i >>= 2;
+        if d & 1 == 0 {
+            cy += w;
+        }
+        if d & 2 == 0 {
+            cx += w;
+        }
+        w *= if d == 0 { -0.5 } else { 0.5 };
+    }
+    let (x, y) = (cx + 2.0 * w / 3.0, cy + 2.0 * w / 3.0);
+    [x, y, 1.0 - x - y]
+}
+
+fn main() {
+    let mut c = common::criterion();
+
+    let mut g = warp_group(
+        &mut c,
+        "triangle/uniform",
+        triangle::uniform,
+        triangle::uniform_x8,
+        triangle::uniform_slice,
+    );
+    peer_scalar(&mut g, "textbook (scalar, branch)", uniform_textbook);
+    peer_scalar(&mut g, "sqrt map, libm textbook (scalar)", sqrt_map_libm);
+    g.finish();
+
+    let mut g = warp_group(
+        &mut c,
+        "triangle/sqrt_map",
+        triangle::sqrt_map,
+        triangle::sqrt_map_x8,
+        triangle::sqrt_map_slice,
+    );
+    peer_scalar(&mut g, "libm textbook (scalar)", sqrt_map_libm);
+    g.finish();
+
+    let mut g = warp_group(
+        &mut c,
+        "triangle/uniform_inverse",
+        triangle::uniform_inverse,
+        triangle::uniform_inverse_x8,
+        triangle::uniform_inverse_slice,
+    );
+    peer_scalar(
+        &mut g,
+        "textbook (scalar, branch)",
+        uniform_inverse_textbook,
+    );
+    g.finish();
+
+    // Basu-Owen is index-driven: BATCH consecutive indices from a fixed start, one seed.
+    const SEED: u32 = 0x2545_f491;
+    const START: u32 = 1000;
+    let mut g = c.benchmark_group("triangle/basu_owen");
+    g.throughput(Throughput::Elements(BATCH as u64));
+    let mut out = vec![[0.0f32; 3]; BATCH];
+    let mut out8 = vec![[f32x8::ZERO; 3]; BATCH / 8];
+    g.bench_function("warpcore scalar loop", |b| {
+        b.iter(|| {
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = triangle::basu_owen(START + k as u32, black_box(SEED));
+            }
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("warpcore scalar, one call at a time", |b| {
+        b.iter(|| {
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = triangle::basu_owen(black_box(START + k as u32), black_box(SEED));
+            }
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("warpcore x8", |b| {
+        let lane = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
+        b.iter(|| {
+            let seed = u32x8::splat(black_box(SEED));
+            for (k, o) in out8.iter_mut().enumerate() {
+                let index = u32x8::splat(START + 8 * k as u32) + lane;
+                *o = triangle::basu_owen_x8(index, seed);
+            }
+            black_box(&mut out8);
+        })
+    });
+    g.bench_function("warpcore slice", |b| {
+        b.iter(|| {
+            triangle::basu_owen_slice(black_box(START), black_box(SEED), &mut out);
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("warpcore slice, seed 0 (unscrambled)", |b| {
+        b.iter(|| {
+            triangle::basu_owen_slice(black_box(START), black_box(0), &mut out);
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("textbook digit loop (scalar, f32, unscrambled)", |b| {
+        b.iter(|| {
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = basu_owen_textbook(black_box(START + k as u32));
+            }
+            black_box(&mut out);
+        })
+    });
+    g.finish();
+    c.final_summary();
+}

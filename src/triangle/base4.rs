@@ -1,0 +1,200 @@
+//! Base-4 digit machinery for the Basu-Owen construction, on whole integer lanes at once
+//! (SWAR: all 16 digits of a `u32` index are processed by the same few word operations, so
+//! there is no loop over digits and no branch).
+//!
+//! Digit `j` of an index `i` is the bit pair `(i >> 2j) & 3`, least significant first: the
+//! order in which the construction consumes them.
+
+use crate::lanes::UintLane;
+
+/// The low bit of every digit.
+const EVEN_BITS: u32 = 0x5555_5555;
+
+/// Exchanges the bits selected by `mask` with the bits `shift` places above them (a "delta
+/// swap"; `mask` and `mask << shift` must not overlap).
+#[inline(always)]
+fn delta_swap<U: UintLane>(x: U, mask: u32, shift: u32) -> U {
+    let t = (x ^ x.shr(shift)) & U::splat(mask);
+    x ^ t ^ t.shl(shift)
+}
+
+/// Reverses the order of the 16 digits: digit `j` moves to digit `15 - j`, its two bits kept
+/// in order.
+#[inline(always)]
+pub(super) fn reverse_digits<U: UintLane>(x: U) -> U {
+    let x = x.shr(16) | x.shl(16);
+    let x = delta_swap(x, 0x00ff_00ff, 8);
+    let x = delta_swap(x, 0x0f0f_0f0f, 4);
+    delta_swap(x, 0x3333_3333, 2)
+}
+
+/// Separates even and odd bits: bit `2k` moves to bit `k` and bit `2k + 1` to bit `16 + k`
+/// (the inverse perfect shuffle; Warren, "Hacker's Delight", section 7-2).
+#[inline(always)]
+pub(super) fn unzip<U: UintLane>(x: U) -> U {
+    let x = delta_swap(x, 0x2222_2222, 1);
+    let x = delta_swap(x, 0x0c0c_0c0c, 2);
+    let x = delta_swap(x, 0x00f0_00f0, 4);
+    delta_swap(x, 0x0000_ff00, 8)
+}
+
+/// A 32-bit avalanche hash (xorshift-multiply; constants from C. Wellons' "hash prospector"
+/// search). A bijection, so distinct seeds never collide.
+#[inline(always)]
+fn mix<U: UintLane>(x: U) -> U {
+    let x = (x ^ x.shr(16)) * U::splat(0x21f0_aaad);
+    let x = (x ^ x.shr(15)) * U::splat(0xd35a_2d97);
+    x ^ x.shr(15)
+}
+
+/// Multiplies every digit by `omega^m` in GF(4) (`m` in `0..3`), with the digit `lo + 2 hi`
+/// read as `lo + hi omega`: `omega` maps `(lo, hi)` to `(hi, lo ^ hi)`, the 3-cycle
+/// `1 -> 2 -> 3 -> 1` that fixes 0.
+#[inline(always)]
+fn rotate_digits<U: UintLane>(x: U, m: U) -> U {
+    let lo = x & U::splat(EVEN_BITS);
+    let hi = x.shr(1) & U::splat(EVEN_BITS);
+    let once = hi | (lo ^ hi).shl(1);
+    let twice = (lo ^ hi) | lo.shl(1);
+    U::select(
+        m.simd_eq(U::splat(1)),
+        once,
+        U::select(m.simd_eq(U::splat(2)), twice, x),
+    )
+}
+
+/// Nested (Owen) scramble of the base-4 digits of `index`, keyed by `seed`; `seed = 0`
+/// returns `index` unchanged.
+///
+/// Digit `j` of the result is `pi(d_j)`, where the permutation `pi` of `{0, 1, 2, 3}` is
+/// drawn afresh for every prefix `d_0 .. d_(j-1)` (every node of the 4-ary tree of
+/// sub-triangles), as in Owen's nested uniform scrambling (Owen 1995, "Randomly permuted
+/// (t,m,s)-nets and (t,s)-sequences") and its hash-based form for base 2 (Burley 2020,
+/// "Practical Hash-based Owen Scrambling"). Here `pi = D o R^m`:
+///
+/// * `D`, from a hash in which output bit `k` depends only on input bits `<= k` (a bijection:
+///   seed addition, multiplication by a seed-dependent odd number, and `x ^= x * even`, the
+///   structure of Vegdahl 2021, "Building a Better LK Hash", with our own constants). On a digit
+///   such a hash flips the low bit by a function of the prefix and the high bit by a function
+///   of the prefix and the low bit: an element of the 8-element dihedral group `D4` (the
+///   permutations that keep the pairs `{0, 2}`, `{1, 3}` together), a different one per node.
+///   A base-2 hash can reach no more than that.
+/// * `R^m`: multiplication by `omega^m` in GF(4) with `m` in `{0, 1, 2}` drawn once per seed.
+///   `D4` and the powers of `R` (a 3-cycle) together give every permutation of four digits
+///   exactly once (`S4 = D4 . C3`), so with `D` uniform on `D4` and `m` uniform, every node's
+///   permutation is uniform on all 24. Sharing `m` between nodes does not change the joint
+///   law of any *pair* of points (the deeper digits of each stay uniform through their own
+///   `D`), so the variance of any estimator is that of Owen's fully independent scramble.
+///
+/// Since each node's map is a bijection, the first `4^k` indices still occupy all `4^k`
+/// prefixes: the stratification of the construction is kept, for every seed.
+#[inline(always)]
+pub(super) fn nested_scramble<U: UintLane>(index: U, seed: U) -> U {
+    let k1 = mix(seed);
+    let k2 = mix(seed ^ U::splat(0x5bd1_e995));
+    let k3 = mix(seed ^ U::splat(0x2545_f491));
+    // m = floor(3 t / 2^24) for the top 24 bits t of k3: uniform on {0, 1, 2} up to 2^-24.
+    let m = (k3.shr(8) * U::splat(3)).shr(24);
+    let x = rotate_digits(index, m);
+    // Constants: fractional parts of the golden ratio, sqrt(2), sqrt(3), made even.
+    let x = x ^ (x * U::splat(0x9e37_79b8));
+    let x = x + k1;
+    let x = x * (k2 | U::splat(1));
+    let x = x ^ (x * U::splat(0x6a09_e666));
+    let x = x ^ (x * U::splat(0xbb67_ae84));
+    U::select(seed.simd_eq(U::splat(0)), index, x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use core::num::Wrapping;
+
+    fn w(x: u32) -> Wrapping<u32> {
+        Wrapping(x)
+    }
+
+    fn samples() -> impl Iterator<Item = u32> {
+        let mut s = 0x1234_5678u32;
+        (0..20_000).map(move |k| {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            if k < 64 { k } else { s }
+        })
+    }
+
+    #[test]
+    fn reverse_digits_reverses() {
+        for x in samples() {
+            let mut want = 0u32;
+            for j in 0..16 {
+                want |= ((x >> (2 * j)) & 3) << (2 * (15 - j));
+            }
+            assert_eq!(reverse_digits(w(x)).0, want, "{x:#x}");
+        }
+    }
+
+    #[test]
+    fn unzip_separates_even_and_odd_bits() {
+        for x in samples() {
+            let mut want = 0u32;
+            for k in 0..16 {
+                want |= ((x >> (2 * k)) & 1) << k;
+                want |= ((x >> (2 * k + 1)) & 1) << (16 + k);
+            }
+            assert_eq!(unzip(w(x)).0, want, "{x:#x}");
+        }
+    }
+
+    #[test]
+    fn rotation_is_multiplication_by_omega() {
+        // GF(4) = {0, 1, w, w + 1} with w^2 = w + 1; digit lo + 2 hi is lo + hi w.
+        let mul_omega = |d: u32| [0, 2, 3, 1][d as usize];
+        for x in samples() {
+            for m in 0..3u32 {
+                let got = rotate_digits(w(x), w(m)).0;
+                for j in 0..16 {
+                    let mut d = (x >> (2 * j)) & 3;
+                    for _ in 0..m {
+                        d = mul_omega(d);
+                    }
+                    assert_eq!((got >> (2 * j)) & 3, d);
+                }
+            }
+        }
+    }
+
+    /// Nested: digit j of the scrambled index depends only on digits 0..=j of the index, and
+    /// for a fixed prefix it is a permutation of the four values of digit j.
+    #[test]
+    fn scramble_is_nested_and_bijective_per_node() {
+        for seed in [1u32, 2, 0xdead_beef, u32::MAX] {
+            for x in samples().take(2000) {
+                let sx = nested_scramble(w(x), w(seed)).0;
+                for j in 0..16u32 {
+                    let low = if j == 15 {
+                        u32::MAX
+                    } else {
+                        (1u32 << (2 * j + 2)) - 1
+                    };
+                    // Changing digits above j leaves digits 0..=j alone.
+                    let y = x ^ (0x9e37_79b9u32 & !low);
+                    let sy = nested_scramble(w(y), w(seed)).0;
+                    assert_eq!(sx & low, sy & low, "seed {seed} x {x:#x} j {j}");
+                    // The four values of digit j map to four different digits.
+                    let mut seen = [false; 4];
+                    for d in 0..4u32 {
+                        let z = (x & !(3 << (2 * j))) | (d << (2 * j));
+                        let sz = nested_scramble(w(z), w(seed)).0;
+                        seen[((sz >> (2 * j)) & 3) as usize] = true;
+                    }
+                    assert!(seen.iter().all(|&s| s), "seed {seed} x {x:#x} j {j}");
+                }
+            }
+        }
+        for x in samples() {
+            assert_eq!(nested_scramble(w(x), w(0)).0, x);
+        }
+    }
+}
