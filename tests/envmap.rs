@@ -437,14 +437,14 @@ impl Pyramid {
         (dx, dy)
     }
 
-    /// The hierarchical error bound of texel `k` (see `hierarchical.rs`): each split point
-    /// truncates by less than one unit `2^-31` and the 0.32 fractions round by a quarter unit
+    /// The hierarchical error bound of texel `k` (see `hierarchical.rs`): each split
+    /// truncates by less than one unit `2^-30` and the 0.31 fractions round by a quarter unit
     /// of the interval, so each axis length is within `1.25 levels` units; node sums are `f32`
     /// (one rounding per level), and the reported pdf rounds four times.
     fn bound(&self, k: usize) -> f64 {
         let (dx, dy) = self.lengths(k);
         let l = self.a.max(self.b) as f64;
-        let unit = 2f64.powi(-31);
+        let unit = 2f64.powi(-30);
         1.25 * l * unit * (dx + dy) + (2.0 * l + 6.0) * 2f64.powi(-24) * dx * dy + unit * unit
     }
 }

@@ -14,25 +14,28 @@
 //! Mitsuba 3's `Hierarchical2D`: the current sample rectangle splits vertically at `px`, then
 //! the chosen half splits horizontally at its `py`. Instead of rescaling `u` at every level
 //! (a division per axis per level, and a rounded copy of `u` each time), we keep the sample
-//! fixed and narrow an interval `[lo, hi)` around it on each axis, in the same 0.31 fixed
-//! point as the marginal-conditional keys (`key = floor(u * 2^31)`, exact): the split point is
-//! `lo + floor((hi - lo) p)` (one 32x32-bit multiply-high, fractions being 0.32 fixed point),
-//! a comparison picks the child, and after the last level `(key - lo) / (hi - lo)` is the
-//! position inside the texel. The warp is piecewise affine and local — compact strata of the
-//! square land on compact sets of texels, the point of the method.
+//! fixed and narrow an interval around it on each axis, in 0.30 fixed point
+//! (`key = floor(u * 2^30)`, exact for `u >= 2^-6`). The walk keeps, per axis, the interval's
+//! length `len` and the key's offset `r` inside it: the lower child gets
+//! `m = floor(len p)` units (one 32x32-bit multiply-high, fractions `p` being 0.31 fixed
+//! point), the key goes low if `r < m` (then `len = m`), else high (`len -= m`, `r -= m`),
+//! and after the last level `r / len` is the position inside the texel. The warp is piecewise
+//! affine and local — compact strata of the square land on compact sets of texels, the point
+//! of the method.
 //!
-//! Exactness: `p = 0` puts the split at `lo` and `p = 1` (stored as `u32::MAX`) at `hi`, so a
+//! Exactness: `p = 0` gives the lower child no units and `p = 1` (`2^31`) all of them, so a
 //! zero-weight child gets an empty interval and is never chosen; a positive child's fraction
 //! is kept strictly inside `(0, 1)`. A texel's preimage in the sample square is the rectangle
-//! of its two final intervals, so its probability *is* `(hi_x - lo_x)(hi_y - lo_y) 2^-62`,
-//! which is what the pdf reports — `pdf(uv)` repeats the walk, following the texel's bits
+//! of its two final intervals, so its probability *is* `len_x len_y 2^-60`, which is what the
+//! pdf reports — `pdf(uv)` repeats the walk, following the texel's bits
 //! instead of comparing keys, and gets the same integers. Against the weights: fractions are
 //! ratios of `f64` sums of `f32` node sums taken pairwise up the pyramid (relative error
 //! about `2^-24` per level, whatever the dynamic range), rounded to `2^-32`, and each split
-//! point truncates by less than one unit, so a texel whose interval on an axis is `d` long is
-//! within about `levels * 2^-31 / d` (relative) of its share on that axis: 1e-5 on the
-//! real 512 x 256 maps, for texels down to a sixteenth of the average (measured). A texel so
-//! faint that its interval would be shorter than one unit (probability below about `2^-31`
+//! truncates by less than one unit, so a texel whose interval on an axis is `d` long (as a
+//! fraction of the square) is within `1.25 levels 2^-30 / d` (relative) of its share on that
+//! axis — the tests check exactly this bound against an `f64` model of the pyramid; measured
+//! at most 1.0e-4 on the real maps for texels down to a sixteenth of the average. A texel so
+//! faint that its interval would be shorter than one unit (probability below about `2^-30`
 //! per axis) can be unreachable; its pdf then says 0, consistently. Node sums are `f32`,
 //! rescaled by a power of two when the total would overflow (weights below `2^-149` of that
 //! scale then count as 0).
@@ -47,8 +50,8 @@
 //! integer operations per level and one division per axis at the end.
 
 use super::{
-    Error, Sample, SampleX8, Word, carve, check_size, checked_len, clean, edges, fixed_key,
-    pdf_batch, sample_batch, scalar_sample, simd_sample, take, u32_to_f32,
+    Error, Sample, SampleX8, Word, carve, check_size, checked_len, clean, edges, pdf_batch,
+    sample_batch, scalar_sample, simd_sample, take, u32_to_f32,
 };
 use crate::lanes::{Lane, UintLane, unit_interval};
 use wide::f32x8;
@@ -70,7 +73,7 @@ const ALIGN_SLACK: usize = 15;
 pub struct Hierarchical<'a> {
     /// The blocks, block level by block level from the root, 64-byte aligned. Block `i`:
     /// `[px, py0, py1]` of its node, then `[px, py0, py1]` of child `c` at `3 + 3c`, then the
-    /// node's `f32` sum. Fractions are 0.32 fixed point (`u32::MAX` meaning 1). The children
+    /// node's `f32` sum. Fractions are 0.31 fixed point (`2^31` meaning 1). The children
     /// of node `i` of a level are nodes `i * branching + (bx | by << split_x)` of the next.
     blocks: &'a [u32],
     edges_x: &'a [[u32; 1]],
@@ -80,7 +83,7 @@ pub struct Hierarchical<'a> {
     /// The padded map is `2^xbits x 2^ybits` texels.
     xbits: u32,
     ybits: u32,
-    /// `width * height * 2^-62`: turns the product of the two final interval lengths into a
+    /// `width * height * 2^-60`: turns the product of the two final interval lengths into a
     /// density.
     pdf_scale: f32,
 }
@@ -145,18 +148,23 @@ impl Shape {
     }
 }
 
-/// `a / (a + b)` as a 0.32 fixed-point fraction: `u32::MAX` (meaning 1) when `b = 0` (also
-/// for an empty node, which is never reached), `0` when `a = 0 < b`, and strictly inside
-/// `[1, 2^32 - 2]` when both are positive.
+/// Fixed-point one of the fractions: `2^31`.
+const FRACTION_ONE: u32 = 1 << 31;
+/// Fixed-point one of the keys and intervals: `2^30`.
+const KEY_ONE: u32 = 1 << 30;
+
+/// `a / (a + b)` as a 0.31 fixed-point fraction: `2^31` (1) when `b = 0` (also for an empty
+/// node, which is never reached), `0` when `a = 0 < b`, and strictly inside `[1, 2^31 - 1]`
+/// when both are positive.
 fn fraction(a: f64, b: f64) -> u32 {
     if b <= 0.0 {
-        return u32::MAX;
+        return FRACTION_ONE;
     }
     if a <= 0.0 {
         return 0;
     }
-    let p = (a / (a + b) * 4_294_967_296.0 + 0.5) as u64;
-    p.max(1).min(u64::from(u32::MAX) - 1) as u32
+    let p = (a / (a + b) * f64::from(FRACTION_ONE) + 0.5) as u32;
+    p.max(1).min(FRACTION_ONE - 1)
 }
 
 /// The fractions of a node with children sums `s[bx][by]`, and its sum.
@@ -173,12 +181,12 @@ fn node(s: [[f32; 2]; 2]) -> ([u32; 3], f32) {
     )
 }
 
-/// Where the split at fraction `p` falls in `[lo, hi)`: `lo + floor((hi - lo) p 2^-32)`, which
-/// is `lo` for `p = 0` and below `hi` otherwise; `p = u32::MAX` means 1 and gives `hi`.
+/// The lower child's share of an interval of `len <= 2^30` units at fraction `p` (0.31):
+/// `floor(len p 2^-31)`, exactly `0` for `p = 0` and `len` for `p = 2^31`. (`2 len` fits 32
+/// bits, so one multiply-high does it.)
 #[inline(always)]
-fn split_point<U: UintLane>(lo: U, hi: U, p: U) -> U {
-    let t = lo + (hi - lo).mul_high(p);
-    U::select(p.simd_eq(U::splat(u32::MAX)), hi, t)
+fn split<U: UintLane>(len: U, p: U) -> U {
+    (len + len).mul_high(p)
 }
 
 /// Children sums `s[bx][by]` of a node, from `child(bx, by)`, zero where the level does not
@@ -345,7 +353,7 @@ impl<'a> Hierarchical<'a> {
             height: h as u32,
             xbits: shape.xbits,
             ybits: shape.ybits,
-            pdf_scale: (w as f64 * h as f64 / (1u64 << 62) as f64) as f32,
+            pdf_scale: (w as f64 * h as f64 / (1u64 << 60) as f64) as f32,
         })
     }
 
@@ -361,21 +369,26 @@ impl<'a> Hierarchical<'a> {
         self.height as usize
     }
 
-    /// Walks the pyramid from the root to a texel. At each split, `left(shift, t, axis)` says
-    /// (per lane) whether to take the lower half, given the split point `t` and the bit
-    /// position `shift` of this level in the texel coordinates: the sampler compares its key
-    /// with `t`, the pdf lookup reads the bit of the texel it was given. Both therefore compute
-    /// the same intervals.
+    /// Walks the pyramid from the root to a texel, starting with the keys `key` (the pdf
+    /// lookup passes zeros). At each split, `left(shift, r, m, axis)` says (per lane) whether
+    /// to take the lower child, given the key's offset `r` in the interval, the lower child's
+    /// share `m` and the bit position `shift` of this level in the texel coordinates: the
+    /// sampler compares `r < m`, the pdf lookup reads the bit of the texel it was given. Both
+    /// therefore compute the same intervals.
     #[inline(always)]
-    fn descend<U: UintLane>(&self, mut left: impl FnMut(u32, U, usize) -> U::Mask) -> Walk<U> {
+    fn descend<U: UintLane>(
+        &self,
+        key: [U; 2],
+        mut left: impl FnMut(u32, U, U, usize) -> U::Mask,
+    ) -> Walk<U> {
         let shape = Shape {
             xbits: self.xbits,
             ybits: self.ybits,
         };
         let zero = U::splat(0);
         let mut walk = Walk {
-            lo: [zero; 2],
-            hi: [U::splat(1 << 31); 2],
+            r: key,
+            len: [U::splat(KEY_ONE); 2],
             texel: [zero; 2],
         };
         let mut index = zero;
@@ -401,32 +414,38 @@ impl<'a> Hierarchical<'a> {
         walk
     }
 
-    /// The density of the texel a walk ended in: `(hi_x - lo_x)(hi_y - lo_y) 2^-62`, its exact
-    /// probability, times `width * height`; 0 for an empty rectangle (a zero-weight texel).
+    /// The density of the texel a walk ended in: `len_x len_y 2^-60`, its exact probability,
+    /// times `width * height`; 0 for an empty rectangle (a zero-weight texel).
     #[inline(always)]
     fn density<L: Lane>(&self, walk: &Walk<L::U>) -> L {
-        let dx = u32_to_f32::<L>(walk.hi[0] - walk.lo[0]);
-        let dy = u32_to_f32::<L>(walk.hi[1] - walk.lo[1]);
+        let dx = u32_to_f32::<L>(walk.len[0]);
+        let dy = u32_to_f32::<L>(walk.len[1]);
         dy * dx * L::splat(self.pdf_scale)
     }
 
+    /// The 0.30 fixed-point keys of a sample, after the forward rule.
     #[inline(always)]
-    fn sample_body<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
-        let key = [fixed_key(u[0]), fixed_key(u[1])];
-        let walk = self.descend(|_, t: L::U, axis| match axis {
-            0 => key[0].simd_lt(t),
-            _ => key[1].simd_lt(t),
-        });
+    fn keys<L: Lane>(u: [L; 2]) -> [L::U; 2] {
+        let scale = L::splat(KEY_ONE as f32);
+        u.map(|x| (unit_interval(x) * scale).to_uint())
+    }
+
+    /// The sample a finished walk describes.
+    #[inline(always)]
+    fn finish<L: Lane>(&self, walk: &Walk<L::U>) -> ([L; 2], L, [L::U; 2]) {
         // The key's offset inside its final interval is the position inside the texel.
-        let f = |k: usize| {
-            let (lo, hi) = (walk.lo[k], walk.hi[k]);
-            unit_interval(u32_to_f32::<L>(key[k] - lo) / u32_to_f32::<L>(hi - lo))
-        };
+        let f = |k: usize| unit_interval(u32_to_f32::<L>(walk.r[k]) / u32_to_f32::<L>(walk.len[k]));
         let uv = [
             edges::point(self.edges_x, walk.texel[0], f(0), self.width as f32),
             edges::point(self.edges_y, walk.texel[1], f(1), self.height as f32),
         ];
-        (uv, self.density(&walk), walk.texel)
+        (uv, self.density(walk), walk.texel)
+    }
+
+    #[inline(always)]
+    fn sample_body<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
+        let walk = self.descend(Self::keys(u), |_, r: L::U, m, _| r.simd_lt(m));
+        self.finish::<L>(&walk)
     }
 
     #[inline(always)]
@@ -436,7 +455,7 @@ impl<'a> Hierarchical<'a> {
             edges::texel(self.edges_y, uv[1], self.height),
         ];
         let (zero, one) = (L::U::splat(0), L::U::splat(1));
-        let walk = self.descend(|shift, _: L::U, axis| {
+        let walk = self.descend([zero; 2], |shift, _, _, axis| {
             let t = if axis == 0 { texel[0] } else { texel[1] };
             (t.shr(shift) & one).simd_eq(zero)
         });
@@ -487,42 +506,42 @@ impl<'a> Hierarchical<'a> {
     }
 }
 
-/// Where a walk down the pyramid is: the current interval of each axis (0.31 fixed point)
-/// and the texel coordinates decided so far.
+/// Where a walk down the pyramid is, per axis: the interval length `len` and the key's
+/// offset `r` in it (0.30 fixed point), and the texel coordinate decided so far.
 struct Walk<U> {
-    lo: [U; 2],
-    hi: [U; 2],
+    r: [U; 2],
+    len: [U; 2],
     texel: [U; 2],
 }
 
 impl<U: UintLane> Walk<U> {
     /// One level: split x at `px`, then y at the chosen column's fraction. Branch-free and
-    /// the same for every level: an axis the level does not split has fraction 1 (stored
-    /// `u32::MAX`), so the walk goes "left" with an unchanged interval and appends a leading
-    /// zero bit to the texel coordinate. Both candidate y split points are computed before the
-    /// x decision, which keeps them off the dependency chain. Returns the child's local index
-    /// `bx | by << sx` (`sx` = 1 if the level splits x).
+    /// the same for every level: an axis the level does not split has fraction 1, so the walk
+    /// goes "low" with an unchanged interval and appends a leading zero bit to the texel
+    /// coordinate. Both candidate y shares are computed before the x decision, which keeps
+    /// them off the dependency chain. Returns the child's local index `bx | by << sx`
+    /// (`sx` = 1 if the level splits x).
     #[inline(always)]
     fn level(
         &mut self,
         shift: u32,
         sx: u32,
         [px, py0, py1]: [U; 3],
-        left: &mut impl FnMut(u32, U, usize) -> U::Mask,
+        left: &mut impl FnMut(u32, U, U, usize) -> U::Mask,
     ) -> U {
         let (zero, one) = (U::splat(0), U::splat(1));
-        let ty0 = split_point(self.lo[1], self.hi[1], py0);
-        let ty1 = split_point(self.lo[1], self.hi[1], py1);
-        let tx = split_point(self.lo[0], self.hi[0], px);
-        let go = left(shift, tx, 0);
-        self.lo[0] = U::select(go, self.lo[0], tx);
-        self.hi[0] = U::select(go, tx, self.hi[0]);
+        let my0 = split(self.len[1], py0);
+        let my1 = split(self.len[1], py1);
+        let mx = split(self.len[0], px);
+        let go = left(shift, self.r[0], mx, 0);
+        self.len[0] = U::select(go, mx, self.len[0] - mx);
+        self.r[0] = U::select(go, self.r[0], self.r[0] - mx);
         let bx = U::select(go, zero, one);
         self.texel[0] = self.texel[0].shl(1) | bx;
-        let ty = U::select(go, ty0, ty1);
-        let go = left(shift, ty, 1);
-        self.lo[1] = U::select(go, self.lo[1], ty);
-        self.hi[1] = U::select(go, ty, self.hi[1]);
+        let my = U::select(go, my0, my1);
+        let go = left(shift, self.r[1], my, 1);
+        self.len[1] = U::select(go, my, self.len[1] - my);
+        self.r[1] = U::select(go, self.r[1], self.r[1] - my);
         let by = U::select(go, zero, one);
         self.texel[1] = self.texel[1].shl(1) | by;
         bx | by.shl(sx)
