@@ -164,7 +164,8 @@ fn fraction(a: f64, b: f64) -> u32 {
         return 0;
     }
     let p = (a / (a + b) * f64::from(FRACTION_ONE) + 0.5) as u32;
-    p.max(1).min(FRACTION_ONE - 1)
+    // Constant bounds: the clamp cannot panic.
+    p.clamp(1, FRACTION_ONE - 1)
 }
 
 /// The fractions of a node with children sums `s[bx][by]`, and its sum.
