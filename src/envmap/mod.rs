@@ -3,8 +3,8 @@
 //!
 //! | distribution | build | sample | keeps | source |
 //! |---|---|---|---|---|
-//! | [`MarginalConditional`] | row CDF + one CDF per row, 0.31 fixed point | two branch-free binary searches | strata along each axis | pbrt-v4 `PiecewiseConstant2D`, Mitsuba 3 `DiscreteDistribution2D` |
-//! | [`Hierarchical`] | a MIP pyramid of split fractions (`f32`, built from pairwise sums) | one 2x2 split per level, by interval arithmetic on the sample | compact 2D strata | Mitsuba 3 `Hierarchical2D`; McCool and Harwood 1997, "Probability Trees"; Clarberg et al. 2005, "Wavelet Importance Sampling" |
+//! | [`MarginalConditional`] | row CDF + one CDF per row, 0.31 fixed point, from `f64` sums; 4 bytes per texel | two branch-free binary searches | strata along each axis | pbrt-v4 `PiecewiseConstant2D`, Mitsuba 3 `DiscreteDistribution2D` |
+//! | [`Hierarchical`] | a MIP pyramid of 0.31 split fractions, from pairwise sums, in 64-byte two-level blocks; about 4.3 bytes per padded texel | one 2x2 split per level, exact integer interval arithmetic on the sample | compact 2D strata | Mitsuba 3 `Hierarchical2D`; McCool and Harwood 1997, "Probability Trees"; Clarberg et al. 2005, "Wavelet Importance Sampling" |
 //!
 //! Both take a row-major `width x height` array of weights — a piecewise-constant density on
 //! the unit square, texel `(column, row)` covering `[column/width, (column+1)/width) x
@@ -37,11 +37,14 @@
 //!   compare both), and `pdf(sample(u).uv) == sample(u).pdf` bit for bit. It is a density
 //!   with respect to area on `[0, 1]^2`: `P(texel) * width * height`. See [`image`]'s
 //!   conversions to solid angle.
-//! * **Never a zero-weight texel**, for any input `u`; and every texel of positive weight has
-//!   positive probability (quantization never rounds a positive texel away: it gets at least
-//!   one fixed-point unit, or a split fraction strictly inside `(0, 1)`).
+//! * **Never a zero-weight texel**, for any input `u`. Conversely, quantization never rounds a
+//!   positive texel away in marginal-conditional (it gets at least one fixed-point unit, so it
+//!   is oversampled instead); hierarchical keeps each positive child's split fraction strictly
+//!   inside `(0, 1)`, but a texel fainter than its 30-bit intervals resolve (probability below
+//!   about `2^-30` per axis) can be unreachable — its pdf then says 0, consistently.
 //! * **`u` near 1 never rounds onto the next texel**: the texel is found by exact integer
-//!   (or exact `f32` comparison) searches, never by `floor(u * n)`.
+//!   arithmetic on fixed-point keys (`floor(u * 2^31)` or `2^30`, exact), never by
+//!   `floor(u * n)` in floating point.
 //! * **Every `uv` lies inside its texel exactly**: `column <= uv[0] * width < column + 1` in
 //!   exact arithmetic (likewise for rows), and `uv` is in `[0, 1)^2`. The position inside the
 //!   texel is uniform (it reuses the sample's remaining bits) and clamped, by one `f32` ulp
