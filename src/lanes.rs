@@ -23,7 +23,7 @@
 
 use core::num::Wrapping;
 use core::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
-use wide::{f32x8, u32x8};
+use wide::{f32x8, u32x4, u32x8};
 
 /// `1 - 2^-24`, the largest `f32` below one: the top of every warp's input range.
 pub(crate) const ONE_MINUS_EPSILON: f32 = 1.0 - 1.0 / 16_777_216.0;
@@ -52,6 +52,19 @@ pub(crate) trait UintLane:
     fn shr(self, n: u32) -> Self;
     fn simd_eq(self, rhs: Self) -> Self::Mask;
     fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
+    /// Unsigned `self < rhs`, lane by lane.
+    fn simd_lt(self, rhs: Self) -> Self::Mask;
+    /// The high 32 bits of the 64-bit product `self * rhs`, lane by lane.
+    fn mul_high(self, rhs: Self) -> Self;
+    /// Lane-wise table lookup of `N`-word records: lane `j` gets `table[idx_j]`. An index past
+    /// the end reads zeros, so the lookup can never panic (callers index in range; SIMD lanes
+    /// are loaded one by one, there is no gather instruction on the baseline targets).
+    fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N];
+    /// Lane-wise read of four consecutive words: lane `j` gets `table[start_j..start_j + 4]`
+    /// (zeros where that range is out of bounds, never a panic). For `u32x8` each lane is one
+    /// 16-byte load and two 4x4 transposes make the four vectors.
+    fn gather4(table: &[u32], start: Self) -> [Self; 4];
+
     /// Per lane, `f(lane)` split into two lanes: the table lookups of the sequences.
     #[allow(dead_code)] // for the table-driven families (pmj02bn)
     fn gather_pairs(self, f: impl Fn(u32) -> [u32; 2]) -> [Self; 2];
@@ -92,7 +105,8 @@ pub(crate) trait Lane:
     fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
     fn to_bits(self) -> Self::U;
     fn from_bits(bits: Self::U) -> Self;
-    /// Truncating conversion; only used for `0 <= self < 2^24`.
+    /// Truncating conversion; only used for `0 <= self < 2^31` (where both instantiations
+    /// agree exactly).
     fn to_uint(self) -> Self::U;
     /// Conversion of an integer below `2^24` (exact there).
     fn from_uint(u: Self::U) -> Self;
@@ -147,6 +161,37 @@ impl UintLane for Wrapping<u32> {
         // One instruction on aarch64 and thumbv7em; the same bits as the swap network.
         Wrapping(self.0.reverse_bits())
     }
+
+    #[inline(always)]
+    fn simd_lt(self, rhs: Self) -> bool {
+        self < rhs
+    }
+    #[inline(always)]
+    fn mul_high(self, rhs: Self) -> Self {
+        Wrapping(((u64::from(self.0) * u64::from(rhs.0)) >> 32) as u32)
+    }
+    #[inline(always)]
+    fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N] {
+        table
+            .get(idx.0 as usize)
+            .copied()
+            .unwrap_or([0; N])
+            .map(Wrapping)
+    }
+    #[inline(always)]
+    fn gather4(table: &[u32], start: Self) -> [Self; 4] {
+        words(table, start.0).map(Wrapping)
+    }
+}
+
+/// `table[start..start + N]` as an array, zeros when out of bounds.
+#[inline(always)]
+fn words<const N: usize>(table: &[u32], start: u32) -> [u32; N] {
+    let start = start as usize;
+    table
+        .get(start..start.wrapping_add(N))
+        .and_then(|s| <[u32; N]>::try_from(s).ok())
+        .unwrap_or([0; N])
 }
 
 impl Lane for f32 {
@@ -257,6 +302,29 @@ impl UintLane for u32x8 {
             u32x8::new(pairs.map(|p| p[0])),
             u32x8::new(pairs.map(|p| p[1])),
         ]
+    }
+    #[inline(always)]
+    fn simd_lt(self, rhs: Self) -> Mask8 {
+        Mask8(u32x8::simd_lt(self, rhs))
+    }
+    #[inline(always)]
+    fn mul_high(self, rhs: Self) -> Self {
+        self.mul_keep_high(rhs)
+    }
+    #[inline(always)]
+    fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N] {
+        let idx = idx.to_array();
+        let rows: [[u32; N]; 8] =
+            core::array::from_fn(|j| table.get(idx[j] as usize).copied().unwrap_or([0; N]));
+        core::array::from_fn(|k| u32x8::new(core::array::from_fn(|j| rows[j][k])))
+    }
+    #[inline(always)]
+    fn gather4(table: &[u32], start: Self) -> [Self; 4] {
+        let start = start.to_array();
+        let row = |j: usize| u32x4::new(words(table, start[j]));
+        let low = u32x4::transpose([row(0), row(1), row(2), row(3)]);
+        let high = u32x4::transpose([row(4), row(5), row(6), row(7)]);
+        core::array::from_fn(|k| bytemuck::cast([low[k], high[k]]))
     }
 }
 
@@ -431,6 +499,11 @@ mod tests {
             assert_eq!(Lane::to_uint(s).0, u);
             assert_eq!(Lane::to_uint(f32x8::splat(s)).to_array()[5], u);
         }
+        // Truncation agrees up to 2^31 (the envmap fixed-point keys go that high).
+        for x in [16_777_217.0f32, 2_147_483_520.0, 1.5e9] {
+            assert_eq!(Lane::to_uint(x).0, x as u32);
+            assert_eq!(Lane::to_uint(f32x8::splat(x)).to_array()[2], x as u32);
+        }
         for w in [0u32, 1, 0x8000_0000, 0x1234_5678, 0xdead_beef, u32::MAX] {
             let v = u32x8::splat(w).reverse_bits().to_array();
             assert!(v.iter().all(|&r| r == w.reverse_bits()), "{w:#x}");
@@ -446,5 +519,49 @@ mod tests {
             assert_eq!(w.shl(k).0, u32x8::splat(w.0).shl(k).to_array()[0]);
             assert_eq!(w.shr(k).0, u32x8::splat(w.0).shr(k).to_array()[0]);
         }
+    }
+
+    /// Unsigned compares (the top bit is a value, not a sign) and panic-free gathers.
+    #[test]
+    fn uint_compare_and_gather() {
+        let vals = [0u32, 1, 0x7fff_ffff, 0x8000_0000, 0x8000_0001, u32::MAX];
+        for &a in &vals {
+            for &b in &vals {
+                let s = UintLane::simd_lt(Wrapping(a), Wrapping(b));
+                let v = UintLane::simd_lt(u32x8::splat(a), u32x8::splat(b));
+                let v = <u32x8 as UintLane>::select(v, u32x8::splat(1), u32x8::splat(0)).to_array();
+                assert_eq!(s, a < b);
+                assert_eq!(v, [(a < b) as u32; 8]);
+            }
+        }
+        for &a in &vals {
+            for &b in &vals {
+                let s = Wrapping(a).mul_high(Wrapping(b)).0;
+                assert_eq!(s, ((a as u64 * b as u64) >> 32) as u32);
+                let v = u32x8::new([a, b, a, b, 1, a, 0, b])
+                    .mul_high(u32x8::new([b, a, b, a, a, 1, b, 0]));
+                assert_eq!(v.to_array(), [s, s, s, s, 0, 0, 0, 0]);
+            }
+        }
+        let table = [[1u32, 2], [3, 4], [5, 6]];
+        assert_eq!(
+            <Wrapping<u32> as UintLane>::gather(&table, Wrapping(1)),
+            [Wrapping(3), Wrapping(4)]
+        );
+        assert_eq!(
+            <Wrapping<u32> as UintLane>::gather(&table, Wrapping(3)),
+            [Wrapping(0), Wrapping(0)]
+        );
+        let flat = [1u32, 2, 3, 4, 5, 6];
+        let w = <Wrapping<u32> as UintLane>::gather4(&flat, Wrapping(2));
+        assert_eq!(w, [3, 4, 5, 6].map(Wrapping));
+        let w = <Wrapping<u32> as UintLane>::gather4(&flat, Wrapping(3));
+        assert_eq!(w, [Wrapping(0); 4]);
+        let v = u32x8::gather4(&flat, u32x8::new([0, 2, 3, 1, u32::MAX, 1, 2, 0]));
+        assert_eq!(v[0].to_array(), [1, 3, 0, 2, 0, 2, 3, 1]);
+        assert_eq!(v[3].to_array(), [4, 6, 0, 5, 0, 5, 6, 4]);
+        let g = u32x8::gather(&table, u32x8::new([0, 1, 2, 3, u32::MAX, 2, 1, 0]));
+        assert_eq!(g[0].to_array(), [1, 3, 5, 0, 0, 5, 3, 1]);
+        assert_eq!(g[1].to_array(), [2, 4, 6, 0, 0, 6, 4, 2]);
     }
 }

@@ -48,6 +48,7 @@
 //! | `pmj02bn-4096`, `pmj02bn-16384`, `pmj02bn-65536` | points per set (largest enabled wins; 4096 by default) | 4096 |
 //! | `pmj02bn-4-sets` | 4 sets instead of 1; tables take `8 * POINTS * SETS` bytes (128 KiB by default) | yes |
 //! | `sequence` | [`sequence`]: baseline `random` and `stratified` samplers (no tables) | yes |
+//! | `envmap` | [`envmap`]: marginal-conditional and hierarchical image distributions, caller-owned storage; enables `sphere` | yes |
 //! | `std` | forwards `wide/std`; the library never needs it | no |
 
 #![no_std]
@@ -64,7 +65,8 @@ pub use wide::{f32x8, u32x8};
         feature = "triangle",
         feature = "sphere",
         feature = "pmj02bn",
-        feature = "sequence"
+        feature = "sequence",
+        feature = "envmap"
     )),
     allow(dead_code)
 )]
@@ -76,7 +78,8 @@ mod batch;
         feature = "triangle",
         feature = "sphere",
         feature = "pmj02bn",
-        feature = "sequence"
+        feature = "sequence",
+        feature = "envmap"
     )),
     allow(dead_code)
 )]
@@ -87,7 +90,8 @@ mod hash;
         feature = "triangle",
         feature = "sphere",
         feature = "pmj02bn",
-        feature = "sequence"
+        feature = "sequence",
+        feature = "envmap"
     )),
     allow(dead_code)
 )]
@@ -98,7 +102,8 @@ mod kernels;
         feature = "triangle",
         feature = "sphere",
         feature = "pmj02bn",
-        feature = "sequence"
+        feature = "sequence",
+        feature = "envmap"
     )),
     allow(dead_code)
 )]
@@ -106,6 +111,8 @@ mod lanes;
 
 #[cfg(feature = "disk")]
 pub mod disk;
+#[cfg(feature = "envmap")]
+pub mod envmap;
 #[cfg(feature = "pmj02bn")]
 pub mod pmj02bn;
 #[cfg(feature = "sequence")]

@@ -1,0 +1,574 @@
+//! Hierarchical sampling: walk a MIP pyramid from the whole map down to one texel, splitting
+//! the sample square at each level in proportion to the four children.
+//!
+//! The map is padded with zero weight to `2^a x 2^b` texels (`2^a >= width`, `2^b >= height`).
+//! Level `L - 1` groups texels 2x2, each level above groups the one below 2x2, and on a
+//! non-square map the top `|a - b|` levels split the longer axis only (2x1 or 1x2), exactly
+//! the MIP chain of a non-square image read from the top. Every internal node stores three
+//! split fractions, computed at build time from its children's sums:
+//!
+//! * `px`: the left column's share of the node, `(s00 + s01) / (s00 + s01 + s10 + s11)`;
+//! * `py0`, `py1`: the lower row's share within the left and the right column.
+//!
+//! Sampling is the warp of McCool and Harwood (1997) and Clarberg et al. (2005) as in
+//! Mitsuba 3's `Hierarchical2D`: the current sample rectangle splits vertically at `px`, then
+//! the chosen half splits horizontally at its `py`. Instead of rescaling `u` at every level
+//! (a division per axis per level, and a rounded copy of `u` each time), we keep the sample
+//! fixed and narrow an interval around it on each axis, in 0.30 fixed point
+//! (`key = floor(u * 2^30)`, exact for `u >= 2^-6`). The walk keeps, per axis, the interval's
+//! length `len` and the key's offset `r` inside it: the lower child gets
+//! `m = floor(len p)` units (one 32x32-bit multiply-high, fractions `p` being 0.31 fixed
+//! point), the key goes low if `r < m` (then `len = m`), else high (`len -= m`, `r -= m`),
+//! and after the last level `r / len` is the position inside the texel. The warp is piecewise
+//! affine and local — compact strata of the square land on compact sets of texels, the point
+//! of the method.
+//!
+//! Exactness: `p = 0` gives the lower child no units and `p = 1` (`2^31`) all of them, so a
+//! zero-weight child gets an empty interval and is never chosen; a positive child's fraction
+//! is kept strictly inside `(0, 1)`. A texel's preimage in the sample square is the rectangle
+//! of its two final intervals, so its probability *is* `len_x len_y 2^-60`, which is what the
+//! pdf reports — `pdf(uv)` repeats the walk, following the texel's bits
+//! instead of comparing keys, and gets the same integers. Against the weights: fractions are
+//! ratios of `f64` sums of `f32` node sums taken pairwise up the pyramid (relative error
+//! about `2^-24` per level, whatever the dynamic range), rounded to `2^-32`, and each split
+//! truncates by less than one unit, so a texel whose interval on an axis is `d` long (as a
+//! fraction of the square) is within `1.25 levels 2^-30 / d` (relative) of its share on that
+//! axis — the tests check exactly this bound against an `f64` model of the pyramid; measured
+//! at most 1.0e-4 on the real maps for texels down to a sixteenth of the average. A texel so
+//! faint that its interval would be shorter than one unit (probability below about `2^-30`
+//! per axis) can be unreachable; its pdf then says 0, consistently. Node sums are `f32`,
+//! rescaled by a power of two when the total would overflow (weights below `2^-149` of that
+//! scale then count as 0).
+//!
+//! Layout: levels are stored in pairs, as 64-byte blocks aligned to cache lines — a node's
+//! three fractions, its (up to) four children's three fractions each, and its sum (used
+//! while building). A walk reads one block per two levels, so on a map too large for the
+//! caches it waits for half as many dependent memory loads. (When the level count is odd, the
+//! root block's first level is an empty one-child level.)
+//!
+//! Cost: one 64-byte block per two levels (`ceil(max(a, b) / 2)` blocks), a handful of
+//! integer operations per level and one division per axis at the end.
+
+use super::{
+    Error, Sample, SampleX8, Word, carve, check_size, checked_len, clean, edges, pdf_batch,
+    sample_batch, scalar_sample, simd_sample, take, u32_to_f32,
+};
+use crate::lanes::{Lane, UintLane, unit_interval};
+use wide::f32x8;
+
+/// Words per block: own fractions (3), four children's fractions (12), the block's sum (1).
+const BLOCK: usize = 16;
+/// Words of slack in the storage for aligning the blocks to 64 bytes.
+const ALIGN_SLACK: usize = 15;
+
+/// Hierarchical (MIP-pyramid) 2D distribution over a `width x height` weight map (see the
+/// [module docs](super) for the guarantees and the bad-input rules).
+///
+/// Storage: one 16-word block per node of every other level of the padded pyramid (a
+/// sixteenth of the padded texel count at the finest block level, plus a fifteenth of that
+/// above), the texel edges and 15 words of alignment slack: about 4.3 bytes per padded texel,
+/// 34.1 MiB for 4096 x 2048. Padding to powers of two costs up to (just under) 4 times that on
+/// unlucky sizes.
+#[derive(Clone, Copy, Debug)]
+pub struct Hierarchical<'a> {
+    /// The blocks, block level by block level from the root, 64-byte aligned. Block `i`:
+    /// `[px, py0, py1]` of its node, then `[px, py0, py1]` of child `c` at `3 + 3c`, then the
+    /// node's `f32` sum. Fractions are 0.31 fixed point (`2^31` meaning 1). The children
+    /// of node `i` of a level are nodes `i * branching + (bx | by << split_x)` of the next.
+    blocks: &'a [u32],
+    edges_x: &'a [[u32; 1]],
+    edges_y: &'a [[u32; 1]],
+    width: u32,
+    height: u32,
+    /// The padded map is `2^xbits x 2^ybits` texels.
+    xbits: u32,
+    ybits: u32,
+    /// `width * height * 2^-60`: turns the product of the two final interval lengths into a
+    /// density.
+    pdf_scale: f32,
+}
+
+/// `ceil(log2 n)` for `n >= 1` (saturating at 64 for huge `n`, which `checked_len` rejects).
+fn bits(n: u64) -> u32 {
+    n.checked_next_power_of_two()
+        .map_or(u64::BITS, |p| p.trailing_zeros())
+}
+
+/// The level structure of a `2^xbits x 2^ybits` pyramid, in *virtual* levels: the real levels
+/// (0 = root; the finest `xbits` split x, the finest `ybits` split y) preceded by one empty
+/// level when their count is odd, so that virtual levels pair up into blocks.
+#[derive(Clone, Copy, Debug)]
+struct Shape {
+    xbits: u32,
+    ybits: u32,
+}
+
+impl Shape {
+    #[inline(always)]
+    fn levels(self) -> u32 {
+        self.xbits.max(self.ybits)
+    }
+    /// Virtual levels: the real ones rounded up to an even count.
+    #[inline(always)]
+    fn virtual_levels(self) -> u32 {
+        (self.levels() + 1) & !1
+    }
+    /// Which axes virtual level `k` splits.
+    #[inline(always)]
+    fn splits(self, k: u32) -> (bool, bool) {
+        let pad = self.virtual_levels() - self.levels();
+        if k < pad {
+            return (false, false);
+        }
+        let (level, levels) = (k - pad, self.levels());
+        (level + self.xbits >= levels, level + self.ybits >= levels)
+    }
+    /// `log2` of the branching of virtual level `k`.
+    #[inline(always)]
+    fn branch_bits(self, k: u32) -> u32 {
+        let (sx, sy) = self.splits(k);
+        u32::from(sx) + u32::from(sy)
+    }
+    /// The bit of a texel coordinate that virtual level `k` decides (when it splits that
+    /// axis): the splitting levels of an axis are the finest ones, so it is the distance to
+    /// the finest level.
+    #[inline(always)]
+    fn shift(self, k: u32) -> u32 {
+        self.virtual_levels() - 1 - k
+    }
+    /// Nodes at virtual level `k`.
+    fn nodes(self, k: u32) -> u64 {
+        (0..k).fold(1u64, |n, l| n << self.branch_bits(l))
+    }
+    /// Blocks in all block levels (block level `b` holds the nodes of virtual level `2b`).
+    fn block_count(self) -> u64 {
+        (0..self.virtual_levels() / 2)
+            .map(|b| self.nodes(2 * b))
+            .sum()
+    }
+}
+
+/// Fixed-point one of the fractions: `2^31`.
+const FRACTION_ONE: u32 = 1 << 31;
+/// Fixed-point one of the keys and intervals: `2^30`.
+const KEY_ONE: u32 = 1 << 30;
+
+/// `a / (a + b)` as a 0.31 fixed-point fraction: `2^31` (1) when `b = 0` (also for an empty
+/// node, which is never reached), `0` when `a = 0 < b`, and strictly inside `[1, 2^31 - 1]`
+/// when both are positive.
+fn fraction(a: f64, b: f64) -> u32 {
+    if b <= 0.0 {
+        return FRACTION_ONE;
+    }
+    if a <= 0.0 {
+        return 0;
+    }
+    let p = (a / (a + b) * f64::from(FRACTION_ONE) + 0.5) as u32;
+    // Constant bounds: the clamp cannot panic.
+    p.clamp(1, FRACTION_ONE - 1)
+}
+
+/// The fractions of a node with children sums `s[bx][by]`, and its sum.
+fn node(s: [[f32; 2]; 2]) -> ([u32; 3], f32) {
+    let c = s.map(|col| col.map(f64::from));
+    let (left, right) = (c[0][0] + c[0][1], c[1][0] + c[1][1]);
+    (
+        [
+            fraction(left, right),
+            fraction(c[0][0], c[0][1]),
+            fraction(c[1][0], c[1][1]),
+        ],
+        (left + right) as f32,
+    )
+}
+
+/// The lower child's share of an interval of `len <= 2^30` units at fraction `p` (0.31):
+/// `floor(len p 2^-31)`, exactly `0` for `p = 0` and `len` for `p = 2^31`. (`2 len` fits 32
+/// bits, so one multiply-high does it.)
+#[inline(always)]
+fn split<U: UintLane>(len: U, p: U) -> U {
+    (len + len).mul_high(p)
+}
+
+/// Children sums `s[bx][by]` of a node, from `child(bx, by)`, zero where the level does not
+/// split that axis.
+fn children(sx: bool, sy: bool, mut child: impl FnMut(u32, u32) -> f32) -> [[f32; 2]; 2] {
+    let mut s = [[0.0f32; 2]; 2];
+    for (bx, col) in (0u32..).zip(s.iter_mut()) {
+        for (by, v) in (0u32..).zip(col.iter_mut()) {
+            if (bx == 0 || sx) && (by == 0 || sy) {
+                *v = child(bx, by);
+            }
+        }
+    }
+    s
+}
+
+/// Writes a node's fractions at `at` in `block`.
+fn put(block: &mut [u32], at: usize, fractions: [u32; 3]) {
+    if let Some(d) = block.get_mut(at..at + 3) {
+        d.copy_from_slice(&fractions);
+    }
+}
+
+impl<'a> Hierarchical<'a> {
+    /// Words of storage `new` needs for a `width x height` map; `usize::MAX` when the map is
+    /// too large ([`Error::TooLarge`]), `0` for a zero side.
+    pub fn storage_len(width: usize, height: usize) -> usize {
+        checked_len(width, height, |w, h| {
+            let shape = Shape {
+                xbits: bits(w),
+                ybits: bits(h),
+            };
+            BLOCK as u64 * shape.block_count() + ALIGN_SLACK as u64 + (w + 1) + (h + 1)
+        })
+    }
+
+    /// Builds the distribution of `weights` (row-major, `width * height` values) in `storage`.
+    ///
+    /// Time `O(width * height)`: one pass to validate and total the weights, one over the
+    /// finest block level, then the block levels above (a sixteenth as many). Errors:
+    /// [`Error::ZeroSize`], [`Error::TooLarge`], [`Error::LengthMismatch`],
+    /// [`Error::StorageTooSmall`], [`Error::InfiniteWeight`]; see the [module docs](super)
+    /// for how other bad values are treated.
+    pub fn new(
+        weights: &[f32],
+        width: usize,
+        height: usize,
+        storage: &'a mut [Word],
+    ) -> Result<Self, Error> {
+        let needed = Self::storage_len(width, height);
+        check_size(weights, width, height, needed)?;
+        let storage = take(storage, needed)?;
+        let (w, h) = (width, height);
+        let shape = Shape {
+            xbits: bits(w as u64),
+            ybits: bits(h as u64),
+        };
+        let blocks_len = usize::try_from(BLOCK as u64 * shape.block_count()).unwrap_or(0);
+        // Align the blocks to 64 bytes (the address only picks where in `storage` they
+        // start; the results do not depend on it).
+        let skip = (64 - storage.as_ptr() as usize % 64) % 64 / 4;
+        let [_, blocks, edges_x, edges_y] = carve(storage, [skip, blocks_len, w + 1, h + 1])
+            .ok_or(Error::StorageTooSmall {
+                needed,
+                got: needed,
+            })?;
+
+        let mut total = 0.0f64;
+        for (index, &x) in weights.iter().enumerate() {
+            if x == f32::INFINITY {
+                return Err(Error::InfiniteWeight { index });
+            }
+            total += f64::from(clean(x));
+        }
+        // All zero: uniform over the real texels. Otherwise scale so no f32 sum overflows.
+        let uniform = total <= 0.0;
+        let exponent = ((total.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+        let scale = if exponent > 120 {
+            f32::from_bits(((127 + 120 - exponent) as u32) << 23)
+        } else {
+            1.0
+        };
+        let weight = |tx: u32, ty: u32| -> f32 {
+            if tx as usize >= w || ty as usize >= h {
+                return 0.0;
+            }
+            if uniform {
+                return 1.0;
+            }
+            let x = weights.get(ty as usize * w + tx as usize).copied();
+            clean(x.unwrap_or(0.0)) * scale
+        };
+
+        // Block offsets (in blocks) per block level.
+        let block_levels = shape.virtual_levels() / 2;
+        let mut offsets = [0usize; 14];
+        let mut offset = 0usize;
+        for (b, o) in (0..block_levels).zip(offsets.iter_mut()) {
+            *o = offset;
+            offset += shape.nodes(2 * b) as usize;
+        }
+        let (all, _) = blocks.as_chunks_mut::<BLOCK>();
+
+        // Bottom-up. A block at virtual level k = 2b holds its node and the children at k + 1;
+        // the grandchildren are texels (finest block level) or blocks of level b + 1.
+        for b in (0..block_levels).rev() {
+            let k = 2 * b;
+            let (sx, sy) = shape.splits(k);
+            let (csx, csy) = shape.splits(k + 1);
+            let here = offsets.get(b as usize).copied().unwrap_or(0);
+            let next = if b + 1 < block_levels {
+                offsets.get(b as usize + 1).copied().unwrap_or(0)
+            } else {
+                all.len()
+            };
+            let (upper, lower) = all.split_at_mut(next.min(all.len()));
+            let upper = upper.get_mut(here..).unwrap_or(&mut []);
+            let finest = b + 1 == block_levels;
+            for (i, block) in upper.iter_mut().enumerate() {
+                // Texel coordinates of this node (finest level only): walk its index bits.
+                let (x, y) = if finest {
+                    node_coords(shape, k, i as u32)
+                } else {
+                    (0, 0)
+                };
+                let own = children(sx, sy, |bx, by| {
+                    let c = bx | (by << u32::from(sx));
+                    let grand = children(csx, csy, |gx, gy| {
+                        if finest {
+                            let cx = (x << u32::from(sx)) | bx;
+                            let cy = (y << u32::from(sy)) | by;
+                            weight((cx << u32::from(csx)) | gx, (cy << u32::from(csy)) | gy)
+                        } else {
+                            let j = (i << shape.branch_bits(k)) | c as usize;
+                            let g = (j << shape.branch_bits(k + 1))
+                                | (gx | (gy << u32::from(csx))) as usize;
+                            lower
+                                .get(g)
+                                .map_or(0.0, |blk| f32::from_bits(blk[BLOCK - 1]))
+                        }
+                    });
+                    let (fr, sum) = node(grand);
+                    put(block, 3 + 3 * c as usize, fr);
+                    sum
+                });
+                let (fr, sum) = node(own);
+                put(block, 0, fr);
+                if let Some(last) = block.last_mut() {
+                    *last = sum.to_bits();
+                }
+            }
+        }
+        edges::fill(edges_x, w as u32);
+        edges::fill(edges_y, h as u32);
+
+        let blocks: &'a [u32] = blocks;
+        let (edges_x, _) = edges_x.as_chunks::<1>();
+        let (edges_y, _) = edges_y.as_chunks::<1>();
+        Ok(Hierarchical {
+            blocks,
+            edges_x,
+            edges_y,
+            width: w as u32,
+            height: h as u32,
+            xbits: shape.xbits,
+            ybits: shape.ybits,
+            pdf_scale: (w as f64 * h as f64 / (1u64 << 60) as f64) as f32,
+        })
+    }
+
+    /// Width of the map in texels.
+    #[inline]
+    pub fn width(&self) -> usize {
+        self.width as usize
+    }
+
+    /// Height of the map in texels.
+    #[inline]
+    pub fn height(&self) -> usize {
+        self.height as usize
+    }
+
+    /// Walks the pyramid from the root to a texel, starting with the keys `key` (the pdf
+    /// lookup passes zeros). At each split, `left(shift, r, m, axis)` says (per lane) whether
+    /// to take the lower child, given the key's offset `r` in the interval, the lower child's
+    /// share `m` and the bit position `shift` of this level in the texel coordinates: the
+    /// sampler compares `r < m`, the pdf lookup reads the bit of the texel it was given. Both
+    /// therefore compute the same intervals.
+    #[inline(always)]
+    fn descend<U: UintLane>(
+        &self,
+        key: [U; 2],
+        mut left: impl FnMut(u32, U, U, usize) -> U::Mask,
+    ) -> Walk<U> {
+        let shape = Shape {
+            xbits: self.xbits,
+            ybits: self.ybits,
+        };
+        let zero = U::splat(0);
+        let mut walk = Walk {
+            r: key,
+            len: [U::splat(KEY_ONE); 2],
+            texel: [zero; 2],
+        };
+        let mut index = zero;
+        // Blocks before this block level, and blocks in it.
+        let (mut offset, mut count) = (0u32, 1u32);
+        for b in 0..shape.virtual_levels() / 2 {
+            let k = 2 * b;
+            let base = (U::splat(offset) + index).shl(4);
+            let (b0, b1) = (shape.branch_bits(k), shape.branch_bits(k + 1));
+            let (sx0, sx1) = (
+                u32::from(shape.splits(k).0),
+                u32::from(shape.splits(k + 1).0),
+            );
+            let [px, py0, py1, _] = U::gather4(self.blocks, base);
+            let c = walk.level(shape.shift(k), sx0, [px, py0, py1], &mut left);
+            // The fourth word is the next child's px (or the block's sum): unused.
+            let [px, py0, py1, _] = U::gather4(self.blocks, base + U::splat(3) + c + c + c);
+            let g = walk.level(shape.shift(k + 1), sx1, [px, py0, py1], &mut left);
+            index = (index.shl(b0) | c).shl(b1) | g;
+            offset += count;
+            count <<= b0 + b1;
+        }
+        walk
+    }
+
+    /// The density of the texel a walk ended in: `len_x len_y 2^-60`, its exact probability,
+    /// times `width * height`; 0 for an empty rectangle (a zero-weight texel).
+    #[inline(always)]
+    fn density<L: Lane>(&self, walk: &Walk<L::U>) -> L {
+        let dx = u32_to_f32::<L>(walk.len[0]);
+        let dy = u32_to_f32::<L>(walk.len[1]);
+        dy * dx * L::splat(self.pdf_scale)
+    }
+
+    /// The 0.30 fixed-point keys of a sample, after the forward rule.
+    #[inline(always)]
+    fn keys<L: Lane>(u: [L; 2]) -> [L::U; 2] {
+        let scale = L::splat(KEY_ONE as f32);
+        u.map(|x| (unit_interval(x) * scale).to_uint())
+    }
+
+    /// The sample a finished walk describes.
+    #[inline(always)]
+    fn finish<L: Lane>(&self, walk: &Walk<L::U>) -> ([L; 2], L, [L::U; 2]) {
+        // The key's offset inside its final interval is the position inside the texel.
+        let f = |k: usize| unit_interval(u32_to_f32::<L>(walk.r[k]) / u32_to_f32::<L>(walk.len[k]));
+        let uv = [
+            edges::point(self.edges_x, walk.texel[0], f(0), self.width as f32),
+            edges::point(self.edges_y, walk.texel[1], f(1), self.height as f32),
+        ];
+        (uv, self.density(walk), walk.texel)
+    }
+
+    #[inline(always)]
+    fn sample_body<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
+        let walk = self.descend(Self::keys(u), |_, r: L::U, m, _| r.simd_lt(m));
+        self.finish::<L>(&walk)
+    }
+
+    #[inline(always)]
+    fn pdf_body<L: Lane>(&self, uv: [L; 2]) -> L {
+        let texel = [
+            edges::texel(self.edges_x, uv[0], self.width),
+            edges::texel(self.edges_y, uv[1], self.height),
+        ];
+        let (zero, one) = (L::U::splat(0), L::U::splat(1));
+        let walk = self.descend([zero; 2], |shift, _, _, axis| {
+            let t = if axis == 0 { texel[0] } else { texel[1] };
+            (t.shr(shift) & one).simd_eq(zero)
+        });
+        self.density(&walk)
+    }
+
+    /// Draws a texel with probability proportional to its weight and a uniform point in it.
+    ///
+    /// Each coordinate is first mapped onto `[0, 1 - 2^-24]` by the forward rule. Cost: one
+    /// node read per pyramid level (`ceil(log2(max(width, height)))` levels) and one division
+    /// per axis. The pdf equals [`pdf`](Self::pdf)`(uv)` bit for bit.
+    #[inline]
+    pub fn sample(&self, u: [f32; 2]) -> Sample {
+        scalar_sample(self.sample_body(u))
+    }
+
+    /// [`sample`](Self::sample) on eight points at once; bit-identical to eight scalar calls.
+    #[inline]
+    pub fn sample_x8(&self, u: [f32x8; 2]) -> SampleX8 {
+        simd_sample(self.sample_body(u))
+    }
+
+    /// [`sample`](Self::sample) over a batch: `out[i] = sample(u[i])` for
+    /// `i < min(u.len(), out.len())`; returns that count. Bit-identical to the scalar form.
+    #[inline]
+    pub fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
+        sample_batch(u, out, |v| self.sample_x8(v))
+    }
+
+    /// Density at `uv` with respect to area on `[0, 1]^2`: `P(texel) * width * height` for
+    /// the texel holding `uv` (0 on zero-weight texels). `uv` is clamped by the forward rule.
+    #[inline]
+    pub fn pdf(&self, uv: [f32; 2]) -> f32 {
+        self.pdf_body(uv)
+    }
+
+    /// [`pdf`](Self::pdf) on eight points at once; bit-identical to eight scalar calls.
+    #[inline]
+    pub fn pdf_x8(&self, uv: [f32x8; 2]) -> f32x8 {
+        self.pdf_body(uv)
+    }
+
+    /// [`pdf`](Self::pdf) over a batch, with the length rule of
+    /// [`sample_slice`](Self::sample_slice).
+    #[inline]
+    pub fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
+        pdf_batch(uv, out, |v| self.pdf_x8(v))
+    }
+}
+
+/// Where a walk down the pyramid is, per axis: the interval length `len` and the key's
+/// offset `r` in it (0.30 fixed point), and the texel coordinate decided so far.
+struct Walk<U> {
+    r: [U; 2],
+    len: [U; 2],
+    texel: [U; 2],
+}
+
+impl<U: UintLane> Walk<U> {
+    /// One level: split x at `px`, then y at the chosen column's fraction. Branch-free and
+    /// the same for every level: an axis the level does not split has fraction 1, so the walk
+    /// goes "low" with an unchanged interval and appends a leading zero bit to the texel
+    /// coordinate. Both candidate y shares are computed before the x decision, which keeps
+    /// them off the dependency chain. Returns the child's local index `bx | by << sx`
+    /// (`sx` = 1 if the level splits x).
+    #[inline(always)]
+    fn level(
+        &mut self,
+        shift: u32,
+        sx: u32,
+        [px, py0, py1]: [U; 3],
+        left: &mut impl FnMut(u32, U, U, usize) -> U::Mask,
+    ) -> U {
+        let (zero, one) = (U::splat(0), U::splat(1));
+        let my0 = split(self.len[1], py0);
+        let my1 = split(self.len[1], py1);
+        let mx = split(self.len[0], px);
+        let go = left(shift, self.r[0], mx, 0);
+        self.len[0] = U::select(go, mx, self.len[0] - mx);
+        self.r[0] = U::select(go, self.r[0], self.r[0] - mx);
+        let bx = U::select(go, zero, one);
+        self.texel[0] = self.texel[0].shl(1) | bx;
+        let my = U::select(go, my0, my1);
+        let go = left(shift, self.r[1], my, 1);
+        self.len[1] = U::select(go, my, self.len[1] - my);
+        self.r[1] = U::select(go, self.r[1], self.r[1] - my);
+        let by = U::select(go, zero, one);
+        self.texel[1] = self.texel[1].shl(1) | by;
+        bx | by.shl(sx)
+    }
+}
+
+/// Coordinates `(x, y)` of node `i` of virtual level `k`: node indices are paths from the
+/// root, `bx | by << split_x` per level, most significant first.
+fn node_coords(shape: Shape, k: u32, i: u32) -> (u32, u32) {
+    let (mut x, mut y) = (0u32, 0u32);
+    let mut rest = k;
+    let mut index = i;
+    // Peel the path from the finest level up.
+    while rest > 0 {
+        rest -= 1;
+        let (sx, sy) = shape.splits(rest);
+        let bits = shape.branch_bits(rest);
+        let local = index & ((1 << bits) - 1);
+        index >>= bits;
+        let shift = k - 1 - rest;
+        if sx {
+            x |= (local & 1) << shift;
+        }
+        if sy {
+            y |= ((local >> u32::from(sx)) & 1) << shift;
+        }
+    }
+    (x, y)
+}
