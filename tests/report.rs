@@ -136,7 +136,11 @@ fn area_references_match_an_independent_quadrature() {
             let fubini = irradiance_fubini(&scene.shape, q, area::HEIGHT, cut);
             let err = (exact - fubini).abs();
             worst = worst.max(err);
-            assert!(err < 1e-10, "{} pixel {i}: contour {exact} vs quadrature {fubini}", scene.name);
+            assert!(
+                err < 1e-10,
+                "{} pixel {i}: contour {exact} vs quadrature {fubini}",
+                scene.name
+            );
         }
     }
     println!("contour references vs Fubini quadrature: max |difference| {worst:.2e}");
@@ -156,28 +160,60 @@ fn area_references_limit_cases() {
             let none = area::irradiance(&scene.shape, q, h, Cut { e, k: 10.0 });
             assert_eq!(none, 0.0);
             let full = irradiance_fubini(&scene.shape, q, h, Cut { e, k: -10.0 });
-            assert!((all - full).abs() < 1e-10, "{}: {all} vs {full}", scene.name);
+            assert!(
+                (all - full).abs() < 1e-10,
+                "{}: {all} vs {full}",
+                scene.name
+            );
             // Both sides of any line add up to the whole light.
             let k = 0.8 * (rng.uniform() - 0.5);
             let (s0, s1) = (
                 area::irradiance(&scene.shape, q, h, Cut { e, k }),
-                area::irradiance(&scene.shape, q, h, Cut { e: [-e[0], -e[1]], k: -k }),
+                area::irradiance(
+                    &scene.shape,
+                    q,
+                    h,
+                    Cut {
+                        e: [-e[0], -e[1]],
+                        k: -k,
+                    },
+                ),
             );
-            assert!((s0 + s1 - all).abs() < 1e-13, "{}: {s0} + {s1} vs {all}", scene.name);
+            assert!(
+                (s0 + s1 - all).abs() < 1e-13,
+                "{}: {s0} + {s1} vs {all}",
+                scene.name
+            );
         }
     }
     // The whole disk in closed form: E = (pi/2)(1 - (h^2 + d^2 - R^2) / sqrt((h^2 + d^2 +
     // R^2)^2 - 4 d^2 R^2)) at distance d from the axis (the off-axis parallel disk).
     let r = (1.0 / PI).sqrt();
     for &d in &[0.0, 0.1, 0.3, 0.56, 0.7] {
-        let e = area::irradiance(&area::disk(), [d, 0.0], h, Cut { e: [1.0, 0.0], k: -10.0 });
+        let e = area::irradiance(
+            &area::disk(),
+            [d, 0.0],
+            h,
+            Cut {
+                e: [1.0, 0.0],
+                k: -10.0,
+            },
+        );
         let (a, b) = (h * h + d * d - r * r, h * h + d * d + r * r);
         let closed = 0.5 * PI * (1.0 - a / (b * b - 4.0 * d * d * r * r).sqrt());
         assert!((e - closed).abs() < 1e-13, "d = {d}: {e} vs {closed}");
     }
     // A unit square straight below, small: E -> area / h^2 as the light shrinks relative to h.
     let tiny = Shape::Rect { hx: 1e-4, hy: 1e-4 };
-    let e = area::irradiance(&tiny, [0.0, 0.0], h, Cut { e: [1.0, 0.0], k: -1.0 });
+    let e = area::irradiance(
+        &tiny,
+        [0.0, 0.0],
+        h,
+        Cut {
+            e: [1.0, 0.0],
+            k: -1.0,
+        },
+    );
     assert!((e / 4e-8 - 1.0).abs() < 1e-7, "{e}");
 }
 
@@ -189,7 +225,11 @@ fn area_scenes_samples_land_on_the_light() {
         // The shape grown by 1e-6, for the f32 rounding of the warps.
         let grown = |x: [f64; 2]| {
             let r = (x[0] * x[0] + x[1] * x[1]).sqrt();
-            let k = if r > 0.0 { (r - 1e-6).max(0.0) / r } else { 1.0 };
+            let k = if r > 0.0 {
+                (r - 1e-6).max(0.0) / r
+            } else {
+                1.0
+            };
             scene.shape.contains([x[0] * k, x[1] * k])
         };
         let mut s = Scratch::default();
@@ -243,8 +283,17 @@ fn area_estimators_are_unbiased() {
                     continue;
                 }
                 let z = bias_z(&scene, w, sampler, 16, 4096);
-                println!("{} {name} {}: z = {z:+.2} (bound {bound:.2})", scene.name, sampler.name());
-                assert!(z.abs() < bound, "{} {name} {}: z = {z}", scene.name, sampler.name());
+                println!(
+                    "{} {name} {}: z = {z:+.2} (bound {bound:.2})",
+                    scene.name,
+                    sampler.name()
+                );
+                assert!(
+                    z.abs() < bound,
+                    "{} {name} {}: z = {z}",
+                    scene.name,
+                    sampler.name()
+                );
             }
         }
     }
@@ -255,7 +304,10 @@ fn area_estimators_are_unbiased() {
 /// overestimates).
 #[test]
 fn bias_test_rejects_a_wrong_warp() {
-    let scene = AreaScene::all().into_iter().find(|s| s.name == "disk").unwrap();
+    let scene = AreaScene::all()
+        .into_iter()
+        .find(|s| s.name == "disk")
+        .unwrap();
     let r = (1.0 / PI).sqrt();
     let mut stat = run::Stat::default();
     for i in 0..4096u64 {
@@ -292,7 +344,10 @@ fn quick_run_writes_a_well_formed_csv() {
     println!("quick run: {:.1} s", t.elapsed().as_secs_f64());
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     let mut lines = csv.lines();
-    assert_eq!(lines.next(), Some("scene,sampler,warp,spp,mse,ns_per_sample"));
+    assert_eq!(
+        lines.next(),
+        Some("scene,sampler,warp,spp,mse,ns_per_sample")
+    );
     let mut warps_of: Vec<(&str, Vec<&str>)> = vec![
         ("square", vec!["identity"]),
         ("skinny", vec!["identity"]),
@@ -315,14 +370,20 @@ fn quick_run_writes_a_well_formed_csv() {
         let f: Vec<&str> = line.split(',').collect();
         assert_eq!(f.len(), 6, "{line}");
         let warps = &warps_of.iter().find(|(s, _)| *s == f[0]).expect(line).1;
-        assert!(["random", "stratified", "pmj02bn"].contains(&f[1]), "{line}");
+        assert!(
+            ["random", "stratified", "pmj02bn"].contains(&f[1]),
+            "{line}"
+        );
         assert!(warps.contains(&f[2]), "{line}");
         assert!(spps.contains(&f[3]), "{line}");
         let mse: f64 = f[4].parse().unwrap();
         let ns: f64 = f[5].parse().unwrap();
         assert!(mse.is_finite() && mse > 0.0, "{line}");
         assert!(ns.is_finite() && ns > 0.0, "{line}");
-        assert!(seen.insert((f[0], f[1], f[2], f[3])), "duplicate row {line}");
+        assert!(
+            seen.insert((f[0], f[1], f[2], f[3])),
+            "duplicate row {line}"
+        );
     }
     let expected: usize = warps_of.iter().map(|(_, w)| w.len() * 3 * spps.len()).sum();
     assert_eq!(seen.len(), expected);
@@ -335,7 +396,13 @@ fn quick_run_writes_a_well_formed_csv() {
     for r in &results {
         for row in &r.rows {
             let (first, last) = (row.mse(0), row.mse(r.spps.len() - 1));
-            assert!(last < first / 20.0, "{} {} {}: {first} -> {last}", r.scene, row.sampler.name(), row.warp);
+            assert!(
+                last < first / 20.0,
+                "{} {} {}: {first} -> {last}",
+                r.scene,
+                row.sampler.name(),
+                row.warp
+            );
         }
     }
     let _ = std::fs::remove_dir_all(&out);
@@ -346,59 +413,63 @@ fn quick_run_writes_a_well_formed_csv() {
 
 #[cfg(feature = "envmap")]
 mod env {
-use super::*;
-use sphere_ref::{EqualArea, Grid, LatLong, Param};
+    use super::*;
+    use sphere_ref::{EqualArea, Grid, LatLong, Param};
 
-/// A uniform map: `int_{n . w >= 0, m . w >= 0} n . w dw = (pi / 2)(1 + n . m)` (the lune
-/// between the two hemispheres; Stokes with the two half-circles as its boundary).
-fn uniform_map_case<P: Param>(param: P, w: usize, h: usize) -> f64 {
-    let grid = Grid::new(param, w, h);
-    let ones = vec![1.0; w * h];
-    let mut rng = Rng::new(7);
-    let mut worst: f64 = 0.0;
-    for _ in 0..40 {
-        let (n, m) = (rng.direction(), rng.direction());
-        let exact = 0.5 * PI * (1.0 + dot3(n, m));
-        let got = grid.integral(&ones, n, m);
-        worst = worst.max((got - exact).abs());
+    /// A uniform map: `int_{n . w >= 0, m . w >= 0} n . w dw = (pi / 2)(1 + n . m)` (the lune
+    /// between the two hemispheres; Stokes with the two half-circles as its boundary).
+    fn uniform_map_case<P: Param>(param: P, w: usize, h: usize) -> f64 {
+        let grid = Grid::new(param, w, h);
+        let ones = vec![1.0; w * h];
+        let mut rng = Rng::new(7);
+        let mut worst: f64 = 0.0;
+        for _ in 0..40 {
+            let (n, m) = (rng.direction(), rng.direction());
+            let exact = 0.5 * PI * (1.0 + dot3(n, m));
+            let got = grid.integral(&ones, n, m);
+            worst = worst.max((got - exact).abs());
+        }
+        worst
     }
-    worst
-}
 
-#[test]
-fn envmap_reference_uniform_map_latlong() {
-    let e = uniform_map_case(LatLong, 64, 32);
-    println!("lat-long 64x32: max |error| {e:.2e}");
-    assert!(e < 1e-12, "{e}");
-}
-
-#[test]
-fn envmap_reference_uniform_map_equal_area() {
-    for s in [31, 32] {
-        let e = uniform_map_case(EqualArea, s, s);
-        println!("equal-area {s}x{s}: max |error| {e:.2e}");
+    #[test]
+    fn envmap_reference_uniform_map_latlong() {
+        let e = uniform_map_case(LatLong, 64, 32);
+        println!("lat-long 64x32: max |error| {e:.2e}");
         assert!(e < 1e-12, "{e}");
     }
-}
 
-#[test]
-#[ignore]
-fn envmap_reference_speed() {
-    let scenes = envscene::EnvScene::builtin();
-    let s = &scenes[0];
-    let t = std::time::Instant::now();
-    let mut acc = 0.0;
-    for i in 0..300 {
-        let (n, m) = s.geometry(i);
-        acc += s.latlong.grid.integral(&s.latlong.radiance, n, m);
+    #[test]
+    fn envmap_reference_uniform_map_equal_area() {
+        for s in [31, 32] {
+            let e = uniform_map_case(EqualArea, s, s);
+            println!("equal-area {s}x{s}: max |error| {e:.2e}");
+            assert!(e < 1e-12, "{e}");
+        }
     }
-    let ll = t.elapsed().as_secs_f64() / 300.0;
-    let t = std::time::Instant::now();
-    for i in 0..300 {
-        let (n, m) = s.geometry(i);
-        acc += s.equal_area.grid.integral(&s.equal_area.radiance, n, m);
+
+    #[test]
+    #[ignore]
+    fn envmap_reference_speed() {
+        let scenes = envscene::EnvScene::builtin();
+        let s = &scenes[0];
+        let t = std::time::Instant::now();
+        let mut acc = 0.0;
+        for i in 0..300 {
+            let (n, m) = s.geometry(i);
+            acc += s.latlong.grid.integral(&s.latlong.radiance, n, m);
+        }
+        let ll = t.elapsed().as_secs_f64() / 300.0;
+        let t = std::time::Instant::now();
+        for i in 0..300 {
+            let (n, m) = s.geometry(i);
+            acc += s.equal_area.grid.integral(&s.equal_area.radiance, n, m);
+        }
+        let ea = t.elapsed().as_secs_f64() / 300.0;
+        println!(
+            "per pixel: lat-long {:.2} ms, equal-area {:.2} ms ({acc})",
+            ll * 1e3,
+            ea * 1e3
+        );
     }
-    let ea = t.elapsed().as_secs_f64() / 300.0;
-    println!("per pixel: lat-long {:.2} ms, equal-area {:.2} ms ({acc})", ll * 1e3, ea * 1e3);
-}
 }

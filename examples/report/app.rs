@@ -116,7 +116,9 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
     }
     #[cfg(feature = "envmap")]
     {
-        let env_pixels = opts.env_pixels.unwrap_or(if opts.quick { 256 } else { 4096 });
+        let env_pixels = opts
+            .env_pixels
+            .unwrap_or(if opts.quick { 256 } else { 4096 });
         let mut envs = Vec::new();
         if opts.scenes.is_empty()
             || opts

@@ -89,18 +89,31 @@ pub struct Side<P: Param> {
 
 impl<P: Param> Side<P> {
     /// `luminance` is the map; `weights` what the distributions sample by.
-    pub fn new(param: P, width: usize, height: usize, luminance: &[f32], weights: Vec<f32>) -> Result<Self, envmap::Error> {
+    pub fn new(
+        param: P,
+        width: usize,
+        height: usize,
+        luminance: &[f32],
+        weights: Vec<f32>,
+    ) -> Result<Self, envmap::Error> {
         let marginal = MarginalConditional::new(
             &weights,
             width,
             height,
             leak(MarginalConditional::storage_len(width, height)),
         )?;
-        let hierarchical =
-            Hierarchical::new(&weights, width, height, leak(Hierarchical::storage_len(width, height)))?;
+        let hierarchical = Hierarchical::new(
+            &weights,
+            width,
+            height,
+            leak(Hierarchical::storage_len(width, height)),
+        )?;
         Ok(Side {
             grid: Grid::new(param, width, height),
-            radiance: luminance.iter().map(|&l| if l > 0.0 { l as f64 } else { 0.0 }).collect(),
+            radiance: luminance
+                .iter()
+                .map(|&l| if l > 0.0 { l as f64 } else { 0.0 })
+                .collect(),
             weights,
             marginal,
             hierarchical,
@@ -245,7 +258,12 @@ impl EnvScene {
     }
 
     /// A scene from a lat-long luminance image; the equal-area map is resampled from it.
-    pub fn from_latlong(name: &str, w: usize, h: usize, luminance: Vec<f32>) -> Result<Self, envmap::Error> {
+    pub fn from_latlong(
+        name: &str,
+        w: usize,
+        h: usize,
+        luminance: Vec<f32>,
+    ) -> Result<Self, envmap::Error> {
         let s = ((w * h) as f64).sqrt().round() as usize;
         let src: Vec<[f32; 1]> = luminance.iter().map(|&l| [l]).collect();
         let mut dst = vec![[0.0f32; 1]; s * s];
@@ -287,7 +305,9 @@ impl Scene for EnvScene {
             m,
             reference: [
                 self.latlong.grid.integral(&self.latlong.radiance, n, m),
-                self.equal_area.grid.integral(&self.equal_area.radiance, n, m),
+                self.equal_area
+                    .grid
+                    .integral(&self.equal_area.radiance, n, m),
             ],
         }
     }

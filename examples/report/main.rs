@@ -72,7 +72,9 @@ fn main() {
                 .value_name("PATH.pfm")
                 .value_parser(value_parser!(PathBuf))
                 .action(ArgAction::Append)
-                .help("add a lat-long PFM environment map as scene envmap:<file stem> (repeatable)"),
+                .help(
+                    "add a lat-long PFM environment map as scene envmap:<file stem> (repeatable)",
+                ),
         )
         .arg(
             Arg::new("env-pixels")

@@ -89,7 +89,11 @@ impl Param for LatLong {
     }
     fn inverse(&self, d: [f64; 3]) -> [f64; 2] {
         let phi = d[1].atan2(d[0]);
-        let u = if phi < 0.0 { phi / TAU + 1.0 } else { phi / TAU };
+        let u = if phi < 0.0 {
+            phi / TAU + 1.0
+        } else {
+            phi / TAU
+        };
         let theta = (d[0].hypot(d[1])).atan2(d[2]);
         [u.min(1.0), theta / PI]
     }
@@ -111,7 +115,11 @@ impl Param for LatLong {
             let (pa, pb) = (TAU * a, TAU * b);
             let (sa, ca) = pa.sin_cos();
             let (sb, cb) = pb.sin_cos();
-            [-st * ct * (sb - sa), -st * ct * (ca - cb), st * st * (pb - pa)]
+            [
+                -st * ct * (sb - sa),
+                -st * ct * (ca - cb),
+                st * st * (pb - pa),
+            ]
         } else {
             let (sp, cp) = (TAU * u[0]).sin_cos();
             let d = PI * (b - a);
@@ -178,10 +186,17 @@ impl Param for EqualArea {
         let phi = d[1].abs().atan2(d[0].abs());
         let q = r * phi / FRAC_PI_2;
         let p = r - q;
-        let (aa, bb) = if d[2] >= 0.0 { (p, q) } else { (1.0 - q, 1.0 - p) };
+        let (aa, bb) = if d[2] >= 0.0 {
+            (p, q)
+        } else {
+            (1.0 - q, 1.0 - p)
+        };
         let a = if d[0] < 0.0 { -aa } else { aa };
         let b = if d[1] < 0.0 { -bb } else { bb };
-        [(0.5 * (a + 1.0)).clamp(0.0, 1.0), (0.5 * (b + 1.0)).clamp(0.0, 1.0)]
+        [
+            (0.5 * (a + 1.0)).clamp(0.0, 1.0),
+            (0.5 * (b + 1.0)).clamp(0.0, 1.0),
+        ]
     }
     fn kinks(&self, _axis: usize, other: f64, t0: f64, t1: f64) -> Vec<f64> {
         // Along either axis the kinks sit where the moving coordinate crosses 0 or the fold.
@@ -264,7 +279,12 @@ impl Edge {
     /// `int_{t0}^{t1} w x dw/dt dt` within one smooth piece.
     fn integral<P: Param>(&self, p: &P, t0: f64, t1: f64) -> [f64; 3] {
         let s0 = self.start[self.axis];
-        if let Some(v) = p.edge_integral(self.start, self.axis, s0 + t0 * self.len, s0 + t1 * self.len) {
+        if let Some(v) = p.edge_integral(
+            self.start,
+            self.axis,
+            s0 + t0 * self.len,
+            s0 + t1 * self.len,
+        ) {
             return v;
         }
         let (mid, half) = (0.5 * (t0 + t1), 0.5 * (t1 - t0));
@@ -289,7 +309,11 @@ impl Edge {
         let other = start[1 - axis];
         let s0 = start[axis];
         let mut t = vec![0.0];
-        t.extend(p.kinks(axis, other, s0, s0 + len).into_iter().map(|k| (k - s0) / len));
+        t.extend(
+            p.kinks(axis, other, s0, s0 + len)
+                .into_iter()
+                .map(|k| (k - s0) / len),
+        );
         t.push(1.0);
         let mut e = Edge {
             start,
@@ -310,7 +334,10 @@ impl Edge {
             let n = 6;
             let h = (b - a) / n as f64;
             let der: Vec<[f64; 3]> = (0..=n)
-                .map(|i| e.dir_d(p, a + h * (i as f64).clamp(0.01, n as f64 - 0.01)).1)
+                .map(|i| {
+                    e.dir_d(p, a + h * (i as f64).clamp(0.01, n as f64 - 0.01))
+                        .1
+                })
                 .collect();
             for i in 0..n {
                 let diff = [
@@ -349,7 +376,11 @@ impl Edge {
                 let mut prev = (a, ga);
                 for i in 1..=n {
                     let t = a + (b - a) * i as f64 / n as f64;
-                    let g = if i == n { gb } else { dot3(h, p.dir(self.uv(t))) };
+                    let g = if i == n {
+                        gb
+                    } else {
+                        dot3(h, p.dir(self.uv(t)))
+                    };
                     if (prev.1 >= 0.0) != (g >= 0.0) {
                         out.push(self.refine(p, h, prev.0, t, prev.1));
                     }
@@ -403,7 +434,11 @@ fn half_circle_overlap(a: f64, b: f64, c: f64) -> f64 {
 
 /// An orthonormal frame `(e1, e2)` of the great circle with pole `h` (`e1 x e2 = h`).
 fn frame(h: [f64; 3]) -> ([f64; 3], [f64; 3]) {
-    let a = if h[0].abs() < 0.6 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    let a = if h[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
     let e1 = norm3(cross3(a, h));
     let e2 = cross3(h, e1);
     (e1, e2)
@@ -435,7 +470,10 @@ impl<P: Param> Grid<P> {
             width: w,
             height: h,
             reach: [
-                horizontal.iter().map(|e| (e.node as u32, e.reach)).collect(),
+                horizontal
+                    .iter()
+                    .map(|e| (e.node as u32, e.reach))
+                    .collect(),
                 vertical.iter().map(|e| (e.node as u32, e.reach)).collect(),
             ],
             horizontal,
@@ -488,7 +526,8 @@ impl<P: Param> Grid<P> {
     pub fn integral(&self, radiance: &[f64], n: [f64; 3], m: [f64; 3]) -> f64 {
         let (w, h) = (self.width, self.height);
         let poles = [n, m];
-        let g: [Vec<f64>; 2] = poles.map(|pole| self.nodes.iter().map(|&d| dot3(pole, d)).collect());
+        let g: [Vec<f64>; 2] =
+            poles.map(|pole| self.nodes.iter().map(|&d| dot3(pole, d)).collect());
         let node_inside = |k: usize| g[0][k] >= 0.0 && g[1][k] >= 0.0;
         // Roots of each circle on each edge, and the texels they touch (bit c for circle c).
         // Cut edges are numbered: `slot[vertical][edge]` is their index in `cut`.
@@ -547,7 +586,11 @@ impl<P: Param> Grid<P> {
         let frames = poles.map(frame);
         for ((vertical, idx), ce) in cut.iter_mut() {
             let (vertical, idx) = (*vertical, *idx);
-            let e = if vertical { &self.vertical[idx] } else { &self.horizontal[idx] };
+            let e = if vertical {
+                &self.vertical[idx]
+            } else {
+                &self.horizontal[idx]
+            };
             for c in 0..2 {
                 let (e1, e2) = frames[c];
                 ce.psi[c] = ce.roots[c]
@@ -586,7 +629,8 @@ impl<P: Param> Grid<P> {
                         let s = slot[vertical as usize][idx];
                         (s != u32::MAX).then(|| &cut[s as usize].1)
                     };
-                    total += l * self.cut_texel(i, j, [n, m], frames, &lookup, touched[t], &node_inside);
+                    total +=
+                        l * self.cut_texel(i, j, [n, m], frames, &lookup, touched[t], &node_inside);
                 }
             }
         }
@@ -641,12 +685,22 @@ impl<P: Param> Grid<P> {
                 let (a, b) = (angles[0], angles[1]);
                 arcs.push(if b - a <= PI { (a, b) } else { (b, a + TAU) });
             } else if angles.len() > 2 {
-                let (u0, u1) = (i as f64 / self.width as f64, (i + 1) as f64 / self.width as f64);
-                let (v0, v1) = (j as f64 / self.height as f64, (j + 1) as f64 / self.height as f64);
+                let (u0, u1) = (
+                    i as f64 / self.width as f64,
+                    (i + 1) as f64 / self.width as f64,
+                );
+                let (v0, v1) = (
+                    j as f64 / self.height as f64,
+                    (j + 1) as f64 / self.height as f64,
+                );
                 let k = angles.len();
                 for a in 0..k {
                     let s0 = angles[a];
-                    let s1 = if a + 1 < k { angles[a + 1] } else { angles[0] + TAU };
+                    let s1 = if a + 1 < k {
+                        angles[a + 1]
+                    } else {
+                        angles[0] + TAU
+                    };
                     if s1 <= s0 {
                         continue;
                     }
@@ -659,7 +713,10 @@ impl<P: Param> Grid<P> {
             }
             // The other half-space is the half circle cos(psi - c0) >= 0.
             let c0 = dot3(other, e2).atan2(dot3(other, e1));
-            let length: f64 = arcs.iter().map(|&(a, b)| half_circle_overlap(a, b, c0)).sum();
+            let length: f64 = arcs
+                .iter()
+                .map(|&(a, b)| half_circle_overlap(a, b, c0))
+                .sum();
             part_b = add3(part_b, scale3(pole, length));
         }
         let o = p.orientation();
