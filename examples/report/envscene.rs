@@ -236,10 +236,31 @@ impl EnvScene {
         latlong: (usize, usize, Vec<f32>),
         equal_area: (usize, Vec<f32>),
     ) -> Result<Self, envmap::Error> {
-        let (w, h, ll) = latlong;
+        let (w, h, mut ll) = latlong;
+        let (s, mut ea) = equal_area;
+        // Scale both maps so that the lat-long map's mean radiance over the sphere is 1
+        // (unoccluded irradiance then is at most pi): MSE figures comparable across maps.
+        let power: f64 = (0..h)
+            .map(|j| {
+                let (t0, t1) = (PI * j as f64 / h as f64, PI * (j + 1) as f64 / h as f64);
+                let omega = TAU / w as f64 * (t0.cos() - t1.cos());
+                omega
+                    * ll[j * w..(j + 1) * w]
+                        .iter()
+                        .map(|&l| l.max(0.0) as f64)
+                        .sum::<f64>()
+            })
+            .sum();
+        let scale = if power > 0.0 {
+            (4.0 * PI / power) as f32
+        } else {
+            1.0
+        };
+        for l in ll.iter_mut().chain(ea.iter_mut()) {
+            *l *= scale;
+        }
         let mut ll_weights: Vec<f32> = ll.iter().map(|&l| if l > 0.0 { l } else { 0.0 }).collect();
         image::latlong_solid_angle_weights(&mut ll_weights, w, h)?;
-        let (s, ea) = equal_area;
         let ea_weights: Vec<f32> = ea.iter().map(|&l| if l > 0.0 { l } else { 0.0 }).collect();
         Ok(EnvScene {
             name: format!("envmap:{name}"),

@@ -525,6 +525,15 @@ impl<P: Param> Grid<P> {
     /// {m . w >= 0}`.
     pub fn integral(&self, radiance: &[f64], n: [f64; 3], m: [f64; 3]) -> f64 {
         let (w, h) = (self.width, self.height);
+        // m = +-n (never drawn, but total): one circle, or nothing visible.
+        let x = cross3(n, m);
+        let circles = if dot3(x, x) > 0.0 {
+            2
+        } else if dot3(n, m) > 0.0 {
+            1
+        } else {
+            return 0.0;
+        };
         let poles = [n, m];
         let g: [Vec<f64>; 2] =
             poles.map(|pole| self.nodes.iter().map(|&d| dot3(pole, d)).collect());
@@ -538,7 +547,7 @@ impl<P: Param> Grid<P> {
         let mut cut: Vec<((bool, usize), CutEdge)> = Vec::new();
         let mut touched = vec![0u8; w * h];
         let mut buf = Vec::new();
-        for (c, &pole) in poles.iter().enumerate() {
+        for (c, &pole) in poles.iter().enumerate().take(circles) {
             for (vertical, edges) in [(false, &self.horizontal), (true, &self.vertical)] {
                 for (idx, &(node, reach)) in self.reach[vertical as usize].iter().enumerate() {
                     if g[c][node as usize].abs() > reach {
@@ -629,8 +638,16 @@ impl<P: Param> Grid<P> {
                         let s = slot[vertical as usize][idx];
                         (s != u32::MAX).then(|| &cut[s as usize].1)
                     };
-                    total +=
-                        l * self.cut_texel(i, j, [n, m], frames, &lookup, touched[t], &node_inside);
+                    total += l * self.cut_texel(
+                        i,
+                        j,
+                        [n, m],
+                        frames,
+                        &lookup,
+                        touched[t],
+                        circles == 2,
+                        &node_inside,
+                    );
                 }
             }
         }
@@ -647,6 +664,7 @@ impl<P: Param> Grid<P> {
         frames: [([f64; 3], [f64; 3]); 2],
         cut: &dyn Fn((bool, usize)) -> Option<&'a CutEdge>,
         touched: u8,
+        two_circles: bool,
         node_inside: &dyn Fn(usize) -> bool,
     ) -> f64 {
         let p = &self.param;
@@ -711,11 +729,18 @@ impl<P: Param> Grid<P> {
                     }
                 }
             }
-            // The other half-space is the half circle cos(psi - c0) >= 0.
+            // The other half-space is the half circle cos(psi - c0) >= 0 (with one circle,
+            // m = n, there is no other).
             let c0 = dot3(other, e2).atan2(dot3(other, e1));
             let length: f64 = arcs
                 .iter()
-                .map(|&(a, b)| half_circle_overlap(a, b, c0))
+                .map(|&(a, b)| {
+                    if two_circles {
+                        half_circle_overlap(a, b, c0)
+                    } else {
+                        b - a
+                    }
+                })
                 .sum();
             part_b = add3(part_b, scale3(pole, length));
         }
