@@ -36,6 +36,9 @@ mod samplers;
 mod sphere_ref;
 #[path = "../examples/report/strata.rs"]
 mod strata;
+#[cfg(feature = "envmap")]
+#[path = "../examples/report/strata_env.rs"]
+mod strata_env;
 
 use area::{AreaScene, Cut, Shape};
 use math::{Rng, dot2, dot3, gl32, integrate, tanh_sinh};

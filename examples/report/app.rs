@@ -20,7 +20,7 @@ pub struct Options {
     pub out: PathBuf,
     /// Pixels per area-light scene (default 16384, quick 1024).
     pub pixels: Option<usize>,
-    /// Pixels per environment-map scene (default 4096, quick 256).
+    /// Pixels per environment-map scene (default 4096, quick 128).
     pub env_pixels: Option<usize>,
     /// Extra lat-long PFM maps, scenes `envmap:<stem>`.
     pub envmaps: Vec<PathBuf>,
@@ -118,7 +118,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
     {
         let env_pixels = opts
             .env_pixels
-            .unwrap_or(if opts.quick { 256 } else { 4096 });
+            .unwrap_or(if opts.quick { 128 } else { 4096 });
         let mut envs = Vec::new();
         if opts.scenes.is_empty()
             || opts
@@ -135,6 +135,10 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
             if opts.wants(&scene.name) {
                 results.push(run_scene(scene, &opts.config(env_pixels)));
             }
+        }
+        if let Some(interior) = envs.iter().find(|s| s.name == "envmap:interior") {
+            let grid = if opts.quick { 128 } else { 1024 };
+            crate::strata_env::write(interior, &opts.out, grid)?;
         }
     }
     #[cfg(not(feature = "envmap"))]
@@ -155,7 +159,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
     }
     output::write(&opts.out.join("strata.svg"), &strata::disk_triangle_svg())?;
     println!(
-        "\nwrote {} (and details.csv, tables.md, one SVG plot per scene, strata.svg) in {:.1} s",
+        "\nwrote {} (and details.csv, tables.md, one SVG plot per scene, strata pictures) in {:.1} s",
         csv.display(),
         start.elapsed().as_secs_f64()
     );

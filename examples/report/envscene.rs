@@ -296,10 +296,14 @@ impl EnvScene {
     /// The built-in scenes: `envmap:sky` and `envmap:interior`, 256 x 128 lat-long and
     /// 181 x 181 equal-area.
     pub fn builtin() -> Vec<EnvScene> {
-        [("sky", sky as Radiance), ("interior", interior as Radiance)]
-            .iter()
-            .filter_map(|&(name, f)| EnvScene::procedural(name, f, 256, 128).ok())
-            .collect()
+        let make = |name: &str, f: Radiance| EnvScene::procedural(name, f, 256, 128).ok();
+        // Built on two threads: the reference grids take a moment each.
+        let (sky, interior) = std::thread::scope(|s| {
+            let a = s.spawn(|| make("sky", sky));
+            let b = make("interior", interior);
+            (a.join().ok().flatten(), b)
+        });
+        sky.into_iter().chain(interior).collect()
     }
 
     pub fn geometry(&self, index: u64) -> ([f64; 3], [f64; 3]) {

@@ -21,6 +21,8 @@ mod samplers;
 #[cfg(feature = "envmap")]
 mod sphere_ref;
 mod strata;
+#[cfg(feature = "envmap")]
+mod strata_env;
 
 use clap::{Arg, ArgAction, Command, value_parser};
 use std::path::PathBuf;
@@ -81,7 +83,7 @@ fn main() {
                 .long("env-pixels")
                 .value_name("N")
                 .value_parser(value_parser!(usize))
-                .help("pixels per environment-map scene [default: 4096; quick: 256]"),
+                .help("pixels per environment-map scene [default: 4096; quick: 128]"),
         )
         .arg(
             Arg::new("scene")

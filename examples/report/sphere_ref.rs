@@ -350,8 +350,14 @@ impl Edge {
         }
         e.curv = 2.0 * curv + 1e-12;
         e.full = e.integral_split(p, 0.0, 1.0);
-        // Arc length by 64 chords, with a 10% margin (chords underestimate it by far less).
-        let pts: Vec<[f64; 3]> = (0..=64).map(|i| p.dir(e.uv(i as f64 / 64.0))).collect();
+        // Arc length by 8 chords per piece, with a 10% margin (on a piece at most a texel
+        // long, chords underestimate it by far less).
+        let mut ts = Vec::new();
+        for k in 0..e.t.len() - 1 {
+            ts.extend((0..8).map(|i| e.t[k] + (e.t[k + 1] - e.t[k]) * i as f64 / 8.0));
+        }
+        ts.push(1.0);
+        let pts: Vec<[f64; 3]> = ts.iter().map(|&t| p.dir(e.uv(t))).collect();
         let length: f64 = pts
             .windows(2)
             .map(|w| {

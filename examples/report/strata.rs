@@ -12,14 +12,19 @@ use warpcore::{disk, pmj02bn, triangle};
 pub const GRIDS: [(usize, usize); 5] = [(16, 1), (8, 2), (4, 4), (2, 8), (1, 16)];
 
 /// A colour per stratum: hues spread by the golden angle, so neighbours differ.
-pub fn palette(i: usize) -> String {
+pub fn palette_rgb(i: usize) -> (u8, u8, u8) {
     let h = (i as f64 * 0.618_033_988_75 + 0.05).fract();
     let (s, v) = if i % 2 == 0 {
         (0.65, 0.95)
     } else {
         (0.8, 0.75)
     };
-    let (r, g, b) = hsv(h, s, v);
+    hsv(h, s, v)
+}
+
+/// [`palette_rgb`] as an SVG colour.
+pub fn palette(i: usize) -> String {
+    let (r, g, b) = palette_rgb(i);
     format!("#{r:02x}{g:02x}{b:02x}")
 }
 
