@@ -382,6 +382,16 @@ impl Scene for AreaScene {
         self.name.to_string()
     }
 
+    fn description(&self) -> String {
+        let light = match &self.shape {
+            Shape::Rect { hx, hy } if hx == hy => "a unit square light".to_string(),
+            Shape::Rect { hx, hy } => format!("a {}:1 rectangular light of unit area", hx / hy),
+            Shape::Disk { .. } => "a disk light of unit area".to_string(),
+            Shape::Triangle { .. } => "an equilateral triangle light of unit area".to_string(),
+        };
+        format!("{light} at distance {HEIGHT} below the shading point, an occluder edge across it")
+    }
+
     fn warps(&self) -> Vec<&'static str> {
         self.warps.iter().map(|w| w.name()).collect()
     }

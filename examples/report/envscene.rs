@@ -81,8 +81,6 @@ pub struct Side<P: Param> {
     pub grid: Grid<P>,
     /// Radiance per texel (row-major, row 0 at `v = 0`).
     pub radiance: Vec<f64>,
-    /// The sampling weights.
-    pub weights: Vec<f32>,
     pub marginal: MarginalConditional<'static>,
     pub hierarchical: Hierarchical<'static>,
 }
@@ -114,7 +112,6 @@ impl<P: Param> Side<P> {
                 .iter()
                 .map(|&l| if l > 0.0 { l as f64 } else { 0.0 })
                 .collect(),
-            weights,
             marginal,
             hierarchical,
         })
@@ -317,6 +314,19 @@ impl Scene for EnvScene {
 
     fn name(&self) -> String {
         self.name.clone()
+    }
+
+    fn description(&self) -> String {
+        let (ll, ea) = (&self.latlong, &self.equal_area);
+        format!(
+            "lat-long map {}x{} (dynamic range {:.0}:1), equal-area map {}x{} ({:.0}:1), cosine lobe and occluder half-space",
+            ll.width(),
+            ll.height(),
+            ll.dynamic_range(),
+            ea.width(),
+            ea.height(),
+            ea.dynamic_range()
+        )
     }
 
     fn warps(&self) -> Vec<&'static str> {

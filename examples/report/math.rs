@@ -38,12 +38,6 @@ pub fn gl16() -> &'static [(f64, f64)] {
     RULE.get_or_init(|| gauss_legendre(16))
 }
 
-/// The 32-point rule, computed once.
-pub fn gl32() -> &'static [(f64, f64)] {
-    static RULE: OnceLock<Vec<(f64, f64)>> = OnceLock::new();
-    RULE.get_or_init(|| gauss_legendre(32))
-}
-
 /// `int_a^b f` with the given rule mapped onto `[a, b]`.
 pub fn integrate(rule: &[(f64, f64)], a: f64, b: f64, mut f: impl FnMut(f64) -> f64) -> f64 {
     let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
@@ -51,43 +45,6 @@ pub fn integrate(rule: &[(f64, f64)], a: f64, b: f64, mut f: impl FnMut(f64) -> 
         .iter()
         .map(|&(x, w)| w * f(mid + half * x))
         .sum::<f64>()
-}
-
-/// `int_a^b f` by tanh-sinh (double-exponential) quadrature with step `h`: exponentially
-/// convergent for functions analytic inside `(a, b)`, even with algebraic singularities
-/// (such as `sqrt(b - x)`) at the ends. The nodes never touch the ends.
-pub fn tanh_sinh(a: f64, b: f64, h: f64, mut f: impl FnMut(f64) -> f64) -> f64 {
-    let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-    let half_pi = std::f64::consts::FRAC_PI_2;
-    let mut sum = 0.0;
-    let mut k = 0i64;
-    loop {
-        let t = k as f64 * h;
-        let s = half_pi * t.sinh();
-        let (c, ch) = (s.cosh(), t.cosh());
-        let w = half_pi * ch / (c * c);
-        // Distance of the node from the ends, computed without cancellation.
-        let d = half * (2.0 / (1.0 + (2.0 * s).exp()));
-        if w < 1e-300 || d <= 0.0 || d.is_nan() {
-            break;
-        }
-        let x = s.tanh();
-        if k == 0 {
-            sum += w * f(mid);
-        } else {
-            // Nodes mid +- half x, placed from the nearer end so they stay inside (a, b).
-            let (lo, hi) = (a + d, b - d);
-            if !(lo > a && hi < b) || x >= 1.0 {
-                break;
-            }
-            sum += w * (f(lo) + f(hi));
-        }
-        k += 1;
-        if t > 8.0 {
-            break;
-        }
-    }
-    half * h * sum
 }
 
 /// SplitMix64's finalizer: a bijective 64-bit mix.

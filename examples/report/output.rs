@@ -87,7 +87,8 @@ fn cells(result: &SceneResult) -> Vec<Vec<String>> {
 
 fn caption(result: &SceneResult) -> String {
     format!(
-        "{} pixels ({:.0}% in penumbra), MSE relative standard error <= {:.1}%",
+        "{}; {} pixels ({:.0}% in penumbra), MSE relative standard error <= {:.1}%",
+        result.description,
         result.pixels,
         100.0 * result.penumbra,
         100.0 * worst_rel_se(result)

@@ -48,6 +48,8 @@ impl Scratch {
 pub trait Scene: Sync {
     type Pixel: Send;
     fn name(&self) -> String;
+    /// One line on the scene (light, maps), for the tables' captions.
+    fn description(&self) -> String;
     fn warps(&self) -> Vec<&'static str>;
     /// Pixel `index`: its geometry and exact reference.
     fn pixel(&self, index: u64) -> Self::Pixel;
@@ -146,6 +148,7 @@ impl Row {
 #[derive(Clone, Debug)]
 pub struct SceneResult {
     pub scene: String,
+    pub description: String,
     pub pixels: usize,
     /// Fraction of pixels in penumbra.
     pub penumbra: f64,
@@ -242,6 +245,7 @@ pub fn errors<S: Scene>(scene: &S, cfg: &Config, bar: &ProgressBar) -> SceneResu
     }
     SceneResult {
         scene: name,
+        description: scene.description(),
         pixels: cfg.pixels,
         penumbra: penumbra as f64 / cfg.pixels as f64,
         spps: cfg.spps.clone(),

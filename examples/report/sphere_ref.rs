@@ -43,7 +43,6 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// A parameterization of the unit sphere by `[0, 1]^2`.
 pub trait Param: Sync + Send {
-    fn name(&self) -> &'static str;
     fn dir(&self, u: [f64; 2]) -> [f64; 3];
     /// The direction and its derivative along `axis` (0: `u`, 1: `v`).
     fn dir_d(&self, u: [f64; 2], axis: usize) -> ([f64; 3], [f64; 3]);
@@ -53,8 +52,6 @@ pub trait Param: Sync + Send {
     fn kinks(&self, axis: usize, other: f64, t0: f64, t1: f64) -> Vec<f64>;
     /// `+1` when `(u, v)` turns counter-clockwise seen from outside the sphere, else `-1`.
     fn orientation(&self) -> f64;
-    /// `dw / (du dv)`.
-    fn jacobian(&self, u: [f64; 2]) -> f64;
     /// `int w x dw` along the line through `u` moving along `axis` from `u[axis] = a` to `b`,
     /// in closed form where the parameterization has one (else `None`: quadrature).
     fn edge_integral(&self, _u: [f64; 2], _axis: usize, _a: f64, _b: f64) -> Option<[f64; 3]> {
@@ -68,9 +65,6 @@ pub trait Param: Sync + Send {
 pub struct LatLong;
 
 impl Param for LatLong {
-    fn name(&self) -> &'static str {
-        "lat-long"
-    }
     fn dir(&self, u: [f64; 2]) -> [f64; 3] {
         let (sp, cp) = (TAU * u[0]).sin_cos();
         let (st, ct) = (PI * u[1]).sin_cos();
@@ -103,9 +97,6 @@ impl Param for LatLong {
     fn orientation(&self) -> f64 {
         // d/du x d/dv points inwards: e_phi x e_theta = -e_r.
         -1.0
-    }
-    fn jacobian(&self, u: [f64; 2]) -> f64 {
-        2.0 * PI * PI * (PI * u[1]).sin()
     }
     /// Along a parallel (`theta` fixed): `w x dw/dphi = -sin(theta) e_theta`; along a
     /// meridian (`phi` fixed): `w x dw/dtheta = e_phi`.
@@ -140,9 +131,6 @@ fn sgn(x: f64) -> f64 {
 }
 
 impl Param for EqualArea {
-    fn name(&self) -> &'static str {
-        "equal-area"
-    }
     fn dir(&self, u: [f64; 2]) -> [f64; 3] {
         self.dir_d(u, 0).0
     }
@@ -211,9 +199,6 @@ impl Param for EqualArea {
     }
     fn orientation(&self) -> f64 {
         1.0
-    }
-    fn jacobian(&self, _: [f64; 2]) -> f64 {
-        4.0 * PI
     }
 }
 
@@ -606,9 +591,8 @@ impl<P: Param> Grid<P> {
             } else {
                 &self.horizontal[idx]
             };
-            for c in 0..2 {
-                let (e1, e2) = frames[c];
-                ce.psi[c] = ce.roots[c]
+            for ((psi, roots), &(e1, e2)) in ce.psi.iter_mut().zip(&ce.roots).zip(&frames) {
+                *psi = roots
                     .iter()
                     .map(|&t| {
                         let d = p.dir(e.uv(t));
@@ -752,12 +736,5 @@ impl<P: Param> Grid<P> {
         }
         let o = p.orientation();
         0.5 * dot3(poles[0], add3(scale3(part_a, o), part_b))
-    }
-
-    /// Texel `(i, j)` holding parameter point `uv`.
-    pub fn texel_of(&self, uv: [f64; 2]) -> usize {
-        let i = ((uv[0] * self.width as f64) as usize).min(self.width - 1);
-        let j = ((uv[1] * self.height as f64) as usize).min(self.height - 1);
-        j * self.width + i
     }
 }

@@ -14,7 +14,7 @@ pub const GRIDS: [(usize, usize); 5] = [(16, 1), (8, 2), (4, 4), (2, 8), (1, 16)
 /// A colour per stratum: hues spread by the golden angle, so neighbours differ.
 pub fn palette_rgb(i: usize) -> (u8, u8, u8) {
     let h = (i as f64 * 0.618_033_988_75 + 0.05).fract();
-    let (s, v) = if i % 2 == 0 {
+    let (s, v) = if i.is_multiple_of(2) {
         (0.65, 0.95)
     } else {
         (0.8, 0.75)
