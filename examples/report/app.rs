@@ -103,10 +103,49 @@ pub fn run_scene<S: Scene>(scene: &S, cfg: &Config) -> SceneResult {
     result
 }
 
+/// The vector instructions this build may use, which the timings depend on.
+pub fn build_features() -> String {
+    let mut f: Vec<&str> = Vec::new();
+    for (on, name) in [
+        (cfg!(target_feature = "sse2"), "sse2"),
+        (cfg!(target_feature = "sse4.1"), "sse4.1"),
+        (cfg!(target_feature = "avx"), "avx"),
+        (cfg!(target_feature = "avx2"), "avx2"),
+        (cfg!(target_feature = "fma"), "fma"),
+        (cfg!(target_feature = "avx512f"), "avx512f"),
+        (cfg!(target_feature = "neon"), "neon"),
+        (cfg!(target_feature = "simd128"), "simd128"),
+    ] {
+        if on {
+            f.push(name);
+        }
+    }
+    format!(
+        "{} build, target features: {}{}",
+        std::env::consts::ARCH,
+        if f.is_empty() {
+            "none".to_string()
+        } else {
+            f.join(", ")
+        },
+        if cfg!(debug_assertions) {
+            " (debug assertions on)"
+        } else {
+            ""
+        }
+    )
+}
+
 /// The whole report. Returns the scene results (also written to `opts.out`).
 pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error>> {
     let start = Instant::now();
     std::fs::create_dir_all(&opts.out)?;
+    println!(
+        "warpcore report: MSE against exact references at {:?} samples per pixel; timings: {} (set RUSTFLAGS=\"-C target-cpu=native\" for this CPU's vector units), {} threads for the error runs",
+        opts.spps(),
+        build_features(),
+        opts.threads
+    );
     let area_pixels = opts.pixels.unwrap_or(if opts.quick { 1024 } else { 16384 });
     let mut results = Vec::new();
     for scene in AreaScene::all() {
@@ -152,7 +191,11 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         &opts.out.join("details.csv"),
         &output::details_csv(&results),
     )?;
-    let tables: String = results.iter().map(|r| output::markdown(r) + "\n").collect();
+    let tables: String = format!("Timings: {}.\n\n", build_features())
+        + &results
+            .iter()
+            .map(|r| output::markdown(r) + "\n")
+            .collect::<String>();
     output::write(&opts.out.join("tables.md"), &tables)?;
     for r in &results {
         plots::scene_plot(r, &opts.out)?;
