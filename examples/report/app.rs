@@ -159,12 +159,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
             .env_pixels
             .unwrap_or(if opts.quick { 128 } else { 4096 });
         let mut envs = Vec::new();
-        if opts.scenes.is_empty()
-            || opts
-                .scenes
-                .iter()
-                .any(|s| s.starts_with("envmap:") || "envmap:".starts_with(s.as_str()))
-        {
+        if opts.wants("envmap:sky") || opts.wants("envmap:interior") {
             envs = EnvScene::builtin();
         }
         for path in &opts.envmaps {
@@ -192,6 +187,8 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         &output::details_csv(&results),
     )?;
     let tables: String = format!("Timings: {}.\n\n", build_features())
+        + &output::summary_markdown(&results)
+        + "\n"
         + &results
             .iter()
             .map(|r| output::markdown(r) + "\n")

@@ -138,6 +138,48 @@ pub fn markdown(result: &SceneResult) -> String {
     s
 }
 
+/// One table for all scenes: MSE x1000 at 256 samples per pixel (or the largest count run
+/// below it) per warp and sampler, with pmj02bn's convergence rate and ns per sample.
+pub fn summary_markdown(results: &[SceneResult]) -> String {
+    let mut s = String::new();
+    let Some(first) = results.first() else {
+        return s;
+    };
+    let k = at(first, 256).unwrap_or(first.spps.len() - 1);
+    let n = first.spps[k];
+    let _ = writeln!(
+        s,
+        "| scene | warp | random | stratified | pmj02bn | rate (pmj02bn) | ns/sample (pmj02bn) |"
+    );
+    let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|");
+    for res in results {
+        let k = at(res, n).unwrap_or(res.spps.len() - 1);
+        let mut warps: Vec<&str> = Vec::new();
+        for r in &res.rows {
+            if !warps.contains(&r.warp) {
+                warps.push(r.warp);
+            }
+        }
+        for w in warps {
+            let get = |sampler| res.row(sampler, w);
+            let cell = |sampler| get(sampler).map_or("-".to_string(), |r| fixed(1000.0 * r.mse(k)));
+            let p = get(crate::samplers::Sampler::Pmj02bn);
+            let _ = writeln!(
+                s,
+                "| {} | {w} | {} | {} | {} | {} | {} |",
+                res.scene,
+                cell(crate::samplers::Sampler::Random),
+                cell(crate::samplers::Sampler::Stratified),
+                cell(crate::samplers::Sampler::Pmj02bn),
+                p.map_or("-".to_string(), |r| format!("{:.2}", r.rate(&res.spps))),
+                p.map_or("-".to_string(), |r| fixed(r.ns[k])),
+            );
+        }
+    }
+    let _ = writeln!(s, "\nMSE x1000 at {n} samples per pixel.");
+    s
+}
+
 /// `results.csv`: one row per scene, combination and sample count.
 pub fn csv(results: &[SceneResult]) -> String {
     let mut s = format!("{CSV_HEADER}\n");
