@@ -433,60 +433,68 @@ pub fn envmap(data: &[u8]) {
             "{name}: pdf(uv) != sample.pdf"
         );
     };
-    let soa = |g: &[[f32; 2]]| -> [f32x8; 2] {
-        std::array::from_fn(|d| f32x8::new(std::array::from_fn(|j| g[j][d])))
-    };
 
+    // One body for both distributions: build (or expect the documented error), then sample.
+    fn run<D>(
+        name: &str,
+        built: Result<D, Error>,
+        expected_error: Option<Error>,
+        us: &[[f32; 2]],
+        sample: impl Fn(&D, [f32; 2]) -> Sample,
+        sample_x8: impl Fn(&D, [f32x8; 2]) -> [Sample; 8],
+        pdf: impl Fn(&D, [f32; 2]) -> f32,
+        check: &dyn Fn(&str, Sample, f32),
+    ) {
+        match built {
+            Err(e) => assert_eq!(Some(e), expected_error, "{name}: unexpected error"),
+            Ok(d) => {
+                assert!(expected_error.is_none(), "{name} accepted a bad input");
+                for g in us.chunks_exact(8) {
+                    let v = sample_x8(
+                        &d,
+                        std::array::from_fn(|k| f32x8::new(std::array::from_fn(|j| g[j][k]))),
+                    );
+                    for (j, u) in g.iter().enumerate() {
+                        let s = sample(&d, *u);
+                        check(name, s, pdf(&d, s.uv));
+                        assert_eq!(s, v[j], "{name} x8");
+                    }
+                }
+            }
+        }
+    }
+    // A too-short storage is reported first, then the first infinite weight.
+    let expected = |need: usize, got: usize| {
+        if got < need {
+            Some(Error::StorageTooSmall { needed: need, got })
+        } else {
+            infinite.map(|index| Error::InfiniteWeight { index })
+        }
+    };
     let need = MarginalConditional::storage_len(width, height);
     let mut storage = vec![0u32; need.saturating_sub(short)];
-    match MarginalConditional::new(&weights, width, height, &mut storage) {
-        Err(e) => assert!(
-            e == Error::StorageTooSmall {
-                needed: need,
-                got: storage.len()
-            } && short > 0
-                || Some(e) == infinite.map(|index| Error::InfiniteWeight { index }),
-            "marginal: unexpected {e:?}"
-        ),
-        Ok(m) => {
-            assert!(
-                infinite.is_none() && short == 0,
-                "marginal accepted a bad input"
-            );
-            for g in us.chunks_exact(8) {
-                let v = m.sample_x8(soa(g)).to_array();
-                for (j, u) in g.iter().enumerate() {
-                    let s = m.sample(*u);
-                    check("marginal", s, m.pdf(s.uv));
-                    assert_eq!(s, v[j], "marginal x8");
-                }
-            }
-        }
-    }
+    let got = storage.len();
+    run(
+        "marginal",
+        MarginalConditional::new(&weights, width, height, &mut storage),
+        expected(need, got),
+        &us,
+        |d, u| d.sample(u),
+        |d, u| d.sample_x8(u).to_array(),
+        |d, uv| d.pdf(uv),
+        &check,
+    );
     let need = Hierarchical::storage_len(width, height);
     let mut storage = vec![0u32; need.saturating_sub(short)];
-    match Hierarchical::new(&weights, width, height, &mut storage) {
-        Err(e) => assert!(
-            e == Error::StorageTooSmall {
-                needed: need,
-                got: storage.len()
-            } && short > 0
-                || Some(e) == infinite.map(|index| Error::InfiniteWeight { index }),
-            "hierarchical: unexpected {e:?}"
-        ),
-        Ok(h) => {
-            assert!(
-                infinite.is_none() && short == 0,
-                "hierarchical accepted a bad input"
-            );
-            for g in us.chunks_exact(8) {
-                let v = h.sample_x8(soa(g)).to_array();
-                for (j, u) in g.iter().enumerate() {
-                    let s = h.sample(*u);
-                    check("hierarchical", s, h.pdf(s.uv));
-                    assert_eq!(s, v[j], "hierarchical x8");
-                }
-            }
-        }
-    }
+    let got = storage.len();
+    run(
+        "hierarchical",
+        Hierarchical::new(&weights, width, height, &mut storage),
+        expected(need, got),
+        &us,
+        |d, u| d.sample(u),
+        |d, u| d.sample_x8(u).to_array(),
+        |d, uv| d.pdf(uv),
+        &check,
+    );
 }
