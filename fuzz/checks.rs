@@ -435,16 +435,19 @@ pub fn envmap(data: &[u8]) {
     };
 
     // One body for both distributions: build (or expect the documented error), then sample.
-    fn run<D>(
+    /// `ops`: the distribution's `sample`, `sample_x8` (as an array) and `pdf`.
+    fn run<D, S, S8, P>(
         name: &str,
         built: Result<D, Error>,
         expected_error: Option<Error>,
         us: &[[f32; 2]],
-        sample: impl Fn(&D, [f32; 2]) -> Sample,
-        sample_x8: impl Fn(&D, [f32x8; 2]) -> [Sample; 8],
-        pdf: impl Fn(&D, [f32; 2]) -> f32,
+        (sample, sample_x8, pdf): (S, S8, P),
         check: &dyn Fn(&str, Sample, f32),
-    ) {
+    ) where
+        S: Fn(&D, [f32; 2]) -> Sample,
+        S8: Fn(&D, [f32x8; 2]) -> [Sample; 8],
+        P: Fn(&D, [f32; 2]) -> f32,
+    {
         match built {
             Err(e) => assert_eq!(Some(e), expected_error, "{name}: unexpected error"),
             Ok(d) => {
@@ -479,9 +482,11 @@ pub fn envmap(data: &[u8]) {
         MarginalConditional::new(&weights, width, height, &mut storage),
         expected(need, got),
         &us,
-        |d, u| d.sample(u),
-        |d, u| d.sample_x8(u).to_array(),
-        |d, uv| d.pdf(uv),
+        (
+            |d: &_, u| d.sample(u),
+            |d: &_, u| d.sample_x8(u).to_array(),
+            |d: &_, uv| d.pdf(uv),
+        ),
         &check,
     );
     let need = Hierarchical::storage_len(width, height);
@@ -492,9 +497,11 @@ pub fn envmap(data: &[u8]) {
         Hierarchical::new(&weights, width, height, &mut storage),
         expected(need, got),
         &us,
-        |d, u| d.sample(u),
-        |d, u| d.sample_x8(u).to_array(),
-        |d, uv| d.pdf(uv),
+        (
+            |d: &_, u| d.sample(u),
+            |d: &_, u| d.sample_x8(u).to_array(),
+            |d: &_, uv| d.pdf(uv),
+        ),
         &check,
     );
 }

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{ONE_MINUS_EPS, chi2, lane, rng, same_bits, soa, specials, unit, unit2};
+use common::{ONE_MINUS_EPS, chi2, lane, rng, same_bits, specials, unit, unit2};
 use proptest::prelude::*;
 use rand::RngExt;
 use warpcore::triangle;
