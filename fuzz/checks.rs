@@ -382,3 +382,126 @@ pub fn sphere(data: &[u8]) {
         );
     }
 }
+
+/// Both environment-map builders on an arbitrary image (size up to 40 x 40, any weight bits,
+/// storage too small by a random amount), then arbitrary samples: a clean `Error` or a
+/// distribution whose every sample lies inside a texel of positive weight (any texel of an
+/// all-zero map), with a finite positive pdf equal to `pdf(uv)`, and x8 == scalar.
+#[cfg(feature = "envmap")]
+pub fn envmap(data: &[u8]) {
+    use warpcore::envmap::{Error, Hierarchical, MarginalConditional, Sample};
+    let w = words(data);
+    let get = |k: usize| w.get(k).copied().unwrap_or(0);
+    let (width, height) = ((get(0) % 40 + 1) as usize, (get(1) % 40 + 1) as usize);
+    let short = (get(2) % 8) as usize; // storage words missing (0: exactly enough, often)
+    let weights: Vec<f32> = (0..width * height)
+        .map(|k| f32::from_bits(get(3 + k)))
+        .collect();
+    let clean = |x: f32| if x > 0.0 { x } else { 0.0 };
+    let infinite = weights.iter().position(|x| *x == f32::INFINITY);
+    let all_zero = weights.iter().all(|x| clean(*x) == 0.0);
+    let us = points::<2>(w.get(3 + width * height..).unwrap_or(&[]));
+
+    let check = |name: &str, s: Sample, pdf_at: f32| {
+        let [c, r] = s.texel.map(|t| t as usize);
+        assert!(
+            c < width && r < height,
+            "{name}: texel {:?} of {width}x{height}",
+            s.texel
+        );
+        assert!(
+            all_zero || clean(weights[r * width + c]) > 0.0,
+            "{name}: zero-weight texel {:?}",
+            s.texel
+        );
+        // Exactly: x n in [k, k + 1) (the product of an f32 and n < 2^24 is exact in f64);
+        // rounded edges like `k as f32 / n as f32` can sit on either side of the true edge.
+        let inside = |x: f32, k: usize, n: usize| {
+            let t = x as f64 * n as f64;
+            t >= k as f64 && t < (k + 1) as f64
+        };
+        assert!(
+            inside(s.uv[0], c, width) && inside(s.uv[1], r, height),
+            "{name}: {:?} outside {:?}",
+            s.uv,
+            s.texel
+        );
+        assert!(s.pdf.is_finite() && s.pdf > 0.0, "{name}: pdf {}", s.pdf);
+        assert_eq!(
+            s.pdf.to_bits(),
+            pdf_at.to_bits(),
+            "{name}: pdf(uv) != sample.pdf"
+        );
+    };
+
+    // One body for both distributions: build (or expect the documented error), then sample.
+    /// `ops`: the distribution's `sample`, `sample_x8` (as an array) and `pdf`.
+    fn run<D, S, S8, P>(
+        name: &str,
+        built: Result<D, Error>,
+        expected_error: Option<Error>,
+        us: &[[f32; 2]],
+        (sample, sample_x8, pdf): (S, S8, P),
+        check: &dyn Fn(&str, Sample, f32),
+    ) where
+        S: Fn(&D, [f32; 2]) -> Sample,
+        S8: Fn(&D, [f32x8; 2]) -> [Sample; 8],
+        P: Fn(&D, [f32; 2]) -> f32,
+    {
+        match built {
+            Err(e) => assert_eq!(Some(e), expected_error, "{name}: unexpected error"),
+            Ok(d) => {
+                assert!(expected_error.is_none(), "{name} accepted a bad input");
+                for g in us.chunks_exact(8) {
+                    let v = sample_x8(
+                        &d,
+                        std::array::from_fn(|k| f32x8::new(std::array::from_fn(|j| g[j][k]))),
+                    );
+                    for (j, u) in g.iter().enumerate() {
+                        let s = sample(&d, *u);
+                        check(name, s, pdf(&d, s.uv));
+                        assert_eq!(s, v[j], "{name} x8");
+                    }
+                }
+            }
+        }
+    }
+    // A too-short storage is reported first, then the first infinite weight.
+    let expected = |need: usize, got: usize| {
+        if got < need {
+            Some(Error::StorageTooSmall { needed: need, got })
+        } else {
+            infinite.map(|index| Error::InfiniteWeight { index })
+        }
+    };
+    let need = MarginalConditional::storage_len(width, height);
+    let mut storage = vec![0u32; need.saturating_sub(short)];
+    let got = storage.len();
+    run(
+        "marginal",
+        MarginalConditional::new(&weights, width, height, &mut storage),
+        expected(need, got),
+        &us,
+        (
+            |d: &_, u| d.sample(u),
+            |d: &_, u| d.sample_x8(u).to_array(),
+            |d: &_, uv| d.pdf(uv),
+        ),
+        &check,
+    );
+    let need = Hierarchical::storage_len(width, height);
+    let mut storage = vec![0u32; need.saturating_sub(short)];
+    let got = storage.len();
+    run(
+        "hierarchical",
+        Hierarchical::new(&weights, width, height, &mut storage),
+        expected(need, got),
+        &us,
+        (
+            |d: &_, u| d.sample(u),
+            |d: &_, u| d.sample_x8(u).to_array(),
+            |d: &_, uv| d.pdf(uv),
+        ),
+        &check,
+    );
+}

@@ -54,59 +54,27 @@
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
+// Builds with only some families leave parts of the shared internals unused; the full build
+// (every family) still reports real dead code.
+#![cfg_attr(
+    not(all(
+        feature = "disk",
+        feature = "triangle",
+        feature = "sphere",
+        feature = "pmj02bn",
+        feature = "sequence",
+        feature = "envmap"
+    )),
+    allow(dead_code)
+)]
 
 pub use wide::{f32x8, u32x8};
 
-// Shared internals. A build with only some families leaves parts of them unused, which is
-// expected there; the full build still reports real dead code.
-#[cfg_attr(
-    not(all(
-        feature = "disk",
-        feature = "triangle",
-        feature = "sphere",
-        feature = "pmj02bn",
-        feature = "sequence",
-        feature = "envmap"
-    )),
-    allow(dead_code)
-)]
+// Shared internals: lanes, kernels, slice machinery, hashes.
 mod batch;
 #[cfg(any(feature = "pmj02bn", feature = "sequence"))]
-#[cfg_attr(
-    not(all(
-        feature = "disk",
-        feature = "triangle",
-        feature = "sphere",
-        feature = "pmj02bn",
-        feature = "sequence",
-        feature = "envmap"
-    )),
-    allow(dead_code)
-)]
 mod hash;
-#[cfg_attr(
-    not(all(
-        feature = "disk",
-        feature = "triangle",
-        feature = "sphere",
-        feature = "pmj02bn",
-        feature = "sequence",
-        feature = "envmap"
-    )),
-    allow(dead_code)
-)]
 mod kernels;
-#[cfg_attr(
-    not(all(
-        feature = "disk",
-        feature = "triangle",
-        feature = "sphere",
-        feature = "pmj02bn",
-        feature = "sequence",
-        feature = "envmap"
-    )),
-    allow(dead_code)
-)]
 mod lanes;
 
 #[cfg(feature = "disk")]

@@ -142,20 +142,7 @@ fn check_widths(pts: &[[f32; 2]; 8], q: u32) {
         ),
     ];
     for (name, scalar, wide8, slice) in families {
-        let v = wide8(x8);
-        for n in [8usize, 5, 1] {
-            let mut out = [[9.0f32; 2]; 8];
-            assert_eq!(slice(&pts[..n], &mut out), n);
-            for j in 0..n {
-                let s = scalar(pts[j]);
-                assert!(same_bits(s, lane(v, j)), "{name} x8 lane {j}: {:?}", pts[j]);
-                assert!(
-                    same_bits(s, out[j]),
-                    "{name} slice[{j}] of {n}: {:?}",
-                    pts[j]
-                );
-            }
-        }
+        common::check_widths(name, pts, scalar, wide8, slice);
     }
     let v = disk::polar4_x8(x8, quads);
     let (vi, vq) = disk::polar4_inverse_x8(x8);

@@ -12,7 +12,8 @@
     feature = "triangle",
     feature = "sphere",
     feature = "pmj02bn",
-    feature = "sequence"
+    feature = "sequence",
+    feature = "envmap"
 ))]
 
 #[path = "../examples/wasm-demo/src/fingerprint.rs"]

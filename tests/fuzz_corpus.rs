@@ -46,3 +46,9 @@ fn triangle_corpus() {
 fn sphere_corpus() {
     replay("sphere", checks::sphere);
 }
+
+#[cfg(feature = "envmap")]
+#[test]
+fn envmap_corpus() {
+    replay("envmap", checks::envmap);
+}

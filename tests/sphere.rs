@@ -340,26 +340,14 @@ fn clamp_like_the_crate(u: [f32; 2]) -> [f32; 2] {
 fn check_widths(pts: &[[f32; 2]; 8], dirs: &[[f32; 3]; 8]) {
     let (p8, d8) = (soa(pts), soa(dirs));
     for w in warps() {
-        let (f8, i8) = ((w.fwd8)(p8), (w.inv8)(d8));
-        for n in [8usize, 5, 1] {
-            let mut out = [[9.0f32; 3]; 8];
-            let mut back = [[9.0f32; 2]; 8];
-            assert_eq!((w.fwd_slice)(&pts[..n], &mut out), n);
-            assert_eq!((w.inv_slice)(&dirs[..n], &mut back), n);
-            for j in 0..n {
-                let s = (w.fwd)(pts[j]);
-                assert!(
-                    same_bits(s, lane(f8, j)),
-                    "{} x8 lane {j}: {:?}",
-                    w.name,
-                    pts[j]
-                );
-                assert!(same_bits(s, out[j]), "{} slice[{j}]: {:?}", w.name, pts[j]);
-                let s = (w.inv)(dirs[j]);
-                assert!(same_bits(s, lane(i8, j)), "{} inverse x8 lane {j}", w.name);
-                assert!(same_bits(s, back[j]), "{} inverse slice[{j}]", w.name);
-            }
-        }
+        common::check_widths(w.name, pts, w.fwd, w.fwd8, w.fwd_slice);
+        common::check_widths(
+            &format!("{} inverse", w.name),
+            dirs,
+            w.inv,
+            w.inv8,
+            w.inv_slice,
+        );
     }
     let wrap8 = sphere::equal_area_wrap_x8(p8);
     let mut wrapped = [[9.0f32; 2]; 8];

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{ONE_MINUS_EPS, chi2, lane, rng, same_bits, soa, specials, unit, unit2};
+use common::{ONE_MINUS_EPS, chi2, lane, rng, same_bits, specials, unit, unit2};
 use proptest::prelude::*;
 use rand::RngExt;
 use warpcore::triangle;
@@ -148,22 +148,8 @@ fn check_widths(pts: &[[f32; 2]; 8], bary: &[[f32; 3]; 8]) {
             triangle::sqrt_map_slice,
         ),
     ];
-    let x8 = soa(pts);
     for (name, scalar, wide8, slice) in forward {
-        let v = wide8(x8);
-        for n in [8usize, 5, 1] {
-            let mut out = [[9.0f32; 3]; 8];
-            assert_eq!(slice(&pts[..n], &mut out), n);
-            for j in 0..n {
-                let s = scalar(pts[j]);
-                assert!(same_bits(s, lane(v, j)), "{name} x8 lane {j}: {:?}", pts[j]);
-                assert!(
-                    same_bits(s, out[j]),
-                    "{name} slice[{j}] of {n}: {:?}",
-                    pts[j]
-                );
-            }
-        }
+        common::check_widths(name, pts, scalar, wide8, slice);
     }
     type G = fn([f32; 3]) -> [f32; 2];
     type G8 = fn([f32x8; 3]) -> [f32x8; 2];
@@ -182,26 +168,8 @@ fn check_widths(pts: &[[f32; 2]; 8], bary: &[[f32; 3]; 8]) {
             triangle::sqrt_map_inverse_slice,
         ),
     ];
-    let b8 = soa(bary);
     for (name, scalar, wide8, slice) in inverse {
-        let v = wide8(b8);
-        for n in [8usize, 3] {
-            let mut out = [[9.0f32; 2]; 8];
-            assert_eq!(slice(&bary[..n], &mut out), n);
-            for j in 0..n {
-                let s = scalar(bary[j]);
-                assert!(
-                    same_bits(s, lane(v, j)),
-                    "{name} x8 lane {j}: {:?}",
-                    bary[j]
-                );
-                assert!(
-                    same_bits(s, out[j]),
-                    "{name} slice[{j}] of {n}: {:?}",
-                    bary[j]
-                );
-            }
-        }
+        common::check_widths(name, bary, scalar, wide8, slice);
     }
 }
 

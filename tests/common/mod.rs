@@ -71,3 +71,24 @@ pub fn lane<const N: usize>(v: [warpcore::f32x8; N], j: usize) -> [f32; N] {
 pub fn soa<const N: usize>(points: &[[f32; N]; 8]) -> [warpcore::f32x8; N] {
     std::array::from_fn(|k| warpcore::f32x8::new(std::array::from_fn(|j| points[j][k])))
 }
+
+/// Scalar == x8 == slice, bit for bit, on eight points: the `_x8` form on all eight lanes,
+/// and the slice form on the full group and on padded tails of 5 and 1 elements.
+pub fn check_widths<const I: usize, const O: usize>(
+    name: &str,
+    pts: &[[f32; I]; 8],
+    scalar: impl Fn([f32; I]) -> [f32; O],
+    x8: impl Fn([warpcore::f32x8; I]) -> [warpcore::f32x8; O],
+    slice: impl Fn(&[[f32; I]], &mut [[f32; O]]) -> usize,
+) {
+    let v = x8(soa(pts));
+    for n in [8usize, 5, 1] {
+        let mut out = [[9.0f32; O]; 8];
+        assert_eq!(slice(&pts[..n], &mut out), n, "{name}: slice count");
+        for (j, (p, o)) in pts.iter().zip(&out).take(n).enumerate() {
+            let s = scalar(*p);
+            assert!(same_bits(s, lane(v, j)), "{name} x8 lane {j}: {p:?}");
+            assert!(same_bits(s, *o), "{name} slice[{j}] of {n}: {p:?}");
+        }
+    }
+}

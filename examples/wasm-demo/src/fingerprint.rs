@@ -304,5 +304,56 @@ pub fn fingerprint() -> u64 {
             }
         }
     }
+    #[cfg(feature = "envmap")]
+    {
+        use warpcore::envmap::{Hierarchical, MarginalConditional, Sample};
+        // A 13 x 7 map with zeros, a negative texel, a NaN and a 10^6:1 bright texel.
+        let weights: [f32; 91] = core::array::from_fn(|k| match k {
+            3 | 40 | 41 => 0.0,
+            17 => -2.0,
+            60 => f32::NAN,
+            77 => 1.0e6,
+            _ => unit(k as u32) + 0.01,
+        });
+        let hash_sample = |h: &mut Hasher, s: Sample, pdf_at: f32| {
+            h.floats(&[s.uv[0], s.uv[1], s.pdf, pdf_at]);
+            h.word(s.texel[0]);
+            h.word(s.texel[1]);
+        };
+        let mut storage = [0u32; 4096];
+        let len = MarginalConditional::storage_len(13, 7).min(storage.len());
+        if let Ok(m) =
+            MarginalConditional::new(&weights, 13, 7, storage.get_mut(..len).unwrap_or(&mut []))
+        {
+            for i in 0..N {
+                let s = m.sample(input(i));
+                hash_sample(&mut h, s, m.pdf(s.uv));
+            }
+            for g in (0..N / 8).map(|g| g * 8) {
+                let v: [f32x8; 2] = core::array::from_fn(|d| {
+                    f32x8::new(core::array::from_fn(|j| input::<2>(g + j)[d]))
+                });
+                for s in m.sample_x8(v).to_array() {
+                    hash_sample(&mut h, s, m.pdf(s.uv));
+                }
+            }
+        }
+        let len = Hierarchical::storage_len(13, 7).min(storage.len());
+        if let Ok(t) = Hierarchical::new(&weights, 13, 7, storage.get_mut(..len).unwrap_or(&mut []))
+        {
+            for i in 0..N {
+                let s = t.sample(input(i));
+                hash_sample(&mut h, s, t.pdf(s.uv));
+            }
+            for g in (0..N / 8).map(|g| g * 8) {
+                let v: [f32x8; 2] = core::array::from_fn(|d| {
+                    f32x8::new(core::array::from_fn(|j| input::<2>(g + j)[d]))
+                });
+                for s in t.sample_x8(v).to_array() {
+                    hash_sample(&mut h, s, t.pdf(s.uv));
+                }
+            }
+        }
+    }
     h.finish()
 }
