@@ -98,17 +98,47 @@ pub(crate) fn store<const O: usize>(v: [f32x8; O]) -> [[f32; O]; 8] {
     bytemuck::cast(rows)
 }
 
-/// A vector whose lane `l` is lane `pick(l).1` of `src[pick(l).0]`. With `pick` constant after
-/// inlining, this folds into one or two permute instructions per source.
+/// A vector whose lane `l` is lane `pick(l).1` of `src[pick(l).0]`, for a `pick` that is
+/// constant after inlining.
+///
+/// Where `wide` has a permute instruction for `u32x8::shuffle` (AVX2, SSSE3, wasm `simd128`,
+/// NEON), one shuffle per source and a select; LLVM folds them (two `vpermt2d` with AVX-512).
+/// Elsewhere (baseline SSE2, thumbv7em, wasm without `simd128`) that shuffle is a per-lane
+/// loop with bounds checks, 20x slower for 3-component slices, so plain lane picks instead,
+/// which LLVM turns into `shufps`/`pshufd` (on AVX-512 the same picks go through memory and
+/// are 3-4x slower than the shuffles: hence the split). Both give the same bits.
 #[inline(always)]
 fn permute<const S: usize>(src: &[u32x8; S], pick: impl Fn(usize) -> (usize, usize)) -> u32x8 {
-    let mut acc = u32x8::ZERO;
-    for (s, v) in src.iter().enumerate() {
-        let index = u32x8::new(core::array::from_fn(|l| pick(l).1 as u32));
-        let take = u32x8::new(core::array::from_fn(|l| {
-            if pick(l).0 == s { u32::MAX } else { 0 }
-        }));
-        acc = take.select(v.shuffle(index), acc);
+    #[cfg(any(
+        target_feature = "avx2",
+        target_feature = "ssse3",
+        target_feature = "simd128",
+        all(target_arch = "aarch64", target_feature = "neon")
+    ))]
+    {
+        let mut acc = u32x8::ZERO;
+        for (s, v) in src.iter().enumerate() {
+            let index = u32x8::new(core::array::from_fn(|l| pick(l).1 as u32));
+            let take = u32x8::new(core::array::from_fn(|l| {
+                if pick(l).0 == s { u32::MAX } else { 0 }
+            }));
+            acc = take.select(v.shuffle(index), acc);
+        }
+        acc
     }
-    acc
+    #[cfg(not(any(
+        target_feature = "avx2",
+        target_feature = "ssse3",
+        target_feature = "simd128",
+        all(target_arch = "aarch64", target_feature = "neon")
+    )))]
+    {
+        let lanes: [[u32; 8]; S] = src.map(|v| v.to_array());
+        let mut out = [0u32; 8];
+        for (l, o) in out.iter_mut().enumerate() {
+            let (s, i) = pick(l);
+            *o = lanes[s][i];
+        }
+        u32x8::new(out)
+    }
 }
