@@ -72,15 +72,21 @@ pub(crate) fn fill_indexed<const O: usize>(
 /// scalar loads and inserts, which made the slice forms slower than a plain scalar loop.)
 #[inline(always)]
 pub(crate) fn load<const I: usize>(group: &[[f32; I]; 8]) -> [f32x8; I] {
-    let rows: &[[u32; 8]; I] = bytemuck::cast_ref(group);
+    deinterleave(bytemuck::cast_ref(group)).map(bytemuck::cast)
+}
+
+/// `8 I` consecutive 32-bit words holding eight `I`-component elements, as one vector per
+/// component (the integer core of [`load`]; also the pmj02bn slice's table reads).
+#[inline(always)]
+pub(crate) fn deinterleave<const I: usize>(rows: &[[u32; 8]; I]) -> [u32x8; I] {
     // Plain loops rather than `core::array::from_fn`: with three components LLVM left the
     // `from_fn` closure out of line, and the round trip through the stack (narrow stores read
     // back as one wide load) made 3-component slices 6-10x slower than the `_x8` form.
     let src: [u32x8; I] = rows.map(u32x8::new);
     // Component k of element j sits at flat position j I + k.
-    let mut out = [f32x8::ZERO; I];
+    let mut out = [u32x8::ZERO; I];
     for (k, o) in out.iter_mut().enumerate() {
-        *o = bytemuck::cast(permute(&src, |j| ((j * I + k) / 8, (j * I + k) % 8)));
+        *o = permute(&src, |j| ((j * I + k) / 8, (j * I + k) % 8));
     }
     out
 }

@@ -196,6 +196,31 @@ fn keys<U: UintLane>(seed: U, block: U) -> Keys<U> {
     }
 }
 
+/// Owen scrambles under `keys` and the truncating conversion of table coordinates.
+#[inline(always)]
+fn finish<L: Lane>(x: L::U, y: L::U, keys: Keys<L::U>) -> [L; 2] {
+    [
+        to_unit(owen_scramble(x, keys.x)),
+        to_unit(owen_scramble(y, keys.y)),
+    ]
+}
+
+/// Eight consecutive points `r .. r + 8` of a set as two coordinate vectors: 64 contiguous
+/// bytes read as whole words and deinterleaved, instead of an eight-lane gather. `None` when
+/// the eight do not fit in the set (the caller falls back to the gather).
+#[inline(always)]
+fn eight_points(view: &[[u8; 8]; POINTS], r: usize) -> Option<[u32x8; 2]> {
+    let group: &[[u8; 8]; 8] = view.get(r..r.wrapping_add(8))?.try_into().ok()?;
+    let bytes: &[[u8; 32]; 2] = bytemuck::cast_ref(group);
+    let mut rows = [[0u32; 8]; 2];
+    for (row, b) in rows.iter_mut().zip(bytes) {
+        for (w, c) in row.iter_mut().zip(b.as_chunks::<4>().0) {
+            *w = u32::from_le_bytes(*c);
+        }
+    }
+    Some(batch::deinterleave(&rows))
+}
+
 /// Table point `r < POINTS` under `keys`: lane-wise lookup, Owen scrambles, conversion.
 #[inline(always)]
 fn point<L: Lane>(r: L::U, keys: Keys<L::U>) -> [L; 2] {
@@ -204,10 +229,7 @@ fn point<L: Lane>(r: L::U, keys: Keys<L::U>) -> [L; 2] {
         let i = i as usize;
         decode(view(i >> LOG2_POINTS), i)
     });
-    [
-        to_unit(owen_scramble(x, keys.x)),
-        to_unit(owen_scramble(y, keys.y)),
-    ]
+    finish(x, y, keys)
 }
 
 #[inline(always)]
@@ -247,7 +269,24 @@ pub fn sample_slice(start: u32, seed: u32, out: &mut [[f32; 2]]) -> usize {
         let in_block = POINTS - (index as usize & (POINTS - 1));
         let (run, tail) = rest.split_at_mut(in_block.min(rest.len()));
         let k = keys(u32x8::splat(seed), u32x8::splat(index >> LOG2_POINTS));
-        batch::fill_indexed(index, run, |i| {
+        // Groups of eight consecutive points read the table as whole vectors; a group that
+        // would cross the set's end (and the last 1-7 points) take the gather path.
+        let set = view(k.set.to_array()[0] as usize >> LOG2_POINTS);
+        let r0 = index as usize & (POINTS - 1);
+        let (groups, _) = run.as_chunks_mut::<8>();
+        let whole = groups.len() * 8;
+        for (g, dst) in groups.iter_mut().enumerate() {
+            *dst = batch::store(match eight_points(set, r0 + 8 * g) {
+                Some([x, y]) => finish(x, y, k),
+                None => point(
+                    (u32x8::splat((r0 + 8 * g) as u32) + u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]))
+                        & u32x8::splat(POINTS as u32 - 1),
+                    k,
+                ),
+            });
+        }
+        let tail_start = index.wrapping_add(whole as u32);
+        batch::fill_indexed(tail_start, run.get_mut(whole..).unwrap_or(&mut []), |i| {
             point(i & u32x8::splat(POINTS as u32 - 1), k)
         });
         index = index.wrapping_add(run.len() as u32);
