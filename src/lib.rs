@@ -2,8 +2,9 @@
 //!
 //! Sample warps for renderers: turn points of the unit square (or sample indices) into
 //! well-distributed points on the domains a renderer integrates over — the disk, the triangle,
-//! the sphere — with scalar, 8-wide SIMD ([`f32x8`]) and slice entry points that give
-//! **bit-identical** results.
+//! the sphere, an environment map — with scalar, 8-wide SIMD ([`f32x8`]) and slice entry
+//! points that give **bit-identical** results; plus the points themselves: Owen-scrambled
+//! pmj02bn from embedded tables, and random and stratified baselines.
 //!
 //! `#![no_std]`, no allocation, `#![forbid(unsafe_code)]`; depends only on `libm`, `wide` and
 //! `bytemuck`. Each warp family is a Cargo feature, so a scene links only what it samples.
@@ -27,8 +28,10 @@
 //!   operations (add, mul, div, sqrt), compares and bit operations: no fused multiply-add, no
 //!   approximate reciprocals, no libm transcendentals (our own polynomials instead), no
 //!   `min`/`max` (their NaN and signed-zero rules differ between instruction sets). The same
-//!   input therefore gives the same bits on x86 (SSE2, AVX2, AVX-512), aarch64, wasm (with or
-//!   without `simd128`) and thumbv7em.
+//!   input therefore gives the same bits on every target: CI checks a fingerprint of every
+//!   warp's output bits on x86-64 (baseline SSE2 and `-C target-cpu=native`, AVX-512 there)
+//!   and on wasm with and without `simd128`; aarch64 and thumbv7em use the same operations but
+//!   are built, not run, in CI.
 //! * **Totality.** Every function accepts any `f32` — NaN, infinities, negatives, values
 //!   `>= 1`, subnormals — and returns finite values inside the closed target domain; nothing
 //!   panics. Forward warps first map each coordinate onto `[0, 1 - 2^-24]`: NaN, `-0.0`,
