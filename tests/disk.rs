@@ -200,18 +200,9 @@ fn widths_agree_on_special_values() {
 fn slices_of_any_length() {
     let mut r = rng(7);
     let input: Vec<[f32; 2]> = (0..40).map(|_| unit2(&mut r)).collect();
+    common::check_slice_lengths(&input, disk::concentric, disk::concentric_slice);
     for n in 0..=40usize {
         for m in [n, n + 3, n.saturating_sub(5)] {
-            let mut out = vec![[7.0f32; 2]; m];
-            let written = disk::concentric_slice(&input[..n], &mut out);
-            assert_eq!(written, n.min(m));
-            for j in 0..m {
-                if j < written {
-                    assert!(same_bits(out[j], disk::concentric(input[j])));
-                } else {
-                    assert_eq!(out[j], [7.0, 7.0], "untouched beyond the common length");
-                }
-            }
             let mut out4 = vec![[7.0f32; 2]; m];
             let w4 = disk::polar4_slice(&input[..n / 4], &mut out4);
             assert_eq!(w4, m.min(4 * (n / 4)));

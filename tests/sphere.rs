@@ -416,30 +416,12 @@ fn slices_of_any_length() {
     let mut r = rng(7);
     let input: Vec<[f32; 2]> = (0..20).map(|_| unit2(&mut r)).collect();
     let dirs: Vec<[f32; 3]> = (0..20).map(|_| random_direction(&mut r)).collect();
-    for n in 0..=20usize {
-        for m in [n, n + 3, n.saturating_sub(5)] {
-            let mut out = vec![[7.0f32; 3]; m];
-            let written = sphere::equal_area_slice(&input[..n], &mut out);
-            assert_eq!(written, n.min(m));
-            for j in 0..m {
-                if j < written {
-                    assert!(same_bits(out[j], sphere::equal_area(input[j])));
-                } else {
-                    assert_eq!(out[j], [7.0; 3], "untouched beyond the common length");
-                }
-            }
-            let mut back = vec![[7.0f32; 2]; m];
-            let written = sphere::equal_area_inverse_slice(&dirs[..n], &mut back);
-            assert_eq!(written, n.min(m));
-            for j in 0..m {
-                if j < written {
-                    assert!(same_bits(back[j], sphere::equal_area_inverse(dirs[j])));
-                } else {
-                    assert_eq!(back[j], [7.0; 2]);
-                }
-            }
-        }
-    }
+    common::check_slice_lengths(&input, sphere::equal_area, sphere::equal_area_slice);
+    common::check_slice_lengths(
+        &dirs,
+        sphere::equal_area_inverse,
+        sphere::equal_area_inverse_slice,
+    );
 }
 
 // ----------------------------------------------------------------------------------------

@@ -259,33 +259,20 @@ fn slices_of_any_length() {
     let mut r = rng(7);
     let input: Vec<[f32; 2]> = (0..40).map(|_| unit2(&mut r)).collect();
     let bary: Vec<[f32; 3]> = input.iter().map(|&u| triangle::uniform(u)).collect();
+    common::check_slice_lengths(&input, triangle::uniform, triangle::uniform_slice);
+    common::check_slice_lengths(
+        &bary,
+        triangle::sqrt_map_inverse,
+        triangle::sqrt_map_inverse_slice,
+    );
+    // Index-driven: fills the whole output, wrapping past u32::MAX.
     for n in 0..=40usize {
-        for m in [n, n + 3, n.saturating_sub(5)] {
-            let mut out = vec![[7.0f32; 3]; m];
-            let written = triangle::uniform_slice(&input[..n], &mut out);
-            assert_eq!(written, n.min(m));
-            for j in 0..m {
-                if j < written {
-                    assert!(same_bits(out[j], triangle::uniform(input[j])));
-                } else {
-                    assert_eq!(out[j], [7.0; 3], "untouched beyond the common length");
-                }
-            }
-            let mut back = vec![[7.0f32; 2]; m];
-            let written = triangle::sqrt_map_inverse_slice(&bary[..n], &mut back);
-            assert_eq!(written, n.min(m));
-            for j in 0..written {
-                assert!(same_bits(back[j], triangle::sqrt_map_inverse(bary[j])));
-            }
-            assert!(back[written..].iter().all(|p| *p == [7.0, 7.0]));
-            // Index-driven: fills the whole output, wrapping past u32::MAX.
-            let mut pts = vec![[7.0f32; 3]; n];
-            let start = u32::MAX - 20;
-            assert_eq!(triangle::basu_owen_slice(start, 99, &mut pts), n);
-            for j in 0..n {
-                let want = triangle::basu_owen(start.wrapping_add(j as u32), 99);
-                assert!(same_bits(pts[j], want), "{j}");
-            }
+        let mut pts = vec![[7.0f32; 3]; n];
+        let start = u32::MAX - 20;
+        assert_eq!(triangle::basu_owen_slice(start, 99, &mut pts), n);
+        for j in 0..n {
+            let want = triangle::basu_owen(start.wrapping_add(j as u32), 99);
+            assert!(same_bits(pts[j], want), "{j}");
         }
     }
     assert_eq!(triangle::uniform_slice(&[], &mut []), 0);

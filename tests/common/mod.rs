@@ -92,3 +92,27 @@ pub fn check_widths<const I: usize, const O: usize>(
         }
     }
 }
+
+/// The slice length rule on every input length `0..=input.len()` and output lengths equal,
+/// longer and shorter: writes `min(n, m)` elements equal to the scalar form, returns that
+/// count, and leaves the rest of the output untouched.
+pub fn check_slice_lengths<const I: usize, const O: usize>(
+    input: &[[f32; I]],
+    scalar: impl Fn([f32; I]) -> [f32; O],
+    slice: impl Fn(&[[f32; I]], &mut [[f32; O]]) -> usize,
+) {
+    for n in 0..=input.len() {
+        for m in [n, n + 3, n.saturating_sub(5)] {
+            let mut out = vec![[7.0f32; O]; m];
+            let written = slice(&input[..n], &mut out);
+            assert_eq!(written, n.min(m), "count for {n} inputs, {m} outputs");
+            for (j, o) in out.iter().enumerate() {
+                if j < written {
+                    assert!(same_bits(*o, scalar(input[j])), "element {j} of {n}/{m}");
+                } else {
+                    assert_eq!(*o, [7.0; O], "untouched beyond the common length");
+                }
+            }
+        }
+    }
+}
