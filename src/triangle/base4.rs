@@ -21,7 +21,7 @@ fn delta_swap<U: UintLane>(x: U, mask: u32, shift: u32) -> U {
 /// Reverses the order of the 16 digits: digit `j` moves to digit `15 - j`, its two bits kept
 /// in order.
 #[inline(always)]
-pub(super) fn reverse_digits<U: UintLane>(x: U) -> U {
+fn reverse_digits<U: UintLane>(x: U) -> U {
     let x = x.shr(16) | x.shl(16);
     let x = delta_swap(x, 0x00ff_00ff, 8);
     let x = delta_swap(x, 0x0f0f_0f0f, 4);
@@ -31,7 +31,7 @@ pub(super) fn reverse_digits<U: UintLane>(x: U) -> U {
 /// Separates even and odd bits: bit `2k` moves to bit `k` and bit `2k + 1` to bit `16 + k`
 /// (the inverse perfect shuffle; Warren, "Hacker's Delight", section 7-2).
 #[inline(always)]
-pub(super) fn unzip<U: UintLane>(x: U) -> U {
+fn unzip<U: UintLane>(x: U) -> U {
     let x = delta_swap(x, 0x2222_2222, 1);
     let x = delta_swap(x, 0x0c0c_0c0c, 2);
     let x = delta_swap(x, 0x00f0_00f0, 4);
@@ -103,6 +103,107 @@ pub(super) fn nested_scramble<U: UintLane>(index: U, seed: U) -> U {
     let x = x ^ (x * U::splat(0x6a09_e666));
     let x = x ^ (x * U::splat(0xbb67_ae84));
     U::select(seed.simd_eq(U::splat(0)), index, x)
+}
+
+/// The low 16 bits: one bit per digit in the "fields" layout of [`fields`].
+const LOW16: u32 = 0x0000_ffff;
+
+/// The index's digits as two 16-bit fields, most significant digit first: bit `15 - j` holds
+/// the low bit of digit `j` and bit `31 - j` its high bit. The walk consumes this layout, and
+/// [`LevelKeys`] permute digits in it.
+#[inline(always)]
+pub(super) fn fields<U: UintLane>(index: U) -> U {
+    unzip(reverse_digits(index))
+}
+
+/// One permutation of `{0, 1, 2, 3}` per level of the subdivision, shared by every node of
+/// that level, as masks over the [`fields`] layout: digit `d` at level `j` becomes
+/// `sigma_j(d) = L_j d + k_j` over GF(2)^2 (`d` read as the bit vector `(low, high)`).
+///
+/// Every permutation of four points is such an affine map (`AGL(2, 2)` has 24 elements and
+/// acts faithfully), so a per-level `(L_j, k_j)` is exactly a per-level `sigma_j`. Applied to
+/// the fields `f` (low bits in the low half, high bits in the high half):
+/// `f' = (f & a) ^ (swap_halves(f) & b) ^ k`, six word operations for all 16 digits.
+#[derive(Clone, Copy)]
+pub(super) struct LevelKeys<U> {
+    /// `L_j[0][0]` at bit `15 - j`, `L_j[1][1]` at bit `31 - j`.
+    a: U,
+    /// `L_j[0][1]` at bit `15 - j`, `L_j[1][0]` at bit `31 - j`.
+    b: U,
+    /// `k_j`, its low bit at `15 - j`, its high bit at `31 - j`.
+    k: U,
+}
+
+impl<U: UintLane> LevelKeys<U> {
+    /// The same keys in every lane (the slice forms derive them once per call).
+    #[inline(always)]
+    pub(super) fn splat(keys: LevelKeys<core::num::Wrapping<u32>>) -> Self {
+        LevelKeys {
+            a: U::splat(keys.a.0),
+            b: U::splat(keys.b.0),
+            k: U::splat(keys.k.0),
+        }
+    }
+
+    /// Draws `sigma_0 .. sigma_15` from `seed`; `seed = 0` gives the identity at every level.
+    ///
+    /// `sigma_j = (S^s_j R^m_j, k_j)`: the translation `k_j` is two hash bits, `s_j` one
+    /// more, and `m_j` in `{0, 1, 2}` is base-3 digit `j mod 8` of a hash word read as a
+    /// fraction of `2^32` (levels 0-7 from one word, 8-15 from another). `R` is
+    /// multiplication by `omega` in GF(4) (`(low, high) -> (high, low ^ high)`), `S` swaps the
+    /// two bits; `{S^s R^m}` is all six invertible 2x2 bit matrices, so `sigma_j` ranges over
+    /// all 24 permutations. `k_j` is exactly uniform, which alone makes every point exactly
+    /// uniform at the construction's resolution (a uniform translation after any linear map
+    /// is uniform); `m_j` is uniform up to a relative bias of `3^8 / 2^32 = 1.5e-6`, which
+    /// only touches the joint law of two points.
+    #[inline(always)]
+    pub(super) fn new(seed: U) -> Self {
+        let k = mix(seed ^ U::splat(0x68e3_1da4));
+        let s = mix(seed ^ U::splat(0xb5b8_4f2b)) & U::splat(LOW16);
+        // Two words of base-3 digits, consumed eight levels each (in parallel).
+        let three = U::splat(3);
+        let mut t = [
+            mix(seed ^ U::splat(0x3c6e_f372)),
+            mix(seed ^ U::splat(0xa54f_f53a)),
+        ];
+        let (mut m1, mut m2) = (U::splat(0), U::splat(0));
+        for step in 0..8 {
+            for (half, word) in t.iter_mut().enumerate() {
+                let m = word.mul_high(three); // floor(3 t / 2^32), in {0, 1, 2}
+                *word = *word * three;
+                let bit = 15 - (8 * half as u32 + step);
+                m1 = m1 | (m & U::splat(1)).shl(bit);
+                m2 = m2 | m.shr(1).shl(bit);
+            }
+        }
+        // R^m as rows (new low, new high) over (low, high):
+        //   m = 0: [1 0; 0 1],  m = 1: [0 1; 1 1],  m = 2: [1 1; 1 0].
+        let l00 = !m1 & U::splat(LOW16);
+        let l01 = m1 | m2;
+        let l10 = m1 | m2;
+        let l11 = !m2 & U::splat(LOW16);
+        // S swaps the rows where s is set.
+        let pick = |keep: U, swap: U| (keep & !s) | (swap & s);
+        let (n00, n01, n10, n11) = (
+            pick(l00, l10),
+            pick(l01, l11),
+            pick(l10, l00),
+            pick(l11, l01),
+        );
+        let zero = seed.simd_eq(U::splat(0));
+        LevelKeys {
+            a: U::select(zero, U::splat(u32::MAX), n00 | n11.shl(16)),
+            b: U::select(zero, U::splat(0), n01 | n10.shl(16)),
+            k: U::select(zero, U::splat(0), k),
+        }
+    }
+
+    /// `sigma_j` applied to every digit `j` of `fields` (the [`fields`] layout in and out).
+    #[inline(always)]
+    pub(super) fn permute(&self, fields: U) -> U {
+        let swapped = fields.shr(16) | fields.shl(16);
+        (fields & self.a) ^ (swapped & self.b) ^ self.k
+    }
 }
 
 #[cfg(test)]
