@@ -1,11 +1,15 @@
-//! Disk warps: the unit square onto the unit disk, uniformly (all three are area-preserving,
+//! Disk warps: the unit square onto the unit disk, uniformly (all four are area-preserving,
 //! so the density of the result is [`PDF`] `= 1/pi` with respect to area).
 //!
 //! | warp | maps | keeps | source |
 //! |---|---|---|---|
 //! | [`polar`] | `r = sqrt(u0)`, `theta = 2 pi u1` | nothing compact: strata become thin rings near the rim | textbook; pbrt-v4 `SampleUniformDiskPolar` |
 //! | [`concentric`] | squares to rings, wedge by wedge | 4x4 strata stay compact | Shirley and Chiu 1997, "A Low Distortion Map Between Disk and Square" |
-//! | [`polar4`] | one 2D point to four quadrants | the point's strata, four times | Christensen 2018, "Progressive Sampling Strategies for Disk Light Sources" (Pixar TM 18-02) |
+//! | [`polar4`] | one 2D point to four quadrants: `r = sqrt(u0)`, `theta = (pi/2)(u1 + quadrant)` | the point's strata, four times | Christensen 2018, "Progressive Sampling Strategies for Disk Light Sources" (Pixar TM 18-02) |
+//! | [`concentric4`] | one 2D point to four quadrants: Shirley-Chiu on the quarter disk, turned | compact strata, four times | the same memo |
+//!
+//! The two quadrant warps use sample `i` with point `i / 4` of a 2D sequence and quadrant
+//! `i % 4`; their `_indexed` and `_slice` forms do that bookkeeping.
 //!
 //! `u[0]` drives the radius and `u[1]` the angle (counter-clockwise from `+x`).
 //!
