@@ -1,31 +1,91 @@
-//! Slice forms: run an 8-wide warp over an array-of-structs batch of any length.
+//! Slice forms: run a SIMD warp body over an array-of-structs batch of any length.
 //!
-//! Full groups of 8 are transposed into SIMD lanes, warped and transposed back; the last
-//! `len % 8` elements are padded with zeros (a valid input) and run through the same 8-wide
-//! body, so every element of a slice gets exactly the bits the scalar form gives (the lanes of
-//! one body never interact). There is no indexing that can panic: lengths are reconciled with
-//! `get`, and groups come from `as_chunks`.
+//! Full groups of `N` elements (`N` = 8 or 16, see [`Widest`]) are transposed into SIMD
+//! lanes, warped and transposed back; the last `len % N` elements are padded with zeros (a
+//! valid input) and run through the same body, so every element of a slice gets exactly the
+//! bits the scalar form gives (the lanes of one body never interact). There is no indexing
+//! that can panic: lengths are reconciled with `get`, and groups come from `as_chunks`.
 
-use wide::{f32x8, u32x8};
+use crate::lanes::{Lane, UintLane};
+use wide::{f32x8, f32x16, u32x8, u32x16};
+
+/// The lane type the slice forms run: [`f32x16`] when the build has AVX-512F (`-C
+/// target-cpu=native` on such a CPU, or `-C target-feature=+avx512f`), [`f32x8`] otherwise
+/// (where `wide` would emulate the 16 lanes as two 8-lane halves, which gains nothing). A
+/// compile-time choice: no runtime detection, no `unsafe`. Both widths give the same bits.
+#[cfg(target_feature = "avx512f")]
+pub(crate) type Widest = f32x16;
+/// The lane type the slice forms run (see the AVX-512F variant).
+#[cfg(not(target_feature = "avx512f"))]
+pub(crate) type Widest = f32x8;
+
+/// A SIMD [`Lane`] of `N` lanes as the slice machinery sees it: its integer lanes as arrays,
+/// and a lane permute.
+pub(crate) trait Vector<const N: usize>: Lane {
+    fn words(w: [u32; N]) -> Self::U;
+    fn to_words(v: Self::U) -> [u32; N];
+    /// Lane `l` of the result is lane `index[l] % N` of `v` (used where `wide`'s shuffle is an
+    /// instruction, see [`permute`]).
+    #[cfg_attr(
+        not(any(
+            target_feature = "avx2",
+            target_feature = "ssse3",
+            target_feature = "simd128",
+            all(target_arch = "aarch64", target_feature = "neon")
+        )),
+        allow(dead_code)
+    )]
+    fn shuffle(v: Self::U, index: Self::U) -> Self::U;
+}
+
+impl Vector<8> for f32x8 {
+    #[inline(always)]
+    fn words(w: [u32; 8]) -> u32x8 {
+        u32x8::new(w)
+    }
+    #[inline(always)]
+    fn to_words(v: u32x8) -> [u32; 8] {
+        v.to_array()
+    }
+    #[inline(always)]
+    fn shuffle(v: u32x8, index: u32x8) -> u32x8 {
+        v.shuffle(index)
+    }
+}
+
+impl Vector<16> for f32x16 {
+    #[inline(always)]
+    fn words(w: [u32; 16]) -> u32x16 {
+        u32x16::new(w)
+    }
+    #[inline(always)]
+    fn to_words(v: u32x16) -> [u32; 16] {
+        v.to_array()
+    }
+    #[inline(always)]
+    fn shuffle(v: u32x16, index: u32x16) -> u32x16 {
+        v.shuffle(index)
+    }
+}
 
 /// Applies `f` to `input[i]`, writing `output[i]`, for `i < min(input.len(), output.len())`;
 /// returns that count. Extra elements of the longer slice are not read or written.
 #[inline(always)]
-pub(crate) fn map<const I: usize, const O: usize>(
+pub(crate) fn map_lanes<L: Vector<N>, const N: usize, const I: usize, const O: usize>(
     input: &[[f32; I]],
     output: &mut [[f32; O]],
-    f: impl Fn([f32x8; I]) -> [f32x8; O],
+    f: impl Fn([L; I]) -> [L; O],
 ) -> usize {
     let n = input.len().min(output.len());
     let input = input.get(..n).unwrap_or(&[]);
     let output = output.get_mut(..n).unwrap_or(&mut []);
-    let (in_groups, in_rest) = input.as_chunks::<8>();
-    let (out_groups, out_rest) = output.as_chunks_mut::<8>();
+    let (in_groups, in_rest) = input.as_chunks::<N>();
+    let (out_groups, out_rest) = output.as_chunks_mut::<N>();
     for (src, dst) in in_groups.iter().zip(out_groups) {
         *dst = store(f(load(src)));
     }
     if !in_rest.is_empty() {
-        let mut pad = [[0.0f32; I]; 8];
+        let mut pad = [[0.0f32; I]; N];
         for (p, s) in pad.iter_mut().zip(in_rest) {
             *p = *s;
         }
@@ -37,24 +97,33 @@ pub(crate) fn map<const I: usize, const O: usize>(
     n
 }
 
-/// Fills `output[i]` with `f` at the index `start + i` (wrapping), eight indices at a time;
+/// [`map_lanes`] with an 8-wide body (the environment-map slices).
+#[inline(always)]
+pub(crate) fn map<const I: usize, const O: usize>(
+    input: &[[f32; I]],
+    output: &mut [[f32; O]],
+    f: impl Fn([f32x8; I]) -> [f32x8; O],
+) -> usize {
+    map_lanes(input, output, f)
+}
+
+/// Fills `output[i]` with `f` at the index `start + i` (wrapping), `N` indices at a time;
 /// for the index-driven sequences and constructions. Returns `output.len()`.
 #[cfg_attr(
     not(any(feature = "triangle", feature = "pmj02bn", feature = "sequence")),
     allow(dead_code)
 )]
 #[inline(always)]
-pub(crate) fn fill_indexed<const O: usize>(
+pub(crate) fn fill_indexed<L: Vector<N>, const N: usize, const O: usize>(
     start: u32,
     output: &mut [[f32; O]],
-    f: impl Fn(u32x8) -> [f32x8; O],
+    f: impl Fn(L::U) -> [L; O],
 ) -> usize {
-    let lane = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
-    let mut index = u32x8::splat(start) + lane;
-    let (groups, rest) = output.as_chunks_mut::<8>();
+    let mut index = <L::U as UintLane>::splat(start) + lane_numbers::<L, N>();
+    let (groups, rest) = output.as_chunks_mut::<N>();
     for dst in groups {
         *dst = store(f(index));
-        index += u32x8::splat(8);
+        index = index + <L::U as UintLane>::splat(N as u32);
     }
     if !rest.is_empty() {
         let res = store(f(index));
@@ -65,41 +134,54 @@ pub(crate) fn fill_indexed<const O: usize>(
     output.len()
 }
 
-/// Eight array-of-structs elements into one SIMD vector per component.
-///
-/// The group is `8 I` consecutive floats: read them as `I` whole vectors and deinterleave with
-/// constant lane permutes. (Gathering element by element, `group[j][k]`, compiles to `8 I`
-/// scalar loads and inserts, which made the slice forms slower than a plain scalar loop.)
+/// `[0, 1, .., N - 1]`.
 #[inline(always)]
-pub(crate) fn load<const I: usize>(group: &[[f32; I]; 8]) -> [f32x8; I] {
-    deinterleave(bytemuck::cast_ref(group)).map(bytemuck::cast)
+pub(crate) fn lane_numbers<L: Vector<N>, const N: usize>() -> L::U {
+    L::words(core::array::from_fn(|l| l as u32))
 }
 
-/// `8 I` consecutive 32-bit words holding eight `I`-component elements, as one vector per
+/// `N` array-of-structs elements into one SIMD vector per component.
+///
+/// The group is `N I` consecutive floats: read them as `I` whole vectors and deinterleave with
+/// constant lane permutes. (Gathering element by element, `group[j][k]`, compiles to `N I`
+/// scalar loads and inserts, which made the slice forms slower than a plain scalar loop.)
+#[inline(always)]
+pub(crate) fn load<L: Vector<N>, const N: usize, const I: usize>(group: &[[f32; I]; N]) -> [L; I] {
+    deinterleave::<L, N, I>(bytemuck::cast_ref(group)).map(L::from_bits)
+}
+
+/// `N I` consecutive 32-bit words holding `N` `I`-component elements, as one vector per
 /// component (the integer core of [`load`]; also the pmj02bn slice's table reads).
 #[inline(always)]
-pub(crate) fn deinterleave<const I: usize>(rows: &[[u32; 8]; I]) -> [u32x8; I] {
+pub(crate) fn deinterleave<L: Vector<N>, const N: usize, const I: usize>(
+    rows: &[[u32; N]; I],
+) -> [L::U; I] {
     // Plain loops rather than `core::array::from_fn`: with three components LLVM left the
     // `from_fn` closure out of line, and the round trip through the stack (narrow stores read
     // back as one wide load) made 3-component slices 6-10x slower than the `_x8` form.
-    let src: [u32x8; I] = rows.map(u32x8::new);
+    let mut src = [<L::U as UintLane>::splat(0); I];
+    for (s, r) in src.iter_mut().zip(rows) {
+        *s = L::words(*r);
+    }
     // Component k of element j sits at flat position j I + k.
-    let mut out = [u32x8::ZERO; I];
+    let mut out = [<L::U as UintLane>::splat(0); I];
     for (k, o) in out.iter_mut().enumerate() {
-        *o = permute(&src, |j| ((j * I + k) / 8, (j * I + k) % 8));
+        *o = permute::<L, N, I>(&src, |j| ((j * I + k) / N, (j * I + k) % N));
     }
     out
 }
 
-/// One SIMD vector per component back into eight array-of-structs elements.
+/// One SIMD vector per component back into `N` array-of-structs elements.
 #[inline(always)]
-pub(crate) fn store<const O: usize>(v: [f32x8; O]) -> [[f32; O]; 8] {
-    let src: [u32x8; O] = v.map(bytemuck::cast);
-    // Flat position 8 m + l holds component (8 m + l) % O of element (8 m + l) / O.
-    // Plain loops rather than `core::array::from_fn`: see `load`.
-    let mut rows = [[0u32; 8]; O];
+pub(crate) fn store<L: Vector<N>, const N: usize, const O: usize>(v: [L; O]) -> [[f32; O]; N] {
+    let src: [L::U; O] = v.map(L::to_bits);
+    // Flat position N m + l holds component (N m + l) % O of element (N m + l) / O.
+    // Plain loops rather than `core::array::from_fn`: see `deinterleave`.
+    let mut rows = [[0u32; N]; O];
     for (m, row) in rows.iter_mut().enumerate() {
-        *row = permute(&src, |l| ((8 * m + l) % O, (8 * m + l) / O)).to_array();
+        *row = L::to_words(permute::<L, N, O>(&src, |l| {
+            ((N * m + l) % O, (N * m + l) / O)
+        }));
     }
     bytemuck::cast(rows)
 }
@@ -107,14 +189,17 @@ pub(crate) fn store<const O: usize>(v: [f32x8; O]) -> [[f32; O]; 8] {
 /// A vector whose lane `l` is lane `pick(l).1` of `src[pick(l).0]`, for a `pick` that is
 /// constant after inlining.
 ///
-/// Where `wide` has a permute instruction for `u32x8::shuffle` (AVX2, SSSE3, wasm `simd128`,
-/// NEON), one shuffle per source and a select; LLVM folds them (two `vpermt2d` with AVX-512).
-/// Elsewhere (baseline SSE2, thumbv7em, wasm without `simd128`) that shuffle is a per-lane
-/// loop with bounds checks, 20x slower for 3-component slices, so plain lane picks instead,
-/// which LLVM turns into `shufps`/`pshufd` (on AVX-512 the same picks go through memory and
-/// are 3-4x slower than the shuffles: hence the split). Both give the same bits.
+/// Where `wide` has a permute instruction for the shuffle (AVX-512, AVX2, SSSE3, wasm
+/// `simd128`, NEON), one shuffle per source and a select; LLVM folds them (two `vpermt2d` with
+/// AVX-512). Elsewhere (baseline SSE2, thumbv7em, wasm without `simd128`) that shuffle is a
+/// per-lane loop with bounds checks, 20x slower for 3-component slices, so plain lane picks
+/// instead, which LLVM turns into `shufps`/`pshufd` (on AVX-512 the same picks go through
+/// memory and are 3-4x slower than the shuffles: hence the split). Both give the same bits.
 #[inline(always)]
-fn permute<const S: usize>(src: &[u32x8; S], pick: impl Fn(usize) -> (usize, usize)) -> u32x8 {
+pub(crate) fn permute<L: Vector<N>, const N: usize, const S: usize>(
+    src: &[L::U; S],
+    pick: impl Fn(usize) -> (usize, usize),
+) -> L::U {
     #[cfg(any(
         target_feature = "avx2",
         target_feature = "ssse3",
@@ -122,13 +207,13 @@ fn permute<const S: usize>(src: &[u32x8; S], pick: impl Fn(usize) -> (usize, usi
         all(target_arch = "aarch64", target_feature = "neon")
     ))]
     {
-        let mut acc = u32x8::ZERO;
+        let mut acc = <L::U as UintLane>::splat(0);
+        let index = L::words(core::array::from_fn(|l| pick(l).1 as u32));
         for (s, v) in src.iter().enumerate() {
-            let index = u32x8::new(core::array::from_fn(|l| pick(l).1 as u32));
-            let take = u32x8::new(core::array::from_fn(|l| {
+            let take = L::words(core::array::from_fn(|l| {
                 if pick(l).0 == s { u32::MAX } else { 0 }
             }));
-            acc = take.select(v.shuffle(index), acc);
+            acc = (take & L::shuffle(*v, index)) | (!take & acc);
         }
         acc
     }
@@ -139,12 +224,12 @@ fn permute<const S: usize>(src: &[u32x8; S], pick: impl Fn(usize) -> (usize, usi
         all(target_arch = "aarch64", target_feature = "neon")
     )))]
     {
-        let lanes: [[u32; 8]; S] = src.map(|v| v.to_array());
-        let mut out = [0u32; 8];
+        let lanes: [[u32; N]; S] = src.map(L::to_words);
+        let mut out = [0u32; N];
         for (l, o) in out.iter_mut().enumerate() {
             let (s, i) = pick(l);
             *o = lanes[s][i];
         }
-        u32x8::new(out)
+        L::words(out)
     }
 }

@@ -29,13 +29,13 @@
 //! `inverse(warp(u))` is within 5e-7 of `u`, the rim included, except on the singular sets
 //! named on each inverse.
 
-use crate::batch;
+use crate::batch::{self, Vector};
 use crate::kernels::{
     MAX_RADIUS, atan_ratio_pi4, atan2_turns, sin_cos_pi4, sin_cos_quarter_turns, sin_cos_turns,
 };
 use crate::lanes::{Lane, UintLane, signed_unit, unit_interval};
 use core::num::Wrapping;
-use wide::{f32x8, u32x8};
+use wide::{f32x8, f32x16, u32x8, u32x16};
 
 /// Density of every disk warp's output with respect to area on the unit disk: `1 / pi`.
 pub const PDF: f32 = core::f32::consts::FRAC_1_PI;
@@ -79,12 +79,18 @@ pub fn polar_x8(u: [f32x8; 2]) -> [f32x8; 2] {
     polar_body(u)
 }
 
+/// [`polar`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn polar_x16(u: [f32x16; 2]) -> [f32x16; 2] {
+    polar_body(u)
+}
+
 /// [`polar`] over a batch: writes `out[i] = polar(u[i])` for
 /// `i < min(u.len(), out.len())` and returns that count (a length mismatch never panics;
 /// the rest of the longer slice is untouched). Bit-identical to the scalar form.
 #[inline]
 pub fn polar_slice(u: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    batch::map(u, out, polar_x8)
+    batch::map_lanes(u, out, polar_body::<batch::Widest>)
 }
 
 /// Inverse of [`polar`]: `u0 = x^2 + y^2`, `u1 = atan2(y, x) / (2 pi)` in `[0, 1)`.
@@ -104,10 +110,16 @@ pub fn polar_inverse_x8(p: [f32x8; 2]) -> [f32x8; 2] {
     polar_inverse_body(p)
 }
 
+/// [`polar_inverse`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn polar_inverse_x16(p: [f32x16; 2]) -> [f32x16; 2] {
+    polar_inverse_body(p)
+}
+
 /// [`polar_inverse`] over a batch, with the length rule of [`polar_slice`].
 #[inline]
 pub fn polar_inverse_slice(p: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    batch::map(p, out, polar_inverse_x8)
+    batch::map_lanes(p, out, polar_inverse_body::<batch::Widest>)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -184,11 +196,17 @@ pub fn concentric_x8(u: [f32x8; 2]) -> [f32x8; 2] {
     concentric_body(u)
 }
 
+/// [`concentric`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn concentric_x16(u: [f32x16; 2]) -> [f32x16; 2] {
+    concentric_body(u)
+}
+
 /// [`concentric`] over a batch, with the length rule of [`polar_slice`]. Bit-identical to
 /// the scalar form.
 #[inline]
 pub fn concentric_slice(u: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    batch::map(u, out, concentric_x8)
+    batch::map_lanes(u, out, concentric_body::<batch::Widest>)
 }
 
 /// Inverse of [`concentric`]: the wedge is chosen by `|x|` vs `|y|`, the radius is
@@ -208,10 +226,16 @@ pub fn concentric_inverse_x8(p: [f32x8; 2]) -> [f32x8; 2] {
     concentric_inverse_body(p)
 }
 
+/// [`concentric_inverse`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn concentric_inverse_x16(p: [f32x16; 2]) -> [f32x16; 2] {
+    concentric_inverse_body(p)
+}
+
 /// [`concentric_inverse`] over a batch, with the length rule of [`polar_slice`].
 #[inline]
 pub fn concentric_inverse_slice(p: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    batch::map(p, out, concentric_inverse_x8)
+    batch::map_lanes(p, out, concentric_inverse_body::<batch::Widest>)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -252,6 +276,12 @@ pub fn polar4_x8(u: [f32x8; 2], quadrant: u32x8) -> [f32x8; 2] {
     polar4_body(u, quadrant)
 }
 
+/// [`polar4`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn polar4_x16(u: [f32x16; 2], quadrant: u32x16) -> [f32x16; 2] {
+    polar4_body(u, quadrant)
+}
+
 /// Disk sample `index` of a polar4 stream: `polar4(point(index / 4), index % 4)`.
 ///
 /// `point` returns 2D point `k` of your sequence, e.g.
@@ -267,48 +297,89 @@ pub fn polar4_indexed_x8(index: u32x8, points: impl FnOnce(u32x8) -> [f32x8; 2])
     polar4_x8(points(index >> 2), index & u32x8::splat(3))
 }
 
+/// [`polar4_indexed`] for sixteen sample indices at once (any indices, not only consecutive).
+#[inline]
+pub fn polar4_indexed_x16(
+    index: u32x16,
+    points: impl FnOnce(u32x16) -> [f32x16; 2],
+) -> [f32x16; 2] {
+    polar4_x16(points(index >> 2), index & u32x16::splat(3))
+}
+
 /// Expands 2D points into polar4 disk samples, four per point: `out[i] =
 /// polar4(points[i / 4], i % 4)` for `i < min(out.len(), 4 * points.len())`; returns that
 /// count. Bit-identical to the scalar form.
 #[inline]
 pub fn polar4_slice(points: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    four_per_point(points, out, polar4_x8)
+    four_per_point(points, out, |u: [batch::Widest; 2]| {
+        polar4_body(u, UintLane::splat(0))
+    })
 }
 
-/// `out[i] = warp(points[i / 4], i % 4)` for `i < min(out.len(), 4 * points.len())`, eight
-/// samples (two points) per call of the 8-wide `warp`; returns that count. The slice form of
-/// the quadrant warps.
+/// `out[i] = warp(points[i / 4], i % 4)` for `i < min(out.len(), 4 * points.len())`; returns
+/// that count. The slice form of the quadrant warps.
+///
+/// Both quadrant warps turn their result by exact quarter turns (a swap and sign flips:
+/// `warp(u, q)` is `warp(u, 0)` turned `q` times by `(x, y) -> (-y, x)`, bit for bit), so
+/// `warp` here is the quadrant-0 body: it runs once per *point*, `N` points per call, and
+/// [`four_turns`] writes each point's four samples.
 #[inline(always)]
-fn four_per_point(
+fn four_per_point<L: Vector<N>, const N: usize>(
     points: &[[f32; 2]],
     out: &mut [[f32; 2]],
-    warp: impl Fn([f32x8; 2], u32x8) -> [f32x8; 2],
+    warp: impl Fn([L; 2]) -> [L; 2],
 ) -> usize {
     let n = out.len().min(points.len().saturating_mul(4));
     let out = out.get_mut(..n).unwrap_or(&mut []);
-    let quadrants = u32x8::new([0, 1, 2, 3, 0, 1, 2, 3]);
-    let (pairs, _) = points.as_chunks::<2>();
-    let (groups, rest) = out.as_chunks_mut::<8>();
-    let spread = |p: &[[f32; 2]; 2]| {
-        let [a, b] = *p;
-        [
-            f32x8::new([a[0], a[0], a[0], a[0], b[0], b[0], b[0], b[0]]),
-            f32x8::new([a[1], a[1], a[1], a[1], b[1], b[1], b[1], b[1]]),
-        ]
-    };
-    for (dst, pair) in groups.iter_mut().zip(pairs) {
-        *dst = batch::store(warp(spread(pair), quadrants));
+    let (groups, _) = points.as_chunks::<N>();
+    // Whole groups: N points in, 4 N samples out.
+    let whole = n / (4 * N);
+    let (out_main, out_rest) = out.split_at_mut(whole * 4 * N);
+    let (out_rows, _) = out_main.as_chunks_mut::<N>();
+    for (src, dst) in groups.iter().zip(out_rows.chunks_exact_mut(4)) {
+        for (d, r) in dst.iter_mut().zip(four_turns(warp(batch::load(src)))) {
+            *d = r;
+        }
     }
-    if !rest.is_empty() {
-        // 1 to 7 samples left: they come from the next one or two points.
-        let first = groups.len() * 2;
-        let pick = |k: usize| points.get(first + k).copied().unwrap_or([0.0; 2]);
-        let res = batch::store(warp(spread(&[pick(0), pick(1)]), quadrants));
-        for (d, r) in rest.iter_mut().zip(res.iter()) {
+    if !out_rest.is_empty() {
+        // Fewer than 4 N samples left: they come from the next (at most N) points.
+        let mut pad = [[0.0f32; 2]; N];
+        for (p, s) in pad.iter_mut().zip(points.get(whole * N..).unwrap_or(&[])) {
+            *p = *s;
+        }
+        let res = four_turns(warp(batch::load(&pad)));
+        for (d, r) in out_rest.iter_mut().zip(res.as_flattened()) {
             *d = *r;
         }
     }
     n
+}
+
+/// The four quarter turns of `N` disk points as `4 N` array-of-structs samples: sample
+/// `4 j + k` is point `j` turned `k` times by `(x, y) -> (-y, x)`, i.e. `(x, y)`, `(-y, x)`,
+/// `(-x, -y)`, `(y, -x)`. Lane permutes and sign-bit flips only, so exact; the permutes are
+/// the ones the slice forms' transposes need anyway.
+#[inline(always)]
+fn four_turns<L: Vector<N>, const N: usize>(p: [L; 2]) -> [[[f32; 2]; N]; 4] {
+    let src = p.map(L::to_bits);
+    // Word f of the output: point f / 8, sample k = (f % 8) / 2, component c = f % 2; it is
+    // y (else x) when k + c is odd, negated for (k, c) = (1, 0), (2, _), (3, 1).
+    let from_y = |f: usize| (f / 2 + f) % 2 == 1;
+    let negated = |f: usize| matches!(f % 8, 2 | 4 | 5 | 7);
+    let row = |r: usize| {
+        let word = |l: usize| r * N + l;
+        let picked =
+            batch::permute::<L, N, 2>(&src, |l| (usize::from(from_y(word(l))), word(l) / 8));
+        let signs = L::words(core::array::from_fn(|l| {
+            if negated(word(l)) { 0x8000_0000 } else { 0 }
+        }));
+        L::to_words(picked ^ signs)
+    };
+    let mut out = [[[0.0f32; 2]; N]; 4];
+    for (m, o) in out.iter_mut().enumerate() {
+        *o = bytemuck::cast([row(2 * m), row(2 * m + 1)]);
+    }
+    out
 }
 
 /// Inverse of [`polar4`]: returns `(u, quadrant)` with `quadrant` in `0..4`.
@@ -325,6 +396,12 @@ pub fn polar4_inverse(p: [f32; 2]) -> ([f32; 2], u32) {
 /// [`polar4_inverse`] on eight points at once; bit-identical to eight scalar calls.
 #[inline]
 pub fn polar4_inverse_x8(p: [f32x8; 2]) -> ([f32x8; 2], u32x8) {
+    polar4_inverse_body(p)
+}
+
+/// [`polar4_inverse`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn polar4_inverse_x16(p: [f32x16; 2]) -> ([f32x16; 2], u32x16) {
     polar4_inverse_body(p)
 }
 
@@ -425,6 +502,12 @@ pub fn concentric4_x8(u: [f32x8; 2], quadrant: u32x8) -> [f32x8; 2] {
     concentric4_body(u, quadrant)
 }
 
+/// [`concentric4`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn concentric4_x16(u: [f32x16; 2], quadrant: u32x16) -> [f32x16; 2] {
+    concentric4_body(u, quadrant)
+}
+
 /// Disk sample `index` of a concentric4 stream: `concentric4(point(index / 4), index % 4)`;
 /// `point` is called once, with `index / 4`.
 #[inline]
@@ -442,12 +525,24 @@ pub fn concentric4_indexed_x8(
     concentric4_x8(points(index >> 2), index & u32x8::splat(3))
 }
 
+/// [`concentric4_indexed`] for sixteen sample indices at once (any indices, not only
+/// consecutive).
+#[inline]
+pub fn concentric4_indexed_x16(
+    index: u32x16,
+    points: impl FnOnce(u32x16) -> [f32x16; 2],
+) -> [f32x16; 2] {
+    concentric4_x16(points(index >> 2), index & u32x16::splat(3))
+}
+
 /// Expands 2D points into concentric4 disk samples, four per point: `out[i] =
 /// concentric4(points[i / 4], i % 4)` for `i < min(out.len(), 4 * points.len())`; returns that
 /// count. Bit-identical to the scalar form.
 #[inline]
 pub fn concentric4_slice(points: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    four_per_point(points, out, concentric4_x8)
+    four_per_point(points, out, |u: [batch::Widest; 2]| {
+        concentric4_body(u, UintLane::splat(0))
+    })
 }
 
 /// Inverse of [`concentric4`]: returns `(u, quadrant)` with `quadrant` in `0..4`.
@@ -468,5 +563,11 @@ pub fn concentric4_inverse(p: [f32; 2]) -> ([f32; 2], u32) {
 /// [`concentric4_inverse`] on eight points at once; bit-identical to eight scalar calls.
 #[inline]
 pub fn concentric4_inverse_x8(p: [f32x8; 2]) -> ([f32x8; 2], u32x8) {
+    concentric4_inverse_body(p)
+}
+
+/// [`concentric4_inverse`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn concentric4_inverse_x16(p: [f32x16; 2]) -> ([f32x16; 2], u32x16) {
     concentric4_inverse_body(p)
 }

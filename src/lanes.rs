@@ -23,7 +23,7 @@
 
 use core::num::Wrapping;
 use core::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
-use wide::{f32x8, u32x4, u32x8};
+use wide::{f32x8, f32x16, u32x4, u32x8, u32x16};
 
 /// `1 - 2^-24`, the largest `f32` below one: the top of every warp's input range.
 pub(crate) const ONE_MINUS_EPSILON: f32 = 1.0 - 1.0 / 16_777_216.0;
@@ -240,153 +240,175 @@ impl Lane for f32 {
     }
 }
 
-/// Lane mask of [`f32x8`]/[`u32x8`] comparisons: each lane all ones (true) or all zeros.
+/// Lane mask of SIMD comparisons ([`u32x8`] or [`u32x16`] lanes): each lane all ones (true)
+/// or all zeros.
 #[derive(Clone, Copy)]
-pub(crate) struct Mask8(u32x8);
+pub(crate) struct SimdMask<U>(U);
 
-impl BitAnd for Mask8 {
+impl<U: BitAnd<Output = U>> BitAnd for SimdMask<U> {
     type Output = Self;
     #[inline(always)]
     fn bitand(self, rhs: Self) -> Self {
-        Mask8(self.0 & rhs.0)
+        SimdMask(self.0 & rhs.0)
     }
 }
-impl BitOr for Mask8 {
+impl<U: BitOr<Output = U>> BitOr for SimdMask<U> {
     type Output = Self;
     #[inline(always)]
     fn bitor(self, rhs: Self) -> Self {
-        Mask8(self.0 | rhs.0)
+        SimdMask(self.0 | rhs.0)
     }
 }
-impl Not for Mask8 {
+impl<U: Not<Output = U>> Not for SimdMask<U> {
     type Output = Self;
     #[inline(always)]
     fn not(self) -> Self {
-        Mask8(!self.0)
+        SimdMask(!self.0)
     }
 }
-impl Mask for Mask8 {}
+impl<U: Copy + BitAnd<Output = U> + BitOr<Output = U> + Not<Output = U>> Mask for SimdMask<U> {}
 
-impl UintLane for u32x8 {
-    type Mask = Mask8;
-    #[inline(always)]
-    fn splat(x: u32) -> Self {
-        u32x8::splat(x)
-    }
-    #[inline(always)]
-    fn shl(self, n: u32) -> Self {
-        self << (n & 31)
-    }
-    #[inline(always)]
-    fn shr(self, n: u32) -> Self {
-        self >> (n & 31)
-    }
-    #[inline(always)]
-    fn simd_eq(self, rhs: Self) -> Mask8 {
-        Mask8(u32x8::simd_eq(self, rhs))
-    }
-    #[inline(always)]
-    fn select(mask: Mask8, if_true: Self, if_false: Self) -> Self {
-        mask.0.select(if_true, if_false)
-    }
-    #[inline(always)]
-    fn reverse_bits(self) -> Self {
-        // Lane by lane, so LLVM emits its vector bit-reverse (PSHUFB nibble tables on
-        // SSSE3/AVX2, GFNI where available) instead of the 20-instruction swap network.
-        u32x8::new(self.to_array().map(u32::reverse_bits))
-    }
-    #[inline(always)]
-    fn gather_pairs(self, f: impl Fn(u32) -> [u32; 2]) -> [Self; 2] {
-        let pairs = self.to_array().map(f);
-        [
-            u32x8::new(pairs.map(|p| p[0])),
-            u32x8::new(pairs.map(|p| p[1])),
-        ]
-    }
-    #[inline(always)]
-    fn simd_lt(self, rhs: Self) -> Mask8 {
-        Mask8(u32x8::simd_lt(self, rhs))
-    }
-    #[inline(always)]
-    fn mul_high(self, rhs: Self) -> Self {
-        self.mul_keep_high(rhs)
-    }
-    #[inline(always)]
-    fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N] {
-        let idx = idx.to_array();
-        let rows: [[u32; N]; 8] =
-            core::array::from_fn(|j| table.get(idx[j] as usize).copied().unwrap_or([0; N]));
-        core::array::from_fn(|k| u32x8::new(core::array::from_fn(|j| rows[j][k])))
-    }
-    #[inline(always)]
-    fn gather4(table: &[u32], start: Self) -> [Self; 4] {
-        let start = start.to_array();
-        let row = |j: usize| u32x4::new(words(table, start[j]));
-        let low = u32x4::transpose([row(0), row(1), row(2), row(3)]);
-        let high = u32x4::transpose([row(4), row(5), row(6), row(7)]);
-        core::array::from_fn(|k| bytemuck::cast([low[k], high[k]]))
-    }
+/// The SIMD instantiations, `f32x8`/`u32x8` and `f32x16`/`u32x16`: one definition stamped out
+/// for both widths, so the two cannot drift apart. Every operation maps to the `wide` operation
+/// of the same name, which is lane-wise and IEEE-exact (or an integer operation) on every
+/// target; where `wide` emulates a width (`f32x16` without AVX-512 is two `f32x8` halves,
+/// `f32x8` without AVX is two SSE halves) the halves run the same instructions.
+macro_rules! simd_lanes {
+    ($f:ident, $u:ident, $n:literal, $from_int:ident) => {
+        impl UintLane for $u {
+            type Mask = SimdMask<$u>;
+            #[inline(always)]
+            fn splat(x: u32) -> Self {
+                $u::splat(x)
+            }
+            #[inline(always)]
+            fn shl(self, n: u32) -> Self {
+                self << (n & 31)
+            }
+            #[inline(always)]
+            fn shr(self, n: u32) -> Self {
+                self >> (n & 31)
+            }
+            #[inline(always)]
+            fn simd_eq(self, rhs: Self) -> SimdMask<$u> {
+                SimdMask($u::simd_eq(self, rhs))
+            }
+            #[inline(always)]
+            fn select(mask: SimdMask<$u>, if_true: Self, if_false: Self) -> Self {
+                mask.0.select(if_true, if_false)
+            }
+            #[inline(always)]
+            fn reverse_bits(self) -> Self {
+                // Lane by lane, so LLVM emits its vector bit-reverse (PSHUFB nibble tables on
+                // SSSE3/AVX2, GFNI where available) instead of the 20-instruction swap network.
+                $u::new(self.to_array().map(u32::reverse_bits))
+            }
+            #[inline(always)]
+            fn gather_pairs(self, f: impl Fn(u32) -> [u32; 2]) -> [Self; 2] {
+                let pairs = self.to_array().map(f);
+                [$u::new(pairs.map(|p| p[0])), $u::new(pairs.map(|p| p[1]))]
+            }
+            #[inline(always)]
+            fn simd_lt(self, rhs: Self) -> SimdMask<$u> {
+                // Unsigned in `wide` (bias by 2^31 and a signed compare, or an unsigned
+                // compare instruction): tested on both sides of 2^31.
+                SimdMask($u::simd_lt(self, rhs))
+            }
+            #[inline(always)]
+            fn mul_high(self, rhs: Self) -> Self {
+                self.mul_keep_high(rhs)
+            }
+            #[inline(always)]
+            fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N] {
+                let idx = idx.to_array();
+                let rows: [[u32; N]; $n] =
+                    core::array::from_fn(|j| table.get(idx[j] as usize).copied().unwrap_or([0; N]));
+                core::array::from_fn(|k| $u::new(core::array::from_fn(|j| rows[j][k])))
+            }
+            #[inline(always)]
+            fn gather4(table: &[u32], start: Self) -> [Self; 4] {
+                // One 16-byte load per lane, a 4x4 transpose per four lanes.
+                let start = start.to_array();
+                let quads: [[u32x4; 4]; $n / 4] = core::array::from_fn(|g| {
+                    u32x4::transpose(core::array::from_fn(|r| {
+                        u32x4::new(words(table, start[4 * g + r]))
+                    }))
+                });
+                core::array::from_fn(|k| {
+                    bytemuck::cast(core::array::from_fn::<u32x4, { $n / 4 }, _>(|g| {
+                        quads[g][k]
+                    }))
+                })
+            }
+        }
+
+        impl Lane for $f {
+            type Mask = SimdMask<$u>;
+            type U = $u;
+            #[inline(always)]
+            fn splat(x: f32) -> Self {
+                $f::splat(x)
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                // `wide`'s sqrt is the hardware instruction (correctly rounded) on these
+                // targets, for `f32x16` too (AVX-512, or two `f32x8` halves); elsewhere it
+                // would be a software approximation, so libm's correctly rounded one per lane.
+                #[cfg(any(
+                    target_feature = "sse",
+                    target_feature = "simd128",
+                    all(target_arch = "aarch64", target_feature = "neon")
+                ))]
+                {
+                    $f::sqrt(self)
+                }
+                #[cfg(not(any(
+                    target_feature = "sse",
+                    target_feature = "simd128",
+                    all(target_arch = "aarch64", target_feature = "neon")
+                )))]
+                {
+                    $f::new(self.to_array().map(libm::sqrtf))
+                }
+            }
+            #[inline(always)]
+            fn simd_lt(self, rhs: Self) -> SimdMask<$u> {
+                SimdMask(bytemuck::cast($f::simd_lt(self, rhs)))
+            }
+            #[inline(always)]
+            fn simd_le(self, rhs: Self) -> SimdMask<$u> {
+                SimdMask(bytemuck::cast($f::simd_le(self, rhs)))
+            }
+            #[inline(always)]
+            fn simd_eq(self, rhs: Self) -> SimdMask<$u> {
+                SimdMask(bytemuck::cast($f::simd_eq(self, rhs)))
+            }
+            #[inline(always)]
+            fn select(mask: SimdMask<$u>, if_true: Self, if_false: Self) -> Self {
+                bytemuck::cast::<$u, $f>(mask.0).select(if_true, if_false)
+            }
+            #[inline(always)]
+            fn to_bits(self) -> $u {
+                bytemuck::cast(self)
+            }
+            #[inline(always)]
+            fn from_bits(bits: $u) -> Self {
+                bytemuck::cast(bits)
+            }
+            #[inline(always)]
+            fn to_uint(self) -> $u {
+                bytemuck::cast(self.trunc_int())
+            }
+            #[inline(always)]
+            fn from_uint(u: $u) -> Self {
+                $f::$from_int(bytemuck::cast(u))
+            }
+        }
+    };
 }
 
-impl Lane for f32x8 {
-    type Mask = Mask8;
-    type U = u32x8;
-    #[inline(always)]
-    fn splat(x: f32) -> Self {
-        f32x8::splat(x)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        #[cfg(any(
-            target_feature = "sse",
-            target_feature = "simd128",
-            all(target_arch = "aarch64", target_feature = "neon")
-        ))]
-        {
-            f32x8::sqrt(self)
-        }
-        #[cfg(not(any(
-            target_feature = "sse",
-            target_feature = "simd128",
-            all(target_arch = "aarch64", target_feature = "neon")
-        )))]
-        {
-            f32x8::new(self.to_array().map(libm::sqrtf))
-        }
-    }
-    #[inline(always)]
-    fn simd_lt(self, rhs: Self) -> Mask8 {
-        Mask8(bytemuck::cast(f32x8::simd_lt(self, rhs)))
-    }
-    #[inline(always)]
-    fn simd_le(self, rhs: Self) -> Mask8 {
-        Mask8(bytemuck::cast(f32x8::simd_le(self, rhs)))
-    }
-    #[inline(always)]
-    fn simd_eq(self, rhs: Self) -> Mask8 {
-        Mask8(bytemuck::cast(f32x8::simd_eq(self, rhs)))
-    }
-    #[inline(always)]
-    fn select(mask: Mask8, if_true: Self, if_false: Self) -> Self {
-        bytemuck::cast::<u32x8, f32x8>(mask.0).select(if_true, if_false)
-    }
-    #[inline(always)]
-    fn to_bits(self) -> u32x8 {
-        bytemuck::cast(self)
-    }
-    #[inline(always)]
-    fn from_bits(bits: u32x8) -> Self {
-        bytemuck::cast(bits)
-    }
-    #[inline(always)]
-    fn to_uint(self) -> u32x8 {
-        bytemuck::cast(self.trunc_int())
-    }
-    #[inline(always)]
-    fn from_uint(u: u32x8) -> Self {
-        f32x8::from_i32x8(bytemuck::cast(u))
-    }
-}
+simd_lanes!(f32x8, u32x8, 8, from_i32x8);
+simd_lanes!(f32x16, u32x16, 16, from_i32x16);
 
 /// Maps any `f32` onto a warp's input range `[0, 1 - 2^-24]`: values in `[0, 1)` pass
 /// unchanged, values `>= 1` and `+inf` become `1 - 2^-24`, and NaN, `-0.0`, negatives and

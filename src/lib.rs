@@ -71,7 +71,7 @@
     allow(dead_code)
 )]
 
-pub use wide::{f32x8, u32x8};
+pub use wide::{f32x8, f32x16, u32x8, u32x16};
 
 // Shared internals: lanes, kernels, slice machinery, hashes.
 mod batch;

@@ -43,11 +43,11 @@
 //! index wraps after `2^32`. [`raw`] reduces `set` modulo [`SETS`] and `index` modulo
 //! [`POINTS`].
 
-use crate::batch;
+use crate::batch::{self, Vector};
 use crate::hash::{mix, owen_scramble, prefix_shuffle, to_unit};
 use crate::lanes::{Lane, UintLane};
 use core::num::Wrapping;
-use wide::{f32x8, u32x8};
+use wide::{f32x8, f32x16, u32x8, u32x16};
 
 /// Points per set in this build: 1024 (feature `pmj02bn` alone), 4096 (`pmj02bn-4096`, in the
 /// default features), 16384 (`pmj02bn-16384`) or 65536 (`pmj02bn-65536`); the largest
@@ -205,20 +205,24 @@ fn finish<L: Lane>(x: L::U, y: L::U, keys: Keys<L::U>) -> [L; 2] {
     ]
 }
 
-/// Eight consecutive points `r .. r + 8` of a set as two coordinate vectors: 64 contiguous
-/// bytes read as whole words and deinterleaved, instead of an eight-lane gather. `None` when
-/// the eight do not fit in the set (the caller falls back to the gather).
+/// `N` consecutive points `r .. r + N` of a set as two coordinate vectors: `8 N` contiguous
+/// bytes read as whole words and deinterleaved, instead of an `N`-lane gather. `None` when
+/// the points do not fit in the set (the caller falls back to the gather).
 #[inline(always)]
-fn eight_points(view: &[[u8; 8]; POINTS], r: usize) -> Option<[u32x8; 2]> {
-    let group: &[[u8; 8]; 8] = view.get(r..r.wrapping_add(8))?.try_into().ok()?;
-    let bytes: &[[u8; 32]; 2] = bytemuck::cast_ref(group);
-    let mut rows = [[0u32; 8]; 2];
-    for (row, b) in rows.iter_mut().zip(bytes) {
-        for (w, c) in row.iter_mut().zip(b.as_chunks::<4>().0) {
-            *w = u32::from_le_bytes(*c);
-        }
+fn consecutive_points<L: Vector<N>, const N: usize>(
+    view: &[[u8; 8]; POINTS],
+    r: usize,
+) -> Option<[L::U; 2]> {
+    let group: &[[u8; 8]; N] = view.get(r..r.wrapping_add(N))?.try_into().ok()?;
+    let mut rows = [[0u32; N]; 2];
+    for (w, c) in rows
+        .as_flattened_mut()
+        .iter_mut()
+        .zip(group.as_flattened().as_chunks::<4>().0)
+    {
+        *w = u32::from_le_bytes(*c);
     }
-    Some(batch::deinterleave(&rows))
+    Some(batch::deinterleave::<L, N, 2>(&rows))
 }
 
 /// Table point `r < POINTS` under `keys`: lane-wise lookup, Owen scrambles, conversion.
@@ -256,39 +260,61 @@ pub fn sample_x8(index: u32x8, seed: u32x8) -> [f32x8; 2] {
     sample_body::<f32x8>(index, seed)
 }
 
+/// [`sample`] for sixteen (index, seed) pairs at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn sample_x16(index: u32x16, seed: u32x16) -> [f32x16; 2] {
+    sample_body::<f32x16>(index, seed)
+}
+
 /// Fills `out[i] = sample(start + i, seed)` (index wrapping after `u32::MAX`) and returns
 /// `out.len()`. Bit-identical to the scalar form.
 #[inline]
 pub fn sample_slice(start: u32, seed: u32, out: &mut [[f32; 2]]) -> usize {
+    sample_lanes::<batch::Widest, _>(start, seed, out)
+}
+
+/// [`sample_slice`] on `N`-lane vectors.
+#[inline(always)]
+fn sample_lanes<L: Vector<N>, const N: usize>(
+    start: u32,
+    seed: u32,
+    out: &mut [[f32; 2]],
+) -> usize {
     // Run by run within one block of POINTS indices, so the keys are derived once per run
-    // (the same values `sample_body` derives per call: bit-identical).
+    // (the same integers `sample_body` derives per lane: bit-identical).
     let n = out.len();
+    let mask = L::U::splat(POINTS as u32 - 1);
     let mut index = start;
     let mut rest = out;
     while !rest.is_empty() {
         let in_block = POINTS - (index as usize & (POINTS - 1));
         let (run, tail) = rest.split_at_mut(in_block.min(rest.len()));
-        let k = keys(u32x8::splat(seed), u32x8::splat(index >> LOG2_POINTS));
-        // Groups of eight consecutive points read the table as whole vectors; a group that
-        // would cross the set's end (and the last 1-7 points) take the gather path.
-        let set = view(k.set.to_array()[0] as usize >> LOG2_POINTS);
+        let one = keys(Wrapping(seed), Wrapping(index >> LOG2_POINTS));
+        let k = Keys {
+            set: L::U::splat(one.set.0),
+            x: L::U::splat(one.x.0),
+            y: L::U::splat(one.y.0),
+        };
+        // Groups of N consecutive points read the table as whole vectors (a run never
+        // crosses the set's end, so the gather fallback is only there to avoid a panic path);
+        // the last 1 to N - 1 points take the gather path.
+        let set = view(one.set.0 as usize >> LOG2_POINTS);
         let r0 = index as usize & (POINTS - 1);
-        let (groups, _) = run.as_chunks_mut::<8>();
-        let whole = groups.len() * 8;
+        let (groups, _) = run.as_chunks_mut::<N>();
+        let whole = groups.len() * N;
         for (g, dst) in groups.iter_mut().enumerate() {
-            *dst = batch::store(match eight_points(set, r0 + 8 * g) {
-                Some([x, y]) => finish(x, y, k),
-                None => point(
-                    (u32x8::splat((r0 + 8 * g) as u32) + u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]))
-                        & u32x8::splat(POINTS as u32 - 1),
+            let r = r0 + N * g;
+            *dst = batch::store(match consecutive_points::<L, N>(set, r) {
+                Some([x, y]) => finish::<L>(x, y, k),
+                None => point::<L>(
+                    (L::U::splat(r as u32) + batch::lane_numbers::<L, N>()) & mask,
                     k,
                 ),
             });
         }
         let tail_start = index.wrapping_add(whole as u32);
-        batch::fill_indexed(tail_start, run.get_mut(whole..).unwrap_or(&mut []), |i| {
-            point(i & u32x8::splat(POINTS as u32 - 1), k)
-        });
+        let tail_out = run.get_mut(whole..).unwrap_or(&mut []);
+        batch::fill_indexed::<L, N, 2>(tail_start, tail_out, |i| point::<L>(i & mask, k));
         index = index.wrapping_add(run.len() as u32);
         rest = tail;
     }
@@ -310,6 +336,12 @@ pub fn shuffle(index: u32, seed: u32) -> u32 {
 /// [`shuffle`] for eight lanes; identical to eight scalar calls.
 #[inline]
 pub fn shuffle_x8(index: u32x8, seed: u32x8) -> u32x8 {
+    prefix_shuffle(index, mix(seed))
+}
+
+/// [`shuffle`] for sixteen lanes; identical to sixteen scalar calls.
+#[inline]
+pub fn shuffle_x16(index: u32x16, seed: u32x16) -> u32x16 {
     prefix_shuffle(index, mix(seed))
 }
 

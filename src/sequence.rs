@@ -14,7 +14,7 @@ use crate::batch;
 use crate::hash::{mix, to_unit};
 use crate::lanes::{Lane, ONE_MINUS_EPSILON, UintLane};
 use core::num::Wrapping;
-use wide::{f32x8, u32x8};
+use wide::{f32x8, f32x16, u32x8, u32x16};
 
 const KEY_X: u32 = 0x2545_f491;
 const KEY_Y: u32 = 0x9e37_79b9;
@@ -47,11 +47,17 @@ pub fn random_x8(index: u32x8, seed: u32x8) -> [f32x8; 2] {
     random_body::<f32x8>(index, seed)
 }
 
+/// [`random`] on sixteen lanes; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn random_x16(index: u32x16, seed: u32x16) -> [f32x16; 2] {
+    random_body::<f32x16>(index, seed)
+}
+
 /// Fills `out[i] = random(start + i, seed)` (wrapping); returns `out.len()`.
 #[inline]
 pub fn random_slice(start: u32, seed: u32, out: &mut [[f32; 2]]) -> usize {
-    let seed = u32x8::splat(seed);
-    batch::fill_indexed(start, out, |i| random_x8(i, seed))
+    let seed = UintLane::splat(seed);
+    batch::fill_indexed(start, out, |i| random_body::<batch::Widest>(i, seed))
 }
 
 /// Side of the stratified grid for `count` points: `floor(sqrt(min(count, 2^24)))`, at most
@@ -109,10 +115,18 @@ pub fn stratified_x8(index: u32x8, count: u32, seed: u32x8) -> [f32x8; 2] {
     stratified_body::<f32x8>(index, stratified_side(count), seed)
 }
 
+/// [`stratified`] on sixteen indices (one `count` for all lanes); bit-identical to scalar calls.
+#[inline]
+pub fn stratified_x16(index: u32x16, count: u32, seed: u32x16) -> [f32x16; 2] {
+    stratified_body::<f32x16>(index, stratified_side(count), seed)
+}
+
 /// Fills `out[i] = stratified(start + i, count, seed)` (wrapping); returns `out.len()`.
 /// `stratified_slice(0, n, seed, &mut out[..n])` is the whole stratified set.
 #[inline]
 pub fn stratified_slice(start: u32, count: u32, seed: u32, out: &mut [[f32; 2]]) -> usize {
-    let (side, seed) = (stratified_side(count), u32x8::splat(seed));
-    batch::fill_indexed(start, out, |i| stratified_body::<f32x8>(i, side, seed))
+    let (side, seed) = (stratified_side(count), UintLane::splat(seed));
+    batch::fill_indexed(start, out, |i| {
+        stratified_body::<batch::Widest>(i, side, seed)
+    })
 }

@@ -70,7 +70,7 @@ mod base4;
 use crate::batch;
 use crate::lanes::{Lane, UintLane, unit_interval};
 use core::num::Wrapping;
-use wide::{f32x8, u32x8};
+use wide::{f32x8, f32x16, u32x8, u32x16};
 
 /// `x` clamped to `[0, 1]`, NaN and `-0.0` to `+0.0` (compare and select, see `lanes`).
 #[inline(always)]
@@ -148,12 +148,18 @@ pub fn uniform_x8(u: [f32x8; 2]) -> [f32x8; 3] {
     uniform_body(u)
 }
 
+/// [`uniform`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn uniform_x16(u: [f32x16; 2]) -> [f32x16; 3] {
+    uniform_body(u)
+}
+
 /// [`uniform`] over a batch: writes `out[i] = uniform(u[i])` for
 /// `i < min(u.len(), out.len())` and returns that count (a length mismatch never panics;
 /// the rest of the longer slice is untouched). Bit-identical to the scalar form.
 #[inline]
 pub fn uniform_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map(u, out, uniform_x8)
+    batch::map_lanes(u, out, uniform_body::<batch::Widest>)
 }
 
 /// Inverse of [`uniform`]: if `b0 < b1` then `u = (2 b0, b0 + b1)`, else
@@ -173,10 +179,16 @@ pub fn uniform_inverse_x8(b: [f32x8; 3]) -> [f32x8; 2] {
     uniform_inverse_body(b)
 }
 
+/// [`uniform_inverse`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn uniform_inverse_x16(b: [f32x16; 3]) -> [f32x16; 2] {
+    uniform_inverse_body(b)
+}
+
 /// [`uniform_inverse`] over a batch, with the length rule of [`uniform_slice`].
 #[inline]
 pub fn uniform_inverse_slice(b: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map(b, out, uniform_inverse_x8)
+    batch::map_lanes(b, out, uniform_inverse_body::<batch::Widest>)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -228,10 +240,16 @@ pub fn sqrt_map_x8(u: [f32x8; 2]) -> [f32x8; 3] {
     sqrt_map_body(u)
 }
 
+/// [`sqrt_map`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn sqrt_map_x16(u: [f32x16; 2]) -> [f32x16; 3] {
+    sqrt_map_body(u)
+}
+
 /// [`sqrt_map`] over a batch, with the length rule of [`uniform_slice`].
 #[inline]
 pub fn sqrt_map_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map(u, out, sqrt_map_x8)
+    batch::map_lanes(u, out, sqrt_map_body::<batch::Widest>)
 }
 
 /// Inverse of [`sqrt_map`]: `u0 = (1 - b0)^2`, `u1 = b1 / (1 - b0)`.
@@ -250,10 +268,16 @@ pub fn sqrt_map_inverse_x8(b: [f32x8; 3]) -> [f32x8; 2] {
     sqrt_map_inverse_body(b)
 }
 
+/// [`sqrt_map_inverse`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn sqrt_map_inverse_x16(b: [f32x16; 3]) -> [f32x16; 2] {
+    sqrt_map_inverse_body(b)
+}
+
 /// [`sqrt_map_inverse`] over a batch, with the length rule of [`uniform_slice`].
 #[inline]
 pub fn sqrt_map_inverse_slice(b: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map(b, out, sqrt_map_inverse_x8)
+    batch::map_lanes(b, out, sqrt_map_inverse_body::<batch::Widest>)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -361,12 +385,20 @@ pub fn basu_owen_x8(index: u32x8, seed: u32x8) -> [f32x8; 3] {
     basu_owen_body::<f32x8>(index, seed)
 }
 
+/// [`basu_owen`] for sixteen (index, seed) pairs at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn basu_owen_x16(index: u32x16, seed: u32x16) -> [f32x16; 3] {
+    basu_owen_body::<f32x16>(index, seed)
+}
+
 /// Fills `out[i] = basu_owen(start + i, seed)` (the index wraps past `u32::MAX`) and returns
 /// `out.len()`. Bit-identical to the scalar form.
 #[inline]
 pub fn basu_owen_slice(start: u32, seed: u32, out: &mut [[f32; 3]]) -> usize {
-    let seed = u32x8::splat(seed);
-    batch::fill_indexed(start, out, |index| basu_owen_x8(index, seed))
+    let seed = UintLane::splat(seed);
+    batch::fill_indexed(start, out, |index| {
+        basu_owen_body::<batch::Widest>(index, seed)
+    })
 }
 
 /// Point `index` of the Basu-Owen construction with one digit permutation per level, drawn
@@ -416,6 +448,13 @@ pub fn basu_owen_permuted_x8(index: u32x8, seed: u32x8) -> [f32x8; 3] {
     basu_owen_permuted_body::<f32x8>(base4::fields(index), base4::LevelKeys::new(seed))
 }
 
+/// [`basu_owen_permuted`] for sixteen (index, seed) pairs at once; bit-identical to sixteen
+/// scalar calls.
+#[inline]
+pub fn basu_owen_permuted_x16(index: u32x16, seed: u32x16) -> [f32x16; 3] {
+    basu_owen_permuted_body::<f32x16>(base4::fields(index), base4::LevelKeys::new(seed))
+}
+
 /// Fills `out[i] = basu_owen_permuted(start + i, seed)` (the index wraps past `u32::MAX`) and
 /// returns `out.len()`. Draws the per-level permutations once per call. Bit-identical to the
 /// scalar form.
@@ -423,6 +462,6 @@ pub fn basu_owen_permuted_x8(index: u32x8, seed: u32x8) -> [f32x8; 3] {
 pub fn basu_owen_permuted_slice(start: u32, seed: u32, out: &mut [[f32; 3]]) -> usize {
     let keys = base4::LevelKeys::splat(base4::LevelKeys::new(Wrapping(seed)));
     batch::fill_indexed(start, out, |index| {
-        basu_owen_permuted_body::<f32x8>(base4::fields(index), keys)
+        basu_owen_permuted_body::<batch::Widest>(base4::fields(index), keys)
     })
 }

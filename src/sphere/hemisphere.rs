@@ -11,7 +11,7 @@
 use crate::batch;
 use crate::disk::{concentric_inverse_body, concentric_parts};
 use crate::lanes::Lane;
-use wide::f32x8;
+use wide::{f32x8, f32x16};
 
 use super::{clamped_direction, finite_density};
 
@@ -99,11 +99,17 @@ pub fn uniform_hemisphere_x8(u: [f32x8; 2]) -> [f32x8; 3] {
     uniform_hemisphere_body(u)
 }
 
+/// [`uniform_hemisphere`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn uniform_hemisphere_x16(u: [f32x16; 2]) -> [f32x16; 3] {
+    uniform_hemisphere_body(u)
+}
+
 /// [`uniform_hemisphere`] over a batch: writes `out[i] = uniform_hemisphere(u[i])` for
 /// `i < min(u.len(), out.len())` and returns that count. Bit-identical to the scalar form.
 #[inline]
 pub fn uniform_hemisphere_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map(u, out, uniform_hemisphere_x8)
+    batch::map_lanes(u, out, uniform_hemisphere_body::<batch::Widest>)
 }
 
 /// Inverse of [`uniform_hemisphere`]: the disk point `(x, y) / sqrt(1 + z)` (scale-free:
@@ -126,11 +132,17 @@ pub fn uniform_hemisphere_inverse_x8(d: [f32x8; 3]) -> [f32x8; 2] {
     uniform_hemisphere_inverse_body(d)
 }
 
+/// [`uniform_hemisphere_inverse`] on sixteen directions; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn uniform_hemisphere_inverse_x16(d: [f32x16; 3]) -> [f32x16; 2] {
+    uniform_hemisphere_inverse_body(d)
+}
+
 /// [`uniform_hemisphere_inverse`] over a batch, with the length rule of
 /// [`uniform_hemisphere_slice`].
 #[inline]
 pub fn uniform_hemisphere_inverse_slice(d: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map(d, out, uniform_hemisphere_inverse_x8)
+    batch::map_lanes(d, out, uniform_hemisphere_inverse_body::<batch::Widest>)
 }
 
 /// Cosine-weighted hemisphere (Malley's method): the concentric disk point `p`
@@ -157,11 +169,17 @@ pub fn cosine_hemisphere_x8(u: [f32x8; 2]) -> [f32x8; 3] {
     cosine_hemisphere_body(u)
 }
 
+/// [`cosine_hemisphere`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn cosine_hemisphere_x16(u: [f32x16; 2]) -> [f32x16; 3] {
+    cosine_hemisphere_body(u)
+}
+
 /// [`cosine_hemisphere`] over a batch: writes `out[i] = cosine_hemisphere(u[i])` for
 /// `i < min(u.len(), out.len())` and returns that count. Bit-identical to the scalar form.
 #[inline]
 pub fn cosine_hemisphere_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map(u, out, cosine_hemisphere_x8)
+    batch::map_lanes(u, out, cosine_hemisphere_body::<batch::Widest>)
 }
 
 /// Inverse of [`cosine_hemisphere`]: the disk point `(x, y) / |d|`, then
@@ -184,11 +202,17 @@ pub fn cosine_hemisphere_inverse_x8(d: [f32x8; 3]) -> [f32x8; 2] {
     cosine_hemisphere_inverse_body(d)
 }
 
+/// [`cosine_hemisphere_inverse`] on sixteen directions; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn cosine_hemisphere_inverse_x16(d: [f32x16; 3]) -> [f32x16; 2] {
+    cosine_hemisphere_inverse_body(d)
+}
+
 /// [`cosine_hemisphere_inverse`] over a batch, with the length rule of
 /// [`cosine_hemisphere_slice`].
 #[inline]
 pub fn cosine_hemisphere_inverse_slice(d: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map(d, out, cosine_hemisphere_inverse_x8)
+    batch::map_lanes(d, out, cosine_hemisphere_inverse_body::<batch::Widest>)
 }
 
 /// Density of [`cosine_hemisphere`] with respect to solid angle: `cos theta / pi` (pass the
@@ -203,5 +227,11 @@ pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
 /// [`cosine_hemisphere_pdf`] on eight values; bit-identical to eight scalar calls.
 #[inline]
 pub fn cosine_hemisphere_pdf_x8(cos_theta: f32x8) -> f32x8 {
+    cosine_hemisphere_pdf_body(cos_theta)
+}
+
+/// [`cosine_hemisphere_pdf`] on sixteen values; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn cosine_hemisphere_pdf_x16(cos_theta: f32x16) -> f32x16 {
     cosine_hemisphere_pdf_body(cos_theta)
 }

@@ -11,7 +11,7 @@
 use crate::batch;
 use crate::kernels::{atan2_turns, sin_cos_turns};
 use crate::lanes::{Lane, unit_interval};
-use wide::f32x8;
+use wide::{f32x8, f32x16};
 
 use super::{clamped_direction, finite_density};
 
@@ -56,11 +56,17 @@ pub fn equirect_x8(u: [f32x8; 2]) -> [f32x8; 3] {
     equirect_body(u)
 }
 
+/// [`equirect`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn equirect_x16(u: [f32x16; 2]) -> [f32x16; 3] {
+    equirect_body(u)
+}
+
 /// [`equirect`] over a batch: writes `out[i] = equirect(u[i])` for
 /// `i < min(u.len(), out.len())` and returns that count. Bit-identical to the scalar form.
 #[inline]
 pub fn equirect_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map(u, out, equirect_x8)
+    batch::map_lanes(u, out, equirect_body::<batch::Widest>)
 }
 
 /// Inverse of [`equirect`]: `u0 = atan2(y, x) / (2 pi)` in `[0, 1)`,
@@ -84,10 +90,16 @@ pub fn equirect_inverse_x8(d: [f32x8; 3]) -> [f32x8; 2] {
     equirect_inverse_body(d)
 }
 
+/// [`equirect_inverse`] on sixteen directions at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn equirect_inverse_x16(d: [f32x16; 3]) -> [f32x16; 2] {
+    equirect_inverse_body(d)
+}
+
 /// [`equirect_inverse`] over a batch, with the length rule of [`equirect_slice`].
 #[inline]
 pub fn equirect_inverse_slice(d: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map(d, out, equirect_inverse_x8)
+    batch::map_lanes(d, out, equirect_inverse_body::<batch::Widest>)
 }
 
 #[inline(always)]
@@ -124,5 +136,12 @@ pub fn equirect_pdf_to_solid_angle(pdf: f32, d: [f32; 3]) -> f32 {
 /// scalar calls.
 #[inline]
 pub fn equirect_pdf_to_solid_angle_x8(pdf: f32x8, d: [f32x8; 3]) -> f32x8 {
+    equirect_pdf_to_solid_angle_body(pdf, d)
+}
+
+/// [`equirect_pdf_to_solid_angle`] on sixteen densities and directions; bit-identical to sixteen
+/// scalar calls.
+#[inline]
+pub fn equirect_pdf_to_solid_angle_x16(pdf: f32x16, d: [f32x16; 3]) -> f32x16 {
     equirect_pdf_to_solid_angle_body(pdf, d)
 }

@@ -31,7 +31,7 @@
 use crate::batch;
 use crate::kernels::{atan_ratio_pi4, sin_cos_pi4};
 use crate::lanes::{Lane, UintLane, unit_interval};
-use wide::f32x8;
+use wide::{f32x8, f32x16};
 
 use super::{clamped_direction, finite_density};
 
@@ -108,12 +108,18 @@ pub fn equal_area_x8(u: [f32x8; 2]) -> [f32x8; 3] {
     equal_area_body(u)
 }
 
+/// [`equal_area`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn equal_area_x16(u: [f32x16; 2]) -> [f32x16; 3] {
+    equal_area_body(u)
+}
+
 /// [`equal_area`] over a batch: writes `out[i] = equal_area(u[i])` for
 /// `i < min(u.len(), out.len())` and returns that count (a length mismatch never panics; the
 /// rest of the longer slice is untouched). Bit-identical to the scalar form.
 #[inline]
 pub fn equal_area_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map(u, out, equal_area_x8)
+    batch::map_lanes(u, out, equal_area_body::<batch::Widest>)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -183,10 +189,16 @@ pub fn equal_area_inverse_x8(d: [f32x8; 3]) -> [f32x8; 2] {
     equal_area_inverse_body(d)
 }
 
+/// [`equal_area_inverse`] on sixteen directions at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn equal_area_inverse_x16(d: [f32x16; 3]) -> [f32x16; 2] {
+    equal_area_inverse_body(d)
+}
+
 /// [`equal_area_inverse`] over a batch, with the length rule of [`equal_area_slice`].
 #[inline]
 pub fn equal_area_inverse_slice(d: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map(d, out, equal_area_inverse_x8)
+    batch::map_lanes(d, out, equal_area_inverse_body::<batch::Widest>)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -210,6 +222,12 @@ pub fn equal_area_pdf_to_solid_angle(pdf: f32) -> f32 {
 /// [`equal_area_pdf_to_solid_angle`] on eight densities; bit-identical to eight scalar calls.
 #[inline]
 pub fn equal_area_pdf_to_solid_angle_x8(pdf: f32x8) -> f32x8 {
+    equal_area_pdf_to_solid_angle_body(pdf)
+}
+
+/// [`equal_area_pdf_to_solid_angle`] on sixteen densities; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn equal_area_pdf_to_solid_angle_x16(pdf: f32x16) -> f32x16 {
     equal_area_pdf_to_solid_angle_body(pdf)
 }
 
@@ -292,10 +310,16 @@ pub fn equal_area_wrap_x8(u: [f32x8; 2]) -> [f32x8; 2] {
     equal_area_wrap_body(u)
 }
 
+/// [`equal_area_wrap`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn equal_area_wrap_x16(u: [f32x16; 2]) -> [f32x16; 2] {
+    equal_area_wrap_body(u)
+}
+
 /// [`equal_area_wrap`] over a batch, with the length rule of [`equal_area_slice`].
 #[inline]
 pub fn equal_area_wrap_slice(u: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    batch::map(u, out, equal_area_wrap_x8)
+    batch::map_lanes(u, out, equal_area_wrap_body::<batch::Widest>)
 }
 
 /// [`equal_area_wrap`] for the texels of a `size x size` octahedral image: texel `[i, j]`

@@ -4,7 +4,7 @@
 use crate::batch;
 use crate::kernels::{atan2_turns, sin_cos_turns};
 use crate::lanes::{Lane, unit_interval};
-use wide::f32x8;
+use wide::{f32x8, f32x16};
 
 use super::clamped_direction;
 
@@ -62,11 +62,17 @@ pub fn uniform_x8(u: [f32x8; 2]) -> [f32x8; 3] {
     uniform_body(u)
 }
 
+/// [`uniform`] on sixteen points at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn uniform_x16(u: [f32x16; 2]) -> [f32x16; 3] {
+    uniform_body(u)
+}
+
 /// [`uniform`] over a batch: writes `out[i] = uniform(u[i])` for
 /// `i < min(u.len(), out.len())` and returns that count. Bit-identical to the scalar form.
 #[inline]
 pub fn uniform_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map(u, out, uniform_x8)
+    batch::map_lanes(u, out, uniform_body::<batch::Widest>)
 }
 
 /// Inverse of [`uniform`]: `u0 = (1 - z) / 2`, `u1 = atan2(y, x) / (2 pi)` in `[0, 1)`.
@@ -89,8 +95,14 @@ pub fn uniform_inverse_x8(d: [f32x8; 3]) -> [f32x8; 2] {
     uniform_inverse_body(d)
 }
 
+/// [`uniform_inverse`] on sixteen directions at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn uniform_inverse_x16(d: [f32x16; 3]) -> [f32x16; 2] {
+    uniform_inverse_body(d)
+}
+
 /// [`uniform_inverse`] over a batch, with the length rule of [`uniform_slice`].
 #[inline]
 pub fn uniform_inverse_slice(d: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map(d, out, uniform_inverse_x8)
+    batch::map_lanes(d, out, uniform_inverse_body::<batch::Widest>)
 }
