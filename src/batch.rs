@@ -7,7 +7,7 @@
 //! that can panic: lengths are reconciled with `get`, and groups come from `as_chunks`.
 
 use crate::lanes::{Lane, UintLane};
-use wide::{f32x8, f32x16, u32x8, u32x16};
+use wide::{ShuffleExt, f32x8, f32x16, u32x8, u32x16};
 
 /// The lane type the slice forms run: [`f32x16`] when the build has AVX-512F (`-C
 /// target-cpu=native` on such a CPU, or `-C target-feature=+avx512f`), [`f32x8`] otherwise
@@ -36,6 +36,24 @@ pub(crate) trait Vector<const N: usize>: Lane {
         allow(dead_code)
     )]
     fn shuffle(v: Self::U, index: Self::U) -> Self::U;
+    /// Lane `l` is lane `index[l]` of `a` for `index[l] < N`, else lane `index[l] - N` of `b`
+    /// (`index[l] < 2 N`): one `vpermt2d` with AVX-512.
+    #[cfg_attr(not(target_feature = "avx512f"), allow(dead_code))]
+    fn shuffle2(a: Self::U, b: Self::U, index: Self::U) -> Self::U;
+    /// `mask ? a : b` lane by lane, for masks of all-ones or all-zeros lanes.
+    #[cfg_attr(
+        any(
+            target_feature = "avx512f",
+            not(any(
+                target_feature = "avx2",
+                target_feature = "ssse3",
+                target_feature = "simd128",
+                all(target_arch = "aarch64", target_feature = "neon")
+            ))
+        ),
+        allow(dead_code)
+    )]
+    fn select_words(mask: Self::U, a: Self::U, b: Self::U) -> Self::U;
 }
 
 impl Vector<8> for f32x8 {
@@ -51,6 +69,14 @@ impl Vector<8> for f32x8 {
     fn shuffle(v: u32x8, index: u32x8) -> u32x8 {
         v.shuffle(index)
     }
+    #[inline(always)]
+    fn shuffle2(a: u32x8, b: u32x8, index: u32x8) -> u32x8 {
+        [a, b].shuffle(index)
+    }
+    #[inline(always)]
+    fn select_words(mask: u32x8, a: u32x8, b: u32x8) -> u32x8 {
+        mask.select(a, b)
+    }
 }
 
 impl Vector<16> for f32x16 {
@@ -65,6 +91,14 @@ impl Vector<16> for f32x16 {
     #[inline(always)]
     fn shuffle(v: u32x16, index: u32x16) -> u32x16 {
         v.shuffle(index)
+    }
+    #[inline(always)]
+    fn shuffle2(a: u32x16, b: u32x16, index: u32x16) -> u32x16 {
+        [a, b].shuffle(index)
+    }
+    #[inline(always)]
+    fn select_words(mask: u32x16, a: u32x16, b: u32x16) -> u32x16 {
+        mask.select(a, b)
     }
 }
 
@@ -163,10 +197,9 @@ pub(crate) fn deinterleave<L: Vector<N>, const N: usize, const I: usize>(
     for (s, r) in src.iter_mut().zip(rows) {
         *s = L::words(*r);
     }
-    // Component k of element j sits at flat position j I + k.
     let mut out = [<L::U as UintLane>::splat(0); I];
     for (k, o) in out.iter_mut().enumerate() {
-        *o = permute::<L, N, I>(&src, |j| ((j * I + k) / N, (j * I + k) % N));
+        *o = permute::<L, N, I, I, TO_COMPONENTS>(&src, k);
     }
     out
 }
@@ -175,49 +208,104 @@ pub(crate) fn deinterleave<L: Vector<N>, const N: usize, const I: usize>(
 #[inline(always)]
 pub(crate) fn store<L: Vector<N>, const N: usize, const O: usize>(v: [L; O]) -> [[f32; O]; N] {
     let src: [L::U; O] = v.map(L::to_bits);
-    // Flat position N m + l holds component (N m + l) % O of element (N m + l) / O.
     // Plain loops rather than `core::array::from_fn`: see `deinterleave`.
     let mut rows = [[0u32; N]; O];
     for (m, row) in rows.iter_mut().enumerate() {
-        *row = L::to_words(permute::<L, N, O>(&src, |l| {
-            ((N * m + l) % O, (N * m + l) / O)
-        }));
+        *row = L::to_words(permute::<L, N, O, O, TO_ELEMENTS>(&src, m));
     }
     bytemuck::cast(rows)
 }
 
-/// A vector whose lane `l` is lane `pick(l).1` of `src[pick(l).0]`, for a `pick` that is
-/// constant after inlining.
-///
-/// Where `wide` has a permute instruction for the shuffle (AVX-512, AVX2, SSSE3, wasm
-/// `simd128`, NEON), one shuffle per source and a select; LLVM folds them (two `vpermt2d` with
-/// AVX-512). Elsewhere (baseline SSE2, thumbv7em, wasm without `simd128`) that shuffle is a
-/// per-lane loop with bounds checks, 20x slower for 3-component slices, so plain lane picks
-/// instead, which LLVM turns into `shufps`/`pshufd` (on AVX-512 the same picks go through
-/// memory and are 3-4x slower than the shuffles: hence the split). Both give the same bits.
+/// Layout of [`deinterleave`]: `S` whole vectors of `N`-lane elements (element `j`,
+/// component `k` at flat word `j S + k`) to `S` component vectors.
+pub(crate) const TO_COMPONENTS: usize = 0;
+/// Layout of [`store`]: `S` component vectors to `S` whole vectors of elements.
+pub(crate) const TO_ELEMENTS: usize = 1;
+/// Layout of the quadrant slices (`disk::four_turns`): from `[x, y]` of `N` points, eight
+/// rows holding each point's four quarter turns `(x, y), (-y, x), (-x, -y), (y, -x)` (the
+/// signs are applied separately). Word `f` is point `f / 8`, sample `(f % 8) / 2`, component
+/// `f % 2`, and it is `y` exactly when sample + component is odd.
+pub(crate) const FOUR_TURNS: usize = 2;
+
+/// Where lane `l` of output row `r` comes from in `LAYOUT`: `(source vector, source lane)`.
 #[inline(always)]
-pub(crate) fn permute<L: Vector<N>, const N: usize, const S: usize>(
+pub(crate) const fn pick<const N: usize, const S: usize, const LAYOUT: usize>(
+    r: usize,
+    l: usize,
+) -> (usize, usize) {
+    match LAYOUT {
+        TO_COMPONENTS => ((l * S + r) / N, (l * S + r) % N),
+        TO_ELEMENTS => ((N * r + l) % S, (N * r + l) / S),
+        _ => {
+            let f = N * r + l;
+            (((f % 8) / 2 + f) % 2, f / 8)
+        }
+    }
+}
+
+/// Row `r` (of `ROWS`) of the lane permutation `LAYOUT` of `S` source vectors: lane `l` is
+/// lane `pick(r, l).1` of `src[pick(r, l).0]`.
+///
+/// With AVX-512 a chain of two-source permutes (`vpermt2d`: `S - 1` instructions) whose index
+/// vectors come from a table built at compile time, so they are constants at every width.
+/// Elsewhere, where `wide` has a one-source permute instruction (AVX2, SSSE3, wasm `simd128`,
+/// NEON), one shuffle per source and a select with indices computed in place (constant once
+/// LLVM unrolls the 8-lane loops). Elsewhere again (baseline SSE2, thumbv7em, wasm without
+/// `simd128`) that shuffle is a per-lane loop with bounds checks, 20x slower for 3-component
+/// slices, so plain lane picks, which LLVM turns into `shufps`/`pshufd`. All give the same
+/// bits.
+#[inline(always)]
+pub(crate) fn permute<
+    L: Vector<N>,
+    const N: usize,
+    const S: usize,
+    const ROWS: usize,
+    const LAYOUT: usize,
+>(
     src: &[L::U; S],
-    pick: impl Fn(usize) -> (usize, usize),
+    r: usize,
 ) -> L::U {
-    #[cfg(any(
-        target_feature = "avx2",
-        target_feature = "ssse3",
-        target_feature = "simd128",
-        all(target_arch = "aarch64", target_feature = "neon")
+    #[cfg(target_feature = "avx512f")]
+    {
+        let plan: &[[[u32; N]; S]; ROWS] = &const { chain_plan::<N, S, ROWS, LAYOUT>() };
+        let steps = plan.get(r).copied().unwrap_or([[0; N]; S]);
+        let mut acc = src[0];
+        if S == 1 {
+            acc = L::shuffle(acc, L::words(steps[0]));
+        }
+        for (v, index) in src.iter().zip(steps).skip(1) {
+            acc = L::shuffle2(acc, *v, L::words(index));
+        }
+        acc
+    }
+    #[cfg(all(
+        not(target_feature = "avx512f"),
+        any(
+            target_feature = "avx2",
+            target_feature = "ssse3",
+            target_feature = "simd128",
+            all(target_arch = "aarch64", target_feature = "neon")
+        )
     ))]
     {
         let mut acc = <L::U as UintLane>::splat(0);
-        let index = L::words(core::array::from_fn(|l| pick(l).1 as u32));
         for (s, v) in src.iter().enumerate() {
-            let take = L::words(core::array::from_fn(|l| {
-                if pick(l).0 == s { u32::MAX } else { 0 }
+            let index = L::words(core::array::from_fn(|l| {
+                pick::<N, S, LAYOUT>(r, l).1 as u32
             }));
-            acc = (take & L::shuffle(*v, index)) | (!take & acc);
+            let take = L::words(core::array::from_fn(|l| {
+                if pick::<N, S, LAYOUT>(r, l).0 == s {
+                    u32::MAX
+                } else {
+                    0
+                }
+            }));
+            acc = L::select_words(take, L::shuffle(*v, index), acc);
         }
         acc
     }
     #[cfg(not(any(
+        target_feature = "avx512f",
         target_feature = "avx2",
         target_feature = "ssse3",
         target_feature = "simd128",
@@ -227,9 +315,41 @@ pub(crate) fn permute<L: Vector<N>, const N: usize, const S: usize>(
         let lanes: [[u32; N]; S] = src.map(L::to_words);
         let mut out = [0u32; N];
         for (l, o) in out.iter_mut().enumerate() {
-            let (s, i) = pick(l);
+            let (s, i) = pick::<N, S, LAYOUT>(r, l);
             *o = lanes[s][i];
         }
         L::words(out)
     }
+}
+
+/// The index vectors of [`permute`]'s AVX-512 chain for every row: step `s >= 1` permutes
+/// `[acc, src[s]]` (indices `0..N` keep a lane of `acc`, `N..2N` take one of `src[s]`), with
+/// `acc = src[0]` before the first step; a single source is one plain permute by step 0.
+#[cfg_attr(not(target_feature = "avx512f"), allow(dead_code))]
+const fn chain_plan<const N: usize, const S: usize, const ROWS: usize, const LAYOUT: usize>()
+-> [[[u32; N]; S]; ROWS] {
+    let mut plan = [[[0; N]; S]; ROWS];
+    let mut r = 0;
+    while r < ROWS {
+        let mut l = 0;
+        while l < N {
+            let (source, lane) = pick::<N, S, LAYOUT>(r, l);
+            let mut s = 0;
+            while s < S {
+                plan[r][s][l] = if source == s && s > 0 {
+                    (N + lane) as u32
+                } else if s <= 1 && source == 0 {
+                    // From src[0]: picked by the first step (or by the single permute).
+                    lane as u32
+                } else {
+                    // Already in `acc` at lane l (source < s), or written by a later step.
+                    l as u32
+                };
+                s += 1;
+            }
+            l += 1;
+        }
+        r += 1;
+    }
+    plan
 }

@@ -361,25 +361,25 @@ fn four_per_point<L: Vector<N>, const N: usize>(
 /// the ones the slice forms' transposes need anyway.
 #[inline(always)]
 fn four_turns<L: Vector<N>, const N: usize>(p: [L; 2]) -> [[[f32; 2]; N]; 4] {
-    let src = p.map(L::to_bits);
-    // Word f of the output: point f / 8, sample k = (f % 8) / 2, component c = f % 2; it is
-    // y (else x) when k + c is odd, negated for (k, c) = (1, 0), (2, _), (3, 1).
-    let from_y = |f: usize| (f / 2 + f) % 2 == 1;
-    let negated = |f: usize| matches!(f % 8, 2 | 4 | 5 | 7);
-    let row = |r: usize| {
-        let word = |l: usize| r * N + l;
-        let picked =
-            batch::permute::<L, N, 2>(&src, |l| (usize::from(from_y(word(l))), word(l) / 8));
-        let signs = L::words(core::array::from_fn(|l| {
-            if negated(word(l)) { 0x8000_0000 } else { 0 }
-        }));
-        L::to_words(picked ^ signs)
+    // Word f = N r + l of the output is negated for sample, component (1, 0), (2, _), (3, 1).
+    let signs: &[[u32; N]; 8] = &const {
+        let mut signs = [[0; N]; 8];
+        let mut f = 0;
+        while f < 8 * N {
+            if matches!(f % 8, 2 | 4 | 5 | 7) {
+                signs[f / N][f % N] = 0x8000_0000;
+            }
+            f += 1;
+        }
+        signs
     };
-    let mut out = [[[0.0f32; 2]; N]; 4];
-    for (m, o) in out.iter_mut().enumerate() {
-        *o = bytemuck::cast([row(2 * m), row(2 * m + 1)]);
+    let src = p.map(L::to_bits);
+    let mut rows = [[0u32; N]; 8];
+    for (r, (row, signs)) in rows.iter_mut().zip(signs).enumerate() {
+        let turned = batch::permute::<L, N, 2, 8, { batch::FOUR_TURNS }>(&src, r);
+        *row = L::to_words(turned ^ L::words(*signs));
     }
-    out
+    bytemuck::cast(rows)
 }
 
 /// Inverse of [`polar4`]: returns `(u, quadrant)` with `quadrant` in `0..4`.
