@@ -14,6 +14,8 @@ const { exports: wc } = new WebAssembly.Instance(module, {});
 const golden = readFileSync(new URL('../tests/golden/fingerprint.txt', import.meta.url), 'utf8').trim();
 const fp = BigInt.asUintN(64, wc.fingerprint()).toString(16).padStart(16, '0');
 assert.equal(fp, golden, 'determinism fingerprint differs from the golden value');
+const fp16 = BigInt.asUintN(64, wc.fingerprint_x16()).toString(16).padStart(16, '0');
+assert.equal(fp16, golden, 'the _x16 forms give other bits than the golden value');
 
 // The concentric map against the textbook formula in f64.
 function concentric(u0, u1) {
@@ -36,4 +38,4 @@ for (let i = 0; i < 64; i++) {
 }
 assert.ok(worst <= 2.5e-7, `concentric from JS: max error ${worst}`);
 assert.ok(Number.isFinite(wc.disk_concentric(NaN, Infinity, 0)));
-console.log(`wasm demo: no imports, fingerprint ${fp}, concentric max error ${worst.toExponential(2)}`);
+console.log(`wasm demo: no imports, fingerprint ${fp} (x8 and x16), concentric max error ${worst.toExponential(2)}`);

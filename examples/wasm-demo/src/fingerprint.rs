@@ -3,10 +3,15 @@
 //! points from a counter hash). Identical on every target and instruction set, or the
 //! determinism promise is broken. `no_std`, no allocation; shared by `tests/fingerprint.rs`,
 //! the native `fingerprint` binary and the wasm cdylib.
+//!
+//! [`fingerprint_x16`] hashes the same bits with every `_x8` call replaced by the `_x16` form
+//! (lanes hashed in the same order, eight at a time), so it must equal the same golden value:
+//! the 16-wide forms are checked on every target too, emulated by `wide` where the target
+//! has no 16-lane vectors.
 
 #![allow(dead_code)]
 
-use warpcore::f32x8;
+use warpcore::{f32x8, f32x16, u32x8, u32x16};
 
 /// Inputs every warp sees: a special-value cross product, then counter-hash points.
 pub const N: usize = 1024 + SPECIALS.len() * SPECIALS.len();
@@ -26,11 +31,16 @@ const SPECIALS: [f32; 12] = [
     0.75,
 ];
 
-pub struct Hasher(u64);
+/// The running hash, and which SIMD width stands for the `_x8` forms.
+pub struct Hasher(u64, bool);
 
 impl Hasher {
     pub fn new() -> Self {
-        Hasher(0xcbf2_9ce4_8422_2325)
+        Hasher(0xcbf2_9ce4_8422_2325, false)
+    }
+    /// A hasher that runs the `_x16` forms where the fingerprint has `_x8` ones.
+    pub fn new_x16() -> Self {
+        Hasher(0xcbf2_9ce4_8422_2325, true)
     }
     pub fn word(&mut self, w: u32) {
         for b in w.to_le_bytes() {
@@ -77,6 +87,7 @@ pub fn warp<const I: usize, const O: usize>(
     h: &mut Hasher,
     scalar: impl Fn([f32; I]) -> [f32; O],
     x8: impl Fn([f32x8; I]) -> [f32x8; O],
+    x16: impl Fn([f32x16; I]) -> [f32x16; O],
     slice: impl Fn(&[[f32; I]], &mut [[f32; O]]) -> usize,
 ) {
     let mut chunk_in = [[0.0f32; I]; 37];
@@ -99,13 +110,39 @@ pub fn warp<const I: usize, const O: usize>(
         i += n;
     }
     let mut g = 0;
-    while g + 8 <= N {
-        let v: [f32x8; I] =
-            core::array::from_fn(|d| f32x8::new(core::array::from_fn(|j| input::<I>(g + j)[d])));
-        for c in x8(v) {
-            h.floats(&c.to_array());
+    while g + 16 <= N {
+        let group: [[f32; I]; 16] = core::array::from_fn(|j| input(g + j));
+        hash_groups(h, &group, &x8, &x16);
+        g += 16;
+    }
+}
+
+/// Hashes the outputs of 16 inputs as two groups of 8, each component's eight lanes in turn:
+/// from two `x8` calls, or from one `x16` call (the hasher's width), in the same order.
+fn hash_groups<const I: usize, const O: usize>(
+    h: &mut Hasher,
+    group: &[[f32; I]; 16],
+    x8: impl Fn([f32x8; I]) -> [f32x8; O],
+    x16: impl Fn([f32x16; I]) -> [f32x16; O],
+) {
+    if h.1 {
+        let v = x16(core::array::from_fn(|d| {
+            f32x16::new(core::array::from_fn(|j| group[j][d]))
+        }));
+        for half in 0..2 {
+            for c in &v {
+                h.floats(&c.to_array()[8 * half..8 * half + 8]);
+            }
         }
-        g += 8;
+    } else {
+        for half in 0..2 {
+            let v = x8(core::array::from_fn(|d| {
+                f32x8::new(core::array::from_fn(|j| group[8 * half + j][d]))
+            }));
+            for c in v {
+                h.floats(&c.to_array());
+            }
+        }
     }
 }
 
@@ -115,7 +152,8 @@ pub fn warp<const I: usize, const O: usize>(
 pub fn indexed<const O: usize>(
     h: &mut Hasher,
     scalar: impl Fn(u32, u32) -> [f32; O],
-    x8: impl Fn(warpcore::u32x8, warpcore::u32x8) -> [f32x8; O],
+    x8: impl Fn(u32x8, u32x8) -> [f32x8; O],
+    x16: impl Fn(u32x16, u32x16) -> [f32x16; O],
     slice: impl Fn(u32, u32, &mut [[f32; O]]) -> usize,
 ) {
     let seeds = [0u32, 1, 0x9e37_79b9, u32::MAX];
@@ -129,11 +167,32 @@ pub fn indexed<const O: usize>(
                 h.floats(&scalar(i, seed));
                 h.floats(o);
             }
-            let idx =
-                warpcore::u32x8::new(core::array::from_fn(|j| start.wrapping_add(3 * j as u32)));
-            let sd = warpcore::u32x8::new(core::array::from_fn(|j| seed ^ j as u32));
-            for c in x8(idx, sd) {
-                h.floats(&c.to_array());
+            let idx = |j: usize| start.wrapping_add(3 * j as u32);
+            let sd = |j: usize| seed ^ j as u32;
+            if h.1 {
+                // Lanes 0..8 as the 8-wide call; lanes 8..16 hold other indices and seeds,
+                // checked against the scalar form.
+                let v = x16(
+                    u32x16::new(core::array::from_fn(idx)),
+                    u32x16::new(core::array::from_fn(sd)),
+                );
+                for c in &v {
+                    h.floats(&c.to_array()[..8]);
+                }
+                if (8..16).any(|j| {
+                    let s = scalar(idx(j), sd(j));
+                    (0..O).any(|c| s[c].to_bits() != v[c].to_array()[j].to_bits())
+                }) {
+                    h.word(0xbad);
+                }
+            } else {
+                let v = x8(
+                    u32x8::new(core::array::from_fn(idx)),
+                    u32x8::new(core::array::from_fn(sd)),
+                );
+                for c in v {
+                    h.floats(&c.to_array());
+                }
             }
         }
     }
@@ -141,27 +200,44 @@ pub fn indexed<const O: usize>(
 
 /// The fingerprint of every family compiled in.
 pub fn fingerprint() -> u64 {
-    let mut h = Hasher::new();
+    fingerprint_with(Hasher::new())
+}
+
+/// [`fingerprint`] with the `_x16` forms in place of the `_x8` ones: the same value.
+pub fn fingerprint_x16() -> u64 {
+    fingerprint_with(Hasher::new_x16())
+}
+
+fn fingerprint_with(mut h: Hasher) -> u64 {
     #[cfg(feature = "disk")]
     {
         use warpcore::disk;
-        warp(&mut h, disk::polar, disk::polar_x8, disk::polar_slice);
+        warp(
+            &mut h,
+            disk::polar,
+            disk::polar_x8,
+            disk::polar_x16,
+            disk::polar_slice,
+        );
         warp(
             &mut h,
             disk::concentric,
             disk::concentric_x8,
+            disk::concentric_x16,
             disk::concentric_slice,
         );
         warp(
             &mut h,
             disk::polar_inverse,
             disk::polar_inverse_x8,
+            disk::polar_inverse_x16,
             disk::polar_inverse_slice,
         );
         warp(
             &mut h,
             disk::concentric_inverse,
             disk::concentric_inverse_x8,
+            disk::concentric_inverse_x16,
             disk::concentric_inverse_slice,
         );
         for q in 0..4u32 {
@@ -169,6 +245,7 @@ pub fn fingerprint() -> u64 {
                 &mut h,
                 |u| disk::polar4(u, q),
                 |u| disk::polar4_x8(u, warpcore::u32x8::splat(q)),
+                |u| disk::polar4_x16(u, warpcore::u32x16::splat(q)),
                 |u, o| {
                     for (a, b) in u.iter().zip(o.iter_mut()) {
                         *b = disk::polar4(*a, q);
@@ -182,6 +259,7 @@ pub fn fingerprint() -> u64 {
                 &mut h,
                 |u| disk::concentric4(u, q),
                 |u| disk::concentric4_x8(u, warpcore::u32x8::splat(q)),
+                |u| disk::concentric4_x16(u, warpcore::u32x16::splat(q)),
                 |u, o| {
                     for (a, b) in u.iter().zip(o.iter_mut()) {
                         *b = disk::concentric4(*a, q);
@@ -213,6 +291,7 @@ pub fn fingerprint() -> u64 {
             &mut h,
             pmj02bn::sample,
             pmj02bn::sample_x8,
+            pmj02bn::sample_x16,
             pmj02bn::sample_slice,
         );
         for (set, index) in [(0usize, 0usize), (1, 1), (3, 4095), (7, 1 << 30)] {
@@ -228,6 +307,7 @@ pub fn fingerprint() -> u64 {
             &mut h,
             sequence::random,
             sequence::random_x8,
+            sequence::random_x16,
             sequence::random_slice,
         );
         for count in [1u32, 16, 17, 1024] {
@@ -235,6 +315,7 @@ pub fn fingerprint() -> u64 {
                 &mut h,
                 |i, s| sequence::stratified(i, count, s),
                 |i, s| sequence::stratified_x8(i, count, s),
+                |i, s| sequence::stratified_x16(i, count, s),
                 |st, s, o| sequence::stratified_slice(st, count, s, o),
             );
         }
@@ -242,80 +323,127 @@ pub fn fingerprint() -> u64 {
     #[cfg(feature = "triangle")]
     {
         use warpcore::triangle as t;
-        warp(&mut h, t::uniform, t::uniform_x8, t::uniform_slice);
+        warp(
+            &mut h,
+            t::uniform,
+            t::uniform_x8,
+            t::uniform_x16,
+            t::uniform_slice,
+        );
         warp(
             &mut h,
             t::uniform_inverse,
             t::uniform_inverse_x8,
+            t::uniform_inverse_x16,
             t::uniform_inverse_slice,
         );
-        warp(&mut h, t::sqrt_map, t::sqrt_map_x8, t::sqrt_map_slice);
+        warp(
+            &mut h,
+            t::sqrt_map,
+            t::sqrt_map_x8,
+            t::sqrt_map_x16,
+            t::sqrt_map_slice,
+        );
         warp(
             &mut h,
             t::sqrt_map_inverse,
             t::sqrt_map_inverse_x8,
+            t::sqrt_map_inverse_x16,
             t::sqrt_map_inverse_slice,
         );
-        indexed(&mut h, t::basu_owen, t::basu_owen_x8, t::basu_owen_slice);
+        indexed(
+            &mut h,
+            t::basu_owen,
+            t::basu_owen_x8,
+            t::basu_owen_x16,
+            t::basu_owen_slice,
+        );
         indexed(
             &mut h,
             t::basu_owen_permuted,
             t::basu_owen_permuted_x8,
+            t::basu_owen_permuted_x16,
             t::basu_owen_permuted_slice,
         );
     }
     #[cfg(feature = "sphere")]
     {
         use warpcore::sphere as s;
-        warp(&mut h, s::equal_area, s::equal_area_x8, s::equal_area_slice);
+        warp(
+            &mut h,
+            s::equal_area,
+            s::equal_area_x8,
+            s::equal_area_x16,
+            s::equal_area_slice,
+        );
         warp(
             &mut h,
             s::equal_area_inverse,
             s::equal_area_inverse_x8,
+            s::equal_area_inverse_x16,
             s::equal_area_inverse_slice,
         );
         warp(
             &mut h,
             s::equal_area_wrap,
             s::equal_area_wrap_x8,
+            s::equal_area_wrap_x16,
             s::equal_area_wrap_slice,
         );
-        warp(&mut h, s::equirect, s::equirect_x8, s::equirect_slice);
+        warp(
+            &mut h,
+            s::equirect,
+            s::equirect_x8,
+            s::equirect_x16,
+            s::equirect_slice,
+        );
         warp(
             &mut h,
             s::equirect_inverse,
             s::equirect_inverse_x8,
+            s::equirect_inverse_x16,
             s::equirect_inverse_slice,
         );
-        warp(&mut h, s::uniform, s::uniform_x8, s::uniform_slice);
+        warp(
+            &mut h,
+            s::uniform,
+            s::uniform_x8,
+            s::uniform_x16,
+            s::uniform_slice,
+        );
         warp(
             &mut h,
             s::uniform_inverse,
             s::uniform_inverse_x8,
+            s::uniform_inverse_x16,
             s::uniform_inverse_slice,
         );
         warp(
             &mut h,
             s::uniform_hemisphere,
             s::uniform_hemisphere_x8,
+            s::uniform_hemisphere_x16,
             s::uniform_hemisphere_slice,
         );
         warp(
             &mut h,
             s::uniform_hemisphere_inverse,
             s::uniform_hemisphere_inverse_x8,
+            s::uniform_hemisphere_inverse_x16,
             s::uniform_hemisphere_inverse_slice,
         );
         warp(
             &mut h,
             s::cosine_hemisphere,
             s::cosine_hemisphere_x8,
+            s::cosine_hemisphere_x16,
             s::cosine_hemisphere_slice,
         );
         warp(
             &mut h,
             s::cosine_hemisphere_inverse,
             s::cosine_hemisphere_inverse_x8,
+            s::cosine_hemisphere_inverse_x16,
             s::cosine_hemisphere_inverse_slice,
         );
         for i in 0..N {

@@ -15,6 +15,13 @@ pub extern "C" fn fingerprint() -> u64 {
     fingerprint::fingerprint()
 }
 
+/// The same fingerprint computed with the `_x16` forms in place of the `_x8` ones.
+#[cfg(feature = "all")]
+#[unsafe(no_mangle)]
+pub extern "C" fn fingerprint_x16() -> u64 {
+    fingerprint::fingerprint_x16()
+}
+
 #[cfg(feature = "disk")]
 #[unsafe(no_mangle)]
 pub extern "C" fn disk_concentric(u0: f32, u1: f32, k: u32) -> f32 {
