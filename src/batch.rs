@@ -353,3 +353,109 @@ const fn chain_plan<const N: usize, const S: usize, const ROWS: usize, const LAY
     }
     plan
 }
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use core::num::Wrapping;
+    use std::vec;
+
+    /// A body that mixes components and would expose any lane or component mix-up.
+    fn body<L: Lane>(u: [L; 3]) -> [L; 2] {
+        [
+            u[0] * L::splat(3.0) - u[2],
+            u[1] / (u[0].abs() + L::splat(2.0)),
+        ]
+    }
+
+    /// `map_lanes` at width `N` against the scalar body: every input length up to 70 (full
+    /// groups and every padded tail), output shorter, equal and longer.
+    fn map_agrees<L: Vector<N>, const N: usize>() {
+        let input: [[f32; 3]; 70] = core::array::from_fn(|i| {
+            let x = i as f32;
+            [x, -0.5 * x, x * x + 0.25]
+        });
+        for n in 0..=input.len() {
+            for m in [n, n + 3, n.saturating_sub(5)] {
+                let mut out = vec![[9.0f32; 2]; m];
+                assert_eq!(map_lanes(&input[..n], &mut out, body::<L>), n.min(m));
+                for (j, o) in out.iter().enumerate() {
+                    let want = if j < n.min(m) {
+                        body(input[j])
+                    } else {
+                        [9.0; 2]
+                    };
+                    assert_eq!(o.map(f32::to_bits), want.map(f32::to_bits), "{n}/{m}: {j}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn map_agrees_at_both_widths() {
+        map_agrees::<f32x8, 8>();
+        map_agrees::<f32x16, 16>();
+    }
+
+    /// `fill_indexed` at width `N`: index `start + i`, wrapping past `u32::MAX`, every length.
+    fn fill_agrees<L: Vector<N>, const N: usize>() {
+        let f = |i: L::U| -> [L; 3] {
+            let lo = L::from_uint(i & L::U::splat(0xffff));
+            let hi = L::from_uint(i.shr(16));
+            [lo, hi, lo * hi]
+        };
+        for start in [0u32, 5, u32::MAX - 20] {
+            for n in 0..=50 {
+                let mut out = vec![[9.0f32; 3]; n];
+                assert_eq!(fill_indexed::<L, N, 3>(start, &mut out, f), n);
+                for (k, o) in out.iter().enumerate() {
+                    let i = start.wrapping_add(k as u32);
+                    let (lo, hi) = ((i & 0xffff) as f32, (i >> 16) as f32);
+                    assert_eq!(*o, [lo, hi, lo * hi], "{start} {n} {k}");
+                }
+            }
+        }
+        // The scalar lane type's conversion agrees (so the expected values above are the
+        // body's scalar results).
+        assert_eq!(<f32 as Lane>::from_uint(Wrapping(0xffff)), 65535.0);
+    }
+
+    #[test]
+    fn fill_agrees_at_both_widths() {
+        fill_agrees::<f32x8, 8>();
+        fill_agrees::<f32x16, 16>();
+    }
+
+    /// The transposes for 1 to 4 components at both widths, against element-by-element
+    /// copies; this exercises every step of the AVX-512 permute chains (up to three
+    /// `vpermt2d`) and the other targets' shuffles or lane picks.
+    fn transposes<L: Vector<N>, const N: usize, const S: usize>() {
+        let elements: [[f32; S]; N] =
+            core::array::from_fn(|j| core::array::from_fn(|k| (100 * j + k) as f32));
+        let components: [L; S] = load::<L, N, S>(&elements);
+        for (k, c) in components.iter().enumerate() {
+            let lanes = L::to_words(c.to_bits());
+            for j in 0..N {
+                assert_eq!(
+                    f32::from_bits(lanes[j]),
+                    elements[j][k],
+                    "load {N}x{S}: {j} {k}"
+                );
+            }
+        }
+        assert_eq!(store::<L, N, S>(components), elements, "store {N}x{S}");
+    }
+
+    #[test]
+    fn transposes_at_both_widths() {
+        transposes::<f32x8, 8, 1>();
+        transposes::<f32x8, 8, 2>();
+        transposes::<f32x8, 8, 3>();
+        transposes::<f32x8, 8, 4>();
+        transposes::<f32x16, 16, 1>();
+        transposes::<f32x16, 16, 2>();
+        transposes::<f32x16, 16, 3>();
+        transposes::<f32x16, 16, 4>();
+    }
+}

@@ -571,3 +571,73 @@ pub fn concentric4_inverse_x8(p: [f32x8; 2]) -> ([f32x8; 2], u32x8) {
 pub fn concentric4_inverse_x16(p: [f32x16; 2]) -> ([f32x16; 2], u32x16) {
     concentric4_inverse_body(p)
 }
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::vec;
+
+    /// The quadrant slices' machinery at both widths (whatever `batch::Widest` this build
+    /// has): each point warped once and turned by exact quarter turns equals the scalar
+    /// quadrant warp bit for bit, for every point count up to 40 (so every tail), output
+    /// lengths cut anywhere, and special inputs (signed zeros, NaN, infinities, subnormals).
+    fn quadrant_slices<L: Vector<N>, const N: usize>() {
+        let specials = [
+            0.0,
+            -0.0,
+            0.5,
+            1.0,
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::from_bits(1),
+            0.999_999_94,
+            0.25,
+        ];
+        let points: [[f32; 2]; 40] = core::array::from_fn(|i| {
+            if i < 20 {
+                [specials[i % 10], specials[(i * 3 + 1) % 10]]
+            } else {
+                [
+                    (i as f32 * 0.618_034).fract(),
+                    (i as f32 * 0.414_213_5).fract(),
+                ]
+            }
+        });
+        type Scalar = fn([f32; 2], u32) -> [f32; 2];
+        let polar4_0 = |u: [L; 2]| polar4_body(u, UintLane::splat(0));
+        let concentric4_0 = |u: [L; 2]| concentric4_body(u, UintLane::splat(0));
+        for (name, scalar) in [("polar4", polar4 as Scalar), ("concentric4", concentric4)] {
+            for p in 0..=points.len() {
+                for m in [4 * p, 4 * p + 5, (4 * p).saturating_sub(3), 4 * p / 2 + 1] {
+                    let mut out = vec![[9.0f32; 2]; m];
+                    let n = if name == "polar4" {
+                        four_per_point(&points[..p], &mut out, polar4_0)
+                    } else {
+                        four_per_point(&points[..p], &mut out, concentric4_0)
+                    };
+                    assert_eq!(n, m.min(4 * p), "{name} {N}: {p} points, {m} out");
+                    for (i, o) in out.iter().enumerate() {
+                        let want = if i < n {
+                            scalar(points[i / 4], i as u32 % 4)
+                        } else {
+                            [9.0; 2]
+                        };
+                        assert_eq!(
+                            o.map(f32::to_bits),
+                            want.map(f32::to_bits),
+                            "{name} {N}: {p} points, {m} out, sample {i}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn quadrant_slices_at_both_widths() {
+        quadrant_slices::<f32x8, 8>();
+        quadrant_slices::<f32x16, 16>();
+    }
+}

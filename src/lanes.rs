@@ -434,7 +434,7 @@ pub(crate) fn signed_unit<L: Lane>(x: L) -> L {
 mod tests {
     use super::*;
 
-    fn specials() -> [f32; 14] {
+    fn specials() -> [f32; 16] {
         [
             0.0,
             -0.0,
@@ -450,6 +450,8 @@ mod tests {
             -f32::from_bits(1),
             f32::MAX,
             1.5,
+            f32::from_bits(0x007f_ffff),
+            -f32::from_bits(0x7fc0_1234),
         ]
     }
 
@@ -496,6 +498,7 @@ mod tests {
                     );
                 };
                 same(a + b, va + vb);
+                same16(a, b);
                 same(a - b, va - vb);
                 same(a * b, va * vb);
                 same(a / b, va / vb);
@@ -541,6 +544,201 @@ mod tests {
             assert_eq!(w.shl(k).0, u32x8::splat(w.0).shl(k).to_array()[0]);
             assert_eq!(w.shr(k).0, u32x8::splat(w.0).shr(k).to_array()[0]);
         }
+    }
+
+    /// Every float lane operation of `f32x16` against the scalar one, for `(a, b)` in lane 11
+    /// and other values in the rest (without AVX-512 `wide` runs two `f32x8` halves; with it,
+    /// other instructions: both must agree with the scalar bits).
+    fn same16(a: f32, b: f32) {
+        let fill = |x: f32| {
+            let mut v = [0.75f32; 16];
+            v[11] = x;
+            v[3] = -x;
+            f32x16::new(v)
+        };
+        let (va, vb) = (fill(a), fill(b));
+        let same = |s: f32, v: f32x16, what: &str| {
+            let v = v.to_array()[11];
+            assert!(
+                s.to_bits() == v.to_bits() || s.is_nan() && v.is_nan(),
+                "x16 {what} {a} {b}: {s} vs {v}"
+            );
+        };
+        same(a + b, va + vb, "add");
+        same(a - b, va - vb, "sub");
+        same(a * b, va * vb, "mul");
+        same(a / b, va / vb, "div");
+        same(-a, -va, "neg");
+        same(Lane::sqrt(a), Lane::sqrt(va), "sqrt");
+        same(unit_interval(a), unit_interval(va), "unit_interval");
+        same(signed_unit(a), signed_unit(va), "signed_unit");
+        same(Lane::abs(a), Lane::abs(va), "abs");
+        let pick = |m: bool| if m { 1.0 } else { 2.0 };
+        let one = f32x16::ONE;
+        let two = f32x16::splat(2.0);
+        same(pick(a < b), f32x16::select(va.simd_lt(vb), one, two), "lt");
+        same(pick(a <= b), f32x16::select(va.simd_le(vb), one, two), "le");
+        same(pick(a == b), f32x16::select(va.simd_eq(vb), one, two), "eq");
+        // Masks combine lane-wise like bools.
+        let m = va.simd_lt(vb) & !vb.simd_le(va) | va.simd_eq(va);
+        same(
+            pick(a < b && b > a || a == a),
+            f32x16::select(m, one, two),
+            "mask ops",
+        );
+        assert_eq!(Lane::to_bits(va).to_array()[11], a.to_bits());
+        assert_eq!(
+            <f32x16 as Lane>::from_bits(u32x16::splat(a.to_bits())).to_array()[11].to_bits(),
+            a.to_bits()
+        );
+        assert_eq!(Lane::sign_bit(va).to_array()[11], a.to_bits() & 0x8000_0000);
+    }
+
+    /// The integer lane operations of `u32x16` against `Wrapping<u32>`, lane by lane, on values
+    /// on both sides of `2^31` (unsigned compares), every shift count (taken modulo 32),
+    /// wrapping multiplication, the high half of the product and the bit reversal.
+    #[test]
+    fn uint16_agrees_with_scalar() {
+        let vals = [
+            0u32,
+            1,
+            2,
+            0x7fff_ffff,
+            0x8000_0000,
+            0x8000_0001,
+            0xdead_beef,
+            0x1234_5678,
+            u32::MAX,
+            u32::MAX - 1,
+            3,
+            0x5555_5555,
+            0xaaaa_aaaa,
+            1 << 24,
+            (1 << 24) - 1,
+            42,
+        ];
+        let va = u32x16::new(vals);
+        for rot in 0..16 {
+            let b: [u32; 16] = core::array::from_fn(|j| vals[(j + rot) % 16]);
+            let vb = u32x16::new(b);
+            let lanes = |v: u32x16| v.to_array();
+            let bit = |m: SimdMask<u32x16>| {
+                lanes(<u32x16 as UintLane>::select(
+                    m,
+                    u32x16::splat(1),
+                    u32x16::ZERO,
+                ))
+            };
+            let (add, sub, mul) = (lanes(va + vb), lanes(va - vb), lanes(va * vb));
+            let (and, or, xor, not) = (lanes(va & vb), lanes(va | vb), lanes(va ^ vb), lanes(!va));
+            let (lt, eq) = (
+                bit(UintLane::simd_lt(va, vb)),
+                bit(UintLane::simd_eq(va, vb)),
+            );
+            let high = lanes(va.mul_high(vb));
+            for j in 0..16 {
+                let (x, y) = (Wrapping(vals[j]), Wrapping(b[j]));
+                assert_eq!(add[j], (x + y).0);
+                assert_eq!(sub[j], (x - y).0);
+                assert_eq!(mul[j], (x * y).0);
+                assert_eq!(
+                    [and[j], or[j], xor[j], not[j]],
+                    [(x & y).0, (x | y).0, (x ^ y).0, (!x).0]
+                );
+                assert_eq!(lt[j] == 1, x < y, "{x} < {y}");
+                assert_eq!(eq[j] == 1, x == y);
+                assert_eq!(high[j], x.mul_high(y).0);
+                let sel = <u32x16 as UintLane>::select(UintLane::simd_lt(va, vb), va, vb);
+                assert_eq!(sel.to_array()[j], if x < y { x.0 } else { y.0 });
+            }
+        }
+        for n in [0, 1, 5, 16, 31, 32, 33, 63, 64, u32::MAX] {
+            let (l, r) = (va.shl(n).to_array(), va.shr(n).to_array());
+            for j in 0..16 {
+                assert_eq!(l[j], Wrapping(vals[j]).shl(n).0, "{:#x} << {n}", vals[j]);
+                assert_eq!(r[j], Wrapping(vals[j]).shr(n).0, "{:#x} >> {n}", vals[j]);
+            }
+        }
+        let rev = va.reverse_bits().to_array();
+        let pairs = va.gather_pairs(|x| [x ^ 1, x.rotate_left(3)]);
+        for j in 0..16 {
+            assert_eq!(rev[j], vals[j].reverse_bits());
+            assert_eq!(
+                [pairs[0].to_array()[j], pairs[1].to_array()[j]],
+                [vals[j] ^ 1, vals[j].rotate_left(3)]
+            );
+        }
+        // Float <-> integer conversions on the ranges the bodies use.
+        let ints = u32x16::new(core::array::from_fn(|j| {
+            [0, 1, 3, 1 << 23, (1 << 24) - 1][j % 5]
+        }));
+        let f = <f32x16 as Lane>::from_uint(ints);
+        for j in 0..16 {
+            let u = ints.to_array()[j];
+            assert_eq!(
+                f.to_array()[j].to_bits(),
+                <f32 as Lane>::from_uint(Wrapping(u)).to_bits()
+            );
+        }
+        let big = f32x16::new(core::array::from_fn(|j| {
+            [
+                0.0,
+                0.99,
+                1.5,
+                16_777_217.0,
+                2_147_483_520.0,
+                1.5e9,
+                7.25,
+                3.0,
+            ][j % 8]
+        }));
+        let t = Lane::to_uint(big).to_array();
+        for j in 0..16 {
+            let x = big.to_array()[j];
+            assert_eq!(t[j], Lane::to_uint(x).0, "{x}");
+        }
+    }
+
+    /// The 16-lane gathers read the same records as the scalar ones, zeros out of bounds.
+    #[test]
+    fn gathers16_agree_with_scalar() {
+        let table: [[u32; 3]; 5] = core::array::from_fn(|i| [10 * i as u32, 10 * i as u32 + 1, 7]);
+        let flat: [u32; 11] = core::array::from_fn(|i| 100 + i as u32);
+        let idx = [
+            0u32,
+            1,
+            2,
+            3,
+            4,
+            5,
+            u32::MAX,
+            7,
+            4,
+            3,
+            2,
+            1,
+            0,
+            8,
+            9,
+            1 << 31,
+        ];
+        let g = u32x16::gather(&table, u32x16::new(idx));
+        let g4 = u32x16::gather4(&flat, u32x16::new(idx));
+        for j in 0..16 {
+            let s = <Wrapping<u32> as UintLane>::gather(&table, Wrapping(idx[j]));
+            let s4 = <Wrapping<u32> as UintLane>::gather4(&flat, Wrapping(idx[j]));
+            for k in 0..3 {
+                assert_eq!(g[k].to_array()[j], s[k].0, "gather lane {j} word {k}");
+            }
+            for k in 0..4 {
+                assert_eq!(g4[k].to_array()[j], s4[k].0, "gather4 lane {j} word {k}");
+            }
+        }
+        // In-range reads are really read (not zeros): lane 5 of gather4 starts at word 5.
+        assert_eq!(g4[3].to_array()[5], 108);
+        assert_eq!(g4[0].to_array()[7], 107);
+        assert_eq!(g4[0].to_array()[13], 0); // 8..12 is past the end
+        assert_eq!(g[1].to_array()[4], 41);
     }
 
     /// Unsigned compares (the top bit is a value, not a sign) and panic-free gathers.

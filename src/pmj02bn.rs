@@ -347,7 +347,33 @@ pub fn shuffle_x16(index: u32x16, seed: u32x16) -> u32x16 {
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use super::*;
+    use std::vec;
+
+    /// The slice machinery at both widths against the scalar form: runs that start anywhere
+    /// in a block, cross block boundaries and the index wrap, every tail length.
+    fn slices_agree<L: Vector<N>, const N: usize>() {
+        let p = POINTS as u32;
+        for start in [0u32, 3, p - 5, p - 16, 2 * p - 1, u32::MAX - 10] {
+            for len in [0usize, 1, 7, 15, 16, 17, 33, 40] {
+                for seed in [0u32, 0x5eed, u32::MAX] {
+                    let mut out = vec![[9.0f32; 2]; len];
+                    assert_eq!(sample_lanes::<L, N>(start, seed, &mut out), len);
+                    for (k, o) in out.iter().enumerate() {
+                        let want = sample(start.wrapping_add(k as u32), seed);
+                        assert_eq!(o.map(f32::to_bits), want.map(f32::to_bits), "{start} {k}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn slices_agree_at_both_widths() {
+        slices_agree::<wide::f32x8, 8>();
+        slices_agree::<f32x16, 16>();
+    }
 
     #[test]
     /// The in-place view covers every byte of every set, in order, and decodes little endian.
