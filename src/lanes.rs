@@ -580,9 +580,10 @@ mod tests {
         same(pick(a <= b), f32x16::select(va.simd_le(vb), one, two), "le");
         same(pick(a == b), f32x16::select(va.simd_eq(vb), one, two), "eq");
         // Masks combine lane-wise like bools.
-        let m = va.simd_lt(vb) & !vb.simd_le(va) | va.simd_eq(va);
+        let (lt, eq, gt) = (a < b, a == b, b < a);
+        let m = (va.simd_lt(vb) | va.simd_eq(vb)) & !vb.simd_lt(va);
         same(
-            pick(a < b && b > a || a == a),
+            pick((lt | eq) & !gt),
             f32x16::select(m, one, two),
             "mask ops",
         );
