@@ -431,6 +431,7 @@ pub(crate) fn signed_unit<L: Lane>(x: L) -> L {
 }
 
 #[cfg(test)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
 
