@@ -84,20 +84,15 @@ pub const TABLE_BYTES: usize = 8 * POINTS * SETS;
 
 const LOG2_POINTS: u32 = POINTS.trailing_zeros();
 
-/// One set's bytes, aligned to a cache line (a point never straddles two lines).
+/// The sets' bytes, one after the other, aligned to a cache line (each set's size is a
+/// multiple of 64 bytes, so a point never straddles two lines).
 #[repr(C, align(64))]
 struct Aligned<T>(T);
 
 /// `include_bytes!` of set `$set` of the `$points`-point tables.
 macro_rules! set_bytes {
     ($points:literal, $set:literal) => {
-        Aligned(*include_bytes!(concat!(
-            "tables/pmj02bn_",
-            $points,
-            "_",
-            $set,
-            ".bin"
-        )))
+        *include_bytes!(concat!("tables/pmj02bn_", $points, "_", $set, ".bin"))
     };
 }
 
@@ -105,36 +100,36 @@ macro_rules! set_bytes {
 #[cfg(feature = "pmj02bn-4-sets")]
 macro_rules! sets {
     ($points:literal) => {
-        [
+        Aligned([
             set_bytes!($points, "0"),
             set_bytes!($points, "1"),
             set_bytes!($points, "2"),
             set_bytes!($points, "3"),
-        ]
+        ])
     };
 }
 #[cfg(not(feature = "pmj02bn-4-sets"))]
 macro_rules! sets {
     ($points:literal) => {
-        [set_bytes!($points, "0")]
+        Aligned([set_bytes!($points, "0")])
     };
 }
 
 #[cfg(feature = "pmj02bn-65536")]
-static TABLES: [Aligned<[u8; 8 * POINTS]>; SETS] = sets!("65536");
+static TABLES: Aligned<[[u8; 8 * POINTS]; SETS]> = sets!("65536");
 #[cfg(all(feature = "pmj02bn-16384", not(feature = "pmj02bn-65536")))]
-static TABLES: [Aligned<[u8; 8 * POINTS]>; SETS] = sets!("16384");
+static TABLES: Aligned<[[u8; 8 * POINTS]; SETS]> = sets!("16384");
 #[cfg(all(
     feature = "pmj02bn-4096",
     not(any(feature = "pmj02bn-16384", feature = "pmj02bn-65536"))
 ))]
-static TABLES: [Aligned<[u8; 8 * POINTS]>; SETS] = sets!("4096");
+static TABLES: Aligned<[[u8; 8 * POINTS]; SETS]> = sets!("4096");
 #[cfg(not(any(
     feature = "pmj02bn-4096",
     feature = "pmj02bn-16384",
     feature = "pmj02bn-65536"
 )))]
-static TABLES: [Aligned<[u8; 8 * POINTS]>; SETS] = sets!("1024");
+static TABLES: Aligned<[[u8; 8 * POINTS]; SETS]> = sets!("1024");
 
 /// Set `set` (reduced modulo [`SETS`]) as a fixed-length array of 8-byte points, viewing its
 /// embedded bytes in place. The cast is between arrays of bytes of the same length, so it
@@ -142,14 +137,23 @@ static TABLES: [Aligned<[u8; 8 * POINTS]>; SETS] = sets!("1024");
 /// masked index reach the table without a bounds check.
 #[inline(always)]
 fn view(set: usize) -> &'static [[u8; 8]; POINTS] {
-    bytemuck::cast_ref(&TABLES[set & (SETS - 1)].0)
+    bytemuck::cast_ref(&TABLES.0[set & (SETS - 1)])
 }
 
-/// Point `index` (reduced modulo [`POINTS`]) of a set's view: two little-endian words, decoded
-/// explicitly, so a big-endian target reads the same values.
+/// All sets as one array of `SETS * POINTS` 8-byte points (set `s`, point `r` at
+/// `s * POINTS + r`), viewed in place like [`view`]: the gathers index it with one masked
+/// word per lane.
 #[inline(always)]
-fn decode(view: &[[u8; 8]; POINTS], index: usize) -> [u32; 2] {
-    let p = view[index & (POINTS - 1)];
+fn all_points() -> &'static [[u8; 8]; SETS * POINTS] {
+    bytemuck::cast_ref(&TABLES.0)
+}
+
+/// Point `index` (reduced modulo `M`, a power of two: [`POINTS`] for a set's view, `SETS *
+/// POINTS` for [`all_points`]): two little-endian words, decoded explicitly, so a big-endian
+/// target reads the same values.
+#[inline(always)]
+fn decode<const M: usize>(view: &[[u8; 8]; M], index: usize) -> [u32; 2] {
+    let p = view[index & (M - 1)];
     [
         u32::from_le_bytes([p[0], p[1], p[2], p[3]]),
         u32::from_le_bytes([p[4], p[5], p[6], p[7]]),
@@ -229,10 +233,7 @@ fn consecutive_points<L: Vector<N>, const N: usize>(
 #[inline(always)]
 fn point<L: Lane>(r: L::U, keys: Keys<L::U>) -> [L; 2] {
     // SETS * POINTS <= 2^18: the flat index holds set and point.
-    let [x, y] = (keys.set | r).gather_pairs(|i| {
-        let i = i as usize;
-        decode(view(i >> LOG2_POINTS), i)
-    });
+    let [x, y] = (keys.set | r).gather_pairs(|i| decode(all_points(), i as usize));
     finish(x, y, keys)
 }
 
@@ -380,14 +381,14 @@ mod tests {
     /// (Runs under miri in CI: the cast and the reads are checked for soundness there.)
     fn table_view_is_complete() {
         let le = |b: &[u8]| u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
-        for (set, table) in TABLES.iter().enumerate() {
-            let bytes = &table.0;
+        for (set, bytes) in TABLES.0.iter().enumerate() {
             let v = view(set);
             assert_eq!(core::mem::size_of_val(v), bytes.len());
             for k in [0, 1, POINTS / 2 + 3, POINTS - 1] {
                 let b = &bytes[8 * k..8 * k + 8];
                 assert_eq!(v[k], *b);
                 assert_eq!(raw(set, k), [le(&b[..4]), le(&b[4..])]);
+                assert_eq!(all_points()[set * POINTS + k], *b);
             }
         }
         assert_eq!(core::mem::size_of_val(&TABLES), TABLE_BYTES);
