@@ -13,7 +13,7 @@ use rand_distr::{Distribution, UnitDisc};
 use rand_xoshiro::Xoshiro128PlusPlus;
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 use std::hint::black_box;
-use warpcore::{disk, f32x8, u32x8};
+use warpcore::{disk, f32x8, f32x16, u32x8, u32x16};
 
 /// Shirley-Chiu as published, two branches, libm sin/cos.
 fn concentric_libm(u: [f32; 2]) -> [f32; 2] {
@@ -76,6 +76,7 @@ fn quadrant_group(
     name: &str,
     scalar: impl Fn([f32; 2], u32) -> [f32; 2],
     x8: impl Fn([f32x8; 2], u32x8) -> [f32x8; 2],
+    x16: impl Fn([f32x16; 2], u32x16) -> [f32x16; 2],
     slice: impl Fn(&[[f32; 2]], &mut [[f32; 2]]) -> usize,
     textbook: impl Fn([f32; 2], u32) -> [f32; 2],
 ) {
@@ -103,6 +104,20 @@ fn quadrant_group(
                 }
             }
             black_box(&mut out8);
+        })
+    });
+    let soa16 = common::to_soa16(&points);
+    let mut out16 = vec![[f32x16::ZERO; 2]; BATCH / 16];
+    g.bench_function("warpcore x16", |b| {
+        let q: [u32x16; 4] = std::array::from_fn(|j| u32x16::splat(j as u32));
+        b.iter(|| {
+            for (k, o) in out16.chunks_exact_mut(4).enumerate() {
+                let p = soa16[k];
+                for (j, oo) in o.iter_mut().enumerate() {
+                    *oo = x16(p, q[j]);
+                }
+            }
+            black_box(&mut out16);
         })
     });
     g.bench_function("warpcore slice", |b| {
@@ -135,6 +150,7 @@ fn main() {
         "disk/concentric",
         disk::concentric,
         disk::concentric_x8,
+        disk::concentric_x16,
         disk::concentric_slice,
     );
     peer_scalar(&mut g, "libm textbook (scalar)", concentric_libm);
@@ -146,6 +162,7 @@ fn main() {
         "disk/polar",
         disk::polar,
         disk::polar_x8,
+        disk::polar_x16,
         disk::polar_slice,
     );
     peer_scalar(&mut g, "libm textbook (scalar)", polar_libm);
@@ -157,6 +174,7 @@ fn main() {
         "disk/polar4",
         disk::polar4,
         disk::polar4_x8,
+        disk::polar4_x16,
         disk::polar4_slice,
         polar4_libm,
     );
@@ -165,6 +183,7 @@ fn main() {
         "disk/concentric4",
         disk::concentric4,
         disk::concentric4_x8,
+        disk::concentric4_x16,
         disk::concentric4_slice,
         concentric4_libm,
     );

@@ -9,7 +9,7 @@ mod common;
 use common::BATCH;
 use criterion::Throughput;
 use std::hint::black_box;
-use warpcore::{f32x8, pmj02bn, sequence, u32x8};
+use warpcore::{f32x8, f32x16, pmj02bn, sequence, u32x8, u32x16};
 
 const SEED: u32 = 0x5eed;
 
@@ -44,6 +44,27 @@ fn main() {
                 *o = pmj02bn::sample_x8(u32x8::splat(8 * k as u32) + lane, seed);
             }
             black_box(&mut out8);
+        })
+    });
+    g.bench_function("warpcore sample_x8, a seed per lane", |b| {
+        let lane = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
+        b.iter(|| {
+            let seed = u32x8::splat(black_box(SEED)) + lane;
+            for (k, o) in out8.iter_mut().enumerate() {
+                *o = pmj02bn::sample_x8(u32x8::splat(8 * k as u32) + lane, seed);
+            }
+            black_box(&mut out8);
+        })
+    });
+    let mut out16 = vec![[f32x16::ZERO; 2]; BATCH / 16];
+    g.bench_function("warpcore sample_x16", |b| {
+        let lane = u32x16::new(std::array::from_fn(|j| j as u32));
+        b.iter(|| {
+            let seed = u32x16::splat(black_box(SEED));
+            for (k, o) in out16.iter_mut().enumerate() {
+                *o = pmj02bn::sample_x16(u32x16::splat(16 * k as u32) + lane, seed);
+            }
+            black_box(&mut out16);
         })
     });
     g.bench_function("warpcore sample_slice", |b| {

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{BATCH, peer_fill, peer_scalar, to_soa, uniform_points, warp_group};
+use common::{BATCH, peer_fill, peer_scalar, to_soa, to_soa16, uniform_points, warp_group};
 use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, Throughput};
 use rand::SeedableRng;
@@ -15,7 +15,7 @@ use rand_distr::{Distribution, UnitSphere};
 use rand_xoshiro::Xoshiro128PlusPlus;
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
 use std::hint::black_box;
-use warpcore::{f32x8, sphere};
+use warpcore::{f32x8, f32x16, sphere};
 
 // ----------------------------------------------------------------------------------------
 // Textbook peers: the published formulas, branches and libm calls, in f32.
@@ -122,13 +122,16 @@ fn inverse_group<'c>(
     name: &str,
     scalar: impl Fn([f32; 3]) -> [f32; 2],
     x8: impl Fn([f32x8; 3]) -> [f32x8; 2],
+    x16: impl Fn([f32x16; 3]) -> [f32x16; 2],
     slice: impl Fn(&[[f32; 3]], &mut [[f32; 2]]) -> usize,
     peer: impl Fn([f32; 3]) -> [f32; 2],
 ) -> BenchmarkGroup<'c, WallTime> {
     let input = unit_directions(BATCH);
     let soa = to_soa(&input);
+    let soa16 = to_soa16(&input);
     let mut out = vec![[0.0f32; 2]; BATCH];
     let mut out8 = vec![[f32x8::ZERO; 2]; BATCH / 8];
+    let mut out16 = vec![[f32x16::ZERO; 2]; BATCH / 16];
     let mut g = c.benchmark_group(name);
     g.throughput(Throughput::Elements(BATCH as u64));
     g.bench_function("warpcore scalar loop", |b| {
@@ -153,6 +156,14 @@ fn inverse_group<'c>(
                 *o = x8(*d);
             }
             black_box(&mut out8);
+        })
+    });
+    g.bench_function("warpcore x16", |b| {
+        b.iter(|| {
+            for (o, d) in out16.iter_mut().zip(black_box(&soa16)) {
+                *o = x16(*d);
+            }
+            black_box(&mut out16);
         })
     });
     g.bench_function("warpcore slice", |b| {
@@ -180,6 +191,7 @@ fn main() {
         "sphere/equal_area",
         sphere::equal_area,
         sphere::equal_area_x8,
+        sphere::equal_area_x16,
         sphere::equal_area_slice,
     );
     peer_scalar(&mut g, "libm textbook (scalar)", equal_area_libm);
@@ -190,6 +202,7 @@ fn main() {
         "sphere/equal_area_inverse",
         sphere::equal_area_inverse,
         sphere::equal_area_inverse_x8,
+        sphere::equal_area_inverse_x16,
         sphere::equal_area_inverse_slice,
         equal_area_inverse_libm,
     )
@@ -200,6 +213,7 @@ fn main() {
         "sphere/equirect",
         sphere::equirect,
         sphere::equirect_x8,
+        sphere::equirect_x16,
         sphere::equirect_slice,
     );
     peer_scalar(&mut g, "libm textbook (scalar)", equirect_libm);
@@ -210,6 +224,7 @@ fn main() {
         "sphere/equirect_inverse",
         sphere::equirect_inverse,
         sphere::equirect_inverse_x8,
+        sphere::equirect_inverse_x16,
         sphere::equirect_inverse_slice,
         equirect_inverse_libm,
     )
@@ -220,6 +235,7 @@ fn main() {
         "sphere/cosine_hemisphere",
         sphere::cosine_hemisphere,
         sphere::cosine_hemisphere_x8,
+        sphere::cosine_hemisphere_x16,
         sphere::cosine_hemisphere_slice,
     );
     peer_scalar(&mut g, "libm textbook (scalar)", cosine_hemisphere_libm);
@@ -230,6 +246,7 @@ fn main() {
         "sphere/uniform",
         sphere::uniform,
         sphere::uniform_x8,
+        sphere::uniform_x16,
         sphere::uniform_slice,
     );
     peer_scalar(&mut g, "libm textbook (scalar)", uniform_libm);

@@ -10,7 +10,7 @@ use common::{BATCH, peer_scalar, warp_group};
 use criterion::Throughput;
 use std::hint::black_box;
 use warpcore::triangle;
-use warpcore::{f32x8, u32x8};
+use warpcore::{f32x8, f32x16, u32x8, u32x16};
 
 /// Heitz 2019 as published (one branch), `b2 = 1 - b0 - b1`.
 fn uniform_textbook(u: [f32; 2]) -> [f32; 3] {
@@ -66,6 +66,7 @@ fn basu_owen_group(
     name: &str,
     scalar: impl Fn(u32, u32) -> [f32; 3],
     x8: impl Fn(u32x8, u32x8) -> [f32x8; 3],
+    x16: impl Fn(u32x16, u32x16) -> [f32x16; 3],
     slice: impl Fn(u32, u32, &mut [[f32; 3]]) -> usize,
 ) {
     const SEED: u32 = 0x2545_f491;
@@ -112,6 +113,18 @@ fn basu_owen_group(
             black_box(&mut out8);
         })
     });
+    let mut out16 = vec![[f32x16::ZERO; 3]; BATCH / 16];
+    let lane16 = u32x16::new(std::array::from_fn(|j| j as u32));
+    g.bench_function("warpcore x16", |b| {
+        b.iter(|| {
+            let seed = u32x16::splat(black_box(SEED));
+            for (k, o) in out16.iter_mut().enumerate() {
+                let index = u32x16::splat(START + 16 * k as u32) + lane16;
+                *o = x16(index, seed);
+            }
+            black_box(&mut out16);
+        })
+    });
     g.bench_function("warpcore slice", |b| {
         b.iter(|| {
             slice(black_box(START), black_box(SEED), &mut out);
@@ -143,6 +156,7 @@ fn main() {
         "triangle/uniform",
         triangle::uniform,
         triangle::uniform_x8,
+        triangle::uniform_x16,
         triangle::uniform_slice,
     );
     peer_scalar(&mut g, "textbook (scalar, branch)", uniform_textbook);
@@ -154,6 +168,7 @@ fn main() {
         "triangle/sqrt_map",
         triangle::sqrt_map,
         triangle::sqrt_map_x8,
+        triangle::sqrt_map_x16,
         triangle::sqrt_map_slice,
     );
     peer_scalar(&mut g, "libm textbook (scalar)", sqrt_map_libm);
@@ -164,6 +179,7 @@ fn main() {
         "triangle/uniform_inverse",
         triangle::uniform_inverse,
         triangle::uniform_inverse_x8,
+        triangle::uniform_inverse_x16,
         triangle::uniform_inverse_slice,
     );
     peer_scalar(
@@ -178,6 +194,7 @@ fn main() {
         "triangle/basu_owen",
         triangle::basu_owen,
         triangle::basu_owen_x8,
+        triangle::basu_owen_x16,
         triangle::basu_owen_slice,
     );
     basu_owen_group(
@@ -185,6 +202,7 @@ fn main() {
         "triangle/basu_owen_permuted",
         triangle::basu_owen_permuted,
         triangle::basu_owen_permuted_x8,
+        triangle::basu_owen_permuted_x16,
         triangle::basu_owen_permuted_slice,
     );
     c.final_summary();

@@ -7,7 +7,7 @@ use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, Throughput};
 use std::hint::black_box;
 use std::time::Duration;
-use warpcore::f32x8;
+use warpcore::{f32x8, f32x16};
 
 /// Points per iteration: 4096 (32 KiB of 2D input), resident in L1/L2 like a renderer's batch.
 pub const BATCH: usize = 4096;
@@ -45,8 +45,16 @@ pub fn to_soa<const N: usize>(points: &[[f32; N]]) -> Vec<[f32x8; N]> {
         .collect()
 }
 
-/// Starts a warp's group with the three warpcore forms over the same `BATCH` inputs: the
-/// scalar function in a loop, `_x8` over structure-of-arrays groups, and the slice form.
+/// Array-of-structs points as 16-lane structure-of-arrays groups (length rounded down to 16).
+pub fn to_soa16<const N: usize>(points: &[[f32; N]]) -> Vec<[f32x16; N]> {
+    points
+        .chunks_exact(16)
+        .map(|g| std::array::from_fn(|k| f32x16::new(std::array::from_fn(|j| g[j][k]))))
+        .collect()
+}
+
+/// Starts a warp's group with the warpcore forms over the same `BATCH` inputs: the scalar
+/// function in a loop, `_x8` and `_x16` over structure-of-arrays groups, and the slice form.
 /// Everything is passed generically (not as `fn` pointers) so each variant is inlined the way
 /// it would be in a user's loop. Add peers with [`peer_scalar`] / [`peer_fill`], then `finish()`.
 pub fn warp_group<'c, const I: usize, const O: usize>(
@@ -54,12 +62,15 @@ pub fn warp_group<'c, const I: usize, const O: usize>(
     name: &str,
     scalar: impl Fn([f32; I]) -> [f32; O],
     x8: impl Fn([f32x8; I]) -> [f32x8; O],
+    x16: impl Fn([f32x16; I]) -> [f32x16; O],
     slice: impl Fn(&[[f32; I]], &mut [[f32; O]]) -> usize,
 ) -> BenchmarkGroup<'c, WallTime> {
     let input = uniform_points::<I>(BATCH, 1);
     let soa = to_soa(&input);
+    let soa16 = to_soa16(&input);
     let mut out = vec![[0.0f32; O]; BATCH];
     let mut out8 = vec![[f32x8::ZERO; O]; BATCH / 8];
+    let mut out16 = vec![[f32x16::ZERO; O]; BATCH / 16];
     let mut g = c.benchmark_group(name);
     g.throughput(Throughput::Elements(BATCH as u64));
     // A plain loop over the scalar function: the bodies are branch-free, so LLVM may
@@ -88,6 +99,15 @@ pub fn warp_group<'c, const I: usize, const O: usize>(
                 *o = x8(*u);
             }
             black_box(&mut out8);
+        })
+    });
+    // Without AVX-512 `wide` runs the 16 lanes as two 8-lane halves.
+    g.bench_function("warpcore x16", |b| {
+        b.iter(|| {
+            for (o, u) in out16.iter_mut().zip(black_box(&soa16)) {
+                *o = x16(*u);
+            }
+            black_box(&mut out16);
         })
     });
     g.bench_function("warpcore slice", |b| {
