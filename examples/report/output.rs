@@ -401,15 +401,15 @@ pub fn comparison_markdown(results: &[SceneResult]) -> String {
             source: "1.00 (7.14 / 7.11)",
         },
         Claim {
-            what: "disk, pmj02bn: concentric4 / concentric (memo: the quadrant warps pay)",
+            what: "disk, pmj02bn: concentric4 / polar4 (the memo's two quadrant strategies)",
             light: "disk",
             spp: 256,
             num: (Pmj02bn, "concentric4"),
-            den: (Pmj02bn, "concentric"),
-            source: "< 1",
+            den: (Pmj02bn, "polar4"),
+            source: "not quoted",
         },
         Claim {
-            what: "disk, pmj02bn: polar4 / pad_zero (memo: > 3x RMSE, i.e. < 0.11 MSE, in some cases)",
+            what: "disk, pmj02bn: polar4 / pad_zero (memo: \"more than 3 times error reduction in some cases\": RMSE, so MSE < 0.11)",
             light: "disk",
             spp: 256,
             num: (Pmj02bn, "polar4"),
@@ -433,6 +433,14 @@ pub fn comparison_markdown(results: &[SceneResult]) -> String {
             source: "< 0.5",
         },
         Claim {
+            what: "triangle: basu_owen_permuted / pmj02bn + sqrt (the older usual map)",
+            light: "triangle",
+            spp: 256,
+            num: (Stratified, "basu_owen_permuted"),
+            den: (Pmj02bn, "sqrt"),
+            source: "< 0.5",
+        },
+        Claim {
             what: "envmap:sky, pmj02bn + marginal: equal-area / lat-long",
             light: "envmap:sky",
             spp: 256,
@@ -446,6 +454,22 @@ pub fn comparison_markdown(results: &[SceneResult]) -> String {
             spp: 256,
             num: (Pmj02bn, "marginal_equal_area"),
             den: (Pmj02bn, "marginal_equirect"),
+            source: "0.7-0.8",
+        },
+        Claim {
+            what: "envmap:sky, pmj02bn + hierarchical: equal-area / lat-long",
+            light: "envmap:sky",
+            spp: 256,
+            num: (Pmj02bn, "hierarchical_equal_area"),
+            den: (Pmj02bn, "hierarchical_equirect"),
+            source: "0.7-0.8",
+        },
+        Claim {
+            what: "envmap:interior, pmj02bn + hierarchical: equal-area / lat-long",
+            light: "envmap:interior",
+            spp: 256,
+            num: (Pmj02bn, "hierarchical_equal_area"),
+            den: (Pmj02bn, "hierarchical_equirect"),
             source: "0.7-0.8",
         },
         Claim {
@@ -482,7 +506,13 @@ pub fn comparison_markdown(results: &[SceneResult]) -> String {
                     (a.rel_se().powi(2) + b.rel_se().powi(2)).sqrt(),
                 ))
             });
-            let cell = ratio.map_or("-".to_string(), |(r, e)| format!("{r:.2} ± {:.2}", r * e));
+            let cell = ratio.map_or("-".to_string(), |(r, e)| {
+                if r >= 0.1 {
+                    format!("{r:.2} ± {:.2}", r * e)
+                } else {
+                    format!("{r:.1e} ± {:.0e}", r * e)
+                }
+            });
             let _ = write!(s, " {cell} |");
         }
         s.push('\n');

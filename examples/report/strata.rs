@@ -198,7 +198,7 @@ pub fn disk_triangle_svg() -> String {
         Row::Uniform,
         Row::Sqrt,
     ];
-    let (cell, left, top) = (150.0, 150.0, 76.0);
+    let (cell, left, top) = (150.0, 215.0, 76.0);
     let mut svg = Svg {
         body: String::new(),
     };
@@ -287,15 +287,19 @@ pub fn disk_triangle_svg() -> String {
         y += cell + 20.0;
     }
     let notes = [
-        "indices 0..16 fall one per level-2 sub-triangle (each",
-        "sub-triangle has the colour of its index). Nested: each",
-        "point anywhere in its sub-triangle. Per level: every",
-        "point at the same place (mirrored in inverted ones).",
+        "Indices 0..16 fall one per level-2",
+        "sub-triangle (each coloured like the",
+        "index that lands in it).",
+        "basu_owen (nested): each point anywhere",
+        "in its sub-triangle.",
+        "basu_owen_permuted (one permutation per",
+        "level): every point at the same place",
+        "(mirrored in the inverted ones).",
     ];
     for (k, line) in notes.iter().enumerate() {
         svg.text(
             left + 3.0 * cell + 10.0,
-            y - cell - 20.0 + 16.0 * k as f64,
+            y - 2.0 * cell - 20.0 + 18.0 * k as f64,
             12,
             "start",
             line,
