@@ -76,8 +76,6 @@ typedef struct {
 extern "C" {
 #endif // __cplusplus
 
-extern void abort(void);
-
 // Polar map, `r = sqrt(u0)`, `theta = 2 pi u1`: `n` points `u` (`2n` floats) to `n` disk
 // points (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer
 // or overlapping arrays other than `u == out`.

@@ -22,6 +22,18 @@
 // inside an `extern "C"` function aborts too, since Rust 1.81.
 #![cfg_attr(panic = "abort", no_std)]
 #![deny(unsafe_op_in_unsafe_fn)]
+// Builds with only some families leave some pointer helpers unused.
+#![cfg_attr(
+    not(all(
+        feature = "disk",
+        feature = "triangle",
+        feature = "sphere",
+        feature = "pmj02bn",
+        feature = "sequence",
+        feature = "envmap"
+    )),
+    allow(dead_code)
+)]
 #![warn(missing_docs)]
 
 mod ffi;
@@ -46,6 +58,13 @@ pub mod triangle;
 unsafe extern "C" {
     fn abort() -> !;
 }
+
+// The precompiled `core` is built to unwind, so its objects refer to the unwinding
+// personality routine, which only `std` defines. Nothing unwinds in a `panic = "abort"` build:
+// this definition is never called and only satisfies the linker.
+#[cfg(panic = "abort")]
+#[unsafe(no_mangle)]
+extern "C" fn rust_eh_personality() {}
 
 #[cfg(panic = "abort")]
 #[panic_handler]

@@ -251,3 +251,44 @@ fn header_compiles_as_cpp() {
         .unwrap_or_else(|e| panic!("cannot run the C++ compiler `{cxx}`: {e}"));
     assert!(status.success(), "the header does not compile as C++");
 }
+
+/// The C++ example (`capi/examples/envlight.cpp`), small: it renders, writes a PFM, and
+/// exits nonzero when its environment estimate disagrees with the exact sum over the map.
+#[test]
+fn cpp_example_renders_and_checks_itself() {
+    let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capi-c");
+    std::fs::create_dir_all(&out_dir).unwrap();
+    let exe = out_dir.join("envlight");
+    let cxx = compiler("CXX", "c++");
+    let status = Command::new(&cxx)
+        .args([
+            "-std=c++17",
+            "-O2",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-pedantic",
+        ])
+        .arg("-I")
+        .arg(root().join("include"))
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/envlight.cpp"))
+        .arg(staticlib())
+        .args(["-lpthread", "-ldl", "-lm", "-lrt", "-lutil"])
+        .arg("-o")
+        .arg(&exe)
+        .status()
+        .unwrap_or_else(|e| panic!("cannot run the C++ compiler `{cxx}`: {e}"));
+    assert!(status.success(), "{cxx} failed on envlight.cpp");
+    let pfm = out_dir.join("envlight.pfm");
+    let run = Command::new(&exe)
+        .arg(root().join("tests/data/envmaps/sunset.pfm"))
+        .arg(&pfm)
+        .args(["32", "16"])
+        .output()
+        .unwrap();
+    eprintln!("{}", String::from_utf8_lossy(&run.stdout));
+    assert!(run.status.success(), "envlight failed: {run:?}");
+    let bytes = std::fs::read(&pfm).unwrap();
+    assert!(bytes.starts_with(b"PF\n32 32\n-1.0\n"));
+    assert_eq!(bytes.len(), 14 + 32 * 32 * 3 * 4);
+}
