@@ -533,7 +533,11 @@ pub fn envmap_storage(data: &[u8]) {
         let weights: Vec<f32> = (0..width * height)
             .map(|k| {
                 let x = (k as u32 ^ seed).wrapping_mul(0x9e37_79b9);
-                if x % 5 == 0 { 0.0 } else { (x >> 8) as f32 }
+                if x.is_multiple_of(5) {
+                    0.0
+                } else {
+                    (x >> 8) as f32
+                }
             })
             .collect();
         let mut s = if hierarchical {

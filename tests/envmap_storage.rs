@@ -281,8 +281,8 @@ fn header_errors<F: Format, Other: Format>() {
         err(&with(3, 4)),
         Some(Error::Corrupt { word: 4..=7 })
     ));
-    for k in 4..8 {
-        let v = u32::from_le(s[k]);
+    for (k, &word) in s.iter().enumerate().take(8).skip(4) {
+        let v = u32::from_le(word);
         assert_eq!(
             err(&with(k, v + 16)),
             Some(Error::Corrupt { word: k }),
