@@ -12,7 +12,8 @@ use rand::SeedableRng;
 use rand_distr::{Distribution, UnitDisc};
 use rand_xoshiro::Xoshiro128PlusPlus;
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
-use warpcore::disk;
+use std::hint::black_box;
+use warpcore::{disk, f32x8, u32x8};
 
 /// Shirley-Chiu as published, two branches, libm sin/cos.
 fn concentric_libm(u: [f32; 2]) -> [f32; 2] {
@@ -39,6 +40,26 @@ fn polar4_libm(u: [f32; 2], q: u32) -> [f32; 2] {
     [r * libm::cosf(t), r * libm::sinf(t)]
 }
 
+/// Concentric4 as specified (Shirley-Chiu on the quarter disk, then the quarter turns), two
+/// branches, libm sin/cos.
+fn concentric4_libm(u: [f32; 2], q: u32) -> [f32; 2] {
+    let (a, b) = (u[0], u[1]);
+    let (r, phi) = if a > b {
+        (a, FRAC_PI_4 * (b / a))
+    } else if b > 0.0 {
+        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
+    } else {
+        return [0.0, 0.0];
+    };
+    let (x, y) = (r * libm::cosf(phi), r * libm::sinf(phi));
+    match q % 4 {
+        0 => [x, y],
+        1 => [-y, x],
+        2 => [-x, -y],
+        _ => [y, -x],
+    }
+}
+
 /// `rand_distr::UnitDisc`: draws its own uniforms, so it includes generator time — which is
 /// what a user of it pays per disk sample.
 fn unit_disc(out: &mut [[f32; 2]]) {
@@ -46,6 +67,65 @@ fn unit_disc(out: &mut [[f32; 2]]) {
     for o in out {
         *o = UnitDisc.sample(&mut rng);
     }
+}
+
+/// A quadrant warp's group: the natural batch is "N/4 points -> N disk samples" (the slice
+/// form), measured in disk samples per second, against the textbook formula and `UnitDisc`.
+fn quadrant_group(
+    c: &mut criterion::Criterion,
+    name: &str,
+    scalar: impl Fn([f32; 2], u32) -> [f32; 2],
+    x8: impl Fn([f32x8; 2], u32x8) -> [f32x8; 2],
+    slice: impl Fn(&[[f32; 2]], &mut [[f32; 2]]) -> usize,
+    textbook: impl Fn([f32; 2], u32) -> [f32; 2],
+) {
+    let points = common::uniform_points(BATCH / 4, 3);
+    let mut g = c.benchmark_group(name);
+    g.throughput(criterion::Throughput::Elements(BATCH as u64));
+    let mut out = vec![[0.0f32; 2]; BATCH];
+    g.bench_function("warpcore scalar loop", |b| {
+        b.iter(|| {
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = scalar(points[i / 4], i as u32 % 4);
+            }
+            black_box(&mut out);
+        })
+    });
+    let soa = common::to_soa(&points);
+    let mut out8 = vec![[f32x8::ZERO; 2]; BATCH / 8];
+    g.bench_function("warpcore x8", |b| {
+        let q: [u32x8; 4] = std::array::from_fn(|j| u32x8::splat(j as u32));
+        b.iter(|| {
+            for (k, o) in out8.chunks_exact_mut(4).enumerate() {
+                let p = soa[k];
+                for (j, oo) in o.iter_mut().enumerate() {
+                    *oo = x8(p, q[j]);
+                }
+            }
+            black_box(&mut out8);
+        })
+    });
+    g.bench_function("warpcore slice", |b| {
+        b.iter(|| {
+            slice(black_box(&points), &mut out);
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("libm textbook (scalar)", |b| {
+        b.iter(|| {
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = textbook(points[i / 4], i as u32 % 4);
+            }
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("rand_distr::UnitDisc (Xoshiro128++)", |b| {
+        b.iter(|| {
+            unit_disc(&mut out);
+            black_box(&mut out);
+        })
+    });
+    g.finish();
 }
 
 fn main() {
@@ -72,58 +152,21 @@ fn main() {
     peer_fill(&mut g, "rand_distr::UnitDisc (Xoshiro128++)", unit_disc);
     g.finish();
 
-    // polar4: the natural batch is "N/4 points -> N disk samples" (polar4_slice).
-    let points = common::uniform_points(BATCH / 4, 3);
-    let mut g = c.benchmark_group("disk/polar4");
-    g.throughput(criterion::Throughput::Elements(BATCH as u64));
-    let mut out = vec![[0.0f32; 2]; BATCH];
-    g.bench_function("warpcore scalar loop", |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                *o = disk::polar4(points[i / 4], i as u32 % 4);
-            }
-            std::hint::black_box(&mut out);
-        })
-    });
-    let soa = common::to_soa(&points);
-    let mut out8 = vec![[warpcore::f32x8::ZERO; 2]; BATCH / 8];
-    g.bench_function("warpcore x8", |b| {
-        let q = [
-            warpcore::u32x8::splat(0),
-            warpcore::u32x8::splat(1),
-            warpcore::u32x8::splat(2),
-            warpcore::u32x8::splat(3),
-        ];
-        b.iter(|| {
-            for (k, o) in out8.chunks_exact_mut(4).enumerate() {
-                let p = soa[k];
-                for (j, oo) in o.iter_mut().enumerate() {
-                    *oo = disk::polar4_x8(p, q[j]);
-                }
-            }
-            std::hint::black_box(&mut out8);
-        })
-    });
-    g.bench_function("warpcore slice (polar4_slice)", |b| {
-        b.iter(|| {
-            disk::polar4_slice(std::hint::black_box(&points), &mut out);
-            std::hint::black_box(&mut out);
-        })
-    });
-    g.bench_function("libm textbook (scalar)", |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                *o = polar4_libm(points[i / 4], i as u32 % 4);
-            }
-            std::hint::black_box(&mut out);
-        })
-    });
-    g.bench_function("rand_distr::UnitDisc (Xoshiro128++)", |b| {
-        b.iter(|| {
-            unit_disc(&mut out);
-            std::hint::black_box(&mut out);
-        })
-    });
-    g.finish();
+    quadrant_group(
+        &mut c,
+        "disk/polar4",
+        disk::polar4,
+        disk::polar4_x8,
+        disk::polar4_slice,
+        polar4_libm,
+    );
+    quadrant_group(
+        &mut c,
+        "disk/concentric4",
+        disk::concentric4,
+        disk::concentric4_x8,
+        disk::concentric4_slice,
+        concentric4_libm,
+    );
     c.final_summary();
 }

@@ -58,6 +58,83 @@ fn basu_owen_textbook(index: u32) -> [f32; 3] {
     [x, y, 1.0 - x - y]
 }
 
+/// An index-driven Basu-Owen randomization: BATCH consecutive indices from a fixed start, one
+/// seed (the slice's use: one pixel's stream), and for `x8` also eight different seeds (eight
+/// pixels at the same sample index), against the textbook digit loop (unscrambled).
+fn basu_owen_group(
+    c: &mut criterion::Criterion,
+    name: &str,
+    scalar: impl Fn(u32, u32) -> [f32; 3],
+    x8: impl Fn(u32x8, u32x8) -> [f32x8; 3],
+    slice: impl Fn(u32, u32, &mut [[f32; 3]]) -> usize,
+) {
+    const SEED: u32 = 0x2545_f491;
+    const START: u32 = 1000;
+    let mut g = c.benchmark_group(name);
+    g.throughput(Throughput::Elements(BATCH as u64));
+    let mut out = vec![[0.0f32; 3]; BATCH];
+    let mut out8 = vec![[f32x8::ZERO; 3]; BATCH / 8];
+    let lane = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
+    g.bench_function("warpcore scalar loop", |b| {
+        b.iter(|| {
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = scalar(START + k as u32, black_box(SEED));
+            }
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("warpcore scalar, one call at a time", |b| {
+        b.iter(|| {
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = scalar(black_box(START + k as u32), black_box(SEED));
+            }
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("warpcore x8", |b| {
+        b.iter(|| {
+            let seed = u32x8::splat(black_box(SEED));
+            for (k, o) in out8.iter_mut().enumerate() {
+                let index = u32x8::splat(START + 8 * k as u32) + lane;
+                *o = x8(index, seed);
+            }
+            black_box(&mut out8);
+        })
+    });
+    // Eight pixels per call at one sample index, new pixels every call: the seeds change
+    // with every call, so the per-seed work cannot be hoisted out of the loop.
+    g.bench_function("warpcore x8, new seeds every call", |b| {
+        b.iter(|| {
+            let base = u32x8::splat(black_box(SEED)) + lane;
+            for (k, o) in out8.iter_mut().enumerate() {
+                *o = x8(u32x8::splat(START), base + u32x8::splat(8 * k as u32));
+            }
+            black_box(&mut out8);
+        })
+    });
+    g.bench_function("warpcore slice", |b| {
+        b.iter(|| {
+            slice(black_box(START), black_box(SEED), &mut out);
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("warpcore slice, seed 0 (unscrambled)", |b| {
+        b.iter(|| {
+            slice(black_box(START), black_box(0), &mut out);
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("textbook digit loop (scalar, f32, unscrambled)", |b| {
+        b.iter(|| {
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = basu_owen_textbook(black_box(START + k as u32));
+            }
+            black_box(&mut out);
+        })
+    });
+    g.finish();
+}
+
 fn main() {
     let mut c = common::criterion();
 
@@ -96,60 +173,19 @@ fn main() {
     );
     g.finish();
 
-    // Basu-Owen is index-driven: BATCH consecutive indices from a fixed start, one seed.
-    const SEED: u32 = 0x2545_f491;
-    const START: u32 = 1000;
-    let mut g = c.benchmark_group("triangle/basu_owen");
-    g.throughput(Throughput::Elements(BATCH as u64));
-    let mut out = vec![[0.0f32; 3]; BATCH];
-    let mut out8 = vec![[f32x8::ZERO; 3]; BATCH / 8];
-    g.bench_function("warpcore scalar loop", |b| {
-        b.iter(|| {
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = triangle::basu_owen(START + k as u32, black_box(SEED));
-            }
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("warpcore scalar, one call at a time", |b| {
-        b.iter(|| {
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = triangle::basu_owen(black_box(START + k as u32), black_box(SEED));
-            }
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("warpcore x8", |b| {
-        let lane = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
-        b.iter(|| {
-            let seed = u32x8::splat(black_box(SEED));
-            for (k, o) in out8.iter_mut().enumerate() {
-                let index = u32x8::splat(START + 8 * k as u32) + lane;
-                *o = triangle::basu_owen_x8(index, seed);
-            }
-            black_box(&mut out8);
-        })
-    });
-    g.bench_function("warpcore slice", |b| {
-        b.iter(|| {
-            triangle::basu_owen_slice(black_box(START), black_box(SEED), &mut out);
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("warpcore slice, seed 0 (unscrambled)", |b| {
-        b.iter(|| {
-            triangle::basu_owen_slice(black_box(START), black_box(0), &mut out);
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("textbook digit loop (scalar, f32, unscrambled)", |b| {
-        b.iter(|| {
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = basu_owen_textbook(black_box(START + k as u32));
-            }
-            black_box(&mut out);
-        })
-    });
-    g.finish();
+    basu_owen_group(
+        &mut c,
+        "triangle/basu_owen",
+        triangle::basu_owen,
+        triangle::basu_owen_x8,
+        triangle::basu_owen_slice,
+    );
+    basu_owen_group(
+        &mut c,
+        "triangle/basu_owen_permuted",
+        triangle::basu_owen_permuted,
+        triangle::basu_owen_permuted_x8,
+        triangle::basu_owen_permuted_slice,
+    );
     c.final_summary();
 }

@@ -122,14 +122,39 @@ pub fn disk(data: &[u8]) {
             let (back, quadrant) = disk::polar4_inverse(*u);
             assert!(in_unit_square(back) && quadrant < 4, "polar4_inverse {u:?}");
         }
-        let mut out = vec![[0.0f32; 2]; (g % 5) * 7];
-        let n = disk::polar4_slice(group, &mut out);
-        assert_eq!(n, out.len().min(32));
-        for (i, p) in out.iter().enumerate() {
+        let c = disk::concentric4_x8(v, quads);
+        let (ci, cq) = disk::concentric4_inverse_x8(v);
+        for (j, u) in group.iter().enumerate() {
+            let s = disk::concentric4(*u, q.wrapping_add(j as u32));
             assert!(
-                same(*p, disk::polar4(group[i / 4], i as u32 % 4)),
-                "polar4_slice {i}"
+                in_disk(s) && same(s, [c[0].to_array()[j], c[1].to_array()[j]]),
+                "concentric4 {u:?}"
             );
+            let (back, quadrant) = disk::concentric4_inverse(*u);
+            assert!(
+                in_unit_square(back)
+                    && quadrant < 4
+                    && same(back, [ci[0].to_array()[j], ci[1].to_array()[j]])
+                    && quadrant == cq.to_array()[j],
+                "concentric4_inverse {u:?}"
+            );
+        }
+        type Quad = fn([f32; 2], u32) -> [f32; 2];
+        type QuadSlice = fn(&[[f32; 2]], &mut [[f32; 2]]) -> usize;
+        let quad_forms: [(&str, Quad, QuadSlice); 2] = [
+            ("polar4", disk::polar4, disk::polar4_slice),
+            ("concentric4", disk::concentric4, disk::concentric4_slice),
+        ];
+        for (name, scalar, slice) in quad_forms {
+            let mut out = vec![[0.0f32; 2]; (g % 5) * 7];
+            let n = slice(group, &mut out);
+            assert_eq!(n, out.len().min(32));
+            for (i, p) in out.iter().enumerate() {
+                assert!(
+                    same(*p, scalar(group[i / 4], i as u32 % 4)),
+                    "{name}_slice {i}"
+                );
+            }
         }
     }
 }
@@ -231,29 +256,51 @@ pub fn triangle(data: &[u8]) {
         t::sqrt_map_inverse_slice,
         in_unit_square,
     );
+    type Indexed = fn(u32, u32) -> [f32; 3];
+    type Indexed8 = fn(u32x8, u32x8) -> [warpcore::f32x8; 3];
+    type IndexedSlice = fn(u32, u32, &mut [[f32; 3]]) -> usize;
+    let forms: [(&str, Indexed, Indexed8, IndexedSlice); 2] = [
+        (
+            "basu_owen",
+            t::basu_owen,
+            t::basu_owen_x8,
+            t::basu_owen_slice,
+        ),
+        (
+            "basu_owen_permuted",
+            t::basu_owen_permuted,
+            t::basu_owen_permuted_x8,
+            t::basu_owen_permuted_slice,
+        ),
+    ];
     for chunk in w.chunks(9) {
         let get = |k: usize| chunk.get(k).copied().unwrap_or(0);
         let seed = get(0);
         let idx: [u32; 8] = std::array::from_fn(|j| get(1 + j));
-        let v = t::basu_owen_x8(u32x8::new(idx), u32x8::splat(seed));
-        for (j, &i) in idx.iter().enumerate() {
-            let b = t::basu_owen(i, seed);
-            assert!(
-                barycentric(b) && b[0] + b[1] + b[2] == 1.0,
-                "basu_owen({i}, {seed}) = {b:?}"
-            );
-            assert!(
-                same(b, std::array::from_fn(|k| v[k].to_array()[j])),
-                "basu_owen x8"
-            );
-        }
-        let mut out = [[0.0f32; 3]; 11];
-        t::basu_owen_slice(idx[0], seed, &mut out);
-        for (k, o) in out.iter().enumerate() {
-            assert!(
-                same(*o, t::basu_owen(idx[0].wrapping_add(k as u32), seed)),
-                "basu_owen slice"
-            );
+        // Lane j's seed: the chunk's seed, or (odd lanes) a neighbour index word as seed.
+        let seeds: [u32; 8] = std::array::from_fn(|j| if j % 2 == 0 { seed } else { idx[j - 1] });
+        for (name, scalar, x8, slice) in forms {
+            let v = x8(u32x8::new(idx), u32x8::new(seeds));
+            for (j, &i) in idx.iter().enumerate() {
+                let b = scalar(i, seeds[j]);
+                assert!(
+                    barycentric(b) && b[0] + b[1] + b[2] == 1.0,
+                    "{name}({i}, {}) = {b:?}",
+                    seeds[j]
+                );
+                assert!(
+                    same(b, std::array::from_fn(|k| v[k].to_array()[j])),
+                    "{name} x8"
+                );
+            }
+            let mut out = [[0.0f32; 3]; 11];
+            assert_eq!(slice(idx[0], seed, &mut out), 11);
+            for (k, o) in out.iter().enumerate() {
+                assert!(
+                    same(*o, scalar(idx[0].wrapping_add(k as u32), seed)),
+                    "{name} slice"
+                );
+            }
         }
     }
 }

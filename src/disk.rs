@@ -1,11 +1,15 @@
-//! Disk warps: the unit square onto the unit disk, uniformly (all three are area-preserving,
+//! Disk warps: the unit square onto the unit disk, uniformly (all four are area-preserving,
 //! so the density of the result is [`PDF`] `= 1/pi` with respect to area).
 //!
 //! | warp | maps | keeps | source |
 //! |---|---|---|---|
 //! | [`polar`] | `r = sqrt(u0)`, `theta = 2 pi u1` | nothing compact: strata become thin rings near the rim | textbook; pbrt-v4 `SampleUniformDiskPolar` |
 //! | [`concentric`] | squares to rings, wedge by wedge | 4x4 strata stay compact | Shirley and Chiu 1997, "A Low Distortion Map Between Disk and Square" |
-//! | [`polar4`] | one 2D point to four quadrants | the point's strata, four times | Christensen 2018, "Progressive Sampling Strategies for Disk Light Sources" (Pixar TM 18-02) |
+//! | [`polar4`] | one 2D point to four quadrants: `r = sqrt(u0)`, `theta = (pi/2)(u1 + quadrant)` | the point's strata, four times | Christensen 2018, "Progressive Sampling Strategies for Disk Light Sources" (Pixar TM 18-02) |
+//! | [`concentric4`] | one 2D point to four quadrants: Shirley-Chiu on the quarter disk, turned | compact strata, four times | the same memo |
+//!
+//! The two quadrant warps use sample `i` with point `i / 4` of a 2D sequence and quadrant
+//! `i % 4`; their `_indexed` and `_slice` forms do that bookkeeping.
 //!
 //! `u[0]` drives the radius and `u[1]` the angle (counter-clockwise from `+x`).
 //!
@@ -29,7 +33,7 @@ use crate::batch;
 use crate::kernels::{
     MAX_RADIUS, atan_ratio_pi4, atan2_turns, sin_cos_pi4, sin_cos_quarter_turns, sin_cos_turns,
 };
-use crate::lanes::{Lane, signed_unit, unit_interval};
+use crate::lanes::{Lane, UintLane, signed_unit, unit_interval};
 use core::num::Wrapping;
 use wide::{f32x8, u32x8};
 
@@ -268,6 +272,18 @@ pub fn polar4_indexed_x8(index: u32x8, points: impl FnOnce(u32x8) -> [f32x8; 2])
 /// count. Bit-identical to the scalar form.
 #[inline]
 pub fn polar4_slice(points: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
+    four_per_point(points, out, polar4_x8)
+}
+
+/// `out[i] = warp(points[i / 4], i % 4)` for `i < min(out.len(), 4 * points.len())`, eight
+/// samples (two points) per call of the 8-wide `warp`; returns that count. The slice form of
+/// the quadrant warps.
+#[inline(always)]
+fn four_per_point(
+    points: &[[f32; 2]],
+    out: &mut [[f32; 2]],
+    warp: impl Fn([f32x8; 2], u32x8) -> [f32x8; 2],
+) -> usize {
     let n = out.len().min(points.len().saturating_mul(4));
     let out = out.get_mut(..n).unwrap_or(&mut []);
     let quadrants = u32x8::new([0, 1, 2, 3, 0, 1, 2, 3]);
@@ -281,13 +297,13 @@ pub fn polar4_slice(points: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
         ]
     };
     for (dst, pair) in groups.iter_mut().zip(pairs) {
-        *dst = batch::store(polar4_x8(spread(pair), quadrants));
+        *dst = batch::store(warp(spread(pair), quadrants));
     }
     if !rest.is_empty() {
         // 1 to 7 samples left: they come from the next one or two points.
         let first = groups.len() * 2;
         let pick = |k: usize| points.get(first + k).copied().unwrap_or([0.0; 2]);
-        let res = batch::store(polar4_x8(spread(&[pick(0), pick(1)]), quadrants));
+        let res = batch::store(warp(spread(&[pick(0), pick(1)]), quadrants));
         for (d, r) in rest.iter_mut().zip(res.iter()) {
             *d = *r;
         }
@@ -310,4 +326,147 @@ pub fn polar4_inverse(p: [f32; 2]) -> ([f32; 2], u32) {
 #[inline]
 pub fn polar4_inverse_x8(p: [f32x8; 2]) -> ([f32x8; 2], u32x8) {
     polar4_inverse_body(p)
+}
+
+// ---------------------------------------------------------------------------------------
+// Concentric4
+
+/// The quarter turn `quadrant % 4` applied to `(x, y)`, exactly: a swap and sign flips
+/// (`(x, y) -> (-y, x)` per quarter turn).
+#[inline(always)]
+fn quarter_turns<L: Lane>(x: L, y: L, quadrant: L::U) -> [L; 2] {
+    let one = <L::U as UintLane>::splat(1);
+    let odd = (quadrant & one).simd_eq(one);
+    let (x, y) = (L::select(odd, y, x), L::select(odd, x, y));
+    // Quadrants 1 and 2 negate the new x, quadrants 2 and 3 the new y.
+    let neg_x = ((quadrant ^ quadrant.shr(1)) & one).shl(31);
+    let neg_y = (quadrant.shr(1) & one).shl(31);
+    [x.flip_sign(neg_x), y.flip_sign(neg_y)]
+}
+
+#[inline(always)]
+fn concentric4_body<L: Lane>(u: [L; 2], quadrant: L::U) -> [L; 2] {
+    let (a, b) = (unit_interval(u[0]), unit_interval(u[1]));
+    // Shirley-Chiu on the quarter disk: a > b: r = a, phi = (pi/4)(b/a); else r = b,
+    // phi = pi/2 - (pi/4)(a/b). t = minor / major in [0, 1]; 0 at the origin.
+    let a_major = b.simd_lt(a);
+    let r = L::select(a_major, a, b);
+    let zero = L::splat(0.0);
+    let t = L::select(r.simd_eq(zero), zero, L::select(a_major, b, a) / r);
+    let r = clamp_radius(r);
+    let (s, c) = sin_cos_pi4(t);
+    // cos(pi/2 - x) = sin(x): the b-major wedge swaps sin and cos.
+    let x = r * L::select(a_major, c, s);
+    let y = r * L::select(a_major, s, c);
+    quarter_turns(x, y, quadrant)
+}
+
+#[inline(always)]
+fn concentric4_inverse_body<L: Lane>(p: [L; 2]) -> ([L; 2], L::U) {
+    let (x, y) = (signed_unit(p[0]), signed_unit(p[1]));
+    let zero = L::splat(0.0);
+    let splat = <L::U as UintLane>::splat;
+    // Quadrant q holds the quarter turn by q of {x > 0, y >= 0} (the origin counts as 0):
+    // each axis belongs to the quadrant in which it is the u1 = 0 edge.
+    let q = L::U::select(
+        zero.simd_lt(y) & x.simd_le(zero),
+        splat(1),
+        L::U::select(
+            y.simd_le(zero) & x.simd_lt(zero),
+            splat(2),
+            L::U::select(y.simd_lt(zero) & zero.simd_le(x), splat(3), splat(0)),
+        ),
+    );
+    // Turn back into the first quadrant (three more quarter turns); the magnitudes are all
+    // that is left to read, so the signs of zeros do not matter.
+    let [x, y] = quarter_turns(x, y, q * splat(3));
+    let (x, y) = (x.abs(), y.abs());
+    let x_major = y.simd_lt(x);
+    let r = (x * x + y * y).sqrt();
+    let w = atan_ratio_pi4(L::select(x_major, y, x), L::select(x_major, x, y));
+    let rw = r * w;
+    (
+        [
+            unit_interval(L::select(x_major, r, rw)),
+            unit_interval(L::select(x_major, rw, r)),
+        ],
+        q,
+    )
+}
+
+/// Concentric4 (Christensen 2018): the Shirley-Chiu map of the unit square onto the quarter
+/// disk of the first quadrant, turned by `quadrant` quarter turns; one 2D point gives four
+/// disk samples, one per quadrant, like [`polar4`] but with compact strata.
+///
+/// `a = u0`, `b = u1`; if `a > b` then `r = a`, `phi = (pi/4)(b / a)`, else `r = b`,
+/// `phi = pi/2 - (pi/4)(a / b)`; the point `(r cos phi, r sin phi)` is then turned by
+/// `quadrant % 4` quarter turns counter-clockwise, exactly (a swap and sign flips:
+/// `concentric4(u, q + 1)` is `concentric4(u, q)` turned by `(x, y) -> (-y, x)`, bit for bit).
+/// The square's diagonal maps to the quadrant's bisector, its edges `u0 = 0` and `u1 = 0` to
+/// the quadrant's two axes, and `u = (0, 0)` to the centre.
+///
+/// Area-preserving onto the quarter disk (`r dr dphi = (pi/4) da db`), so with `quadrant`
+/// uniform over `0..4` the density is [`PDF`]. Error against `f64`: at most 1.5e-7 per
+/// coordinate (the kernels of [`concentric`]); the domain guarantee and out-of-range rule of
+/// the [module docs](self) apply, and every `quadrant` is valid (only `quadrant % 4` is used).
+/// Used for sample `i` with point `i / 4` of a 2D sequence and `quadrant = i % 4`: see
+/// [`concentric4_indexed`] and [`concentric4_slice`].
+///
+/// Christensen's memo ("Progressive Sampling Strategies for Disk Light Sources", Pixar TM
+/// 18-02) measures it beside [`polar4`]; the report (`docs/REPORT.md`) says when each pays.
+#[inline]
+pub fn concentric4(u: [f32; 2], quadrant: u32) -> [f32; 2] {
+    concentric4_body(u, Wrapping(quadrant))
+}
+
+/// [`concentric4`] on eight points at once; bit-identical to eight scalar calls.
+#[inline]
+pub fn concentric4_x8(u: [f32x8; 2], quadrant: u32x8) -> [f32x8; 2] {
+    concentric4_body(u, quadrant)
+}
+
+/// Disk sample `index` of a concentric4 stream: `concentric4(point(index / 4), index % 4)`;
+/// `point` is called once, with `index / 4`.
+#[inline]
+pub fn concentric4_indexed(index: u32, point: impl FnOnce(u32) -> [f32; 2]) -> [f32; 2] {
+    concentric4(point(index >> 2), index & 3)
+}
+
+/// [`concentric4_indexed`] for eight sample indices at once (any indices, not only
+/// consecutive).
+#[inline]
+pub fn concentric4_indexed_x8(
+    index: u32x8,
+    points: impl FnOnce(u32x8) -> [f32x8; 2],
+) -> [f32x8; 2] {
+    concentric4_x8(points(index >> 2), index & u32x8::splat(3))
+}
+
+/// Expands 2D points into concentric4 disk samples, four per point: `out[i] =
+/// concentric4(points[i / 4], i % 4)` for `i < min(out.len(), 4 * points.len())`; returns that
+/// count. Bit-identical to the scalar form.
+#[inline]
+pub fn concentric4_slice(points: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
+    four_per_point(points, out, concentric4_x8)
+}
+
+/// Inverse of [`concentric4`]: returns `(u, quadrant)` with `quadrant` in `0..4`.
+///
+/// The quadrant is the quarter turn of `{x > 0, y >= 0}` holding `p` (the origin gives 0);
+/// `p` is turned back into the first quadrant and inverted there like [`concentric_inverse`]
+/// (`r = sqrt(x^2 + y^2)`, in-wedge coordinate `(4/pi) atan(minor / major)`). Round trip
+/// within 5e-7 for `u` in `[0, 1)^2`, except on the singular sets: the centre (`u = (0, 0)`),
+/// and the edge `u0 = 0`, which lies on the axis shared with the next quadrant and comes back
+/// as that quadrant's `u1 = 0` edge (`(u1, 0)` and `quadrant + 1`). Any input is accepted,
+/// under the module's inverse rule.
+#[inline]
+pub fn concentric4_inverse(p: [f32; 2]) -> ([f32; 2], u32) {
+    let (u, q) = concentric4_inverse_body(p);
+    (u, q.0)
+}
+
+/// [`concentric4_inverse`] on eight points at once; bit-identical to eight scalar calls.
+#[inline]
+pub fn concentric4_inverse_x8(p: [f32x8; 2]) -> ([f32x8; 2], u32x8) {
+    concentric4_inverse_body(p)
 }

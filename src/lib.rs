@@ -44,8 +44,8 @@
 //!
 //! | feature | module | default |
 //! |---|---|---|
-//! | `disk` | [`disk`]: polar, concentric, polar4 | yes |
-//! | `triangle` | [`triangle`]: low-distortion (Heitz), sqrt map, Basu-Owen (scrambled) | yes |
+//! | `disk` | [`disk`]: polar, concentric, polar4, concentric4 | yes |
+//! | `triangle` | [`triangle`]: low-distortion (Heitz), sqrt map, Basu-Owen (nested or per-level scramble) | yes |
 //! | `sphere` | [`sphere`]: equal-area octahedral (+ wrap), lat-long, uniform sphere, uniform and cosine hemisphere; enables `disk` | yes |
 //! | `pmj02bn` | [`pmj02bn`]: Owen-scrambled pmj02bn points; alone 1024 points x 1 set (8 KiB of tables) | yes |
 //! | `pmj02bn-4096`, `pmj02bn-16384`, `pmj02bn-65536` | points per set (largest enabled wins; 4096 by default) | 4096 |

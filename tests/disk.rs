@@ -43,6 +43,21 @@ fn concentric_ref(u: [f32; 2]) -> [f64; 2] {
     [r * phi.cos(), r * phi.sin()]
 }
 
+/// Concentric4 as specified: Shirley-Chiu on the quarter disk (`a = u0`, `b = u1`), then
+/// turned by `q % 4` quarter turns, in f64 with the textbook branches.
+fn concentric4_ref(u: [f32; 2], q: u32) -> [f64; 2] {
+    let (a, b) = (u[0] as f64, u[1] as f64);
+    let (r, phi) = if a > b {
+        (a, FRAC_PI_4 * (b / a))
+    } else if b > 0.0 {
+        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
+    } else {
+        (0.0, 0.0)
+    };
+    let phi = phi + FRAC_PI_2 * (q % 4) as f64;
+    [r * phi.cos(), r * phi.sin()]
+}
+
 fn dist(p: [f32; 2], q: [f64; 2]) -> f64 {
     (p[0] as f64 - q[0]).abs().max((p[1] as f64 - q[1]).abs())
 }
@@ -68,6 +83,7 @@ proptest! {
         prop_assert!(in_disk(disk::polar(u)), "polar {u:?} -> {:?}", disk::polar(u));
         prop_assert!(in_disk(disk::concentric(u)), "concentric {u:?} -> {:?}", disk::concentric(u));
         prop_assert!(in_disk(disk::polar4(u, q)), "polar4 {u:?} {q} -> {:?}", disk::polar4(u, q));
+        prop_assert!(in_disk(disk::concentric4(u, q)), "concentric4 {u:?} {q} -> {:?}", disk::concentric4(u, q));
     }
 
     #[test]
@@ -76,6 +92,8 @@ proptest! {
         prop_assert!(in_unit_square(disk::polar_inverse(p)));
         prop_assert!(in_unit_square(disk::concentric_inverse(p)));
         let (u, q) = disk::polar4_inverse(p);
+        prop_assert!(in_unit_square(u) && q < 4);
+        let (u, q) = disk::concentric4_inverse(p);
         prop_assert!(in_unit_square(u) && q < 4);
     }
 
@@ -107,6 +125,12 @@ proptest! {
         let (a, b) = ((u1 + q as f32) / 4.0, (back[1] + bq as f32) / 4.0);
         let d = (a - b).abs();
         prop_assert!((back[0] - u0).abs() <= 5e-7 && d.min(1.0 - d) * 4.0 <= 5e-7, "{u0} {u1} {q} -> {back:?} {bq}");
+    }
+
+    #[test]
+    fn concentric4_round_trip(u0 in 1e-30f32..1.0, u1 in 0f32..1.0, q in 0u32..4) {
+        let (back, bq) = disk::concentric4_inverse(disk::concentric4([u0, u1], q));
+        prop_assert!(bq == q && (back[0] - u0).abs() <= 5e-7 && (back[1] - u1).abs() <= 5e-7, "{u0} {u1} {q} -> {back:?} {bq}");
     }
 }
 
@@ -148,6 +172,28 @@ fn check_widths(pts: &[[f32; 2]; 8], q: u32) {
     let (vi, vq) = disk::polar4_inverse_x8(x8);
     let mut expanded = [[0.0f32; 2]; 32];
     assert_eq!(disk::polar4_slice(pts, &mut expanded), 32);
+    let c4 = disk::concentric4_x8(x8, quads);
+    let (ci, cq) = disk::concentric4_inverse_x8(x8);
+    let mut c4_expanded = [[0.0f32; 2]; 32];
+    assert_eq!(disk::concentric4_slice(pts, &mut c4_expanded), 32);
+    for j in 0..8 {
+        let qj = quads.to_array()[j];
+        assert!(
+            same_bits(disk::concentric4(pts[j], qj), lane(c4, j)),
+            "concentric4 lane {j}"
+        );
+        let (si, sq) = disk::concentric4_inverse(pts[j]);
+        assert!(
+            same_bits(si, lane(ci, j)) && sq == cq.to_array()[j],
+            "concentric4_inverse lane {j}"
+        );
+        for k in 0..4 {
+            assert!(
+                same_bits(disk::concentric4(pts[j], k as u32), c4_expanded[4 * j + k]),
+                "concentric4_slice {j} {k}"
+            );
+        }
+    }
     for j in 0..8 {
         let qj = quads.to_array()[j];
         assert!(
@@ -187,7 +233,7 @@ fn widths_agree_on_special_values() {
             "{u:?}"
         );
         for q in 0..4 {
-            assert!(in_disk(disk::polar4(u, q)));
+            assert!(in_disk(disk::polar4(u, q)) && in_disk(disk::concentric4(u, q)));
         }
         assert!(
             in_unit_square(disk::polar_inverse(u)) && in_unit_square(disk::concentric_inverse(u))
@@ -210,10 +256,21 @@ fn slices_of_any_length() {
                 assert!(same_bits(out4[j], disk::polar4(input[j / 4], j as u32 % 4)));
             }
             assert!(out4[w4..].iter().all(|p| *p == [7.0, 7.0]));
+            let mut outc = vec![[7.0f32; 2]; m];
+            let wc = disk::concentric4_slice(&input[..n / 4], &mut outc);
+            assert_eq!(wc, w4);
+            for j in 0..wc {
+                assert!(same_bits(
+                    outc[j],
+                    disk::concentric4(input[j / 4], j as u32 % 4)
+                ));
+            }
+            assert!(outc[wc..].iter().all(|p| *p == [7.0, 7.0]));
         }
     }
     assert_eq!(disk::polar_slice(&[], &mut []), 0);
     assert_eq!(disk::polar4_slice(&[[0.5; 2]], &mut []), 0);
+    assert_eq!(disk::concentric4_slice(&[], &mut [[0.0; 2]; 3]), 0);
 }
 
 // ----------------------------------------------------------------------------------------
@@ -541,4 +598,195 @@ fn chi2_rejects_wrong_warps() {
         .unwrap()
         .p_value;
     assert!(p < chi2::per_test_alpha(), "p = {p}");
+}
+
+// ----------------------------------------------------------------------------------------
+// Concentric4: the textbook quarter-disk map in every wedge, the exact quarter turns, the
+// relation to the full concentric map, accuracy, seams, round trips, uniformity.
+
+/// All eight half-quadrant wedges (two per quadrant), including the wedge diagonal `a = b`
+/// and points one ulp on either side of it, against the published two-branch formula turned
+/// by the quadrant; each result lies in the right wedge (quadrant, and which side of the
+/// bisector).
+#[test]
+fn concentric4_matches_the_textbook_map_in_every_wedge() {
+    let mut worst = 0.0f64;
+    for k in 1..2048 {
+        let s = k as f32 / 2048.0;
+        for wiggle in [-1i32, 0, 1] {
+            let t = f32::from_bits(s.to_bits().wrapping_add_signed(wiggle));
+            for u in [
+                [s, t],
+                [t, s],
+                [s, 0.37 * s],
+                [0.37 * s, s],
+                [s, 0.0],
+                [0.0, s],
+            ] {
+                for q in 0..4u32 {
+                    let p = disk::concentric4(u, q);
+                    let want = concentric4_ref(u, q);
+                    worst = worst.max(dist(p, want));
+                    // Turn the result back to the first quadrant: it lies there, on the side
+                    // of the bisector that the textbook branch says.
+                    let (x, y) = match q {
+                        0 => (p[0], p[1]),
+                        1 => (p[1], -p[0]),
+                        2 => (-p[0], -p[1]),
+                        _ => (-p[1], p[0]),
+                    };
+                    assert!(x >= 0.0 && y >= 0.0, "{u:?} {q} -> {p:?}");
+                    if u[0] > u[1] {
+                        assert!(y <= x, "a-major wedge {u:?} {q} -> {p:?}");
+                    } else {
+                        assert!(x <= y, "b-major wedge {u:?} {q} -> {p:?}");
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("concentric4 max error vs textbook (wedges): {worst:.3e}");
+    assert!(worst <= 1.5e-7, "{worst}");
+}
+
+/// `concentric4(u, q + 1)` is `concentric4(u, q)` turned by `(x, y) -> (-y, x)`, bit for bit,
+/// for every quadrant value (only `q % 4` counts), and quadrant 0 is the full concentric map's
+/// first quadrant: `concentric([(1 + a) / 2, (1 + b) / 2]) == concentric4([a, b], 0)` wherever
+/// `2 u - 1` is exact.
+#[test]
+fn concentric4_quarter_turns_are_exact() {
+    let mut r = rng(41);
+    for i in 0..200_000u32 {
+        let u = if i < 64 {
+            [common::specials()[i as usize % 24], (i as f32) / 64.0]
+        } else {
+            unit2(&mut r)
+        };
+        let q = i.wrapping_mul(0x9e37_79b9);
+        let p = disk::concentric4(u, q);
+        let n = disk::concentric4(u, q.wrapping_add(1));
+        assert_eq!(n[0].to_bits(), (-p[1]).to_bits(), "{u:?} {q}");
+        assert_eq!(n[1].to_bits(), p[0].to_bits(), "{u:?} {q}");
+        assert!(same_bits(p, disk::concentric4(u, q % 4)));
+        // On the 2^-23 grid of [0, 1), (1 + a) / 2 is exact and 2 u - 1 gives a back.
+        if !in_unit_square(u) {
+            continue;
+        }
+        let g = u.map(|c| (c * 8_388_608.0).floor() / 8_388_608.0);
+        let full = disk::concentric(g.map(|c| 0.5 + 0.5 * c));
+        assert!(same_bits(full, disk::concentric4(g, 0)), "{g:?}");
+    }
+}
+
+#[test]
+fn concentric4_accuracy_seams_and_helpers() {
+    let mut r = rng(43);
+    let rim = 1.0 - 2f64.powi(-23);
+    let (mut worst, mut worst_rt) = (0.0f64, 0.0f32);
+    for i in 0..(1 << 22) {
+        let u = unit2(&mut r);
+        let q = i as u32 % 4;
+        let want = concentric4_ref(u, q);
+        if want[0].hypot(want[1]) < rim {
+            worst = worst.max(dist(disk::concentric4(u, q), want));
+        }
+        if u[0] > 0.0 {
+            let (b, bq) = disk::concentric4_inverse(disk::concentric4(u, q));
+            assert_eq!(bq, q, "{u:?}");
+            worst_rt = worst_rt.max((b[0] - u[0]).abs()).max((b[1] - u[1]).abs());
+        }
+    }
+    eprintln!("concentric4: max error vs f64 {worst:.3e}, round trip {worst_rt:.3e}");
+    assert!(worst <= 1.5e-7 && worst_rt <= 5e-7);
+
+    // The rim: in the disk, within 2.5e-7 of the formula; the top of the domain round-trips.
+    for k in 1..4096 {
+        let t = k as f32 / 4096.0;
+        for u in [[ONE_MINUS_EPS, t], [t, ONE_MINUS_EPS]] {
+            for q in 0..4 {
+                let p = disk::concentric4(u, q);
+                assert!(
+                    in_disk(p) && dist(p, concentric4_ref(u, q)) <= 2.5e-7,
+                    "{u:?}"
+                );
+                let (b, bq) = disk::concentric4_inverse(p);
+                assert!(bq == q && (b[0] - u[0]).abs() <= 5e-7 && (b[1] - u[1]).abs() <= 5e-7);
+            }
+        }
+    }
+    // The centre; the seams: u0 = 0 lies on the next quadrant's u1 = 0 edge.
+    assert_eq!(disk::concentric4([0.0, 0.0], 2), [-0.0, -0.0]);
+    assert_eq!(disk::concentric4_inverse([0.0, 0.0]), ([0.0, 0.0], 0));
+    assert_eq!(disk::concentric4([0.5, 0.0], 0), [0.5, 0.0]);
+    assert_eq!(disk::concentric4([0.0, 0.5], 0), [0.0, 0.5]);
+    assert_eq!(disk::concentric4([0.5, 0.0], 1), [-0.0, 0.5]);
+    for q in 0..4u32 {
+        let (b, bq) = disk::concentric4_inverse(disk::concentric4([0.0, 0.5], q));
+        assert_eq!((b, bq), ([0.5, 0.0], (q + 1) % 4));
+    }
+    // Negative zeros on the axes and NaN follow the inverse rule (NaN counts as 0).
+    assert_eq!(disk::concentric4_inverse([-0.0, 0.5]), ([0.5, 0.0], 1));
+    assert_eq!(disk::concentric4_inverse([0.5, -0.0]), ([0.5, 0.0], 0));
+    assert_eq!(disk::concentric4_inverse([f32::NAN, -0.5]), ([0.5, 0.0], 3));
+    assert_eq!(disk::concentric4_inverse([-0.5, 0.0]), ([0.5, 0.0], 2));
+    // Out-of-range forward input: the crate's clamp.
+    assert!(same_bits(
+        disk::concentric4([f32::NAN, 7.0], 5),
+        disk::concentric4([0.0, ONE_MINUS_EPS], 1)
+    ));
+    // Off the disk: like the rim point in that direction.
+    let (b, bq) = disk::concentric4_inverse([-2.0, -2.0]);
+    assert_eq!(bq, 2);
+    assert!(
+        (b[0] - 1.0).abs() <= 1e-6 && (b[1] - 1.0).abs() <= 1e-6,
+        "{b:?}"
+    );
+
+    // Index bookkeeping of the helpers.
+    let points: Vec<[f32; 2]> = (0..16).map(|_| unit2(&mut r)).collect();
+    for i in 0..64u32 {
+        let got = disk::concentric4_indexed(i, |k| points[k as usize]);
+        assert!(same_bits(
+            got,
+            disk::concentric4(points[i as usize / 4], i % 4)
+        ));
+    }
+    let idx = u32x8::new([5, 9, 0, 63, 17, 2, 2, 40]);
+    let got = disk::concentric4_indexed_x8(idx, |k| {
+        let k = k.to_array();
+        soa(&std::array::from_fn(|j| points[k[j] as usize]))
+    });
+    for j in 0..8 {
+        let i = idx.to_array()[j];
+        assert!(same_bits(
+            lane(got, j),
+            disk::concentric4_indexed(i, |k| points[k as usize])
+        ));
+    }
+}
+
+/// Each quadrant separately: uniform on its quarter of the disk, nothing elsewhere. (The
+/// edge `u0 = 0` maps onto the axis shared with the next quadrant, a set of measure zero that
+/// the histogram's half-open cells would count there: inputs are drawn from `(0, 1) x [0, 1)`.)
+#[test]
+fn chi2_concentric4_each_quadrant() {
+    for q in 0..4u32 {
+        let mut h = chi2::Histogram::new(NR, NA);
+        let mut r = rng(300 + q as u64);
+        for _ in 0..chi2::SAMPLES {
+            let mut u = unit2(&mut r);
+            if u[0] == 0.0 {
+                u[0] = 0.5 / 16_777_216.0;
+            }
+            h.add(chi2::disk(disk::concentric4(u, q)));
+        }
+        let expected = chi2::expected_from_density(NR, NA, |s| {
+            if (s[1] * 4.0).floor() as u32 == q {
+                1.0
+            } else {
+                0.0
+            }
+        });
+        chi2::check(&format!("disk::concentric4 quadrant {q}"), &h, &expected);
+    }
 }

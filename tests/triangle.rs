@@ -97,6 +97,9 @@ proptest! {
         prop_assert!(valid(q), "sqrt_map {u:?} -> {q:?}");
         let o = triangle::basu_owen(index, seed);
         prop_assert!(valid(o) && sum(o) == 1.0, "basu_owen {index} {seed} -> {o:?}");
+        let o = triangle::basu_owen_permuted(index, seed);
+        prop_assert!(valid(o) && sum(o) == 1.0, "basu_owen_permuted {index} {seed} -> {o:?}");
+        prop_assert!(o.iter().all(|&c| c >= 85.0 / 16_777_216.0 && (c * 16_777_216.0).fract() == 0.0));
     }
 
     #[test]
@@ -173,22 +176,48 @@ fn check_widths(pts: &[[f32; 2]; 8], bary: &[[f32; 3]; 8]) {
     }
 }
 
+type Indexed = fn(u32, u32) -> [f32; 3];
+type Indexed8 = fn(u32x8, u32x8) -> [f32x8; 3];
+type IndexedSlice = fn(u32, u32, &mut [[f32; 3]]) -> usize;
+
+/// Both Basu-Owen randomizations, with their three forms.
+const BASU_OWEN: [(&str, Indexed, Indexed8, IndexedSlice); 2] = [
+    (
+        "basu_owen",
+        triangle::basu_owen,
+        triangle::basu_owen_x8,
+        triangle::basu_owen_slice,
+    ),
+    (
+        "basu_owen_permuted",
+        triangle::basu_owen_permuted,
+        triangle::basu_owen_permuted_x8,
+        triangle::basu_owen_permuted_slice,
+    ),
+];
+
 fn check_basu_owen_widths(index: [u32; 8], seed: [u32; 8]) {
-    let v = triangle::basu_owen_x8(u32x8::new(index), u32x8::new(seed));
-    for j in 0..8 {
-        let s = triangle::basu_owen(index[j], seed[j]);
-        assert!(
-            same_bits(s, lane(v, j)),
-            "x8 lane {j}: {} {}",
-            index[j],
-            seed[j]
-        );
-        // The slice form from this index, for lane 0's seed.
-        let mut out = [[9.0f32; 3]; 11];
-        assert_eq!(triangle::basu_owen_slice(index[j], seed[0], &mut out), 11);
-        for (k, o) in out.iter().enumerate() {
-            let want = triangle::basu_owen(index[j].wrapping_add(k as u32), seed[0]);
-            assert!(same_bits(*o, want), "slice from {} [{k}]", index[j]);
+    for (name, scalar, x8, slice) in BASU_OWEN {
+        let v = x8(u32x8::new(index), u32x8::new(seed));
+        for j in 0..8 {
+            let s = scalar(index[j], seed[j]);
+            assert!(
+                same_bits(s, lane(v, j)),
+                "{name} x8 lane {j}: {} {}",
+                index[j],
+                seed[j]
+            );
+            // The slice form from this index, for lane 0's seed (tails of every length).
+            let mut out = [[9.0f32; 3]; 11];
+            assert_eq!(slice(index[j], seed[0], &mut out[..11 - j]), 11 - j);
+            for (k, o) in out.iter().enumerate() {
+                let want = if k < 11 - j {
+                    scalar(index[j].wrapping_add(k as u32), seed[0])
+                } else {
+                    [9.0; 3]
+                };
+                assert!(same_bits(*o, want), "{name} slice from {} [{k}]", index[j]);
+            }
         }
     }
 }
@@ -534,24 +563,33 @@ fn basu_owen_matches_the_walk() {
 
 const SEEDS: [u32; 6] = [0, 1, 2, 12345, 0xdead_beef, u32::MAX];
 
-/// For every k <= 8 and several seeds (0 included), the first 4^k points, and 4^k
-/// consecutive points starting at any multiple of 4^k, fall one per level-k sub-triangle.
+/// For every k <= 8 and many seeds (0 included), under both randomizations, the first 4^k
+/// points, and 4^k consecutive points starting at any multiple of 4^k, fall one per level-k
+/// sub-triangle.
 #[test]
 fn basu_owen_stratification() {
-    for seed in SEEDS {
-        for k in 0..=8u32 {
-            let n = 1usize << (2 * k);
-            for block in [0u32, 1, 7, (1 << (2 * (16 - k.max(1)))) - 1] {
-                let start = block.wrapping_mul(n as u32);
-                let mut seen = vec![false; 2 << (2 * k)];
-                let mut out = vec![[0.0f32; 3]; n];
-                triangle::basu_owen_slice(start, seed, &mut out);
-                for (m, b) in out.iter().enumerate() {
-                    let id = cell_id(cell(*b, k), k);
-                    assert!(
-                        !std::mem::replace(&mut seen[id], true),
-                        "seed {seed} k {k} start {start}: point {m} shares a cell"
-                    );
+    let mut r = rng(22);
+    let seeds: Vec<u32> = SEEDS
+        .into_iter()
+        .chain((0..26).map(|_| r.random()))
+        .collect();
+    for (name, _, _, slice) in BASU_OWEN {
+        for &seed in &seeds {
+            for k in 0..=8u32 {
+                let n = 1usize << (2 * k);
+                let last = (1u32 << (2 * (16 - k.max(1)))) - 1;
+                for block in [0u32, 1, 7, last, r.random_range(0..=last)] {
+                    let start = block.wrapping_mul(n as u32);
+                    let mut seen = vec![false; 2 << (2 * k)];
+                    let mut out = vec![[0.0f32; 3]; n];
+                    slice(start, seed, &mut out);
+                    for (m, b) in out.iter().enumerate() {
+                        let id = cell_id(cell(*b, k), k);
+                        assert!(
+                            !std::mem::replace(&mut seen[id], true),
+                            "{name} seed {seed} k {k} start {start}: point {m} shares a cell"
+                        );
+                    }
                 }
             }
         }
@@ -673,6 +711,247 @@ fn basu_owen_consecutive_seeds_are_independent() {
 }
 
 // ----------------------------------------------------------------------------------------
+// Basu-Owen with one digit permutation per level.
+
+/// The digit the walk took at level `k`, read back from the point's geometry: which child of
+/// its level-`k` cell it lies in, in the walk's numbering (1, 2, 3: the corner children at
+/// `v0`, `v1`, `v2`; 0: the middle one). `child` lists children in a fixed order per
+/// orientation; in an inverted cell the first two corners swap roles.
+fn digit(b: [f32; 3], k: u32) -> u32 {
+    let order = if cell(b, k).2 {
+        [1, 2, 3, 0]
+    } else {
+        [2, 1, 3, 0]
+    };
+    order[child(b, k)]
+}
+
+fn digits(b: [f32; 3]) -> [u32; 16] {
+    std::array::from_fn(|k| digit(b, k as u32))
+}
+
+fn index_digits(i: u32) -> [u32; 16] {
+    std::array::from_fn(|k| (i >> (2 * k)) & 3)
+}
+
+/// `sigma[j][d]`: the digit the walk takes at level `j` for index digit `d`, recovered from
+/// the points `d << 2j` (every other digit 0).
+fn recover_levels(point: impl Fn(u32) -> [f32; 3]) -> [[u32; 4]; 16] {
+    std::array::from_fn(|j| std::array::from_fn(|d| digit(point((d as u32) << (2 * j)), j as u32)))
+}
+
+/// Lexicographic rank of a permutation of 0..4 (0..24).
+fn perm_rank(p: [u32; 4]) -> usize {
+    let mut rank = 0;
+    for i in 0..4 {
+        let smaller = (i + 1..4).filter(|&j| p[j] < p[i]).count();
+        rank = rank * (4 - i) + smaller;
+    }
+    rank
+}
+
+/// The geometry read-back is right: unscrambled, the walk's digits are the index's.
+#[test]
+fn digit_readback_matches_the_index() {
+    let mut r = rng(50);
+    for i in (0..4096u32).chain((0..20_000).map(|_| r.random())) {
+        assert_eq!(digits(triangle::basu_owen(i, 0)), index_digits(i), "{i:#x}");
+    }
+}
+
+/// `seed = 0` is the plain construction, bit for bit.
+#[test]
+fn basu_owen_permuted_seed_zero_is_plain() {
+    let mut r = rng(51);
+    for i in (0..1u32 << 16).chain((0..100_000).map(|_| r.random())) {
+        assert!(same_bits(
+            triangle::basu_owen_permuted(i, 0),
+            triangle::basu_owen(i, 0)
+        ));
+    }
+}
+
+/// What "one permutation per level" means, checked exactly: for a seed, recover `sigma_j`
+/// from 64 points; every `sigma_j` is a permutation, and every index `i` walks the digits
+/// `sigma_j(d_j(i))`. The nested scramble of `basu_owen` fails the same check (its
+/// permutations depend on the prefix), so the test can tell the two apart.
+#[test]
+fn basu_owen_permuted_is_one_permutation_per_level() {
+    let mut r = rng(52);
+    for trial in 0..200 {
+        let seed = if trial == 0 { 0 } else { r.random::<u32>() };
+        let sigma = recover_levels(|i| triangle::basu_owen_permuted(i, seed));
+        for (j, s) in sigma.iter().enumerate() {
+            let mut sorted = *s;
+            sorted.sort();
+            assert_eq!(sorted, [0, 1, 2, 3], "seed {seed} level {j}: {s:?}");
+        }
+        if seed == 0 {
+            assert!(sigma.iter().all(|s| *s == [0, 1, 2, 3]));
+        }
+        for _ in 0..200 {
+            let i = r.random::<u32>();
+            let want: [u32; 16] = std::array::from_fn(|j| sigma[j][index_digits(i)[j] as usize]);
+            assert_eq!(
+                digits(triangle::basu_owen_permuted(i, seed)),
+                want,
+                "seed {seed} index {i:#x}"
+            );
+        }
+    }
+    let mut mismatches = 0;
+    for _ in 0..20 {
+        let seed = r.random::<u32>() | 1;
+        let sigma = recover_levels(|i| triangle::basu_owen(i, seed));
+        for _ in 0..50 {
+            let i = r.random::<u32>();
+            let want: [u32; 16] = std::array::from_fn(|j| sigma[j][index_digits(i)[j] as usize]);
+            mismatches += (digits(triangle::basu_owen(i, seed)) != want) as u32;
+        }
+    }
+    assert!(
+        mismatches > 900,
+        "nested scramble looked per-level: {mismatches}"
+    );
+}
+
+/// 3 x (the point's offset from the centroid of its level-`k` cell), in units of `2^-24`,
+/// with the sign of the cell's orientation taken out (inverted cells are point reflections).
+fn oriented_offset(b: [f32; 3], k: u32) -> (i64, i64) {
+    let (x, y) = ((b[0] * 16_777_216.0) as i64, (b[1] * 16_777_216.0) as i64);
+    let shift = 24 - k;
+    let (i, j, upright) = cell(b, k);
+    let third = if upright { 1 } else { 2 };
+    let ox = 3 * x - ((3 * i as i64 + third) << shift);
+    let oy = 3 * y - ((3 * j as i64 + third) << shift);
+    if upright { (ox, oy) } else { (-ox, -oy) }
+}
+
+/// Within every aligned block of `4^k` indices, every point sits at the same place in its
+/// level-`k` sub-triangle (mirrored in the inverted ones), exactly, for the per-level
+/// permutation; the nested scramble moves each point independently (and so fails this).
+#[test]
+fn basu_owen_permuted_same_offset_in_every_cell() {
+    let mut r = rng(53);
+    for trial in 0..40 {
+        let seed = if trial == 0 { 0 } else { r.random::<u32>() };
+        for k in 1..=6u32 {
+            let n = 1u32 << (2 * k);
+            for start in [0, n.wrapping_mul(r.random::<u32>() >> (2 * k))] {
+                let mut out = vec![[0.0f32; 3]; n as usize];
+                triangle::basu_owen_permuted_slice(start, seed, &mut out);
+                let first = oriented_offset(out[0], k);
+                for (m, b) in out.iter().enumerate() {
+                    assert_eq!(
+                        oriented_offset(*b, k),
+                        first,
+                        "seed {seed} k {k} start {start} point {m}"
+                    );
+                }
+            }
+        }
+    }
+    let mut out = vec![[0.0f32; 3]; 16];
+    triangle::basu_owen_slice(0, 0x2545_f491, &mut out);
+    let offsets: std::collections::HashSet<_> =
+        out.iter().map(|b| oriented_offset(*b, 2)).collect();
+    assert!(
+        offsets.len() > 8,
+        "nested scramble: {} distinct offsets",
+        offsets.len()
+    );
+}
+
+/// Over random seeds, each level's permutation is uniform over all 24, and the permutations
+/// of two levels are independent (levels 0 and 1; 7 and 8, which come from different hash
+/// words; 14 and 15, the deepest). 2^18 seeds: 455 expected per cell of the 576-cell tests.
+#[test]
+fn chi2_basu_owen_permuted_levels_uniform_and_independent() {
+    let mut r = rng(54);
+    let pairs = [(0usize, 1usize), (7, 8), (14, 15)];
+    let mut counts = vec![vec![0u64; 576]; pairs.len()];
+    for _ in 0..(1 << 18) {
+        let seed = r.random::<u32>();
+        let sigma = recover_levels(|i| triangle::basu_owen_permuted(i, seed));
+        for (c, &(a, b)) in counts.iter_mut().zip(&pairs) {
+            c[perm_rank(sigma[a]) * 24 + perm_rank(sigma[b])] += 1;
+        }
+    }
+    for (c, (a, b)) in counts.iter().zip(pairs) {
+        chi2_discrete(
+            &format!("basu_owen_permuted sigma_{a} x sigma_{b}"),
+            c,
+            |_| true,
+        );
+    }
+}
+
+/// The pair law over seeds: two indices that agree below digit `k` and differ at `k` share
+/// their level-`k` cell and lie in different children (12 ordered pairs, equally likely);
+/// at level `k + 1` their digits are equal when the index digits are (4 outcomes) and
+/// different otherwise (12) — the same permutation for both — independently of level `k`.
+#[test]
+fn basu_owen_permuted_pair_law() {
+    let mut r = rng(55);
+    for (name, i, j, k) in [
+        ("digit 0, then equal digits", 0u32, 1u32, 0u32),
+        ("digit 0, then different digits", 0, 1 | (2 << 2), 0),
+        (
+            "digit 7, then equal",
+            0x1234_5678,
+            0x1234_5678 ^ (2 << 14),
+            7,
+        ),
+        (
+            "digit 8, then different",
+            0x9e37_79b9,
+            0x9e37_79b9 ^ (3 << 16) ^ (1 << 18),
+            8,
+        ),
+    ] {
+        let same_next = (i >> (2 * k + 2)) & 3 == (j >> (2 * k + 2)) & 3;
+        let mut counts = vec![0u64; 256];
+        for _ in 0..(1u32 << 18) {
+            let seed = r.random::<u32>() | 1;
+            let (a, b) = (
+                triangle::basu_owen_permuted(i, seed),
+                triangle::basu_owen_permuted(j, seed),
+            );
+            assert_eq!(cell(a, k), cell(b, k));
+            let (da, db) = (digit(a, k), digit(b, k));
+            let (ga, gb) = (digit(a, k + 1), digit(b, k + 1));
+            counts[((da * 4 + db) * 4 + ga) as usize * 4 + gb as usize] += 1;
+        }
+        chi2_discrete(
+            &format!("basu_owen_permuted pair law, {name}"),
+            &counts,
+            |c| {
+                let (da, db, ga, gb) = (c >> 6, (c >> 4) & 3, (c >> 2) & 3, c & 3);
+                da != db && ((ga == gb) == same_next)
+            },
+        );
+    }
+}
+
+/// Consecutive seeds give independent points (as for the nested scramble).
+#[test]
+fn basu_owen_permuted_consecutive_seeds_are_independent() {
+    let mut counts = vec![0u64; 32 * 32];
+    for s in 1..=(1u32 << 20) {
+        let a = cell_id(cell(triangle::basu_owen_permuted(77, s), 2), 2);
+        let b = cell_id(cell(triangle::basu_owen_permuted(77, s + 1), 2), 2);
+        counts[a * 32 + b] += 1;
+    }
+    let ok = |id: usize| {
+        let (i, j, up) = (id >> 3, (id >> 1) & 3, id & 1 == 1);
+        if up { i + j <= 3 } else { i + j <= 2 }
+    };
+    chi2_discrete("basu_owen_permuted seeds s, s+1", &counts, |c| {
+        ok(c / 32) && ok(c % 32)
+    });
+}
+
+// ----------------------------------------------------------------------------------------
 // Chi-square uniformity over equal-area cells ((1 - b0)^2, b1 / (1 - b0)).
 
 const NA: usize = 32;
@@ -722,6 +1001,35 @@ fn chi2_basu_owen_stratified_sets() {
         at += 1;
         buf[at - 1]
     });
+}
+
+/// Independent samples of the per-level permutation: random seed and index per point.
+#[test]
+fn chi2_basu_owen_permuted_random_seeds() {
+    let mut r = rng(105);
+    chi2_triangle(
+        "triangle::basu_owen_permuted (random seed, random index)",
+        || triangle::basu_owen_permuted(r.random(), r.random::<u32>() | 1),
+    );
+}
+
+/// Stratified sets of the per-level permutation: 512 seeds x the first 4096 points.
+#[test]
+fn chi2_basu_owen_permuted_stratified_sets() {
+    let mut r = rng(106);
+    let mut buf = vec![[0.0f32; 3]; 4096];
+    let mut at = buf.len();
+    chi2_triangle(
+        "triangle::basu_owen_permuted (512 seeds x 4096 points)",
+        || {
+            if at == buf.len() {
+                triangle::basu_owen_permuted_slice(0, r.random::<u32>() | 1, &mut buf);
+                at = 0;
+            }
+            at += 1;
+            buf[at - 1]
+        },
+    );
 }
 
 /// The test can fail: the naive map b0 = u0, b1 = u1 (1 - u0) (density 1 / (1 - b0): mass

@@ -6,6 +6,9 @@ set -euo pipefail
 cd "$(dirname "$0")/../examples/wasm-demo"
 probes=(
   "probe-concentric:only disk::concentric"
+  "probe-concentric4:only disk::concentric4"
+  "probe-basu-owen:only triangle::basu_owen"
+  "probe-basu-owen-permuted:only triangle::basu_owen_permuted"
   "probe-equal-area:only sphere::equal_area"
   "probe-pmj02bn-1024:only pmj02bn::sample, 1024 points x 1 set"
   "probe-pmj02bn-4096:only pmj02bn::sample, 4096 points x 1 set"

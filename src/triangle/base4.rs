@@ -19,9 +19,9 @@ fn delta_swap<U: UintLane>(x: U, mask: u32, shift: u32) -> U {
 }
 
 /// Reverses the order of the 16 digits: digit `j` moves to digit `15 - j`, its two bits kept
-/// in order.
-#[inline(always)]
-pub(super) fn reverse_digits<U: UintLane>(x: U) -> U {
+/// in order (the reference for [`fields`]).
+#[cfg(test)]
+fn reverse_digits<U: UintLane>(x: U) -> U {
     let x = x.shr(16) | x.shl(16);
     let x = delta_swap(x, 0x00ff_00ff, 8);
     let x = delta_swap(x, 0x0f0f_0f0f, 4);
@@ -31,7 +31,7 @@ pub(super) fn reverse_digits<U: UintLane>(x: U) -> U {
 /// Separates even and odd bits: bit `2k` moves to bit `k` and bit `2k + 1` to bit `16 + k`
 /// (the inverse perfect shuffle; Warren, "Hacker's Delight", section 7-2).
 #[inline(always)]
-pub(super) fn unzip<U: UintLane>(x: U) -> U {
+fn unzip<U: UintLane>(x: U) -> U {
     let x = delta_swap(x, 0x2222_2222, 1);
     let x = delta_swap(x, 0x0c0c_0c0c, 2);
     let x = delta_swap(x, 0x00f0_00f0, 4);
@@ -105,6 +105,116 @@ pub(super) fn nested_scramble<U: UintLane>(index: U, seed: U) -> U {
     U::select(seed.simd_eq(U::splat(0)), index, x)
 }
 
+/// The low 16 bits: one bit per digit in the "fields" layout of [`fields`].
+const LOW16: u32 = 0x0000_ffff;
+
+/// The index's digits as two 16-bit fields, most significant digit first: bit `15 - j` holds
+/// the low bit of digit `j` and bit `31 - j` its high bit. The walk consumes this layout, and
+/// [`LevelKeys`] permute digits in it.
+///
+/// That is `unzip(reverse_digits(index))`, computed as `rotate16(unzip(reverse_bits(index)))`:
+/// reversing all 32 bits also reverses the digit order but swaps the two bits of each digit,
+/// so after the unzip the high bits land in the low half; a rotation by 16 swaps the halves
+/// back. `reverse_bits` is one or two instructions on most targets (`rbit`; GFNI or PSHUFB
+/// nibble tables on x86), where `reverse_digits` costs four delta swaps.
+#[inline(always)]
+pub(super) fn fields<U: UintLane>(index: U) -> U {
+    let x = unzip(index.reverse_bits());
+    x.shr(16) | x.shl(16)
+}
+
+/// One permutation of `{0, 1, 2, 3}` per level of the subdivision, shared by every node of
+/// that level, as masks over the [`fields`] layout: digit `d` at level `j` becomes
+/// `sigma_j(d) = L_j d + k_j` over GF(2)^2 (`d` read as the bit vector `(low, high)`).
+///
+/// Every permutation of four points is such an affine map (`AGL(2, 2)` has 24 elements and
+/// acts faithfully), so a per-level `(L_j, k_j)` is exactly a per-level `sigma_j`. Applied to
+/// the fields `f` (low bits in the low half, high bits in the high half):
+/// `f' = (f & a) ^ (swap_halves(f) & b) ^ k`, six word operations for all 16 digits.
+#[derive(Clone, Copy)]
+pub(super) struct LevelKeys<U> {
+    /// `L_j[0][0]` at bit `15 - j`, `L_j[1][1]` at bit `31 - j`.
+    a: U,
+    /// `L_j[0][1]` at bit `15 - j`, `L_j[1][0]` at bit `31 - j`.
+    b: U,
+    /// `k_j`, its low bit at `15 - j`, its high bit at `31 - j`.
+    k: U,
+}
+
+impl<U: UintLane> LevelKeys<U> {
+    /// The same keys in every lane (the slice forms derive them once per call).
+    #[inline(always)]
+    pub(super) fn splat(keys: LevelKeys<core::num::Wrapping<u32>>) -> Self {
+        LevelKeys {
+            a: U::splat(keys.a.0),
+            b: U::splat(keys.b.0),
+            k: U::splat(keys.k.0),
+        }
+    }
+
+    /// Draws `sigma_0 .. sigma_15` from `seed`; `seed = 0` gives the identity at every level.
+    ///
+    /// `sigma_j = (S^s_j R^m_j, k_j)`: the translation `k_j` is two hash bits, `s_j` one
+    /// more, and `m_j` in `{0, 1, 2}` is base-3 digit `j mod 8` of a hash word `t` read as a
+    /// fraction of `2^32` (levels 0-7 from one word, 8-15 from another): `m_j = floor(3 t_j /
+    /// 2^32)` with `t_j = 3^j t mod 2^32`, found by two compares (`3 t_j >= 2^32` exactly when
+    /// `t_j >= ceil(2^32 / 3)`). `R` is multiplication by `omega` in GF(4) (`(low, high) ->
+    /// (high, low ^ high)`), `S` swaps the two bits; `{S^s R^m}` is all six invertible 2x2 bit
+    /// matrices, so `sigma_j` ranges over all 24 permutations. `k_j` is exactly uniform, which
+    /// alone makes every point exactly uniform at the construction's resolution (a uniform
+    /// translation after any linear map is uniform); `m_j` is uniform up to a relative bias of
+    /// `3^8 / 2^32 = 1.5e-6`, which only touches the joint law of two points.
+    #[inline(always)]
+    pub(super) fn new(seed: U) -> Self {
+        let k = mix(seed ^ U::splat(0x68e3_1da4));
+        let s = mix(seed ^ U::splat(0xb5b8_4f2b)) & U::splat(LOW16);
+        let words = [
+            mix(seed ^ U::splat(0x3c6e_f372)),
+            mix(seed ^ U::splat(0xa54f_f53a)),
+        ];
+        // Bit 15 - j of `ge1` is [m_j >= 1], of `ge2` is [m_j = 2].
+        let (mut ge1, mut ge2) = (U::splat(0), U::splat(0));
+        let mut power = 1u32; // 3^step
+        for step in 0..8 {
+            for (half, word) in words.iter().enumerate() {
+                let t = *word * U::splat(power);
+                let bit = U::splat(1 << (15 - (8 * half as u32 + step)));
+                let zero = U::splat(0);
+                ge1 = ge1 | U::select(t.simd_lt(U::splat(0x5555_5556)), zero, bit);
+                ge2 = ge2 | U::select(t.simd_lt(U::splat(0xaaaa_aaab)), zero, bit);
+            }
+            power = power.wrapping_mul(3);
+        }
+        // R^m as rows (new low, new high) over (low, high):
+        //   m = 0: [1 0; 0 1],  m = 1: [0 1; 1 1],  m = 2: [1 1; 1 0].
+        let l00 = !(ge1 & !ge2) & U::splat(LOW16); // m != 1
+        let l01 = ge1; // m != 0
+        let l10 = ge1;
+        let l11 = !ge2 & U::splat(LOW16); // m != 2
+        // S swaps the rows where s is set.
+        let pick = |keep: U, swap: U| (keep & !s) | (swap & s);
+        let (n00, n01, n10, n11) = (
+            pick(l00, l10),
+            pick(l01, l11),
+            pick(l10, l00),
+            pick(l11, l01),
+        );
+        let zero = seed.simd_eq(U::splat(0));
+        LevelKeys {
+            a: U::select(zero, U::splat(u32::MAX), n00 | n11.shl(16)),
+            b: U::select(zero, U::splat(0), n01 | n10.shl(16)),
+            k: U::select(zero, U::splat(0), k),
+        }
+    }
+
+    /// `sigma_j` applied to every digit `j` of `fields` (the [`fields`] layout in and out).
+    #[inline(always)]
+    pub(super) fn permute(&self, fields: U) -> U {
+        let swapped = fields.shr(16) | fields.shl(16);
+        (fields & self.a) ^ (swapped & self.b) ^ self.k
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -132,6 +242,18 @@ mod tests {
                 want |= ((x >> (2 * j)) & 3) << (2 * (15 - j));
             }
             assert_eq!(reverse_digits(w(x)).0, want, "{x:#x}");
+        }
+    }
+
+    #[test]
+    fn fields_are_the_unzipped_reversed_digits() {
+        for x in samples() {
+            assert_eq!(fields(w(x)).0, unzip(reverse_digits(w(x))).0, "{x:#x}");
+            let v = wide::u32x8::splat(x) ^ wide::u32x8::new([0, 1, 2, 3, 4, 5, 6, 0x8000_0000]);
+            let got = fields(v).to_array();
+            for (j, &y) in v.to_array().iter().enumerate() {
+                assert_eq!(got[j], fields(w(y)).0);
+            }
         }
     }
 

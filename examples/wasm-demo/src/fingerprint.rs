@@ -177,9 +177,31 @@ pub fn fingerprint() -> u64 {
                 },
             );
         }
+        for q in 0..4u32 {
+            warp(
+                &mut h,
+                |u| disk::concentric4(u, q),
+                |u| disk::concentric4_x8(u, warpcore::u32x8::splat(q)),
+                |u, o| {
+                    for (a, b) in u.iter().zip(o.iter_mut()) {
+                        *b = disk::concentric4(*a, q);
+                    }
+                    u.len().min(o.len())
+                },
+            );
+        }
+        for i in 0..N {
+            let (u, q) = disk::concentric4_inverse(input(i));
+            h.floats(&u);
+            h.word(q);
+        }
         let pts: [[f32; 2]; 9] = core::array::from_fn(input);
         let mut out = [[0.0f32; 2]; 35];
         h.word(disk::polar4_slice(&pts, &mut out) as u32);
+        for p in out {
+            h.floats(&p);
+        }
+        h.word(disk::concentric4_slice(&pts, &mut out) as u32);
         for p in out {
             h.floats(&p);
         }
@@ -235,6 +257,12 @@ pub fn fingerprint() -> u64 {
             t::sqrt_map_inverse_slice,
         );
         indexed(&mut h, t::basu_owen, t::basu_owen_x8, t::basu_owen_slice);
+        indexed(
+            &mut h,
+            t::basu_owen_permuted,
+            t::basu_owen_permuted_x8,
+            t::basu_owen_permuted_slice,
+        );
     }
     #[cfg(feature = "sphere")]
     {

@@ -40,6 +40,35 @@ pub extern "C" fn disk_polar4(u0: f32, u1: f32, quadrant: u32, k: u32) -> f32 {
     if k == 0 { p[0] } else { p[1] }
 }
 
+#[cfg(any(feature = "all", feature = "probe-concentric4"))]
+#[unsafe(no_mangle)]
+pub extern "C" fn disk_concentric4(u0: f32, u1: f32, quadrant: u32, k: u32) -> f32 {
+    let p = warpcore::disk::concentric4([u0, u1], quadrant);
+    if k == 0 { p[0] } else { p[1] }
+}
+
+#[cfg(any(feature = "all", feature = "probe-basu-owen"))]
+#[unsafe(no_mangle)]
+pub extern "C" fn triangle_basu_owen(index: u32, seed: u32, k: u32) -> f32 {
+    let b = warpcore::triangle::basu_owen(index, seed);
+    match k {
+        0 => b[0],
+        1 => b[1],
+        _ => b[2],
+    }
+}
+
+#[cfg(any(feature = "all", feature = "probe-basu-owen-permuted"))]
+#[unsafe(no_mangle)]
+pub extern "C" fn triangle_basu_owen_permuted(index: u32, seed: u32, k: u32) -> f32 {
+    let b = warpcore::triangle::basu_owen_permuted(index, seed);
+    match k {
+        0 => b[0],
+        1 => b[1],
+        _ => b[2],
+    }
+}
+
 #[cfg(feature = "pmj02bn")]
 #[unsafe(no_mangle)]
 pub extern "C" fn pmj02bn_sample(index: u32, seed: u32, k: u32) -> f32 {
