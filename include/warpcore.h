@@ -125,6 +125,25 @@ size_t wc_disk_polar4(const float *points, size_t n_points, float *out, size_t n
 // writable for `n` values.
 size_t wc_disk_polar4_inverse(const float *p, float *out, uint32_t *quadrant, size_t n);
 
+// concentric4: `n` disk samples (`2n` floats) from `n_points` points of the square (`2
+// n_points` floats), four per point: sample `i` is the quarter-disk Shirley-Chiu map of point
+// `i / 4`, turned into quadrant `i % 4`. Returns `min(n, 4 n_points)`, or 0 (writing nothing)
+// for a null or misaligned pointer or overlapping arrays.
+//
+// # Safety
+// `points` must be readable for `2 n_points` floats and `out` writable for `2n` floats.
+size_t wc_disk_concentric4(const float *points, size_t n_points, float *out, size_t n);
+
+// Inverse of concentric4: `n` disk points `p` (`2n` floats) to their points of the square
+// (`2n` floats, `out`) and quadrants (`n` values in 0..=3, `quadrant`; the origin gives 0).
+// Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or overlapping arrays
+// other than `p == out`.
+//
+// # Safety
+// `p` must be readable for `2n` floats, `out` writable for `2n` floats and `quadrant`
+// writable for `n` values.
+size_t wc_disk_concentric4_inverse(const float *p, float *out, uint32_t *quadrant, size_t n);
+
 // Words of storage `wc_envmap_hierarchical_build` needs for a `width x height` map (the hierarchical (MIP-pyramid) distribution: compact 2D strata), the
 // 8-word header included; `SIZE_MAX` when the map is too large, 0 for a zero side.
 size_t wc_envmap_hierarchical_storage_len(uint32_t width,
@@ -525,6 +544,15 @@ size_t wc_triangle_sqrt_map_inverse(const float *b, float *out, size_t n);
 // # Safety
 // `out` must be writable for `3n` floats.
 size_t wc_triangle_basu_owen(uint32_t start, uint32_t seed, float *out, size_t n);
+
+// Basu-Owen points with one digit permutation per level, shared by every node of the level
+// (`seed = 0`: unscrambled): barycentrics of points `start, ..., start + n - 1` (indices wrap
+// after `UINT32_MAX`), `3n` floats. Returns `n`, or 0 (writing nothing) for a null or
+// misaligned `out`.
+//
+// # Safety
+// `out` must be writable for `3n` floats.
+size_t wc_triangle_basu_owen_permuted(uint32_t start, uint32_t seed, float *out, size_t n);
 
 #ifdef __cplusplus
 }  // extern "C"

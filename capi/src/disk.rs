@@ -69,6 +69,80 @@ pub unsafe extern "C" fn wc_disk_polar4(
     out: *mut f32,
     n: usize,
 ) -> usize {
+    // SAFETY: the caller's contract above; `four_per_point` checks null, alignment, size and
+    // overlap.
+    unsafe { four_per_point(points, n_points, out, n, disk::polar4_slice) }
+}
+
+/// Inverse of polar4: `n` disk points `p` (`2n` floats) to their points of the square (`2n`
+/// floats, `out`) and quadrants (`n` values in 0..=3, `quadrant`). Returns `n`, or 0 (writing
+/// nothing) for a null or misaligned pointer or overlapping arrays other than `p == out`.
+///
+/// # Safety
+/// `p` must be readable for `2n` floats, `out` writable for `2n` floats and `quadrant`
+/// writable for `n` values.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_disk_polar4_inverse(
+    p: *const f32,
+    out: *mut f32,
+    quadrant: *mut u32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above; the helper checks null, alignment, size and
+    // overlap.
+    unsafe { inverse_with_quadrant(p, out, quadrant, n, disk::polar4_inverse) }
+}
+
+/// concentric4: `n` disk samples (`2n` floats) from `n_points` points of the square (`2
+/// n_points` floats), four per point: sample `i` is the quarter-disk Shirley-Chiu map of point
+/// `i / 4`, turned into quadrant `i % 4`. Returns `min(n, 4 n_points)`, or 0 (writing nothing)
+/// for a null or misaligned pointer or overlapping arrays.
+///
+/// # Safety
+/// `points` must be readable for `2 n_points` floats and `out` writable for `2n` floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_disk_concentric4(
+    points: *const f32,
+    n_points: usize,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above; `four_per_point` checks null, alignment, size and
+    // overlap.
+    unsafe { four_per_point(points, n_points, out, n, disk::concentric4_slice) }
+}
+
+/// Inverse of concentric4: `n` disk points `p` (`2n` floats) to their points of the square
+/// (`2n` floats, `out`) and quadrants (`n` values in 0..=3, `quadrant`; the origin gives 0).
+/// Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or overlapping arrays
+/// other than `p == out`.
+///
+/// # Safety
+/// `p` must be readable for `2n` floats, `out` writable for `2n` floats and `quadrant`
+/// writable for `n` values.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_disk_concentric4_inverse(
+    p: *const f32,
+    out: *mut f32,
+    quadrant: *mut u32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above; the helper checks null, alignment, size and
+    // overlap.
+    unsafe { inverse_with_quadrant(p, out, quadrant, n, disk::concentric4_inverse) }
+}
+
+/// Four disk samples per point through `slice` (a `*4_slice` form).
+///
+/// # Safety
+/// `points` readable for `2 n_points` floats, `out` writable for `2n` floats.
+unsafe fn four_per_point(
+    points: *const f32,
+    n_points: usize,
+    out: *mut f32,
+    n: usize,
+    slice: fn(&[[f32; 2]], &mut [[f32; 2]]) -> usize,
+) -> usize {
     let n = n.min(n_points.saturating_mul(4));
     if n == 0 {
         return 0;
@@ -96,7 +170,7 @@ pub unsafe extern "C" fn wc_disk_polar4(
                 pts,
             );
         }
-        let written = disk::polar4_slice(&a[..pts], &mut b[..k]);
+        let written = slice(&a[..pts], &mut b[..k]);
         debug_assert_eq!(written, k);
         // SAFETY: as above.
         unsafe {
@@ -107,19 +181,16 @@ pub unsafe extern "C" fn wc_disk_polar4(
     n
 }
 
-/// Inverse of polar4: `n` disk points `p` (`2n` floats) to their points of the square (`2n`
-/// floats, `out`) and quadrants (`n` values in 0..=3, `quadrant`). Returns `n`, or 0 (writing
-/// nothing) for a null or misaligned pointer or overlapping arrays other than `p == out`.
+/// Inverse with quadrants through `inverse`.
 ///
 /// # Safety
-/// `p` must be readable for `2n` floats, `out` writable for `2n` floats and `quadrant`
-/// writable for `n` values.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_disk_polar4_inverse(
+/// `p` readable for `2n` floats, `out` writable for `2n` floats, `quadrant` for `n` values.
+unsafe fn inverse_with_quadrant(
     p: *const f32,
     out: *mut f32,
     quadrant: *mut u32,
     n: usize,
+    inverse: fn([f32; 2]) -> ([f32; 2], u32),
 ) -> usize {
     if n == 0 {
         return 0;
@@ -145,7 +216,7 @@ pub unsafe extern "C" fn wc_disk_polar4_inverse(
         let mut u = [[0.0f32; 2]; CHUNK];
         let mut qs = [0u32; CHUNK];
         for ((src, u), q) in a.iter().zip(u.iter_mut()).zip(qs.iter_mut()).take(k) {
-            (*u, *q) = disk::polar4_inverse(*src);
+            (*u, *q) = inverse(*src);
         }
         // SAFETY: as above; `out` may equal `p` (this chunk was copied first).
         unsafe {
@@ -156,7 +227,3 @@ pub unsafe extern "C" fn wc_disk_polar4_inverse(
     }
     n
 }
-
-// Placeholder, filled in when `disk::concentric4` lands on main (DESIGN.md v2):
-// `size_t wc_disk_concentric4(const float *points, size_t n_points, float *out, size_t n)`,
-// sample `i` uses point `i / 4` in quadrant `i % 4`, like `wc_disk_polar4`.

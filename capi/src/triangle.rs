@@ -78,6 +78,24 @@ pub unsafe extern "C" fn wc_triangle_basu_owen(
     }
 }
 
-// Placeholder, filled in when `triangle::basu_owen_permuted` lands on main (DESIGN.md v2):
-// `size_t wc_triangle_basu_owen_permuted(uint32_t start, uint32_t seed, float *out, size_t n)`,
-// like `wc_triangle_basu_owen`.
+/// Basu-Owen points with one digit permutation per level, shared by every node of the level
+/// (`seed = 0`: unscrambled): barycentrics of points `start, ..., start + n - 1` (indices wrap
+/// after `UINT32_MAX`), `3n` floats. Returns `n`, or 0 (writing nothing) for a null or
+/// misaligned `out`.
+///
+/// # Safety
+/// `out` must be writable for `3n` floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_triangle_basu_owen_permuted(
+    start: u32,
+    seed: u32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above; `generate` checks null, alignment and size.
+    unsafe {
+        crate::ffi::generate::<3>(out, n, |offset, chunk| {
+            triangle::basu_owen_permuted_slice(start.wrapping_add(offset), seed, chunk)
+        })
+    }
+}

@@ -69,6 +69,9 @@ fn header_declares_every_function_with_its_docs() {
                 continue;
             }
             let name = rest.split('(').next().unwrap();
+            if name == "rust_eh_personality" {
+                continue; // linker plumbing of the no_std build, not API
+            }
             exported += 1;
             let at = header
                 .find(&format!(" {name}("))

@@ -83,10 +83,12 @@ static size_t failures;
     } while (0)
 
 /* A C call standing for a scalar, x8 or slice form: `f(in, out, n)` with I -> O floats. */
+typedef size_t (*four_fn)(const float *, size_t, float *, size_t);
 struct warp {
     warp_fn f;
     int I, O;
-    int quadrant; /* polar4: >= 0 picks quadrant q of wc_disk_polar4 on one point */
+    int quadrant; /* >= 0: quadrant q of `four` (wc_disk_polar4, wc_disk_concentric4) */
+    four_fn four;
 };
 
 static void call(struct warp w, const float *in, float *out, size_t n) {
@@ -96,7 +98,7 @@ static void call(struct warp w, const float *in, float *out, size_t n) {
     }
     for (size_t k = 0; k < n; k++) {
         float four[8];
-        EXPECT(wc_disk_polar4(in + 2 * k, 1, four, 4) == 4);
+        EXPECT(w.four(in + 2 * k, 1, four, 4) == 4);
         out[2 * k] = four[2 * w.quadrant];
         out[2 * k + 1] = four[2 * w.quadrant + 1];
     }
@@ -166,11 +168,13 @@ static size_t basu(uint32_t a, uint32_t s, float *o, size_t n, uint32_t c) {
     (void)c;
     return wc_triangle_basu_owen(a, s, o, n);
 }
-/* Placeholder for the v2 warps (DESIGN.md): wc_triangle_basu_owen_permuted and
-   wc_disk_concentric4 join here and in the Rust fingerprint when they land on main. */
+static size_t basu_permuted(uint32_t a, uint32_t s, float *o, size_t n, uint32_t c) {
+    (void)c;
+    return wc_triangle_basu_owen_permuted(a, s, o, n);
+}
 
 static struct warp W(warp_fn f, int I, int O) {
-    struct warp w = {f, I, O, -1};
+    struct warp w = {f, I, O, -1, 0};
     return w;
 }
 
@@ -238,13 +242,27 @@ static uint64_t fingerprint(void) {
     warp(W(wc_disk_polar_inverse, 2, 2));
     warp(W(wc_disk_concentric_inverse, 2, 2));
     for (int q = 0; q < 4; q++) {
-        struct warp w = {0, 2, 2, q};
+        struct warp w = {0, 2, 2, q, wc_disk_polar4};
         warp(w);
+    }
+    for (int q = 0; q < 4; q++) {
+        struct warp w = {0, 2, 2, q, wc_disk_concentric4};
+        warp(w);
+    }
+    for (size_t i = 0; i < N; i++) {
+        float p[2], u[2];
+        uint32_t q;
+        inputs(p, i, 1, 2);
+        EXPECT(wc_disk_concentric4_inverse(p, u, &q, 1) == 1);
+        floats(u, 2);
+        word(q);
     }
     {
         float pts[9 * 2], out[35 * 2];
         inputs(pts, 0, 9, 2);
         word((uint32_t)wc_disk_polar4(pts, 9, out, 35));
+        floats(out, 35 * 2);
+        word((uint32_t)wc_disk_concentric4(pts, 9, out, 35));
         floats(out, 35 * 2);
     }
     /* pmj02bn */
@@ -270,6 +288,7 @@ static uint64_t fingerprint(void) {
     warp(W(wc_triangle_sqrt_map, 2, 3));
     warp(W(wc_triangle_sqrt_map_inverse, 3, 2));
     indexed(basu, 3, 0);
+    indexed(basu_permuted, 3, 0);
     /* sphere */
     warp(W(wc_sphere_equal_area, 2, 3));
     warp(W(wc_sphere_equal_area_inverse, 3, 2));

@@ -153,7 +153,11 @@ static void generators(void) {
     const struct {
         gen_fn f;
         int O;
-    } G[] = {{wc_pmj02bn_sample, 2}, {wc_sequence_random, 2}, {strat64, 2}, {wc_triangle_basu_owen, 3}};
+    } G[] = {{wc_pmj02bn_sample, 2},
+             {wc_sequence_random, 2},
+             {strat64, 2},
+             {wc_triangle_basu_owen, 3},
+             {wc_triangle_basu_owen_permuted, 3}};
     static float ref[BIG * 3], buf[BIG * 3 + 8];
     for (size_t g = 0; g < sizeof G / sizeof G[0]; g++) {
         CHECK(G[g].f(100, 7, ref, BIG) == BIG);
@@ -219,6 +223,23 @@ static void disk_extras(void) {
     float copy[24];
     memcpy(copy, out, sizeof copy);
     CHECK(wc_disk_polar4_inverse(copy, copy, q, 12) == 12 && memcmp(copy, u, sizeof copy) == 0);
+    /* concentric4: the same counts and rules; its inverse recovers the point and quadrant. */
+    CHECK(wc_disk_concentric4(pts, 3, out, 100) == 12);
+    CHECK(wc_disk_concentric4(pts + 2, 1, one, 4) == 4);
+    CHECK(wc_disk_concentric4(pts, 3, out, 12) == 12 && memcmp(out + 8, one, sizeof one) == 0);
+    CHECK(wc_disk_concentric4(pts, 0, out, 4) == 0 && wc_disk_concentric4(NULL, 3, out, 4) == 0);
+    CHECK(wc_disk_concentric4(pts, 3, (float *)pts, 4) == 0);
+    CHECK(wc_disk_concentric4_inverse(out, u, q, 12) == 12);
+    ok = 1;
+    for (int i = 0; i < 12; i++) {
+        ok &= q[i] == (uint32_t)(i % 4);
+        for (int c = 0; c < 2; c++) {
+            float e = u[2 * i + c] - pts[2 * (i / 4) + c];
+            ok &= e < 1e-6f && e > -1e-6f;
+        }
+    }
+    CHECK(ok);
+    CHECK(wc_disk_concentric4_inverse(out, u, NULL, 12) == 0);
     /* wrap_texel. */
     int32_t t[4] = {-1, 5, 40, -70};
     uint32_t wt[4];
