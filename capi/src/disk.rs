@@ -4,6 +4,9 @@
 use crate::ffi::{CHUNK, overlap, span};
 use warpcore::disk;
 
+/// A `*4_slice` form: four disk samples per point.
+type FourSlice = fn(&[[f32; 2]], &mut [[f32; 2]]) -> usize;
+
 /// Polar map, `r = sqrt(u0)`, `theta = 2 pi u1`: `n` points `u` (`2n` floats) to `n` disk
 /// points (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer
 /// or overlapping arrays other than `u == out`.
@@ -141,7 +144,7 @@ unsafe fn four_per_point(
     n_points: usize,
     out: *mut f32,
     n: usize,
-    slice: fn(&[[f32; 2]], &mut [[f32; 2]]) -> usize,
+    slice: FourSlice,
 ) -> usize {
     let n = n.min(n_points.saturating_mul(4));
     if n == 0 {
