@@ -292,3 +292,39 @@ fn cpp_example_renders_and_checks_itself() {
     assert!(bytes.starts_with(b"PF\n32 32\n-1.0\n"));
     assert_eq!(bytes.len(), 14 + 32 * 32 * 3 * 4);
 }
+
+/// The README's C example compiles (strict C99) and runs.
+#[test]
+fn readme_c_example_runs() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let section = readme
+        .split("## From C and C++")
+        .nth(1)
+        .expect("README has a \"From C and C++\" section");
+    let code = section
+        .split("```c\n")
+        .nth(1)
+        .and_then(|rest| rest.split("```").next())
+        .expect("a ```c block in the section");
+    let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capi-c");
+    std::fs::create_dir_all(&out_dir).unwrap();
+    let (src, exe) = (out_dir.join("readme.c"), out_dir.join("readme"));
+    std::fs::write(&src, code).unwrap();
+    let cc = compiler("CC", "cc");
+    let status = Command::new(&cc)
+        .args(["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"])
+        .arg("-I")
+        .arg(root().join("include"))
+        .arg(&src)
+        .arg(staticlib())
+        .args(["-lpthread", "-ldl", "-lm", "-lrt", "-lutil"])
+        .arg("-o")
+        .arg(&exe)
+        .status()
+        .unwrap();
+    assert!(status.success(), "the README's C example does not compile");
+    let run = Command::new(&exe).output().unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{run:?}");
+    assert!(stdout.starts_with("64 samples, first ("), "{stdout}");
+}
