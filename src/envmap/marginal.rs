@@ -193,7 +193,7 @@ impl<'a> MarginalConditional<'a> {
         if let Some(k) = first_bad_cdf(map.rows) {
             return corrupt(start[0] + k);
         }
-        for (r, cdf) in map.columns.chunks_exact(w + 1).enumerate() {
+        for (r, cdf) in map.columns.chunks_exact((w + 1).max(1)).enumerate() {
             if let Some(k) = first_bad_cdf(cdf) {
                 return corrupt(start[1] + r * (w + 1) + k);
             }
