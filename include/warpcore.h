@@ -178,8 +178,8 @@ int32_t wc_envmap_hierarchical_build(const float *weights,
 int32_t wc_envmap_hierarchical_validate(const uint32_t *storage, size_t storage_len);
 
 // `wc_envmap_hierarchical_validate` plus one pass over every table word, rejecting
-// (`WC_ERR_CORRUPT`) any storage a build cannot have written: for loaders that want to catch
-// a corrupted file. Time proportional to the storage.
+// (`WC_ERR_CORRUPT`) tables that break the format's invariants: for loaders that want to
+// catch a corrupted file. Time proportional to the storage.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words.
@@ -247,8 +247,8 @@ int32_t wc_envmap_marginal_conditional_build(const float *weights,
 int32_t wc_envmap_marginal_conditional_validate(const uint32_t *storage, size_t storage_len);
 
 // `wc_envmap_marginal_conditional_validate` plus one pass over every table word, rejecting
-// (`WC_ERR_CORRUPT`) any storage a build cannot have written: for loaders that want to catch
-// a corrupted file. Time proportional to the storage.
+// (`WC_ERR_CORRUPT`) tables that break the format's invariants: for loaders that want to
+// catch a corrupted file. Time proportional to the storage.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words.

@@ -280,8 +280,8 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_validate(
 }
 
 /// `wc_envmap_hierarchical_validate` plus one pass over every table word, rejecting
-/// (`WC_ERR_CORRUPT`) any storage a build cannot have written: for loaders that want to catch
-/// a corrupted file. Time proportional to the storage.
+/// (`WC_ERR_CORRUPT`) tables that break the format's invariants: for loaders that want to
+/// catch a corrupted file. Time proportional to the storage.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words.
@@ -383,8 +383,8 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_validate(
 }
 
 /// `wc_envmap_marginal_conditional_validate` plus one pass over every table word, rejecting
-/// (`WC_ERR_CORRUPT`) any storage a build cannot have written: for loaders that want to catch
-/// a corrupted file. Time proportional to the storage.
+/// (`WC_ERR_CORRUPT`) tables that break the format's invariants: for loaders that want to
+/// catch a corrupted file. Time proportional to the storage.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words.

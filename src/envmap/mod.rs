@@ -115,9 +115,9 @@
 //! and never leaves the map, whatever its table words hold** — texels are in `0..width` x
 //! `0..height`, `uv` in `[0, 1)^2`, pdfs finite and nonnegative (garbage tables give garbage
 //! but valid samples). `from_storage_verified` adds one pass over every table word and
-//! rejects anything `new` cannot have written (CDFs that are not monotone from 0 to `2^31`,
-//! split fractions above 1, reachable padding, wrong texel edges), for loaders that want to
-//! catch a corrupted file.
+//! rejects tables that break the format's invariants (CDFs that are not monotone from 0 to
+//! `2^31`, split fractions above 1, reachable padding, nonzero unused words, wrong texel
+//! edges), for loaders that want to catch a corrupted file.
 
 mod edges;
 mod hierarchical;
