@@ -12,15 +12,18 @@ pub fn file_name(scene: &str) -> String {
     format!("{}.svg", scene.replace([':', '/', '\\', ' '], "-"))
 }
 
-/// Colour of (warp number, sampler): one hue family per warp, darker for better samplers.
+/// Colour of (warp number, sampler): one hue per warp (six, for the disk's strategies), darker
+/// for warpcore's stratified samplers, paler for random and the peers' randomizations.
 fn colour(warp: usize, sampler: Sampler) -> RGBColor {
-    const FAMILIES: [[(u8, u8, u8); 3]; 4] = [
-        [(120, 170, 220), (40, 110, 190), (10, 50, 120)],
-        [(250, 175, 100), (230, 120, 20), (150, 70, 0)],
-        [(140, 210, 130), (50, 160, 60), (0, 90, 20)],
-        [(240, 140, 150), (210, 50, 70), (130, 0, 30)],
-    ];
-    let (r, g, b) = FAMILIES[warp % 4][sampler.index()];
+    const HUES: [f64; 6] = [0.58, 0.08, 0.33, 0.97, 0.75, 0.14];
+    let (sat, val) = match sampler {
+        Sampler::Random => (0.35, 0.90),
+        Sampler::Stratified => (0.75, 0.80),
+        Sampler::Pmj02bn => (0.95, 0.50),
+        Sampler::Pmj02bnCp => (0.55, 0.70),
+        Sampler::SobolOwen => (0.85, 0.35),
+    };
+    let (r, g, b) = crate::strata::hsv(HUES[warp % HUES.len()], sat, val);
     RGBColor(r, g, b)
 }
 
@@ -101,10 +104,11 @@ fn panel(
                 chart.draw_series(LineSeries::new(pts.clone(), style))?;
             }
             _ => {
-                let (size, gap) = if *sampler == Sampler::Random {
-                    (3, 4)
-                } else {
-                    (8, 4)
+                let (size, gap) = match sampler {
+                    Sampler::Random => (3, 4),
+                    Sampler::Stratified => (8, 4),
+                    Sampler::Pmj02bnCp => (2, 3),
+                    _ => (12, 3),
                 };
                 chart.draw_series(DashedLineSeries::new(pts.clone(), size, gap, style))?;
             }
@@ -117,6 +121,8 @@ fn panel(
                     Sampler::Random => Circle::new(p, 3, c.filled()).into_dyn(),
                     Sampler::Stratified => TriangleMarker::new(p, 4, c.filled()).into_dyn(),
                     Sampler::Pmj02bn => Cross::new(p, 4, c.stroke_width(2)).into_dyn(),
+                    Sampler::Pmj02bnCp => Circle::new(p, 4, c.stroke_width(1)).into_dyn(),
+                    Sampler::SobolOwen => TriangleMarker::new(p, 5, c.stroke_width(1)).into_dyn(),
                 }
             });
         chart
