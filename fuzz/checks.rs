@@ -552,3 +552,157 @@ pub fn envmap(data: &[u8]) {
         &check,
     );
 }
+
+/// Env-map storage loading: arbitrary words as a storage (`from_storage` and
+/// `from_storage_verified` must return, never panic), and real storages with arbitrary words
+/// written over them. Whenever a load succeeds, sampling must stay in the map — texel inside,
+/// `uv` in `[0, 1)^2`, finite nonnegative pdfs — whatever the table words hold, and the widths
+/// must agree bit for bit.
+///
+/// Input: byte 0 bit 0 picks the distribution (hierarchical if set), bit 1 the mode. Raw mode:
+/// the words after byte 4 are the storage. Edit mode: words 1, 2, 3 give width and height
+/// (`% 40 + 1`) and a seed for the weights; the storage is built, then each following pair of
+/// words `(position, value)` overwrites one word (positions modulo the length, so the header
+/// too).
+#[cfg(feature = "envmap")]
+pub fn envmap_storage(data: &[u8]) {
+    use warpcore::envmap::{Error, Hierarchical, MarginalConditional, Sample};
+    let flags = data.first().copied().unwrap_or(0);
+    let w = words(data.get(4..).unwrap_or(&[]));
+    let hierarchical = flags & 1 != 0;
+    let storage: Vec<u32> = if flags & 2 == 0 {
+        w.clone()
+    } else {
+        let get = |k: usize| w.get(k).copied().unwrap_or(0);
+        let (width, height) = ((get(0) % 40 + 1) as usize, (get(1) % 40 + 1) as usize);
+        let seed = get(2);
+        // Weights from a counter hash, with zeros.
+        let weights: Vec<f32> = (0..width * height)
+            .map(|k| {
+                let x = (k as u32 ^ seed).wrapping_mul(0x9e37_79b9);
+                if x.is_multiple_of(5) {
+                    0.0
+                } else {
+                    (x >> 8) as f32
+                }
+            })
+            .collect();
+        let mut s = if hierarchical {
+            let mut s = vec![0u32; Hierarchical::storage_len(width, height)];
+            Hierarchical::new(&weights, width, height, &mut s).expect("valid build");
+            s
+        } else {
+            let mut s = vec![0u32; MarginalConditional::storage_len(width, height)];
+            MarginalConditional::new(&weights, width, height, &mut s).expect("valid build");
+            s
+        };
+        let n = s.len();
+        for pair in w.get(3..).unwrap_or(&[]).chunks_exact(2) {
+            s[pair[0] as usize % n] = pair[1];
+        }
+        s
+    };
+    // Fixed sample inputs: specials crossed, then counter-hash points.
+    let specials = [
+        0.0f32,
+        -0.0,
+        0.5,
+        0.999_999_94,
+        1.0,
+        f32::NAN,
+        f32::INFINITY,
+        1e-40,
+    ];
+    let mut us: Vec<[f32; 2]> = specials
+        .iter()
+        .flat_map(|&a| specials.iter().map(move |&b| [a, b]))
+        .collect();
+    us.extend((0..64u32).map(|i| {
+        let h = |x: u32| (x.wrapping_mul(0x2c1b_3c6d) ^ (x >> 12)).wrapping_mul(0x297a_2d39);
+        [
+            (h(2 * i) >> 8) as f32 / 16_777_216.0,
+            (h(2 * i + 1) >> 8) as f32 / 16_777_216.0,
+        ]
+    }));
+
+    fn run<D>(
+        name: &str,
+        d: &D,
+        us: &[[f32; 2]],
+        (sample, sample_x8, slice, pdf, size): (
+            impl Fn(&D, [f32; 2]) -> Sample,
+            impl Fn(&D, [f32x8; 2]) -> [Sample; 8],
+            impl Fn(&D, &[[f32; 2]], &mut [Sample]) -> usize,
+            impl Fn(&D, [f32; 2]) -> f32,
+            impl Fn(&D) -> (usize, usize),
+        ),
+    ) {
+        let (width, height) = size(d);
+        let mut out = vec![
+            Sample {
+                uv: [0.0; 2],
+                pdf: 0.0,
+                texel: [0; 2],
+            };
+            us.len()
+        ];
+        assert_eq!(slice(d, us, &mut out), us.len());
+        for (g, group) in us.chunks_exact(8).enumerate() {
+            let v: [f32x8; 2] =
+                std::array::from_fn(|k| f32x8::new(std::array::from_fn(|j| group[j][k])));
+            let x8 = sample_x8(d, v);
+            for (j, u) in group.iter().enumerate() {
+                let s = sample(d, *u);
+                assert_eq!(s, x8[j], "{name}: scalar != x8 for {u:?}");
+                assert_eq!(s, out[g * 8 + j], "{name}: scalar != slice for {u:?}");
+                let [c, r] = s.texel.map(|t| t as usize);
+                assert!(
+                    c < width && r < height,
+                    "{name}: texel {:?} of {width}x{height}",
+                    s.texel
+                );
+                assert!(in_unit_square(s.uv), "{name}: uv {:?}", s.uv);
+                assert!(s.pdf.is_finite() && s.pdf >= 0.0, "{name}: pdf {}", s.pdf);
+                let p = pdf(d, s.uv);
+                assert!(p.is_finite() && p >= 0.0, "{name}: pdf(uv) {p}");
+            }
+        }
+    }
+    let check = |name: &str, loaded: Result<(), Error>, verified: Result<(), Error>| {
+        // The verified load accepts a subset of what the O(1) load accepts.
+        if verified.is_ok() {
+            assert!(
+                loaded.is_ok(),
+                "{name}: verified accepted what from_storage rejected"
+            );
+        }
+        if let (Err(a), Err(b)) = (loaded, verified) {
+            assert_eq!(a, b, "{name}: the header errors differ");
+        }
+    };
+    macro_rules! both_loads {
+        ($t:ident, $name:literal) => {{
+            let ops = (
+                |d: &$t, u| d.sample(u),
+                |d: &$t, u| d.sample_x8(u).to_array(),
+                |d: &$t, u: &[[f32; 2]], o: &mut [Sample]| d.sample_slice(u, o),
+                |d: &$t, uv| d.pdf(uv),
+                |d: &$t| (d.width(), d.height()),
+            );
+            let loaded = $t::from_storage(&storage);
+            if let Ok(d) = &loaded {
+                run($name, d, &us, ops);
+            }
+            let verified = $t::from_storage_verified(&storage);
+            if let Ok(d) = &verified {
+                run(concat!($name, " (verified)"), d, &us, ops);
+            }
+            check($name, loaded.map(|_| ()), verified.map(|_| ()));
+        }};
+    }
+    if hierarchical {
+        both_loads!(Hierarchical, "hierarchical");
+    } else {
+        both_loads!(MarginalConditional, "marginal");
+    }
+}

@@ -1085,20 +1085,23 @@ fn errors() {
     let mut neg = ok;
     neg[3] = f32::NEG_INFINITY;
     with_both(&neg, 4, 3, |d| assert_eq!(d.pdf([0.9, 0.1]), 0.0));
-    // Sizes: the formulas of the docs.
+    // Sizes: the formulas of the docs (8 header words first).
     assert_eq!(
         MarginalConditional::storage_len(4096, 2048),
-        4097 * 2048 + 2 * 2049 + 4097
+        8 + 4097 * 2048 + 2 * 2049 + 4097
     );
     // Hierarchical: 16-word blocks for every other level, 15 words of alignment slack, edges.
-    assert_eq!(Hierarchical::storage_len(1, 1), 15 + 2 + 2);
-    assert_eq!(Hierarchical::storage_len(2, 2), 16 + 15 + 3 + 3);
-    assert_eq!(Hierarchical::storage_len(4, 2), 16 + 15 + 5 + 3);
-    assert_eq!(Hierarchical::storage_len(8, 8), 16 * (1 + 4) + 15 + 9 + 9);
+    assert_eq!(Hierarchical::storage_len(1, 1), 8 + 15 + 2 + 2);
+    assert_eq!(Hierarchical::storage_len(2, 2), 8 + 16 + 15 + 3 + 3);
+    assert_eq!(Hierarchical::storage_len(4, 2), 8 + 16 + 15 + 5 + 3);
+    assert_eq!(
+        Hierarchical::storage_len(8, 8),
+        8 + 16 * (1 + 4) + 15 + 9 + 9
+    );
     let blocks_4096 = 1 + 8 + 128 + 2048 + 32768 + 524_288;
     assert_eq!(
         Hierarchical::storage_len(4096, 2048),
-        16 * blocks_4096 + 15 + 4097 + 2049
+        8 + 16 * blocks_4096 + 15 + 4097 + 2049
     );
     assert_eq!(MarginalConditional::storage_len(0, 5), 0);
     assert_eq!(Hierarchical::storage_len(7, 0), 0);

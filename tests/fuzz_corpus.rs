@@ -52,3 +52,9 @@ fn sphere_corpus() {
 fn envmap_corpus() {
     replay("envmap", checks::envmap);
 }
+
+#[cfg(feature = "envmap")]
+#[test]
+fn envmap_storage_corpus() {
+    replay("envmap_storage", checks::envmap_storage);
+}

@@ -1,7 +1,7 @@
 //! The report as a function of its options: runs every scene, prints the tables, writes the
 //! CSV files, the plots and the strata pictures.
 
-use crate::area::AreaScene;
+use crate::area::{self, AreaScene};
 #[cfg(feature = "envmap")]
 use crate::envscene::EnvScene;
 use crate::output;
@@ -18,13 +18,13 @@ pub struct Options {
     /// Fewer pixels and shorter timings: a smoke run (under 15 s).
     pub quick: bool,
     pub out: PathBuf,
-    /// Pixels per area-light scene (default 16384, quick 1024).
+    /// Pixels per class of an area-light scene (default 32768, quick 1024).
     pub pixels: Option<usize>,
-    /// Pixels per environment-map scene (default 4096, quick 128).
+    /// Pixels per class of an environment-map scene (default 6144, quick 192).
     pub env_pixels: Option<usize>,
     /// Extra lat-long PFM maps, scenes `envmap:<stem>`.
     pub envmaps: Vec<PathBuf>,
-    /// Largest sample count: powers of 4 from 4 up to it (default 1024).
+    /// Largest sample count: powers of 4 from 4 up to it (default 256).
     pub max_spp: usize,
     pub threads: usize,
     /// Only scenes whose name starts with one of these (all when empty).
@@ -39,7 +39,7 @@ impl Default for Options {
             pixels: None,
             env_pixels: None,
             envmaps: Vec::new(),
-            max_spp: 1024,
+            max_spp: 256,
             threads: std::thread::available_parallelism().map_or(2, |n| n.get()),
             scenes: Vec::new(),
         }
@@ -81,26 +81,69 @@ fn bar(len: u64, what: &str, name: &str) -> ProgressBar {
     b
 }
 
-/// Runs one scene: errors, then timings; prints its table.
-pub fn run_scene<S: Scene>(scene: &S, cfg: &Config) -> SceneResult {
+/// The error runs of one scene (no timings yet).
+pub fn measure<S: Scene>(scene: &S, cfg: &Config) -> SceneResult {
     let name = scene.name();
     let b = bar(cfg.pixels as u64, "pixels", &name);
-    let mut result = run::errors(scene, cfg, &b);
-    b.finish_and_clear();
-    let b = bar(result.rows.len() as u64, "timings", &name);
-    let t = Instant::now();
-    run::timings(scene, cfg, &mut result, &b);
+    let result = run::errors(scene, cfg, &b);
     b.finish_and_clear();
     if !std::io::stderr().is_terminal() {
         eprintln!(
-            "{name}: {} pixels in {:.1} s, timings in {:.1} s",
-            result.pixels,
-            result.seconds,
-            t.elapsed().as_secs_f64()
+            "{name}: {} pixels in {:.1} s",
+            result.pixels, result.seconds
         );
     }
-    print!("{}", output::terminal(&result));
     result
+}
+
+/// Fills in `result`'s timings by drawing `scene`'s samples, and copies them to `others`
+/// (the scene's other pixel classes: the draws do not depend on the pixels).
+pub fn time<S: Scene>(
+    scene: &S,
+    cfg: &Config,
+    result: &mut SceneResult,
+    others: &mut [&mut SceneResult],
+) {
+    let name = scene.name();
+    let b = bar(result.rows.len() as u64, "timings", &name);
+    let t = Instant::now();
+    run::timings(scene, cfg, result, &b);
+    b.finish_and_clear();
+    if !std::io::stderr().is_terminal() {
+        eprintln!("{name}: timings in {:.1} s", t.elapsed().as_secs_f64());
+    }
+    for other in others.iter_mut() {
+        for row in other.rows.iter_mut() {
+            if let Some(src) = result.row(row.sampler, row.warp) {
+                row.ns = src.ns.clone();
+            }
+        }
+    }
+}
+
+/// One area light: its `lit` and `penumbra` classes (errors each, timings once) and the mix
+/// `<light>` as their weighted sum. Returns `[mix, lit, penumbra]`.
+fn area_light(lit: &AreaScene, penumbra: &AreaScene, cfg: &Config) -> [SceneResult; 3] {
+    let mut l = measure(lit, cfg);
+    let mut p = measure(penumbra, cfg);
+    time(lit, cfg, &mut l, &mut [&mut p]);
+    let w = area::mix_weights(&lit.shape, lit.id, 1 << 22);
+    let description = format!(
+        "{}; the original mix of pixels: {:.0}% penumbra, {:.0}% fully lit, {:.0}% fully hidden (error 0), combined from the two classes",
+        lit.description().split(';').next().unwrap_or_default(),
+        100.0 * w[1],
+        100.0 * w[0],
+        100.0 * w[2]
+    );
+    let mix = SceneResult::mix(
+        lit.light.to_string(),
+        description,
+        &[(w[0], &l), (w[1], &p)],
+    );
+    for r in [&mix, &l, &p] {
+        print!("{}", output::terminal(r));
+    }
+    [mix, l, p]
 }
 
 /// The vector instructions this build may use, which the timings depend on.
@@ -146,18 +189,21 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         build_features(),
         opts.threads
     );
-    let area_pixels = opts.pixels.unwrap_or(if opts.quick { 1024 } else { 16384 });
+    let area_pixels = opts.pixels.unwrap_or(if opts.quick { 1024 } else { 32768 });
     let mut results = Vec::new();
-    for scene in AreaScene::all() {
-        if opts.wants(scene.name) {
-            results.push(run_scene(&scene, &opts.config(area_pixels)));
+    let scenes = AreaScene::all();
+    for pair in scenes.chunks_exact(2) {
+        let (lit, penumbra) = (&pair[0], &pair[1]);
+        let light = lit.light;
+        if opts.wants(light) || opts.wants(&lit.name()) || opts.wants(&penumbra.name()) {
+            results.extend(area_light(lit, penumbra, &opts.config(area_pixels)));
         }
     }
     #[cfg(feature = "envmap")]
     {
         let env_pixels = opts
             .env_pixels
-            .unwrap_or(if opts.quick { 128 } else { 4096 });
+            .unwrap_or(if opts.quick { 192 } else { 6144 });
         let mut envs = Vec::new();
         if opts.wants("envmap:sky") || opts.wants("envmap:interior") {
             envs = EnvScene::builtin();
@@ -165,9 +211,18 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         for path in &opts.envmaps {
             envs.push(load_envmap(path)?);
         }
+        let cfg = opts.config(env_pixels);
         for scene in &envs {
             if opts.wants(&scene.name) {
-                results.push(run_scene(scene, &opts.config(env_pixels)));
+                let (cut, lit) = (scene.view(false), scene.view(true));
+                let mut c = measure(&cut, &cfg);
+                let mut l = measure(&lit, &cfg);
+                time(&cut, &cfg, &mut c, &mut [&mut l]);
+                for r in [&c, &l] {
+                    print!("{}", output::terminal(r));
+                }
+                results.push(c);
+                results.push(l);
             }
         }
         if let Some(interior) = envs.iter().find(|s| s.name == "envmap:interior") {
@@ -194,6 +249,14 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
             .map(|r| output::markdown(r) + "\n")
             .collect::<String>();
     output::write(&opts.out.join("tables.md"), &tables)?;
+    output::write(
+        &opts.out.join("recommendations.md"),
+        &output::recommendations_markdown(&results),
+    )?;
+    output::write(
+        &opts.out.join("comparison.md"),
+        &output::comparison_markdown(&results),
+    )?;
     for r in &results {
         plots::scene_plot(r, &opts.out)?;
     }

@@ -8,7 +8,9 @@
 //! **Pixels.** Pixel `i` draws `n` and `m` independently and uniformly on the sphere from a
 //! hash of `(scene, i)`. Every pixel's cut crosses its cosine lobe (two great circles always
 //! meet), so all pixels are "in penumbra"; in about a quarter of them the sun (or a lamp) is
-//! both in the lobe and visible.
+//! both in the lobe and visible. The `/lit` class of a scene (`envmap:<name>/lit`) drops the
+//! occluder: the same pixels' cosine lobes, unoccluded (a smooth integrand but for the map's
+//! own edges).
 //!
 //! **Maps.** Each scene has one piecewise-constant radiance map per parameterization: a
 //! lat-long map (`w x h`) and an equal-area octahedral map of about the same texel count
@@ -208,7 +210,7 @@ pub fn rasterize<P: Param>(param: &P, w: usize, h: usize, f: Radiance) -> Vec<f3
         .collect()
 }
 
-/// An environment-map scene.
+/// An environment-map scene: a map, and its pixels with or without the occluder.
 pub struct EnvScene {
     pub name: String,
     pub latlong: Side<LatLong>,
@@ -267,6 +269,12 @@ impl EnvScene {
         })
     }
 
+    /// The scene's pixels with the occluder (`lit = false`, the scene's own name) or without
+    /// it (`lit = true`, `<name>/lit`), sharing the maps and distributions.
+    pub fn view(&self, lit: bool) -> EnvView<'_> {
+        EnvView { scene: self, lit }
+    }
+
     /// A built-in procedural map, rasterized at `w x h` lat-long and the matching square.
     pub fn procedural(name: &str, f: Radiance, w: usize, h: usize) -> Result<Self, envmap::Error> {
         let s = ((w * h) as f64).sqrt().round() as usize;
@@ -309,23 +317,47 @@ impl EnvScene {
     }
 }
 
-impl Scene for EnvScene {
+/// One pixel class of an environment-map scene: with the occluder (the scene's own name) or
+/// without it (`/lit`). The maps and distributions are the scene's.
+#[derive(Clone, Copy)]
+pub struct EnvView<'a> {
+    pub scene: &'a EnvScene,
+    pub lit: bool,
+}
+
+impl std::ops::Deref for EnvView<'_> {
+    type Target = EnvScene;
+    fn deref(&self) -> &EnvScene {
+        self.scene
+    }
+}
+
+impl Scene for EnvView<'_> {
     type Pixel = EnvPixel;
 
     fn name(&self) -> String {
-        self.name.clone()
+        if self.lit {
+            format!("{}/lit", self.scene.name)
+        } else {
+            self.scene.name.clone()
+        }
     }
 
     fn description(&self) -> String {
         let (ll, ea) = (&self.latlong, &self.equal_area);
         format!(
-            "lat-long map {}x{} (dynamic range {:.0}:1), equal-area map {}x{} ({:.0}:1), cosine lobe and occluder half-space",
+            "lat-long map {}x{} (dynamic range {:.0}:1), equal-area map {}x{} ({:.0}:1), {}",
             ll.width(),
             ll.height(),
             ll.dynamic_range(),
             ea.width(),
             ea.height(),
-            ea.dynamic_range()
+            ea.dynamic_range(),
+            if self.lit {
+                "cosine lobe, no occluder"
+            } else {
+                "cosine lobe and occluder half-space"
+            }
         )
     }
 
@@ -335,6 +367,10 @@ impl Scene for EnvScene {
 
     fn pixel(&self, index: u64) -> EnvPixel {
         let (n, m) = self.geometry(index);
+        // Without the occluder: the half-space m . w >= 0 with m = n hides only directions
+        // the lobe already gives weight 0, so the references and the estimator are the
+        // unoccluded ones.
+        let m = if self.lit { n } else { m };
         EnvPixel {
             n,
             m,
@@ -352,7 +388,7 @@ impl Scene for EnvScene {
     }
 
     fn penumbra(&self, _pixel: &EnvPixel) -> bool {
-        true
+        !self.lit
     }
 
     fn draw(&self, warp: usize, sampler: Sampler, spp: usize, seed: u32, s: &mut Scratch) {

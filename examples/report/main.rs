@@ -50,14 +50,14 @@ fn main() {
                 .long("pixels")
                 .value_name("N")
                 .value_parser(value_parser!(usize))
-                .help("pixels per area-light scene [default: 16384; quick: 1024]"),
+                .help("pixels per class (lit, penumbra) of each area-light scene [default: 32768; quick: 1024]"),
         )
         .arg(
             Arg::new("max-spp")
                 .long("max-spp")
                 .value_name("N")
                 .value_parser(value_parser!(usize))
-                .help("largest sample count; runs the powers of 4 from 4 up to it [default: 1024]"),
+                .help("largest sample count; runs the powers of 4 from 4 up to it [default: 256]"),
         )
         .arg(
             Arg::new("threads")
@@ -83,7 +83,7 @@ fn main() {
                 .long("env-pixels")
                 .value_name("N")
                 .value_parser(value_parser!(usize))
-                .help("pixels per environment-map scene [default: 4096; quick: 128]"),
+                .help("pixels per class (with and without the occluder) of each environment-map scene [default: 6144; quick: 192]"),
         )
         .arg(
             Arg::new("scene")

@@ -1,6 +1,7 @@
 //! Terminal tables, the CSV files and the markdown tables.
 
 use crate::run::SceneResult;
+use crate::samplers::{SAMPLERS, Sampler};
 use std::fmt::Write as _;
 use std::io;
 use std::path::Path;
@@ -25,7 +26,7 @@ pub fn worst_rel_se(result: &SceneResult) -> f64 {
     result
         .rows
         .iter()
-        .flat_map(|r| r.stats.iter().map(|s| s.mse_rel_se()))
+        .flat_map(|r| r.stats.iter().map(|s| s.rel_se()))
         .fold(0.0, f64::max)
 }
 
@@ -87,10 +88,9 @@ fn cells(result: &SceneResult) -> Vec<Vec<String>> {
 
 fn caption(result: &SceneResult) -> String {
     format!(
-        "{}; {} pixels ({:.0}% in penumbra), MSE relative standard error <= {:.1}%",
+        "{}; {} pixels, MSE relative standard error <= {:.1}%",
         result.description,
         result.pixels,
-        100.0 * result.penumbra,
         100.0 * worst_rel_se(result)
     )
 }
@@ -147,30 +147,25 @@ pub fn summary_markdown(results: &[SceneResult]) -> String {
     };
     let k = at(first, 256).unwrap_or(first.spps.len() - 1);
     let n = first.spps[k];
-    let _ = writeln!(
-        s,
-        "| scene | warp | random | stratified | pmj02bn | rate (pmj02bn) | ns/sample (pmj02bn) |"
-    );
-    let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|");
+    let _ = write!(s, "| scene | warp |");
+    for sampler in SAMPLERS {
+        let _ = write!(s, " {} |", sampler.name());
+    }
+    let _ = writeln!(s, " rate (pmj02bn) | ns/sample (pmj02bn) |");
+    let _ = writeln!(s, "|---|---|{}---:|---:|", "---:|".repeat(SAMPLERS.len()));
     for res in results {
         let k = at(res, n).unwrap_or(res.spps.len() - 1);
-        let mut warps: Vec<&str> = Vec::new();
-        for r in &res.rows {
-            if !warps.contains(&r.warp) {
-                warps.push(r.warp);
-            }
-        }
-        for w in warps {
+        for w in warps(res) {
             let get = |sampler| res.row(sampler, w);
-            let cell = |sampler| get(sampler).map_or("-".to_string(), |r| fixed(1000.0 * r.mse(k)));
-            let p = get(crate::samplers::Sampler::Pmj02bn);
+            let _ = write!(s, "| {} | {w} |", res.scene);
+            for sampler in SAMPLERS {
+                let cell = get(sampler).map_or("-".to_string(), |r| fixed(1000.0 * r.mse(k)));
+                let _ = write!(s, " {cell} |");
+            }
+            let p = get(Sampler::Pmj02bn);
             let _ = writeln!(
                 s,
-                "| {} | {w} | {} | {} | {} | {} | {} |",
-                res.scene,
-                cell(crate::samplers::Sampler::Random),
-                cell(crate::samplers::Sampler::Stratified),
-                cell(crate::samplers::Sampler::Pmj02bn),
+                " {} | {} |",
                 p.map_or("-".to_string(), |r| format!("{:.2}", r.rate(&res.spps))),
                 p.map_or("-".to_string(), |r| fixed(r.ns[k])),
             );
@@ -178,6 +173,17 @@ pub fn summary_markdown(results: &[SceneResult]) -> String {
     }
     let _ = writeln!(s, "\nMSE x1000 at {n} samples per pixel.");
     s
+}
+
+/// The warps of a scene in row order.
+pub fn warps(res: &SceneResult) -> Vec<&'static str> {
+    let mut warps: Vec<&'static str> = Vec::new();
+    for r in &res.rows {
+        if !warps.contains(&r.warp) {
+            warps.push(r.warp);
+        }
+    }
+    warps
 }
 
 /// `results.csv`: one row per scene, combination and sample count.
@@ -218,11 +224,11 @@ pub fn details_csv(results: &[SceneResult]) -> String {
                     r.sampler.name(),
                     r.warp,
                     spp,
-                    st.mse(),
+                    st.mse,
                     r.ns[k],
                     st.n,
-                    st.mse_rel_se(),
-                    st.sum / st.n as f64,
+                    st.rel_se(),
+                    st.mean,
                     st.bias_z(),
                     r.alias_of.map(|a| a.name()).unwrap_or("")
                 );
@@ -234,4 +240,310 @@ pub fn details_csv(results: &[SceneResult]) -> String {
 
 pub fn write(path: &Path, text: &str) -> io::Result<()> {
     std::fs::write(path, text)
+}
+
+/// A row's label: `sampler + warp`, or for an index-driven construction (reported under
+/// several sampler names) the warp alone.
+fn label(res: &SceneResult, r: &crate::run::Row) -> String {
+    let index_driven = res
+        .rows
+        .iter()
+        .any(|o| o.warp == r.warp && o.alias_of.is_some());
+    if index_driven && r.sampler != Sampler::Random {
+        format!("{} (construction)", r.warp)
+    } else if warps(res).len() == 1 {
+        r.sampler.name().to_string()
+    } else {
+        format!("{} + {}", r.sampler.name(), r.warp)
+    }
+}
+
+/// The best row by `score` at count index `k`, and the rows statistically tied with it (their
+/// MSE within two standard errors of the difference, the errors taken as independent).
+fn best(
+    res: &SceneResult,
+    k: usize,
+    score: impl Fn(&crate::run::Row) -> f64,
+) -> Option<(String, f64, Vec<String>)> {
+    let rows: Vec<&crate::run::Row> = res.rows.iter().filter(|r| r.alias_of.is_none()).collect();
+    let top = rows
+        .iter()
+        .copied()
+        .filter(|r| score(r).is_finite())
+        .min_by(|a, b| score(a).total_cmp(&score(b)))?;
+    let (s0, e0) = (score(top), top.stats[k].rel_se());
+    let ties = rows
+        .iter()
+        .filter(|r| !std::ptr::eq(**r, top))
+        .filter(|r| {
+            let e = (e0 * e0 + r.stats[k].rel_se().powi(2)).sqrt();
+            score(r) <= s0 * (1.0 + 2.0 * e)
+        })
+        .map(|r| label(res, r))
+        .collect();
+    Some((label(res, top), s0, ties))
+}
+
+/// `recommendations.md`: per light and pixel class, the sampler x warp with the lowest MSE
+/// and the one with the lowest MSE x time (the time to draw and warp the pixel's samples), at
+/// 16 and 256 samples per pixel, with the rows that are statistically tied.
+pub fn recommendations_markdown(results: &[SceneResult]) -> String {
+    let mut s = String::from(
+        "| light | pixels | spp | lowest MSE | lowest MSE x time (sampling + warp only) |\n|---|---|---:|---|---|\n",
+    );
+    for res in results {
+        let (light, class) = match res.scene.split_once('/') {
+            Some((l, c)) => (l.to_string(), c.to_string()),
+            None if res.scene.starts_with("envmap:") => {
+                (res.scene.clone(), "occluded (mix)".to_string())
+            }
+            None => (res.scene.clone(), "mix".to_string()),
+        };
+        for spp in [16, 256] {
+            let Some(k) = at(res, spp) else { continue };
+            let cell = |b: Option<(String, f64, Vec<String>)>, unit: &str| match b {
+                None => "-".to_string(),
+                Some((name, v, ties)) => {
+                    let tie = match ties.len() {
+                        0 => String::new(),
+                        1..=3 => format!("; tied: {}", ties.join(", ")),
+                        n => format!("; tied: {} and {} more", ties[..3].join(", "), n - 3),
+                    };
+                    format!("**{name}** ({v:.2e}{unit}{tie})")
+                }
+            };
+            let mse = best(res, k, |r| r.mse(k));
+            let eff = best(res, k, |r| r.mse(k) * r.ns[k] * spp as f64);
+            let _ = writeln!(
+                s,
+                "| {light} | {class} | {spp} | {} | {} |",
+                cell(mse, ""),
+                cell(eff, " ns")
+            );
+        }
+    }
+    s.push_str(
+        "\nMSE in absolute units (irradiance of a unit-radiance light of unit area at distance 1; environment maps scaled to mean radiance 1). \"tied\": within two standard errors of the best. Index-driven Basu-Owen rows are the construction itself (no sampler).\n",
+    );
+    s
+}
+
+/// One claim of the source talk: a ratio of MSEs `num / den` (rows `(scene suffix, sampler,
+/// warp)`) at `spp`, and the source's value of that ratio.
+struct Claim {
+    what: &'static str,
+    light: &'static str,
+    spp: usize,
+    num: (Sampler, &'static str),
+    den: (Sampler, &'static str),
+    source: &'static str,
+}
+
+/// `comparison.md`: the source talk's ratios (Pharr 2019, "Warp and Effect"; Christensen
+/// 2018) beside ours, per pixel class.
+pub fn comparison_markdown(results: &[SceneResult]) -> String {
+    use Sampler::*;
+    let claims = [
+        Claim {
+            what: "square: random / stratified",
+            light: "square",
+            spp: 16,
+            num: (Random, "identity"),
+            den: (Stratified, "identity"),
+            source: "8",
+        },
+        Claim {
+            what: "16:1 light: random / pmj02bn",
+            light: "skinny",
+            spp: 16,
+            num: (Random, "identity"),
+            den: (Pmj02bn, "identity"),
+            source: "6",
+        },
+        Claim {
+            what: "disk, stratified: concentric / polar",
+            light: "disk",
+            spp: 16,
+            num: (Stratified, "concentric"),
+            den: (Stratified, "polar"),
+            source: "0.78 (2.19 / 2.80)",
+        },
+        Claim {
+            what: "disk, pmj02bn: concentric / polar",
+            light: "disk",
+            spp: 16,
+            num: (Pmj02bn, "concentric"),
+            den: (Pmj02bn, "polar"),
+            source: "1.11 (2.15 / 1.94)",
+        },
+        Claim {
+            what: "disk, stratified: polar4 / polar",
+            light: "disk",
+            spp: 256,
+            num: (Stratified, "polar4"),
+            den: (Stratified, "polar"),
+            source: "0.53 (4.14 / 7.76)",
+        },
+        Claim {
+            what: "disk, pmj02bn: polar4 / polar",
+            light: "disk",
+            spp: 256,
+            num: (Pmj02bn, "polar4"),
+            den: (Pmj02bn, "polar"),
+            source: "0.54 (3.82 / 7.11)",
+        },
+        Claim {
+            what: "disk, pmj02bn: concentric / polar",
+            light: "disk",
+            spp: 256,
+            num: (Pmj02bn, "concentric"),
+            den: (Pmj02bn, "polar"),
+            source: "1.00 (7.14 / 7.11)",
+        },
+        Claim {
+            what: "disk, pmj02bn: concentric4 / polar4 (the memo's two quadrant strategies)",
+            light: "disk",
+            spp: 256,
+            num: (Pmj02bn, "concentric4"),
+            den: (Pmj02bn, "polar4"),
+            source: "not quoted",
+        },
+        Claim {
+            what: "disk, pmj02bn: polar4 / pad_zero (memo: \"more than 3 times error reduction in some cases\": RMSE, so MSE < 0.11)",
+            light: "disk",
+            spp: 256,
+            num: (Pmj02bn, "polar4"),
+            den: (Pmj02bn, "pad_zero"),
+            source: "< 0.11",
+        },
+        Claim {
+            what: "triangle: basu_owen (nested) / pmj02bn + uniform",
+            light: "triangle",
+            spp: 256,
+            num: (Stratified, "basu_owen"),
+            den: (Pmj02bn, "uniform"),
+            source: "< 0.5 (\"more than halved\")",
+        },
+        Claim {
+            what: "triangle: basu_owen_permuted / pmj02bn + uniform",
+            light: "triangle",
+            spp: 256,
+            num: (Stratified, "basu_owen_permuted"),
+            den: (Pmj02bn, "uniform"),
+            source: "< 0.5",
+        },
+        Claim {
+            what: "triangle: basu_owen_permuted / pmj02bn + sqrt (the older usual map)",
+            light: "triangle",
+            spp: 256,
+            num: (Stratified, "basu_owen_permuted"),
+            den: (Pmj02bn, "sqrt"),
+            source: "< 0.5",
+        },
+        Claim {
+            what: "envmap:sky, pmj02bn + marginal: equal-area / lat-long",
+            light: "envmap:sky",
+            spp: 256,
+            num: (Pmj02bn, "marginal_equal_area"),
+            den: (Pmj02bn, "marginal_equirect"),
+            source: "0.7-0.8",
+        },
+        Claim {
+            what: "envmap:interior, pmj02bn + marginal: equal-area / lat-long",
+            light: "envmap:interior",
+            spp: 256,
+            num: (Pmj02bn, "marginal_equal_area"),
+            den: (Pmj02bn, "marginal_equirect"),
+            source: "0.7-0.8",
+        },
+        Claim {
+            what: "envmap:sky, pmj02bn + hierarchical: equal-area / lat-long",
+            light: "envmap:sky",
+            spp: 256,
+            num: (Pmj02bn, "hierarchical_equal_area"),
+            den: (Pmj02bn, "hierarchical_equirect"),
+            source: "0.7-0.8",
+        },
+        Claim {
+            what: "envmap:interior, pmj02bn + hierarchical: equal-area / lat-long",
+            light: "envmap:interior",
+            spp: 256,
+            num: (Pmj02bn, "hierarchical_equal_area"),
+            den: (Pmj02bn, "hierarchical_equirect"),
+            source: "0.7-0.8",
+        },
+        Claim {
+            what: "envmap:sky, pmj02bn, equal-area: hierarchical / marginal",
+            light: "envmap:sky",
+            spp: 256,
+            num: (Pmj02bn, "hierarchical_equal_area"),
+            den: (Pmj02bn, "marginal_equal_area"),
+            source: "< 1 (\"a little better\")",
+        },
+        Claim {
+            what: "envmap:interior, pmj02bn, equal-area: hierarchical / marginal",
+            light: "envmap:interior",
+            spp: 256,
+            num: (Pmj02bn, "hierarchical_equal_area"),
+            den: (Pmj02bn, "marginal_equal_area"),
+            source: "< 1",
+        },
+    ];
+    let classes: [(&str, &str); 3] = [("", "mix"), ("/lit", "lit"), ("/penumbra", "penumbra")];
+    let find = |scene: &str| results.iter().find(|r| r.scene == scene);
+    let mut s = String::from(
+        "| claim | spp | source | ours: mix | ours: lit | ours: penumbra |\n|---|---:|---|---:|---:|---:|\n",
+    );
+    for c in &claims {
+        let _ = write!(s, "| {} | {} | {} |", c.what, c.spp, c.source);
+        for (suffix, _) in classes {
+            let ratio = find(&format!("{}{suffix}", c.light)).and_then(|res| {
+                let k = at(res, c.spp)?;
+                let a = res.row(c.num.0, c.num.1)?.stats[k];
+                let b = res.row(c.den.0, c.den.1)?.stats[k];
+                Some((
+                    a.mse / b.mse,
+                    (a.rel_se().powi(2) + b.rel_se().powi(2)).sqrt(),
+                ))
+            });
+            let cell = ratio.map_or("-".to_string(), |(r, e)| {
+                if r >= 0.1 {
+                    format!("{r:.2} ± {:.2}", r * e)
+                } else {
+                    format!("{r:.1e} ± {:.0e}", r * e)
+                }
+            });
+            let _ = write!(s, " {cell} |");
+        }
+        s.push('\n');
+    }
+    // Christensen's convergence targets: RMSE O(N^-1) lit, O(N^-0.75) penumbra, i.e. MSE
+    // slopes -2 and -1.5; ours: the fitted slopes of pmj02bn with each disk strategy.
+    let _ = write!(
+        s,
+        "| disk, pmj02bn: MSE convergence rate (memo's targets: -2 lit, -1.5 penumbra) | 4-{} | -2 / -1.5 |",
+        results.first().map_or(0, |r| *r.spps.last().unwrap_or(&0))
+    );
+    for (suffix, _) in classes {
+        let cell = find(&format!("disk{suffix}")).map_or("-".to_string(), |res| {
+            [
+                "polar",
+                "concentric",
+                "polar4",
+                "concentric4",
+                "pad_zero",
+                "rejection",
+            ]
+            .iter()
+            .filter_map(|w| {
+                res.row(Pmj02bn, w)
+                    .map(|r| format!("{w} {:.2}", r.rate(&res.spps)))
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+        });
+        let _ = write!(s, " {cell} |");
+    }
+    s.push_str("\n\nRatios of MSE at the given spp, ± one standard error (relative standard errors of the two MSEs combined, as if independent; the warps of one sampler share points, so differences between warps are sharper than this). Basu-Owen rows are the construction (indices `0..N`, the pixel's seed).\n");
+    s
 }

@@ -4,6 +4,7 @@
 
 use crate::run::SceneResult;
 use crate::samplers::Sampler;
+use plotters::element::{Drawable, PointCollection};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -12,19 +13,119 @@ pub fn file_name(scene: &str) -> String {
     format!("{}.svg", scene.replace([':', '/', '\\', ' '], "-"))
 }
 
-/// Colour of (warp number, sampler): one hue family per warp, darker for better samplers.
+/// Colour of (warp number, sampler): one hue per warp (six, for the disk's strategies), darker
+/// for warpcore's stratified samplers, paler for random and the peers' randomizations.
 fn colour(warp: usize, sampler: Sampler) -> RGBColor {
-    const FAMILIES: [[(u8, u8, u8); 3]; 4] = [
-        [(120, 170, 220), (40, 110, 190), (10, 50, 120)],
-        [(250, 175, 100), (230, 120, 20), (150, 70, 0)],
-        [(140, 210, 130), (50, 160, 60), (0, 90, 20)],
-        [(240, 140, 150), (210, 50, 70), (130, 0, 30)],
-    ];
-    let (r, g, b) = FAMILIES[warp % 4][sampler.index()];
+    const HUES: [f64; 6] = [0.58, 0.08, 0.33, 0.97, 0.75, 0.14];
+    let (sat, val) = match sampler {
+        Sampler::Random => (0.35, 0.90),
+        Sampler::Stratified => (0.75, 0.80),
+        Sampler::Pmj02bn => (0.95, 0.50),
+        Sampler::Pmj02bnCp => (0.55, 0.70),
+        Sampler::SobolOwen => (0.85, 0.35),
+    };
+    let (r, g, b) = crate::strata::hsv(HUES[warp % HUES.len()], sat, val);
     RGBColor(r, g, b)
 }
 
 type Series = (String, RGBColor, Sampler, Vec<(f64, f64)>);
+
+/// A sampler's marker: its shape, size and whether it is filled.
+fn marker_style(sampler: Sampler) -> (char, i32, bool) {
+    match sampler {
+        Sampler::Random => ('o', 3, true),
+        Sampler::Stratified => ('^', 4, true),
+        Sampler::Pmj02bn => ('x', 4, false),
+        Sampler::Pmj02bnCp => ('o', 4, false),
+        Sampler::SobolOwen => ('^', 5, false),
+    }
+}
+
+/// The marker of `sampler` at `p` (chart coordinates or pixels).
+fn marker<DB: DrawingBackend, C: Clone + 'static>(
+    sampler: Sampler,
+    c: RGBColor,
+    p: C,
+) -> DynElement<'static, DB, C>
+where
+    Circle<C, i32>: Drawable<DB>,
+    TriangleMarker<C, i32>: Drawable<DB>,
+    Cross<C, i32>: Drawable<DB>,
+    for<'b> &'b Circle<C, i32>: PointCollection<'b, C>,
+    for<'b> &'b TriangleMarker<C, i32>: PointCollection<'b, C>,
+    for<'b> &'b Cross<C, i32>: PointCollection<'b, C>,
+{
+    let (shape, size, filled) = marker_style(sampler);
+    let style = if filled {
+        c.filled()
+    } else if shape == 'x' {
+        c.stroke_width(2)
+    } else {
+        c.stroke_width(1)
+    };
+    match shape {
+        'o' => Circle::new(p, size, style).into_dyn(),
+        '^' => TriangleMarker::new(p, size, style).into_dyn(),
+        _ => Cross::new(p, size, style).into_dyn(),
+    }
+}
+
+/// The dash pattern of a sampler's lines (`None`: solid).
+fn dashes(sampler: Sampler) -> Option<(u32, u32)> {
+    match sampler {
+        Sampler::Pmj02bn => None,
+        Sampler::Random => Some((3, 4)),
+        Sampler::Stratified => Some((8, 4)),
+        Sampler::Pmj02bnCp => Some((2, 3)),
+        Sampler::SobolOwen => Some((12, 3)),
+    }
+}
+
+/// The legend column: one entry per warp (its colour, as pmj02bn draws it), then one per
+/// sampler (its marker and dashes, in grey).
+fn legend(
+    area: &DrawingArea<SVGBackend, plotters::coord::Shift>,
+    warps: &[&str],
+    samplers: &[Sampler],
+) -> Result<(), Box<dyn std::error::Error>> {
+    let font = ("sans-serif", 12).into_font();
+    let mut y = 40;
+    let line =
+        |y: i32, c: RGBColor, sampler: Option<Sampler>| -> Result<(), Box<dyn std::error::Error>> {
+            let pts = vec![(10, y), (42, y)];
+            match sampler.and_then(dashes) {
+                None => area.draw(&PathElement::new(pts, c.stroke_width(2)))?,
+                Some((size, gap)) => {
+                    for x in (10..42).step_by((size + gap) as usize) {
+                        let end = (x + size as i32).min(42);
+                        area.draw(&PathElement::new(vec![(x, y), (end, y)], c.stroke_width(2)))?;
+                    }
+                }
+            }
+            if let Some(s) = sampler {
+                area.draw(&marker(s, c, (26, y)))?;
+            }
+            Ok(())
+        };
+    if warps.len() > 1 {
+        area.draw(&Text::new("warps", (10, y - 22), font.clone()))?;
+        for (w, name) in warps.iter().enumerate() {
+            line(y, colour(w, Sampler::Pmj02bn), None)?;
+            area.draw(&Text::new(name.to_string(), (50, y - 7), font.clone()))?;
+            y += 20;
+        }
+        y += 26;
+    }
+    area.draw(&Text::new("samplers", (10, y - 22), font.clone()))?;
+    let grey = RGBColor(90, 90, 90);
+    for &s in samplers {
+        let c = if warps.len() > 1 { grey } else { colour(0, s) };
+        line(y, c, Some(s))?;
+        area.draw(&Text::new(s.name().to_string(), (50, y - 7), font.clone()))?;
+        y += 20;
+    }
+    Ok(())
+}
 
 fn panel(
     area: &DrawingArea<SVGBackend, plotters::coord::Shift>,
@@ -94,43 +195,20 @@ fn panel(
             }
         }
     }
-    for (name, c, sampler, pts) in series {
+    for (_, c, sampler, pts) in series {
         let style = c.stroke_width(2);
-        match sampler {
-            Sampler::Pmj02bn => {
+        match dashes(*sampler) {
+            None => {
                 chart.draw_series(LineSeries::new(pts.clone(), style))?;
             }
-            _ => {
-                let (size, gap) = if *sampler == Sampler::Random {
-                    (3, 4)
-                } else {
-                    (8, 4)
-                };
+            Some((size, gap)) => {
                 chart.draw_series(DashedLineSeries::new(pts.clone(), size, gap, style))?;
             }
         }
         let c = *c;
-        let marks = pts
-            .iter()
-            .map(move |&p| -> DynElement<SVGBackend, (f64, f64)> {
-                match sampler {
-                    Sampler::Random => Circle::new(p, 3, c.filled()).into_dyn(),
-                    Sampler::Stratified => TriangleMarker::new(p, 4, c.filled()).into_dyn(),
-                    Sampler::Pmj02bn => Cross::new(p, 4, c.stroke_width(2)).into_dyn(),
-                }
-            });
-        chart
-            .draw_series(marks)?
-            .label(name.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2)));
+        let marks = pts.iter().map(move |&p| marker(*sampler, c, p));
+        chart.draw_series(marks)?;
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(200, 200, 200))
-        .label_font(("sans-serif", 11))
-        .position(SeriesLabelPosition::LowerLeft)
-        .draw()?;
     Ok(())
 }
 
@@ -172,10 +250,18 @@ pub fn scene_plot(result: &SceneResult, dir: &Path) -> Result<PathBuf, Box<dyn s
         by_n.push((name.clone(), c, r.sampler, n));
         by_t.push((name, c, r.sampler, t));
     }
+    let mut samplers: Vec<Sampler> = Vec::new();
+    for r in result.rows.iter().filter(|r| r.alias_of.is_none()) {
+        if !samplers.contains(&r.sampler) {
+            samplers.push(r.sampler);
+        }
+    }
+    samplers.sort_by_key(|s| s.index());
     {
-        let root = SVGBackend::new(&path, (1100, 480)).into_drawing_area();
+        let root = SVGBackend::new(&path, (1280, 480)).into_drawing_area();
         root.fill(&WHITE)?;
-        let (left, right) = root.split_horizontally(550);
+        let (panels, key) = root.split_horizontally(1100);
+        let (left, right) = panels.split_horizontally(550);
         panel(
             &left,
             &format!("{}: error vs samples per pixel", result.scene),
@@ -186,15 +272,13 @@ pub fn scene_plot(result: &SceneResult, dir: &Path) -> Result<PathBuf, Box<dyn s
         if by_t.iter().all(|s| !s.3.is_empty()) {
             panel(
                 &right,
-                &format!(
-                    "{}: error vs time to draw and warp a pixel's samples",
-                    result.scene
-                ),
+                &format!("{}: error vs time to draw and warp", result.scene),
                 "ns per pixel (sampling + warp)",
                 &by_t,
                 false,
             )?;
         }
+        legend(&key, &warps, &samplers)?;
         root.present()?;
     }
     Ok(path)

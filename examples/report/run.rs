@@ -61,6 +61,10 @@ pub trait Scene: Sync {
     fn alias(&self, _warp: usize, _sampler: Sampler) -> Option<Sampler> {
         None
     }
+    /// Whether `sampler` means anything for `warp` (rows that do not apply are left out).
+    fn applies(&self, _warp: usize, _sampler: Sampler) -> bool {
+        true
+    }
     /// Draws and warps `spp` samples for `seed` into `s` (what the timing measures).
     fn draw(&self, warp: usize, sampler: Sampler, spp: usize, seed: u32, s: &mut Scratch);
     /// The estimate from the samples `draw` left in `s`.
@@ -108,12 +112,69 @@ impl Stat {
         (var / n).sqrt() / m
     }
     /// Mean error over pixels in units of its standard error (an unbiased estimator gives
-    /// a standard normal value).
+    /// a standard normal value). (The tables use [`Summary::bias_z`]; the tests use this.)
+    #[allow(dead_code)]
     pub fn bias_z(&self) -> f64 {
         let n = self.n as f64;
         let mean = self.sum / n;
         let var = (self.sum2 / n - mean * mean) * n / (n - 1.0);
         mean / (var / n).sqrt()
+    }
+}
+
+/// What the tables report of one combination at one sample count: the MSE and the mean
+/// error, each with its standard error. Summaries of disjoint pixel classes combine into the
+/// summary of their mixture ([`Summary::combine`]).
+#[derive(Clone, Copy, Default, Debug)]
+pub struct Summary {
+    /// Pixels behind the figures.
+    pub n: u64,
+    pub mse: f64,
+    pub mse_se: f64,
+    pub mean: f64,
+    pub mean_se: f64,
+}
+
+impl Summary {
+    pub fn of(st: &Stat) -> Summary {
+        let n = st.n as f64;
+        let mse = st.mse();
+        let mean = st.sum / n;
+        let var = (st.sum2 / n - mean * mean).max(0.0) * n / (n - 1.0);
+        Summary {
+            n: st.n,
+            mse,
+            mse_se: st.mse_rel_se() * mse,
+            mean,
+            mean_se: (var / n).sqrt(),
+        }
+    }
+
+    /// The mixture of independent classes with probabilities `w`: means add with the weights,
+    /// variances of the estimates with the squared weights. A class of weight `w` whose
+    /// errors are all zero (hidden pixels) is simply left out.
+    pub fn combine(parts: &[(f64, Summary)]) -> Summary {
+        let mut out = Summary::default();
+        let (mut v_mse, mut v_mean) = (0.0, 0.0);
+        for &(w, p) in parts {
+            out.n += p.n;
+            out.mse += w * p.mse;
+            out.mean += w * p.mean;
+            v_mse += (w * p.mse_se).powi(2);
+            v_mean += (w * p.mean_se).powi(2);
+        }
+        out.mse_se = v_mse.sqrt();
+        out.mean_se = v_mean.sqrt();
+        out
+    }
+
+    pub fn rel_se(&self) -> f64 {
+        self.mse_se / self.mse
+    }
+
+    /// Mean error in units of its standard error.
+    pub fn bias_z(&self) -> f64 {
+        self.mean / self.mean_se
     }
 }
 
@@ -123,7 +184,7 @@ pub struct Row {
     pub sampler: Sampler,
     pub warp: &'static str,
     /// Per sample count.
-    pub stats: Vec<Stat>,
+    pub stats: Vec<Summary>,
     /// Nanoseconds per sample, per sample count.
     pub ns: Vec<f64>,
     /// Same estimator as this sampler's row (reported under both names).
@@ -132,14 +193,14 @@ pub struct Row {
 
 impl Row {
     pub fn mse(&self, k: usize) -> f64 {
-        self.stats[k].mse()
+        self.stats[k].mse
     }
     /// Slope of log MSE against log N.
     pub fn rate(&self, spps: &[usize]) -> f64 {
         let pts: Vec<(f64, f64)> = spps
             .iter()
             .zip(&self.stats)
-            .map(|(&n, s)| ((n as f64).ln(), s.mse().ln()))
+            .map(|(&n, s)| ((n as f64).ln(), s.mse.ln()))
             .collect();
         crate::math::slope(&pts)
     }
@@ -150,7 +211,7 @@ pub struct SceneResult {
     pub scene: String,
     pub description: String,
     pub pixels: usize,
-    /// Fraction of pixels in penumbra.
+    /// Fraction of the scene's pixel population in penumbra.
     pub penumbra: f64,
     pub spps: Vec<usize>,
     pub rows: Vec<Row>,
@@ -163,6 +224,39 @@ impl SceneResult {
         self.rows
             .iter()
             .find(|r| r.sampler == sampler && r.warp == warp)
+    }
+
+    /// The mixture of pixel classes `parts` (the same rows, timings and sample counts) with
+    /// probabilities `w`; a class left out (hidden pixels) has error exactly 0.
+    pub fn mix(scene: String, description: String, parts: &[(f64, &SceneResult)]) -> SceneResult {
+        let first = parts[0].1;
+        let rows = first
+            .rows
+            .iter()
+            .map(|r| {
+                let stats = (0..first.spps.len())
+                    .map(|k| {
+                        let p: Vec<(f64, Summary)> = parts
+                            .iter()
+                            .filter_map(|(w, res)| {
+                                res.row(r.sampler, r.warp).map(|x| (*w, x.stats[k]))
+                            })
+                            .collect();
+                        Summary::combine(&p)
+                    })
+                    .collect();
+                Row { stats, ..r.clone() }
+            })
+            .collect();
+        SceneResult {
+            scene,
+            description,
+            pixels: parts.iter().map(|p| p.1.pixels).sum(),
+            penumbra: parts.iter().map(|(w, res)| w * res.penumbra).sum::<f64>(),
+            spps: first.spps.clone(),
+            rows,
+            seconds: parts.iter().map(|p| p.1.seconds).sum(),
+        }
     }
 }
 
@@ -206,7 +300,9 @@ pub fn errors<S: Scene>(scene: &S, cfg: &Config, bar: &ProgressBar) -> SceneResu
                             for sampler in SAMPLERS {
                                 let seed = seed(&name, i as u64, spp, sampler);
                                 for w in 0..warps.len() {
-                                    if scene.alias(w, sampler).is_some() {
+                                    if scene.alias(w, sampler).is_some()
+                                        || !scene.applies(w, sampler)
+                                    {
                                         continue;
                                     }
                                     scene.draw(w, sampler, spp, seed, &mut s);
@@ -231,13 +327,19 @@ pub fn errors<S: Scene>(scene: &S, cfg: &Config, bar: &ProgressBar) -> SceneResu
     let mut rows = Vec::new();
     for (w, &warp) in warps.iter().enumerate() {
         for sampler in SAMPLERS {
+            if !scene.applies(w, sampler) {
+                continue;
+            }
             let alias_of = scene.alias(w, sampler);
             let from = alias_of.unwrap_or(sampler);
             let c = w * SAMPLERS.len() + from.index();
             rows.push(Row {
                 sampler,
                 warp,
-                stats: stats[c * ns..(c + 1) * ns].to_vec(),
+                stats: stats[c * ns..(c + 1) * ns]
+                    .iter()
+                    .map(Summary::of)
+                    .collect(),
                 ns: vec![f64::NAN; ns],
                 alias_of,
             });

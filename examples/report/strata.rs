@@ -87,6 +87,7 @@ enum Row {
     Polar,
     Concentric,
     Polar4,
+    Concentric4,
     Uniform,
     Sqrt,
 }
@@ -97,6 +98,7 @@ impl Row {
             Row::Polar => "disk: polar",
             Row::Concentric => "disk: concentric",
             Row::Polar4 => "disk: polar4",
+            Row::Concentric4 => "disk: concentric4",
             Row::Uniform => "triangle: uniform",
             Row::Sqrt => "triangle: sqrt",
         }
@@ -108,6 +110,7 @@ impl Row {
             Row::Polar => vec![disk_px(disk::polar(u))],
             Row::Concentric => vec![disk_px(disk::concentric(u))],
             Row::Polar4 => (0..4).map(|q| disk_px(disk::polar4(u, q))).collect(),
+            Row::Concentric4 => (0..4).map(|q| disk_px(disk::concentric4(u, q))).collect(),
             Row::Uniform => vec![tri_px(triangle::uniform(u))],
             Row::Sqrt => vec![tri_px(triangle::sqrt_map(u))],
         }
@@ -191,10 +194,11 @@ pub fn disk_triangle_svg() -> String {
         Row::Polar,
         Row::Concentric,
         Row::Polar4,
+        Row::Concentric4,
         Row::Uniform,
         Row::Sqrt,
     ];
-    let (cell, left, top) = (150.0, 150.0, 76.0);
+    let (cell, left, top) = (150.0, 215.0, 76.0);
     let mut svg = Svg {
         body: String::new(),
     };
@@ -250,48 +254,56 @@ pub fn disk_triangle_svg() -> String {
             }
         }
     }
-    // Basu-Owen: index-driven, its strata are the sub-triangles of the subdivision.
-    let y = top + rows.len() as f64 * cell;
-    svg.text(
-        left - 10.0,
-        y + cell / 2.0,
-        13,
-        "end",
-        "triangle: basu_owen",
-    );
+    // Basu-Owen: index-driven, its strata are the sub-triangles of the subdivision. Two rows:
+    // the nested scramble (each point anywhere in its sub-triangle) and the per-level
+    // permutation (every point at the same place in its sub-triangle, mirrored in the
+    // inverted ones), the same seeds.
     let subs = level2();
-    for (c, seed) in [0u32, 0x2545_f491, 0x9e37_79b9].iter().enumerate() {
-        let x = left + c as f64 * cell;
-        let pts: Vec<[f64; 2]> = (0..16)
-            .map(|i| tri_px(triangle::basu_owen(i, *seed)))
-            .collect();
-        for t in &subs {
-            let owner = pts.iter().position(|&p| inside(t, p)).unwrap_or(0);
-            svg.polygon(t, x + 4.0, y + 4.0, cell - 8.0, &palette(owner));
+    type Construction = fn(u32, u32) -> [f32; 3];
+    let constructions: [(&str, Construction); 2] = [
+        ("triangle: basu_owen", triangle::basu_owen),
+        ("triangle: basu_owen_permuted", triangle::basu_owen_permuted),
+    ];
+    let mut y = top + rows.len() as f64 * cell;
+    for (label, f) in constructions {
+        svg.text(left - 10.0, y + cell / 2.0, 13, "end", label);
+        for (c, seed) in [0u32, 0x2545_f491, 0x9e37_79b9].iter().enumerate() {
+            let x = left + c as f64 * cell;
+            let pts: Vec<[f64; 2]> = (0..16).map(|i| tri_px(f(i, *seed))).collect();
+            for t in &subs {
+                let owner = pts.iter().position(|&p| inside(t, p)).unwrap_or(0);
+                svg.polygon(t, x + 4.0, y + 4.0, cell - 8.0, &palette(owner));
+            }
+            for &p in &pts {
+                svg.dot(p, x + 4.0, y + 4.0, cell - 8.0);
+            }
+            let label = if *seed == 0 {
+                "seed 0 (unscrambled)".to_string()
+            } else {
+                format!("seed {seed:#x}")
+            };
+            svg.text(x + cell / 2.0, y + cell + 12.0, 12, "middle", &label);
         }
-        for &p in &pts {
-            svg.dot(p, x + 4.0, y + 4.0, cell - 8.0);
-        }
-        let label = if *seed == 0 {
-            "seed 0 (unscrambled)".to_string()
-        } else {
-            format!("seed {seed:#x}")
-        };
-        svg.text(x + cell / 2.0, y + cell + 12.0, 12, "middle", &label);
+        y += cell + 20.0;
     }
-    svg.text(
-        left + 3.0 * cell + 10.0,
-        y + cell / 2.0 - 8.0,
-        12,
-        "start",
-        "indices 0..16 fall one per level-2 sub-triangle;",
-    );
-    svg.text(
-        left + 3.0 * cell + 10.0,
-        y + cell / 2.0 + 8.0,
-        12,
-        "start",
-        "each sub-triangle has the colour of its index",
-    );
-    svg.finish(left + 5.0 * cell + 20.0, y + cell + 30.0)
+    let notes = [
+        "Indices 0..16 fall one per level-2",
+        "sub-triangle (each coloured like the",
+        "index that lands in it).",
+        "basu_owen (nested): each point anywhere",
+        "in its sub-triangle.",
+        "basu_owen_permuted (one permutation per",
+        "level): every point at the same place",
+        "(mirrored in the inverted ones).",
+    ];
+    for (k, line) in notes.iter().enumerate() {
+        svg.text(
+            left + 3.0 * cell + 10.0,
+            y - 2.0 * cell - 20.0 + 18.0 * k as f64,
+            12,
+            "start",
+            line,
+        );
+    }
+    svg.finish(left + 5.0 * cell + 20.0, y + 20.0)
 }

@@ -8,6 +8,7 @@
 //! `[edge[k], edge[k+1])`; the sampler clamps its point into that range and the `pdf`
 //! lookup inverts it with one multiply and a one-step correction.
 
+use super::{from_storage_order, load};
 use crate::lanes::{Lane, UintLane, unit_interval};
 
 /// The smallest `f32` `x` with `x * n >= k` in exact arithmetic, for `0 <= k <= n <= 2^24`.
@@ -34,22 +35,37 @@ pub(super) fn fill(out: &mut [u32], n: u32) {
     }
 }
 
+/// Index of the first of the `n + 1` words of `table` that is not `edge(k, n)` (in storage
+/// byte order), if any: the one-pass check of a loaded storage.
+pub(super) fn first_wrong(table: &[[u32; 1]], n: u32) -> Option<usize> {
+    (0u32..=n).position(|k| {
+        let got = table
+            .get(k as usize)
+            .map(|&[w]| from_storage_order(core::num::Wrapping(w)).0);
+        got != Some(edge(k, n).to_bits())
+    })
+}
+
 /// The point `(k + frac) / n` of texel `k` (`frac` in `[0, 1)`), clamped into
 /// `[edge[k], edge[k+1])` so it lies inside the texel exactly.
+///
+/// The final forward rule is a no-op for real edges (the point is already in `[0, 1)`); it
+/// keeps the point in `[0, 1)` whatever a corrupt table holds.
 #[inline(always)]
 pub(super) fn point<L: Lane>(edges: &[[u32; 1]], k: L::U, frac: L, n: f32) -> L {
     let x = (L::from_uint(k) + frac) / L::splat(n);
-    let [lo] = L::U::gather(edges, k);
-    let [next] = L::U::gather(edges, k + L::U::splat(1));
+    let lo = load(edges, k);
+    let next = load(edges, k + L::U::splat(1));
     // `edge[k+1] > 0`, so its predecessor is one less in the bit pattern.
     let (lo, hi) = (L::from_bits(lo), L::from_bits(next - L::U::splat(1)));
     let x = L::select(x.simd_lt(lo), lo, x);
-    L::select(hi.simd_lt(x), hi, x)
+    unit_interval(L::select(hi.simd_lt(x), hi, x))
 }
 
 /// The texel (`0..n`) holding coordinate `x`, after the forward rule (NaN, negatives -> 0,
 /// `>= 1` -> `1 - 2^-24`). `x * n` rounds by less than one texel (`n <= 2^24`), so one
-/// correction step against the edges makes the answer exact.
+/// correction step against the edges makes the answer exact. (The last clamp is a no-op for
+/// real edges; with a corrupt table it keeps the texel in `0..n`.)
 #[inline(always)]
 pub(super) fn texel<L: Lane>(edges: &[[u32; 1]], x: L, n: u32) -> L::U {
     let x = unit_interval(x);
@@ -57,11 +73,12 @@ pub(super) fn texel<L: Lane>(edges: &[[u32; 1]], x: L, n: u32) -> L::U {
     let last = L::U::splat(n.wrapping_sub(1));
     let k = L::U::select(last.simd_lt(k), last, k);
     let one = L::U::splat(1);
-    let [lo] = L::U::gather(edges, k);
-    let [next] = L::U::gather(edges, k + one);
+    let lo = load(edges, k);
+    let next = load(edges, k + one);
     let below = x.simd_lt(L::from_bits(lo));
     let above = L::from_bits(next).simd_le(x);
-    L::U::select(below, k - one, L::U::select(above, k + one, k))
+    let k = L::U::select(below, k - one, L::U::select(above, k + one, k));
+    L::U::select(last.simd_lt(k), last, k)
 }
 
 #[cfg(test)]

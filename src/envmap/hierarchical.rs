@@ -50,8 +50,9 @@
 //! integer operations per level and one division per axis at the end.
 
 use super::{
-    Error, Sample, SampleX8, Word, carve, check_size, checked_len, clean, edges, pdf_batch,
-    sample_batch, scalar_sample, simd_sample, take, u32_to_f32,
+    Error, HEADER_WORDS, Sample, SampleX8, Word, carve, carve_ref, check_lens, check_size,
+    checked_len, clean, edges, from_storage_order, load4, pdf_batch, read_header, sample_batch,
+    scalar_sample, simd_sample, tag, take, to_storage_order, u32_to_f32, write_header,
 };
 use crate::lanes::{Lane, UintLane, unit_interval};
 use wide::f32x8;
@@ -60,15 +61,18 @@ use wide::f32x8;
 const BLOCK: usize = 16;
 /// Words of slack in the storage for aligning the blocks to 64 bytes.
 const ALIGN_SLACK: usize = 15;
+/// Format tag of a hierarchical storage (header word 0).
+const TAG: u32 = tag(*b"wcHI");
 
 /// Hierarchical (MIP-pyramid) 2D distribution over a `width x height` weight map (see the
 /// [module docs](super) for the guarantees and the bad-input rules).
 ///
-/// Storage: one 16-word block per node of every other level of the padded pyramid (a
-/// sixteenth of the padded texel count at the finest block level, plus a fifteenth of that
-/// above), the texel edges and 15 words of alignment slack: about 4.3 bytes per padded texel,
-/// 34.1 MiB for 4096 x 2048. Padding to powers of two costs up to (just under) 4 times that on
-/// unlucky sizes.
+/// Storage: the 8-word header, one 16-word block per node of every other level of the
+/// padded pyramid (a sixteenth of the padded texel count at the finest block level, plus a
+/// fifteenth of that above), the texel edges and 15 words of alignment slack: about 4.3 bytes
+/// per padded texel, 34.1 MiB for 4096 x 2048. Padding to powers of two costs up to (just
+/// under) 4 times that on unlucky sizes. See the [module docs](super) for the format, which
+/// [`from_storage`](Self::from_storage) loads back.
 #[derive(Clone, Copy, Debug)]
 pub struct Hierarchical<'a> {
     /// The blocks, block level by block level from the root, 64-byte aligned. Block `i`:
@@ -220,7 +224,11 @@ impl<'a> Hierarchical<'a> {
                 xbits: bits(w),
                 ybits: bits(h),
             };
-            BLOCK as u64 * shape.block_count() + ALIGN_SLACK as u64 + (w + 1) + (h + 1)
+            HEADER_WORDS as u64
+                + BLOCK as u64 * shape.block_count()
+                + ALIGN_SLACK as u64
+                + (w + 1)
+                + (h + 1)
         })
     }
 
@@ -247,13 +255,28 @@ impl<'a> Hierarchical<'a> {
         };
         let blocks_len = usize::try_from(BLOCK as u64 * shape.block_count()).unwrap_or(0);
         // Align the blocks to 64 bytes (the address only picks where in `storage` they
-        // start; the results do not depend on it).
-        let skip = (64 - storage.as_ptr() as usize % 64) % 64 / 4;
-        let [_, blocks, edges_x, edges_y] = carve(storage, [skip, blocks_len, w + 1, h + 1])
-            .ok_or(Error::StorageTooSmall {
-                needed,
-                got: needed,
-            })?;
+        // start, recorded in the header; the results do not depend on it).
+        let address = storage.as_ptr() as usize + 4 * HEADER_WORDS;
+        let skip = (64 - address % 64) % 64 / 4;
+        let lens = regions(skip, blocks_len, w, h);
+        let [header, padding, blocks, edges_x, edges_y, slack] = carve(
+            storage,
+            [
+                HEADER_WORDS,
+                lens[0],
+                lens[1],
+                lens[2],
+                lens[3],
+                ALIGN_SLACK - skip,
+            ],
+        )
+        .ok_or(Error::StorageTooSmall {
+            needed,
+            got: needed,
+        })?;
+        write_header(header, TAG, w, h, lens);
+        padding.fill(0);
+        slack.fill(0);
 
         let mut total = 0.0f64;
         for (index, &x) in weights.iter().enumerate() {
@@ -307,6 +330,8 @@ impl<'a> Hierarchical<'a> {
             let upper = upper.get_mut(here..).unwrap_or(&mut []);
             let finest = b + 1 == block_levels;
             for (i, block) in upper.iter_mut().enumerate() {
+                // Slots of children the level does not have stay 0.
+                block.fill(0);
                 // Texel coordinates of this node (finest level only): walk its index bits.
                 let (x, y) = if finest {
                     node_coords(shape, k, i as u32)
@@ -342,12 +367,44 @@ impl<'a> Hierarchical<'a> {
         }
         edges::fill(edges_x, w as u32);
         edges::fill(edges_y, h as u32);
+        to_storage_order(storage);
+        Self::from_storage(storage)
+    }
 
-        let blocks: &'a [u32] = blocks;
-        let (edges_x, _) = edges_x.as_chunks::<1>();
-        let (edges_y, _) = edges_y.as_chunks::<1>();
+    /// Loads a storage that [`new`](Self::new) built (possibly in another process or on
+    /// another machine: see the [module docs](super) for the format), without the weights.
+    ///
+    /// O(1): checks the header — format tag, version, sizes in `1..=MAX_SIDE`, region lengths
+    /// that agree with the sizes (the alignment padding is at most 15 words) — and that
+    /// `storage` holds `storage_len(width, height)` words (more are ignored). Errors:
+    /// [`Error::WrongFormat`], [`Error::UnsupportedVersion`], [`Error::Corrupt`],
+    /// [`Error::StorageTooSmall`]. The tables are not read: sampling is total whatever they
+    /// hold (texels inside the map, `uv` in `[0, 1)^2`, finite pdfs), and bit-identical to the
+    /// distribution `new` returned when they are what `new` wrote, at any alignment of
+    /// `storage`.
+    pub fn from_storage(storage: &'a [Word]) -> Result<Self, Error> {
+        let (w, h, needed, lens) = read_header(storage, TAG, Self::storage_len)?;
+        let shape = Shape {
+            xbits: bits(w as u64),
+            ybits: bits(h as u64),
+        };
+        let blocks_len = usize::try_from(BLOCK as u64 * shape.block_count()).unwrap_or(0);
+        // The padding is whatever the builder's address needed: any value up to the slack.
+        let skip = lens[0];
+        if skip > ALIGN_SLACK {
+            return Err(Error::Corrupt {
+                word: HEADER_WORDS - 4,
+            });
+        }
+        check_lens(lens, regions(skip, blocks_len, w, h), needed, storage.len())?;
+        let tables = storage.get(HEADER_WORDS..).unwrap_or(&[]);
+        let [_, blocks, edges_x, edges_y] =
+            carve_ref(tables, lens).ok_or(Error::StorageTooSmall {
+                needed,
+                got: storage.len(),
+            })?;
         Ok(Hierarchical {
-            blocks,
+            blocks: blocks.as_flattened(),
             edges_x,
             edges_y,
             width: w as u32,
@@ -356,6 +413,130 @@ impl<'a> Hierarchical<'a> {
             ybits: shape.ybits,
             pdf_scale: (w as f64 * h as f64 / (1u64 << 60) as f64) as f32,
         })
+    }
+
+    /// [`from_storage`](Self::from_storage), then one pass over every table word: every split
+    /// fraction is at most 1 (`2^31`), exactly 1 where a level does not split an axis or where
+    /// the upper part is all padding (so the walk can never reach the padding), the block sums
+    /// are finite and nonnegative, words `new` leaves unused are 0, and the texel edges are
+    /// exactly the ones `new` writes. [`Error::Corrupt`] names the first word that is not.
+    /// Time `O(width * height)` (a sixteenth of a word per padded texel is read twice).
+    pub fn from_storage_verified(storage: &'a [Word]) -> Result<Self, Error> {
+        let map = Self::from_storage(storage)?;
+        let skip = storage
+            .get(HEADER_WORDS - 4)
+            .map_or(0, |&x| u32::from_le(x)) as usize;
+        let start = HEADER_WORDS + skip;
+        if let Some(k) = map.first_bad_block_word() {
+            return Err(Error::Corrupt { word: start + k });
+        }
+        let (w, h) = (map.width, map.height);
+        let edges_at = start + map.blocks.len();
+        if let Some(k) = edges::first_wrong(map.edges_x, w) {
+            return Err(Error::Corrupt { word: edges_at + k });
+        }
+        if let Some(k) = edges::first_wrong(map.edges_y, h) {
+            return Err(Error::Corrupt {
+                word: edges_at + w as usize + 1 + k,
+            });
+        }
+        // The padding before the blocks and the slack after the edges are 0.
+        let after = edges_at + w as usize + h as usize + 2;
+        let unused = (HEADER_WORDS..start).chain(after..after + ALIGN_SLACK - skip);
+        for k in unused {
+            if storage.get(k).is_some_and(|&x| x != 0) {
+                return Err(Error::Corrupt { word: k });
+            }
+        }
+        Ok(map)
+    }
+
+    /// The first block word (index into `blocks`) that `new` cannot have written, if any.
+    fn first_bad_block_word(&self) -> Option<usize> {
+        let shape = Shape {
+            xbits: self.xbits,
+            ybits: self.ybits,
+        };
+        let word = |k: usize| {
+            self.blocks
+                .get(k)
+                .map_or(0, |&x| from_storage_order(core::num::Wrapping(x)).0)
+        };
+        let size = [self.width, self.height].map(u64::from);
+        // Splits of each axis at the virtual levels at and below `k` (the finer ones): a node
+        // of level `k` at coordinate `c` covers `[c, c + 1) << below[k]` on that axis.
+        let mut below = [[0u32; 2]; 2 * 14 + 2];
+        let levels = shape.virtual_levels() as usize;
+        for k in (0..levels).rev() {
+            let (sx, sy) = shape.splits(k as u32);
+            let next = below.get(k + 1).copied().unwrap_or([0; 2]);
+            if let Some(b) = below.get_mut(k) {
+                *b = [next[0] + u32::from(sx), next[1] + u32::from(sy)];
+            }
+        }
+        let below = |k: u32, axis: usize| below.get(k as usize).map_or(0, |b| b[axis]);
+        // Does `[start, ...) << shift` on `axis` begin in the padding?
+        let padding =
+            |start: u32, shift: u32, axis: usize| (u64::from(start) << shift) >= size[axis];
+        // Checks the fractions at `at` of the node at `(x, y)` of virtual level `k`: at most 1,
+        // and exactly 1 where the upper part is missing (axis not split) or all padding.
+        let node_ok = |at: usize, k: u32, x: u32, y: u32| -> Option<usize> {
+            let (sx, sy) = shape.splits(k);
+            let [px, py0, py1] = [0, 1, 2].map(|j| word(at + j));
+            let one = FRACTION_ONE;
+            let (bx, by) = (below(k, 0), below(k, 1));
+            let empty = padding(x, bx, 0) || padding(y, by, 1);
+            let upper_x = !sx || empty || padding(2 * x + 1, bx.wrapping_sub(1), 0);
+            if px > one || (upper_x && px != one) {
+                return Some(at);
+            }
+            let upper_y = !sy || empty || padding(2 * y + 1, by.wrapping_sub(1), 1);
+            if py0 > one || (upper_y && py0 != one) {
+                return Some(at + 1);
+            }
+            if py1 > one || ((upper_y || upper_x) && py1 != one) {
+                return Some(at + 2);
+            }
+            None
+        };
+        let mut offset = 0usize;
+        for b in 0..shape.virtual_levels() / 2 {
+            let k = 2 * b;
+            let (sx, sy) = shape.splits(k);
+            let branching = 1usize << shape.branch_bits(k);
+            for i in 0..shape.nodes(k) as usize {
+                let at = (offset + i) * BLOCK;
+                let (x, y) = node_coords(shape, k, i as u32);
+                if let Some(bad) = node_ok(at, k, x, y) {
+                    return Some(bad);
+                }
+                for c in 0..4usize {
+                    let slot = at + 3 + 3 * c;
+                    if c >= branching {
+                        if let Some(j) = (0..3).find(|&j| word(slot + j) != 0) {
+                            return Some(slot + j);
+                        }
+                        continue;
+                    }
+                    let (bx, by) = if sx {
+                        (c as u32 & 1, (c as u32) >> 1)
+                    } else {
+                        (0, c as u32)
+                    };
+                    let cx = (x << u32::from(sx)) | bx;
+                    let cy = (y << u32::from(sy)) | by;
+                    if let Some(bad) = node_ok(slot, k + 1, cx, cy) {
+                        return Some(bad);
+                    }
+                }
+                let sum = f32::from_bits(word(at + BLOCK - 1));
+                if !(sum >= 0.0 && sum.is_finite()) || sum.to_bits() >> 31 != 0 {
+                    return Some(at + BLOCK - 1);
+                }
+            }
+            offset += shape.nodes(k) as usize;
+        }
+        None
     }
 
     /// Width of the map in texels.
@@ -403,11 +584,15 @@ impl<'a> Hierarchical<'a> {
                 u32::from(shape.splits(k).0),
                 u32::from(shape.splits(k + 1).0),
             );
-            let [px, py0, py1, _] = U::gather4(self.blocks, base);
-            let c = walk.level(shape.shift(k), sx0, [px, py0, py1], &mut left);
+            let (sy0, sy1) = (
+                u32::from(shape.splits(k).1),
+                u32::from(shape.splits(k + 1).1),
+            );
+            let [px, py0, py1, _] = load4(self.blocks, base);
+            let c = walk.level(shape.shift(k), [sx0, sy0], [px, py0, py1], &mut left);
             // The fourth word is the next child's px (or the block's sum): unused.
-            let [px, py0, py1, _] = U::gather4(self.blocks, base + U::splat(3) + c + c + c);
-            let g = walk.level(shape.shift(k + 1), sx1, [px, py0, py1], &mut left);
+            let [px, py0, py1, _] = load4(self.blocks, base + U::splat(3) + c + c + c);
+            let g = walk.level(shape.shift(k + 1), [sx1, sy1], [px, py0, py1], &mut left);
             index = (index.shl(b0) | c).shl(b1) | g;
             offset += count;
             count <<= b0 + b1;
@@ -436,11 +621,21 @@ impl<'a> Hierarchical<'a> {
     fn finish<L: Lane>(&self, walk: &Walk<L::U>) -> ([L; 2], L, [L::U; 2]) {
         // The key's offset inside its final interval is the position inside the texel.
         let f = |k: usize| unit_interval(u32_to_f32::<L>(walk.r[k]) / u32_to_f32::<L>(walk.len[k]));
-        let uv = [
-            edges::point(self.edges_x, walk.texel[0], f(0), self.width as f32),
-            edges::point(self.edges_y, walk.texel[1], f(1), self.height as f32),
+        // Real tables never lead into the padding; corrupt ones could, so clamp (a no-op
+        // otherwise) to keep the texel in the map.
+        let clamp = |t: L::U, n: u32| {
+            let last = L::U::splat(n - 1);
+            L::U::select(last.simd_lt(t), last, t)
+        };
+        let texel = [
+            clamp(walk.texel[0], self.width),
+            clamp(walk.texel[1], self.height),
         ];
-        (uv, self.density(walk), walk.texel)
+        let uv = [
+            edges::point(self.edges_x, texel[0], f(0), self.width as f32),
+            edges::point(self.edges_y, texel[1], f(1), self.height as f32),
+        ];
+        (uv, self.density(walk), texel)
     }
 
     #[inline(always)]
@@ -522,31 +717,43 @@ impl<U: UintLane> Walk<U> {
     /// coordinate. Both candidate y shares are computed before the x decision, which keeps
     /// them off the dependency chain. Returns the child's local index `bx | by << sx`
     /// (`sx` = 1 if the level splits x).
+    ///
+    /// `[sx, sy]` (0 or 1) say whether the level splits each axis. A child bit on an axis the
+    /// level does not split is forced to 0 (what real tables give anyway: fraction 1), so
+    /// whatever a table holds, the walk stays on the tree — node indices in range, texel
+    /// coordinates below `2^xbits` and `2^ybits`.
     #[inline(always)]
     fn level(
         &mut self,
         shift: u32,
-        sx: u32,
+        [sx, sy]: [u32; 2],
         [px, py0, py1]: [U; 3],
         left: &mut impl FnMut(u32, U, U, usize) -> U::Mask,
     ) -> U {
-        let (zero, one) = (U::splat(0), U::splat(1));
+        let zero = U::splat(0);
+        let (split_x, split_y) = (U::splat(sx), U::splat(sy));
         let my0 = split(self.len[1], py0);
         let my1 = split(self.len[1], py1);
         let mx = split(self.len[0], px);
         let go = left(shift, self.r[0], mx, 0);
         self.len[0] = U::select(go, mx, self.len[0] - mx);
         self.r[0] = U::select(go, self.r[0], self.r[0] - mx);
-        let bx = U::select(go, zero, one);
+        let bx = U::select(go, zero, split_x);
         self.texel[0] = self.texel[0].shl(1) | bx;
         let my = U::select(go, my0, my1);
         let go = left(shift, self.r[1], my, 1);
         self.len[1] = U::select(go, my, self.len[1] - my);
         self.r[1] = U::select(go, self.r[1], self.r[1] - my);
-        let by = U::select(go, zero, one);
+        let by = U::select(go, zero, split_y);
         self.texel[1] = self.texel[1].shl(1) | by;
         bx | by.shl(sx)
     }
+}
+
+/// Lengths of the four regions after the header: alignment padding, blocks, column and row
+/// edges.
+fn regions(skip: usize, blocks_len: usize, w: usize, h: usize) -> [usize; 4] {
+    [skip, blocks_len, w + 1, h + 1]
 }
 
 /// Coordinates `(x, y)` of node `i` of virtual level `k`: node indices are paths from the

@@ -67,6 +67,57 @@
 //!   (marginal-conditional) or in a rescaled `f32` pyramid (hierarchical), never overflow.
 //! * Maps of any size from `1 x 1` to `MAX_SIDE x MAX_SIDE` (that fit the 32-bit table
 //!   indices, see [`Error::TooLarge`]), square or not, powers of two or not.
+//!
+//! # Storage format: build once, load later
+//!
+//! A built storage is self-describing, so an asset pipeline can build the tables once, write
+//! the words to a file, and a renderer can read them back and sample without the weights:
+//!
+//! ```
+//! use warpcore::envmap::{Hierarchical, Word};
+//!
+//! let weights = [1.0, 2.0, 0.0, 1.0, 4.0, 0.0, 0.5, 0.5];
+//! let mut storage = vec![0 as Word; Hierarchical::storage_len(4, 2)];
+//! let built = Hierarchical::new(&weights, 4, 2, &mut storage)?.sample([0.3, 0.8]);
+//!
+//! // The bytes to write: the words' in-memory bytes (little-endian on every target).
+//! let file: Vec<u8> = bytemuck::cast_slice(&storage).to_vec();
+//! // ... later, on any machine: read the bytes back into words and validate the header.
+//! let words: Vec<Word> = file.chunks_exact(4).map(|b| Word::from_ne_bytes(b.try_into().unwrap())).collect();
+//! let map = Hierarchical::from_storage(&words)?; // O(1)
+//! assert_eq!(map.sample([0.3, 0.8]), built);
+//! # Ok::<(), warpcore::envmap::Error>(())
+//! ```
+//!
+//! Layout, in 32-bit words:
+//!
+//! | words | contents |
+//! |---|---|
+//! | 0 | format tag: the bytes `wcMC` ([`MarginalConditional`]) or `wcHI` ([`Hierarchical`]) |
+//! | 1 | format version, [`FORMAT_VERSION`] |
+//! | 2, 3 | width, height |
+//! | 4..8 | the lengths in words of the four regions that follow, in order: marginal-conditional: row CDF (`height + 1`), row CDFs (`(width + 1) height`), column edges (`width + 1`), row edges (`height + 1`); hierarchical: alignment padding (0 to 15), blocks (`16 * blocks`), column edges, row edges (and `15 -` padding words of slack after them) |
+//! | 8.. | the tables |
+//!
+//! **Byte order.** The storage's bytes in memory are little-endian on every target (big-endian
+//! targets byte-swap the words once after building and on every read), so the memory image
+//! — `bytemuck::cast_slice::<Word, u8>` in Rust, `fwrite` of the `uint32_t` array in C — is
+//! the file format, and a file written on one machine loads on any other. Words `new` does not
+//! need (padding, slack, unused slots) are written as 0, so the bytes are a function of the
+//! weights and, for [`Hierarchical`], of where its 64-byte-aligned blocks start (the storage's
+//! address modulo 64, recorded in word 4; a storage loaded at another alignment samples the
+//! same bits, with blocks that may straddle cache lines).
+//!
+//! **Validation.** `from_storage` is O(1): it checks the tag, the version, the sizes and that
+//! the lengths agree with them and with `storage.len()`, and reports [`Error::WrongFormat`],
+//! [`Error::UnsupportedVersion`], [`Error::Corrupt`] or [`Error::StorageTooSmall`]. It does not
+//! read the tables, and it does not need to: **sampling a storage that passed it never panics
+//! and never leaves the map, whatever its table words hold** — texels are in `0..width` x
+//! `0..height`, `uv` in `[0, 1)^2`, pdfs finite and nonnegative (garbage tables give garbage
+//! but valid samples). `from_storage_verified` adds one pass over every table word and
+//! rejects tables that break the format's invariants (CDFs that are not monotone from 0 to
+//! `2^31`, split fractions above 1, reachable padding, nonzero unused words, wrong texel
+//! edges), for loaders that want to catch a corrupted file.
 
 mod edges;
 mod hierarchical;
@@ -86,6 +137,12 @@ pub type Word = u32;
 
 /// Largest accepted width or height: `2^24`, so texel indices and edges are exact in `f32`.
 pub const MAX_SIDE: usize = 1 << 24;
+
+/// Words of the header at the start of every storage (included in `storage_len`).
+pub const HEADER_WORDS: usize = 8;
+
+/// The storage format version this build writes (word 1 of the header) and reads.
+pub const FORMAT_VERSION: u32 = 1;
 
 /// One sample of an environment-map distribution.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -156,6 +213,26 @@ pub enum Error {
         /// Row-major index of the first infinite weight.
         index: usize,
     },
+    /// `from_storage`: word 0 is not this distribution's format tag — the other
+    /// distribution's storage, data that is not a warpcore table, or a byte-swapped copy.
+    WrongFormat {
+        /// Word 0 of the storage.
+        found: u32,
+    },
+    /// `from_storage`: the format version (word 1) is not [`FORMAT_VERSION`].
+    UnsupportedVersion {
+        /// Word 1 of the storage.
+        found: u32,
+    },
+    /// `from_storage`: storage word `word` holds a value `new` never writes there — a size of
+    /// zero or above [`MAX_SIDE`], a length that disagrees with the sizes, or (only
+    /// `from_storage_verified` reads the tables) a table word that breaks the format's
+    /// invariants. A storage too short for its header's sizes is
+    /// [`Error::StorageTooSmall`] instead.
+    Corrupt {
+        /// Index of the first offending word in the storage.
+        word: usize,
+    },
 }
 
 impl fmt::Display for Error {
@@ -170,6 +247,19 @@ impl fmt::Display for Error {
                 write!(f, "storage holds {got} words, {needed} needed")
             }
             Error::InfiniteWeight { index } => write!(f, "weight {index} is +inf"),
+            Error::WrongFormat { found } => {
+                write!(
+                    f,
+                    "storage format tag {found:#010x} is not this distribution's"
+                )
+            }
+            Error::UnsupportedVersion { found } => {
+                write!(
+                    f,
+                    "storage format version {found} (this build reads {FORMAT_VERSION})"
+                )
+            }
+            Error::Corrupt { word } => write!(f, "storage word {word} is corrupt"),
         }
     }
 }
@@ -238,6 +328,129 @@ fn carve<const K: usize>(mut s: &mut [Word], lens: [usize; K]) -> Option<[&mut [
         s = tail;
     }
     Some(out)
+}
+
+/// [`carve`] for shared slices, as the one-word rows the lane gathers read.
+fn carve_ref<const K: usize>(mut s: &[Word], lens: [usize; K]) -> Option<[&[[u32; 1]]; K]> {
+    let mut out: [&[[u32; 1]]; K] = [&[]; K];
+    for (o, &n) in out.iter_mut().zip(&lens) {
+        let (head, tail) = s.split_at_checked(n)?;
+        *o = head.as_chunks::<1>().0;
+        s = tail;
+    }
+    Some(out)
+}
+
+// ---------------------------------------------------------------------------------------
+// The storage header and byte order.
+
+/// The format tag of a distribution: four ASCII bytes, read as a little-endian word.
+const fn tag(bytes: [u8; 4]) -> u32 {
+    u32::from_le_bytes(bytes)
+}
+
+/// Writes the header: tag, version, sizes and the four region lengths (native words; the
+/// builder's final [`to_storage_order`] pass makes them little-endian).
+fn write_header(header: &mut [Word], tag: u32, width: usize, height: usize, lens: [usize; 4]) {
+    let sizes = [tag, FORMAT_VERSION, width as u32, height as u32];
+    for (h, v) in header
+        .iter_mut()
+        .zip(sizes.into_iter().chain(lens.map(|n| n as u32)))
+    {
+        *h = v;
+    }
+}
+
+/// Reads and checks the header (O(1)): the tag, the version, and sizes in `1..=MAX_SIDE`
+/// whose `storage_len` (from `len`) fits the 32-bit indices. Returns the sizes, the needed
+/// length and the four region lengths as recorded (the caller compares them with the ones the
+/// sizes imply).
+fn read_header(
+    storage: &[Word],
+    expected_tag: u32,
+    len: impl FnOnce(usize, usize) -> usize,
+) -> Result<(usize, usize, usize, [usize; 4]), Error> {
+    let got = storage.len();
+    let header = storage.get(..HEADER_WORDS).ok_or(Error::StorageTooSmall {
+        needed: HEADER_WORDS,
+        got,
+    })?;
+    let word = |k: usize| header.get(k).map_or(0, |&w| u32::from_le(w));
+    if word(0) != expected_tag {
+        return Err(Error::WrongFormat { found: word(0) });
+    }
+    if word(1) != FORMAT_VERSION {
+        return Err(Error::UnsupportedVersion { found: word(1) });
+    }
+    let side = |k: usize| {
+        let n = word(k) as usize;
+        if (1..=MAX_SIDE).contains(&n) {
+            Ok(n)
+        } else {
+            Err(Error::Corrupt { word: k })
+        }
+    };
+    let (width, height) = (side(2)?, side(3)?);
+    let needed = len(width, height);
+    if needed == usize::MAX {
+        return Err(Error::Corrupt { word: 2 });
+    }
+    let lens = [4, 5, 6, 7].map(|k| word(k) as usize);
+    Ok((width, height, needed, lens))
+}
+
+/// Checks the recorded region lengths (header words 4..8) against the ones the sizes imply,
+/// then the storage length against the needed one.
+fn check_lens(
+    recorded: [usize; 4],
+    implied: [usize; 4],
+    needed: usize,
+    got: usize,
+) -> Result<(), Error> {
+    for (k, (r, i)) in recorded.iter().zip(&implied).enumerate() {
+        if r != i {
+            return Err(Error::Corrupt {
+                word: HEADER_WORDS - 4 + k,
+            });
+        }
+    }
+    if got < needed {
+        return Err(Error::StorageTooSmall { needed, got });
+    }
+    Ok(())
+}
+
+/// Makes a freshly built storage little-endian in memory (a no-op on little-endian targets).
+fn to_storage_order(storage: &mut [Word]) {
+    if cfg!(target_endian = "big") {
+        for w in storage {
+            *w = w.to_le();
+        }
+    }
+}
+
+/// A storage word as a number (the words are little-endian in memory on every target).
+#[inline(always)]
+fn from_storage_order<U: UintLane>(x: U) -> U {
+    if cfg!(target_endian = "big") {
+        let byte = U::splat(0xff);
+        x.shr(24) | (x.shr(8) & byte.shl(8)) | (x.shl(8) & byte.shl(16)) | x.shl(24)
+    } else {
+        x
+    }
+}
+
+/// Lane-wise table read in storage byte order (zeros out of bounds, never a panic).
+#[inline(always)]
+fn load<U: UintLane>(table: &[[u32; 1]], idx: U) -> U {
+    let [v] = U::gather(table, idx);
+    from_storage_order(v)
+}
+
+/// Four consecutive words per lane, in storage byte order.
+#[inline(always)]
+fn load4<U: UintLane>(table: &[u32], start: U) -> [U; 4] {
+    U::gather4(table, start).map(from_storage_order)
 }
 
 /// Correctly rounded `u32 -> f32` for the whole `u32` range (`from_uint` is exact only below

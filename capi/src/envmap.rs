@@ -1,0 +1,589 @@
+//! Environment-map importance sampling over caller-owned storage: build the tables from
+//! weights (or load them from a file: the storage is self-describing and little-endian on
+//! every target), then sample texels in proportion to their weight.
+
+use crate::ffi::{map, slice, span};
+use warpcore::envmap::{self, Error, Hierarchical, MarginalConditional, Sample, image};
+
+/// Success.
+pub const WC_OK: i32 = 0;
+/// `width` or `height` is zero.
+pub const WC_ERR_ZERO_SIZE: i32 = -1;
+/// A side exceeds 2^24, or the tables would exceed 2^32 words.
+pub const WC_ERR_TOO_LARGE: i32 = -2;
+/// An array length does not match the sizes.
+pub const WC_ERR_LENGTH_MISMATCH: i32 = -3;
+/// The storage is shorter than `storage_len` (or than its header says).
+pub const WC_ERR_STORAGE_TOO_SMALL: i32 = -4;
+/// A weight is `+inf`.
+pub const WC_ERR_INFINITE_WEIGHT: i32 = -5;
+/// Word 0 of the storage is not this distribution's format tag.
+pub const WC_ERR_WRONG_FORMAT: i32 = -6;
+/// The storage's format version is not the one this library reads.
+pub const WC_ERR_UNSUPPORTED_VERSION: i32 = -7;
+/// A header word (or, for `verify`, a table word) holds a value a build never writes.
+pub const WC_ERR_CORRUPT: i32 = -8;
+/// A null or misaligned pointer, or arrays that overlap where they must not.
+pub const WC_ERR_INVALID_ARGUMENT: i32 = -9;
+/// An error this version of the header has no name for.
+pub const WC_ERR_OTHER: i32 = -10;
+
+/// Words of the header at the start of every storage.
+pub const WC_ENVMAP_HEADER_WORDS: u32 = 8;
+/// The storage format version this library writes and reads (header word 1).
+pub const WC_ENVMAP_FORMAT_VERSION: u32 = 1;
+
+// Literals, so that cbindgen can write them; checked against the core crate here.
+const _: () = assert!(WC_ENVMAP_HEADER_WORDS as usize == envmap::HEADER_WORDS);
+const _: () = assert!(WC_ENVMAP_FORMAT_VERSION == envmap::FORMAT_VERSION);
+
+/// One environment-map sample.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WcEnvSample {
+    /// The point, in `[0, 1)^2`, inside `texel`.
+    pub uv: [f32; 2],
+    /// Density with respect to area on `[0, 1]^2` at `uv` (`P(texel) * width * height`).
+    pub pdf: f32,
+    /// `[column, row]` of the texel the point lies in.
+    pub texel: [u32; 2],
+}
+
+fn code(e: Error) -> i32 {
+    match e {
+        Error::ZeroSize => WC_ERR_ZERO_SIZE,
+        Error::TooLarge => WC_ERR_TOO_LARGE,
+        Error::LengthMismatch { .. } => WC_ERR_LENGTH_MISMATCH,
+        Error::StorageTooSmall { .. } => WC_ERR_STORAGE_TOO_SMALL,
+        Error::InfiniteWeight { .. } => WC_ERR_INFINITE_WEIGHT,
+        Error::WrongFormat { .. } => WC_ERR_WRONG_FORMAT,
+        Error::UnsupportedVersion { .. } => WC_ERR_UNSUPPORTED_VERSION,
+        Error::Corrupt { .. } => WC_ERR_CORRUPT,
+        _ => WC_ERR_OTHER,
+    }
+}
+
+/// The two distributions behind one interface.
+trait Dist<'a>: Sized {
+    fn storage_len(width: usize, height: usize) -> usize;
+    fn new(weights: &[f32], w: usize, h: usize, storage: &'a mut [u32]) -> Result<Self, Error>;
+    fn from_storage(storage: &'a [u32]) -> Result<Self, Error>;
+    fn from_storage_verified(storage: &'a [u32]) -> Result<Self, Error>;
+    fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize;
+    fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize;
+}
+
+macro_rules! dist {
+    ($t:ident) => {
+        impl<'a> Dist<'a> for $t<'a> {
+            fn storage_len(width: usize, height: usize) -> usize {
+                $t::storage_len(width, height)
+            }
+            fn new(w8: &[f32], w: usize, h: usize, s: &'a mut [u32]) -> Result<Self, Error> {
+                $t::new(w8, w, h, s)
+            }
+            fn from_storage(storage: &'a [u32]) -> Result<Self, Error> {
+                $t::from_storage(storage)
+            }
+            fn from_storage_verified(storage: &'a [u32]) -> Result<Self, Error> {
+                $t::from_storage_verified(storage)
+            }
+            fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
+                $t::sample_slice(self, u, out)
+            }
+            fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
+                $t::pdf_slice(self, uv, out)
+            }
+        }
+    };
+}
+dist!(Hierarchical);
+dist!(MarginalConditional);
+
+fn storage_len<'a, D: Dist<'a>>(width: u32, height: u32) -> usize {
+    D::storage_len(width as usize, height as usize)
+}
+
+/// # Safety
+/// As the exported `build` functions.
+unsafe fn build<'a, D: Dist<'a>>(
+    weights: *const f32,
+    width: u32,
+    height: u32,
+    storage: *mut u32,
+    storage_len: usize,
+) -> i32 {
+    let (w, h) = (width as usize, height as usize);
+    if w == 0 || h == 0 {
+        return WC_ERR_ZERO_SIZE;
+    }
+    let needed = D::storage_len(w, h);
+    if needed == usize::MAX {
+        return WC_ERR_TOO_LARGE;
+    }
+    if storage_len < needed {
+        return WC_ERR_STORAGE_TOO_SMALL;
+    }
+    let Some(range) = span(storage.cast_const(), needed) else {
+        return WC_ERR_INVALID_ARGUMENT;
+    };
+    // SAFETY: the caller's contract (weights readable for `w * h` floats, unchanged during
+    // the call); `slice` checks null, alignment, size and that the storage we write does not
+    // overlap them.
+    let Some(weights) = (unsafe { slice(weights, w * h, Some(range)) }) else {
+        return WC_ERR_INVALID_ARGUMENT;
+    };
+    // The storage may be uninitialized C memory: zero the words we use through the raw
+    // pointer first, so the Rust slice below only ever refers to initialized words.
+    // SAFETY: `storage` is writable for `storage_len >= needed` words (the caller's
+    // contract); non-null, aligned and of valid size (checked by `span`); it overlaps neither
+    // the weights (checked above) nor anything else we hold.
+    let storage = unsafe {
+        core::ptr::write_bytes(storage, 0, needed);
+        core::slice::from_raw_parts_mut(storage, needed)
+    };
+    match D::new(weights, w, h, storage) {
+        Ok(_) => WC_OK,
+        Err(e) => code(e),
+    }
+}
+
+/// # Safety
+/// `storage` readable for `storage_len` words, unchanged during the call.
+unsafe fn check<'a, D: Dist<'a>>(storage: *const u32, storage_len: usize, verified: bool) -> i32 {
+    // SAFETY: the caller's contract; `slice` checks null, alignment and size.
+    let Some(s) = (unsafe { slice(storage, storage_len, None) }) else {
+        return WC_ERR_INVALID_ARGUMENT;
+    };
+    let loaded = if verified {
+        D::from_storage_verified(s).map(|_| ())
+    } else {
+        D::from_storage(s).map(|_| ())
+    };
+    match loaded {
+        Ok(()) => WC_OK,
+        Err(e) => code(e),
+    }
+}
+
+/// # Safety
+/// As the exported `sample` functions.
+unsafe fn sample<'a, D: Dist<'a>>(
+    storage: *const u32,
+    storage_len: usize,
+    u: *const f32,
+    out: *mut WcEnvSample,
+    n: usize,
+) -> usize {
+    if n == 0 {
+        return 0;
+    }
+    // SAFETY: the caller's contract; `slice` checks null, alignment, size and that `out`
+    // (which we write) does not overlap the storage (which we read throughout).
+    let Some(s) = (unsafe { slice(storage, storage_len, span(out.cast_const(), n)) }) else {
+        return 0;
+    };
+    let Ok(d) = D::from_storage(s) else {
+        return 0;
+    };
+    // SAFETY: the caller's contract; `map` checks null, alignment, size and overlap of `u`
+    // and `out`.
+    unsafe {
+        map::<f32, WcEnvSample, 2, 1>(u, out, n, |u, o| {
+            let mut tmp = [Sample {
+                uv: [0.0; 2],
+                pdf: 0.0,
+                texel: [0; 2],
+            }; crate::ffi::CHUNK];
+            let k = d.sample_slice(u, &mut tmp[..u.len().min(o.len())]);
+            for (o, s) in o.iter_mut().zip(&tmp[..k]) {
+                *o = [WcEnvSample {
+                    uv: s.uv,
+                    pdf: s.pdf,
+                    texel: s.texel,
+                }];
+            }
+            k
+        })
+    }
+}
+
+/// # Safety
+/// As the exported `pdf` functions.
+unsafe fn pdf<'a, D: Dist<'a>>(
+    storage: *const u32,
+    storage_len: usize,
+    uv: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    if n == 0 {
+        return 0;
+    }
+    // SAFETY: as in `sample`.
+    let Some(s) = (unsafe { slice(storage, storage_len, span(out.cast_const(), n)) }) else {
+        return 0;
+    };
+    let Ok(d) = D::from_storage(s) else {
+        return 0;
+    };
+    // SAFETY: as in `sample`.
+    unsafe { map::<f32, f32, 2, 1>(uv, out, n, |uv, o| d.pdf_slice(uv, o.as_flattened_mut())) }
+}
+
+/// Words of storage `wc_envmap_hierarchical_build` needs for a `width x height` map (the hierarchical (MIP-pyramid) distribution: compact 2D strata), the
+/// 8-word header included; `SIZE_MAX` when the map is too large, 0 for a zero side.
+#[unsafe(no_mangle)]
+pub extern "C" fn wc_envmap_hierarchical_storage_len(width: u32, height: u32) -> usize {
+    storage_len::<Hierarchical>(width, height)
+}
+
+/// Builds the hierarchical (MIP-pyramid) distribution: compact 2D strata of `weights` (row-major, `width * height` floats; NaN, negatives and
+/// `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. Returns `WC_OK` (0) or
+/// a negative `WC_ERR_*`: `ZERO_SIZE`, `TOO_LARGE`, `STORAGE_TOO_SMALL` (`storage_len` below
+/// `wc_envmap_hierarchical_storage_len`), `INFINITE_WEIGHT`, `INVALID_ARGUMENT` (null or misaligned
+/// pointer, weights overlapping the storage). Writes only the first
+/// `wc_envmap_hierarchical_storage_len(width, height)` words (also when it fails after the checks).
+/// The storage's bytes are the file format: write them to a file and sample them later, on
+/// any machine.
+///
+/// # Safety
+/// `weights` must be readable for `width * height` floats and `storage` writable for
+/// `storage_len` words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_hierarchical_build(
+    weights: *const f32,
+    width: u32,
+    height: u32,
+    storage: *mut u32,
+    storage_len: usize,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { build::<Hierarchical>(weights, width, height, storage, storage_len) }
+}
+
+/// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
+/// or `WC_ERR_WRONG_FORMAT`, `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`,
+/// `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_INVALID_ARGUMENT`. Sampling a storage that passes is
+/// safe whatever its table words hold (samples stay in the map); the sample and pdf functions
+/// run this check on every call.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_hierarchical_validate(
+    storage: *const u32,
+    storage_len: usize,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { check::<Hierarchical>(storage, storage_len, false) }
+}
+
+/// `wc_envmap_hierarchical_validate` plus one pass over every table word, rejecting
+/// (`WC_ERR_CORRUPT`) tables that break the format's invariants: for loaders that want to
+/// catch a corrupted file. Time proportional to the storage.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_hierarchical_verify(
+    storage: *const u32,
+    storage_len: usize,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { check::<Hierarchical>(storage, storage_len, true) }
+}
+
+/// Draws `n` samples from a built (or loaded) storage: texels in proportion to their weight,
+/// a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
+/// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) if the
+/// storage fails `wc_envmap_hierarchical_validate`, for a null or misaligned pointer, or if `out`
+/// overlaps `u` or the storage.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
+/// writable for `n` samples.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_hierarchical_sample(
+    storage: *const u32,
+    storage_len: usize,
+    u: *const f32,
+    out: *mut WcEnvSample,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    unsafe { sample::<Hierarchical>(storage, storage_len, u, out, n) }
+}
+
+/// Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
+/// the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
+/// sample at that point reports. Returns `n`, or 0 as for `wc_envmap_hierarchical_sample`.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
+/// writable for `n` floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_hierarchical_pdf(
+    storage: *const u32,
+    storage_len: usize,
+    uv: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    unsafe { pdf::<Hierarchical>(storage, storage_len, uv, out, n) }
+}
+
+/// Words of storage `wc_envmap_marginal_conditional_build` needs for a `width x height` map (the marginal-conditional distribution (a row by its total, then a column)), the
+/// 8-word header included; `SIZE_MAX` when the map is too large, 0 for a zero side.
+#[unsafe(no_mangle)]
+pub extern "C" fn wc_envmap_marginal_conditional_storage_len(width: u32, height: u32) -> usize {
+    storage_len::<MarginalConditional>(width, height)
+}
+
+/// Builds the marginal-conditional distribution (a row by its total, then a column) of `weights` (row-major, `width * height` floats; NaN, negatives and
+/// `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. Returns `WC_OK` (0) or
+/// a negative `WC_ERR_*`: `ZERO_SIZE`, `TOO_LARGE`, `STORAGE_TOO_SMALL` (`storage_len` below
+/// `wc_envmap_marginal_conditional_storage_len`), `INFINITE_WEIGHT`, `INVALID_ARGUMENT` (null or misaligned
+/// pointer, weights overlapping the storage). Writes only the first
+/// `wc_envmap_marginal_conditional_storage_len(width, height)` words (also when it fails after the checks).
+/// The storage's bytes are the file format: write them to a file and sample them later, on
+/// any machine.
+///
+/// # Safety
+/// `weights` must be readable for `width * height` floats and `storage` writable for
+/// `storage_len` words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_marginal_conditional_build(
+    weights: *const f32,
+    width: u32,
+    height: u32,
+    storage: *mut u32,
+    storage_len: usize,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { build::<MarginalConditional>(weights, width, height, storage, storage_len) }
+}
+
+/// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
+/// or `WC_ERR_WRONG_FORMAT`, `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`,
+/// `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_INVALID_ARGUMENT`. Sampling a storage that passes is
+/// safe whatever its table words hold (samples stay in the map); the sample and pdf functions
+/// run this check on every call.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_marginal_conditional_validate(
+    storage: *const u32,
+    storage_len: usize,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { check::<MarginalConditional>(storage, storage_len, false) }
+}
+
+/// `wc_envmap_marginal_conditional_validate` plus one pass over every table word, rejecting
+/// (`WC_ERR_CORRUPT`) tables that break the format's invariants: for loaders that want to
+/// catch a corrupted file. Time proportional to the storage.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_marginal_conditional_verify(
+    storage: *const u32,
+    storage_len: usize,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { check::<MarginalConditional>(storage, storage_len, true) }
+}
+
+/// Draws `n` samples from a built (or loaded) storage: texels in proportion to their weight,
+/// a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
+/// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) if the
+/// storage fails `wc_envmap_marginal_conditional_validate`, for a null or misaligned pointer, or if `out`
+/// overlaps `u` or the storage.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
+/// writable for `n` samples.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_marginal_conditional_sample(
+    storage: *const u32,
+    storage_len: usize,
+    u: *const f32,
+    out: *mut WcEnvSample,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    unsafe { sample::<MarginalConditional>(storage, storage_len, u, out, n) }
+}
+
+/// Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
+/// the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
+/// sample at that point reports. Returns `n`, or 0 as for `wc_envmap_marginal_conditional_sample`.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
+/// writable for `n` floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_marginal_conditional_pdf(
+    storage: *const u32,
+    storage_len: usize,
+    uv: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    unsafe { pdf::<MarginalConditional>(storage, storage_len, uv, out, n) }
+}
+
+/// Rec. 709 luminance of `n` RGB texels (`3n` floats) to `n` weights (NaN and negatives
+/// weigh 0). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or
+/// overlapping arrays other than `rgb == out`.
+///
+/// # Safety
+/// `rgb` must be readable for `3n` floats and `out` writable for `n` floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_luminance(rgb: *const f32, out: *mut f32, n: usize) -> usize {
+    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    unsafe {
+        map::<f32, f32, 3, 1>(rgb, out, n, |rgb, o| {
+            image::luminance_slice(rgb, o.as_flattened_mut())
+        })
+    }
+}
+
+/// Multiplies row `r` of a lat-long weight map (in place, `width * height` floats) by
+/// `sin(pi (r + 1/2) / height)`, its solid-angle factor. Returns `WC_OK`, `WC_ERR_ZERO_SIZE`
+/// or `WC_ERR_INVALID_ARGUMENT` (null or misaligned pointer).
+///
+/// # Safety
+/// `weights` must be readable and writable for `width * height` floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_latlong_solid_angle_weights(
+    weights: *mut f32,
+    width: u32,
+    height: u32,
+) -> i32 {
+    let (w, h) = (width as usize, height as usize);
+    if w == 0 || h == 0 {
+        return WC_ERR_ZERO_SIZE;
+    }
+    if span(weights.cast_const(), w * h).is_none() {
+        return WC_ERR_INVALID_ARGUMENT;
+    }
+    // SAFETY: readable and writable for `w * h` initialized floats (the caller's contract);
+    // non-null, aligned and of valid size (checked by `span`).
+    let weights = unsafe { core::slice::from_raw_parts_mut(weights, w * h) };
+    match image::latlong_solid_angle_weights(weights, w, h) {
+        Ok(()) => WC_OK,
+        Err(e) => code(e),
+    }
+}
+
+/// Lat-long density conversion: `n` densities over the square (`pdf`) at rows `v` (`n`
+/// floats) to densities per steradian, `pdf / (2 pi^2 sin(pi v))` (0 at the poles). Returns
+/// `n`, or 0 (writing nothing) for a null or misaligned pointer or an `out` overlapping `v`.
+///
+/// # Safety
+/// `pdf` and `v` must be readable for `n` floats and `out` writable for `n` floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_latlong_pdf_to_solid_angle(
+    pdf: *const f32,
+    v: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    if n == 0 {
+        return 0;
+    }
+    // SAFETY: the caller's contract; `slice` checks null, alignment, size and overlap.
+    let Some(v) = (unsafe { slice(v, n, span(out.cast_const(), n)) }) else {
+        return 0;
+    };
+    let mut i = 0usize;
+    // SAFETY: the caller's contract; `map` checks null, alignment, size and overlap.
+    unsafe {
+        map::<f32, f32, 1, 1>(pdf, out, n, |p, o| {
+            for (p, o) in p.iter().zip(o.iter_mut()) {
+                *o = [image::latlong_pdf_to_solid_angle(
+                    p[0],
+                    v.get(i).copied().unwrap_or(0.0),
+                )];
+                i += 1;
+            }
+            p.len().min(o.len())
+        })
+    }
+}
+
+/// Resamples a lat-long image (`src_width x src_height` texels of `channels` floats, 1 to 4)
+/// onto the `size x size` equal-area octahedral square (`dst`, `size * size * channels`
+/// floats), each output texel the average of `supersample^2` stratified point samples
+/// (bilinear, wrapping in longitude). Returns `WC_OK` or `WC_ERR_ZERO_SIZE`,
+/// `WC_ERR_TOO_LARGE`, `WC_ERR_INVALID_ARGUMENT` (channels outside 1..=4, a null or
+/// misaligned pointer, overlapping arrays).
+///
+/// # Safety
+/// `src` must be readable for `src_width * src_height * channels` floats and `dst` writable
+/// for `size * size * channels` floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_latlong_to_equal_area(
+    src: *const f32,
+    src_width: u32,
+    src_height: u32,
+    channels: u32,
+    dst: *mut f32,
+    size: u32,
+    supersample: u32,
+) -> i32 {
+    let (sw, sh, c) = (src_width as usize, src_height as usize, channels as usize);
+    let (n, ss) = (size as usize, supersample as usize);
+    if sw == 0 || sh == 0 || n == 0 || ss == 0 {
+        return WC_ERR_ZERO_SIZE;
+    }
+    if !(1..=4).contains(&c) {
+        return WC_ERR_INVALID_ARGUMENT;
+    }
+    let (Some(src_len), Some(dst_len)) = (
+        sw.checked_mul(sh).and_then(|x| x.checked_mul(c)),
+        n.checked_mul(n).and_then(|x| x.checked_mul(c)),
+    ) else {
+        return WC_ERR_TOO_LARGE;
+    };
+    let Some(out) = span(dst.cast_const(), dst_len) else {
+        return WC_ERR_INVALID_ARGUMENT;
+    };
+    // SAFETY: the caller's contract; `slice` checks null, alignment, size and that `dst`
+    // does not overlap the source.
+    let Some(src) = (unsafe { slice(src, src_len, Some(out)) }) else {
+        return WC_ERR_INVALID_ARGUMENT;
+    };
+    // SAFETY: `dst` is writable for `dst_len` floats (the caller's contract), checked by
+    // `span`, disjoint from `src`; zeroed first so the slice refers to initialized floats.
+    let dst = unsafe {
+        core::ptr::write_bytes(dst, 0, dst_len);
+        core::slice::from_raw_parts_mut(dst, dst_len)
+    };
+    fn run<const C: usize>(
+        s: &[f32],
+        w: usize,
+        h: usize,
+        d: &mut [f32],
+        n: usize,
+        ss: usize,
+    ) -> i32 {
+        let (s, _) = s.as_chunks::<C>();
+        let (d, _) = d.as_chunks_mut::<C>();
+        match image::latlong_to_equal_area(s, w, h, d, n, ss) {
+            Ok(()) => WC_OK,
+            Err(e) => code(e),
+        }
+    }
+    match c {
+        1 => run::<1>(src, sw, sh, dst, n, ss),
+        2 => run::<2>(src, sw, sh, dst, n, ss),
+        3 => run::<3>(src, sw, sh, dst, n, ss),
+        _ => run::<4>(src, sw, sh, dst, n, ss),
+    }
+}

@@ -1,0 +1,461 @@
+/*
+ * The C API's rules, checked from C: n = 0, null pointers, misaligned and unaligned pointers,
+ * in-place and overlapping arrays, huge counts, the environment-map errors (invalid and
+ * truncated storage, garbage tables), and a storage written to a file and read back at
+ * another alignment. Prints "N passed, M failed"; exits nonzero on a failure.
+ */
+#include "warpcore.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+static int passed, failed;
+#define CHECK(cond)                                                                      \
+    do {                                                                                 \
+        if (cond) {                                                                      \
+            passed++;                                                                    \
+        } else {                                                                         \
+            failed++;                                                                    \
+            fprintf(stderr, "%s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond);     \
+        }                                                                                \
+    } while (0)
+
+#define SENTINEL 0x5au
+#define BIG 1024
+
+static unsigned char bytes[8 * BIG * 4 + 64];
+
+/* All bytes still the sentinel? */
+static int untouched(const void *p, size_t n) {
+    const unsigned char *b = (const unsigned char *)p;
+    for (size_t i = 0; i < n; i++)
+        if (b[i] != SENTINEL) return 0;
+    return 1;
+}
+
+static float in2[BIG * 2], in3[BIG * 3];
+
+static uint32_t lcg(uint32_t *s) {
+    *s = *s * 1664525u + 1013904223u;
+    return *s;
+}
+
+static float rnd(uint32_t *s) { return (float)(lcg(s) >> 8) * (1.0f / 16777216.0f); }
+
+typedef size_t (*warp_fn)(const float *, float *, size_t);
+struct warp {
+    const char *name;
+    warp_fn f;
+    int I, O;
+};
+
+static const struct warp WARPS[] = {
+    {"disk_polar", wc_disk_polar, 2, 2},
+    {"disk_polar_inverse", wc_disk_polar_inverse, 2, 2},
+    {"disk_concentric", wc_disk_concentric, 2, 2},
+    {"disk_concentric_inverse", wc_disk_concentric_inverse, 2, 2},
+    {"triangle_uniform", wc_triangle_uniform, 2, 3},
+    {"triangle_uniform_inverse", wc_triangle_uniform_inverse, 3, 2},
+    {"triangle_sqrt_map", wc_triangle_sqrt_map, 2, 3},
+    {"triangle_sqrt_map_inverse", wc_triangle_sqrt_map_inverse, 3, 2},
+    {"sphere_equal_area", wc_sphere_equal_area, 2, 3},
+    {"sphere_equal_area_inverse", wc_sphere_equal_area_inverse, 3, 2},
+    {"sphere_equal_area_wrap", wc_sphere_equal_area_wrap, 2, 2},
+    {"sphere_equirect", wc_sphere_equirect, 2, 3},
+    {"sphere_equirect_inverse", wc_sphere_equirect_inverse, 3, 2},
+    {"sphere_uniform", wc_sphere_uniform, 2, 3},
+    {"sphere_uniform_inverse", wc_sphere_uniform_inverse, 3, 2},
+    {"sphere_uniform_hemisphere", wc_sphere_uniform_hemisphere, 2, 3},
+    {"sphere_uniform_hemisphere_inverse", wc_sphere_uniform_hemisphere_inverse, 3, 2},
+    {"sphere_cosine_hemisphere", wc_sphere_cosine_hemisphere, 2, 3},
+    {"sphere_cosine_hemisphere_inverse", wc_sphere_cosine_hemisphere_inverse, 3, 2},
+    {"envmap_luminance", wc_envmap_luminance, 3, 1},
+    {"sphere_equal_area_pdf_to_solid_angle", wc_sphere_equal_area_pdf_to_solid_angle, 1, 1},
+    {"sphere_cosine_hemisphere_pdf", wc_sphere_cosine_hemisphere_pdf, 1, 1},
+};
+#define NWARPS (sizeof WARPS / sizeof WARPS[0])
+
+/* A pointer `off` bytes into the scratch area, filled with the sentinel. Offsets that are not
+   multiples of 4 make pointers no valid C float array has: the library must reject them. */
+static float *scratch(size_t off) {
+    memset(bytes, SENTINEL, sizeof bytes);
+    return (float *)(void *)(bytes + off);
+}
+
+static void warps(void) {
+    static float ref[BIG * 3], buf[BIG * 3 + 16];
+    const size_t counts[] = {1, 7, 8, 63, 64, 65, 200, BIG};
+    for (size_t w = 0; w < NWARPS; w++) {
+        struct warp W = WARPS[w];
+        const float *in = W.I == 2 ? in2 : in3;
+        /* Reference: aligned output. */
+        CHECK(W.f(in, ref, BIG) == BIG);
+        /* Any count, at any float offset (4-byte aligned, otherwise unaligned): same bits. */
+        for (size_t c = 0; c < sizeof counts / sizeof counts[0]; c++) {
+            for (size_t off = 0; off < 16; off += 5) {
+                size_t n = counts[c];
+                float *out = buf + off;
+                memset(buf, 0, sizeof buf);
+                CHECK(W.f(in, out, n) == n);
+                CHECK(memcmp(out, ref, n * W.O * sizeof(float)) == 0);
+                /* ... and nothing past the n outputs. */
+                CHECK(off + n * W.O >= BIG * 3 || out[n * W.O] == 0.0f);
+            }
+        }
+        /* Inputs at any float offset too. */
+        {
+            static float shifted[BIG * 3 + 8];
+            memcpy(shifted + 3, in, 100 * W.I * sizeof(float));
+            CHECK(W.f(shifted + 3, buf, 100) == 100);
+            CHECK(memcmp(buf, ref, 100 * W.O * sizeof(float)) == 0);
+        }
+        /* n = 0, null pointers, misaligned pointers: 0, nothing written. */
+        float *out = scratch(0);
+        CHECK(W.f(in, out, 0) == 0 && untouched(out, 64));
+        CHECK(W.f(NULL, out, 5) == 0 && untouched(out, 64));
+        CHECK(W.f(in, NULL, 5) == 0);
+        CHECK(W.f(NULL, NULL, 0) == 0);
+        for (size_t off = 1; off < 4; off++) {
+            out = scratch(off);
+            CHECK(W.f(in, out, 5) == 0 && untouched(bytes, sizeof bytes));
+            out = scratch(0);
+            CHECK(W.f((const float *)(const void *)((const unsigned char *)in + off), out, 5) == 0);
+            CHECK(untouched(bytes, sizeof bytes));
+        }
+        /* A count whose size overflows: 0, nothing written. */
+        out = scratch(0);
+        CHECK(W.f(in, out, SIZE_MAX) == 0 && untouched(bytes, sizeof bytes));
+        /* In place works when the output is no larger than the input; other overlaps are
+           refused. */
+        memcpy(buf, in, BIG * W.I * sizeof(float));
+        if (W.O <= W.I) {
+            CHECK(W.f(buf, buf, BIG) == BIG);
+            CHECK(memcmp(buf, ref, BIG * W.O * sizeof(float)) == 0);
+        } else {
+            CHECK(W.f(buf, buf, BIG) == 0);
+            CHECK(memcmp(buf, in, BIG * W.I * sizeof(float)) == 0);
+        }
+        memcpy(buf, in, BIG * W.I * sizeof(float));
+        CHECK(W.f(buf, buf + 1, 100) == 0);
+        CHECK(W.f(buf + 1, buf, 100) == 0);
+        CHECK(memcmp(buf, in, BIG * W.I * sizeof(float)) == 0);
+    }
+}
+
+typedef size_t (*gen_fn)(uint32_t, uint32_t, float *, size_t);
+static size_t strat64(uint32_t a, uint32_t s, float *o, size_t n) {
+    return wc_sequence_stratified(a, 64, s, o, n);
+}
+
+static void generators(void) {
+    const struct {
+        gen_fn f;
+        int O;
+    } G[] = {{wc_pmj02bn_sample, 2},
+             {wc_sequence_random, 2},
+             {strat64, 2},
+             {wc_triangle_basu_owen, 3},
+             {wc_triangle_basu_owen_permuted, 3}};
+    static float ref[BIG * 3], buf[BIG * 3 + 8];
+    for (size_t g = 0; g < sizeof G / sizeof G[0]; g++) {
+        CHECK(G[g].f(100, 7, ref, BIG) == BIG);
+        /* Piecewise calls at odd offsets agree with one call (index start + i). */
+        size_t done = 0;
+        while (done < BIG) {
+            size_t n = done % 3 == 0 ? 61 : 130;
+            if (n > BIG - done) n = BIG - done;
+            CHECK(G[g].f(100 + (uint32_t)done, 7, buf + 1, n) == n);
+            CHECK(memcmp(buf + 1, ref + done * G[g].O, n * G[g].O * sizeof(float)) == 0);
+            done += n;
+        }
+        /* Indices wrap after UINT32_MAX. */
+        CHECK(G[g].f(UINT32_MAX - 1, 7, buf, 4) == 4);
+        CHECK(G[g].f(0, 7, buf + 16, 2) == 2);
+        CHECK(memcmp(buf + 2 * G[g].O, buf + 16, 2 * G[g].O * sizeof(float)) == 0);
+        float *out = scratch(0);
+        CHECK(G[g].f(0, 7, out, 0) == 0 && untouched(bytes, sizeof bytes));
+        CHECK(G[g].f(0, 7, NULL, 9) == 0);
+        CHECK(G[g].f(0, 7, scratch(2), 9) == 0 && untouched(bytes, sizeof bytes));
+        CHECK(G[g].f(0, 7, scratch(0), SIZE_MAX) == 0 && untouched(bytes, sizeof bytes));
+    }
+    /* raw and shuffle. */
+    uint32_t r[8], idx[4] = {0, 1, 2, 3}, sh[4];
+    CHECK(wc_pmj02bn_raw(0, 0, r, 4) == 4);
+    CHECK(wc_pmj02bn_raw(0, 0, NULL, 4) == 0);
+    CHECK(wc_pmj02bn_raw(0, 0, (uint32_t *)(void *)(bytes + 1), 4) == 0);
+    CHECK(wc_pmj02bn_shuffle(idx, 3, sh, 4) == 4);
+    CHECK(wc_pmj02bn_shuffle(idx, 3, idx, 4) == 4 && memcmp(idx, sh, sizeof sh) == 0);
+    CHECK(wc_pmj02bn_shuffle(NULL, 3, sh, 4) == 0);
+    CHECK(wc_pmj02bn_points() >= 1024 && wc_pmj02bn_sets() >= 1);
+    /* Points are in [0, 1). */
+    static float p[BIG * 2];
+    CHECK(wc_pmj02bn_sample(0, 0, p, BIG) == BIG);
+    int inside = 1;
+    for (size_t i = 0; i < 2 * BIG; i++) inside &= p[i] >= 0.0f && p[i] < 1.0f;
+    CHECK(inside);
+}
+
+static void disk_extras(void) {
+    float pts[6] = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f}, out[32], one[8];
+    /* n is capped at 4 n_points; sample i uses point i / 4, quadrant i % 4. */
+    CHECK(wc_disk_polar4(pts, 3, out, 100) == 12);
+    CHECK(wc_disk_polar4(pts, 3, out, 5) == 5);
+    CHECK(wc_disk_polar4(pts + 2, 1, one, 4) == 4);
+    CHECK(wc_disk_polar4(pts, 3, out, 12) == 12 && memcmp(out + 8, one, sizeof one) == 0);
+    CHECK(wc_disk_polar4(pts, 0, out, 4) == 0);
+    CHECK(wc_disk_polar4(NULL, 3, out, 4) == 0);
+    CHECK(wc_disk_polar4(pts, 3, NULL, 4) == 0);
+    CHECK(wc_disk_polar4(pts, 3, (float *)pts, 4) == 0); /* overlap */
+    /* polar4_inverse recovers the point and the quadrant. */
+    uint32_t q[12];
+    float u[24];
+    CHECK(wc_disk_polar4_inverse(out, u, q, 12) == 12);
+    int ok = 1;
+    for (int i = 0; i < 12; i++) {
+        ok &= q[i] == (uint32_t)(i % 4);
+        ok &= u[2 * i] - pts[2 * (i / 4)] < 1e-6f && pts[2 * (i / 4)] - u[2 * i] < 1e-6f;
+    }
+    CHECK(ok);
+    CHECK(wc_disk_polar4_inverse(out, u, NULL, 12) == 0);
+    CHECK(wc_disk_polar4_inverse(out, u, (uint32_t *)(void *)u, 12) == 0);
+    float copy[24];
+    memcpy(copy, out, sizeof copy);
+    CHECK(wc_disk_polar4_inverse(copy, copy, q, 12) == 12 && memcmp(copy, u, sizeof copy) == 0);
+    /* concentric4: the same counts and rules; its inverse recovers the point and quadrant. */
+    CHECK(wc_disk_concentric4(pts, 3, out, 100) == 12);
+    CHECK(wc_disk_concentric4(pts + 2, 1, one, 4) == 4);
+    CHECK(wc_disk_concentric4(pts, 3, out, 12) == 12 && memcmp(out + 8, one, sizeof one) == 0);
+    CHECK(wc_disk_concentric4(pts, 0, out, 4) == 0 && wc_disk_concentric4(NULL, 3, out, 4) == 0);
+    CHECK(wc_disk_concentric4(pts, 3, (float *)pts, 4) == 0);
+    CHECK(wc_disk_concentric4_inverse(out, u, q, 12) == 12);
+    ok = 1;
+    for (int i = 0; i < 12; i++) {
+        ok &= q[i] == (uint32_t)(i % 4);
+        for (int c = 0; c < 2; c++) {
+            float e = u[2 * i + c] - pts[2 * (i / 4) + c];
+            ok &= e < 1e-6f && e > -1e-6f;
+        }
+    }
+    CHECK(ok);
+    CHECK(wc_disk_concentric4_inverse(out, u, NULL, 12) == 0);
+    /* wrap_texel. */
+    int32_t t[4] = {-1, 5, 40, -70};
+    uint32_t wt[4];
+    CHECK(wc_sphere_equal_area_wrap_texel(t, 32, wt, 2) == 2 && wt[0] < 32 && wt[1] < 32);
+    CHECK(wc_sphere_equal_area_wrap_texel(t, 0, wt, 2) == 0);
+    /* Two-input conversions. */
+    float pdf[2] = {1.0f, 2.0f}, d[6] = {1, 0, 0, 0, 0, 1}, v[2] = {0.5f, 0.0f}, o[2];
+    CHECK(wc_sphere_equirect_pdf_to_solid_angle(pdf, d, o, 2) == 2 && o[0] > 0 && o[1] == 0);
+    CHECK(wc_sphere_equirect_pdf_to_solid_angle(pdf, d, d, 2) == 0);
+    CHECK(wc_sphere_equirect_pdf_to_solid_angle(pdf, NULL, o, 2) == 0);
+    CHECK(wc_envmap_latlong_pdf_to_solid_angle(pdf, v, o, 2) == 2 && o[0] > 0 && o[1] == 0);
+    CHECK(wc_envmap_latlong_pdf_to_solid_angle(pdf, v, v, 2) == 0);
+    CHECK(wc_envmap_latlong_pdf_to_solid_angle(pdf, v, o, 0) == 0);
+}
+
+/* ---- environment maps ---- */
+
+typedef size_t (*len_fn)(uint32_t, uint32_t);
+typedef int32_t (*build_fn)(const float *, uint32_t, uint32_t, uint32_t *, size_t);
+typedef int32_t (*check_fn)(const uint32_t *, size_t);
+typedef size_t (*sample_fn)(const uint32_t *, size_t, const float *, WcEnvSample *, size_t);
+typedef size_t (*pdf_fn)(const uint32_t *, size_t, const float *, float *, size_t);
+struct dist {
+    const char *tag;
+    len_fn len;
+    build_fn build;
+    check_fn validate, verify;
+    sample_fn sample;
+    pdf_fn pdf;
+};
+
+#define W 37
+#define H 19
+static float weights[W * H];
+static uint32_t storage[64 * 1024], other[64 * 1024], loaded[64 * 1024 + 16];
+static float us[BIG * 2];
+static WcEnvSample ref[BIG], got[BIG];
+
+static int in_map(const WcEnvSample *s, size_t n) {
+    for (size_t i = 0; i < n; i++) {
+        if (s[i].texel[0] >= W || s[i].texel[1] >= H) return 0;
+        if (!(s[i].uv[0] >= 0.0f && s[i].uv[0] < 1.0f && s[i].uv[1] >= 0.0f && s[i].uv[1] < 1.0f))
+            return 0;
+        if (!(s[i].pdf >= 0.0f && s[i].pdf <= 3.4e38f)) return 0;
+    }
+    return 1;
+}
+
+static void envmap(struct dist D, struct dist O) {
+    size_t need = D.len(W, H);
+    CHECK(need > WC_ENVMAP_HEADER_WORDS && need < 64 * 1024);
+    CHECK(D.len(0, 5) == 0 && D.len(5, 0) == 0);
+    CHECK(D.len(1u << 24, 1u << 24) == SIZE_MAX && D.len((1u << 24) + 1, 1) == SIZE_MAX);
+
+    /* Build errors; nothing written on argument errors. */
+    memset(storage, SENTINEL, sizeof storage);
+    CHECK(D.build(weights, 0, H, storage, need) == WC_ERR_ZERO_SIZE);
+    CHECK(D.build(weights, (1u << 24) + 1, 1, storage, need) == WC_ERR_TOO_LARGE);
+    CHECK(D.build(weights, W, H, storage, need - 1) == WC_ERR_STORAGE_TOO_SMALL);
+    CHECK(D.build(NULL, W, H, storage, need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(D.build(weights, W, H, NULL, need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(D.build(weights, W, H, (uint32_t *)(void *)(bytes + 2), need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(D.build((const float *)(const void *)storage, W, H, storage, need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(untouched(storage, sizeof storage));
+    weights[100] = INFINITY;
+    CHECK(D.build(weights, W, H, storage, need) == WC_ERR_INFINITE_WEIGHT);
+    weights[100] = 0.5f;
+
+    /* Build; only `need` words are written. */
+    memset(storage, SENTINEL, sizeof storage);
+    CHECK(D.build(weights, W, H, storage, sizeof storage / 4) == WC_OK);
+    CHECK(untouched(storage + need, (sizeof storage / 4 - need) * 4));
+    CHECK(memcmp(storage, D.tag, 4) == 0); /* the format tag, as bytes */
+    CHECK(D.validate(storage, need) == WC_OK && D.verify(storage, need) == WC_OK);
+    CHECK(D.sample(storage, need, us, ref, BIG) == BIG && in_map(ref, BIG));
+    {
+        float p[BIG], uv[BIG * 2];
+        for (size_t i = 0; i < BIG; i++) {
+            uv[2 * i] = ref[i].uv[0];
+            uv[2 * i + 1] = ref[i].uv[1];
+        }
+        CHECK(D.pdf(storage, need, uv, p, BIG) == BIG);
+        int same = 1;
+        for (size_t i = 0; i < BIG; i++) same &= memcmp(&p[i], &ref[i].pdf, 4) == 0;
+        CHECK(same);
+        size_t zero_weight = 0;
+        for (size_t i = 0; i < BIG; i++) zero_weight += !(weights[ref[i].texel[1] * W + ref[i].texel[0]] > 0.0f);
+        CHECK(zero_weight == 0);
+    }
+    /* Output at odd offsets, in pieces: the same samples. */
+    {
+        static WcEnvSample buf[BIG + 3];
+        CHECK(D.sample(storage, need, us, buf + 1, 500) == 500);
+        CHECK(D.sample(storage, need, us + 1000, buf + 501, BIG - 500) == BIG - 500);
+        CHECK(memcmp(buf + 1, ref, sizeof ref) == 0);
+    }
+
+    /* The pointer rules. */
+    memset(got, SENTINEL, sizeof got);
+    CHECK(D.sample(storage, need, us, got, 0) == 0);
+    CHECK(D.sample(NULL, need, us, got, 4) == 0);
+    CHECK(D.sample(storage, need, NULL, got, 4) == 0);
+    CHECK(D.sample(storage, need, us, NULL, 4) == 0);
+    CHECK(D.sample(storage, need, us, (WcEnvSample *)(void *)storage, 4) == 0); /* overlap */
+    CHECK(D.sample(storage, need, (const float *)(const void *)got, got, 4) == 0);
+    CHECK(D.pdf(storage, need, us, (float *)(void *)(storage + 8), 4) == 0);
+    CHECK(untouched(got, sizeof got));
+    CHECK(D.validate(NULL, need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(D.validate((const uint32_t *)(const void *)(bytes + 1), need) == WC_ERR_INVALID_ARGUMENT);
+
+    /* Invalid and truncated storage: an error, and sampling returns 0 writing nothing. */
+    for (size_t n = 0; n < need; n += (n < 12 ? 1 : need / 7)) {
+        CHECK(D.validate(storage, n) == WC_ERR_STORAGE_TOO_SMALL);
+        CHECK(D.verify(storage, n) == WC_ERR_STORAGE_TOO_SMALL);
+        CHECK(D.sample(storage, n, us, got, 4) == 0 && untouched(got, sizeof got));
+    }
+    CHECK(D.validate(storage, need - 1) == WC_ERR_STORAGE_TOO_SMALL);
+    CHECK(D.validate(storage, need + 1) == WC_OK); /* longer is fine */
+    size_t other_need = O.len(W, H);
+    CHECK(O.build(weights, W, H, other, other_need) == WC_OK);
+    CHECK(D.validate(other, other_need) == WC_ERR_WRONG_FORMAT);
+    CHECK(D.sample(other, other_need, us, got, 4) == 0 && untouched(got, sizeof got));
+    memcpy(loaded, storage, need * 4);
+    loaded[1] = 2;
+    CHECK(D.validate(loaded, need) == WC_ERR_UNSUPPORTED_VERSION);
+    memcpy(loaded, storage, need * 4);
+    loaded[2] = 0;
+    CHECK(D.validate(loaded, need) == WC_ERR_CORRUPT);
+    memcpy(loaded, storage, need * 4);
+    loaded[5] += 1;
+    CHECK(D.validate(loaded, need) == WC_ERR_CORRUPT);
+    CHECK(D.sample(loaded, need, us, got, 4) == 0 && untouched(got, sizeof got));
+    /* A corrupt table word: the O(1) check passes, the one-pass check does not, and sampling
+       stays in the map. */
+    memcpy(loaded, storage, need * 4);
+    loaded[need - 10] ^= 0x40000000u; /* an edge or the slack */
+    CHECK(D.validate(loaded, need) == WC_OK && D.verify(loaded, need) == WC_ERR_CORRUPT);
+    CHECK(D.sample(loaded, need, us, got, BIG) == BIG && in_map(got, BIG));
+    /* Garbage tables behind a valid header: samples stay in the map. */
+    for (uint32_t seed = 1; seed < 40; seed++) {
+        uint32_t s = seed;
+        memcpy(loaded, storage, need * 4);
+        for (size_t i = WC_ENVMAP_HEADER_WORDS; i < need; i++) {
+            uint32_t r = lcg(&s);
+            loaded[i] = seed % 3 == 0 ? r : seed % 3 == 1 ? (r & 1u ? 0xffffffffu : 0u) : loaded[i] ^ (r & 0x80000401u);
+        }
+        CHECK(D.validate(loaded, need) == WC_OK);
+        CHECK(D.sample(loaded, need, us, got, BIG) == BIG && in_map(got, BIG));
+        float p[16];
+        CHECK(D.pdf(loaded, need, us, p, 16) == 16);
+        int finite = 1;
+        for (int i = 0; i < 16; i++) finite &= p[i] >= 0.0f && p[i] <= 3.4e38f;
+        CHECK(finite);
+    }
+
+    /* Written to a file and read back at every word alignment: the same samples. */
+    {
+        FILE *f = fopen("envmap.bin", "wb");
+        CHECK(f != NULL);
+        if (!f) return;
+        CHECK(fwrite(storage, 4, need, f) == need);
+        fclose(f);
+        for (size_t off = 0; off < 16; off += 3) {
+            memset(loaded, 0, sizeof loaded);
+            f = fopen("envmap.bin", "rb");
+            CHECK(f != NULL);
+            if (!f) return;
+            CHECK(fread(loaded + off, 4, need + 1, f) == need);
+            fclose(f);
+            CHECK(D.verify(loaded + off, need) == WC_OK);
+            CHECK(D.sample(loaded + off, need, us, got, BIG) == BIG);
+            CHECK(memcmp(got, ref, sizeof ref) == 0);
+        }
+        remove("envmap.bin");
+    }
+}
+
+static void images(void) {
+    float w[6] = {1, 1, 1, 1, 1, 1};
+    CHECK(wc_envmap_latlong_solid_angle_weights(w, 3, 2) == WC_OK && w[0] > 0.0f && w[0] < 1.0f);
+    CHECK(wc_envmap_latlong_solid_angle_weights(w, 0, 2) == WC_ERR_ZERO_SIZE);
+    CHECK(wc_envmap_latlong_solid_angle_weights(NULL, 3, 2) == WC_ERR_INVALID_ARGUMENT);
+    float src[4 * 2 * 3], dst[4 * 4 * 3];
+    for (int i = 0; i < 24; i++) src[i] = 1.0f;
+    CHECK(wc_envmap_latlong_to_equal_area(src, 4, 2, 3, dst, 4, 2) == WC_OK);
+    CHECK(dst[0] > 0.99f && dst[0] < 1.01f);
+    CHECK(wc_envmap_latlong_to_equal_area(src, 4, 2, 5, dst, 4, 2) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_latlong_to_equal_area(src, 4, 2, 3, dst, 0, 2) == WC_ERR_ZERO_SIZE);
+    CHECK(wc_envmap_latlong_to_equal_area(src, 4, 2, 3, src, 2, 1) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_latlong_to_equal_area(NULL, 4, 2, 3, dst, 4, 2) == WC_ERR_INVALID_ARGUMENT);
+}
+
+int main(void) {
+    uint32_t s = 12345;
+    for (size_t i = 0; i < BIG * 2; i++) in2[i] = rnd(&s) * 1.2f - 0.1f; /* some out of range */
+    for (size_t i = 0; i < BIG * 3; i++) in3[i] = rnd(&s) * 2.4f - 1.2f;
+    in2[0] = NAN;
+    in3[4] = -INFINITY;
+    for (size_t i = 0; i < W * H; i++) weights[i] = i % 7 == 0 ? 0.0f : rnd(&s) * (i == 300 ? 1e5f : 1.0f);
+    weights[11] = -3.0f;
+    for (size_t i = 0; i < BIG * 2; i++) us[i] = rnd(&s);
+
+    warps();
+    generators();
+    disk_extras();
+    struct dist hier = {"wcHI", wc_envmap_hierarchical_storage_len, wc_envmap_hierarchical_build,
+                        wc_envmap_hierarchical_validate, wc_envmap_hierarchical_verify,
+                        wc_envmap_hierarchical_sample, wc_envmap_hierarchical_pdf};
+    struct dist marg = {"wcMC", wc_envmap_marginal_conditional_storage_len,
+                        wc_envmap_marginal_conditional_build,
+                        wc_envmap_marginal_conditional_validate,
+                        wc_envmap_marginal_conditional_verify,
+                        wc_envmap_marginal_conditional_sample, wc_envmap_marginal_conditional_pdf};
+    envmap(hier, marg);
+    envmap(marg, hier);
+    images();
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed == 0 ? 0 : 1;
+}

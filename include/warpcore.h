@@ -1,0 +1,561 @@
+/*
+ * warpcore: sample warps, pmj02bn points and environment-map importance sampling for C and
+ * C++ (C99 or later, any C++), bit-identical to the Rust crate. Link libwarpcore_capi.a (or
+ * the shared library) built by `cargo build --release -p warpcore-capi`; see docs/capi.md.
+ *
+ * Conventions: interleaved float arrays (n points = 2n or 3n floats), size_t counts. Every
+ * function returns the number of elements written, and 0 (writing nothing) for n = 0, a null
+ * or misaligned pointer, or overlapping arrays (except exactly in place when an output
+ * element is no larger than an input element). The environment-map builders and checks
+ * return WC_OK or a negative WC_ERR_* code. Nothing unwinds into C. No global state: every
+ * function is thread-safe. Functions of a family left out of the build (Cargo features) are
+ * declared here but absent from the library.
+ *
+ * GENERATED from capi/src by capi/tests/header.rs (cbindgen); do not edit. Regenerate with
+ *   WARPCORE_BLESS=1 cargo test -p warpcore-capi --test header
+ */
+
+#ifndef WARPCORE_H
+#define WARPCORE_H
+
+
+
+#include <stddef.h>
+#include <stdint.h>
+
+// Success.
+#define WC_OK 0
+
+// `width` or `height` is zero.
+#define WC_ERR_ZERO_SIZE (-1)
+
+// A side exceeds 2^24, or the tables would exceed 2^32 words.
+#define WC_ERR_TOO_LARGE (-2)
+
+// An array length does not match the sizes.
+#define WC_ERR_LENGTH_MISMATCH (-3)
+
+// The storage is shorter than `storage_len` (or than its header says).
+#define WC_ERR_STORAGE_TOO_SMALL (-4)
+
+// A weight is `+inf`.
+#define WC_ERR_INFINITE_WEIGHT (-5)
+
+// Word 0 of the storage is not this distribution's format tag.
+#define WC_ERR_WRONG_FORMAT (-6)
+
+// The storage's format version is not the one this library reads.
+#define WC_ERR_UNSUPPORTED_VERSION (-7)
+
+// A header word (or, for `verify`, a table word) holds a value a build never writes.
+#define WC_ERR_CORRUPT (-8)
+
+// A null or misaligned pointer, or arrays that overlap where they must not.
+#define WC_ERR_INVALID_ARGUMENT (-9)
+
+// An error this version of the header has no name for.
+#define WC_ERR_OTHER (-10)
+
+// Words of the header at the start of every storage.
+#define WC_ENVMAP_HEADER_WORDS 8
+
+// The storage format version this library writes and reads (header word 1).
+#define WC_ENVMAP_FORMAT_VERSION 1
+
+// One environment-map sample.
+typedef struct {
+  // The point, in `[0, 1)^2`, inside `texel`.
+  float uv[2];
+  // Density with respect to area on `[0, 1]^2` at `uv` (`P(texel) * width * height`).
+  float pdf;
+  // `[column, row]` of the texel the point lies in.
+  uint32_t texel[2];
+} WcEnvSample;
+
+#ifdef __cplusplus
+extern "C" {
+#endif // __cplusplus
+
+// Polar map, `r = sqrt(u0)`, `theta = 2 pi u1`: `n` points `u` (`2n` floats) to `n` disk
+// points (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer
+// or overlapping arrays other than `u == out`.
+//
+// # Safety
+// `u` must be readable for `2n` floats and `out` writable for `2n` floats.
+size_t wc_disk_polar(const float *u, float *out, size_t n);
+
+// Inverse of the polar map: `n` points `p` (`2n` floats) to `n` points of the unit square.
+// Returns `n` (0 as for `wc_disk_polar`).
+//
+// # Safety
+// `p` must be readable for `2n` floats and `out` writable for `2n` floats.
+size_t wc_disk_polar_inverse(const float *p, float *out, size_t n);
+
+// Concentric (Shirley-Chiu) map: `n` points `u` (`2n` floats) to `n` disk points (`2n`
+// floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or
+// overlapping arrays other than `u == out`.
+//
+// # Safety
+// `u` must be readable for `2n` floats and `out` writable for `2n` floats.
+size_t wc_disk_concentric(const float *u, float *out, size_t n);
+
+// Inverse of the concentric map: `n` points `p` (`2n` floats) to `n` points of the unit
+// square. Returns `n` (0 as for `wc_disk_concentric`).
+//
+// # Safety
+// `p` must be readable for `2n` floats and `out` writable for `2n` floats.
+size_t wc_disk_concentric_inverse(const float *p, float *out, size_t n);
+
+// polar4 (Christensen 2018): `n` disk samples (`2n` floats) from `n_points` points of the
+// square (`2 n_points` floats), four per point: sample `i` uses point `i / 4` in quadrant
+// `i % 4` (`r = sqrt(u0)`, `theta = (pi/2) u1 + (pi/2) (i % 4)`). Returns
+// `min(n, 4 n_points)`, or 0 (writing nothing) for a null or misaligned pointer or
+// overlapping arrays.
+//
+// # Safety
+// `points` must be readable for `2 n_points` floats and `out` writable for `2n` floats.
+size_t wc_disk_polar4(const float *points, size_t n_points, float *out, size_t n);
+
+// Inverse of polar4: `n` disk points `p` (`2n` floats) to their points of the square (`2n`
+// floats, `out`) and quadrants (`n` values in 0..=3, `quadrant`). Returns `n`, or 0 (writing
+// nothing) for a null or misaligned pointer or overlapping arrays other than `p == out`.
+//
+// # Safety
+// `p` must be readable for `2n` floats, `out` writable for `2n` floats and `quadrant`
+// writable for `n` values.
+size_t wc_disk_polar4_inverse(const float *p, float *out, uint32_t *quadrant, size_t n);
+
+// concentric4: `n` disk samples (`2n` floats) from `n_points` points of the square (`2
+// n_points` floats), four per point: sample `i` is the quarter-disk Shirley-Chiu map of point
+// `i / 4`, turned into quadrant `i % 4`. Returns `min(n, 4 n_points)`, or 0 (writing nothing)
+// for a null or misaligned pointer or overlapping arrays.
+//
+// # Safety
+// `points` must be readable for `2 n_points` floats and `out` writable for `2n` floats.
+size_t wc_disk_concentric4(const float *points, size_t n_points, float *out, size_t n);
+
+// Inverse of concentric4: `n` disk points `p` (`2n` floats) to their points of the square
+// (`2n` floats, `out`) and quadrants (`n` values in 0..=3, `quadrant`; the origin gives 0).
+// Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or overlapping arrays
+// other than `p == out`.
+//
+// # Safety
+// `p` must be readable for `2n` floats, `out` writable for `2n` floats and `quadrant`
+// writable for `n` values.
+size_t wc_disk_concentric4_inverse(const float *p, float *out, uint32_t *quadrant, size_t n);
+
+// Words of storage `wc_envmap_hierarchical_build` needs for a `width x height` map (the hierarchical (MIP-pyramid) distribution: compact 2D strata), the
+// 8-word header included; `SIZE_MAX` when the map is too large, 0 for a zero side.
+size_t wc_envmap_hierarchical_storage_len(uint32_t width,
+                                          uint32_t height);
+
+// Builds the hierarchical (MIP-pyramid) distribution: compact 2D strata of `weights` (row-major, `width * height` floats; NaN, negatives and
+// `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. Returns `WC_OK` (0) or
+// a negative `WC_ERR_*`: `ZERO_SIZE`, `TOO_LARGE`, `STORAGE_TOO_SMALL` (`storage_len` below
+// `wc_envmap_hierarchical_storage_len`), `INFINITE_WEIGHT`, `INVALID_ARGUMENT` (null or misaligned
+// pointer, weights overlapping the storage). Writes only the first
+// `wc_envmap_hierarchical_storage_len(width, height)` words (also when it fails after the checks).
+// The storage's bytes are the file format: write them to a file and sample them later, on
+// any machine.
+//
+// # Safety
+// `weights` must be readable for `width * height` floats and `storage` writable for
+// `storage_len` words.
+int32_t wc_envmap_hierarchical_build(const float *weights,
+                                     uint32_t width,
+                                     uint32_t height,
+                                     uint32_t *storage,
+                                     size_t storage_len);
+
+// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
+// or `WC_ERR_WRONG_FORMAT`, `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`,
+// `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_INVALID_ARGUMENT`. Sampling a storage that passes is
+// safe whatever its table words hold (samples stay in the map); the sample and pdf functions
+// run this check on every call.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words.
+int32_t wc_envmap_hierarchical_validate(const uint32_t *storage, size_t storage_len);
+
+// `wc_envmap_hierarchical_validate` plus one pass over every table word, rejecting
+// (`WC_ERR_CORRUPT`) tables that break the format's invariants: for loaders that want to
+// catch a corrupted file. Time proportional to the storage.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words.
+int32_t wc_envmap_hierarchical_verify(const uint32_t *storage, size_t storage_len);
+
+// Draws `n` samples from a built (or loaded) storage: texels in proportion to their weight,
+// a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
+// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) if the
+// storage fails `wc_envmap_hierarchical_validate`, for a null or misaligned pointer, or if `out`
+// overlaps `u` or the storage.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
+// writable for `n` samples.
+size_t wc_envmap_hierarchical_sample(const uint32_t *storage,
+                                     size_t storage_len,
+                                     const float *u,
+                                     WcEnvSample *out,
+                                     size_t n);
+
+// Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
+// the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
+// sample at that point reports. Returns `n`, or 0 as for `wc_envmap_hierarchical_sample`.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
+// writable for `n` floats.
+size_t wc_envmap_hierarchical_pdf(const uint32_t *storage,
+                                  size_t storage_len,
+                                  const float *uv,
+                                  float *out,
+                                  size_t n);
+
+// Words of storage `wc_envmap_marginal_conditional_build` needs for a `width x height` map (the marginal-conditional distribution (a row by its total, then a column)), the
+// 8-word header included; `SIZE_MAX` when the map is too large, 0 for a zero side.
+size_t wc_envmap_marginal_conditional_storage_len(uint32_t width,
+                                                  uint32_t height);
+
+// Builds the marginal-conditional distribution (a row by its total, then a column) of `weights` (row-major, `width * height` floats; NaN, negatives and
+// `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. Returns `WC_OK` (0) or
+// a negative `WC_ERR_*`: `ZERO_SIZE`, `TOO_LARGE`, `STORAGE_TOO_SMALL` (`storage_len` below
+// `wc_envmap_marginal_conditional_storage_len`), `INFINITE_WEIGHT`, `INVALID_ARGUMENT` (null or misaligned
+// pointer, weights overlapping the storage). Writes only the first
+// `wc_envmap_marginal_conditional_storage_len(width, height)` words (also when it fails after the checks).
+// The storage's bytes are the file format: write them to a file and sample them later, on
+// any machine.
+//
+// # Safety
+// `weights` must be readable for `width * height` floats and `storage` writable for
+// `storage_len` words.
+int32_t wc_envmap_marginal_conditional_build(const float *weights,
+                                             uint32_t width,
+                                             uint32_t height,
+                                             uint32_t *storage,
+                                             size_t storage_len);
+
+// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
+// or `WC_ERR_WRONG_FORMAT`, `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`,
+// `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_INVALID_ARGUMENT`. Sampling a storage that passes is
+// safe whatever its table words hold (samples stay in the map); the sample and pdf functions
+// run this check on every call.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words.
+int32_t wc_envmap_marginal_conditional_validate(const uint32_t *storage, size_t storage_len);
+
+// `wc_envmap_marginal_conditional_validate` plus one pass over every table word, rejecting
+// (`WC_ERR_CORRUPT`) tables that break the format's invariants: for loaders that want to
+// catch a corrupted file. Time proportional to the storage.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words.
+int32_t wc_envmap_marginal_conditional_verify(const uint32_t *storage, size_t storage_len);
+
+// Draws `n` samples from a built (or loaded) storage: texels in proportion to their weight,
+// a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
+// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) if the
+// storage fails `wc_envmap_marginal_conditional_validate`, for a null or misaligned pointer, or if `out`
+// overlaps `u` or the storage.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
+// writable for `n` samples.
+size_t wc_envmap_marginal_conditional_sample(const uint32_t *storage,
+                                             size_t storage_len,
+                                             const float *u,
+                                             WcEnvSample *out,
+                                             size_t n);
+
+// Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
+// the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
+// sample at that point reports. Returns `n`, or 0 as for `wc_envmap_marginal_conditional_sample`.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
+// writable for `n` floats.
+size_t wc_envmap_marginal_conditional_pdf(const uint32_t *storage,
+                                          size_t storage_len,
+                                          const float *uv,
+                                          float *out,
+                                          size_t n);
+
+// Rec. 709 luminance of `n` RGB texels (`3n` floats) to `n` weights (NaN and negatives
+// weigh 0). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or
+// overlapping arrays other than `rgb == out`.
+//
+// # Safety
+// `rgb` must be readable for `3n` floats and `out` writable for `n` floats.
+size_t wc_envmap_luminance(const float *rgb, float *out, size_t n);
+
+// Multiplies row `r` of a lat-long weight map (in place, `width * height` floats) by
+// `sin(pi (r + 1/2) / height)`, its solid-angle factor. Returns `WC_OK`, `WC_ERR_ZERO_SIZE`
+// or `WC_ERR_INVALID_ARGUMENT` (null or misaligned pointer).
+//
+// # Safety
+// `weights` must be readable and writable for `width * height` floats.
+int32_t wc_envmap_latlong_solid_angle_weights(float *weights, uint32_t width, uint32_t height);
+
+// Lat-long density conversion: `n` densities over the square (`pdf`) at rows `v` (`n`
+// floats) to densities per steradian, `pdf / (2 pi^2 sin(pi v))` (0 at the poles). Returns
+// `n`, or 0 (writing nothing) for a null or misaligned pointer or an `out` overlapping `v`.
+//
+// # Safety
+// `pdf` and `v` must be readable for `n` floats and `out` writable for `n` floats.
+size_t wc_envmap_latlong_pdf_to_solid_angle(const float *pdf, const float *v, float *out, size_t n);
+
+// Resamples a lat-long image (`src_width x src_height` texels of `channels` floats, 1 to 4)
+// onto the `size x size` equal-area octahedral square (`dst`, `size * size * channels`
+// floats), each output texel the average of `supersample^2` stratified point samples
+// (bilinear, wrapping in longitude). Returns `WC_OK` or `WC_ERR_ZERO_SIZE`,
+// `WC_ERR_TOO_LARGE`, `WC_ERR_INVALID_ARGUMENT` (channels outside 1..=4, a null or
+// misaligned pointer, overlapping arrays).
+//
+// # Safety
+// `src` must be readable for `src_width * src_height * channels` floats and `dst` writable
+// for `size * size * channels` floats.
+int32_t wc_envmap_latlong_to_equal_area(const float *src,
+                                        uint32_t src_width,
+                                        uint32_t src_height,
+                                        uint32_t channels,
+                                        float *dst,
+                                        uint32_t size,
+                                        uint32_t supersample);
+
+// Points `start, start + 1, ..., start + n - 1` (indices wrap after `UINT32_MAX`) of
+// `seed`'s Owen-scrambled pmj02bn sequence, in `[0, 1)^2`: `2n` floats. Every power-of-two
+// prefix (and aligned block) is a (0,m,2)-net. Returns `n`, or 0 (writing nothing) for a
+// null or misaligned `out`.
+//
+// # Safety
+// `out` must be writable for `2n` floats.
+size_t wc_pmj02bn_sample(uint32_t start, uint32_t seed, float *out, size_t n);
+
+// The unscrambled table points `start, ..., start + n - 1` of table set `set` (both taken
+// modulo the table size, `wc_pmj02bn_sets()` and `wc_pmj02bn_points()`), as 0.32 fixed point:
+// `2n` `uint32_t`. Returns `n`, or 0 (writing nothing) for a null or misaligned `out`.
+//
+// # Safety
+// `out` must be writable for `2n` values.
+size_t wc_pmj02bn_raw(uint32_t set, uint32_t start, uint32_t *out, size_t n);
+
+// The index permutation that decorrelates dimension pairs while keeping every power-of-two
+// prefix as a set: `out[i] = shuffle(index[i], seed)`. Returns `n`, or 0 (writing nothing)
+// for a null or misaligned pointer or overlapping arrays other than `index == out`.
+//
+// # Safety
+// `index` must be readable and `out` writable for `n` values.
+size_t wc_pmj02bn_shuffle(const uint32_t *index, uint32_t seed, uint32_t *out, size_t n);
+
+// Points per table set in this build (1024, 4096, 16384 or 65536; features).
+size_t wc_pmj02bn_points(void);
+
+// Table sets in this build (1 or 4; features).
+size_t wc_pmj02bn_sets(void);
+
+// Independent uniform points `start, ..., start + n - 1` of `seed` (a counter-based hash),
+// in `[0, 1)^2`: `2n` floats. Returns `n`, or 0 (writing nothing) for a null or misaligned
+// `out`.
+//
+// # Safety
+// `out` must be writable for `2n` floats.
+size_t wc_sequence_random(uint32_t start, uint32_t seed, float *out, size_t n);
+
+// Jittered points `start, ..., start + n - 1` of an `m x m` grid, `m = floor(sqrt(count))`
+// (at most 4096; indices past `m^2` are random), for `seed`: `2n` floats. Returns `n`, or 0
+// (writing nothing) for a null or misaligned `out`.
+//
+// # Safety
+// `out` must be writable for `2n` floats.
+size_t wc_sequence_stratified(uint32_t start, uint32_t count, uint32_t seed, float *out, size_t n);
+
+// Equal-area octahedral map (Clarberg 2008; the square's centre is +z, its corners -z): `n` points `u` (`2n` floats) to `n` unit directions (`3n` floats). Returns `n`, or
+// 0 (writing nothing) for a null or misaligned pointer or overlapping arrays.
+//
+// # Safety
+// `u` must be readable for `2n` floats and `out` writable for `3n` floats.
+size_t wc_sphere_equal_area(const float *u,
+                            float *out,
+                            size_t n);
+
+// Inverse of `wc_sphere_equal_area`: `n` directions `d` (`3n` floats) to `n` points of the
+// square (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer
+// or overlapping arrays other than `d == out`.
+//
+// # Safety
+// `d` must be readable for `3n` floats and `out` writable for `2n` floats.
+size_t wc_sphere_equal_area_inverse(const float *d, float *out, size_t n);
+
+// Lat-long map, `phi = 2 pi u0`, `theta = pi u1` (row `v = 0` is +z): `n` points `u` (`2n` floats) to `n` unit directions (`3n` floats). Returns `n`, or
+// 0 (writing nothing) for a null or misaligned pointer or overlapping arrays.
+//
+// # Safety
+// `u` must be readable for `2n` floats and `out` writable for `3n` floats.
+size_t wc_sphere_equirect(const float *u,
+                          float *out,
+                          size_t n);
+
+// Inverse of `wc_sphere_equirect`: `n` directions `d` (`3n` floats) to `n` points of the
+// square (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer
+// or overlapping arrays other than `d == out`.
+//
+// # Safety
+// `d` must be readable for `3n` floats and `out` writable for `2n` floats.
+size_t wc_sphere_equirect_inverse(const float *d, float *out, size_t n);
+
+// Uniform sphere, `z = 1 - 2 u0`, `phi = 2 pi u1`: `n` points `u` (`2n` floats) to `n` unit directions (`3n` floats). Returns `n`, or
+// 0 (writing nothing) for a null or misaligned pointer or overlapping arrays.
+//
+// # Safety
+// `u` must be readable for `2n` floats and `out` writable for `3n` floats.
+size_t wc_sphere_uniform(const float *u,
+                         float *out,
+                         size_t n);
+
+// Inverse of `wc_sphere_uniform`: `n` directions `d` (`3n` floats) to `n` points of the
+// square (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer
+// or overlapping arrays other than `d == out`.
+//
+// # Safety
+// `d` must be readable for `3n` floats and `out` writable for `2n` floats.
+size_t wc_sphere_uniform_inverse(const float *d, float *out, size_t n);
+
+// Uniform upper hemisphere (`z >= 0`; concentric disk lifted by Lambert's map): `n` points `u` (`2n` floats) to `n` unit directions (`3n` floats). Returns `n`, or
+// 0 (writing nothing) for a null or misaligned pointer or overlapping arrays.
+//
+// # Safety
+// `u` must be readable for `2n` floats and `out` writable for `3n` floats.
+size_t wc_sphere_uniform_hemisphere(const float *u,
+                                    float *out,
+                                    size_t n);
+
+// Inverse of `wc_sphere_uniform_hemisphere`: `n` directions `d` (`3n` floats) to `n` points of the
+// square (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer
+// or overlapping arrays other than `d == out`.
+//
+// # Safety
+// `d` must be readable for `3n` floats and `out` writable for `2n` floats.
+size_t wc_sphere_uniform_hemisphere_inverse(const float *d, float *out, size_t n);
+
+// Cosine-weighted upper hemisphere (concentric disk lifted by Malley's method): `n` points `u` (`2n` floats) to `n` unit directions (`3n` floats). Returns `n`, or
+// 0 (writing nothing) for a null or misaligned pointer or overlapping arrays.
+//
+// # Safety
+// `u` must be readable for `2n` floats and `out` writable for `3n` floats.
+size_t wc_sphere_cosine_hemisphere(const float *u,
+                                   float *out,
+                                   size_t n);
+
+// Inverse of `wc_sphere_cosine_hemisphere`: `n` directions `d` (`3n` floats) to `n` points of the
+// square (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer
+// or overlapping arrays other than `d == out`.
+//
+// # Safety
+// `d` must be readable for `3n` floats and `out` writable for `2n` floats.
+size_t wc_sphere_cosine_hemisphere_inverse(const float *d, float *out, size_t n);
+
+// Folds points beyond the octahedral square's edges onto their neighbours on the sphere
+// (`(1 + e, v) -> (1 - e, 1 - v)`, ...): `n` points (`2n` floats) to `n` points of
+// `[0, 1]^2`. Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or
+// overlapping arrays other than `u == out`.
+//
+// # Safety
+// `u` must be readable for `2n` floats and `out` writable for `2n` floats.
+size_t wc_sphere_equal_area_wrap(const float *u, float *out, size_t n);
+
+// `wc_sphere_equal_area_wrap` for texel indices of a `size x size` equal-area image: `n`
+// texels `[column, row]` (`2n` `int32_t`, any values) to `n` texels inside the image (`2n`
+// `uint32_t`), for bilinear filtering across the edges. Returns `n`, or 0 (writing nothing)
+// for a null or misaligned pointer, overlapping arrays other than `texel == out`, or
+// `size == 0`.
+//
+// # Safety
+// `texel` must be readable for `2n` values and `out` writable for `2n` values.
+size_t wc_sphere_equal_area_wrap_texel(const int32_t *texel,
+                                       uint32_t size,
+                                       uint32_t *out,
+                                       size_t n);
+
+// Density conversion for the equal-area map: `n` densities over the square to densities per
+// steradian (`pdf / (4 pi)`; NaN and negative become 0). Returns `n`, or 0 (writing nothing)
+// for a null or misaligned pointer or overlapping arrays other than `pdf == out`.
+//
+// # Safety
+// `pdf` must be readable and `out` writable for `n` floats.
+size_t wc_sphere_equal_area_pdf_to_solid_angle(const float *pdf, float *out, size_t n);
+
+// Density of the cosine-weighted hemisphere per steradian, `cos_theta / pi` (0 below the
+// horizon): `n` cosines to `n` densities. Returns `n` (0 as for
+// `wc_sphere_equal_area_pdf_to_solid_angle`).
+//
+// # Safety
+// `cos_theta` must be readable and `out` writable for `n` floats.
+size_t wc_sphere_cosine_hemisphere_pdf(const float *cos_theta, float *out, size_t n);
+
+// Density conversion for the lat-long map: `n` densities over the square (`pdf`) at
+// directions `d` (`3n` floats) to densities per steradian, `pdf / (2 pi^2 sin theta)` (0 on
+// the axis). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or an
+// `out` that overlaps an input other than `pdf == out`.
+//
+// # Safety
+// `pdf` must be readable for `n` floats, `d` for `3n` floats, and `out` writable for `n`
+// floats.
+size_t wc_sphere_equirect_pdf_to_solid_angle(const float *pdf,
+                                             const float *d,
+                                             float *out,
+                                             size_t n);
+
+// Low-distortion map (Heitz 2019): `n` points `u` (`2n` floats) to `n` barycentrics (`3n`
+// floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or
+// overlapping arrays.
+//
+// # Safety
+// `u` must be readable for `2n` floats and `out` writable for `3n` floats.
+size_t wc_triangle_uniform(const float *u, float *out, size_t n);
+
+// Inverse of the low-distortion map: `n` barycentrics `b` (`3n` floats; `b2` is implied) to
+// `n` points of the square (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or
+// misaligned pointer or overlapping arrays other than `b == out`.
+//
+// # Safety
+// `b` must be readable for `3n` floats and `out` writable for `2n` floats.
+size_t wc_triangle_uniform_inverse(const float *b, float *out, size_t n);
+
+// Square-root map, `b0 = 1 - sqrt(u0)`, `b1 = u1 sqrt(u0)`: `n` points `u` (`2n` floats) to
+// `n` barycentrics (`3n` floats). Returns `n` (0 as for `wc_triangle_uniform`).
+//
+// # Safety
+// `u` must be readable for `2n` floats and `out` writable for `3n` floats.
+size_t wc_triangle_sqrt_map(const float *u, float *out, size_t n);
+
+// Inverse of the square-root map: `n` barycentrics (`3n` floats) to `n` points of the
+// square (`2n` floats). Returns `n` (0 as for `wc_triangle_uniform_inverse`).
+//
+// # Safety
+// `b` must be readable for `3n` floats and `out` writable for `2n` floats.
+size_t wc_triangle_sqrt_map_inverse(const float *b, float *out, size_t n);
+
+// Basu-Owen points: barycentrics of points `start, start + 1, ..., start + n - 1` (indices
+// wrap after `UINT32_MAX`) of `seed`'s scrambled sequence (`seed = 0`: unscrambled), `3n`
+// floats. Returns `n`, or 0 (writing nothing) for a null or misaligned `out`.
+//
+// # Safety
+// `out` must be writable for `3n` floats.
+size_t wc_triangle_basu_owen(uint32_t start, uint32_t seed, float *out, size_t n);
+
+// Basu-Owen points with one digit permutation per level, shared by every node of the level
+// (`seed = 0`: unscrambled): barycentrics of points `start, ..., start + n - 1` (indices wrap
+// after `UINT32_MAX`), `3n` floats. Returns `n`, or 0 (writing nothing) for a null or
+// misaligned `out`.
+//
+// # Safety
+// `out` must be writable for `3n` floats.
+size_t wc_triangle_basu_owen_permuted(uint32_t start, uint32_t seed, float *out, size_t n);
+
+#ifdef __cplusplus
+}  // extern "C"
+#endif  // __cplusplus
+
+#endif  /* WARPCORE_H */
