@@ -1,9 +1,10 @@
 //! The lane abstraction: every warp in this crate is written once, generically over [`Lane`],
-//! and instantiated for `f32` (one sample) and [`f32x8`] (eight samples in SIMD lanes).
+//! and instantiated for `f32` (one sample), [`f32x8`] (eight samples in SIMD lanes) and
+//! [`f32x16`] (sixteen: one AVX-512 register, or two 8-lane halves where `wide` emulates it).
 //!
 //! The trait holds only operations whose result is fully specified by IEEE 754 (add, sub,
-//! mul, div, sqrt, compare, bit operations), so the scalar and the 8-wide instantiations of
-//! one body produce the same bits by construction:
+//! mul, div, sqrt, compare, bit operations), so the scalar and the SIMD instantiations of one
+//! body produce the same bits by construction:
 //!
 //! * no fused multiply-add (`mul_add` fuses on some builds only);
 //! * no approximate reciprocal or reciprocal square root;
@@ -18,8 +19,15 @@
 //! replaced with a select before they are used.
 //!
 //! The square root is correctly rounded on every path: `libm::sqrtf` for scalars, and for
-//! `f32x8` the hardware instruction where `wide` has one (SSE/AVX, wasm `simd128`, aarch64
-//! NEON) and `libm::sqrtf` per lane elsewhere (never `wide`'s no-std software fallback).
+//! `f32x8` and `f32x16` the hardware instruction where `wide` has one (SSE/AVX/AVX-512, wasm
+//! `simd128`, aarch64 NEON; `f32x16` without AVX-512 is two `f32x8` square roots) and
+//! `libm::sqrtf` per lane elsewhere (never `wide`'s no-std software fallback).
+//!
+//! The integer operations of `u32x16` match `u32x8` lane for lane: wrapping arithmetic,
+//! shifts by a count taken modulo 32 (`wide` masks it on both), unsigned compares (AVX-512 has
+//! an unsigned compare instruction; elsewhere `wide` biases by `2^31`), and selects on masks
+//! whose lanes are all ones or all zeros (`wide` blends by the top bit or by bytes, which
+//! agree on such masks). The tests below check each against the scalar `Wrapping<u32>`.
 
 use core::num::Wrapping;
 use core::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};

@@ -2,8 +2,8 @@
 //!
 //! Sample warps for renderers: turn points of the unit square (or sample indices) into
 //! well-distributed points on the domains a renderer integrates over — the disk, the triangle,
-//! the sphere, an environment map — with scalar, 8-wide SIMD ([`f32x8`]) and slice entry
-//! points that give **bit-identical** results; plus the points themselves: Owen-scrambled
+//! the sphere, an environment map — with scalar, 8-wide ([`f32x8`]) and 16-wide ([`f32x16`])
+//! SIMD and slice entry points that give **bit-identical** results; plus the points themselves: Owen-scrambled
 //! pmj02bn from embedded tables, and random and stratified baselines.
 //!
 //! `#![no_std]`, no allocation, `#![forbid(unsafe_code)]`; depends only on `libm`, `wide` and
@@ -23,8 +23,8 @@
 //! ## Guarantees
 //!
 //! * **Determinism.** Every warp is written once, generically over a small lane trait
-//!   implemented for `f32` and [`f32x8`]; `_x8` and `_slice` forms are thin wrappers, so they
-//!   agree with the scalar form bit for bit. The bodies use only correctly rounded IEEE
+//!   implemented for `f32`, [`f32x8`] and [`f32x16`]; `_x8`, `_x16` and `_slice` forms are thin
+//!   wrappers, so they agree with the scalar form bit for bit. The bodies use only correctly rounded IEEE
 //!   operations (add, mul, div, sqrt), compares and bit operations: no fused multiply-add, no
 //!   approximate reciprocals, no libm transcendentals (our own polynomials instead), no
 //!   `min`/`max` (their NaN and signed-zero rules differ between instruction sets). The same
@@ -38,7 +38,13 @@
 //!   negatives and `-inf` become `0`; values `>= 1` and `+inf` become `1 - 2^-24`. Each
 //!   module documents its inverses' rule.
 //! * **Slices** accept any lengths: they process `min(input.len(), output.len())` elements
-//!   and return that count.
+//!   and return that count. They run 16 lanes when the build has AVX-512F (`-C
+//!   target-cpu=native` on such a CPU; a compile-time choice, no runtime detection) and 8
+//!   otherwise, with the same bits.
+//! * **Widths.** `_x8` takes [`f32x8`] / [`u32x8`] lanes, `_x16` takes [`f32x16`] /
+//!   [`u32x16`]: for callers whose own data is in 8- or 16-lane structure-of-arrays form. On
+//!   targets without 16-lane vectors `wide` runs an `f32x16` as two `f32x8` halves (same bits,
+//!   no speed-up over two `_x8` calls).
 //!
 //! ## Features
 //!

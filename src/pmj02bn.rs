@@ -4,8 +4,8 @@
 //! | function | returns |
 //! |---|---|
 //! | [`raw`] | table point `index` of set `set`, unscrambled, 0.32 fixed point |
-//! | [`sample`], [`sample_x8`], [`sample_slice`] | point `index` of the sequence for `seed`, in `[0, 1)^2` |
-//! | [`shuffle`], [`shuffle_x8`] | an optional prefix-preserving permutation of indices |
+//! | [`sample`], [`sample_x8`], [`sample_x16`], [`sample_slice`] | point `index` of the sequence for `seed`, in `[0, 1)^2` |
+//! | [`shuffle`], [`shuffle_x8`], [`shuffle_x16`] | an optional prefix-preserving permutation of indices |
 //!
 //! **The tables.** [`SETS`] sets of [`POINTS`] points each, chosen by Cargo features (see the
 //! crate docs), generated offline by `tools/pmjgen` (Christensen, Kensler and Kilpatrick,
@@ -209,14 +209,18 @@ fn finish<L: Lane>(x: L::U, y: L::U, keys: Keys<L::U>) -> [L; 2] {
     ]
 }
 
-/// `N` consecutive points `r .. r + N` of a set as two coordinate vectors: `8 N` contiguous
-/// bytes read as whole words and deinterleaved, instead of an `N`-lane gather. `None` when
-/// the points do not fit in the set (the caller falls back to the gather).
+/// `N` consecutive points `r .. r + N` of a set, Owen-scrambled and converted in place: the
+/// `8 N` contiguous bytes are read as two vectors of words in table order (`x0, y0, x1, y1,
+/// ..`), each word is scrambled with its coordinate's key (`keys_xy` alternates the x and y
+/// keys lane by lane) and converted, and the result is already the array-of-structs output:
+/// no gather, no transposes. `None` when the points do not fit in the set (the caller falls
+/// back to the gather).
 #[inline(always)]
 fn consecutive_points<L: Vector<N>, const N: usize>(
     view: &[[u8; 8]; POINTS],
     r: usize,
-) -> Option<[L::U; 2]> {
+    keys_xy: L::U,
+) -> Option<[[f32; 2]; N]> {
     let group: &[[u8; 8]; N] = view.get(r..r.wrapping_add(N))?.try_into().ok()?;
     let mut rows = [[0u32; N]; 2];
     for (w, c) in rows
@@ -226,7 +230,11 @@ fn consecutive_points<L: Vector<N>, const N: usize>(
     {
         *w = u32::from_le_bytes(*c);
     }
-    Some(batch::deinterleave::<L, N, 2>(&rows))
+    let out = rows.map(|w| {
+        let v: L = to_unit(owen_scramble(L::words(w), keys_xy));
+        L::to_words(v.to_bits())
+    });
+    Some(bytemuck::cast(out))
 }
 
 /// Table point `r < POINTS` under `keys`: lane-wise lookup, Owen scrambles, conversion.
@@ -300,18 +308,19 @@ fn sample_lanes<L: Vector<N>, const N: usize>(
         // crosses the set's end, so the gather fallback is only there to avoid a panic path);
         // the last 1 to N - 1 points take the gather path.
         let set = view(one.set.0 as usize >> LOG2_POINTS);
+        let keys_xy = L::words(core::array::from_fn(|l| [one.x.0, one.y.0][l % 2]));
         let r0 = index as usize & (POINTS - 1);
         let (groups, _) = run.as_chunks_mut::<N>();
         let whole = groups.len() * N;
         for (g, dst) in groups.iter_mut().enumerate() {
             let r = r0 + N * g;
-            *dst = batch::store(match consecutive_points::<L, N>(set, r) {
-                Some([x, y]) => finish::<L>(x, y, k),
-                None => point::<L>(
+            *dst = match consecutive_points::<L, N>(set, r, keys_xy) {
+                Some(points) => points,
+                None => batch::store(point::<L>(
                     (L::U::splat(r as u32) + batch::lane_numbers::<L, N>()) & mask,
                     k,
-                ),
-            });
+                )),
+            };
         }
         let tail_start = index.wrapping_add(whole as u32);
         let tail_out = run.get_mut(whole..).unwrap_or(&mut []);

@@ -8,7 +8,7 @@
 //! | [`uniform_hemisphere`] | concentric disk, then Lambert's equal-area lift | [`HEMISPHERE_PDF`] `= 1/(2 pi)` | Shirley and Chiu 1997 + Lambert azimuthal projection; Mitsuba 3 `square_to_uniform_hemisphere` |
 //! | [`cosine_hemisphere`] | concentric disk, then `z = sqrt(1 - r^2)` (Malley's method) | [`cosine_hemisphere_pdf`] `= cos theta / pi` | Malley 1988; Shirley and Chiu 1997 |
 //!
-//! Every warp has an inverse, an 8-wide `_x8` form and a `_slice` form, all bit-identical to
+//! Every warp has an inverse, 8- and 16-wide `_x8` and `_x16` forms and a `_slice` form, all bit-identical to
 //! the scalar form. Directions are `[x, y, z]`; `phi` is measured counter-clockwise from `+x`
 //! and `theta` from `+z`, so the hemispheres are `z >= 0`. [`equal_area`] and [`equirect`]
 //! are the two environment-map layouts: use [`equal_area_inverse`] / [`equirect_inverse`] to
