@@ -95,14 +95,22 @@ fn main() {
     let f = filter.as_str();
     map("disk::concentric_slice", f, disk::concentric_slice);
     map("disk::polar_slice", f, disk::polar_slice);
-    map("disk::concentric_inverse_slice", f, disk::concentric_inverse_slice);
+    map(
+        "disk::concentric_inverse_slice",
+        f,
+        disk::concentric_inverse_slice,
+    );
     // The quadrant slices: BATCH / 4 points in, BATCH samples out.
-    map("disk::polar4_slice", f, |p: &[[f32; 2]], o: &mut [[f32; 2]]| {
-        disk::polar4_slice(&p[..BATCH / 4], o)
-    });
-    map("disk::concentric4_slice", f, |p: &[[f32; 2]], o: &mut [[f32; 2]]| {
-        disk::concentric4_slice(&p[..BATCH / 4], o)
-    });
+    map(
+        "disk::polar4_slice",
+        f,
+        |p: &[[f32; 2]], o: &mut [[f32; 2]]| disk::polar4_slice(&p[..BATCH / 4], o),
+    );
+    map(
+        "disk::concentric4_slice",
+        f,
+        |p: &[[f32; 2]], o: &mut [[f32; 2]]| disk::concentric4_slice(&p[..BATCH / 4], o),
+    );
     map("triangle::uniform_slice", f, triangle::uniform_slice);
     map("triangle::sqrt_map_slice", f, triangle::sqrt_map_slice);
     indexed("triangle::basu_owen_slice", f, triangle::basu_owen_slice);
