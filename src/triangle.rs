@@ -12,15 +12,18 @@
 //! point per sub-triangle. The nested scramble ([`basu_owen`]) places each point
 //! independently inside its sub-triangle, like a jittered grid of sub-triangles; the
 //! per-level permutation ([`basu_owen_permuted`]) puts every point of an aligned block at the
-//! same place in its sub-triangle, like systematic sampling. Measured on a triangle light
-//! (MSE, 8192 pixels, two replicates; see `docs/REPORT.md` for the report's figures): in
-//! pixels where an occluder edge crosses the light (penumbrae) the per-level permutation has
-//! about 1.3x lower MSE than Owen-scrambled pmj02bn through [`uniform`], and the nested
-//! scramble about 1.4x higher; in fully lit pixels (a smooth integrand) Owen-scrambled pmj02bn
-//! through [`uniform`] beats both by 2-5x. So: pmj02bn + [`uniform`] for lights that are
-//! mostly unoccluded, [`basu_owen_permuted`] where shadow edges dominate; the nested
-//! [`basu_owen`] when independent points per seed matter more than error (e.g. as a
-//! statistically clean baseline).
+//! same place in its sub-triangle, like systematic sampling. The report (`docs/REPORT.md`;
+//! a triangle light, 32768 pixels per class) measures at 256 samples per pixel: in pixels
+//! where an occluder edge crosses the light (penumbrae) the per-level permutation has 0.80x
+//! the MSE of Owen-scrambled pmj02bn through [`uniform`] (0.85x through [`sqrt_map`]), the
+//! best triangle strategy there and in the mixed image, and the nested scramble 1.38x; in
+//! fully lit pixels (a smooth integrand) it is the best strategy at 16 samples per pixel, but
+//! at 256 pmj02bn through [`uniform`] is 2.5x better and through [`sqrt_map`] 5.7x (their
+//! convergence rates are `N^-2.45` and `N^-2.65` against `N^-2.0`), and the nested scramble
+//! is 13x worse. So: [`basu_owen_permuted`] where shadow edges matter or sample counts are
+//! low, pmj02bn + [`sqrt_map`] or [`uniform`] for unoccluded lights at high counts; the
+//! nested [`basu_owen`] when statistically independent point positions per seed matter more
+//! than error.
 //!
 //! **Barycentrics.** `b_i` weights vertex `v_i` of *your* triangle: the point is
 //! `b0 v0 + b1 v1 + b2 v2` (or, to keep small coordinates precise, `v2 + b0 (v0 - v2) +
@@ -389,10 +392,11 @@ pub fn basu_owen_slice(start: u32, seed: u32, out: &mut [[f32; 3]]) -> usize {
 ///   correlated like systematic sampling instead of independent like jittering.
 ///
 /// **Which randomization when.** The shared offset is what pays at an occluder edge: in the
-/// report's triangle-light penumbrae this per-level permutation has about 1.3x lower MSE than
-/// Owen-scrambled pmj02bn through [`uniform`], while the nested scramble of [`basu_owen`]
-/// behaves like a jittered grid of sub-triangles and loses to pmj02bn. Where the integrand is
-/// smooth (fully lit pixels) Owen-scrambled pmj02bn stays ahead of both. See `docs/REPORT.md`.
+/// report's triangle-light penumbrae this per-level permutation has 0.80x the MSE of
+/// Owen-scrambled pmj02bn through [`uniform`] at 256 samples per pixel, where the nested
+/// scramble of [`basu_owen`] behaves like a jittered grid of sub-triangles and has 1.38x. In
+/// fully lit pixels it is the best at 16 samples per pixel, and pmj02bn through a square warp
+/// at 256 (2.5-5.7x). See the [module docs](self) and `docs/REPORT.md`.
 ///
 /// Same guarantees as [`basu_owen`]: the exact centroid of a level-16 sub-triangle rounded to
 /// the `2^-24` grid (within 4e-8 of it), multiples of `2^-24` summing to exactly 1, every

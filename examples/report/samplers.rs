@@ -84,18 +84,24 @@ impl Sampler {
             return self.fill_from(seed, start, out);
         }
         let block = block.max(1);
+        let mut grid = u32::MAX;
+        let (mut a, mut b, mut jitter) = (1u64, 0u64, 0u32);
         for (k, o) in out.iter_mut().enumerate() {
             let i = start + k as u32;
-            let (grid, j) = (i / block, i % block);
-            let h = hash(&[seed as u64, grid as u64]);
-            // Odd multipliers are coprime with every power of two; for other block sizes
-            // step until coprime (block is a square here: 16, 64, ...).
-            let mut a = (h as u32) | 1;
-            while gcd(a % block, block) != 1 {
-                a = a.wrapping_add(2);
+            if i / block != grid {
+                // A new grid: its seed and its cell order `(a j + b) mod block`, drawn once.
+                grid = i / block;
+                let h = hash(&[seed as u64, grid as u64]);
+                // Odd multipliers are coprime with the powers of two used here; for other
+                // block sizes step until coprime.
+                let mut m = (h as u32) | 1;
+                while gcd(m % block, block) != 1 {
+                    m = m.wrapping_add(2);
+                }
+                (a, b, jitter) = (m as u64, h >> 32, (h >> 16) as u32);
             }
-            let cell = ((a as u64 * j as u64 + (h >> 32)) % block as u64) as u32;
-            *o = sequence::stratified(cell, block, (h >> 16) as u32);
+            let cell = ((a * (i % block) as u64 + b) % block as u64) as u32;
+            *o = sequence::stratified(cell, block, jitter);
         }
     }
 
