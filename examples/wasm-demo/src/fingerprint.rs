@@ -28,6 +28,12 @@ const SPECIALS: [f32; 12] = [
 
 pub struct Hasher(u64);
 
+impl Default for Hasher {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl Hasher {
     pub fn new() -> Self {
         Hasher(0xcbf2_9ce4_8422_2325)
