@@ -543,26 +543,36 @@ fn chi2_concentric() {
     chi2_disk("disk::concentric", 102, disk::concentric);
 }
 
-/// Each quadrant separately: its samples must be uniform on its quarter of the disk and
-/// absent from the other three (cells there expect probability 0).
-#[test]
-fn chi2_polar4_each_quadrant() {
+/// Each quadrant separately: a quadrant warp's samples must be uniform on its quarter of the
+/// disk and absent from the other three (cells there expect probability 0). Inputs come from
+/// `(0, 1) x [0, 1)`: concentric4 maps the edge `u0 = 0` onto the axis shared with the next
+/// quadrant, a set of measure zero that the histogram's half-open cells would count there.
+fn chi2_each_quadrant(name: &str, seed: u64, warp: impl Fn([f32; 2], u32) -> [f32; 2]) {
     for q in 0..4u32 {
         let mut h = chi2::Histogram::new(NR, NA);
-        let mut r = rng(200 + q as u64);
+        let mut r = rng(seed + q as u64);
         for _ in 0..chi2::SAMPLES {
-            h.add(chi2::disk(disk::polar4(unit2(&mut r), q)));
+            let mut u = unit2(&mut r);
+            if u[0] == 0.0 {
+                u[0] = 0.5 / 16_777_216.0;
+            }
+            h.add(chi2::disk(warp(u, q)));
         }
+        // Cells are aligned with quadrants (NA divisible by 4): density on quadrant q.
         let expected = chi2::expected_from_density(NR, NA, |s| {
-            // Cells are aligned with quadrants (NA divisible by 4): density on quadrant q.
             if (s[1] * 4.0).floor() as u32 == q {
                 1.0
             } else {
                 0.0
             }
         });
-        chi2::check(&format!("disk::polar4 quadrant {q}"), &h, &expected);
+        chi2::check(&format!("{name} quadrant {q}"), &h, &expected);
     }
+}
+
+#[test]
+fn chi2_polar4_each_quadrant() {
+    chi2_each_quadrant("disk::polar4", 200, disk::polar4);
 }
 
 /// The test can fail: r = u0 instead of sqrt(u0) (mass piles up at the centre), and a
@@ -765,28 +775,7 @@ fn concentric4_accuracy_seams_and_helpers() {
     }
 }
 
-/// Each quadrant separately: uniform on its quarter of the disk, nothing elsewhere. (The
-/// edge `u0 = 0` maps onto the axis shared with the next quadrant, a set of measure zero that
-/// the histogram's half-open cells would count there: inputs are drawn from `(0, 1) x [0, 1)`.)
 #[test]
 fn chi2_concentric4_each_quadrant() {
-    for q in 0..4u32 {
-        let mut h = chi2::Histogram::new(NR, NA);
-        let mut r = rng(300 + q as u64);
-        for _ in 0..chi2::SAMPLES {
-            let mut u = unit2(&mut r);
-            if u[0] == 0.0 {
-                u[0] = 0.5 / 16_777_216.0;
-            }
-            h.add(chi2::disk(disk::concentric4(u, q)));
-        }
-        let expected = chi2::expected_from_density(NR, NA, |s| {
-            if (s[1] * 4.0).floor() as u32 == q {
-                1.0
-            } else {
-                0.0
-            }
-        });
-        chi2::check(&format!("disk::concentric4 quadrant {q}"), &h, &expected);
-    }
+    chi2_each_quadrant("disk::concentric4", 300, disk::concentric4);
 }

@@ -61,8 +61,9 @@ unsafe extern "C" {
 
 // The precompiled `core` is built to unwind, so its objects refer to the unwinding
 // personality routine, which only `std` defines. Nothing unwinds in a `panic = "abort"` build:
-// this definition is never called and only satisfies the linker.
-#[cfg(panic = "abort")]
+// this definition is never called and only satisfies the linker. (Not on wasm32, where
+// `core` is built with `panic = "abort"`: the JavaScript module would export it.)
+#[cfg(all(panic = "abort", not(target_family = "wasm")))]
 #[unsafe(no_mangle)]
 extern "C" fn rust_eh_personality() {}
 

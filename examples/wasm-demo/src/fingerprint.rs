@@ -34,6 +34,12 @@ const SPECIALS: [f32; 12] = [
 /// The running hash, and which SIMD width stands for the `_x8` forms.
 pub struct Hasher(u64, bool);
 
+impl Default for Hasher {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl Hasher {
     pub fn new() -> Self {
         Hasher(0xcbf2_9ce4_8422_2325, false)

@@ -1,0 +1,109 @@
+// The demo page in a real browser: headless Chromium (Debian's `chromium`) loads
+// js/demo/index.html from a local static server, and for every warp of the page (each with a
+// sampler, count and strata grid changed through the page's controls, which redraw live) the
+// test checks that the canvas holds the expected number of points (a black dot at each point's
+// pixel), that the strata carry the report's colours (those of docs/report/strata.svg, drawn
+// by the Rust report), and that the page logged no error. Saves a screenshot to
+// target/demo.png (docs/demo.png is a copy for the README).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { serve } from '../tools/serve.mjs';
+import { findChromium, launch, open } from '../tools/chromium.mjs';
+
+const root = fileURLToPath(new URL('../../', import.meta.url));
+const chromium = findChromium();
+// CI installs Chromium: there, a missing browser is a failure, not a skip.
+const skip = !chromium && !process.env.CI && 'Chromium is not installed (apt-get install chromium)';
+
+// The report's 16 stratum colours, as the Rust report drew them.
+const reportColours = [...new Set(readFileSync(`${root}docs/report/strata.svg`, 'utf8').match(/fill="#[0-9a-f]{6}"/g))].map((f) => f.slice(7, 13));
+
+test('the demo page draws every warp with the expected points and strata', { skip, timeout: 240_000 }, async (t) => {
+  assert.equal(reportColours.length, 16, 'docs/report/strata.svg has the 16 palette colours');
+  const server = await serve(root);
+  t.after(() => server.close());
+  const browser = await launch(chromium);
+  t.after(() => browser.close());
+  const page = await open(browser, `${server.url}js/demo/index.html?warp=disk:concentric&count=256&sampler=pmj02bn&grid=4x4&seed=7`);
+  await page.evaluate('window.demo.ready');
+  await page.evaluate(`new Promise((ok, fail) => { const t0 = Date.now(); (function poll() {
+    if (window.demo.frame >= 1 || window.demo.error) ok(); else if (Date.now() - t0 > 30000) fail(new Error('no frame')); else setTimeout(poll, 20); })(); })`);
+
+  // Sets the controls as a user would (input events), waits for the redraw, and measures it.
+  const drive = (s) =>
+    page.evaluate(`(async () => {
+      const s = ${JSON.stringify(s)};
+      const frame = window.demo.frame;
+      for (const [id, value] of Object.entries(s)) {
+        const el = document.getElementById(id);
+        el.value = String(value);
+        el.dispatchEvent(new Event('input', { bubbles: true }));
+      }
+      const t0 = Date.now();
+      while (window.demo.frame === frame && !window.demo.error) {
+        if (Date.now() - t0 > 60000) throw new Error('no redraw');
+        await new Promise((r) => setTimeout(r, 10));
+      }
+      const canvas = document.getElementById('canvas');
+      const img = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+      const { positions, drawn, expected, error } = window.demo;
+      let black = 0;
+      const misses = [];
+      for (let i = 0; i < positions.length; i += 2) {
+        const o = 4 * (Math.floor(positions[i + 1]) * canvas.width + Math.floor(positions[i]));
+        // Black, up to anti-aliasing (the pixel is inside the dot, whose radius is >= 1.5).
+        if (Math.max(img[o], img[o + 1], img[o + 2]) <= 32 && img[o + 3] === 255) black++;
+        else if (misses.length < 5) misses.push([positions[i], positions[i + 1], ...img.subarray(o, o + 4)]);
+      }
+      const colours = {};
+      for (let o = 0; o < img.length; o += 4) {
+        const hex = ((img[o] << 16) | (img[o + 1] << 8) | img[o + 2]).toString(16).padStart(6, '0');
+        colours[hex] = (colours[hex] ?? 0) + 1;
+      }
+      return { misses, drawn, expected, points: positions.length / 2, black, colours, error,
+               caption: document.getElementById('caption').textContent, query: location.search };
+    })()`);
+
+  const warps = await page.evaluate(`[...document.querySelectorAll('#warp option')].map((o) => o.value)`);
+  assert.equal(warps.length, 17, 'four disk, four triangle, five sphere warps and four env-map ones');
+  const samplers = ['random', 'stratified', 'pmj02bn'];
+  const counts = [4, 37, 256, 1000, 4096];
+  const grids = ['16x1', '8x2', '4x4', '2x8', '1x16'];
+  let checked = 0;
+  for (const [i, warp] of warps.entries()) {
+    const s = { warp, sampler: samplers[i % 3], count: counts[i % counts.length], grid: grids[i % grids.length], seed: 7 + i };
+    const r = await drive(s);
+    const what = `${JSON.stringify(s)} -> ${r.caption}`;
+    assert.equal(r.error, null, what);
+    assert.equal(r.expected, s.count, what);
+    assert.equal(r.points, s.count, what);
+    assert.equal(r.drawn, s.count, `every point inside the picture: ${what}`);
+    assert.equal(r.black, s.count, `a black dot at every point's pixel (misses: ${JSON.stringify(r.misses)}): ${what}`);
+    if (!warp.startsWith('envmap')) {
+      // Disk, triangle and sphere strata are painted in the palette's exact colours; the
+      // env-map ones are blended over the map.
+      for (const c of reportColours) assert.ok((r.colours[c] ?? 0) > 50, `stratum colour #${c} drawn: ${what}`);
+    } else {
+      assert.ok(Object.keys(r.colours).length > 200, `the map and its strata: ${what}`);
+    }
+    assert.match(r.query, new RegExp(`warp=${encodeURIComponent(warp).replace(/%3A/g, '(%3A|:)')}`), 'the query string follows the controls');
+    checked++;
+  }
+  // A count typed in the number field, and the log-scale slider.
+  const typed = await drive({ warp: 'disk:polar4', count: 4095, sampler: 'stratified' });
+  assert.equal(typed.drawn, 4095);
+  assert.equal(typed.black, 4095);
+  const slid = await drive({ 'count-range': 5 });
+  assert.equal(slid.drawn, 32);
+  // The README's picture: pmj02bn through the concentric map, 4 x 4 strata.
+  const shot = await drive({ warp: 'disk:concentric', sampler: 'pmj02bn', count: 256, grid: '4x4', seed: 7 });
+  assert.equal(shot.black, 256);
+  assert.deepEqual(page.errors, [], 'no console errors, exceptions or failed requests');
+  mkdirSync(`${root}target`, { recursive: true });
+  const png = await page.screenshot();
+  assert.deepEqual([...png.subarray(1, 4)], [0x50, 0x4e, 0x47], 'a PNG');
+  writeFileSync(`${root}target/demo.png`, png);
+  t.diagnostic(`${checked} warps checked; screenshot target/demo.png (${png.length} bytes)`);
+});

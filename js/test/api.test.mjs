@@ -1,0 +1,330 @@
+// The JavaScript API's contract: every function checks its arguments (TypeError for a wrong
+// type, RangeError for a bad count or length, never a wasm trap), `load()` accepts every kind
+// of source, outputs go into `out` when given, scratch memory is released, env maps own and
+// free their tables, and results agree with independent references.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+import { load, MAX_COUNT } from '../warpcore.mjs';
+
+const wasmUrl = process.env.WARPCORE_WASM ? pathToFileURL(process.env.WARPCORE_WASM) : new URL('../warpcore.wasm', import.meta.url);
+const wc = await load(wasmUrl);
+const f32 = (...v) => new Float32Array(v);
+
+// Argument kinds of every function: a valid value, and the bad values with the error each must
+// throw. `vec(T, d, n)`: a T with n elements of d values.
+const vec = (T, d, n = 3) => ({ T, d, good: () => new T(d * n).fill(0.25) });
+const COUNT = { count: true, good: () => 5 };
+const U32 = { u32: true, good: () => 7 };
+
+const STORAGE = (() => {
+  const env = wc.envmapHierarchical(new Float32Array(4).fill(1), 2, 2);
+  const words = env.storage();
+  env.free();
+  return words;
+})();
+
+const SPEC = {
+  diskPolar: [vec(Float32Array, 2)],
+  diskPolarInverse: [vec(Float32Array, 2)],
+  diskConcentric: [vec(Float32Array, 2)],
+  diskConcentricInverse: [vec(Float32Array, 2)],
+  diskPolar4: [vec(Float32Array, 2), COUNT],
+  diskPolar4Inverse: [vec(Float32Array, 2)],
+  diskConcentric4: [vec(Float32Array, 2), COUNT],
+  diskConcentric4Inverse: [vec(Float32Array, 2)],
+  triangleUniform: [vec(Float32Array, 2)],
+  triangleUniformInverse: [vec(Float32Array, 3)],
+  triangleSqrtMap: [vec(Float32Array, 2)],
+  triangleSqrtMapInverse: [vec(Float32Array, 3)],
+  triangleBasuOwen: [U32, U32, COUNT],
+  triangleBasuOwenPermuted: [U32, U32, COUNT],
+  sphereEqualArea: [vec(Float32Array, 2)],
+  sphereEqualAreaInverse: [vec(Float32Array, 3)],
+  sphereEqualAreaWrap: [vec(Float32Array, 2)],
+  sphereEquirect: [vec(Float32Array, 2)],
+  sphereEquirectInverse: [vec(Float32Array, 3)],
+  sphereUniform: [vec(Float32Array, 2)],
+  sphereUniformInverse: [vec(Float32Array, 3)],
+  sphereUniformHemisphere: [vec(Float32Array, 2)],
+  sphereUniformHemisphereInverse: [vec(Float32Array, 3)],
+  sphereCosineHemisphere: [vec(Float32Array, 2)],
+  sphereCosineHemisphereInverse: [vec(Float32Array, 3)],
+  sphereEqualAreaPdfToSolidAngle: [vec(Float32Array, 1)],
+  sphereCosineHemispherePdf: [vec(Float32Array, 1)],
+  sphereEquirectPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 3)],
+  sphereEqualAreaWrapTexel: [vec(Int32Array, 2), U32],
+  pmj02bnSample: [U32, U32, COUNT],
+  pmj02bnRaw: [U32, U32, COUNT],
+  pmj02bnShuffle: [vec(Uint32Array, 1), U32],
+  sequenceRandom: [U32, U32, COUNT],
+  sequenceStratified: [U32, U32, U32, COUNT],
+  envmapLuminance: [vec(Float32Array, 3)],
+  envmapLatlongPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
+  envmapLatlongSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, { u32: true, good: () => 3 }, { u32: true, good: () => 2 }],
+  envmapLatlongToEqualArea: [
+    { T: Float32Array, d: 18, good: () => new Float32Array(18).fill(1) },
+    { u32: true, good: () => 3 },
+    { u32: true, good: () => 2 },
+    { u32: true, good: () => 3 },
+    { u32: true, good: () => 4 },
+    { u32: true, good: () => 2 },
+  ],
+  envmapHierarchical: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, { u32: true, good: () => 3 }, { u32: true, good: () => 2 }],
+  envmapMarginalConditional: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, { u32: true, good: () => 3 }, { u32: true, good: () => 2 }],
+  envmapFromStorage: [{ T: Uint32Array, d: 1, good: () => STORAGE.slice() }],
+  memoryStats: [],
+};
+const VALUES = ['pmj02bnPoints', 'pmj02bnSets', 'EnvMap'];
+
+/** Calls `f` and returns the error it throws (failing if it throws none or a wasm trap). */
+function thrown(f, what) {
+  try {
+    f();
+  } catch (e) {
+    assert.ok(!(e instanceof WebAssembly.RuntimeError), `${what}: a wasm trap (${e.message})`);
+    return e;
+  }
+  assert.fail(`${what}: no error`);
+}
+
+function badValues(spec) {
+  if (spec.count || spec.u32) {
+    const max = spec.count ? MAX_COUNT : 0xffffffff;
+    return [
+      [-1, RangeError], [1.5, RangeError], [NaN, RangeError], [Infinity, RangeError], [max + 1, RangeError],
+      ['4', TypeError], [4n, TypeError], [null, TypeError], [undefined, spec.count ? null : TypeError], [{}, TypeError],
+    ];
+  }
+  const other = spec.T === Float32Array ? Float64Array : Float32Array;
+  const n = spec.good().length;
+  const bad = [
+    [Array.from(spec.good()), TypeError], [null, TypeError], [undefined, TypeError], ['abc', TypeError],
+    [new other(n), TypeError], [new DataView(new ArrayBuffer(4 * n)), TypeError], [new spec.T(n).buffer, TypeError],
+  ];
+  if (spec.d > 1) bad.push([new spec.T(n + 1), RangeError], [new spec.T(n - 1), RangeError]);
+  return bad;
+}
+
+test('every function of the API has an argument spec, and valid calls succeed', () => {
+  for (const [name, value] of Object.entries(wc)) {
+    if (VALUES.includes(name)) continue;
+    assert.equal(typeof value, 'function', name);
+    assert.ok(SPEC[name], `no argument spec for ${name}`);
+    const result = value(...SPEC[name].map((s) => s.good()));
+    if (result instanceof wc.EnvMap) result.free();
+  }
+  assert.deepEqual(Object.keys(wc).filter((k) => !(k in SPEC)).sort(), [...VALUES].sort());
+  assert.ok(Object.isFrozen(wc));
+});
+
+test('bad arguments throw TypeError or RangeError, never a wasm trap, and leak nothing', (t) => {
+  const before = wc.memoryStats().reserved;
+  let cases = 0;
+  for (const [name, specs] of Object.entries(SPEC)) {
+    specs.forEach((spec, k) => {
+      for (const [value, Want] of badValues(spec)) {
+        if (Want === null) continue; // an optional argument
+        const args = specs.map((s) => s.good());
+        args[k] = value;
+        const e = thrown(() => wc[name](...args), `${name} argument ${k} = ${String(value)}`);
+        assert.equal(e.constructor, Want, `${name} argument ${k} = ${String(value)}: ${e.message}`);
+        cases++;
+      }
+    });
+  }
+  assert.ok(cases > 400, `${cases} cases`);
+  t.diagnostic(`${cases} bad-argument cases`);
+  assert.equal(wc.memoryStats().reserved, before);
+});
+
+test('wrong `out` arrays throw; a right one receives the result and is returned', () => {
+  const u = wc.pmj02bnSample(0, 3, 16);
+  for (const [name, O] of [['diskConcentric', 2], ['sphereEqualArea', 3], ['triangleUniform', 3]]) {
+    assert.equal(thrown(() => wc[name](u, new Float32Array(16 * O + 1)), name).constructor, RangeError);
+    assert.equal(thrown(() => wc[name](u, new Float64Array(16 * O)), name).constructor, TypeError);
+    assert.equal(thrown(() => wc[name](u, [0]), name).constructor, TypeError);
+    const out = new Float32Array(16 * O + 2).subarray(1, 1 + 16 * O);
+    assert.equal(wc[name](u, out), out);
+    assert.deepEqual(out, wc[name](u));
+  }
+  const out = new Float32Array(8);
+  assert.equal(wc.pmj02bnSample(0, 3, 4, out), out);
+  assert.deepEqual(out, u.subarray(0, 8));
+  assert.equal(thrown(() => wc.pmj02bnSample(0, 3, 4, new Float32Array(7)), 'pmj').constructor, RangeError);
+});
+
+test('counts: zero gives empty arrays, too large throws RangeError before touching memory', () => {
+  assert.deepEqual(wc.diskConcentric(new Float32Array(0)), new Float32Array(0));
+  assert.deepEqual(wc.pmj02bnSample(0, 0, 0), new Float32Array(0));
+  assert.deepEqual(wc.diskPolar4(new Float32Array(0)), new Float32Array(0));
+  const memory = wc.memoryStats().memory;
+  for (const n of [2 ** 30, 2 ** 31, MAX_COUNT]) {
+    for (const f of [() => wc.pmj02bnSample(0, 0, n), () => wc.triangleBasuOwen(0, 0, n), () => wc.sequenceStratified(0, 16, 0, n)]) {
+      const e = thrown(f, `n = ${n}`);
+      assert.equal(e.constructor, RangeError, e.message);
+    }
+  }
+  assert.equal(wc.memoryStats().memory, memory, 'a refused call does not grow the memory');
+  // polar4: n beyond four samples per point
+  assert.equal(thrown(() => wc.diskPolar4(new Float32Array(4), 9), 'polar4').constructor, RangeError);
+  assert.equal(wc.diskPolar4(new Float32Array(4), 8).length, 16);
+  assert.equal(wc.diskPolar4(new Float32Array(4)).length, 16);
+  // paired arrays of different counts
+  assert.equal(thrown(() => wc.sphereEquirectPdfToSolidAngle(f32(1, 2), f32(0, 0, 1)), 'pair').constructor, RangeError);
+  assert.equal(thrown(() => wc.envmapLatlongPdfToSolidAngle(f32(1, 2), f32(0.5)), 'pair').constructor, RangeError);
+  assert.equal(thrown(() => wc.sphereEqualAreaWrapTexel(new Int32Array(2), 0), 'size 0').constructor, RangeError);
+  assert.equal(thrown(() => wc.envmapLatlongToEqualArea(new Float32Array(18), 3, 2, 5, 4, 2), 'channels').constructor, RangeError);
+});
+
+test('large batches grow the memory, and match the same points computed in pieces', () => {
+  const n = 300_000; // 7.2 MB of output: beyond the module's initial memory
+  const all = wc.triangleBasuOwen(12345, 99, n);
+  const piece = wc.triangleBasuOwen(12345 + 200_000, 99, 1000);
+  assert.deepEqual(piece, all.subarray(3 * 200_000, 3 * 201_000));
+  const u = wc.sequenceRandom(0, 5, n);
+  const d = wc.sphereEqualArea(u);
+  assert.deepEqual(wc.sphereEqualArea(u.subarray(2 * 123_456, 2 * 123_460)), d.subarray(3 * 123_456, 3 * 123_460));
+});
+
+test('indices wrap after 2^32 - 1, as in C', () => {
+  const a = wc.pmj02bnSample(0xffffffff - 1, 11, 4);
+  assert.deepEqual(a.subarray(4, 8), wc.pmj02bnSample(0, 11, 2));
+});
+
+test('load() accepts a URL, a path, bytes, a Response, a promise and a Module', async () => {
+  const bytes = readFileSync(wasmUrl);
+  const module = new WebAssembly.Module(bytes);
+  assert.deepEqual(WebAssembly.Module.imports(module), [], 'the module has no imports');
+  const want = wc.pmj02bnSample(0, 1, 8);
+  const response = () => new Response(bytes, { headers: { 'content-type': 'application/wasm' } });
+  const sources = [
+    wasmUrl,
+    wasmUrl.href,
+    fileURLToPath(wasmUrl),
+    bytes,
+    new Uint8Array(bytes).buffer,
+    response(),
+    new Response(bytes), // no wasm content type: compiled from the bytes
+    Promise.resolve(response()),
+    module,
+  ];
+  if (!process.env.WARPCORE_WASM) sources.push(undefined);
+  for (const source of sources) {
+    const other = await load(source);
+    assert.deepEqual(other.pmj02bnSample(0, 1, 8), want);
+  }
+  await assert.rejects(load(42), TypeError);
+  await assert.rejects(load(new Response('no', { status: 404 })), /404/);
+  await assert.rejects(load(new Uint8Array([0, 97, 115, 109, 9, 9, 9, 9])), WebAssembly.CompileError);
+});
+
+test('independent references: concentric map in f64, pmj02bn strata, barycentrics', () => {
+  // The concentric map against the textbook formula in f64.
+  const n = 64 * 64;
+  const u = new Float32Array(2 * n);
+  for (let i = 0; i < 64; i++) for (let j = 0; j < 64; j++) u.set([(i + 0.37) / 64, (j + 0.61) / 64], 2 * (64 * i + j));
+  const p = wc.diskConcentric(u);
+  let worst = 0;
+  for (let k = 0; k < n; k++) {
+    const a = 2 * u[2 * k] - 1;
+    const b = 2 * u[2 * k + 1] - 1;
+    const [r, phi] = Math.abs(a) > Math.abs(b) ? [a, (Math.PI / 4) * (b / a)] : [b, Math.PI / 2 - (Math.PI / 4) * (a / b)];
+    worst = Math.max(worst, Math.abs(p[2 * k] - r * Math.cos(phi)), Math.abs(p[2 * k + 1] - r * Math.sin(phi)));
+  }
+  assert.ok(worst <= 2.5e-7, `max error ${worst}`);
+  // Every power-of-two prefix of a pmj02bn sequence is a (0,m,2)-net.
+  for (const seed of [0, 1, 0xdeadbeef]) {
+    for (const m of [0, 2, 4, 7, 10]) {
+      const pts = wc.pmj02bnSample(0, seed, 2 ** m);
+      for (let k = 0; k <= m; k++) {
+        const [nx, ny] = [2 ** k, 2 ** (m - k)];
+        const seen = new Set();
+        for (let i = 0; i < 2 ** m; i++) seen.add(Math.floor(pts[2 * i] * nx) + nx * Math.floor(pts[2 * i + 1] * ny));
+        assert.equal(seen.size, 2 ** m, `seed ${seed}, 2^${m} points, ${nx} x ${ny} grid`);
+      }
+    }
+  }
+  // Barycentrics are non-negative and sum to 1; Basu-Owen's first 4^k points are one per
+  // level-k sub-triangle (distinct centroids of a 4^k subdivision: distinct cells of size 2^-k).
+  for (const b of [wc.triangleUniform(wc.sequenceRandom(0, 3, 1000)), wc.triangleBasuOwen(0, 9, 1000)]) {
+    for (let i = 0; i < 1000; i++) {
+      const s = b[3 * i] + b[3 * i + 1] + b[3 * i + 2];
+      assert.ok(b[3 * i] >= 0 && b[3 * i + 1] >= 0 && b[3 * i + 2] >= 0 && Math.abs(s - 1) < 1e-6);
+    }
+  }
+  // Round trips through the inverses.
+  const v = wc.sequenceRandom(0, 8, 500);
+  for (const [fwd, inv] of [['sphereEqualArea', 'sphereEqualAreaInverse'], ['diskPolar', 'diskPolarInverse'], ['triangleUniform', 'triangleUniformInverse']]) {
+    const back = wc[inv](wc[fwd](v));
+    for (let i = 0; i < v.length; i++) assert.ok(Math.abs(back[i] - v[i]) < 1e-4, `${fwd} round trip`);
+  }
+  const { u: back, quadrant } = wc.diskPolar4Inverse(wc.diskPolar4(v.subarray(0, 2)));
+  assert.deepEqual([...quadrant], [0, 1, 2, 3]);
+  for (let q = 0; q < 4; q++) for (const c of [0, 1]) assert.ok(Math.abs(back[2 * q + c] - v[c]) < 1e-5);
+});
+
+test('EnvMap: sampling, pdf, storage round trip, errors, free', () => {
+  const before = wc.memoryStats().reserved;
+  const w = new Float32Array(8 * 4).map((_, k) => (k === 13 ? 100 : k % 5));
+  for (const build of [wc.envmapHierarchical, wc.envmapMarginalConditional]) {
+    const env = build(w, 8, 4);
+    assert.ok(env instanceof wc.EnvMap);
+    assert.equal(env.width, 8);
+    assert.equal(env.height, 4);
+    const u = wc.pmj02bnSample(0, 2, 4096);
+    const s = env.sample(u);
+    assert.deepEqual(env.pdf(s.uv), s.pdf, 'pdf(uv) equals the sample pdf bit for bit');
+    let hits13 = 0;
+    for (let i = 0; i < 4096; i++) {
+      const [c, r] = [s.texel[2 * i], s.texel[2 * i + 1]];
+      assert.ok(w[r * 8 + c] > 0, 'never a zero-weight texel');
+      assert.equal(c, Math.floor(s.uv[2 * i] * 8));
+      assert.equal(r, Math.floor(s.uv[2 * i + 1] * 4));
+      if (r * 8 + c === 13) hits13++;
+    }
+    const total = w.reduce((a, b) => a + b, 0);
+    assert.ok(Math.abs(hits13 / 4096 - 100 / total) < 0.01, `texel 13: ${hits13 / 4096} vs ${100 / total}`);
+    // Storage: a copy; loaded again (with and without verify), it samples the same bits.
+    const words = env.storage();
+    assert.equal(words.length, env.storageLength);
+    for (const verify of [true, false]) {
+      const again = wc.envmapFromStorage(words, { verify });
+      assert.equal(again.kind, env.kind);
+      assert.deepEqual(again.sample(u), s);
+      again.free();
+    }
+    // Corrupt storage is refused with the C error's name.
+    const bad = words.slice();
+    bad[2] = 0; // width 0
+    assert.equal(thrown(() => wc.envmapFromStorage(bad), 'corrupt').code, 'WC_ERR_CORRUPT');
+    const other = words.slice();
+    other[0] ^= 1;
+    assert.equal(thrown(() => wc.envmapFromStorage(other), 'tag').code, 'WC_ERR_WRONG_FORMAT');
+    assert.equal(thrown(() => wc.envmapFromStorage(words.subarray(0, words.length - 1)), 'short').code, 'WC_ERR_STORAGE_TOO_SMALL');
+    const version = words.slice();
+    version[1] = 99;
+    assert.equal(thrown(() => wc.envmapFromStorage(version), 'version').code, 'WC_ERR_UNSUPPORTED_VERSION');
+    // Errors from the builders.
+    const inf = w.slice();
+    inf[3] = Infinity;
+    const e = thrown(() => build(inf, 8, 4), 'inf');
+    assert.equal(e.constructor, RangeError);
+    assert.equal(e.code, 'WC_ERR_INFINITE_WEIGHT');
+    assert.equal(thrown(() => build(w, 0, 4), 'zero').code, 'WC_ERR_ZERO_SIZE');
+    assert.equal(thrown(() => build(w, 8, 3), 'length').constructor, RangeError);
+    assert.equal(thrown(() => build(new Float32Array(0), 1 << 25, 0), 'zero height').code, 'WC_ERR_ZERO_SIZE');
+    assert.equal(thrown(() => env.sample(f32(0.5)), 'odd u').constructor, RangeError);
+    env.free();
+    env.free(); // twice is harmless
+    assert.equal(thrown(() => env.sample(f32(0.5, 0.5)), 'freed').constructor, TypeError);
+    assert.equal(thrown(() => env.storage(), 'freed').constructor, TypeError);
+  }
+  assert.equal(thrown(() => new wc.EnvMap(), 'constructor').constructor, TypeError);
+  // An all-zero map samples uniformly.
+  const zero = wc.envmapHierarchical(new Float32Array(4), 2, 2);
+  assert.deepEqual([...zero.pdf(f32(0.1, 0.1, 0.9, 0.9))], [1, 1]);
+  zero[Symbol.dispose ?? Symbol.for('Symbol.dispose')]();
+  assert.equal(wc.memoryStats().reserved, before, 'every table freed');
+});

@@ -1,0 +1,342 @@
+// The determinism fingerprint computed through the JavaScript API: the same FNV-1a 64 hash
+// over the same inputs as examples/wasm-demo/src/fingerprint.rs (and its C port,
+// capi/tests/c/fingerprint.c), every scalar and x8 call replaced by a JS call on 1 or 8
+// points and every slice call by one JS call writing into an `out` subarray at an odd offset.
+// It must equal tests/golden/fingerprint.txt, which the Rust tests check against the crate.
+//
+// Then the functions the fingerprint does not cover (and a real environment map), hashed the
+// same way and compared with the Rust crate's own hashes, computed at test time by
+// `fingerprint --extras` (examples/wasm-demo/src/main.rs).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { fileURLToPath } from 'node:url';
+import { load } from '../warpcore.mjs';
+
+const root = fileURLToPath(new URL('../../', import.meta.url));
+const wasm = process.env.WARPCORE_WASM; // test another build (CI: the fresh one)
+const wc = await load(wasm);
+
+// ---- hashing and inputs, as in fingerprint.rs ----
+
+class Fnv {
+  constructor() {
+    this.hi = 0xcbf29ce4;
+    this.lo = 0x84222325;
+  }
+  word(w) {
+    for (let i = 0; i < 4; i++) {
+      const lo = (this.lo ^ ((w >>> (8 * i)) & 0xff)) >>> 0;
+      // (hi:lo) * 0x100000001b3 mod 2^64 = (hi:lo) * 0x1b3 + (lo << 40)
+      const p = lo * 0x1b3;
+      const carry = Math.floor(p / 2 ** 32);
+      this.lo = p >>> 0;
+      this.hi = (this.hi * 0x1b3 + carry + ((lo << 8) >>> 0)) >>> 0;
+    }
+  }
+  words(a) {
+    for (let i = 0; i < a.length; i++) this.word(a[i]);
+  }
+  floats(f) {
+    this.words(new Uint32Array(f.buffer, f.byteOffset, f.length));
+  }
+  hex() {
+    return this.hi.toString(16).padStart(8, '0') + this.lo.toString(16).padStart(8, '0');
+  }
+}
+
+const SPECIAL_BITS = [
+  0x00000000, 0x80000000, 0x3f000000, 0x3f7fffff, 0x3f800000, 0xbf800000, 0x7fc00000, 0x7f800000,
+  0xff800000, 0x000116c2, 0x3e800000, 0x3f400000,
+];
+const S = 12;
+const N = 1024 + S * S;
+
+function unit(i) {
+  let x = (Math.imul(i, 747796405) + 2891336453) >>> 0;
+  x = Math.imul(((x >>> ((x >>> 28) + 4)) ^ x) >>> 0, 277803737) >>> 0;
+  x = (x ^ (x >>> 22)) >>> 0;
+  return (x >>> 8) * 2 ** -24;
+}
+
+/** Points `first .. first + n` of dimension `D`, as a Float32Array. */
+function inputs(first, n, D) {
+  const f = new Float32Array(n * D);
+  const bits = new Uint32Array(f.buffer);
+  for (let k = 0; k < n; k++) {
+    const i = first + k;
+    for (let d = 0; d < D; d++) {
+      if (i < S * S) {
+        bits[k * D + d] = SPECIAL_BITS[d % 2 === 0 ? i % S : (Math.floor(i / S) + Math.floor(d / 2)) % S];
+      } else {
+        f[k * D + d] = unit(i * D + d);
+      }
+    }
+  }
+  return f;
+}
+
+// An `out` array at an odd float offset of a larger buffer.
+const oddOut = (length) => new Float32Array(length + 1).subarray(1);
+
+// ---- the two drivers of fingerprint.rs ----
+
+function warp(h, call, I, O) {
+  for (let i = 0; i < N; i += 37) {
+    const n = Math.min(37, N - i);
+    const input = inputs(i, n, I);
+    const out = oddOut(n * O);
+    assert.equal(call(input, out), out);
+    h.word(n);
+    for (let k = 0; k < n; k++) {
+      h.floats(call(input.subarray(k * I, (k + 1) * I)));
+      h.floats(out.subarray(k * O, (k + 1) * O));
+    }
+  }
+  for (let g = 0; g + 8 <= N; g += 8) {
+    const out8 = call(inputs(g, 8, I));
+    const bits = new Uint32Array(out8.buffer);
+    for (let c = 0; c < O; c++) for (let j = 0; j < 8; j++) h.word(bits[j * O + c]);
+  }
+}
+
+// Quadrant `q` of a four-per-point warp, one point at a time.
+const quadrant = (f, q) => (input, out) => {
+  const n = input.length / 2;
+  const result = out ?? new Float32Array(2 * n);
+  for (let k = 0; k < n; k++) {
+    const four = f(input.subarray(2 * k, 2 * k + 2), 4);
+    result.set(four.subarray(2 * q, 2 * q + 2), 2 * k);
+  }
+  return result;
+};
+
+function indexed(h, f, O) {
+  for (const seed of [0, 1, 0x9e3779b9, 0xffffffff]) {
+    for (const start of [0, 5, 1023, 4090, 65530, 1 << 20, 0xffffffff - 20]) {
+      const out = oddOut(37 * O);
+      assert.equal(f(start, seed, 37, out), out);
+      h.word(37);
+      for (let k = 0; k < 37; k++) {
+        h.floats(f((start + k) >>> 0, seed, 1));
+        h.floats(out.subarray(k * O, (k + 1) * O));
+      }
+      const lanes = [];
+      for (let j = 0; j < 8; j++) lanes.push(new Uint32Array(f((start + 3 * j) >>> 0, (seed ^ j) >>> 0, 1).buffer));
+      for (let c = 0; c < O; c++) for (let j = 0; j < 8; j++) h.word(lanes[j][c]);
+    }
+  }
+}
+
+// Rust's `f as i32`: saturating, NaN to 0.
+function saturatingI32(x) {
+  if (Number.isNaN(x)) return 0;
+  if (x >= 2147483648) return 2147483647;
+  if (x <= -2147483904) return -2147483648;
+  return Math.trunc(x);
+}
+
+/** The 13 x 7 map of the fingerprint: zeros, a negative texel, a NaN, a 10^6 : 1 texel. */
+function envmapWeights() {
+  const w = new Float32Array(91);
+  for (let k = 0; k < 91; k++) {
+    w[k] = [3, 40, 41].includes(k) ? 0 : k === 17 ? -2 : k === 60 ? NaN : k === 77 ? 1e6 : unit(k) + Math.fround(0.01); // an f32 sum
+  }
+  return w;
+}
+
+function envmap(h, build) {
+  const env = build(envmapWeights(), 13, 7);
+  try {
+    for (let pass = 0; pass < 2; pass++) {
+      // the scalar calls, then the x8 groups: the same points
+      for (let i = 0; i < N; i++) {
+        const s = env.sample(inputs(i, 1, 2));
+        const p = env.pdf(s.uv);
+        h.floats(new Float32Array([s.uv[0], s.uv[1], s.pdf[0], p[0]]));
+        h.words(s.texel);
+      }
+    }
+  } finally {
+    env.free();
+  }
+}
+
+function fingerprint() {
+  const h = new Fnv();
+  // disk
+  warp(h, wc.diskPolar, 2, 2);
+  warp(h, wc.diskConcentric, 2, 2);
+  warp(h, wc.diskPolarInverse, 2, 2);
+  warp(h, wc.diskConcentricInverse, 2, 2);
+  for (let q = 0; q < 4; q++) warp(h, quadrant(wc.diskPolar4, q), 2, 2);
+  for (let q = 0; q < 4; q++) warp(h, quadrant(wc.diskConcentric4, q), 2, 2);
+  for (let i = 0; i < N; i++) {
+    const { u, quadrant: q } = wc.diskConcentric4Inverse(inputs(i, 1, 2));
+    h.floats(u);
+    h.words(q);
+  }
+  const pts = inputs(0, 9, 2);
+  for (const f of [wc.diskPolar4, wc.diskConcentric4]) {
+    const out = f(pts, 35);
+    h.word(out.length / 2);
+    h.floats(out);
+  }
+  // pmj02bn
+  indexed(h, wc.pmj02bnSample, 2);
+  for (const [set, index] of [[0, 0], [1, 1], [3, 4095], [7, 1 << 30]]) h.words(wc.pmj02bnRaw(set, index, 1));
+  // sequence
+  indexed(h, wc.sequenceRandom, 2);
+  for (const count of [1, 16, 17, 1024]) {
+    indexed(h, (start, seed, n, out) => wc.sequenceStratified(start, count, seed, n, out), 2);
+  }
+  // triangle
+  warp(h, wc.triangleUniform, 2, 3);
+  warp(h, wc.triangleUniformInverse, 3, 2);
+  warp(h, wc.triangleSqrtMap, 2, 3);
+  warp(h, wc.triangleSqrtMapInverse, 3, 2);
+  indexed(h, wc.triangleBasuOwen, 3);
+  indexed(h, wc.triangleBasuOwenPermuted, 3);
+  // sphere
+  warp(h, wc.sphereEqualArea, 2, 3);
+  warp(h, wc.sphereEqualAreaInverse, 3, 2);
+  warp(h, wc.sphereEqualAreaWrap, 2, 2);
+  warp(h, wc.sphereEquirect, 2, 3);
+  warp(h, wc.sphereEquirectInverse, 3, 2);
+  warp(h, wc.sphereUniform, 2, 3);
+  warp(h, wc.sphereUniformInverse, 3, 2);
+  warp(h, wc.sphereUniformHemisphere, 2, 3);
+  warp(h, wc.sphereUniformHemisphereInverse, 3, 2);
+  warp(h, wc.sphereCosineHemisphere, 2, 3);
+  warp(h, wc.sphereCosineHemisphereInverse, 3, 2);
+  for (let i = 0; i < N; i++) {
+    const d = inputs(i, 1, 3);
+    const p = inputs(i, 1, 1);
+    h.floats(wc.sphereEquirectPdfToSolidAngle(p, d));
+    h.floats(wc.sphereEqualAreaPdfToSolidAngle(p));
+    h.floats(wc.sphereCosineHemispherePdf(p));
+    const t = inputs(i, 1, 2);
+    const texel = Int32Array.from(t, (c) => (saturatingI32(Math.fround(c * 64)) - 16) | 0);
+    h.words(wc.sphereEqualAreaWrapTexel(texel, 32));
+  }
+  // envmap
+  envmap(h, wc.envmapMarginalConditional);
+  envmap(h, wc.envmapHierarchical);
+  return h.hex();
+}
+
+test('the golden fingerprint, computed through the JS API', () => {
+  const golden = readFileSync(new URL('tests/golden/fingerprint.txt', `file://${root}`), 'utf8').trim();
+  assert.match(golden, /^[0-9a-f]{16}$/);
+  const before = wc.memoryStats().reserved;
+  assert.equal(fingerprint(), golden);
+  assert.equal(wc.memoryStats().reserved, before, 'every call released its scratch memory');
+});
+
+test('the FNV-1a 64 port matches known values', () => {
+  // FNV-1a 64 of the empty input and of the bytes "a" (0x61), from the FNV reference.
+  assert.equal(new Fnv().hex(), 'cbf29ce484222325');
+  const h = new Fnv();
+  h.word(0x61);
+  // "a\0\0\0": reference values computed by the definition with BigInt, independently.
+  let r = 0xcbf29ce484222325n;
+  for (const b of [0x61, 0, 0, 0]) r = ((r ^ BigInt(b)) * 0x100000001b3n) & 0xffffffffffffffffn;
+  assert.equal(h.hex(), r.toString(16).padStart(16, '0'));
+});
+
+// ---- the functions the fingerprint does not cover, against the Rust crate ----
+
+const ENVMAP = 'tests/data/envmaps/park.pfm';
+
+function rustExtras() {
+  const out = execFileSync(
+    'cargo',
+    ['run', '-q', '--release', '--manifest-path', 'examples/wasm-demo/Cargo.toml', '--bin', 'fingerprint', '--', '--extras', ENVMAP],
+    { cwd: root, encoding: 'utf8', stdio: ['ignore', 'pipe', 'inherit'] },
+  );
+  return Object.fromEntries(out.trim().split('\n').map((l) => l.split(' ')));
+}
+
+/** A PFM file (RGB, little-endian): width, height and RGB floats, rows top to bottom. */
+export function readPfm(bytes) {
+  const text = new TextDecoder('latin1').decode(bytes.subarray(0, 64));
+  const m = /^PF\s+(\d+)\s+(\d+)\s+(-?[\d.]+)\s/.exec(text);
+  assert.ok(m && Number(m[3]) < 0, 'an RGB little-endian PFM');
+  const [w, h] = [Number(m[1]), Number(m[2])];
+  const data = new Float32Array(bytes.buffer.slice(bytes.byteOffset + m[0].length, bytes.byteOffset + m[0].length + 12 * w * h));
+  const rgb = new Float32Array(3 * w * h);
+  for (let r = 0; r < h; r++) rgb.set(data.subarray(3 * w * r, 3 * w * (r + 1)), 3 * w * (h - 1 - r));
+  return { width: w, height: h, rgb };
+}
+
+function jsExtras() {
+  const hashes = {};
+  const hash = (name, f) => {
+    const h = new Fnv();
+    f(h);
+    hashes[name] = h.hex();
+  };
+  hash('disk_polar4_inverse', (h) => {
+    const { u, quadrant: q } = wc.diskPolar4Inverse(inputs(0, N, 2));
+    for (let i = 0; i < N; i++) {
+      h.floats(u.subarray(2 * i, 2 * i + 2));
+      h.word(q[i]);
+    }
+  });
+  hash('pmj02bn_shuffle', (h) => {
+    const idx = Uint32Array.from({ length: N }, (_, i) => Math.imul(i, 2654435761) >>> 0);
+    h.words(wc.pmj02bnShuffle(idx, 0xabcd));
+    h.word(wc.pmj02bnPoints);
+    h.word(wc.pmj02bnSets);
+  });
+  hash('envmap_luminance', (h) => h.floats(wc.envmapLuminance(inputs(0, N, 3))));
+  hash('envmap_latlong_pdf_to_solid_angle', (h) => {
+    const pv = inputs(0, N, 2);
+    const pdf = pv.filter((_, k) => k % 2 === 0);
+    const v = pv.filter((_, k) => k % 2 === 1);
+    h.floats(wc.envmapLatlongPdfToSolidAngle(pdf, v));
+  });
+  hash('envmap_image', (h) => {
+    h.floats(wc.envmapLatlongSolidAngleWeights(envmapWeights(), 13, 7));
+    h.floats(wc.envmapLatlongToEqualArea(inputs(200, 91, 3), 13, 7, 3, 8, 3));
+  });
+  hash('envmap_storage', (h) => {
+    const env = wc.envmapMarginalConditional(envmapWeights(), 13, 7);
+    h.words(env.storage());
+    env.free();
+  });
+  const { width, height, rgb } = readPfm(readFileSync(root + ENVMAP));
+  const weights = wc.envmapLatlongSolidAngleWeights(wc.envmapLuminance(rgb), width, height);
+  const u = wc.pmj02bnSample(0, 7, 4096);
+  for (const [name, build] of [
+    ['envmap_file_hierarchical', wc.envmapHierarchical],
+    ['envmap_file_marginal_conditional', wc.envmapMarginalConditional],
+  ]) {
+    hash(name, (h) => {
+      const env = build(weights, width, height);
+      const s = env.sample(u);
+      const p = env.pdf(s.uv);
+      for (let i = 0; i < 4096; i++) {
+        h.floats(new Float32Array([s.uv[2 * i], s.uv[2 * i + 1], s.pdf[i], p[i]]));
+        h.words(s.texel.subarray(2 * i, 2 * i + 2));
+      }
+      env.free();
+    });
+  }
+  return hashes;
+}
+
+let cargo = true;
+try {
+  execFileSync('cargo', ['--version'], { stdio: 'ignore' });
+} catch {
+  cargo = false;
+}
+
+test('functions outside the fingerprint equal the Rust crate (computed now by cargo)', { skip: !cargo && 'cargo is not installed' }, () => {
+  const want = rustExtras();
+  const got = jsExtras();
+  assert.equal(Object.keys(want).length, 8);
+  assert.deepEqual(got, want);
+});

@@ -1,0 +1,180 @@
+// Types of warpcore.mjs. Arrays are interleaved as in the C API: `n` points of the unit
+// square are `2n` floats `u0 v0 u1 v1 ...`; disk points `2n`; directions and barycentrics `3n`.
+// Every function checks its arguments: a wrong type throws a TypeError, a count that is not
+// an integer in [0, MAX_COUNT], an array length that is not a multiple of the element size or
+// does not match, or a call whose arrays do not fit in wasm32 memory throws a RangeError.
+// Functions that return an array accept an optional `out` of exactly the returned type and
+// length, write into it and return it.
+
+/** Largest element count any function accepts (`size_t` on wasm32). */
+export declare const MAX_COUNT: number;
+
+/** What `load()` accepts: a URL (a path in Node), a Response, bytes or a compiled module. */
+export type WasmSource =
+  | URL
+  | string
+  | Response
+  | PromiseLike<Response>
+  | ArrayBuffer
+  | ArrayBufferView
+  | WebAssembly.Module;
+
+/**
+ * Loads the module: by default `warpcore.wasm` next to `warpcore.mjs` (fetched in browsers,
+ * read from disk in Node).
+ */
+export declare function load(source?: WasmSource): Promise<Warpcore>;
+
+/** One batch of environment-map samples. */
+export interface EnvSamples {
+  /** `2n` floats: the points, in [0, 1)^2, inside their texels. */
+  uv: Float32Array;
+  /** `n` densities with respect to area on [0, 1]^2 (`P(texel) * width * height`). */
+  pdf: Float32Array;
+  /** `2n` values: `[column, row]` of each sample's texel. */
+  texel: Uint32Array;
+}
+
+/** Error codes an environment-map function may attach to its RangeError (`error.code`). */
+export type EnvMapErrorCode =
+  | 'WC_ERR_ZERO_SIZE'
+  | 'WC_ERR_TOO_LARGE'
+  | 'WC_ERR_LENGTH_MISMATCH'
+  | 'WC_ERR_STORAGE_TOO_SMALL'
+  | 'WC_ERR_INFINITE_WEIGHT'
+  | 'WC_ERR_WRONG_FORMAT'
+  | 'WC_ERR_UNSUPPORTED_VERSION'
+  | 'WC_ERR_CORRUPT'
+  | 'WC_ERR_INVALID_ARGUMENT'
+  | 'WC_ERR_OTHER';
+
+/**
+ * An environment-map distribution whose tables live in the module's memory. Create with
+ * `envmapHierarchical`, `envmapMarginalConditional` or `envmapFromStorage`; release with
+ * `free()` (or `using`; garbage collection frees it too).
+ */
+export interface EnvMap {
+  readonly kind: 'hierarchical' | 'marginal-conditional';
+  /** Texels per row. */
+  readonly width: number;
+  /** Rows. */
+  readonly height: number;
+  /** Words of the storage, header included. */
+  readonly storageLength: number;
+  /** One sample per point of `u` (`2n` floats; any values, clamped to [0, 1)). */
+  sample(u: Float32Array): EnvSamples;
+  /** Densities at `n` points (`2n` floats), bit-equal to the `pdf` of a sample there. */
+  pdf(uv: Float32Array, out?: Float32Array): Float32Array;
+  /** A copy of the storage words: the file format (little-endian bytes on every target). */
+  storage(): Uint32Array;
+  /** Releases the tables; later calls throw a TypeError. */
+  free(): void;
+  [Symbol.dispose](): void;
+}
+
+export interface Warpcore {
+  // ---- disk: u[0] drives the radius, u[1] the angle ----
+  /** Polar map, r = sqrt(u0), theta = 2 pi u1: `2n` floats to `2n`. */
+  diskPolar(u: Float32Array, out?: Float32Array): Float32Array;
+  diskPolarInverse(p: Float32Array, out?: Float32Array): Float32Array;
+  /** Concentric (Shirley-Chiu) map: `2n` floats to `2n`. */
+  diskConcentric(u: Float32Array, out?: Float32Array): Float32Array;
+  diskConcentricInverse(p: Float32Array, out?: Float32Array): Float32Array;
+  /**
+   * polar4 (Christensen 2018): `n` disk samples (`2n` floats) from the points (`2m` floats),
+   * four per point: sample `i` uses point `i / 4` in quadrant `i % 4`. `n` defaults to `4m`
+   * and may not exceed it.
+   */
+  diskPolar4(points: Float32Array, n?: number, out?: Float32Array): Float32Array;
+  /** Inverse of polar4: points of the square (`2n` floats) and quadrants (`n`). */
+  diskPolar4Inverse(p: Float32Array): { u: Float32Array; quadrant: Uint32Array };
+  /** concentric4: the quarter-disk Shirley-Chiu map of point `i / 4`, turned into quadrant `i % 4`. */
+  diskConcentric4(points: Float32Array, n?: number, out?: Float32Array): Float32Array;
+  diskConcentric4Inverse(p: Float32Array): { u: Float32Array; quadrant: Uint32Array };
+
+  // ---- triangle: barycentrics [b0, b1, b2] weighting the caller's vertices ----
+  /** Low-distortion map (Heitz 2019): `2n` floats to `3n`. */
+  triangleUniform(u: Float32Array, out?: Float32Array): Float32Array;
+  triangleUniformInverse(b: Float32Array, out?: Float32Array): Float32Array;
+  /** b0 = 1 - sqrt(u0), b1 = u1 sqrt(u0): `2n` floats to `3n`. */
+  triangleSqrtMap(u: Float32Array, out?: Float32Array): Float32Array;
+  triangleSqrtMapInverse(b: Float32Array, out?: Float32Array): Float32Array;
+  /** Basu-Owen points `start .. start + n - 1` of `seed`'s scramble (0: unscrambled): `3n` floats. */
+  triangleBasuOwen(start: number, seed: number, n: number, out?: Float32Array): Float32Array;
+  /** Basu-Owen with one digit permutation per level: `3n` floats. */
+  triangleBasuOwenPermuted(start: number, seed: number, n: number, out?: Float32Array): Float32Array;
+
+  // ---- sphere: directions [x, y, z]; the square's centre maps to +z ----
+  /** Equal-area octahedral map (Clarberg 2008): `2n` floats to `3n`. */
+  sphereEqualArea(u: Float32Array, out?: Float32Array): Float32Array;
+  sphereEqualAreaInverse(d: Float32Array, out?: Float32Array): Float32Array;
+  /** Folds points beyond the octahedral square's edges onto their neighbours: `2n` to `2n`. */
+  sphereEqualAreaWrap(u: Float32Array, out?: Float32Array): Float32Array;
+  /** `wrap` for texels `[column, row]` (`2n` values) of a `size x size` equal-area image. */
+  sphereEqualAreaWrapTexel(texels: Int32Array, size: number, out?: Uint32Array): Uint32Array;
+  /** Lat-long: phi = 2 pi u0, theta = pi u1 (v = 0 is +z): `2n` floats to `3n`. */
+  sphereEquirect(u: Float32Array, out?: Float32Array): Float32Array;
+  sphereEquirectInverse(d: Float32Array, out?: Float32Array): Float32Array;
+  /** Uniform sphere, z = 1 - 2 u0, phi = 2 pi u1. */
+  sphereUniform(u: Float32Array, out?: Float32Array): Float32Array;
+  sphereUniformInverse(d: Float32Array, out?: Float32Array): Float32Array;
+  /** Uniform upper hemisphere (concentric disk lifted by Lambert's map). */
+  sphereUniformHemisphere(u: Float32Array, out?: Float32Array): Float32Array;
+  sphereUniformHemisphereInverse(d: Float32Array, out?: Float32Array): Float32Array;
+  /** Cosine-weighted upper hemisphere (Malley's method). */
+  sphereCosineHemisphere(u: Float32Array, out?: Float32Array): Float32Array;
+  sphereCosineHemisphereInverse(d: Float32Array, out?: Float32Array): Float32Array;
+  /** Densities over the square to per steradian for the equal-area map: pdf / (4 pi). */
+  sphereEqualAreaPdfToSolidAngle(pdf: Float32Array, out?: Float32Array): Float32Array;
+  /** Densities over the square at directions `d` (`3n`) to per steradian for the lat-long map. */
+  sphereEquirectPdfToSolidAngle(pdf: Float32Array, d: Float32Array, out?: Float32Array): Float32Array;
+  /** cos(theta) / pi (0 below the horizon). */
+  sphereCosineHemispherePdf(cosTheta: Float32Array, out?: Float32Array): Float32Array;
+
+  // ---- points of the square ----
+  /** Owen-scrambled pmj02bn points `start .. start + n - 1` of `seed`: `2n` floats in [0, 1). */
+  pmj02bnSample(start: number, seed: number, n: number, out?: Float32Array): Float32Array;
+  /** Unscrambled table points of table set `set` as 0.32 fixed point: `2n` values. */
+  pmj02bnRaw(set: number, start: number, n: number, out?: Uint32Array): Uint32Array;
+  /** The prefix-preserving index shuffle: `out[i] = shuffle(index[i], seed)`. */
+  pmj02bnShuffle(index: Uint32Array, seed: number, out?: Uint32Array): Uint32Array;
+  /** Points per table set in this build. */
+  readonly pmj02bnPoints: number;
+  /** Table sets in this build. */
+  readonly pmj02bnSets: number;
+  /** Independent uniform points (a counter-based hash): `2n` floats. */
+  sequenceRandom(start: number, seed: number, n: number, out?: Float32Array): Float32Array;
+  /** Jittered points of an m x m grid, m = floor(sqrt(count)) (indices past m^2 random). */
+  sequenceStratified(start: number, count: number, seed: number, n: number, out?: Float32Array): Float32Array;
+
+  // ---- environment maps ----
+  /** Hierarchical (MIP-pyramid) distribution of row-major weights (NaN and negatives weigh 0). */
+  envmapHierarchical(weights: Float32Array, width: number, height: number): EnvMap;
+  /** Marginal-conditional distribution (a row by its total, then a column). */
+  envmapMarginalConditional(weights: Float32Array, width: number, height: number): EnvMap;
+  /** An EnvMap from storage words (`EnvMap.storage()` or a file written through the C API). */
+  envmapFromStorage(words: Uint32Array, options?: { verify?: boolean }): EnvMap;
+  /** The EnvMap class of this instance, for `instanceof` (its constructor is not public). */
+  readonly EnvMap: abstract new (...args: never[]) => EnvMap;
+  /** Rec. 709 luminance of RGB texels (`3n` floats) to `n` weights. */
+  envmapLuminance(rgb: Float32Array, out?: Float32Array): Float32Array;
+  /** A copy of the weights with row r multiplied by sin(pi (r + 1/2) / height). */
+  envmapLatlongSolidAngleWeights(weights: Float32Array, width: number, height: number): Float32Array;
+  /** Lat-long densities over the square at rows `v` to per steradian. */
+  envmapLatlongPdfToSolidAngle(pdf: Float32Array, v: Float32Array, out?: Float32Array): Float32Array;
+  /**
+   * Resamples a lat-long image (`srcWidth x srcHeight` texels of `channels` floats) onto the
+   * `size x size` equal-area square, `supersample^2` stratified bilinear samples per texel.
+   */
+  envmapLatlongToEqualArea(
+    src: Float32Array,
+    srcWidth: number,
+    srcHeight: number,
+    channels: 1 | 2 | 3 | 4,
+    size: number,
+    supersample: number,
+  ): Float32Array;
+
+  /** Bytes of wasm memory, and those reserved by live env maps (and a running call). */
+  memoryStats(): { memory: number; reserved: number };
+}

@@ -1,0 +1,561 @@
+// warpcore for JavaScript: sample warps (disk, triangle, sphere), pmj02bn points, baseline
+// samplers and environment-map importance sampling, bit-identical to the Rust crate.
+//
+// An ES module over `warpcore.wasm`, the C ABI crate (capi/) built for wasm32-unknown-unknown
+// (see js/build.sh): no imports, no wasm-bindgen, no bundler. Every function takes and returns
+// typed arrays, interleaved as in C (`n` points of the square are `2n` floats `u0 v0 u1 v1 ...`,
+// directions and barycentrics `3n` floats), and checks its arguments in JavaScript: a wrong
+// type throws a TypeError, a bad count or length a RangeError, never a wasm trap.
+//
+// Memory: the Rust library never allocates, so the module's linear memory above `__heap_base`
+// is unused by Rust. This file manages that region (`Heap`): each call reserves one block for
+// its input and output arrays, copies the inputs in, calls the C function and copies the
+// outputs out; environment-map tables live in blocks owned by an `EnvMap` until it is freed.
+// The memory grows on demand and is never shrunk (WebAssembly cannot shrink memory).
+// See docs/javascript.md.
+
+const TYPED_ARRAY_TAG = Object.getOwnPropertyDescriptor(
+  Object.getPrototypeOf(Uint8Array.prototype),
+  Symbol.toStringTag,
+).get;
+
+const isNode = typeof process === 'object' && process !== null && typeof process.versions?.node === 'string';
+
+/** Largest element count accepted by any function (`size_t` on wasm32). */
+export const MAX_COUNT = 0xffff_ffff;
+
+// ---------------------------------------------------------------------------------------------
+// Loading
+
+/**
+ * Loads and instantiates the WebAssembly module.
+ *
+ * `source` may be nothing (the `warpcore.wasm` next to this file), a URL or string (fetched;
+ * in Node, a `file:` URL or a path is read from disk), a `Response` (or a promise of one),
+ * the module's bytes (`ArrayBuffer` or a typed array), or a compiled `WebAssembly.Module`.
+ */
+export async function load(source) {
+  const module = await compile(source === undefined || source === null ? new URL('./warpcore.wasm', import.meta.url) : source);
+  // An empty import object: the module imports nothing (if a panic path were linked, the
+  // module would import `env.abort` and this would throw a LinkError).
+  const instance = await WebAssembly.instantiate(module, {});
+  return create(instance.exports);
+}
+
+async function compile(source) {
+  if (source instanceof WebAssembly.Module) return source;
+  if (source instanceof ArrayBuffer || ArrayBuffer.isView(source)) return WebAssembly.compile(source);
+  if (typeof source === 'string' || source instanceof URL) {
+    let url = null;
+    try {
+      url = new URL(source);
+    } catch {
+      // A relative string: a path in Node, a URL relative to the page in browsers.
+    }
+    if (isNode && (url === null || url.protocol === 'file:')) {
+      const { readFile } = await import('node:fs/promises');
+      return WebAssembly.compile(await readFile(url ?? source));
+    }
+    return compile(fetch(url ?? source));
+  }
+  if (source !== null && typeof source === 'object' && typeof source.then === 'function') {
+    return compile(await source);
+  }
+  if (typeof Response === 'function' && source instanceof Response) {
+    if (!source.ok) throw new Error(`warpcore: fetching the module failed: ${source.status} ${source.statusText} (${source.url})`);
+    const type = source.headers.get('content-type') ?? '';
+    if (typeof WebAssembly.compileStreaming === 'function' && type.split(';')[0].trim() === 'application/wasm') {
+      return WebAssembly.compileStreaming(source);
+    }
+    return WebAssembly.compile(await source.arrayBuffer());
+  }
+  throw new TypeError(`warpcore: load() takes a URL, a path, a Response, bytes or a WebAssembly.Module, not ${describe(source)}`);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Argument checks
+
+function describe(x) {
+  if (x === null) return 'null';
+  if (ArrayBuffer.isView(x)) return TYPED_ARRAY_TAG.call(x) ?? 'DataView';
+  if (Array.isArray(x)) return 'an Array';
+  return typeof x === 'object' ? (x.constructor?.name ?? 'an object') : typeof x;
+}
+
+function array(a, Type, name) {
+  if (!ArrayBuffer.isView(a) || TYPED_ARRAY_TAG.call(a) !== Type.name) {
+    throw new TypeError(`warpcore: ${name} must be a ${Type.name}, not ${describe(a)}`);
+  }
+  return a;
+}
+
+function elements(a, Type, dim, name) {
+  array(a, Type, name);
+  if (a.length % dim !== 0) {
+    throw new RangeError(`warpcore: ${name}.length must be a multiple of ${dim}, got ${a.length}`);
+  }
+  return a.length / dim;
+}
+
+function integer(x, name, max) {
+  if (typeof x !== 'number') throw new TypeError(`warpcore: ${name} must be a number, not ${describe(x)}`);
+  if (!Number.isInteger(x) || x < 0 || x > max) {
+    throw new RangeError(`warpcore: ${name} must be an integer in [0, ${max}], got ${x}`);
+  }
+  return x;
+}
+
+const count = (n, name = 'n') => integer(n, name, MAX_COUNT);
+const u32 = (x, name) => integer(x, name, 0xffff_ffff);
+
+function output(out, Type, length) {
+  if (out === undefined) return new Type(length);
+  array(out, Type, 'out');
+  if (out.length !== length) throw new RangeError(`warpcore: out.length must be ${length}, got ${out.length}`);
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The heap above __heap_base
+
+const BLOCK_ALIGN = 64; // env-map tables are best 64-byte aligned; every block is
+const PAGE = 65536;
+const ADDRESS_SPACE = 2 ** 32;
+const alignUp = (x, a) => Math.ceil(x / a) * a;
+
+class Heap {
+  constructor(memory, base) {
+    this.memory = memory;
+    this.base = alignUp(base, BLOCK_ALIGN);
+    this.blocks = []; // live blocks [start, end), sorted by start
+  }
+
+  /** Reserves `bytes` (first fit), growing the memory when needed; RangeError when it cannot. */
+  alloc(bytes) {
+    const size = alignUp(Math.max(bytes, 1), BLOCK_ALIGN);
+    let at = this.base;
+    let i = 0;
+    for (; i < this.blocks.length; i++) {
+      if (this.blocks[i].start - at >= size) break;
+      at = this.blocks[i].end;
+    }
+    const end = at + size;
+    if (end > ADDRESS_SPACE) {
+      throw new RangeError(`warpcore: ${bytes} bytes do not fit in the 4 GiB of wasm32 memory`);
+    }
+    const have = this.memory.buffer.byteLength;
+    if (end > have) {
+      try {
+        this.memory.grow(Math.ceil((end - have) / PAGE));
+      } catch (e) {
+        throw new RangeError(`warpcore: cannot grow the wasm memory to ${end} bytes (${e.message})`);
+      }
+    }
+    this.blocks.splice(i, 0, { start: at, end });
+    return at;
+  }
+
+  free(start) {
+    const i = this.blocks.findIndex((b) => b.start === start);
+    if (i >= 0) this.blocks.splice(i, 1);
+  }
+
+  /** Bytes reserved by live blocks. */
+  get used() {
+    return this.blocks.reduce((s, b) => s + b.end - b.start, 0);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The API
+
+const F32 = Float32Array;
+const U32 = Uint32Array;
+const I32 = Int32Array;
+
+const CODES = {
+  '-1': ['WC_ERR_ZERO_SIZE', 'a zero width or height'],
+  '-2': ['WC_ERR_TOO_LARGE', 'a side above 2^24, or tables above 2^32 words'],
+  '-3': ['WC_ERR_LENGTH_MISMATCH', 'an array length that does not match the sizes'],
+  '-4': ['WC_ERR_STORAGE_TOO_SMALL', 'storage shorter than its header says'],
+  '-5': ['WC_ERR_INFINITE_WEIGHT', 'a +Infinity weight'],
+  '-6': ['WC_ERR_WRONG_FORMAT', 'not an environment-map storage (or a byte-swapped one)'],
+  '-7': ['WC_ERR_UNSUPPORTED_VERSION', 'a storage format version this build does not read'],
+  '-8': ['WC_ERR_CORRUPT', 'a header or table word a build never writes'],
+  '-9': ['WC_ERR_INVALID_ARGUMENT', 'an invalid argument'],
+};
+
+function fail(code, what) {
+  const [name, meaning] = CODES[code] ?? ['WC_ERR_OTHER', `error ${code}`];
+  const e = new RangeError(`warpcore: ${what}: ${meaning} (${name})`);
+  e.code = name;
+  return e;
+}
+
+// Environment-map storage tags (header word 0, little-endian bytes "wcHI" / "wcMC").
+const tag = (s) => s.charCodeAt(0) | (s.charCodeAt(1) << 8) | (s.charCodeAt(2) << 16) | ((s.charCodeAt(3) << 24) >>> 0);
+const KINDS = {
+  hierarchical: { prefix: 'wc_envmap_hierarchical_', tag: tag('wcHI') },
+  'marginal-conditional': { prefix: 'wc_envmap_marginal_conditional_', tag: tag('wcMC') },
+};
+const HEADER_WORDS = 8;
+const SAMPLE_WORDS = 5; // WcEnvSample: uv[2], pdf, texel[2]
+
+function create(x) {
+  const memory = x.memory;
+  const heap = new Heap(memory, x.__heap_base.value);
+
+  // Runs `body(pointers)` with one block holding `regions` ([Type, length, source?] each,
+  // 64-byte aligned, `source` copied in); the block is released afterwards.
+  function scratch(regions, body) {
+    const offsets = [];
+    let total = 0;
+    for (const [Type, length] of regions) {
+      offsets.push(total);
+      total += alignUp(length * Type.BYTES_PER_ELEMENT, BLOCK_ALIGN);
+    }
+    const base = heap.alloc(total);
+    try {
+      const pointers = regions.map(([Type, length, source], k) => {
+        const p = base + offsets[k];
+        if (source) new Type(memory.buffer, p, length).set(source);
+        return p;
+      });
+      return body(pointers);
+    } finally {
+      heap.free(base);
+    }
+  }
+
+  const read = (Type, p, length, out) => (out.set(new Type(memory.buffer, p, length)), out);
+  const expect = (got, want, what) => {
+    if (got >>> 0 !== want) throw new Error(`warpcore: internal error: ${what} returned ${got >>> 0}, expected ${want}`);
+  };
+
+  // `n` elements of `I` values of `In` to `n` elements of `O` values of `Out`: C `f(in, out, n)`.
+  const map = (f, In, I, Out, O, name = 'u') => (input, out) => {
+    const n = elements(input, In, I, name);
+    const result = output(out, Out, n * O);
+    if (n === 0) return result;
+    return scratch([[In, n * I, input], [Out, n * O]], ([pi, po]) => {
+      expect(f(pi, po, n), n, f.name);
+      return read(Out, po, n * O, result);
+    });
+  };
+
+  // Index-driven sequences: C `f(...args, out, n)` filling `n` elements of `O` floats.
+  const generate = (f, O, n, out, ...args) => {
+    count(n);
+    const result = output(out, F32, n * O);
+    if (n === 0) return result;
+    return scratch([[F32, n * O]], ([po]) => {
+      expect(f(...args, po, n), n, f.name);
+      return read(F32, po, n * O, result);
+    });
+  };
+
+  // Four disk samples per point: C `f(points, n_points, out, n)`.
+  const fourPerPoint = (f) => (points, n, out) => {
+    const np = elements(points, F32, 2, 'points');
+    n = n === undefined ? 4 * np : count(n);
+    if (n > 4 * np) throw new RangeError(`warpcore: n = ${n} needs ${Math.ceil(n / 4)} points, got ${np}`);
+    const result = output(out, F32, 2 * n);
+    if (n === 0) return result;
+    const used = Math.ceil(n / 4);
+    return scratch([[F32, 2 * used, points.subarray(0, 2 * used)], [F32, 2 * n]], ([pp, po]) => {
+      expect(f(pp, used, po, n), n, f.name);
+      return read(F32, po, 2 * n, result);
+    });
+  };
+
+  // Inverse with quadrants: C `f(p, out, quadrant, n)`.
+  const withQuadrant = (f) => (p) => {
+    const n = elements(p, F32, 2, 'p');
+    const u = new F32(2 * n);
+    const quadrant = new U32(n);
+    if (n === 0) return { u, quadrant };
+    return scratch([[F32, 2 * n, p], [F32, 2 * n], [U32, n]], ([pp, pu, pq]) => {
+      expect(f(pp, pu, pq, n), n, f.name);
+      return { u: read(F32, pu, 2 * n, u), quadrant: read(U32, pq, n, quadrant) };
+    });
+  };
+
+  // Two inputs of `n` and `n * D` floats to `n` floats: C `f(a, b, out, n)`.
+  const pair = (f, D, nameA, nameB) => (a, b, out) => {
+    const n = elements(a, F32, 1, nameA);
+    if (elements(b, F32, D, nameB) !== n) {
+      throw new RangeError(`warpcore: ${nameB}.length must be ${D * n} (${D} per ${nameA} value), got ${b.length}`);
+    }
+    const result = output(out, F32, n);
+    if (n === 0) return result;
+    return scratch([[F32, n, a], [F32, D * n, b], [F32, n]], ([pa, pb, po]) => {
+      expect(f(pa, pb, po, n), n, f.name);
+      return read(F32, po, n, result);
+    });
+  };
+
+  const api = {
+    // disk
+    diskPolar: map(x.wc_disk_polar, F32, 2, F32, 2),
+    diskPolarInverse: map(x.wc_disk_polar_inverse, F32, 2, F32, 2, 'p'),
+    diskConcentric: map(x.wc_disk_concentric, F32, 2, F32, 2),
+    diskConcentricInverse: map(x.wc_disk_concentric_inverse, F32, 2, F32, 2, 'p'),
+    diskPolar4: fourPerPoint(x.wc_disk_polar4),
+    diskPolar4Inverse: withQuadrant(x.wc_disk_polar4_inverse),
+    diskConcentric4: fourPerPoint(x.wc_disk_concentric4),
+    diskConcentric4Inverse: withQuadrant(x.wc_disk_concentric4_inverse),
+
+    // triangle
+    triangleUniform: map(x.wc_triangle_uniform, F32, 2, F32, 3),
+    triangleUniformInverse: map(x.wc_triangle_uniform_inverse, F32, 3, F32, 2, 'b'),
+    triangleSqrtMap: map(x.wc_triangle_sqrt_map, F32, 2, F32, 3),
+    triangleSqrtMapInverse: map(x.wc_triangle_sqrt_map_inverse, F32, 3, F32, 2, 'b'),
+    triangleBasuOwen: (start, seed, n, out) =>
+      generate(x.wc_triangle_basu_owen, 3, n, out, u32(start, 'start'), u32(seed, 'seed')),
+    triangleBasuOwenPermuted: (start, seed, n, out) =>
+      generate(x.wc_triangle_basu_owen_permuted, 3, n, out, u32(start, 'start'), u32(seed, 'seed')),
+
+    // sphere
+    sphereEqualArea: map(x.wc_sphere_equal_area, F32, 2, F32, 3),
+    sphereEqualAreaInverse: map(x.wc_sphere_equal_area_inverse, F32, 3, F32, 2, 'd'),
+    sphereEqualAreaWrap: map(x.wc_sphere_equal_area_wrap, F32, 2, F32, 2),
+    sphereEquirect: map(x.wc_sphere_equirect, F32, 2, F32, 3),
+    sphereEquirectInverse: map(x.wc_sphere_equirect_inverse, F32, 3, F32, 2, 'd'),
+    sphereUniform: map(x.wc_sphere_uniform, F32, 2, F32, 3),
+    sphereUniformInverse: map(x.wc_sphere_uniform_inverse, F32, 3, F32, 2, 'd'),
+    sphereUniformHemisphere: map(x.wc_sphere_uniform_hemisphere, F32, 2, F32, 3),
+    sphereUniformHemisphereInverse: map(x.wc_sphere_uniform_hemisphere_inverse, F32, 3, F32, 2, 'd'),
+    sphereCosineHemisphere: map(x.wc_sphere_cosine_hemisphere, F32, 2, F32, 3),
+    sphereCosineHemisphereInverse: map(x.wc_sphere_cosine_hemisphere_inverse, F32, 3, F32, 2, 'd'),
+    sphereEqualAreaPdfToSolidAngle: map(x.wc_sphere_equal_area_pdf_to_solid_angle, F32, 1, F32, 1, 'pdf'),
+    sphereCosineHemispherePdf: map(x.wc_sphere_cosine_hemisphere_pdf, F32, 1, F32, 1, 'cosTheta'),
+    sphereEquirectPdfToSolidAngle: pair(x.wc_sphere_equirect_pdf_to_solid_angle, 3, 'pdf', 'd'),
+    sphereEqualAreaWrapTexel(texels, size, out) {
+      const n = elements(texels, I32, 2, 'texels');
+      if (u32(size, 'size') === 0) throw new RangeError('warpcore: size must be at least 1');
+      const result = output(out, U32, 2 * n);
+      if (n === 0) return result;
+      return scratch([[I32, 2 * n, texels], [U32, 2 * n]], ([pt, po]) => {
+        expect(x.wc_sphere_equal_area_wrap_texel(pt, size, po, n), n, 'wc_sphere_equal_area_wrap_texel');
+        return read(U32, po, 2 * n, result);
+      });
+    },
+
+    // pmj02bn and the baseline samplers
+    pmj02bnSample: (start, seed, n, out) =>
+      generate(x.wc_pmj02bn_sample, 2, n, out, u32(start, 'start'), u32(seed, 'seed')),
+    pmj02bnRaw(set, start, n, out) {
+      u32(set, 'set');
+      u32(start, 'start');
+      count(n);
+      const result = output(out, U32, 2 * n);
+      if (n === 0) return result;
+      return scratch([[U32, 2 * n]], ([po]) => {
+        expect(x.wc_pmj02bn_raw(set, start, po, n), n, 'wc_pmj02bn_raw');
+        return read(U32, po, 2 * n, result);
+      });
+    },
+    pmj02bnShuffle(index, seed, out) {
+      const n = elements(index, U32, 1, 'index');
+      u32(seed, 'seed');
+      const result = output(out, U32, n);
+      if (n === 0) return result;
+      return scratch([[U32, n, index], [U32, n]], ([pi, po]) => {
+        expect(x.wc_pmj02bn_shuffle(pi, seed, po, n), n, 'wc_pmj02bn_shuffle');
+        return read(U32, po, n, result);
+      });
+    },
+    pmj02bnPoints: x.wc_pmj02bn_points() >>> 0,
+    pmj02bnSets: x.wc_pmj02bn_sets() >>> 0,
+    sequenceRandom: (start, seed, n, out) =>
+      generate(x.wc_sequence_random, 2, n, out, u32(start, 'start'), u32(seed, 'seed')),
+    sequenceStratified: (start, count_, seed, n, out) =>
+      generate(x.wc_sequence_stratified, 2, n, out, u32(start, 'start'), u32(count_, 'count'), u32(seed, 'seed')),
+
+    // environment maps: helpers
+    envmapLuminance: map(x.wc_envmap_luminance, F32, 3, F32, 1, 'rgb'),
+    envmapLatlongPdfToSolidAngle: pair(x.wc_envmap_latlong_pdf_to_solid_angle, 1, 'pdf', 'v'),
+    envmapLatlongSolidAngleWeights(weights, width, height) {
+      const n = size(weights, width, height, 1, 'weights');
+      const result = new F32(n);
+      return scratch([[F32, n, weights]], ([pw]) => {
+        const code = x.wc_envmap_latlong_solid_angle_weights(pw, width, height);
+        if (code !== 0) throw fail(code, 'envmapLatlongSolidAngleWeights');
+        return read(F32, pw, n, result);
+      });
+    },
+    envmapLatlongToEqualArea(src, srcWidth, srcHeight, channels, size_, supersample) {
+      if (typeof channels !== 'number' || !Number.isInteger(channels) || channels < 1 || channels > 4) {
+        throw new (typeof channels === 'number' ? RangeError : TypeError)(`warpcore: channels must be 1, 2, 3 or 4, got ${channels}`);
+      }
+      const n = size(src, srcWidth, srcHeight, channels, 'src');
+      u32(size_, 'size');
+      u32(supersample, 'supersample');
+      if (size_ === 0 || supersample === 0) throw fail(-1, 'envmapLatlongToEqualArea');
+      const m = size_ * size_ * channels;
+      if (m > MAX_COUNT) throw fail(-2, 'envmapLatlongToEqualArea');
+      const result = new F32(m);
+      return scratch([[F32, n, src], [F32, m]], ([ps, pd]) => {
+        const code = x.wc_envmap_latlong_to_equal_area(ps, srcWidth, srcHeight, channels, pd, size_, supersample);
+        if (code !== 0) throw fail(code, 'envmapLatlongToEqualArea');
+        return read(F32, pd, m, result);
+      });
+    },
+  };
+
+  // Checks `width x height` texels of `channels` floats in `a`; returns the length.
+  function size(a, width, height, channels, name) {
+    array(a, F32, name);
+    u32(width, 'width');
+    u32(height, 'height');
+    if (width === 0 || height === 0) throw fail(-1, name);
+    const n = width * height * channels;
+    if (a.length !== n) {
+      throw new RangeError(`warpcore: ${name}.length must be ${n} (${width} x ${height}${channels > 1 ? ` x ${channels}` : ''}), got ${a.length}`);
+    }
+    return n;
+  }
+
+  // ---- environment maps: tables in wasm memory, owned by an EnvMap ----
+
+  const registry = typeof FinalizationRegistry === 'function' ? new FinalizationRegistry((p) => heap.free(p)) : null;
+  const secret = Symbol('EnvMap');
+
+  /** An environment-map distribution whose tables live in the module's memory. */
+  class EnvMap {
+    #p;
+    #len;
+    #f;
+    constructor(key, kind, p, len) {
+      if (key !== secret) throw new TypeError('warpcore: use envmapHierarchical, envmapMarginalConditional or envmapFromStorage');
+      this.#p = p;
+      this.#len = len;
+      this.#f = {
+        sample: x[KINDS[kind].prefix + 'sample'],
+        pdf: x[KINDS[kind].prefix + 'pdf'],
+      };
+      /** `'hierarchical'` or `'marginal-conditional'`. */
+      this.kind = kind;
+      const header = new U32(memory.buffer, p, HEADER_WORDS);
+      /** Texels per row. */
+      this.width = header[2];
+      /** Rows. */
+      this.height = header[3];
+      registry?.register(this, p, this);
+    }
+
+    #live() {
+      if (this.#p === 0) throw new TypeError('warpcore: this EnvMap has been freed');
+      return this.#p;
+    }
+
+    /** Words of the storage (header included). */
+    get storageLength() {
+      return this.#len;
+    }
+
+    /**
+     * Draws one sample per point of `u` (`2n` floats, any values, clamped to [0, 1)):
+     * `uv` (`2n` floats, in the texel), `pdf` (`n` densities over the unit square) and
+     * `texel` (`2n` values, `[column, row]`).
+     */
+    sample(u) {
+      const p = this.#live();
+      const n = elements(u, F32, 2, 'u');
+      const uv = new F32(2 * n);
+      const pdf = new F32(n);
+      const texel = new U32(2 * n);
+      if (n === 0) return { uv, pdf, texel };
+      return scratch([[F32, 2 * n, u], [U32, SAMPLE_WORDS * n]], ([pu, po]) => {
+        expect(this.#f.sample(p, this.#len, pu, po, n), n, 'sample');
+        const w = new U32(memory.buffer, po, SAMPLE_WORDS * n);
+        const uvBits = new U32(uv.buffer);
+        const pdfBits = new U32(pdf.buffer);
+        for (let i = 0, k = 0; i < n; i++, k += SAMPLE_WORDS) {
+          uvBits[2 * i] = w[k];
+          uvBits[2 * i + 1] = w[k + 1];
+          pdfBits[i] = w[k + 2];
+          texel[2 * i] = w[k + 3];
+          texel[2 * i + 1] = w[k + 4];
+        }
+        return { uv, pdf, texel };
+      });
+    }
+
+    /** Densities over the unit square at `n` points `uv` (`2n` floats), bit-equal to `sample`'s. */
+    pdf(uv, out) {
+      const p = this.#live();
+      const n = elements(uv, F32, 2, 'uv');
+      const result = output(out, F32, n);
+      if (n === 0) return result;
+      return scratch([[F32, 2 * n, uv], [F32, n]], ([pu, po]) => {
+        expect(this.#f.pdf(p, this.#len, pu, po, n), n, 'pdf');
+        return read(F32, po, n, result);
+      });
+    }
+
+    /** A copy of the storage words: the file format (little-endian bytes on every target). */
+    storage() {
+      return read(U32, this.#live(), this.#len, new U32(this.#len));
+    }
+
+    /** Releases the tables' memory (also done when the object is garbage-collected). */
+    free() {
+      if (this.#p !== 0) {
+        registry?.unregister(this);
+        heap.free(this.#p);
+        this.#p = 0;
+      }
+    }
+
+    [Symbol.dispose ?? Symbol.for('Symbol.dispose')]() {
+      this.free();
+    }
+  }
+
+  function build(kind, weights, width, height) {
+    const k = KINDS[kind];
+    const n = size(weights, width, height, 1, 'weights');
+    const len = x[k.prefix + 'storage_len'](width, height) >>> 0;
+    if (len === 0xffff_ffff) throw fail(-2, `envmap ${kind}`);
+    const p = heap.alloc(4 * len);
+    try {
+      scratch([[F32, n, weights]], ([pw]) => {
+        const code = x[k.prefix + 'build'](pw, width, height, p, len);
+        if (code !== 0) throw fail(code, `envmap ${kind}`);
+      });
+    } catch (e) {
+      heap.free(p);
+      throw e;
+    }
+    return new EnvMap(secret, kind, p, len);
+  }
+
+  Object.assign(api, {
+    EnvMap,
+    /** The hierarchical (MIP-pyramid) distribution of `width x height` row-major weights. */
+    envmapHierarchical: (weights, width, height) => build('hierarchical', weights, width, height),
+    /** The marginal-conditional distribution of `width x height` row-major weights. */
+    envmapMarginalConditional: (weights, width, height) => build('marginal-conditional', weights, width, height),
+    /** An EnvMap from storage words (`EnvMap.storage()`, or a file written by the C API). */
+    envmapFromStorage(words, { verify = true } = {}) {
+      array(words, U32, 'words');
+      const kind = Object.keys(KINDS).find((k) => words.length > 0 && words[0] === KINDS[k].tag);
+      if (kind === undefined) throw fail(words.length < HEADER_WORDS ? -4 : -6, 'envmapFromStorage');
+      const len = words.length;
+      const p = heap.alloc(4 * len);
+      try {
+        new U32(memory.buffer, p, len).set(words);
+        const code = x[KINDS[kind].prefix + (verify ? 'verify' : 'validate')](p, len);
+        if (code !== 0) throw fail(code, 'envmapFromStorage');
+      } catch (e) {
+        heap.free(p);
+        throw e;
+      }
+      return new EnvMap(secret, kind, p, len);
+    },
+    /** Bytes of wasm memory: total, and reserved by live env maps and calls. */
+    memoryStats: () => ({ memory: memory.buffer.byteLength, reserved: heap.used }),
+  });
+  return Object.freeze(api);
+}
