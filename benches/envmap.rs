@@ -1,6 +1,6 @@
 //! Environment-map distributions: build time and sampling throughput of warpcore's
 //! marginal-conditional and hierarchical distributions on a real 512 x 256 map (`park`, with
-//! a sun) and on the same map upsampled to 4096 x 2048, scalar, x8 and slice forms, against
+//! a sun) and on the same map upsampled to 4096 x 2048, scalar, x8, x16 and slice forms, against
 //! the textbook `f32`-CDF marginal-conditional sampler a user would write (pbrt-v3/v4
 //! `Distribution2D` style: `Vec<f32>` CDFs and `partition_point`).
 //!
@@ -10,11 +10,13 @@ mod common;
 #[path = "../tests/common/pfm.rs"]
 mod pfm;
 
-use common::{BATCH, to_soa, uniform_points};
+use common::{BATCH, to_soa, to_soa16, uniform_points};
 use criterion::{BenchmarkGroup, Criterion, Throughput, measurement::WallTime};
 use std::hint::black_box;
-use warpcore::envmap::{Hierarchical, MarginalConditional, Sample, SampleX8, Word, image};
-use warpcore::f32x8;
+use warpcore::envmap::{
+    Hierarchical, MarginalConditional, Sample, SampleX8, SampleX16, Word, image,
+};
+use warpcore::{f32x8, f32x16};
 
 /// Lat-long luminance weights of the `park` map.
 fn park() -> (Vec<f32>, usize, usize) {
@@ -128,6 +130,7 @@ fn sample_group<'c>(
 ) -> BenchmarkGroup<'c, WallTime> {
     let input = uniform_points::<2>(BATCH, 7);
     let soa = to_soa(&input);
+    let soa16 = to_soa16(&input);
     let mut out = vec![
         Sample {
             uv: [0.0; 2],
@@ -143,6 +146,14 @@ fn sample_group<'c>(
             texel: [warpcore::u32x8::ZERO; 2]
         };
         BATCH / 8
+    ];
+    let mut out16 = vec![
+        SampleX16 {
+            uv: [f32x16::ZERO; 2],
+            pdf: f32x16::ZERO,
+            texel: [warpcore::u32x16::ZERO; 2]
+        };
+        BATCH / 16
     ];
     let mut g = c.benchmark_group(name);
     g.throughput(Throughput::Elements(BATCH as u64));
@@ -175,6 +186,14 @@ fn sample_group<'c>(
                         *o = $d.sample_x8(*u);
                     }
                     black_box(&mut out8);
+                })
+            });
+            g.bench_function(concat!($label, ", x16"), |b| {
+                b.iter(|| {
+                    for (o, u) in out16.iter_mut().zip(black_box(&soa16)) {
+                        *o = $d.sample_x16(*u);
+                    }
+                    black_box(&mut out16);
                 })
             });
             g.bench_function(concat!($label, ", slice"), |b| {

@@ -29,6 +29,12 @@
 //! whose lanes are all ones or all zeros (`wide` blends by the top bit or by bytes, which
 //! agree on such masks). The tests below check each against the scalar `Wrapping<u32>`.
 
+mod blocks;
+#[cfg(feature = "envmap")]
+mod interleaved;
+#[cfg(feature = "envmap")]
+pub(crate) use interleaved::Interleaved;
+
 use core::num::Wrapping;
 use core::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
 use wide::{f32x8, f32x16, u32x4, u32x8, u32x16};
@@ -72,6 +78,14 @@ pub(crate) trait UintLane:
     /// (zeros where that range is out of bounds, never a panic). For `u32x8` each lane is one
     /// 16-byte load and two 4x4 transposes make the four vectors.
     fn gather4(table: &[u32], start: Self) -> [Self; 4];
+    /// Lane-wise read of 16-word (64-byte) records as one vector per word: word `k` of the
+    /// result holds `table[idx_j][k]` in lane `j` (zeros out of bounds, never a panic).
+    #[allow(dead_code)] // for the environment maps
+    fn gather16(table: &[[u32; 16]], idx: Self) -> [Self; 16];
+    /// Whether [`gather16`](Self::gather16) is the cheaper way to read a whole record (one
+    /// transpose of full rows, with AVX-512's 16 lanes) rather than several
+    /// [`gather4`](Self::gather4)s of the words actually needed.
+    const WHOLE_RECORDS: bool = false;
 
     /// Per lane, `f(lane)` split into two lanes: the table lookups of the sequences.
     #[allow(dead_code)] // for the table-driven families (pmj02bn)
@@ -190,6 +204,14 @@ impl UintLane for Wrapping<u32> {
     fn gather4(table: &[u32], start: Self) -> [Self; 4] {
         words(table, start.0).map(Wrapping)
     }
+    #[inline(always)]
+    fn gather16(table: &[[u32; 16]], idx: Self) -> [Self; 16] {
+        table
+            .get(idx.0 as usize)
+            .copied()
+            .unwrap_or([0; 16])
+            .map(Wrapping)
+    }
 }
 
 /// `table[start..start + N]` as an array, zeros when out of bounds.
@@ -282,7 +304,7 @@ impl<U: Copy + BitAnd<Output = U> + BitOr<Output = U> + Not<Output = U>> Mask fo
 /// target; where `wide` emulates a width (`f32x16` without AVX-512 is two `f32x8` halves,
 /// `f32x8` without AVX is two SSE halves) the halves run the same instructions.
 macro_rules! simd_lanes {
-    ($f:ident, $u:ident, $n:literal, $from_int:ident) => {
+    ($f:ident, $u:ident, $n:literal, $from_int:ident, $gather16:path, $whole:expr) => {
         impl UintLane for $u {
             type Mask = SimdMask<$u>;
             #[inline(always)]
@@ -303,7 +325,14 @@ macro_rules! simd_lanes {
             }
             #[inline(always)]
             fn select(mask: SimdMask<$u>, if_true: Self, if_false: Self) -> Self {
-                mask.0.select(if_true, if_false)
+                #[cfg(target_feature = "avx512f")]
+                {
+                    (mask.0 & if_true) | (!mask.0 & if_false)
+                }
+                #[cfg(not(target_feature = "avx512f"))]
+                {
+                    mask.0.select(if_true, if_false)
+                }
             }
             #[inline(always)]
             fn reverse_bits(self) -> Self {
@@ -324,7 +353,14 @@ macro_rules! simd_lanes {
             }
             #[inline(always)]
             fn mul_high(self, rhs: Self) -> Self {
-                self.mul_keep_high(rhs)
+                // Lane by lane in `u64`, so LLVM sees an unsigned multiply-high and emits its
+                // even/odd `pmuludq` pair (`wide`'s version shuffles through arrays).
+                let (a, b) = (self.to_array(), rhs.to_array());
+                let mut out = [0u32; $n];
+                for ((o, &x), &y) in out.iter_mut().zip(a.iter()).zip(b.iter()) {
+                    *o = ((u64::from(x) * u64::from(y)) >> 32) as u32;
+                }
+                $u::new(out)
             }
             #[inline(always)]
             fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N] {
@@ -332,6 +368,11 @@ macro_rules! simd_lanes {
                 let rows: [[u32; N]; $n] =
                     core::array::from_fn(|j| table.get(idx[j] as usize).copied().unwrap_or([0; N]));
                 core::array::from_fn(|k| $u::new(core::array::from_fn(|j| rows[j][k])))
+            }
+            const WHOLE_RECORDS: bool = $whole;
+            #[inline(always)]
+            fn gather16(table: &[[u32; 16]], idx: Self) -> [Self; 16] {
+                $gather16(table, idx)
             }
             #[inline(always)]
             fn gather4(table: &[u32], start: Self) -> [Self; 4] {
@@ -393,7 +434,15 @@ macro_rules! simd_lanes {
             }
             #[inline(always)]
             fn select(mask: SimdMask<$u>, if_true: Self, if_false: Self) -> Self {
-                bytemuck::cast::<$u, $f>(mask.0).select(if_true, if_false)
+                #[cfg(target_feature = "avx512f")]
+                {
+                    let (t, f) = (if_true.to_bits(), if_false.to_bits());
+                    bytemuck::cast((mask.0 & t) | (!mask.0 & f))
+                }
+                #[cfg(not(target_feature = "avx512f"))]
+                {
+                    bytemuck::cast::<$u, $f>(mask.0).select(if_true, if_false)
+                }
             }
             #[inline(always)]
             fn to_bits(self) -> $u {
@@ -415,8 +464,15 @@ macro_rules! simd_lanes {
     };
 }
 
-simd_lanes!(f32x8, u32x8, 8, from_i32x8);
-simd_lanes!(f32x16, u32x16, 16, from_i32x16);
+simd_lanes!(f32x8, u32x8, 8, from_i32x8, blocks::gather16_x8, false);
+simd_lanes!(
+    f32x16,
+    u32x16,
+    16,
+    from_i32x16,
+    blocks::gather16_x16,
+    cfg!(target_feature = "avx512f")
+);
 
 /// Maps any `f32` onto a warp's input range `[0, 1 - 2^-24]`: values in `[0, 1)` pass
 /// unchanged, values `>= 1` and `+inf` become `1 - 2^-24`, and NaN, `-0.0`, negatives and

@@ -50,12 +50,14 @@
 //! integer operations per level and one division per axis at the end.
 
 use super::{
-    Error, HEADER_WORDS, Sample, SampleX8, Word, carve, carve_ref, check_lens, check_size,
-    checked_len, clean, edges, from_storage_order, load4, pdf_batch, read_header, sample_batch,
-    scalar_sample, simd_sample, tag, take, to_storage_order, u32_to_f32, write_header,
+    Error, HEADER_WORDS, Sample, SampleX8, SampleX16, Word, carve, carve_ref, check_lens,
+    check_size, checked_len, clean, edges, from_storage_order, load4, load16, read_header,
+    scalar_sample, simd_sample, simd16_sample, slices, tag, take, to_storage_order, u32_to_f32,
+    write_header,
 };
+use crate::batch::Widest;
 use crate::lanes::{Lane, UintLane, unit_interval};
-use wide::f32x8;
+use wide::{f32x8, f32x16};
 
 /// Words per block: own fractions (3), four children's fractions (12), the block's sum (1).
 const BLOCK: usize = 16;
@@ -212,6 +214,17 @@ fn children(sx: bool, sy: bool, mut child: impl FnMut(u32, u32) -> f32) -> [[f32
 fn put(block: &mut [u32], at: usize, fractions: [u32; 3]) {
     if let Some(d) = block.get_mut(at..at + 3) {
         d.copy_from_slice(&fractions);
+    }
+}
+
+impl slices::Body for Hierarchical<'_> {
+    #[inline(always)]
+    fn sample<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
+        self.sample_body(u)
+    }
+    #[inline(always)]
+    fn pdf<L: Lane>(&self, uv: [L; 2]) -> L {
+        self.pdf_body(uv)
     }
 }
 
@@ -588,11 +601,21 @@ impl<'a> Hierarchical<'a> {
                 u32::from(shape.splits(k).1),
                 u32::from(shape.splits(k + 1).1),
             );
-            let [px, py0, py1, _] = load4(self.blocks, base);
-            let c = walk.level(shape.shift(k), [sx0, sy0], [px, py0, py1], &mut left);
-            // The fourth word is the next child's px (or the block's sum): unused.
-            let [px, py0, py1, _] = load4(self.blocks, base + U::splat(3) + c + c + c);
-            let g = walk.level(shape.shift(k + 1), [sx1, sy1], [px, py0, py1], &mut left);
+            let (c, g) = if U::WHOLE_RECORDS {
+                // The whole block at once: no second read waiting on the first level.
+                let w = load16(self.blocks.as_chunks::<BLOCK>().0, U::splat(offset) + index);
+                let c = walk.level(shape.shift(k), [sx0, sy0], [w[0], w[1], w[2]], &mut left);
+                let child = child_fractions(&w, c);
+                let g = walk.level(shape.shift(k + 1), [sx1, sy1], child, &mut left);
+                (c, g)
+            } else {
+                let [px, py0, py1, _] = load4(self.blocks, base);
+                let c = walk.level(shape.shift(k), [sx0, sy0], [px, py0, py1], &mut left);
+                // The fourth word is the next child's px (or the block's sum): unused.
+                let [px, py0, py1, _] = load4(self.blocks, base + U::splat(3) + c + c + c);
+                let g = walk.level(shape.shift(k + 1), [sx1, sy1], [px, py0, py1], &mut left);
+                (c, g)
+            };
             index = (index.shl(b0) | c).shl(b1) | g;
             offset += count;
             count <<= b0 + b1;
@@ -619,21 +642,23 @@ impl<'a> Hierarchical<'a> {
     /// The sample a finished walk describes.
     #[inline(always)]
     fn finish<L: Lane>(&self, walk: &Walk<L::U>) -> ([L; 2], L, [L::U; 2]) {
-        // The key's offset inside its final interval is the position inside the texel.
-        let f = |k: usize| unit_interval(u32_to_f32::<L>(walk.r[k]) / u32_to_f32::<L>(walk.len[k]));
-        // Real tables never lead into the padding; corrupt ones could, so clamp (a no-op
-        // otherwise) to keep the texel in the map.
-        let clamp = |t: L::U, n: u32| {
-            let last = L::U::splat(n - 1);
-            L::U::select(last.simd_lt(t), last, t)
-        };
         let texel = [
-            clamp(walk.texel[0], self.width),
-            clamp(walk.texel[1], self.height),
+            clamp_below(walk.texel[0], self.width),
+            clamp_below(walk.texel[1], self.height),
         ];
         let uv = [
-            edges::point(self.edges_x, texel[0], f(0), self.width as f32),
-            edges::point(self.edges_y, texel[1], f(1), self.height as f32),
+            edges::point(
+                self.edges_x,
+                texel[0],
+                offset::<L>(walk.r[0], walk.len[0]),
+                self.width as f32,
+            ),
+            edges::point(
+                self.edges_y,
+                texel[1],
+                offset::<L>(walk.r[1], walk.len[1]),
+                self.height as f32,
+            ),
         ];
         (uv, self.density(walk), texel)
     }
@@ -674,11 +699,21 @@ impl<'a> Hierarchical<'a> {
         simd_sample(self.sample_body(u))
     }
 
+    /// [`sample`](Self::sample) on sixteen points at once; bit-identical to sixteen scalar
+    /// calls. One AVX-512 register per coordinate where the build has AVX-512F; elsewhere
+    /// `wide` runs two 8-lane halves.
+    #[inline]
+    pub fn sample_x16(&self, u: [f32x16; 2]) -> SampleX16 {
+        simd16_sample(self.sample_body(u))
+    }
+
     /// [`sample`](Self::sample) over a batch: `out[i] = sample(u[i])` for
     /// `i < min(u.len(), out.len())`; returns that count. Bit-identical to the scalar form.
+    /// Runs 16 lanes with AVX-512F (8 otherwise), several lane groups interleaved so that
+    /// their table reads overlap.
     #[inline]
     pub fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
-        sample_batch(u, out, |v| self.sample_x8(v))
+        slices::sample::<Self, Widest, _, { slices::GROUPS }>(self, u, out)
     }
 
     /// Density at `uv` with respect to area on `[0, 1]^2`: `P(texel) * width * height` for
@@ -694,12 +729,33 @@ impl<'a> Hierarchical<'a> {
         self.pdf_body(uv)
     }
 
+    /// [`pdf`](Self::pdf) on sixteen points at once; bit-identical to sixteen scalar calls.
+    #[inline]
+    pub fn pdf_x16(&self, uv: [f32x16; 2]) -> f32x16 {
+        self.pdf_body(uv)
+    }
+
     /// [`pdf`](Self::pdf) over a batch, with the length rule of
     /// [`sample_slice`](Self::sample_slice).
     #[inline]
     pub fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
-        pdf_batch(uv, out, |v| self.pdf_x8(v))
+        slices::pdf::<Self, Widest, _, { slices::GROUPS }>(self, uv, out)
     }
+}
+
+/// The key's offset `r` inside its final interval of `len` units: the position inside the
+/// texel, in `[0, 1)`.
+#[inline(always)]
+fn offset<L: Lane>(r: L::U, len: L::U) -> L {
+    unit_interval(u32_to_f32::<L>(r) / u32_to_f32::<L>(len))
+}
+
+/// `t` clamped to `n - 1`: real tables never lead into the padding, corrupt ones could, so
+/// this (a no-op otherwise) keeps the texel in the map.
+#[inline(always)]
+fn clamp_below<U: UintLane>(t: U, n: u32) -> U {
+    let last = U::splat(n.wrapping_sub(1));
+    U::select(last.simd_lt(t), last, t)
 }
 
 /// Where a walk down the pyramid is, per axis: the interval length `len` and the key's
@@ -748,6 +804,20 @@ impl<U: UintLane> Walk<U> {
         self.texel[1] = self.texel[1].shl(1) | by;
         bx | by.shl(sx)
     }
+}
+
+/// The fractions `[px, py0, py1]` of child `c` (`0..4`) in a block read whole: words
+/// `3 + 3c..6 + 3c`, picked by the two bits of `c` with selects.
+#[inline(always)]
+fn child_fractions<U: UintLane>(w: &[U; BLOCK], c: U) -> [U; 3] {
+    let zero = U::splat(0);
+    let even = (c & U::splat(1)).simd_eq(zero);
+    let low = (c & U::splat(2)).simd_eq(zero);
+    core::array::from_fn(|j| {
+        let lo = U::select(even, w[3 + j], w[6 + j]);
+        let hi = U::select(even, w[9 + j], w[12 + j]);
+        U::select(low, lo, hi)
+    })
 }
 
 /// Lengths of the four regions after the header: alignment padding, blocks, column and row

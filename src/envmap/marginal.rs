@@ -25,11 +25,12 @@
 use super::{
     Error, HEADER_WORDS, SampleX8, Word, carve, carve_ref, check_lens, check_size, checked_len,
     clean, edges, fixed_key, from_storage_order, load, read_header, scalar_sample, simd_sample,
-    tag, take, to_storage_order, u32_to_f32, write_header,
+    simd16_sample, tag, take, to_storage_order, u32_to_f32, write_header,
 };
-use super::{Sample, pdf_batch, sample_batch};
+use super::{Sample, SampleX16, slices};
+use crate::batch::Widest;
 use crate::lanes::{Lane, UintLane, unit_interval};
-use wide::f32x8;
+use wide::{f32x8, f32x16};
 
 /// Fixed-point scale of the CDFs: `2^31` (so `2^31` itself, the end of every CDF, fits a `u32`).
 const ONE: u64 = 1 << 31;
@@ -61,6 +62,17 @@ pub struct MarginalConditional<'a> {
     height: u32,
     /// `width * height * 2^-62`: turns the product of two interval lengths into a density.
     pdf_scale: f32,
+}
+
+impl slices::Body for MarginalConditional<'_> {
+    #[inline(always)]
+    fn sample<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
+        self.sample_body(u)
+    }
+    #[inline(always)]
+    fn pdf<L: Lane>(&self, uv: [L; 2]) -> L {
+        self.pdf_body(uv)
+    }
 }
 
 impl<'a> MarginalConditional<'a> {
@@ -276,11 +288,21 @@ impl<'a> MarginalConditional<'a> {
         simd_sample(self.sample_body(u))
     }
 
+    /// [`sample`](Self::sample) on sixteen points at once; bit-identical to sixteen scalar
+    /// calls. One AVX-512 register per coordinate where the build has AVX-512F; elsewhere
+    /// `wide` runs two 8-lane halves.
+    #[inline]
+    pub fn sample_x16(&self, u: [f32x16; 2]) -> SampleX16 {
+        simd16_sample(self.sample_body(u))
+    }
+
     /// [`sample`](Self::sample) over a batch: `out[i] = sample(u[i])` for
     /// `i < min(u.len(), out.len())`; returns that count. Bit-identical to the scalar form.
+    /// Runs 16 lanes with AVX-512F (8 otherwise), several lane groups interleaved so that
+    /// their table reads overlap.
     #[inline]
     pub fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
-        sample_batch(u, out, |v| self.sample_x8(v))
+        slices::sample::<Self, Widest, _, { slices::GROUPS }>(self, u, out)
     }
 
     /// Density at `uv` with respect to area on `[0, 1]^2`: `P(texel) * width * height` for
@@ -296,11 +318,17 @@ impl<'a> MarginalConditional<'a> {
         self.pdf_body(uv)
     }
 
+    /// [`pdf`](Self::pdf) on sixteen points at once; bit-identical to sixteen scalar calls.
+    #[inline]
+    pub fn pdf_x16(&self, uv: [f32x16; 2]) -> f32x16 {
+        self.pdf_body(uv)
+    }
+
     /// [`pdf`](Self::pdf) over a batch, with the length rule of
     /// [`sample_slice`](Self::sample_slice).
     #[inline]
     pub fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
-        pdf_batch(uv, out, |v| self.pdf_x8(v))
+        slices::pdf::<Self, Widest, _, { slices::GROUPS }>(self, uv, out)
     }
 }
 

@@ -123,13 +123,14 @@ mod edges;
 mod hierarchical;
 pub mod image;
 mod marginal;
+mod slices;
 
 pub use hierarchical::Hierarchical;
 pub use marginal::MarginalConditional;
 
 use crate::lanes::{Lane, UintLane, unit_interval};
 use core::fmt;
-use wide::{f32x8, u32x8};
+use wide::{f32x8, f32x16, u32x8, u32x16};
 
 /// The storage element: the caller allocates `storage_len(width, height)` of them (any
 /// alignment, any initial contents) and lends them to `new`.
@@ -171,6 +172,36 @@ impl SampleX8 {
     /// The eight samples as an array of [`Sample`]s.
     #[inline]
     pub fn to_array(&self) -> [Sample; 8] {
+        let (u, v, p) = (
+            self.uv[0].to_array(),
+            self.uv[1].to_array(),
+            self.pdf.to_array(),
+        );
+        let (c, r) = (self.texel[0].to_array(), self.texel[1].to_array());
+        core::array::from_fn(|j| Sample {
+            uv: [u[j], v[j]],
+            pdf: p[j],
+            texel: [c[j], r[j]],
+        })
+    }
+}
+
+/// Sixteen samples in SIMD lanes (what `sample_x16` returns). Lane `j` equals the scalar
+/// `sample` of lane `j` of the input, bit for bit.
+#[derive(Clone, Copy, Debug)]
+pub struct SampleX16 {
+    /// `[u, v]` of the sixteen points.
+    pub uv: [f32x16; 2],
+    /// The sixteen densities.
+    pub pdf: f32x16,
+    /// `[column, row]` of the sixteen texels.
+    pub texel: [u32x16; 2],
+}
+
+impl SampleX16 {
+    /// The sixteen samples as an array of [`Sample`]s.
+    #[inline]
+    pub fn to_array(&self) -> [Sample; 16] {
         let (u, v, p) = (
             self.uv[0].to_array(),
             self.uv[1].to_array(),
@@ -453,6 +484,12 @@ fn load4<U: UintLane>(table: &[u32], start: U) -> [U; 4] {
     U::gather4(table, start).map(from_storage_order)
 }
 
+/// One 16-word record per lane, as one vector per word, in storage byte order.
+#[inline(always)]
+fn load16<U: UintLane>(table: &[[u32; 16]], idx: U) -> [U; 16] {
+    U::gather16(table, idx).map(from_storage_order)
+}
+
 /// Correctly rounded `u32 -> f32` for the whole `u32` range (`from_uint` is exact only below
 /// `2^24`): the high 24 bits convert exactly, and one addition rounds once.
 #[inline(always)]
@@ -465,39 +502,6 @@ fn u32_to_f32<L: Lane>(x: L::U) -> L {
 #[inline(always)]
 fn fixed_key<L: Lane>(u: L) -> L::U {
     (unit_interval(u) * L::splat(2_147_483_648.0)).to_uint()
-}
-
-/// The batch loop shared by the `sample_slice` forms.
-#[inline(always)]
-fn sample_batch(u: &[[f32; 2]], out: &mut [Sample], f: impl Fn([f32x8; 2]) -> SampleX8) -> usize {
-    let n = u.len().min(out.len());
-    let (u, out) = (
-        u.get(..n).unwrap_or(&[]),
-        out.get_mut(..n).unwrap_or(&mut []),
-    );
-    let (in_groups, in_rest) = u.as_chunks::<8>();
-    let (out_groups, out_rest) = out.as_chunks_mut::<8>();
-    for (src, dst) in in_groups.iter().zip(out_groups) {
-        *dst = f(crate::batch::load(src)).to_array();
-    }
-    if !in_rest.is_empty() {
-        let mut pad = [[0.0f32; 2]; 8];
-        for (p, s) in pad.iter_mut().zip(in_rest) {
-            *p = *s;
-        }
-        let res = f(crate::batch::load(&pad)).to_array();
-        for (d, r) in out_rest.iter_mut().zip(res.iter()) {
-            *d = *r;
-        }
-    }
-    n
-}
-
-/// The batch loop shared by the `pdf_slice` forms.
-#[inline(always)]
-fn pdf_batch(uv: &[[f32; 2]], out: &mut [f32], f: impl Fn([f32x8; 2]) -> f32x8) -> usize {
-    let (out, _) = out.as_chunks_mut::<1>();
-    crate::batch::map(uv, out, |v| [f(v)])
 }
 
 /// Scalar lane results of a generic body as a [`Sample`].
@@ -514,6 +518,16 @@ fn scalar_sample(r: ([f32; 2], f32, [core::num::Wrapping<u32>; 2])) -> Sample {
 #[inline(always)]
 fn simd_sample(r: ([f32x8; 2], f32x8, [u32x8; 2])) -> SampleX8 {
     SampleX8 {
+        uv: r.0,
+        pdf: r.1,
+        texel: r.2,
+    }
+}
+
+/// SIMD lane results of a generic body as a [`SampleX16`].
+#[inline(always)]
+fn simd16_sample(r: ([f32x16; 2], f32x16, [u32x16; 2])) -> SampleX16 {
+    SampleX16 {
         uv: r.0,
         pdf: r.1,
         texel: r.2,

@@ -9,10 +9,18 @@
 //!
 //! (run from the repository root, where `.cargo/config.toml` names the Node runner). Each
 //! line is the median of 15 timings of 4096-element batches repeated for about 10 ms.
+//!
+//! The env-map lines sample the `park` map (luminance, lat-long solid-angle weights) at
+//! 512 x 256 and upsampled bilinearly to 4096 x 2048, as `benches/envmap.rs` does, with the
+//! slice and `_x8` forms (filter `envmap`).
+
+#[path = "../../../tests/common/pfm.rs"]
+mod pfm;
 
 use std::hint::black_box;
 use std::time::Instant;
-use warpcore::{disk, pmj02bn, sequence, sphere, triangle, u32x8};
+use warpcore::envmap::{Hierarchical, MarginalConditional, Sample, Word, image};
+use warpcore::{disk, f32x8, pmj02bn, sequence, sphere, triangle, u32x8};
 
 const BATCH: usize = 4096;
 
@@ -90,6 +98,106 @@ fn indexed<const O: usize>(
     println!("{name:<28} {r:>9.1} M/s");
 }
 
+/// Lat-long luminance weights of the `park` map: `(weights, width, height)`.
+fn park() -> (Vec<f32>, usize, usize) {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/envmaps/park.pfm");
+    let img = pfm::read(&path).unwrap_or_else(|e| panic!("{e}"));
+    let (w, h) = (img.width, img.height);
+    let mut l = vec![0.0f32; w * h];
+    image::luminance_slice(&img.rgb, &mut l);
+    image::latlong_solid_angle_weights(&mut l, w, h).unwrap();
+    (l, w, h)
+}
+
+/// Bilinear upsampling by an integer factor (texel centres aligned), as in `benches/envmap.rs`.
+fn upsample(src: &[f32], w: usize, h: usize, k: usize) -> Vec<f32> {
+    let (nw, nh) = (w * k, h * k);
+    let at = |x: isize, y: isize| {
+        let x = x.rem_euclid(w as isize) as usize;
+        let y = y.clamp(0, h as isize - 1) as usize;
+        src[y * w + x].max(0.0)
+    };
+    let mut out = vec![0.0f32; nw * nh];
+    for y in 0..nh {
+        let fy = (y as f32 + 0.5) / k as f32 - 0.5;
+        let (y0, ty) = (fy.floor() as isize, fy - fy.floor());
+        for x in 0..nw {
+            let fx = (x as f32 + 0.5) / k as f32 - 0.5;
+            let (x0, tx) = (fx.floor() as isize, fx - fx.floor());
+            let top = at(x0, y0) * (1.0 - tx) + at(x0 + 1, y0) * tx;
+            let bottom = at(x0, y0 + 1) * (1.0 - tx) + at(x0 + 1, y0 + 1) * tx;
+            out[y * nw + x] = top * (1.0 - ty) + bottom * ty;
+        }
+    }
+    out
+}
+
+/// One env-map line: `slice` (or `x8` over structure-of-arrays groups) over `BATCH` points.
+fn envmap_line(
+    name: &str,
+    filter: &str,
+    slice: impl Fn(&[[f32; 2]], &mut [Sample]) -> usize,
+    x8: impl Fn([f32x8; 2]) -> [Sample; 8],
+) {
+    let blank = Sample {
+        uv: [0.0; 2],
+        pdf: 0.0,
+        texel: [0; 2],
+    };
+    let input = points::<2>(7);
+    let mut out = vec![blank; BATCH];
+    let slice_name = format!("{name} slice");
+    if slice_name.contains(filter) {
+        let r = rate(|| {
+            slice(black_box(&input), &mut out);
+            black_box(&mut out);
+        });
+        println!("{slice_name:<28} {r:>9.1} M/s");
+    }
+    let x8_name = format!("{name} x8");
+    if x8_name.contains(filter) {
+        let soa: Vec<[f32x8; 2]> = input
+            .chunks_exact(8)
+            .map(|g| std::array::from_fn(|k| f32x8::new(std::array::from_fn(|j| g[j][k]))))
+            .collect();
+        let r = rate(|| {
+            for (o, u) in out.chunks_exact_mut(8).zip(black_box(&soa)) {
+                o.copy_from_slice(&x8(*u));
+            }
+            black_box(&mut out);
+        });
+        println!("{x8_name:<28} {r:>9.1} M/s");
+    }
+}
+
+/// Both distributions on the `park` map at 512 x 256 and 4096 x 2048.
+fn envmaps(filter: &str) {
+    if !"envmap::".contains(filter) && !filter.starts_with("envmap") {
+        return;
+    }
+    let (small, w, h) = park();
+    let big = upsample(&small, w, h, 8);
+    for (weights, w, h) in [(&small, w, h), (&big, 8 * w, 8 * h)] {
+        let mut sh = vec![0 as Word; Hierarchical::storage_len(w, h)];
+        let d = Hierarchical::new(weights, w, h, &mut sh).unwrap();
+        envmap_line(
+            &format!("envmap::hier {w}x{h}"),
+            filter,
+            |u, o| d.sample_slice(u, o),
+            |u| d.sample_x8(u).to_array(),
+        );
+        let mut sm = vec![0 as Word; MarginalConditional::storage_len(w, h)];
+        let d = MarginalConditional::new(weights, w, h, &mut sm).unwrap();
+        envmap_line(
+            &format!("envmap::mc {w}x{h}"),
+            filter,
+            |u, o| d.sample_slice(u, o),
+            |u| d.sample_x8(u).to_array(),
+        );
+    }
+}
+
 fn main() {
     let filter = std::env::args().nth(1).unwrap_or_default();
     let f = filter.as_str();
@@ -148,4 +256,5 @@ fn main() {
     indexed("sequence::stratified_slice", f, |s, seed, o| {
         sequence::stratified_slice(s, BATCH as u32, seed, o)
     });
+    envmaps(f);
 }

@@ -1,0 +1,146 @@
+//! The slice forms of both distributions: batches of any length through the same generic
+//! bodies as `sample` and `sample_x8`, with several lane groups interleaved.
+//!
+//! Sampling a large map waits on one dependent cache miss per table level, so a slice runs
+//! [`GROUPS`] groups of [`batch::Widest`] lanes as one [`Interleaved`] lane type: every level's
+//! table reads are issued for all groups before any of them is used, and `GROUPS` times as
+//! many misses overlap. The rest of a batch (fewer than `GROUPS` full groups) runs group by
+//! group, and the last partial group is padded with zeros (a valid input). Lanes never
+//! interact, so every element gets exactly the bits of the scalar form.
+
+use super::Sample;
+use crate::batch::{self, Vector};
+use crate::lanes::{Interleaved, Lane, UintLane};
+
+/// Groups of [`batch::Widest`] lanes a slice step interleaves: 32 walks in flight with
+/// AVX-512 (two groups of 16), 32 with AVX2 (four groups of 8); elsewhere (16 vector
+/// registers, SSE2 and wasm `simd128`: an `f32x8` takes two) two groups.
+#[cfg(any(target_feature = "avx512f", not(target_feature = "avx2")))]
+pub(super) const GROUPS: usize = 1;
+/// Groups of [`batch::Widest`] lanes a slice step interleaves (see the other variant).
+#[cfg(all(target_feature = "avx2", not(target_feature = "avx512f")))]
+pub(super) const GROUPS: usize = 4;
+
+/// A distribution's generic bodies, as the slice loops call them.
+pub(super) trait Body {
+    /// `sample` over any lane type: `(uv, pdf, texel)`.
+    fn sample<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]);
+    /// `pdf` over any lane type.
+    fn pdf<L: Lane>(&self, uv: [L; 2]) -> L;
+}
+
+/// `G` groups of `N` elements as one interleaved vector per component.
+#[inline(always)]
+fn load<L: Vector<N>, const N: usize, const G: usize>(
+    groups: &[[[f32; 2]; N]; G],
+) -> [Interleaved<L, G>; 2] {
+    let mut parts = [[L::splat(0.0); 2]; G];
+    for (p, g) in parts.iter_mut().zip(groups) {
+        *p = batch::load(g);
+    }
+    [0, 1].map(|k| Interleaved(core::array::from_fn(|g| parts[g][k])))
+}
+
+/// A body's lane results as `N` [`Sample`]s.
+#[inline(always)]
+fn samples<L: Vector<N>, const N: usize>((uv, pdf, texel): ([L; 2], L, [L::U; 2])) -> [Sample; N] {
+    let [u, v, p] = [uv[0], uv[1], pdf].map(|x| L::to_words(x.to_bits()));
+    let [c, r] = texel.map(L::to_words);
+    core::array::from_fn(|j| Sample {
+        uv: [f32::from_bits(u[j]), f32::from_bits(v[j])],
+        pdf: f32::from_bits(p[j]),
+        texel: [c[j], r[j]],
+    })
+}
+
+/// Part `g` of interleaved body results.
+#[inline(always)]
+fn part<L: Lane, const G: usize>(
+    (uv, pdf, texel): (
+        [Interleaved<L, G>; 2],
+        Interleaved<L, G>,
+        [Interleaved<L::U, G>; 2],
+    ),
+    g: usize,
+) -> ([L; 2], L, [L::U; 2]) {
+    let pick = |x: Interleaved<L, G>| x.0.get(g).copied().unwrap_or(L::splat(0.0));
+    let pick_u = |x: Interleaved<L::U, G>| x.0.get(g).copied().unwrap_or(L::U::splat(0));
+    (uv.map(pick), pick(pdf), texel.map(pick_u))
+}
+
+/// `out[i] = sample(u[i])` for `i < min(u.len(), out.len())`; returns that count.
+#[inline(always)]
+pub(super) fn sample<D: Body, L: Vector<N>, const N: usize, const G: usize>(
+    d: &D,
+    u: &[[f32; 2]],
+    out: &mut [Sample],
+) -> usize {
+    let n = u.len().min(out.len());
+    let (u, out) = (
+        u.get(..n).unwrap_or(&[]),
+        out.get_mut(..n).unwrap_or(&mut []),
+    );
+    let (in_groups, in_rest) = u.as_chunks::<N>();
+    let (out_groups, out_rest) = out.as_chunks_mut::<N>();
+    let (in_steps, in_single) = in_groups.as_chunks::<G>();
+    let (out_steps, out_single) = out_groups.as_chunks_mut::<G>();
+    for (src, dst) in in_steps.iter().zip(out_steps) {
+        let r = d.sample::<Interleaved<L, G>>(load(src));
+        for (g, d) in dst.iter_mut().enumerate() {
+            *d = samples(part(r, g));
+        }
+    }
+    for (src, dst) in in_single.iter().zip(out_single) {
+        *dst = samples(d.sample::<L>(batch::load(src)));
+    }
+    if !in_rest.is_empty() {
+        let mut pad = [[0.0f32; 2]; N];
+        for (p, s) in pad.iter_mut().zip(in_rest) {
+            *p = *s;
+        }
+        let res: [Sample; N] = samples(d.sample::<L>(batch::load(&pad)));
+        for (o, r) in out_rest.iter_mut().zip(res.iter()) {
+            *o = *r;
+        }
+    }
+    n
+}
+
+/// `out[i] = pdf(uv[i])` for `i < min(uv.len(), out.len())`; returns that count.
+#[inline(always)]
+pub(super) fn pdf<D: Body, L: Vector<N>, const N: usize, const G: usize>(
+    d: &D,
+    uv: &[[f32; 2]],
+    out: &mut [f32],
+) -> usize {
+    let n = uv.len().min(out.len());
+    let (uv, out) = (
+        uv.get(..n).unwrap_or(&[]),
+        out.get_mut(..n).unwrap_or(&mut []),
+    );
+    let (in_groups, in_rest) = uv.as_chunks::<N>();
+    let (out_groups, out_rest) = out.as_chunks_mut::<N>();
+    let (in_steps, in_single) = in_groups.as_chunks::<G>();
+    let (out_steps, out_single) = out_groups.as_chunks_mut::<G>();
+    let words = |p: L| L::to_words(p.to_bits()).map(f32::from_bits);
+    for (src, dst) in in_steps.iter().zip(out_steps) {
+        let p = d.pdf::<Interleaved<L, G>>(load(src));
+        for (d, p) in dst.iter_mut().zip(p.0) {
+            *d = words(p);
+        }
+    }
+    for (src, dst) in in_single.iter().zip(out_single) {
+        *dst = words(d.pdf::<L>(batch::load(src)));
+    }
+    if !in_rest.is_empty() {
+        let mut pad = [[0.0f32; 2]; N];
+        for (p, s) in pad.iter_mut().zip(in_rest) {
+            *p = *s;
+        }
+        let res = words(d.pdf::<L>(batch::load(&pad)));
+        for (o, r) in out_rest.iter_mut().zip(res.iter()) {
+            *o = *r;
+        }
+    }
+    n
+}
