@@ -29,7 +29,6 @@
 //! whose lanes are all ones or all zeros (`wide` blends by the top bit or by bytes, which
 //! agree on such masks). The tests below check each against the scalar `Wrapping<u32>`.
 
-mod blocks;
 #[cfg(feature = "envmap")]
 mod interleaved;
 #[cfg(feature = "envmap")]
@@ -78,14 +77,10 @@ pub(crate) trait UintLane:
     /// (zeros where that range is out of bounds, never a panic). For `u32x8` each lane is one
     /// 16-byte load and two 4x4 transposes make the four vectors.
     fn gather4(table: &[u32], start: Self) -> [Self; 4];
-    /// Lane-wise read of 16-word (64-byte) records as one vector per word: word `k` of the
-    /// result holds `table[idx_j][k]` in lane `j` (zeros out of bounds, never a panic).
+    /// Lane-wise read of two consecutive words: lane `j` gets `table[start_j..start_j + 2]`
+    /// (zeros where that range is out of bounds, never a panic): one 8-byte load per lane.
     #[allow(dead_code)] // for the environment maps
-    fn gather16(table: &[[u32; 16]], idx: Self) -> [Self; 16];
-    /// Whether [`gather16`](Self::gather16) is the cheaper way to read a whole record (one
-    /// transpose of full rows, with AVX-512's 16 lanes) rather than several
-    /// [`gather4`](Self::gather4)s of the words actually needed.
-    const WHOLE_RECORDS: bool = false;
+    fn gather2(table: &[u32], start: Self) -> [Self; 2];
 
     /// Per lane, `f(lane)` split into two lanes: the table lookups of the sequences.
     #[allow(dead_code)] // for the table-driven families (pmj02bn)
@@ -205,12 +200,8 @@ impl UintLane for Wrapping<u32> {
         words(table, start.0).map(Wrapping)
     }
     #[inline(always)]
-    fn gather16(table: &[[u32; 16]], idx: Self) -> [Self; 16] {
-        table
-            .get(idx.0 as usize)
-            .copied()
-            .unwrap_or([0; 16])
-            .map(Wrapping)
+    fn gather2(table: &[u32], start: Self) -> [Self; 2] {
+        words(table, start.0).map(Wrapping)
     }
 }
 
@@ -304,7 +295,7 @@ impl<U: Copy + BitAnd<Output = U> + BitOr<Output = U> + Not<Output = U>> Mask fo
 /// target; where `wide` emulates a width (`f32x16` without AVX-512 is two `f32x8` halves,
 /// `f32x8` without AVX is two SSE halves) the halves run the same instructions.
 macro_rules! simd_lanes {
-    ($f:ident, $u:ident, $n:literal, $from_int:ident, $gather16:path, $whole:expr) => {
+    ($f:ident, $u:ident, $n:literal, $from_int:ident) => {
         impl UintLane for $u {
             type Mask = SimdMask<$u>;
             #[inline(always)]
@@ -353,14 +344,22 @@ macro_rules! simd_lanes {
             }
             #[inline(always)]
             fn mul_high(self, rhs: Self) -> Self {
-                // Lane by lane in `u64`, so LLVM sees an unsigned multiply-high and emits its
-                // even/odd `pmuludq` pair (`wide`'s version shuffles through arrays).
-                let (a, b) = (self.to_array(), rhs.to_array());
-                let mut out = [0u32; $n];
-                for ((o, &x), &y) in out.iter_mut().zip(a.iter()).zip(b.iter()) {
-                    *o = ((u64::from(x) * u64::from(y)) >> 32) as u32;
+                // On x86, lane by lane in `u64`: LLVM sees an unsigned multiply-high and emits
+                // its even/odd `pmuludq` pair (`wide`'s version goes through arrays there).
+                // Elsewhere `wide`'s own (wasm `simd128`: `i64x2.extmul`) is the faster one.
+                #[cfg(target_arch = "x86_64")]
+                {
+                    let (a, b) = (self.to_array(), rhs.to_array());
+                    let mut out = [0u32; $n];
+                    for ((o, &x), &y) in out.iter_mut().zip(a.iter()).zip(b.iter()) {
+                        *o = ((u64::from(x) * u64::from(y)) >> 32) as u32;
+                    }
+                    $u::new(out)
                 }
-                $u::new(out)
+                #[cfg(not(target_arch = "x86_64"))]
+                {
+                    self.mul_keep_high(rhs)
+                }
             }
             #[inline(always)]
             fn gather<const N: usize>(table: &[[u32; N]], idx: Self) -> [Self; N] {
@@ -369,10 +368,10 @@ macro_rules! simd_lanes {
                     core::array::from_fn(|j| table.get(idx[j] as usize).copied().unwrap_or([0; N]));
                 core::array::from_fn(|k| $u::new(core::array::from_fn(|j| rows[j][k])))
             }
-            const WHOLE_RECORDS: bool = $whole;
             #[inline(always)]
-            fn gather16(table: &[[u32; 16]], idx: Self) -> [Self; 16] {
-                $gather16(table, idx)
+            fn gather2(table: &[u32], start: Self) -> [Self; 2] {
+                let pairs = start.to_array().map(|s| words::<2>(table, s));
+                [0, 1].map(|k| $u::new(core::array::from_fn(|j| pairs[j][k])))
             }
             #[inline(always)]
             fn gather4(table: &[u32], start: Self) -> [Self; 4] {
@@ -464,15 +463,8 @@ macro_rules! simd_lanes {
     };
 }
 
-simd_lanes!(f32x8, u32x8, 8, from_i32x8, blocks::gather16_x8, false);
-simd_lanes!(
-    f32x16,
-    u32x16,
-    16,
-    from_i32x16,
-    blocks::gather16_x16,
-    cfg!(target_feature = "avx512f")
-);
+simd_lanes!(f32x8, u32x8, 8, from_i32x8);
+simd_lanes!(f32x16, u32x16, 16, from_i32x16);
 
 /// Maps any `f32` onto a warp's input range `[0, 1 - 2^-24]`: values in `[0, 1)` pass
 /// unchanged, values `>= 1` and `+inf` become `1 - 2^-24`, and NaN, `-0.0`, negatives and

@@ -8,7 +8,7 @@
 //! `[edge[k], edge[k+1])`; the sampler clamps its point into that range and the `pdf`
 //! lookup inverts it with one multiply and a one-step correction.
 
-use super::{from_storage_order, load};
+use super::from_storage_order;
 use crate::lanes::{Lane, UintLane, unit_interval};
 
 /// The smallest `f32` `x` with `x * n >= k` in exact arithmetic, for `0 <= k <= n <= 2^24`.
@@ -46,6 +46,12 @@ pub(super) fn first_wrong(table: &[[u32; 1]], n: u32) -> Option<usize> {
     })
 }
 
+/// `[edge[k], edge[k + 1]]` per lane (one 8-byte read each), in native byte order.
+#[inline(always)]
+fn load2<U: UintLane>(edges: &[[u32; 1]], k: U) -> [U; 2] {
+    U::gather2(edges.as_flattened(), k).map(from_storage_order)
+}
+
 /// The point `(k + frac) / n` of texel `k` (`frac` in `[0, 1)`), clamped into
 /// `[edge[k], edge[k+1])` so it lies inside the texel exactly.
 ///
@@ -54,8 +60,7 @@ pub(super) fn first_wrong(table: &[[u32; 1]], n: u32) -> Option<usize> {
 #[inline(always)]
 pub(super) fn point<L: Lane>(edges: &[[u32; 1]], k: L::U, frac: L, n: f32) -> L {
     let x = (L::from_uint(k) + frac) / L::splat(n);
-    let lo = load(edges, k);
-    let next = load(edges, k + L::U::splat(1));
+    let [lo, next] = load2(edges, k);
     // `edge[k+1] > 0`, so its predecessor is one less in the bit pattern.
     let (lo, hi) = (L::from_bits(lo), L::from_bits(next - L::U::splat(1)));
     let x = L::select(x.simd_lt(lo), lo, x);
@@ -73,8 +78,7 @@ pub(super) fn texel<L: Lane>(edges: &[[u32; 1]], x: L, n: u32) -> L::U {
     let last = L::U::splat(n.wrapping_sub(1));
     let k = L::U::select(last.simd_lt(k), last, k);
     let one = L::U::splat(1);
-    let lo = load(edges, k);
-    let next = load(edges, k + one);
+    let [lo, next] = load2(edges, k);
     let below = x.simd_lt(L::from_bits(lo));
     let above = L::from_bits(next).simd_le(x);
     let k = L::U::select(below, k - one, L::U::select(above, k + one, k));

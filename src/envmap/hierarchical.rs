@@ -51,11 +51,9 @@
 
 use super::{
     Error, HEADER_WORDS, Sample, SampleX8, SampleX16, Word, carve, carve_ref, check_lens,
-    check_size, checked_len, clean, edges, from_storage_order, load4, load16, read_header,
-    scalar_sample, simd_sample, simd16_sample, slices, tag, take, to_storage_order, u32_to_f32,
-    write_header,
+    check_size, checked_len, clean, edges, from_storage_order, load4, read_header, scalar_sample,
+    simd_sample, simd16_sample, slices, tag, take, to_storage_order, u32_to_f32, write_header,
 };
-use crate::batch::Widest;
 use crate::lanes::{Lane, UintLane, unit_interval};
 use wide::{f32x8, f32x16};
 
@@ -601,21 +599,11 @@ impl<'a> Hierarchical<'a> {
                 u32::from(shape.splits(k).1),
                 u32::from(shape.splits(k + 1).1),
             );
-            let (c, g) = if U::WHOLE_RECORDS {
-                // The whole block at once: no second read waiting on the first level.
-                let w = load16(self.blocks.as_chunks::<BLOCK>().0, U::splat(offset) + index);
-                let c = walk.level(shape.shift(k), [sx0, sy0], [w[0], w[1], w[2]], &mut left);
-                let child = child_fractions(&w, c);
-                let g = walk.level(shape.shift(k + 1), [sx1, sy1], child, &mut left);
-                (c, g)
-            } else {
-                let [px, py0, py1, _] = load4(self.blocks, base);
-                let c = walk.level(shape.shift(k), [sx0, sy0], [px, py0, py1], &mut left);
-                // The fourth word is the next child's px (or the block's sum): unused.
-                let [px, py0, py1, _] = load4(self.blocks, base + U::splat(3) + c + c + c);
-                let g = walk.level(shape.shift(k + 1), [sx1, sy1], [px, py0, py1], &mut left);
-                (c, g)
-            };
+            let [px, py0, py1, _] = load4(self.blocks, base);
+            let c = walk.level(shape.shift(k), [sx0, sy0], [px, py0, py1], &mut left);
+            // The fourth word is the next child's px (or the block's sum): unused.
+            let [px, py0, py1, _] = load4(self.blocks, base + U::splat(3) + c + c + c);
+            let g = walk.level(shape.shift(k + 1), [sx1, sy1], [px, py0, py1], &mut left);
             index = (index.shl(b0) | c).shl(b1) | g;
             offset += count;
             count <<= b0 + b1;
@@ -713,7 +701,7 @@ impl<'a> Hierarchical<'a> {
     /// their table reads overlap.
     #[inline]
     pub fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
-        slices::sample::<Self, Widest, _, { slices::GROUPS }>(self, u, out)
+        slices::sample::<Self, f32x8, 8, { slices::HIER }>(self, u, out)
     }
 
     /// Density at `uv` with respect to area on `[0, 1]^2`: `P(texel) * width * height` for
@@ -739,7 +727,7 @@ impl<'a> Hierarchical<'a> {
     /// [`sample_slice`](Self::sample_slice).
     #[inline]
     pub fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
-        slices::pdf::<Self, Widest, _, { slices::GROUPS }>(self, uv, out)
+        slices::pdf::<Self, f32x8, 8, { slices::HIER }>(self, uv, out)
     }
 }
 
@@ -804,20 +792,6 @@ impl<U: UintLane> Walk<U> {
         self.texel[1] = self.texel[1].shl(1) | by;
         bx | by.shl(sx)
     }
-}
-
-/// The fractions `[px, py0, py1]` of child `c` (`0..4`) in a block read whole: words
-/// `3 + 3c..6 + 3c`, picked by the two bits of `c` with selects.
-#[inline(always)]
-fn child_fractions<U: UintLane>(w: &[U; BLOCK], c: U) -> [U; 3] {
-    let zero = U::splat(0);
-    let even = (c & U::splat(1)).simd_eq(zero);
-    let low = (c & U::splat(2)).simd_eq(zero);
-    core::array::from_fn(|j| {
-        let lo = U::select(even, w[3 + j], w[6 + j]);
-        let hi = U::select(even, w[9 + j], w[12 + j]);
-        U::select(low, lo, hi)
-    })
 }
 
 /// Lengths of the four regions after the header: alignment padding, blocks, column and row

@@ -28,7 +28,6 @@ use super::{
     simd16_sample, tag, take, to_storage_order, u32_to_f32, write_header,
 };
 use super::{Sample, SampleX16, slices};
-use crate::batch::Widest;
 use crate::lanes::{Lane, UintLane, unit_interval};
 use wide::{f32x8, f32x16};
 
@@ -302,7 +301,7 @@ impl<'a> MarginalConditional<'a> {
     /// their table reads overlap.
     #[inline]
     pub fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
-        slices::sample::<Self, Widest, _, { slices::GROUPS }>(self, u, out)
+        slices::sample::<Self, f32x8, 8, { slices::MC }>(self, u, out)
     }
 
     /// Density at `uv` with respect to area on `[0, 1]^2`: `P(texel) * width * height` for
@@ -328,7 +327,7 @@ impl<'a> MarginalConditional<'a> {
     /// [`sample_slice`](Self::sample_slice).
     #[inline]
     pub fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
-        slices::pdf::<Self, Widest, _, { slices::GROUPS }>(self, uv, out)
+        slices::pdf::<Self, f32x8, 8, { slices::MC }>(self, uv, out)
     }
 }
 

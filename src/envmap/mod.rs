@@ -484,12 +484,6 @@ fn load4<U: UintLane>(table: &[u32], start: U) -> [U; 4] {
     U::gather4(table, start).map(from_storage_order)
 }
 
-/// One 16-word record per lane, as one vector per word, in storage byte order.
-#[inline(always)]
-fn load16<U: UintLane>(table: &[[u32; 16]], idx: U) -> [U; 16] {
-    U::gather16(table, idx).map(from_storage_order)
-}
-
 /// Correctly rounded `u32 -> f32` for the whole `u32` range (`from_uint` is exact only below
 /// `2^24`): the high 24 bits convert exactly, and one addition rounds once.
 #[inline(always)]

@@ -12,14 +12,23 @@ use super::Sample;
 use crate::batch::{self, Vector};
 use crate::lanes::{Interleaved, Lane, UintLane};
 
-/// Groups of [`batch::Widest`] lanes a slice step interleaves: 32 walks in flight with
-/// AVX-512 (two groups of 16), 32 with AVX2 (four groups of 8); elsewhere (16 vector
-/// registers, SSE2 and wasm `simd128`: an `f32x8` takes two) two groups.
-#[cfg(any(target_feature = "avx512f", not(target_feature = "avx2")))]
-pub(super) const GROUPS: usize = 1;
-/// Groups of [`batch::Widest`] lanes a slice step interleaves (see the other variant).
-#[cfg(all(target_feature = "avx2", not(target_feature = "avx512f")))]
-pub(super) const GROUPS: usize = 4;
+/// Groups of eight lanes a hierarchical slice step interleaves: six (48 walks in flight)
+/// with AVX2 or AVX-512 (32 vector registers, or 16 of 256 bits), two elsewhere (SSE2 and
+/// wasm `simd128`, where an eight-lane vector takes two of the 16 registers). Measured:
+/// see the module docs.
+#[cfg(target_feature = "avx2")]
+pub(super) const HIER: usize = 6;
+/// Groups of eight lanes a hierarchical slice step interleaves (see the AVX2 variant).
+#[cfg(not(target_feature = "avx2"))]
+pub(super) const HIER: usize = 2;
+
+/// Groups of eight lanes a marginal-conditional slice step interleaves: four with AVX2 or
+/// AVX-512, two elsewhere. Measured: see the module docs.
+#[cfg(target_feature = "avx2")]
+pub(super) const MC: usize = 4;
+/// Groups of eight lanes a marginal-conditional slice step interleaves (see the AVX2 variant).
+#[cfg(not(target_feature = "avx2"))]
+pub(super) const MC: usize = 2;
 
 /// A distribution's generic bodies, as the slice loops call them.
 pub(super) trait Body {

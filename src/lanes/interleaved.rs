@@ -144,10 +144,9 @@ impl<U: UintLane, const G: usize> UintLane for Interleaved<U, G> {
         let parts = start.to(|i| U::gather4(table, i)).0;
         core::array::from_fn(|k| Interleaved(core::array::from_fn(|g| parts[g][k])))
     }
-    const WHOLE_RECORDS: bool = U::WHOLE_RECORDS;
     #[inline(always)]
-    fn gather16(table: &[[u32; 16]], idx: Self) -> [Self; 16] {
-        let parts = idx.to(|i| U::gather16(table, i)).0;
+    fn gather2(table: &[u32], start: Self) -> [Self; 2] {
+        let parts = start.to(|i| U::gather2(table, i)).0;
         core::array::from_fn(|k| Interleaved(core::array::from_fn(|g| parts[g][k])))
     }
     #[inline(always)]
