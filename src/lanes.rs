@@ -782,9 +782,18 @@ mod tests {
         ];
         let g = u32x16::gather(&table, u32x16::new(idx));
         let g4 = u32x16::gather4(&flat, u32x16::new(idx));
+        let g2 = u32x16::gather2(&flat, u32x16::new(idx));
+        let g2_8 = u32x8::gather2(&flat, u32x8::new(core::array::from_fn(|j| idx[j])));
         for j in 0..16 {
             let s = <Wrapping<u32> as UintLane>::gather(&table, Wrapping(idx[j]));
             let s4 = <Wrapping<u32> as UintLane>::gather4(&flat, Wrapping(idx[j]));
+            let s2 = <Wrapping<u32> as UintLane>::gather2(&flat, Wrapping(idx[j]));
+            for k in 0..2 {
+                assert_eq!(g2[k].to_array()[j], s2[k].0, "gather2 lane {j} word {k}");
+                if j < 8 {
+                    assert_eq!(g2_8[k].to_array()[j], s2[k].0, "gather2 x8 lane {j}");
+                }
+            }
             for k in 0..3 {
                 assert_eq!(g[k].to_array()[j], s[k].0, "gather lane {j} word {k}");
             }
@@ -796,6 +805,10 @@ mod tests {
         assert_eq!(g4[3].to_array()[5], 108);
         assert_eq!(g4[0].to_array()[7], 107);
         assert_eq!(g4[0].to_array()[13], 0); // 8..12 is past the end
+        // gather2: 9..11 is the last full pair, 10..12 is past the end.
+        assert_eq!([g2[0].to_array()[14], g2[1].to_array()[14]], [109, 110]);
+        assert_eq!(g2[0].to_array()[8], 104);
+        assert_eq!(g2[1].to_array()[13], 109);
         assert_eq!(g[1].to_array()[4], 41);
     }
 

@@ -10,9 +10,9 @@ use common::{chi2, lane, pfm, rng, same_bits, soa, specials, unit2};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 use warpcore::envmap::{
-    Error, Hierarchical, MAX_SIDE, MarginalConditional, Sample, SampleX8, Word, image,
+    Error, Hierarchical, MAX_SIDE, MarginalConditional, Sample, SampleX8, SampleX16, Word, image,
 };
-use warpcore::f32x8;
+use warpcore::{f32x8, f32x16};
 
 // ----------------------------------------------------------------------------------------
 // Both distributions behind one interface.
@@ -21,9 +21,11 @@ trait Dist {
     fn name(&self) -> &'static str;
     fn sample(&self, u: [f32; 2]) -> Sample;
     fn sample_x8(&self, u: [f32x8; 2]) -> SampleX8;
+    fn sample_x16(&self, u: [f32x16; 2]) -> SampleX16;
     fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize;
     fn pdf(&self, uv: [f32; 2]) -> f32;
     fn pdf_x8(&self, uv: [f32x8; 2]) -> f32x8;
+    fn pdf_x16(&self, uv: [f32x16; 2]) -> f32x16;
     fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize;
 }
 
@@ -39,6 +41,9 @@ macro_rules! impl_dist {
             fn sample_x8(&self, u: [f32x8; 2]) -> SampleX8 {
                 $t::sample_x8(self, u)
             }
+            fn sample_x16(&self, u: [f32x16; 2]) -> SampleX16 {
+                $t::sample_x16(self, u)
+            }
             fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
                 $t::sample_slice(self, u, out)
             }
@@ -47,6 +52,9 @@ macro_rules! impl_dist {
             }
             fn pdf_x8(&self, uv: [f32x8; 2]) -> f32x8 {
                 $t::pdf_x8(self, uv)
+            }
+            fn pdf_x16(&self, uv: [f32x16; 2]) -> f32x16 {
+                $t::pdf_x16(self, uv)
             }
             fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
                 $t::pdf_slice(self, uv, out)
@@ -138,10 +146,25 @@ fn check_sample(d: &dyn Dist, weights: &[f32], w: usize, h: usize, u: [f32; 2], 
     );
 }
 
-/// Scalar, x8 and slice forms of `sample` and `pdf` agree bit for bit on eight inputs.
+/// Scalar, x8, x16 and slice forms of `sample` and `pdf` agree bit for bit on eight inputs
+/// (the x16 form gets them twice, the second time reversed, so every lane is checked).
 fn check_widths(d: &dyn Dist, pts: &[[f32; 2]; 8]) {
     let v = d.sample_x8(soa(pts)).to_array();
     let pv = d.pdf_x8(soa(pts));
+    let twice: [[f32; 2]; 16] = core::array::from_fn(|j| pts[if j < 8 { j } else { 15 - j }]);
+    let soa16: [f32x16; 2] =
+        core::array::from_fn(|k| f32x16::new(core::array::from_fn(|j| twice[j][k])));
+    let v16 = d.sample_x16(soa16).to_array();
+    let pv16 = d.pdf_x16(soa16).to_array();
+    for (j, p) in twice.iter().enumerate() {
+        let (s, o) = (d.sample(*p), v16[j]);
+        assert!(
+            same_bits([s.uv[0], s.uv[1], s.pdf], [o.uv[0], o.uv[1], o.pdf]) && s.texel == o.texel,
+            "{} x16 lane {j}: {p:?}: {s:?} vs {o:?}",
+            d.name()
+        );
+        assert_eq!(d.pdf(*p).to_bits(), pv16[j].to_bits(), "pdf_x16 {j}");
+    }
     let mut out = [Sample {
         uv: [9.0; 2],
         pdf: 9.0,
@@ -300,14 +323,16 @@ fn widths_agree_on_special_values() {
     }
 }
 
-/// Slices of every length 0..=40 (and mismatched lengths) against the scalar form.
+/// Slices of every length 0..=40, the lengths around whole interleaved steps (up to six
+/// groups of eight lanes: 48, 96, ...), and mismatched output lengths, against the scalar form.
 #[test]
 fn slices_of_any_length() {
     let (m, w, h) = irregular_map();
     let mut r = rng(8);
-    let input: Vec<[f32; 2]> = (0..40).map(|_| unit2(&mut r)).collect();
+    let input: Vec<[f32; 2]> = (0..400).map(|_| unit2(&mut r)).collect();
+    let lengths = (0..=40usize).chain([47, 48, 49, 63, 64, 65, 95, 96, 97, 103, 143, 144, 400]);
     with_both(&m, w, h, |d| {
-        for n in 0..=40usize {
+        for n in lengths.clone() {
             for len in [n, n + 3, n.saturating_sub(5)] {
                 let marker = Sample {
                     uv: [7.0; 2],
@@ -326,6 +351,9 @@ fn slices_of_any_length() {
                 }
                 let mut p = vec![7.0f32; len];
                 assert_eq!(d.pdf_slice(&input[..n], &mut p), n.min(len));
+                for (j, q) in p.iter().enumerate().take(written) {
+                    assert_eq!(q.to_bits(), d.pdf(input[j]).to_bits(), "pdf_slice {j}");
+                }
                 assert!(p[n.min(len)..].iter().all(|&x| x == 7.0));
             }
         }

@@ -46,7 +46,7 @@ pub(super) fn first_wrong(table: &[[u32; 1]], n: u32) -> Option<usize> {
     })
 }
 
-/// `[edge[k], edge[k + 1]]` per lane (one 8-byte read each), in native byte order.
+/// `[edge[k], edge[k + 1]]` per lane (one 8-byte read each), from storage byte order.
 #[inline(always)]
 fn load2<U: UintLane>(edges: &[[u32; 1]], k: U) -> [U; 2] {
     U::gather2(edges.as_flattened(), k).map(from_storage_order)

@@ -297,8 +297,8 @@ impl<'a> MarginalConditional<'a> {
 
     /// [`sample`](Self::sample) over a batch: `out[i] = sample(u[i])` for
     /// `i < min(u.len(), out.len())`; returns that count. Bit-identical to the scalar form.
-    /// Runs 16 lanes with AVX-512F (8 otherwise), several lane groups interleaved so that
-    /// their table reads overlap.
+    /// Runs several groups of eight lanes interleaved, so that their table reads overlap
+    /// (four groups with AVX2 or AVX-512, two elsewhere).
     #[inline]
     pub fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
         slices::sample::<Self, f32x8, 8, { slices::MC }>(self, u, out)

@@ -1,21 +1,29 @@
 //! The slice forms of both distributions: batches of any length through the same generic
 //! bodies as `sample` and `sample_x8`, with several lane groups interleaved.
 //!
-//! Sampling a large map waits on one dependent cache miss per table level, so a slice runs
-//! [`GROUPS`] groups of [`batch::Widest`] lanes as one [`Interleaved`] lane type: every level's
-//! table reads are issued for all groups before any of them is used, and `GROUPS` times as
-//! many misses overlap. The rest of a batch (fewer than `GROUPS` full groups) runs group by
-//! group, and the last partial group is padded with zeros (a valid input). Lanes never
-//! interact, so every element gets exactly the bits of the scalar form.
+//! A walk is a chain of dependent table reads (one per pyramid block or CDF probe) with a
+//! little integer work between them, so one group of lanes leaves the core waiting: on a
+//! 4096 x 2048 map most reads miss the caches, and even on a map that fits in L2 each read's
+//! latency is on the chain. A slice step therefore runs [`HIER`] (or [`MC`]) groups of eight
+//! lanes as one [`Interleaved`] lane type: every operation, table reads included, is issued
+//! for all groups before the next one, so that many independent chains overlap. Eight-lane
+//! groups beat sixteen-lane ones even with AVX-512 (measured on Zen 4: 6 x 8 lanes 53 M/s,
+//! 1 x 16 lanes 37 M/s, 2 x 16 lanes 18 M/s on the 4096 x 2048 `park` map): the 4 x 4
+//! transposes of `gather4` are cheap at 256 bits, and 16-lane groups run out of registers
+//! when interleaved. Group counts were measured per instruction set (`tools/slicebench`):
+//! past six hierarchical groups the code spills (seven ran at 9 M/s).
+//!
+//! The rest of a batch (fewer than a whole step) runs group by group, and the last partial
+//! group is padded with zeros (a valid input). Lanes never interact, so every element gets
+//! exactly the bits of the scalar form.
 
 use super::Sample;
 use crate::batch::{self, Vector};
 use crate::lanes::{Interleaved, Lane, UintLane};
 
 /// Groups of eight lanes a hierarchical slice step interleaves: six (48 walks in flight)
-/// with AVX2 or AVX-512 (32 vector registers, or 16 of 256 bits), two elsewhere (SSE2 and
-/// wasm `simd128`, where an eight-lane vector takes two of the 16 registers). Measured:
-/// see the module docs.
+/// with AVX2 or AVX-512, two elsewhere (SSE2 and wasm `simd128`, where an eight-lane vector
+/// takes two of the 16 registers and more groups spill). Measured: see the module docs.
 #[cfg(target_feature = "avx2")]
 pub(super) const HIER: usize = 6;
 /// Groups of eight lanes a hierarchical slice step interleaves (see the AVX2 variant).
