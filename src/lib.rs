@@ -99,7 +99,8 @@ pub mod sphere;
 #[cfg(feature = "triangle")]
 pub mod triangle;
 
-// The README's examples compile and run as doctests (they use every default family).
+// The README's and the docs pages' examples compile and run as doctests (they use every
+// default family).
 #[cfg(all(
     doctest,
     feature = "disk",
@@ -110,3 +111,11 @@ pub mod triangle;
 ))]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
+
+#[cfg(all(doctest, feature = "pmj02bn", feature = "sequence"))]
+#[doc = include_str!("../docs/pmj02bn.md")]
+struct Pmj02bnDocDoctests;
+
+#[cfg(all(doctest, feature = "envmap"))]
+#[doc = include_str!("../docs/envmaps.md")]
+struct EnvmapsDocDoctests;

@@ -347,7 +347,7 @@ fn random_is_uniform_and_independent() {
 }
 
 // ----------------------------------------------------------------------------------------
-// Blue noise, measured. Run with `--nocapture` to see the table (it is in the README).
+// Blue noise, measured. Run with `--nocapture` to see the table (it is in docs/pmj02bn.md).
 
 fn nn_stats(points: &[[u32; 2]]) -> (f64, f64) {
     pmj::nearest_neighbour_stats(points)

@@ -256,7 +256,7 @@ fn warps() -> [Warp; 5] {
     ]
 }
 
-/// The stated bounds (doc comments and README).
+/// The stated bounds (doc comments and docs/precision.md).
 const UNIT_TOL: f64 = 2e-7;
 const ROUND_TRIP: f64 = 5e-7;
 const ANGLE_TOL: f64 = 1e-6;

@@ -45,7 +45,7 @@
 //! inverses map a direction below the horizon like its mirror image `(x, y, -z)`.
 //!
 //! **Precision** (tests in `tests/sphere.rs`, against the same formulas in `f64`): see each
-//! function and the table in the README.
+//! function and the table in `docs/precision.md`.
 
 mod hemisphere;
 mod latlong;
