@@ -299,7 +299,6 @@ impl<'a> MarginalConditional<'a> {
     /// `i < min(u.len(), out.len())`; returns that count. Bit-identical to the scalar form.
     /// Runs several groups of eight lanes interleaved, so that their table reads overlap
     /// (four groups with AVX2 or AVX-512, two elsewhere).
-    #[inline]
     pub fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
         slices::sample::<Self, f32x8, 8, { slices::MC }>(self, u, out)
     }
@@ -325,7 +324,6 @@ impl<'a> MarginalConditional<'a> {
 
     /// [`pdf`](Self::pdf) over a batch, with the length rule of
     /// [`sample_slice`](Self::sample_slice).
-    #[inline]
     pub fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
         slices::pdf::<Self, f32x8, 8, { slices::MC }>(self, uv, out)
     }

@@ -38,6 +38,9 @@ pub(super) const MC: usize = 4;
 #[cfg(not(target_feature = "avx2"))]
 pub(super) const MC: usize = 2;
 
+/// What a body's `sample` returns over lane type `L`: `(uv, pdf, texel)`.
+type Results<L> = ([L; 2], L, [<L as Lane>::U; 2]);
+
 /// A distribution's generic bodies, as the slice loops call them.
 pub(super) trait Body {
     /// `sample` over any lane type: `(uv, pdf, texel)`.
@@ -73,11 +76,7 @@ fn samples<L: Vector<N>, const N: usize>((uv, pdf, texel): ([L; 2], L, [L::U; 2]
 /// Part `g` of interleaved body results.
 #[inline(always)]
 fn part<L: Lane, const G: usize>(
-    (uv, pdf, texel): (
-        [Interleaved<L, G>; 2],
-        Interleaved<L, G>,
-        [Interleaved<L::U, G>; 2],
-    ),
+    (uv, pdf, texel): Results<Interleaved<L, G>>,
     g: usize,
 ) -> ([L; 2], L, [L::U; 2]) {
     let pick = |x: Interleaved<L, G>| x.0.get(g).copied().unwrap_or(L::splat(0.0));
