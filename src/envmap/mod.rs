@@ -172,17 +172,8 @@ impl SampleX8 {
     /// The eight samples as an array of [`Sample`]s.
     #[inline]
     pub fn to_array(&self) -> [Sample; 8] {
-        let (u, v, p) = (
-            self.uv[0].to_array(),
-            self.uv[1].to_array(),
-            self.pdf.to_array(),
-        );
-        let (c, r) = (self.texel[0].to_array(), self.texel[1].to_array());
-        core::array::from_fn(|j| Sample {
-            uv: [u[j], v[j]],
-            pdf: p[j],
-            texel: [c[j], r[j]],
-        })
+        let [u, v, p] = [self.uv[0], self.uv[1], self.pdf].map(|x| x.to_array());
+        samples_of(u, v, p, self.texel.map(|t| t.to_array()))
     }
 }
 
@@ -202,17 +193,8 @@ impl SampleX16 {
     /// The sixteen samples as an array of [`Sample`]s.
     #[inline]
     pub fn to_array(&self) -> [Sample; 16] {
-        let (u, v, p) = (
-            self.uv[0].to_array(),
-            self.uv[1].to_array(),
-            self.pdf.to_array(),
-        );
-        let (c, r) = (self.texel[0].to_array(), self.texel[1].to_array());
-        core::array::from_fn(|j| Sample {
-            uv: [u[j], v[j]],
-            pdf: p[j],
-            texel: [c[j], r[j]],
-        })
+        let [u, v, p] = [self.uv[0], self.uv[1], self.pdf].map(|x| x.to_array());
+        samples_of(u, v, p, self.texel.map(|t| t.to_array()))
     }
 }
 
@@ -496,6 +478,21 @@ fn u32_to_f32<L: Lane>(x: L::U) -> L {
 #[inline(always)]
 fn fixed_key<L: Lane>(u: L) -> L::U {
     (unit_interval(u) * L::splat(2_147_483_648.0)).to_uint()
+}
+
+/// `N` samples from their components, one array per component.
+#[inline(always)]
+fn samples_of<const N: usize>(
+    u: [f32; N],
+    v: [f32; N],
+    pdf: [f32; N],
+    [c, r]: [[u32; N]; 2],
+) -> [Sample; N] {
+    core::array::from_fn(|j| Sample {
+        uv: [u[j], v[j]],
+        pdf: pdf[j],
+        texel: [c[j], r[j]],
+    })
 }
 
 /// Scalar lane results of a generic body as a [`Sample`].

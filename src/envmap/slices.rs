@@ -17,7 +17,7 @@
 //! group is padded with zeros (a valid input). Lanes never interact, so every element gets
 //! exactly the bits of the scalar form.
 
-use super::Sample;
+use super::{Sample, samples_of};
 use crate::batch::{self, Vector};
 use crate::lanes::{Interleaved, Lane, UintLane};
 
@@ -64,13 +64,8 @@ fn load<L: Vector<N>, const N: usize, const G: usize>(
 /// A body's lane results as `N` [`Sample`]s.
 #[inline(always)]
 fn samples<L: Vector<N>, const N: usize>((uv, pdf, texel): ([L; 2], L, [L::U; 2])) -> [Sample; N] {
-    let [u, v, p] = [uv[0], uv[1], pdf].map(|x| L::to_words(x.to_bits()));
-    let [c, r] = texel.map(L::to_words);
-    core::array::from_fn(|j| Sample {
-        uv: [f32::from_bits(u[j]), f32::from_bits(v[j])],
-        pdf: f32::from_bits(p[j]),
-        texel: [c[j], r[j]],
-    })
+    let [u, v, p] = [uv[0], uv[1], pdf].map(|x| L::to_words(x.to_bits()).map(f32::from_bits));
+    samples_of(u, v, p, texel.map(L::to_words))
 }
 
 /// Part `g` of interleaved body results.
@@ -84,6 +79,43 @@ fn part<L: Lane, const G: usize>(
     (uv.map(pick), pick(pdf), texel.map(pick_u))
 }
 
+/// The batch loop of both slice forms: `out[i] = f(input[i])` for
+/// `i < min(input.len(), out.len())`, `G` groups of `N` at a time through `step`, the rest
+/// group by group through `one`, the last partial group padded with zeros; returns the count.
+#[inline(always)]
+fn run<T: Copy, const N: usize, const G: usize>(
+    input: &[[f32; 2]],
+    out: &mut [T],
+    step: impl Fn(&[[[f32; 2]; N]; G]) -> [[T; N]; G],
+    one: impl Fn(&[[f32; 2]; N]) -> [T; N],
+) -> usize {
+    let n = input.len().min(out.len());
+    let (input, out) = (
+        input.get(..n).unwrap_or(&[]),
+        out.get_mut(..n).unwrap_or(&mut []),
+    );
+    let (in_groups, in_rest) = input.as_chunks::<N>();
+    let (out_groups, out_rest) = out.as_chunks_mut::<N>();
+    let (in_steps, in_single) = in_groups.as_chunks::<G>();
+    let (out_steps, out_single) = out_groups.as_chunks_mut::<G>();
+    for (src, dst) in in_steps.iter().zip(out_steps) {
+        *dst = step(src);
+    }
+    for (src, dst) in in_single.iter().zip(out_single) {
+        *dst = one(src);
+    }
+    if !in_rest.is_empty() {
+        let mut pad = [[0.0f32; 2]; N];
+        for (p, s) in pad.iter_mut().zip(in_rest) {
+            *p = *s;
+        }
+        for (o, r) in out_rest.iter_mut().zip(one(&pad)) {
+            *o = r;
+        }
+    }
+    n
+}
+
 /// `out[i] = sample(u[i])` for `i < min(u.len(), out.len())`; returns that count.
 #[inline(always)]
 pub(super) fn sample<D: Body, L: Vector<N>, const N: usize, const G: usize>(
@@ -91,35 +123,15 @@ pub(super) fn sample<D: Body, L: Vector<N>, const N: usize, const G: usize>(
     u: &[[f32; 2]],
     out: &mut [Sample],
 ) -> usize {
-    let n = u.len().min(out.len());
-    let (u, out) = (
-        u.get(..n).unwrap_or(&[]),
-        out.get_mut(..n).unwrap_or(&mut []),
-    );
-    let (in_groups, in_rest) = u.as_chunks::<N>();
-    let (out_groups, out_rest) = out.as_chunks_mut::<N>();
-    let (in_steps, in_single) = in_groups.as_chunks::<G>();
-    let (out_steps, out_single) = out_groups.as_chunks_mut::<G>();
-    for (src, dst) in in_steps.iter().zip(out_steps) {
-        let r = d.sample::<Interleaved<L, G>>(load(src));
-        for (g, d) in dst.iter_mut().enumerate() {
-            *d = samples(part(r, g));
-        }
-    }
-    for (src, dst) in in_single.iter().zip(out_single) {
-        *dst = samples(d.sample::<L>(batch::load(src)));
-    }
-    if !in_rest.is_empty() {
-        let mut pad = [[0.0f32; 2]; N];
-        for (p, s) in pad.iter_mut().zip(in_rest) {
-            *p = *s;
-        }
-        let res: [Sample; N] = samples(d.sample::<L>(batch::load(&pad)));
-        for (o, r) in out_rest.iter_mut().zip(res.iter()) {
-            *o = *r;
-        }
-    }
-    n
+    run::<Sample, N, G>(
+        u,
+        out,
+        |src| {
+            let r = d.sample::<Interleaved<L, G>>(load(src));
+            core::array::from_fn(|g| samples(part(r, g)))
+        },
+        |src| samples(d.sample::<L>(batch::load(src))),
+    )
 }
 
 /// `out[i] = pdf(uv[i])` for `i < min(uv.len(), out.len())`; returns that count.
@@ -129,34 +141,11 @@ pub(super) fn pdf<D: Body, L: Vector<N>, const N: usize, const G: usize>(
     uv: &[[f32; 2]],
     out: &mut [f32],
 ) -> usize {
-    let n = uv.len().min(out.len());
-    let (uv, out) = (
-        uv.get(..n).unwrap_or(&[]),
-        out.get_mut(..n).unwrap_or(&mut []),
-    );
-    let (in_groups, in_rest) = uv.as_chunks::<N>();
-    let (out_groups, out_rest) = out.as_chunks_mut::<N>();
-    let (in_steps, in_single) = in_groups.as_chunks::<G>();
-    let (out_steps, out_single) = out_groups.as_chunks_mut::<G>();
     let words = |p: L| L::to_words(p.to_bits()).map(f32::from_bits);
-    for (src, dst) in in_steps.iter().zip(out_steps) {
-        let p = d.pdf::<Interleaved<L, G>>(load(src));
-        for (d, p) in dst.iter_mut().zip(p.0) {
-            *d = words(p);
-        }
-    }
-    for (src, dst) in in_single.iter().zip(out_single) {
-        *dst = words(d.pdf::<L>(batch::load(src)));
-    }
-    if !in_rest.is_empty() {
-        let mut pad = [[0.0f32; 2]; N];
-        for (p, s) in pad.iter_mut().zip(in_rest) {
-            *p = *s;
-        }
-        let res = words(d.pdf::<L>(batch::load(&pad)));
-        for (o, r) in out_rest.iter_mut().zip(res.iter()) {
-            *o = *r;
-        }
-    }
-    n
+    run::<f32, N, G>(
+        uv,
+        out,
+        |src| d.pdf::<Interleaved<L, G>>(load(src)).0.map(words),
+        |src| words(d.pdf::<L>(batch::load(src))),
+    )
 }
