@@ -21,7 +21,7 @@ pub(crate) fn mix<U: UintLane>(x: U) -> U {
 /// improved ones ("Building a Better LK Hash", 2021), as used by Burley's practical hash-based
 /// Owen scrambling (JCGT 2020).
 #[inline(always)]
-fn lk_hash<U: UintLane>(x: U, seed: U) -> U {
+pub(crate) fn lk_hash<U: UintLane>(x: U, seed: U) -> U {
     let x = x ^ (x * U::splat(0x3d20_adea));
     let x = x + seed;
     let x = x * (seed.shr(16) | U::splat(1));

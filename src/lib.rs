@@ -58,6 +58,8 @@
 //! | `pmj02bn-4-sets` | 4 sets instead of 1; tables take `8 * POINTS * SETS` bytes (128 KiB by default) | yes |
 //! | `sequence` | [`sequence`]: baseline `random` and `stratified` samplers (no tables) | yes |
 //! | `envmap` | [`envmap`]: marginal-conditional and hierarchical image distributions, caller-owned storage; enables `sphere` | yes |
+//! | `sampler` | [`sampler`]: the sampling core (domain tree, splitting, Owen-scrambled Sobol' and pmj02bn patterns, 8/16 lanes, slices); enables `pmj02bn` | yes |
+//! | `blue-noise` | [`sampler::Blue`]: screen-space blue-noise error, a 64 x 64 key tile per pattern (32 KiB); enables `sampler` | yes |
 //! | `std` | forwards `wide/std`; the library never needs it | no |
 
 #![no_std]
@@ -72,7 +74,9 @@
         feature = "sphere",
         feature = "pmj02bn",
         feature = "sequence",
-        feature = "envmap"
+        feature = "envmap",
+        feature = "sampler",
+        feature = "blue-noise"
     )),
     allow(dead_code)
 )]
@@ -92,6 +96,8 @@ pub mod disk;
 pub mod envmap;
 #[cfg(feature = "pmj02bn")]
 pub mod pmj02bn;
+#[cfg(feature = "sampler")]
+pub mod sampler;
 #[cfg(feature = "sequence")]
 pub mod sequence;
 #[cfg(feature = "sphere")]

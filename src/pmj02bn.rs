@@ -251,6 +251,16 @@ fn sample_body<L: Lane>(index: L::U, seed: L::U) -> [L; 2] {
     point(r, keys(seed, index.shr(LOG2_POINTS)))
 }
 
+/// [`sample`] before the conversion to `f32`: the Owen-scrambled 0.32 fixed-point words (the
+/// sampling core's `draw_u32`). `to_unit` of these is exactly what [`sample`] returns.
+#[inline(always)]
+pub(crate) fn sample_bits<U: UintLane>(index: U, seed: U) -> [U; 2] {
+    let r = index & U::splat(POINTS as u32 - 1);
+    let keys = keys(seed, index.shr(LOG2_POINTS));
+    let [x, y] = (keys.set | r).gather_pairs(|i| decode(all_points(), i as usize));
+    [owen_scramble(x, keys.x), owen_scramble(y, keys.y)]
+}
+
 /// Point `index` of the pmj02bn sequence for `seed`: a table point (set chosen by the seed),
 /// Owen-scrambled per seed, in `[0, 1 - 2^-24]^2`.
 ///

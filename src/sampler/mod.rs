@@ -1,0 +1,345 @@
+//! The sampling core: every dimension a path draws, from one small value per sample.
+//!
+//! A path tracer draws 10 to 100 dimensions per path — pixel, lens and time, then a light
+//! point, a BSDF direction and a roulette decision at every bounce. A [`Sampler`] hands them
+//! out through a **domain tree** (the interface of OpenQMC, Academy Software Foundation): a
+//! root per (pixel, frame, sample index, seed), an independent child pattern per
+//! [`domain`](Sampler::domain) key, and up to four stratified dimensions per
+//! [`draw`](Sampler::draw).
+//!
+//! ```
+//! use warpcore::sampler::{Pmj02bn, Sampler};
+//!
+//! let root = Sampler::<Pmj02bn>::new([12, 34], 0, 7, 0); // pixel, frame, sample index, seed
+//! let [px, py] = root.domain(0).draw::<2>();              // position in the pixel
+//! let [lens_u, lens_v] = root.domain(1).draw::<2>();      // thin lens
+//! for bounce in 0..3u32 {
+//!     let b = root.domain(2 + bounce);
+//!     let [lu, lv, bu, bv] = b.domain(0).draw::<4>();   // light point and BSDF direction
+//!     let [roulette] = b.domain(1).rnd::<1>();           // unstratified: cheap
+//!     assert!([lu, lv, bu, bv, roulette].iter().all(|x| (0.0..1.0).contains(x)));
+//! }
+//! assert!([px, py, lens_u, lens_v].iter().all(|x| (0.0..1.0).contains(x)));
+//! ```
+//!
+//! ## Patterns
+//!
+//! | pattern | a draw of up to four dimensions | stratified |
+//! |---|---|---|
+//! | [`Pmj02bn`] | two independent 2D pmj02bn pairs (dimensions 0-1, 2-3) | each pair a (0,2)-sequence |
+//! | [`Sobol`] | Owen-scrambled Sobol' dimensions 0..3 | 0-1 a (0,2)-sequence; each dimension a (0,1)-sequence; 2-3 not a (0,2) pair |
+//! | [`Blue<P>`](Blue) | `P`, with per-pixel keys from an optimised tile | as `P`, plus screen-space blue-noise error |
+//!
+//! Prefer [`Pmj02bn`] when a 4D draw is two 2D decisions (a light point and a BSDF
+//! direction); [`Sobol`] when the four dimensions drive one 3D or 4D integrand (its 3D and 4D
+//! projections are stratified, pmj02bn's pairs are independent of each other).
+//!
+//! ## The promises (tested)
+//!
+//! * **Every argument is valid**: no `u32` panics; see [`split`](Sampler::split) for
+//!   `size = 0` and the indices past `2^32`.
+//! * **Nets.** For a fixed (pixel, frame, seed, domain path), the points of `draw::<2>()` over
+//!   the indices of any aligned power-of-two block `[q 2^m, (q + 1) 2^m)` form a (0,m,2)-net
+//!   (every `2^k x 2^(m-k)` grid holds one point per cell) — both pairs of [`Pmj02bn`] (up to
+//!   [`pmj02bn::POINTS`](crate::pmj02bn::POINTS) points, see that module for longer runs),
+//!   dimensions 0-1 of [`Sobol`] (all `2^32` indices), and the same for [`Blue<P>`](Blue).
+//!   Every single dimension is stratified (one point per `2^-m` interval).
+//! * **Domains are independent.** `domain(a)` and `domain(b)`, `a != b`, get independent
+//!   scrambles *and* independent index shuffles (Burley 2020's nested uniform shuffle), so
+//!   their joint projections show no structure. (Two scrambles over one shared index order
+//!   would put 1024 points into 16 of the 256 cells of their joint 16 x 16 grid: the
+//!   shared-index-order bug.) Sibling keys never collide: `key -> child` is a bijection.
+//! * **Splitting is global.** `split(key, size, sub)` gives the child index `index * size +
+//!   sub` in a child domain that does not depend on `sub` or the index, so the `size * n`
+//!   points of all sub-samples of parent indices `0..n` are one prefix of one sequence: a
+//!   (0,m,2)-net when `size * n = 2^m` (OpenQMC's `newDomainSplit`).
+//! * **Values.** [`draw`](Sampler::draw) returns `(w >> 8) * 2^-24` of the words
+//!   [`draw_u32`](Sampler::draw_u32) returns, so it lies in `[0, 1 - 2^-24]`;
+//!   [`rnd`](Sampler::rnd) lies in `[0, 1 - 2^-24]` too. Integer arithmetic only: exact, the
+//!   same bits on every target.
+//! * **One body.** [`Sampler`], [`SamplerX8`], [`SamplerX16`] and
+//!   [`draw_slice`](Sampler::draw_slice) run the same generic body: bit-identical.
+//!
+//! ## How the state works
+//!
+//! A [`Sampler`] is three words (12 bytes): the pixel (`x` and `y`, 16 bits each), a 32-bit
+//! domain hash and the sample index. [`new`](Sampler::new) hashes the seed, the frame and —
+//! except for [`Blue`], whose pixels must share one key tile — the full pixel coordinates
+//! into the domain hash; [`domain`](Sampler::domain) and [`split`](Sampler::split) re-hash
+//! it with a bijective mixer (Wellons' `lowbias32`). A draw derives its shuffle and scramble
+//! keys from the domain hash: nothing is stored, nothing is shared between threads.
+
+use crate::hash::{mix, prefix_shuffle, to_unit};
+use crate::lanes::{Lane, UintLane};
+use core::marker::PhantomData;
+use core::num::Wrapping;
+
+#[cfg(feature = "blue-noise")]
+mod blue;
+mod simd;
+mod sobol;
+
+#[cfg(feature = "blue-noise")]
+pub use blue::{TABLE_BYTES as BLUE_TABLE_BYTES, TILE as BLUE_TILE};
+pub use simd::{SamplerX8, SamplerX16};
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// A point pattern a [`Sampler`] draws from: [`Pmj02bn`], [`Sobol`], or either as
+/// [`Blue<P>`](Blue). Sealed: the sampler's promises are tested for these alone.
+pub trait Pattern:
+    Copy + core::fmt::Debug + Default + Eq + core::hash::Hash + sealed::Sealed
+{
+    /// What the generic body dispatches on (a constant: each instantiation is one path).
+    #[doc(hidden)]
+    const ID: u8;
+}
+
+/// A base pattern, one [`Blue`] can wrap.
+pub trait Base: Pattern {}
+
+const PMJ02BN: u8 = 0;
+const SOBOL: u8 = 1;
+const BLUE: u8 = 2;
+
+/// pmj02bn points (the crate's [`pmj02bn`](crate::pmj02bn) tables, Owen-scrambled): a draw of
+/// up to four dimensions is two independent (0,2) pairs — dimensions 0-1 and 2-3 each use
+/// their own index shuffle and scrambles.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Pmj02bn;
+
+/// Owen-scrambled Sobol' dimensions 0..3 (own direction numbers from Joe and Kuo's
+/// polynomials, Burley's hash-based scrambling). See the table in the [module docs](self).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Sobol;
+
+/// `P` with screen-space blue-noise error: each pixel's keys come from a tile optimised
+/// offline, so that neighbouring pixels' errors are negatively correlated at every
+/// power-of-two sample count. Each pixel's own points are exactly `P`'s (nets as `P`).
+/// Feature `blue-noise`; see the `blue` section of `docs/sampler.md`.
+#[cfg(feature = "blue-noise")]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Blue<P>(PhantomData<P>);
+
+impl sealed::Sealed for Pmj02bn {}
+impl sealed::Sealed for Sobol {}
+impl Pattern for Pmj02bn {
+    const ID: u8 = PMJ02BN;
+}
+impl Pattern for Sobol {
+    const ID: u8 = SOBOL;
+}
+impl Base for Pmj02bn {}
+impl Base for Sobol {}
+#[cfg(feature = "blue-noise")]
+impl<P: Base> sealed::Sealed for Blue<P> {}
+#[cfg(feature = "blue-noise")]
+impl<P: Base> Pattern for Blue<P> {
+    const ID: u8 = BLUE | P::ID;
+}
+
+// Hash constants (arbitrary odd values, distinct per use).
+const K_SEED: u32 = 0x3c6e_f372;
+const K_FRAME: u32 = 0x9e37_79b9;
+const K_PIXEL: u32 = 0x85eb_ca6b;
+const K_DOMAIN: u32 = 0xc2b2_ae35;
+const K_SPLIT: u32 = 0x27d4_eb2f;
+const K_RND: u32 = 0x1656_67b1;
+const K_PAIR: [[u32; 2]; 2] = [[0x5851_f42d, 0x4c95_7f2d], [0xd1b5_4a33, 0xa54f_f53a]];
+
+/// The three words of a sampler, for one lane type: `Wrapping<u32>`, `u32x8` or `u32x16`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct State<U> {
+    /// `x | y << 16` (16 bits each: the blue-noise tile position; the full coordinates are
+    /// hashed into `domain` by `new` for the other patterns).
+    pixel: U,
+    domain: U,
+    index: U,
+}
+
+impl<U: UintLane> State<U> {
+    #[inline(always)]
+    fn new(id: u8, pixel: [U; 2], frame: U, index: U, seed: U) -> Self {
+        let root = mix(mix(seed ^ U::splat(K_SEED)) ^ (frame * U::splat(K_FRAME)));
+        let domain = if id & BLUE != 0 {
+            root
+        } else {
+            mix(root ^ mix(pixel[0] ^ mix(pixel[1] ^ U::splat(K_PIXEL))))
+        };
+        let pixel = (pixel[0] & U::splat(0xffff)) | pixel[1].shl(16);
+        State {
+            pixel,
+            domain,
+            index,
+        }
+    }
+
+    #[inline(always)]
+    fn domain(self, key: u32) -> Self {
+        State {
+            domain: mix(self.domain + U::splat(key.wrapping_mul(K_DOMAIN))),
+            ..self
+        }
+    }
+
+    #[inline(always)]
+    fn split(self, key: u32, size: u32, sub: U) -> Self {
+        State {
+            domain: mix((self.domain ^ U::splat(K_SPLIT)) + U::splat(key.wrapping_mul(K_DOMAIN))),
+            index: self.index * U::splat(size.max(1)) + sub,
+            ..self
+        }
+    }
+
+    /// The stratified point, dimensions `0..N`, 0.32 fixed point.
+    #[inline(always)]
+    fn bits<const N: usize>(self, id: u8) -> [U; N] {
+        const { assert!(N >= 1 && N <= 4, "a draw has 1 to 4 dimensions") };
+        #[cfg(feature = "blue-noise")]
+        let seed = if id & BLUE != 0 {
+            blue::key(id & !BLUE, self.pixel, self.domain)
+        } else {
+            self.domain
+        };
+        #[cfg(not(feature = "blue-noise"))]
+        let seed = self.domain;
+        if id & !BLUE == SOBOL {
+            sobol::point(self.index, seed)
+        } else {
+            pmj02bn_pairs(self.index, seed)
+        }
+    }
+
+    /// Unstratified values: a counter hash of (pixel, domain, index, dimension).
+    #[inline(always)]
+    fn rnd<const N: usize>(self, id: u8) -> [U; N] {
+        const { assert!(N >= 1 && N <= 4, "a draw has 1 to 4 dimensions") };
+        let d = if id & BLUE != 0 {
+            self.domain ^ mix(self.pixel ^ U::splat(K_PIXEL))
+        } else {
+            self.domain
+        };
+        let h = mix(d ^ mix(self.index ^ U::splat(K_RND)));
+        core::array::from_fn(|k| mix(h + U::splat(K_FRAME.wrapping_mul(k as u32 + 1))))
+    }
+}
+
+/// Two pmj02bn pairs with independent index shuffles and scrambles (the second only when
+/// `N > 2`).
+#[inline(always)]
+fn pmj02bn_pairs<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
+    let pair = |p: usize| {
+        let [k_shuffle, k_scramble] = K_PAIR[p];
+        let i = prefix_shuffle(index, mix(seed ^ U::splat(k_shuffle)));
+        crate::pmj02bn::sample_bits(i, seed ^ U::splat(k_scramble))
+    };
+    let a = pair(0);
+    let b = if N > 2 { pair(1) } else { a };
+    core::array::from_fn(|d| [a[0], a[1], b[0], b[1]][d])
+}
+
+/// One sample's sampler: a pattern, a pixel, a domain path and a sample index, in 12 bytes.
+///
+/// `Copy`: derive children freely, draw from any of them in any order; nothing mutates.
+/// See the [module docs](self) for the promises.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Sampler<P: Pattern> {
+    state: State<Wrapping<u32>>,
+    pattern: PhantomData<P>,
+}
+
+impl<P: Pattern> Sampler<P> {
+    /// The root sampler of sample `index` of `pixel` (`[x, y]`) in `frame`, for `seed` (one
+    /// per render; 0 is fine).
+    ///
+    /// Every pixel gets independent scrambles, except under [`Blue`], where pixels share a
+    /// key tile (positions modulo the tile; `x` and `y` are read modulo 2^16). Frames and
+    /// seeds decorrelate like domains.
+    #[inline]
+    pub fn new(pixel: [u32; 2], frame: u32, index: u32, seed: u32) -> Self {
+        let w = Wrapping;
+        Self::from_state(State::new(P::ID, pixel.map(w), w(frame), w(index), w(seed)))
+    }
+
+    #[inline(always)]
+    fn from_state(state: State<Wrapping<u32>>) -> Self {
+        Sampler {
+            state,
+            pattern: PhantomData,
+        }
+    }
+
+    /// An independent child pattern for `key` (same index): for a new decision of the path
+    /// (lens, light, BSDF, one per bounce...). Different keys never give the same child.
+    #[inline]
+    pub fn domain(self, key: u32) -> Self {
+        Self::from_state(self.state.domain(key))
+    }
+
+    /// Sub-sample `sub` of `size` per sample: the child index is `index * size + sub` in a
+    /// child domain for `key`, so the sub-samples of all samples are one sequence — globally
+    /// stratified (the `size * n` points of `n = 2^j` samples form a net when `size` is a
+    /// power of two).
+    ///
+    /// Every argument is valid: `size = 0` acts as `size = 1`; `sub >= size` gives the index
+    /// of another sample's sub-sample (documented, not an error); the child index wraps
+    /// modulo `2^32`.
+    #[inline]
+    pub fn split(self, key: u32, size: u32, sub: u32) -> Self {
+        Self::from_state(self.state.split(key, size, Wrapping(sub)))
+    }
+
+    /// The same domain at another sample index.
+    #[inline]
+    pub fn with_index(self, index: u32) -> Self {
+        Self::from_state(State {
+            index: Wrapping(index),
+            ..self.state
+        })
+    }
+
+    /// This sampler's sample index (after any [`split`](Self::split)).
+    #[inline]
+    pub fn index(self) -> u32 {
+        self.state.index.0
+    }
+
+    /// `N` (1 to 4, checked at compile time) stratified dimensions in `[0, 1 - 2^-24]`.
+    #[inline]
+    pub fn draw<const N: usize>(self) -> [f32; N] {
+        self.draw_u32::<N>().map(|w| to_unit::<f32>(Wrapping(w)))
+    }
+
+    /// The point of [`draw`](Self::draw) as 0.32 fixed point (`w / 2^32`): `draw` is
+    /// `(w >> 8) * 2^-24` of these words.
+    #[inline]
+    pub fn draw_u32<const N: usize>(self) -> [u32; N] {
+        self.state.bits::<N>(P::ID).map(|w| w.0)
+    }
+
+    /// `N` (1 to 4) cheap unstratified values in `[0, 1 - 2^-24]`: a counter hash of the
+    /// pixel, the domain and the index, for Russian roulette and other decisions where
+    /// stratification does not pay.
+    #[inline]
+    pub fn rnd<const N: usize>(self) -> [f32; N] {
+        self.state.rnd::<N>(P::ID).map(to_unit::<f32>)
+    }
+
+    /// Fills `out[k]` with `self.with_index(self.index() + k).draw::<N>()` (index wrapping)
+    /// and returns `out.len()`: the points of one domain for consecutive indices, eight or
+    /// sixteen at a time. Bit-identical to the scalar form.
+    #[inline]
+    pub fn draw_slice<const N: usize>(self, out: &mut [[f32; N]]) -> usize {
+        simd::draw_slice::<P, crate::batch::Widest, _, N>(self.state, out)
+    }
+}
+
+/// `to_unit` over any lane type (the conversion of [`Sampler::draw`]).
+#[inline(always)]
+fn unit<L: Lane>(w: L::U) -> L {
+    to_unit::<L>(w)
+}
+
+const _: () = assert!(core::mem::size_of::<Sampler<Sobol>>() <= 16);

@@ -1,0 +1,199 @@
+//! Owen-scrambled Sobol' dimensions 0..3: the generator matrices, built at compile time from
+//! primitive polynomials and initial direction numbers, and the scramble.
+//!
+//! **The sequence.** Point `i` of Sobol' dimension `d` is `x_d(i) = XOR over the set bits k
+//! of i of v_{d,k}`, with the direction numbers `v_{d,k} = m_{d,k} / 2^(k+1)` (Sobol' 1967;
+//! Bratley and Fox 1988, ACM TOMS 14, Algorithm 659). Dimension 0 is the van der Corput
+//! sequence (`v_{0,k} = 2^-(k+1)`); dimensions 1..3 use the primitive polynomials `x + 1`,
+//! `x^2 + x + 1` and `x^3 + x + 1` with the initial values `m = (1)`, `(1, 3)` and
+//! `(1, 3, 1)` of Joe and Kuo's table ("Constructing Sobol sequences with better
+//! two-dimensional projections", SIAM J. Sci. Comput. 30, 2008; their dimensions 2, 3, 4).
+//! Further `m` follow the recurrence `m_k = 2 a_1 m_{k-1} ^ 4 a_2 m_{k-2} ^ .. ^ 2^s m_{k-s}
+//! ^ m_{k-s}`, for all 32 bits of the index.
+//!
+//! **What is stratified.** Dimensions 0 and 1 form a (0,2)-sequence: every aligned block of
+//! `2^m` indices is a (0,m,2)-net. Each dimension alone is a (0,1)-sequence (one point per
+//! `2^-m` interval). Dimensions 2 and 3 are *not* a (0,2) pair with each other or with 0 and 1
+//! (their 2D projections have `t >= 1`): when a 4D draw is two 2D decisions (a point on a
+//! light and a BSDF direction), [`Pmj02bn`](super::Pmj02bn) gives two (0,2) pairs.
+//!
+//! **Randomisation** (Burley, "Practical Hash-based Owen Scrambling", JCGT 9(4), 2020): the
+//! index is shuffled by a nested uniform permutation (every aligned block of `2^k` indices
+//! onto an aligned block of `2^k`, so every prefix keeps its net), then every dimension gets
+//! an independent nested uniform (Owen) scramble. Both are the Laine-Karras-style hash of
+//! [`crate::hash`] with independent keys. Working on bit-reversed values saves a reversal per
+//! dimension: the tables below hold `reverse(v_{d,k})`, so their XOR is `reverse(x_d(i))`,
+//! which is exactly what the scramble hashes.
+
+use crate::hash::lk_hash;
+use crate::lanes::UintLane;
+
+/// Primitive polynomial degree `s`, its middle coefficients `a` (bit `s - 2 - j` is `a_{j+1}`)
+/// and the initial `m_1 .. m_s` for dimensions 1, 2 and 3 (Joe and Kuo 2008, dimensions 2-4).
+const POLYNOMIALS: [(u32, u32, [u32; 3]); 3] =
+    [(1, 0, [1, 0, 0]), (2, 1, [1, 3, 0]), (3, 1, [1, 3, 1])];
+
+/// Direction numbers of dimension `d` (1..=3) as 0.32 fixed point: entry `k` is `v_{d,k}`.
+const fn directions(d: usize) -> [u32; 32] {
+    let (s, a, init) = POLYNOMIALS[d - 1];
+    let s = s as usize;
+    // m_k for k = 1..=32, held as u64 (m_k < 2^k).
+    let mut m = [0u64; 33];
+    let mut k = 1;
+    while k <= 32 {
+        if k <= s {
+            m[k] = init[k - 1] as u64;
+        } else {
+            let mut x = m[k - s] ^ (m[k - s] << s);
+            let mut j = 1;
+            while j < s {
+                if (a >> (s - 1 - j)) & 1 == 1 {
+                    x ^= m[k - j] << j;
+                }
+                j += 1;
+            }
+            m[k] = x;
+        }
+        k += 1;
+    }
+    let mut v = [0u32; 32];
+    let mut k = 0;
+    while k < 32 {
+        // v_k = m_{k+1} / 2^(k+1), as a 0.32 fraction.
+        v[k] = (m[k + 1] << (31 - k)) as u32;
+        k += 1;
+    }
+    v
+}
+
+/// `TABLE[256 b + byte]` holds, for dimensions 1, 2, 3, the XOR of `reverse(v_{d, 8b + j})`
+/// over the set bits `j` of `byte`: the product of the (bit-reversed) generator matrix with
+/// byte `b` of the index. Four lookups and three XORs give the whole 32-bit product
+/// (12 KiB, built at compile time).
+static TABLE: [[u32; 3]; 1024] = {
+    let dirs = [directions(1), directions(2), directions(3)];
+    let mut t = [[0u32; 3]; 1024];
+    let mut e = 0;
+    while e < 1024 {
+        let (b, byte) = (e / 256, e % 256);
+        let mut d = 0;
+        while d < 3 {
+            let mut x = 0u32;
+            let mut j = 0;
+            while j < 8 {
+                if (byte >> j) & 1 == 1 {
+                    x ^= dirs[d][8 * b + j].reverse_bits();
+                }
+                j += 1;
+            }
+            t[e][d] = x;
+            d += 1;
+        }
+        e += 1;
+    }
+    t
+};
+
+/// `reverse(x_d(i))` for dimensions 1, 2, 3 (dimension 0 is `i` itself in this form).
+#[inline(always)]
+fn reversed_dims<U: UintLane>(i: U) -> [U; 3] {
+    let byte = |b: u32| (i.shr(8 * b) & U::splat(0xff)) | U::splat(256 * b);
+    let [a, b, c, d] = [0, 1, 2, 3].map(|k| U::gather(&TABLE, byte(k)));
+    core::array::from_fn(|k| a[k] ^ b[k] ^ c[k] ^ d[k])
+}
+
+/// Key constants (arbitrary odd values, distinct per use): index shuffle, then dimensions.
+const KEYS: [u32; 5] = [
+    0x2c1b_3c6d,
+    0x297a_2d39,
+    0xa1ab_8e27,
+    0x6c8e_9cf5,
+    0x4f6c_dd1d,
+];
+
+/// Point `index` of the Owen-scrambled Sobol' sequence keyed by `seed`, dimensions `0..N`, as
+/// 0.32 fixed point. Exact integer arithmetic: no rounding at all.
+#[inline(always)]
+pub(super) fn point<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
+    let key = |k: usize| crate::hash::mix(seed ^ U::splat(KEYS[k]));
+    // Nested uniform shuffle of the index (Burley 2020, section 4), then the matrices.
+    let i = lk_hash(index.reverse_bits(), key(0)).reverse_bits();
+    let rev = reversed_dims(i);
+    core::array::from_fn(|d| {
+        let r = if d == 0 { i } else { rev[d - 1] };
+        lk_hash(r, key(d + 1)).reverse_bits()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use core::num::Wrapping;
+
+    /// Unscrambled Sobol' point `i`, dimension `d`, straight from the definition.
+    fn plain(i: u32, d: usize) -> u32 {
+        if d == 0 {
+            return i.reverse_bits();
+        }
+        let v = directions(d);
+        (0..32)
+            .filter(|k| (i >> k) & 1 == 1)
+            .fold(0, |x, k| x ^ v[k])
+    }
+
+    /// The first direction numbers, worked by hand from the polynomials and `m` values.
+    #[test]
+    fn direction_numbers_follow_the_recurrence() {
+        let frac = |m: u64, k: u32| (m << (32 - k)) as u32;
+        // x + 1 (the Pascal matrix): m = 1, 3, 5, 15, 17.
+        let want1 = [1, 3, 5, 15, 17].iter().zip(1..).map(|(&m, k)| frac(m, k));
+        assert!(want1.eq(directions(1)[..5].iter().copied()));
+        // x^2 + x + 1, m = (1, 3): m3 = 2*3 ^ 4*1 ^ 1 = 3, m4 = 2*3 ^ 4*3 ^ 3 = 9,
+        // m5 = 2*9 ^ 4*3 ^ 3 = 29.
+        let want2 = [1, 3, 3, 9, 29].iter().zip(1..).map(|(&m, k)| frac(m, k));
+        assert!(want2.eq(directions(2)[..5].iter().copied()));
+        // x^3 + x + 1 (a_1 = 0, a_2 = 1), m = (1, 3, 1): m4 = 4*3 ^ 8*1 ^ 1 = 5,
+        // m5 = 4*1 ^ 8*3 ^ 3 = 31.
+        let want3 = [1, 3, 1, 5, 31].iter().zip(1..).map(|(&m, k)| frac(m, k));
+        assert!(want3.eq(directions(3)[..5].iter().copied()));
+        // Every v_k has bit k (from the top) set and nothing below: the matrices are
+        // triangular with a unit diagonal, so each dimension is a (0,1)-sequence.
+        for d in 1..4 {
+            for (k, &v) in directions(d).iter().enumerate() {
+                assert_eq!(v.trailing_zeros(), 31 - k as u32, "dim {d} k {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn tables_match_the_definition() {
+        let mut x = 0x1234_5678u32;
+        for _ in 0..20_000 {
+            x = x.wrapping_mul(0x9e37_79b9).wrapping_add(0x7f4a_7c15);
+            let r = reversed_dims(Wrapping(x));
+            for d in 1..4 {
+                assert_eq!(r[d - 1].0, plain(x, d).reverse_bits());
+            }
+        }
+    }
+
+    /// Unscrambled dimensions 0 and 1: every aligned block of 2^m points is a (0,m,2)-net.
+    #[test]
+    fn dimensions_0_1_are_a_02_sequence() {
+        for m in 0..=12u32 {
+            for start in [0u32, 1 << 12, 0xdead_0000 & !((1 << m) - 1)] {
+                for k in 0..=m {
+                    let mut seen = std::vec![false; 1 << m];
+                    for i in start..start + (1 << m) {
+                        let (x, y) = (plain(i, 0), plain(i, 1));
+                        let top = |v: u32, bits: u32| ((v as u64) << bits) >> 32;
+                        let cell = (top(x, k) << (m - k)) | top(y, m - k);
+                        let cell = cell as usize;
+                        assert!(!core::mem::replace(&mut seen[cell], true), "m {m} k {k}");
+                    }
+                }
+            }
+        }
+    }
+}
