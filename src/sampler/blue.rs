@@ -59,3 +59,83 @@ pub(crate) fn key<U: UintLane>(base: u8, pixel: U, domain: U) -> U {
         .gather_pairs(|i| [u32::from_le_bytes(words[i as usize & (words.len() - 1)]), 0]);
     k
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Base, Blue, Pattern, Pmj02bn, Sampler, Sobol};
+    use super::TILE;
+
+    /// The key a `Blue<P>` pixel reads, worked from the documented layout alone: bit 29 of the
+    /// domain hash transposes, bits 30 and 31 flip x and y, then the hash shifts x by its low
+    /// bits and y by the bits from 12 up; the tile is row-major little-endian words.
+    fn tile_key_at<P: Base>(pixel: [u32; 2], domain: u32) -> u32 {
+        let bytes: &[u8] = if P::ID == super::super::SOBOL {
+            include_bytes!("../tables/blue_sobol_64.bin")
+        } else {
+            include_bytes!("../tables/blue_pmj02bn_64.bin")
+        };
+        let (mut x, mut y) = (pixel[0] % TILE, pixel[1] % TILE);
+        if domain >> 29 & 1 == 1 {
+            (x, y) = (y, x);
+        }
+        if domain >> 30 & 1 == 1 {
+            x = TILE - 1 - x;
+        }
+        if domain >> 31 == 1 {
+            y = TILE - 1 - y;
+        }
+        let x = x.wrapping_add(domain) % TILE;
+        let y = y.wrapping_add(domain >> 12) % TILE;
+        let at = 4 * (y * TILE + x) as usize;
+        u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]])
+    }
+
+    /// A `Blue<P>` pixel draws exactly `P`'s points keyed by its tile entry, i.e. what
+    /// `tools/bluegen` optimises through `Sampler::<P>::from_domain_hash`: for any pixel,
+    /// frame, seed, domain path and index.
+    fn blue_draws_the_keyed_base_pattern<P: Base>()
+    where
+        Blue<P>: Pattern,
+    {
+        let mut r = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            (r >> 32) as u32
+        };
+        for trial in 0..2000 {
+            let pixel = if trial < 8 {
+                [trial, u32::MAX - trial]
+            } else {
+                [next(), next()]
+            };
+            let (frame, seed, index) = (next(), next(), next() >> (trial % 32));
+            let root = Sampler::<Blue<P>>::new(pixel, frame, index, seed);
+            let (a, b) = (next(), next());
+            for s in [
+                root,
+                root.domain(a),
+                root.domain(a).domain(b),
+                root.split(a, 4, 3).domain(b),
+            ] {
+                // The tile position uses the pixel modulo 2^16 (then modulo the tile).
+                let p = [pixel[0] & 0xffff, pixel[1] & 0xffff];
+                let key = tile_key_at::<P>(p, s.state.domain.0);
+                let base = Sampler::<P>::from_domain_hash(key, s.index());
+                assert_eq!(s.draw_u32::<4>(), base.draw_u32::<4>(), "pixel {pixel:?}");
+                assert_eq!(s.draw::<2>(), base.draw::<2>());
+            }
+        }
+    }
+
+    #[test]
+    fn blue_sobol_draws_sobol_keyed_by_the_tile() {
+        blue_draws_the_keyed_base_pattern::<Sobol>();
+    }
+
+    #[test]
+    fn blue_pmj02bn_draws_pmj02bn_keyed_by_the_tile() {
+        blue_draws_the_keyed_base_pattern::<Pmj02bn>();
+    }
+}

@@ -336,6 +336,23 @@ impl<P: Pattern> Sampler<P> {
     }
 }
 
+impl<P: Base> Sampler<P> {
+    /// The sampler whose domain hash is `hash` (pixel 0) at sample `index`: point `index` of
+    /// `P` keyed by `hash`, which is exactly what a [`Blue<P>`](Blue) pixel draws when its
+    /// tile key is `hash`. For `tools/bluegen`, which optimises the tiles from the library's
+    /// own points; not part of the API.
+    #[doc(hidden)]
+    #[inline]
+    pub fn from_domain_hash(hash: u32, index: u32) -> Self {
+        let w = Wrapping;
+        Self::from_state(State {
+            pixel: w(0),
+            domain: w(hash),
+            index: w(index),
+        })
+    }
+}
+
 /// `to_unit` over any lane type (the conversion of [`Sampler::draw`]).
 #[inline(always)]
 fn unit<L: Lane>(w: L::U) -> L {
