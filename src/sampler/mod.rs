@@ -306,6 +306,29 @@ impl<P: Pattern> Sampler<P> {
         self.state.index.0
     }
 
+    /// The state as three words `[pixel, domain, index]`, for bindings that carry a sampler
+    /// across an ABI (the C API's `WcSampler`). Not a stable format: the words mean something
+    /// only to [`from_words`](Self::from_words) of the same pattern and crate version.
+    #[doc(hidden)]
+    #[inline]
+    pub fn to_words(self) -> [u32; 3] {
+        let s = self.state;
+        [s.pixel.0, s.domain.0, s.index.0]
+    }
+
+    /// The sampler whose [`to_words`](Self::to_words) are `w`. Every value is valid (any
+    /// three words are some sampler's state).
+    #[doc(hidden)]
+    #[inline]
+    pub fn from_words(w: [u32; 3]) -> Self {
+        let [pixel, domain, index] = w.map(Wrapping);
+        Self::from_state(State {
+            pixel,
+            domain,
+            index,
+        })
+    }
+
     /// `N` (1 to 4, checked at compile time) stratified dimensions in `[0, 1 - 2^-24]`.
     #[inline]
     pub fn draw<const N: usize>(self) -> [f32; N] {
