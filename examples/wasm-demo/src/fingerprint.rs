@@ -204,6 +204,65 @@ pub fn indexed<const O: usize>(
     }
 }
 
+/// The sampling core for one pattern: 4D draws (scalar, 8 and 16 lanes, slices) through a
+/// domain path and a split, with the pixel taken from the seed so every lane has its own;
+/// then `draw_u32` and `rnd` of the same states.
+#[cfg(feature = "sampler")]
+fn sampler<P: warpcore::sampler::Pattern>(h: &mut Hasher) {
+    use warpcore::sampler::{Sampler, SamplerX8, SamplerX16};
+    let at = |index: u32, seed: u32| {
+        Sampler::<P>::new([seed % 641, seed >> 20], seed ^ 5, index, seed)
+            .domain(3)
+            .split(7, 4, index & 3)
+    };
+    let wide = |index: [u32; 16], seed: [u32; 16]| {
+        let lanes: [Sampler<P>; 16] = core::array::from_fn(|j| {
+            Sampler::<P>::new(
+                [seed[j] % 641, seed[j] >> 20],
+                seed[j] ^ 5,
+                index[j],
+                seed[j],
+            )
+            .domain(3)
+        });
+        (lanes, index.map(|i| i & 3))
+    };
+    indexed(
+        h,
+        |i, s| at(i, s).draw::<4>(),
+        |i, s| {
+            let (lanes, sub) = wide(pad(i.to_array()), pad(s.to_array()));
+            let sub = u32x8::new(core::array::from_fn(|j| sub[j]));
+            let x8 = SamplerX8::from_lanes(core::array::from_fn(|j| lanes[j]));
+            x8.split(7, 4, sub).draw::<4>()
+        },
+        |i, s| {
+            let (lanes, sub) = wide(i.to_array(), s.to_array());
+            SamplerX16::from_lanes(lanes)
+                .split(7, 4, u32x16::new(sub))
+                .draw::<4>()
+        },
+        |start, s, out| {
+            Sampler::<P>::new([s % 641, s >> 20], s ^ 5, start, s)
+                .domain(3)
+                .draw_slice(out)
+        },
+    );
+    for k in 0..64u32 {
+        let s = at(k.wrapping_mul(0x9e37_79b9), k);
+        for w in s.draw_u32::<4>() {
+            h.word(w);
+        }
+        h.floats(&s.rnd::<4>());
+    }
+}
+
+/// Eight lanes padded to sixteen (zeros).
+#[cfg(feature = "sampler")]
+fn pad(a: [u32; 8]) -> [u32; 16] {
+    core::array::from_fn(|j| if j < 8 { a[j] } else { 0 })
+}
+
 /// The fingerprint of every family compiled in.
 pub fn fingerprint() -> u64 {
     fingerprint_with(Hasher::new())
@@ -304,6 +363,18 @@ fn fingerprint_with(mut h: Hasher) -> u64 {
             for w in pmj02bn::raw(set, index) {
                 h.word(w);
             }
+        }
+    }
+    #[cfg(feature = "sampler")]
+    {
+        use warpcore::sampler::{Pmj02bn, Sobol};
+        sampler::<Pmj02bn>(&mut h);
+        sampler::<Sobol>(&mut h);
+        #[cfg(feature = "blue-noise")]
+        {
+            use warpcore::sampler::Blue;
+            sampler::<Blue<Pmj02bn>>(&mut h);
+            sampler::<Blue<Sobol>>(&mut h);
         }
     }
     #[cfg(feature = "sequence")]

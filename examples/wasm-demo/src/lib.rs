@@ -83,6 +83,36 @@ pub extern "C" fn pmj02bn_sample(index: u32, seed: u32, k: u32) -> f32 {
     if k == 0 { p[0] } else { p[1] }
 }
 
+/// Dimension `k` (0..3) of a 4D draw from domain `key` of `Sampler<Sobol>`.
+#[cfg(any(feature = "all", feature = "probe-sampler-sobol"))]
+#[unsafe(no_mangle)]
+pub extern "C" fn sampler_sobol(x: u32, y: u32, index: u32, key: u32, k: u32) -> f32 {
+    use warpcore::sampler::{Sampler, Sobol};
+    Sampler::<Sobol>::new([x, y], 0, index, 0)
+        .domain(key)
+        .draw::<4>()[k as usize & 3]
+}
+
+/// Dimension `k` (0..3) of a 4D draw from domain `key` of `Sampler<Pmj02bn>`.
+#[cfg(any(feature = "all", feature = "probe-sampler-pmj02bn"))]
+#[unsafe(no_mangle)]
+pub extern "C" fn sampler_pmj02bn(x: u32, y: u32, index: u32, key: u32, k: u32) -> f32 {
+    use warpcore::sampler::{Pmj02bn, Sampler};
+    Sampler::<Pmj02bn>::new([x, y], 0, index, 0)
+        .domain(key)
+        .draw::<4>()[k as usize & 3]
+}
+
+/// Dimension `k` (0..3) of a 4D draw from domain `key` of `Sampler<Blue<Sobol>>`.
+#[cfg(any(feature = "all", feature = "probe-sampler-blue"))]
+#[unsafe(no_mangle)]
+pub extern "C" fn sampler_blue_sobol(x: u32, y: u32, index: u32, key: u32, k: u32) -> f32 {
+    use warpcore::sampler::{Blue, Sampler, Sobol};
+    Sampler::<Blue<Sobol>>::new([x, y], 0, index, 0)
+        .domain(key)
+        .draw::<4>()[k as usize & 3]
+}
+
 // The no-panic proof: this function is never defined. If any code path that can panic is
 // linked into the module, the panic handler (and with it this symbol) is kept, and the wasm
 // module gains an import `env.warpcore_panic_path_reached`. `tools/wasm-demo.mjs` loads the
