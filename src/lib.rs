@@ -113,7 +113,8 @@ pub mod triangle;
     feature = "triangle",
     feature = "sphere",
     feature = "pmj02bn",
-    feature = "sequence"
+    feature = "sequence",
+    feature = "blue-noise"
 ))]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
@@ -125,3 +126,13 @@ struct Pmj02bnDocDoctests;
 #[cfg(all(doctest, feature = "envmap"))]
 #[doc = include_str!("../docs/envmaps.md")]
 struct EnvmapsDocDoctests;
+
+#[cfg(all(
+    doctest,
+    feature = "blue-noise",
+    feature = "disk",
+    feature = "triangle",
+    feature = "sphere"
+))]
+#[doc = include_str!("../docs/sampler.md")]
+struct SamplerDocDoctests;
