@@ -62,6 +62,19 @@
 // The storage format version this library writes and reads (header word 1).
 #define WC_ENVMAP_FORMAT_VERSION 1
 
+// Owen-scrambled pmj02bn points: a draw of up to four dimensions is two independent (0,2)
+// pairs (dimensions 0-1 and 2-3).
+#define WC_PATTERN_PMJ02BN 0
+
+// Owen-scrambled Sobol' dimensions 0..3 (0-1 a (0,2)-sequence).
+#define WC_PATTERN_SOBOL 1
+
+// pmj02bn with screen-space blue-noise error across pixels (feature `blue-noise`).
+#define WC_PATTERN_BLUE_PMJ02BN 2
+
+// Sobol' with screen-space blue-noise error across pixels (feature `blue-noise`).
+#define WC_PATTERN_BLUE_SOBOL 3
+
 // One environment-map sample.
 typedef struct {
   // The point, in `[0, 1)^2`, inside `texel`.
@@ -71,6 +84,26 @@ typedef struct {
   // `[column, row]` of the texel the point lies in.
   uint32_t texel[2];
 } WcEnvSample;
+
+// One sample's sampler: a pattern, a pixel, a domain path and a sample index, in 16 bytes.
+// A plain value: copy it, derive children from it, draw from it, from any thread.
+//
+// `pattern` is a `WC_PATTERN_*` constant; `index` is the sample index (after any split) and
+// may be set directly (another index in the same domain: Rust's `with_index`); `pixel` and
+// `domain` are hashes only this library reads. Any bits are safe: a sampler whose `pattern`
+// is not a pattern of this build (garbage, or a blue-noise pattern in a build without the
+// `blue-noise` feature) is carried through `wc_sampler_domain` and `wc_sampler_split`
+// unchanged, and every draw from it returns 0 and writes nothing.
+typedef struct {
+  // A `WC_PATTERN_*` constant.
+  uint32_t pattern;
+  // The pixel (opaque: 16 bits of `x` and of `y`).
+  uint32_t pixel;
+  // The domain path's hash (opaque).
+  uint32_t domain;
+  // The sample index.
+  uint32_t index;
+} WcSampler;
 
 #ifdef __cplusplus
 extern "C" {
@@ -354,6 +387,68 @@ size_t wc_pmj02bn_points(void);
 
 // Table sets in this build (1 or 4; features).
 size_t wc_pmj02bn_sets(void);
+
+// Is `pattern` a pattern of this build? 1 for `WC_PATTERN_PMJ02BN` and `WC_PATTERN_SOBOL`,
+// 1 for the blue-noise patterns when the library was built with the `blue-noise` feature
+// (the default), 0 otherwise.
+uint32_t wc_sampler_pattern_supported(uint32_t pattern);
+
+// The root sampler of sample `index` of pixel `(x, y)` in `frame`, for `seed` (one per
+// render; 0 is fine). Every pixel gets independent scrambles, except under the blue-noise
+// patterns, where pixels share a key tile (`x` and `y` modulo the tile). Every `uint32_t`
+// is valid. An unknown `pattern` gives `{pattern, 0, 0, 0}`, a sampler every draw refuses.
+WcSampler wc_sampler_new(uint32_t pattern,
+                         uint32_t x,
+                         uint32_t y,
+                         uint32_t frame,
+                         uint32_t index,
+                         uint32_t seed);
+
+// An independent child pattern for `key` (same index): one per decision of a path (lens,
+// light, BSDF, one per bounce ...). Different keys never give the same child. An unknown
+// pattern is returned unchanged.
+WcSampler wc_sampler_domain(WcSampler s, uint32_t key);
+
+// Sub-sample `sub` of `size` per sample: the child index is `index * size + sub` (wrapping)
+// in a child domain for `key`, so the sub-samples of all samples are one sequence, globally
+// stratified. `size = 0` acts as 1; `sub >= size` is another sample's sub-sample. An unknown
+// pattern is returned unchanged.
+WcSampler wc_sampler_split(WcSampler s, uint32_t key, uint32_t size, uint32_t sub);
+
+// `n` (1 to 4) stratified dimensions of the point of `s`, in `[0, 1 - 2^-24]`: `n` floats.
+// Returns `n`, or 0 (writing nothing) for `n` outside 1..=4, an unknown pattern, or a null
+// or misaligned `out`.
+//
+// # Safety
+// `out` must be writable for `n` floats.
+size_t wc_sampler_draw(WcSampler s, size_t n, float *out);
+
+// The point of `wc_sampler_draw` as 0.32 fixed point (`w / 2^32`; `wc_sampler_draw` returns
+// `(w >> 8) * 2^-24`): `n` (1 to 4) values. Returns `n`, or 0 (writing nothing) for `n`
+// outside 1..=4, an unknown pattern, or a null or misaligned `out`.
+//
+// # Safety
+// `out` must be writable for `n` values.
+size_t wc_sampler_draw_u32(WcSampler s, size_t n, uint32_t *out);
+
+// `n` (1 to 4) cheap unstratified values in `[0, 1 - 2^-24]` (a counter hash of the pixel,
+// the domain and the index), for Russian roulette and other decisions where stratification
+// does not pay. Returns `n`, or 0 (writing nothing) for `n` outside 1..=4, an unknown
+// pattern, or a null or misaligned `out`.
+//
+// # Safety
+// `out` must be writable for `n` floats.
+size_t wc_sampler_rnd(WcSampler s, size_t n, float *out);
+
+// The points of `s`'s domain for the `count` consecutive indices `s.index, s.index + 1, ...`
+// (wrapping after `UINT32_MAX`), `n_dims` (1 to 4) dimensions each: `count * n_dims` floats,
+// interleaved, the same bits as `count` calls of `wc_sampler_draw` (eight or sixteen points at
+// a time). Returns `count`, or 0 (writing nothing) for `count = 0`, `n_dims` outside 1..=4,
+// an unknown pattern, or a null or misaligned `out`.
+//
+// # Safety
+// `out` must be writable for `count * n_dims` floats.
+size_t wc_sampler_draw_slice(WcSampler s, size_t n_dims, float *out, size_t count);
 
 // Independent uniform points `start, ..., start + n - 1` of `seed` (a counter-based hash),
 // in `[0, 1)^2`: `2n` floats. Returns `n`, or 0 (writing nothing) for a null or misaligned

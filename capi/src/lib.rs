@@ -44,6 +44,8 @@ pub mod disk;
 pub mod envmap;
 #[cfg(feature = "pmj02bn")]
 pub mod pmj02bn;
+#[cfg(feature = "sampler")]
+pub mod sampler;
 #[cfg(feature = "sequence")]
 pub mod sequence;
 #[cfg(feature = "sphere")]
