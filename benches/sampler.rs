@@ -1,0 +1,136 @@
+//! The sampling core: a 4D point per sample index, the way a renderer asks for it, for
+//! warpcore's `Sampler<Sobol>`, `Sampler<Pmj02bn>` and their `Blue<..>` variants (scalar,
+//! 8 and 16 lanes, slice) against openqmc-rs 0.2.4 (OpenQMC's samplers, ported bit for bit)
+//! and `sobol_burley::sample_4d`.
+//!
+//! Every scalar and lane form builds its sampler from (pixel, frame, index, seed) for every
+//! sample and draws from a child domain: `Sampler::new(pixel, frame, i, seed).domain(k)
+//! .draw::<4>()` (openqmc-rs: `X::new(x, y, frame, i).new_domain(k).draw_sample_f32::<4>()`).
+//! The pixel goes through `black_box` per sample, so the construction cannot be hoisted out
+//! of the loop. The slice form fills the same `BATCH` points of one domain in one call.
+//!
+//! Run: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench sampler`
+
+mod common;
+
+use common::BATCH;
+use criterion::measurement::WallTime;
+use criterion::{BenchmarkGroup, Throughput};
+use openqmc::{LatticeSampler, PmjBnSampler, PmjSampler, SobolBnSampler, SobolSampler};
+use std::hint::black_box;
+use warpcore::sampler::{Blue, Pattern, Pmj02bn, Sampler, SamplerX8, SamplerX16, Sobol};
+use warpcore::{f32x8, f32x16, u32x8, u32x16};
+
+const PIXEL: [u32; 2] = [123, 45];
+const FRAME: u32 = 3;
+const SEED: u32 = 0x5eed;
+/// The child domain every form draws from (a path's "light sample at bounce 2", say).
+const DOMAIN: u32 = 5;
+
+/// The four warpcore forms of one pattern.
+fn ours<P: Pattern>(g: &mut BenchmarkGroup<'_, WallTime>, name: &str) {
+    let mut out = vec![[0.0f32; 4]; BATCH];
+    g.bench_function(format!("warpcore Sampler<{name}> scalar"), |b| {
+        b.iter(|| {
+            for (i, o) in out.iter_mut().enumerate() {
+                let s = Sampler::<P>::new(black_box(PIXEL), FRAME, i as u32, SEED);
+                *o = s.domain(DOMAIN).draw::<4>();
+            }
+            black_box(&mut out);
+        })
+    });
+    let mut out8 = vec![[f32x8::ZERO; 4]; BATCH / 8];
+    g.bench_function(format!("warpcore Sampler<{name}> x8"), |b| {
+        let lane = u32x8::new(std::array::from_fn(|j| j as u32));
+        b.iter(|| {
+            for (k, o) in out8.iter_mut().enumerate() {
+                let [x, y] = black_box(PIXEL).map(u32x8::splat);
+                let index = u32x8::splat(8 * k as u32) + lane;
+                let s = SamplerX8::<P>::new([x, y], u32x8::splat(FRAME), index, u32x8::splat(SEED));
+                *o = s.domain(DOMAIN).draw::<4>();
+            }
+            black_box(&mut out8);
+        })
+    });
+    let mut out16 = vec![[f32x16::ZERO; 4]; BATCH / 16];
+    g.bench_function(format!("warpcore Sampler<{name}> x16"), |b| {
+        let lane = u32x16::new(std::array::from_fn(|j| j as u32));
+        b.iter(|| {
+            for (k, o) in out16.iter_mut().enumerate() {
+                let [x, y] = black_box(PIXEL).map(u32x16::splat);
+                let index = u32x16::splat(16 * k as u32) + lane;
+                let s =
+                    SamplerX16::<P>::new([x, y], u32x16::splat(FRAME), index, u32x16::splat(SEED));
+                *o = s.domain(DOMAIN).draw::<4>();
+            }
+            black_box(&mut out16);
+        })
+    });
+    g.bench_function(format!("warpcore Sampler<{name}> draw_slice"), |b| {
+        b.iter(|| {
+            let s = Sampler::<P>::new(black_box(PIXEL), FRAME, 0, SEED).domain(DOMAIN);
+            s.draw_slice(&mut out);
+            black_box(&mut out);
+        })
+    });
+}
+
+/// An openqmc-rs sampler, scalar (its only form): `draw(x, y, frame, index)` builds the
+/// sampler and draws from domain `DOMAIN`. The caller has warmed its cache.
+fn openqmc(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    name: &str,
+    draw: impl Fn(i32, i32, i32, i32) -> [f32; 4],
+) {
+    let mut out = vec![[0.0f32; 4]; BATCH];
+    g.bench_function(format!("openqmc-rs {name}"), |b| {
+        b.iter(|| {
+            for (i, o) in out.iter_mut().enumerate() {
+                let [x, y] = black_box(PIXEL).map(|c| c as i32);
+                *o = draw(x, y, FRAME as i32, i as i32);
+            }
+            black_box(&mut out);
+        })
+    });
+}
+
+/// `X::new(x, y, frame, index).new_domain(DOMAIN).draw_sample_f32::<4>()` for an openqmc-rs
+/// sampler type, after `X::warm_cache()`.
+macro_rules! openqmc {
+    ($g:expr, $x:ident) => {{
+        $x::warm_cache();
+        openqmc($g, stringify!($x), |x, y, f, i| {
+            $x::new(x, y, f, i)
+                .new_domain(DOMAIN as i32)
+                .draw_sample_f32::<4>()
+        });
+    }};
+}
+
+fn main() {
+    let mut c = common::criterion();
+    let mut g = c.benchmark_group("sampler");
+    g.throughput(Throughput::Elements(BATCH as u64));
+    ours::<Sobol>(&mut g, "Sobol");
+    ours::<Pmj02bn>(&mut g, "Pmj02bn");
+    ours::<Blue<Sobol>>(&mut g, "Blue<Sobol>");
+    ours::<Blue<Pmj02bn>>(&mut g, "Blue<Pmj02bn>");
+    openqmc!(&mut g, SobolSampler);
+    openqmc!(&mut g, SobolBnSampler);
+    openqmc!(&mut g, PmjSampler);
+    openqmc!(&mut g, PmjBnSampler);
+    openqmc!(&mut g, LatticeSampler);
+    let mut out = vec![[0.0f32; 4]; BATCH];
+    g.bench_function("sobol_burley::sample_4d", |b| {
+        b.iter(|| {
+            for (i, o) in out.iter_mut().enumerate() {
+                // The seed a renderer would hash from its pixel and domain.
+                let seed = black_box(SEED ^ PIXEL[0]);
+                *o = sobol_burley::sample_4d(i as u32, DOMAIN, seed);
+            }
+            black_box(&mut out);
+        })
+    });
+    g.finish();
+    c.final_summary();
+}
