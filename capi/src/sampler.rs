@@ -152,14 +152,8 @@ trait Dims<T> {
     fn get<const N: usize>(&self) -> [T; N];
 }
 
-struct Draw<P: Pattern>(Sampler<P>);
 struct DrawU32<P: Pattern>(Sampler<P>);
 struct Rnd<P: Pattern>(Sampler<P>);
-impl<P: Pattern> Dims<f32> for Draw<P> {
-    fn get<const N: usize>(&self) -> [f32; N] {
-        self.0.draw::<N>()
-    }
-}
 impl<P: Pattern> Dims<u32> for DrawU32<P> {
     fn get<const N: usize>(&self) -> [u32; N] {
         self.0.draw_u32::<N>()
@@ -195,7 +189,10 @@ unsafe fn put<T: Copy>(v: Option<[T; 4]>, n: usize, out: *mut T) -> usize {
 /// `out` must be writable for `n` floats.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn wc_sampler_draw(s: WcSampler, n: usize, out: *mut f32) -> usize {
-    let v = with_pattern!(s.pattern, P => dims(n, Draw(s.get::<P>())), _ => None);
+    // Rust's `draw` is `(w >> 8) * 2^-24` of the words of `draw_u32` (a documented promise,
+    // and the tests compare with `draw` itself): one copy of the pattern code for both.
+    let w = with_pattern!(s.pattern, P => dims(n, DrawU32(s.get::<P>())), _ => None);
+    let v = w.map(|w| w.map(|w| (w >> 8) as f32 * (1.0 / 16_777_216.0)));
     // SAFETY: the caller's contract above; `put` checks `v`, null and alignment.
     unsafe { put(v, n, out) }
 }
