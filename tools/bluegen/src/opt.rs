@@ -1,0 +1,713 @@
+//! The optimiser: per-pixel keys whose Monte Carlo errors cancel between neighbours.
+//!
+//! # What is optimised
+//!
+//! A pixel of `Blue<P>` draws `P`'s points keyed by one 32-bit word of a `TILE x TILE` tile
+//! (see `src/sampler/blue.rs`). Following Heitz, Belcour, Ostromoukhov, Coeurjolly and Iehl,
+//! "A Low-Discrepancy Sampler that Distributes Monte Carlo Errors as a Blue Noise in Screen
+//! Space" (SIGGRAPH Talks 2019), and Belcour and Heitz, "Lessons learned and improvements
+//! when building screen-space samplers with blue-noise error distribution" (SIGGRAPH Talks
+//! 2021), the keys are chosen offline so that, for a family of test integrands, the errors of
+//! neighbouring pixels differ — here: cancel. Every key of a pool gets an *error vector*: its
+//! signed error on each test integrand (random half-planes of the pixel square, the
+//! discontinuity that dominates rendering error) after 1, 2, 4, ... `2^(levels-1)` samples,
+//! every level normalised to unit RMS over the pool, so that each power-of-two count weighs
+//! the same and the tile is blue noise progressively, at every count.
+//!
+//! # The energy
+//!
+//! Heitz et al. minimise a sum over pixel pairs of `exp(-|p-q|^2/s_i^2 - |e_p-e_q|^2/s_s^2)`,
+//! which pushes neighbouring error vectors apart. We minimise what a denoiser (or the eye)
+//! sees instead: the energy of the error image after a Gaussian low-pass filter `g` (sigma
+//! [`SIGMA`] pixels), summed over the test integrands and levels,
+//!
+//! ```text
+//! E = sum_t |g * e_t|^2 = sum_{p,q} G(p - q) e_p . e_q,   G = g * g (a Gaussian of sigma * sqrt 2),
+//! ```
+//!
+//! on the torus (the tile repeats and is shifted per domain), a quadratic form in the error
+//! vectors with the same effect (neighbours' errors negatively correlated, the pair term
+//! growing as they approach) and the same blue spectrum, measured exactly as the acceptance
+//! figure measures it. Keeping the filtered field `F_p = sum_q G(p - q) e_q` makes every move
+//! `O(dim)` to evaluate:
+//!
+//! * swapping the keys of pixels `a` and `b` (`d = e_b - e_a`):
+//!   `dE = 2 d . (F_a - F_b) + 2 |d|^2 (G(0) - G(a - b))`;
+//! * replacing the key of `a` by an unused pool key (`d = e_new - e_a`):
+//!   `dE = 2 d . F_a + G(0) |d|^2`;
+//!
+//! and `O(taps x dim)` to apply (the field is updated over the kernel's support).
+//!
+//! # The search
+//!
+//! Random proposals (half swaps between two random pixels, half replacements from the pool),
+//! accepted by *threshold accepting* (Dueck and Scheuer 1990): a move is taken when `dE` is
+//! below a threshold that falls linearly to zero — simulated annealing's schedule without its
+//! `exp`, so every decision is plain IEEE arithmetic in a fixed order.
+//!
+//! # Determinism
+//!
+//! One SplitMix64 stream per tile, single-threaded, f32/f64 adds and multiplies in a fixed
+//! order (Rust never contracts them into fused multiply-adds), no libm: the kernel's weights
+//! come from our own `exp` series. The same bytes on every machine.
+
+use warpcore::sampler::{Pmj02bn, Sampler, Sobol};
+
+/// Tile side (must equal `warpcore::sampler::BLUE_TILE`).
+pub const TILE: usize = 64;
+const PIXELS: usize = TILE * TILE;
+/// Sigma of the low-pass filter the energy measures, in pixels.
+pub const SIGMA: f64 = 1.5;
+/// Kernel support: offsets with `dx^2 + dy^2 <= RADIUS2` (`G` falls to 1% at the rim).
+const RADIUS2: i32 = 42;
+
+/// Dimensions of the random projection that shortlists replacement candidates.
+const SKETCH: usize = 64;
+/// Candidates per guided replacement whose exact energy change is computed.
+const SHORTLIST: usize = 8;
+
+/// A base pattern of `Blue<P>`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Base {
+    Sobol,
+    Pmj02bn,
+}
+
+impl Base {
+    pub fn name(self) -> &'static str {
+        match self {
+            Base::Sobol => "sobol",
+            Base::Pmj02bn => "pmj02bn",
+        }
+    }
+
+    /// Point `index` of a pixel whose tile key is `key`, through the library's own code: what
+    /// `Sampler::<Blue<P>>` draws in domain 0 (dimensions 0 and 1).
+    pub fn point(self, key: u32, index: u32) -> [f32; 2] {
+        match self {
+            Base::Sobol => Sampler::<Sobol>::from_domain_hash(key, index).draw::<2>(),
+            Base::Pmj02bn => Sampler::<Pmj02bn>::from_domain_hash(key, index).draw::<2>(),
+        }
+    }
+}
+
+/// SplitMix64 (Steele, Lea and Flood 2014).
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(seed)
+    }
+
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// A value in `0..n` by multiply-shift.
+    pub fn below(&mut self, n: usize) -> usize {
+        (((self.next_u64() >> 32) * n as u64) >> 32) as usize
+    }
+}
+
+/// `exp(x)` for `|x| <= 1` by its Taylor series (to the last bit of f64 within 20 terms):
+/// basic arithmetic only, so the same bits everywhere.
+fn exp_small(x: f64) -> f64 {
+    let (mut term, mut sum) = (1.0, 1.0);
+    for k in 1..20 {
+        term = term * x / k as f64;
+        sum += term;
+    }
+    sum
+}
+
+/// `[cos x, sin x]` for `x` in `[0, pi]`, by Taylor series around `pi / 2` (basic arithmetic
+/// only).
+fn cos_sin(x: f64) -> [f64; 2] {
+    let t = x - core::f64::consts::FRAC_PI_2;
+    // cos x = -sin t, sin x = cos t.
+    let (mut sin_t, mut cos_t) = (0.0, 0.0);
+    let mut term = 1.0; // t^j / j!
+    for j in 0..30 {
+        match j % 4 {
+            0 => cos_t += term,
+            1 => sin_t += term,
+            2 => cos_t -= term,
+            _ => sin_t -= term,
+        }
+        term = term * t / (j + 1) as f64;
+    }
+    [-sin_t, cos_t]
+}
+
+/// A test integrand: the half-plane `{u : (u - 1/2) . n < c}` of the pixel square.
+#[derive(Clone, Copy, Debug)]
+pub struct Edge {
+    n: [f64; 2],
+    c: f64,
+    area: f64,
+}
+
+impl Edge {
+    /// Line `k` of `count`: a rank-1 lattice over the lines that cross the square — angle
+    /// `pi (k + 1/2) / count` (half a turn: the opposite normal gives the complement, whose
+    /// error is the negation), offset at the golden-ratio fraction `frac(1/2 + k phi)` of its
+    /// range. A stratified family approximates "all edges" far better than random lines, so
+    /// the optimiser cannot fit the accidents of a random few.
+    fn lattice(k: usize, count: usize) -> Edge {
+        let angle = core::f64::consts::PI * (k as f64 + 0.5) / count as f64;
+        let n = cos_sin(angle);
+        let golden = 0.618_033_988_749_894_9;
+        let u = (0.5 + k as f64 * golden).fract();
+        let half = 0.5 * (n[0].abs() + n[1].abs());
+        let c = half * (2.0 * u - 1.0);
+        let mut e = Edge { n, c, area: 0.0 };
+        e.area = e.exact_area();
+        e
+    }
+
+    fn inside(&self, p: [f32; 2]) -> bool {
+        (p[0] as f64 - 0.5) * self.n[0] + (p[1] as f64 - 0.5) * self.n[1] < self.c
+    }
+
+    /// The square clipped by the line (Sutherland-Hodgman), then the shoelace formula.
+    fn exact_area(&self) -> f64 {
+        let s = |p: [f64; 2]| (p[0] - 0.5) * self.n[0] + (p[1] - 0.5) * self.n[1] - self.c;
+        let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let mut poly: Vec<[f64; 2]> = Vec::with_capacity(5);
+        for k in 0..4 {
+            let (a, b) = (square[k], square[(k + 1) % 4]);
+            let (sa, sb) = (s(a), s(b));
+            if sa < 0.0 {
+                poly.push(a);
+            }
+            if (sa < 0.0) != (sb < 0.0) {
+                let t = sa / (sa - sb);
+                poly.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
+            }
+        }
+        let n = poly.len();
+        let twice: f64 = (0..n)
+            .map(|k| {
+                let (a, b) = (poly[k], poly[(k + 1) % n]);
+                a[0] * b[1] - a[1] * b[0]
+            })
+            .sum();
+        twice / 2.0
+    }
+}
+
+/// The optimiser's settings (recorded in the manifest's command line).
+#[derive(Clone, Debug)]
+pub struct Params {
+    pub seed: u64,
+    /// Candidate keys (the tile starts with the first `TILE^2`).
+    pub pool: usize,
+    /// Test half-planes (a multiple of 8).
+    pub edges: usize,
+    /// Sample counts 1, 2, 4, .. `2^(levels - 1)`.
+    pub levels: usize,
+    /// Guided sweeps (every pixel takes the best pool key the sketch finds).
+    pub sweeps: usize,
+    /// Random proposals per pixel, after the sweeps.
+    pub rounds: usize,
+    /// The starting threshold, as a fraction of the mean `|e|^2` of one pool key.
+    pub threshold: f64,
+    /// Weight of each level in the energy (missing entries: 1).
+    pub weights: Vec<f64>,
+}
+
+/// What one optimisation did.
+pub struct Report {
+    /// Per level: `sqrt(E / E_white)` of the start and the result, an estimate of the blurred
+    /// RMS error relative to white noise (independent keys) on the test integrands.
+    pub before: Vec<f64>,
+    pub after: Vec<f64>,
+    pub accepted: usize,
+    pub replaced: usize,
+}
+
+/// The pool's errors: for key `j`, level `l` (`n = 2^l` samples) and edge `t`, the error is
+/// `(hits - n area_t) / n`, scaled by `1 / rms_l` (the level's RMS over the pool, so every
+/// level weighs the same). Only `hits` depends on the key: it is stored as one byte (levels
+/// up to 128 samples), which makes a move's cost mostly a read of `dim` bytes per key; the
+/// difference of two keys' errors is exactly `(hits_b - hits_a) * unit_l`.
+struct Pool {
+    hits: Vec<u8>,
+    levels: usize,
+    edges: usize,
+    dim: usize,
+    /// Per level: `1 / (n rms_l)`, the error of one hit.
+    unit: Vec<f32>,
+    /// Per level: `n area_t` for each edge (the hits of zero error), `dim` entries.
+    zero: Vec<f64>,
+}
+
+impl Pool {
+    fn new(base: Base, keys: &[u32], edges: &[Edge], levels: usize, weights: &[f64]) -> Pool {
+        let t = edges.len();
+        let dim = levels * t;
+        let mut hits = vec![0u8; keys.len() * dim];
+        let mut count = vec![0u32; t];
+        for (k, &key) in keys.iter().enumerate() {
+            count.iter_mut().for_each(|h| *h = 0);
+            let row = &mut hits[k * dim..(k + 1) * dim];
+            let mut i = 0u32;
+            for level in 0..levels {
+                while i < 1 << level {
+                    let p = base.point(key, i);
+                    for (h, e) in count.iter_mut().zip(edges) {
+                        *h += e.inside(p) as u32;
+                    }
+                    i += 1;
+                }
+                for (r, &h) in row[level * t..(level + 1) * t].iter_mut().zip(&count) {
+                    *r = h as u8;
+                }
+            }
+        }
+        let zero: Vec<f64> = (0..dim)
+            .map(|k| (1u32 << (k / t)) as f64 * edges[k % t].area)
+            .collect();
+        // The RMS error of each level over the pool (f64, in a fixed order).
+        let mut square = vec![0.0f64; levels];
+        for row in hits.chunks_exact(dim) {
+            for (k, &h) in row.iter().enumerate() {
+                let e = h as f64 - zero[k];
+                square[k / t] += e * e;
+            }
+        }
+        let unit = (0..levels)
+            .map(|l| {
+                let n = (1u32 << l) as f64;
+                let rms = (square[l] / (keys.len() * t) as f64).sqrt() / n;
+                (weights.get(l).copied().unwrap_or(1.0) / (n * rms)) as f32
+            })
+            .collect();
+        Pool {
+            hits,
+            levels,
+            edges: t,
+            dim,
+            unit,
+            zero,
+        }
+    }
+
+    fn row(&self, j: usize) -> &[u8] {
+        &self.hits[j * self.dim..(j + 1) * self.dim]
+    }
+
+    /// Key `j`'s error vector.
+    fn error(&self, j: usize) -> impl Iterator<Item = f64> + '_ {
+        self.row(j)
+            .iter()
+            .enumerate()
+            .map(|(k, &h)| (h as f64 - self.zero[k]) * self.unit[k / self.edges] as f64)
+    }
+}
+
+/// `(dx, dy, G(dx, dy))` over the kernel's support, `G = exp(-|d|^2 / (4 sigma^2))`.
+fn kernel() -> Vec<(i32, i32, f32)> {
+    let g = g_table();
+    let r = (RADIUS2 as f64).sqrt() as i32;
+    let mut taps = Vec::new();
+    for dy in -r..=r {
+        for dx in -r..=r {
+            let d2 = dx * dx + dy * dy;
+            if d2 <= RADIUS2 {
+                taps.push((dx, dy, g[d2 as usize]));
+            }
+        }
+    }
+    taps
+}
+
+/// `G` by squared distance, `0..=RADIUS2`.
+fn g_table() -> Vec<f32> {
+    let q = exp_small(-1.0 / (4.0 * SIGMA * SIGMA));
+    (0..=RADIUS2)
+        .map(|d2| (0..d2).fold(1.0f64, |w, _| w * q) as f32)
+        .collect()
+}
+
+/// `G` between two pixels on the torus (0 outside the support).
+fn g_between(a: usize, b: usize, table: &[f32]) -> f32 {
+    let wrap = |d: isize| {
+        let d = d.rem_euclid(TILE as isize);
+        if d > TILE as isize / 2 {
+            d - TILE as isize
+        } else {
+            d
+        }
+    };
+    let dx = wrap((b % TILE) as isize - (a % TILE) as isize);
+    let dy = wrap((b / TILE) as isize - (a / TILE) as isize);
+    let d2 = (dx * dx + dy * dy) as usize;
+    table.get(d2).copied().unwrap_or(0.0)
+}
+
+/// For one level: `sum_k (u_k - v_k) x_k` and `sum_k (u_k - v_k)^2` (exact, integer), eight
+/// lanes in a fixed order.
+#[inline(always)]
+fn dots(u: &[u8], v: &[u8], x: &[f32]) -> (f32, i32) {
+    let (mut s1, mut s2) = ([0.0f32; 8], [0i32; 8]);
+    for ((u, v), x) in u
+        .chunks_exact(8)
+        .zip(v.chunks_exact(8))
+        .zip(x.chunks_exact(8))
+    {
+        for k in 0..8 {
+            let d = u[k] as i32 - v[k] as i32;
+            s1[k] += d as f32 * x[k];
+            s2[k] += d * d;
+        }
+    }
+    let sum = |s: [f32; 8]| ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+    (sum(s1), s2.iter().sum())
+}
+
+/// As [`dots`] with `x = y - z`.
+#[inline(always)]
+fn dots3(u: &[u8], v: &[u8], y: &[f32], z: &[f32]) -> (f32, i32) {
+    let (mut s1, mut s2) = ([0.0f32; 8], [0i32; 8]);
+    for (((u, v), y), z) in u
+        .chunks_exact(8)
+        .zip(v.chunks_exact(8))
+        .zip(y.chunks_exact(8))
+        .zip(z.chunks_exact(8))
+    {
+        for k in 0..8 {
+            let d = u[k] as i32 - v[k] as i32;
+            s1[k] += d as f32 * (y[k] - z[k]);
+            s2[k] += d * d;
+        }
+    }
+    let sum = |s: [f32; 8]| ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+    (sum(s1), s2.iter().sum())
+}
+
+/// The tile being optimised and its filtered field.
+struct State<'a> {
+    pool: &'a Pool,
+    taps: Vec<(i32, i32, f32)>,
+    g_table: Vec<f32>,
+    /// Pool index of each pixel's key.
+    tile: Vec<usize>,
+    used: Vec<bool>,
+    /// `F_p = sum_q G(p - q) e_q` in hits (divided by the level's unit, so that a move adds
+    /// `G` times a difference of hits and `d . F` is `unit^2 sum (hits_b - hits_a) field`):
+    /// `dim` floats per pixel.
+    field: Vec<f32>,
+    /// The unit squared per level, and the hit differences of the move being applied.
+    unit2: Vec<f32>,
+    delta: Vec<f32>,
+    /// A random projection of every pool key's error vector to [`SKETCH`] dimensions, their
+    /// squared norms, and the same projection of the field: the cheap approximate distances
+    /// that shortlist replacement candidates.
+    sketch: Vec<f32>,
+    sketch_norm: Vec<f32>,
+    sketch_field: Vec<f32>,
+}
+
+impl State<'_> {
+    fn neighbour(p: usize, dx: i32, dy: i32) -> usize {
+        let x = (p % TILE) as i32 + dx;
+        let y = (p / TILE) as i32 + dy;
+        (y.rem_euclid(TILE as i32) as usize) * TILE + x.rem_euclid(TILE as i32) as usize
+    }
+
+    fn field_of(&self, p: usize) -> &[f32] {
+        &self.field[p * self.pool.dim..(p + 1) * self.pool.dim]
+    }
+
+    /// The filtered field from scratch (in f64, then rounded).
+    fn recompute_field(&mut self) {
+        let (dim, t) = (self.pool.dim, self.pool.edges);
+        let mut f = vec![0.0f64; PIXELS * dim];
+        for p in 0..PIXELS {
+            let e: Vec<f64> = self.pool.error(self.tile[p]).collect();
+            for &(dx, dy, w) in &self.taps {
+                let q = Self::neighbour(p, dx, dy);
+                for (f, e) in f[q * dim..(q + 1) * dim].iter_mut().zip(&e) {
+                    *f += w as f64 * e;
+                }
+            }
+        }
+        self.field = f
+            .iter()
+            .enumerate()
+            .map(|(i, &x)| (x / self.pool.unit[(i % dim) / t] as f64) as f32)
+            .collect();
+    }
+
+    /// The change of the energy if the key of `a` became pool key `j`:
+    /// `2 d . F_a + G(0) |d|^2`.
+    fn replace_delta(&self, a: usize, j: usize) -> f32 {
+        let (pool, t) = (self.pool, self.pool.edges);
+        let (new, old, f) = (pool.row(j), pool.row(self.tile[a]), self.field_of(a));
+        let mut de = 0.0;
+        for l in 0..pool.levels {
+            let r = l * t..(l + 1) * t;
+            let (df, d2) = dots(&new[r.clone()], &old[r.clone()], &f[r]);
+            de += self.unit2[l] * (2.0 * df + d2 as f32);
+        }
+        de
+    }
+
+    /// The change of the energy if `a` and `b` swapped keys:
+    /// `2 d . (F_a - F_b) + 2 |d|^2 (G(0) - G(a - b))`, `d = e_b - e_a`.
+    fn swap_delta(&self, a: usize, b: usize) -> f32 {
+        let (pool, t) = (self.pool, self.pool.edges);
+        let (eb, ea) = (pool.row(self.tile[b]), pool.row(self.tile[a]));
+        let (fa, fb) = (self.field_of(a), self.field_of(b));
+        let g = g_between(a, b, &self.g_table);
+        let mut de = 0.0;
+        for l in 0..pool.levels {
+            let r = l * t..(l + 1) * t;
+            let (df, d2) = dots3(&eb[r.clone()], &ea[r.clone()], &fa[r.clone()], &fb[r]);
+            de += self.unit2[l] * (2.0 * df + 2.0 * d2 as f32 * (1.0 - g));
+        }
+        de
+    }
+
+    /// Puts `hits_new - hits_old` into `delta`.
+    fn set_delta(&mut self, new: usize, old: usize) {
+        let (n, o) = (self.pool.row(new), self.pool.row(old));
+        for ((d, &n), &o) in self.delta.iter_mut().zip(n).zip(o) {
+            *d = (n as i32 - o as i32) as f32;
+        }
+    }
+
+    /// Adds `sign G(q - p) delta` to the field around `p`.
+    fn spread(&mut self, p: usize, sign: f32) {
+        let dim = self.pool.dim;
+        for &(dx, dy, w) in &self.taps {
+            let q = Self::neighbour(p, dx, dy);
+            let w = w * sign;
+            for (f, d) in self.field[q * dim..(q + 1) * dim]
+                .iter_mut()
+                .zip(&self.delta)
+            {
+                *f += w * d;
+            }
+        }
+    }
+
+    fn sketch_of(&self, j: usize) -> &[f32] {
+        &self.sketch[j * SKETCH..(j + 1) * SKETCH]
+    }
+
+    /// The sketched field from scratch.
+    fn recompute_sketch_field(&mut self) {
+        let mut f = vec![0.0f32; PIXELS * SKETCH];
+        for p in 0..PIXELS {
+            let j = self.tile[p];
+            for &(dx, dy, w) in &self.taps {
+                let q = Self::neighbour(p, dx, dy);
+                for (f, s) in f[q * SKETCH..(q + 1) * SKETCH]
+                    .iter_mut()
+                    .zip(&self.sketch[j * SKETCH..(j + 1) * SKETCH])
+                {
+                    *f += w * s;
+                }
+            }
+        }
+        self.sketch_field = f;
+    }
+
+    /// Moves pixel `a` from pool key `old` to `new` in both fields.
+    fn move_fields(&mut self, a: usize, new: usize, old: usize) {
+        self.set_delta(new, old);
+        self.spread(a, 1.0);
+        let d: [f32; SKETCH] =
+            core::array::from_fn(|m| self.sketch[new * SKETCH + m] - self.sketch[old * SKETCH + m]);
+        for &(dx, dy, w) in &self.taps {
+            let q = Self::neighbour(a, dx, dy);
+            for (f, d) in self.sketch_field[q * SKETCH..(q + 1) * SKETCH]
+                .iter_mut()
+                .zip(&d)
+            {
+                *f += w * d;
+            }
+        }
+    }
+
+    fn apply_swap(&mut self, a: usize, b: usize) {
+        let (ja, jb) = (self.tile[a], self.tile[b]);
+        self.move_fields(a, jb, ja);
+        self.move_fields(b, ja, jb);
+        self.tile.swap(a, b);
+    }
+
+    fn apply_replace(&mut self, a: usize, j: usize) {
+        let old = self.tile[a];
+        self.move_fields(a, j, old);
+        self.tile[a] = j;
+        self.used[old] = false;
+        self.used[j] = true;
+    }
+
+    /// The best replacement for the key of `a` among the unused pool keys, if it lowers the
+    /// energy by more than `-threshold`: the sketch shortlists [`SHORTLIST`] candidates
+    /// (`min |s_j + s(F_a - e_a)|^2`), the exact change decides.
+    fn best_replacement(&self, a: usize, threshold: f32) -> Option<usize> {
+        let own = self.sketch_of(self.tile[a]);
+        let f = &self.sketch_field[a * SKETCH..(a + 1) * SKETCH];
+        let u: [f32; SKETCH] = core::array::from_fn(|m| 2.0 * (f[m] - own[m]));
+        let mut best = [(f32::INFINITY, usize::MAX); SHORTLIST];
+        for (j, s) in self.sketch.chunks_exact(SKETCH).enumerate() {
+            let mut acc = [0.0f32; 8];
+            for (s, u) in s.chunks_exact(8).zip(u.chunks_exact(8)) {
+                for k in 0..8 {
+                    acc[k] += s[k] * u[k];
+                }
+            }
+            let score = self.sketch_norm[j]
+                + (((acc[0] + acc[1]) + (acc[2] + acc[3]))
+                    + ((acc[4] + acc[5]) + (acc[6] + acc[7])));
+            if score < best[SHORTLIST - 1].0 && !self.used[j] {
+                let mut k = SHORTLIST - 1;
+                while k > 0 && best[k - 1].0 > score {
+                    best[k] = best[k - 1];
+                    k -= 1;
+                }
+                best[k] = (score, j);
+            }
+        }
+        let mut choice = None;
+        let mut lowest = threshold;
+        for &(_, j) in best.iter().filter(|b| b.1 != usize::MAX) {
+            let de = self.replace_delta(a, j);
+            if de < lowest {
+                lowest = de;
+                choice = Some(j);
+            }
+        }
+        choice
+    }
+
+    /// Per level `sqrt(E_level / E_white)`: `E = sum_p e_p . F_p`, `E_white = G(0) sum_p |e_p|^2`
+    /// (its expectation for independent keys).
+    fn ratios(&self) -> Vec<f64> {
+        let (levels, t) = (self.pool.levels, self.pool.edges);
+        let (mut e, mut white) = (vec![0.0f64; levels], vec![0.0f64; levels]);
+        for p in 0..PIXELS {
+            let f = self.field_of(p);
+            for (k, ep) in self.pool.error(self.tile[p]).enumerate() {
+                let l = k / t;
+                e[l] += ep * f[k] as f64 * self.pool.unit[l] as f64;
+                white[l] += ep * ep;
+            }
+        }
+        e.iter().zip(&white).map(|(e, w)| (e / w).sqrt()).collect()
+    }
+}
+
+/// Every pool key's error vector times a random `+-1 / sqrt(SKETCH)` matrix (a
+/// Johnson-Lindenstrauss projection: distances are kept to within a few tens of percent,
+/// enough to shortlist).
+fn project(pool: &Pool, rng: &mut Rng) -> Vec<f32> {
+    let scale = 1.0 / (SKETCH as f32).sqrt();
+    let signs: Vec<[f32; SKETCH]> = (0..pool.dim)
+        .map(|_| {
+            let bits = rng.next_u64();
+            core::array::from_fn(|m| if bits >> m & 1 == 1 { scale } else { -scale })
+        })
+        .collect();
+    let rows = pool.hits.len() / pool.dim;
+    let mut out = vec![0.0f32; rows * SKETCH];
+    for (j, o) in out.chunks_exact_mut(SKETCH).enumerate() {
+        for (e, r) in pool.error(j).zip(&signs) {
+            let e = e as f32;
+            for m in 0..SKETCH {
+                o[m] += e * r[m];
+            }
+        }
+    }
+    out
+}
+
+/// Optimises the tile of `base`: `TILE * TILE` keys, row-major.
+pub fn optimise(base: Base, p: &Params) -> (Vec<u32>, Report) {
+    assert!(p.edges.is_multiple_of(8) && p.pool >= PIXELS && (1..=8).contains(&p.levels));
+    let mut rng = Rng::new(p.seed ^ (base as u64 + 1).wrapping_mul(0xd1b5_4a32_d192_ed03));
+    let keys: Vec<u32> = (0..p.pool).map(|_| (rng.next_u64() >> 32) as u32).collect();
+    let edges: Vec<Edge> = (0..p.edges).map(|k| Edge::lattice(k, p.edges)).collect();
+    let pool = Pool::new(base, &keys, &edges, p.levels, &p.weights);
+    let sketch = project(&pool, &mut rng);
+    let mut s = State {
+        pool: &pool,
+        taps: kernel(),
+        g_table: g_table(),
+        tile: (0..PIXELS).collect(),
+        used: (0..p.pool).map(|j| j < PIXELS).collect(),
+        field: Vec::new(),
+        unit2: pool.unit.iter().map(|u| u * u).collect(),
+        delta: vec![0.0; pool.dim],
+        sketch_norm: sketch
+            .chunks_exact(SKETCH)
+            .map(|s| s.iter().map(|x| x * x).sum())
+            .collect(),
+        sketch,
+        sketch_field: Vec::new(),
+    };
+    s.recompute_field();
+    s.recompute_sketch_field();
+    let before = s.ratios();
+    let (mut accepted, mut replaced) = (0, 0);
+
+    // Guided sweeps: every pixel, in a random order, takes the best pool key it can find.
+    let mut order: Vec<usize> = (0..PIXELS).collect();
+    for _ in 0..p.sweeps {
+        for k in (1..PIXELS).rev() {
+            order.swap(k, rng.below(k + 1));
+        }
+        for &a in &order {
+            if let Some(j) = s.best_replacement(a, 0.0) {
+                s.apply_replace(a, j);
+                accepted += 1;
+                replaced += 1;
+            }
+        }
+    }
+
+    // Random proposals (swaps and replacements) under a falling threshold. |e|^2 of a key is
+    // `dim` on average (unit RMS per level).
+    let t0 = p.threshold * pool.dim as f64;
+    let total = p.rounds * PIXELS;
+    for step in 0..total {
+        let threshold = (t0 * (1.0 - step as f64 / total as f64)) as f32;
+        let a = rng.below(PIXELS);
+        if rng.next_u64() >> 63 == 0 {
+            let b = rng.below(PIXELS);
+            if b == a || s.swap_delta(a, b) >= threshold {
+                continue;
+            }
+            s.apply_swap(a, b);
+        } else {
+            let j = rng.below(p.pool);
+            if s.used[j] || s.replace_delta(a, j) >= threshold {
+                continue;
+            }
+            s.apply_replace(a, j);
+            replaced += 1;
+        }
+        accepted += 1;
+    }
+    s.recompute_field();
+    let after = s.ratios();
+    let tile = s.tile.iter().map(|&j| keys[j]).collect();
+    (
+        tile,
+        Report {
+            before,
+            after,
+            accepted,
+            replaced,
+        },
+    )
+}
