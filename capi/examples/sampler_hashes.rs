@@ -10,7 +10,8 @@
 //!   `draw_u32` and `rnd` for 1 to 4 dimensions, `slice` (37 consecutive indices, 1 to 4
 //!   dimensions);
 //! * `sampler_<pattern>_split`: three paths with splits (`size` 0, `sub >= size`, wrapping
-//!   child indices), everything above in one hash.
+//!   child indices), the draws, `draw_u32`, `rnd` and slices above in one hash;
+//!   `sampler_<pattern>_split_state` their `WcSampler` words.
 //!
 //! Run: `cargo run -p warpcore-capi --example sampler_hashes`.
 
@@ -127,10 +128,10 @@ fn pattern<P: Pattern>(pattern: u32, out: &mut Vec<(String, String)>) {
         }
         out.push((format!("sampler_{name}_{what}"), h.hex()));
     }
-    let mut h = Fnv::new();
+    let (mut h, mut st) = (Fnv::new(), Fnv::new());
     for root in roots {
         for s in split_paths(root) {
-            state(&mut h, pattern, s);
+            state(&mut st, pattern, s);
             draws(&mut h, s);
             draws_u32(&mut h, s);
             rnds(&mut h, s);
@@ -138,6 +139,7 @@ fn pattern<P: Pattern>(pattern: u32, out: &mut Vec<(String, String)>) {
         }
     }
     out.push((format!("sampler_{name}_split"), h.hex()));
+    out.push((format!("sampler_{name}_split_state"), st.hex()));
 }
 
 /// Every line, in a fixed order.

@@ -40,6 +40,10 @@ static void floats(const float *v, size_t n) {
     for (size_t i = 0; i < n; i++) word(bits(v[i]));
 }
 
+static void words4(const uint32_t *v) {
+    for (size_t i = 0; i < 4; i++) word(v[i]);
+}
+
 /* 0, -0, 0.5, 1 - 2^-24, 1, -1, NaN, +inf, -inf, 1e-40, 0.25, 0.75 as bits (inputs). */
 static const uint32_t SPECIAL_BITS[12] = {
     0x00000000u, 0x80000000u, 0x3f000000u, 0x3f7fffffu, 0x3f800000u, 0xbf800000u,
@@ -135,7 +139,7 @@ static void indexed(indexed_fn f, int O, uint32_t count) {
     for (int s = 0; s < 4; s++) {
         for (int t = 0; t < 7; t++) {
             uint32_t seed = seeds[s], start = starts[t];
-            float buf[1 + 37 * 3], one[3];
+            float buf[1 + 37 * 4], one[4];
             float *out = buf + 1;
             EXPECT(f(start, seed, out, 37, count) == 37);
             word(37);
@@ -144,7 +148,7 @@ static void indexed(indexed_fn f, int O, uint32_t count) {
                 floats(one, O);
                 floats(out + k * O, O);
             }
-            float lanes[8][3];
+            float lanes[8][4];
             for (uint32_t j = 0; j < 8; j++)
                 EXPECT(f(start + 3u * j, seed ^ j, lanes[j], 1, count) == 1);
             for (int c = 0; c < O; c++)
@@ -156,6 +160,18 @@ static void indexed(indexed_fn f, int O, uint32_t count) {
 static size_t pmj(uint32_t a, uint32_t s, float *o, size_t n, uint32_t c) {
     (void)c;
     return wc_pmj02bn_sample(a, s, o, n);
+}
+
+/* The sampler of fingerprint.rs's `sampler::<P>` (`c` is the WC_PATTERN_*): a slice (n > 1) is
+   the points of new(...).domain(3) from index `a`; one point is new(...).domain(3) at `a`
+   split(7, 4, a & 3) (the scalar and lane forms), 4D. */
+static WcSampler fp_sampler(uint32_t pattern, uint32_t index, uint32_t seed) {
+    return wc_sampler_domain(wc_sampler_new(pattern, seed % 641, seed >> 20, seed ^ 5, index, seed), 3);
+}
+
+static size_t samp(uint32_t a, uint32_t s, float *o, size_t n, uint32_t c) {
+    if (n == 1) return wc_sampler_draw(wc_sampler_split(fp_sampler(c, a, s), 7, 4, a & 3), 4, o) / 4;
+    return wc_sampler_draw_slice(fp_sampler(c, a, s), 4, o, n);
 }
 static size_t rnd(uint32_t a, uint32_t s, float *o, size_t n, uint32_t c) {
     (void)c;
@@ -274,6 +290,18 @@ static uint64_t fingerprint(void) {
             EXPECT(wc_pmj02bn_raw(raw[k][0], raw[k][1], w, 1) == 1);
             word(w[0]);
             word(w[1]);
+        }
+    }
+    /* sampler: every pattern, then draw_u32 and rnd of 64 split states */
+    for (uint32_t p = 0; p < 4; p++) {
+        indexed(samp, 4, p);
+        for (uint32_t k = 0; k < 64; k++) {
+            uint32_t index = k * 0x9e3779b9u, w[4];
+            float r[4];
+            WcSampler s = wc_sampler_split(fp_sampler(p, index, k), 7, 4, index & 3);
+            EXPECT(wc_sampler_draw_u32(s, 4, w) == 4 && wc_sampler_rnd(s, 4, r) == 4);
+            words4(w);
+            floats(r, 4);
         }
     }
     /* sequence */

@@ -141,18 +141,23 @@ static void hashes(void) {
             }
             printf("sampler_%s_%s %016" PRIx64 "\n", PATTERNS[pattern], WHAT[what], h);
         }
-        h = UINT64_C(0xcbf29ce484222325);
-        for (int r = 0; r < NROOTS; r++) {
-            for (int p = 0; p < 3; p++) {
-                WcSampler s = split_path(root(pattern, r), p);
-                state(s);
-                draws(s);
-                draws_u32(s);
-                rnds(s);
-                slices(s);
+        for (int st = 0; st < 2; st++) {
+            h = UINT64_C(0xcbf29ce484222325);
+            for (int r = 0; r < NROOTS; r++) {
+                for (int p = 0; p < 3; p++) {
+                    WcSampler s = split_path(root(pattern, r), p);
+                    if (st) {
+                        state(s);
+                        continue;
+                    }
+                    draws(s);
+                    draws_u32(s);
+                    rnds(s);
+                    slices(s);
+                }
             }
+            printf("sampler_%s_split%s %016" PRIx64 "\n", PATTERNS[pattern], st ? "_state" : "", h);
         }
-        printf("sampler_%s_split %016" PRIx64 "\n", PATTERNS[pattern], h);
     }
 }
 
