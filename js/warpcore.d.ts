@@ -177,4 +177,85 @@ export interface Warpcore {
 
   /** Bytes of wasm memory, and those reserved by live env maps (and a running call). */
   memoryStats(): { memory: number; reserved: number };
+
+  // ---- the sampler: every dimension of a path (see docs/javascript.md#sampler) ----
+  /** The empty domain path (the root), to extend with `.domain(key)` and `.split(...)`. */
+  samplerPath(): SamplerPath;
+  /**
+   * `n` (1 to 4) stratified dimensions in [0, 1 - 2^-24] of sample `index` of `pixel`
+   * (`[x, y]`) in `frame`, for `seed`, in the domain reached from the root by `domainPath`
+   * (keys: one child domain per key, in order; empty: the root; or a `SamplerPath`, which
+   * may split). The Rust crate's
+   * `Sampler::<P>::new(pixel, frame, index, seed).domain(k0).domain(k1)...draw::<n>()`.
+   */
+  samplerDraw(
+    pattern: SamplerPattern,
+    pixel: Uint32Array,
+    frame: number,
+    index: number,
+    seed: number,
+    domainPath: Uint32Array | SamplerPath,
+    n: 1 | 2 | 3 | 4,
+    out?: Float32Array,
+  ): Float32Array;
+  /** The point of `samplerDraw` as 0.32 fixed point (`samplerDraw` is `(w >>> 8) * 2^-24`). */
+  samplerDrawU32(
+    pattern: SamplerPattern,
+    pixel: Uint32Array,
+    frame: number,
+    index: number,
+    seed: number,
+    domainPath: Uint32Array | SamplerPath,
+    n: 1 | 2 | 3 | 4,
+    out?: Uint32Array,
+  ): Uint32Array;
+  /** `n` cheap unstratified values in [0, 1 - 2^-24] (Russian roulette and other decisions). */
+  samplerRnd(
+    pattern: SamplerPattern,
+    pixel: Uint32Array,
+    frame: number,
+    index: number,
+    seed: number,
+    domainPath: Uint32Array | SamplerPath,
+    n: 1 | 2 | 3 | 4,
+    out?: Float32Array,
+  ): Float32Array;
+  /**
+   * The points of samples `start .. start + count - 1` (wrapping after 2^32 - 1) of one
+   * domain: `count * n` floats, interleaved, the bits of `count` calls of `samplerDraw`.
+   */
+  samplerDrawSlice(
+    pattern: SamplerPattern,
+    pixel: Uint32Array,
+    frame: number,
+    start: number,
+    count: number,
+    seed: number,
+    domainPath: Uint32Array | SamplerPath,
+    n: 1 | 2 | 3 | 4,
+    out?: Float32Array,
+  ): Float32Array;
+}
+
+/**
+ * The sampler's point patterns: Owen-scrambled pmj02bn pairs or Sobol' dimensions, each also
+ * with screen-space blue-noise error across pixels.
+ */
+export type SamplerPattern = 'pmj02bn' | 'sobol' | 'bluePmj02bn' | 'blueSobol';
+
+/**
+ * A domain path with splits, from `samplerPath()`: immutable; each method returns a longer
+ * path. `samplerPath().domain(a).split(key, size, sub)` is Rust's
+ * `sampler.domain(a).split(key, size, sub)`.
+ */
+export interface SamplerPath {
+  /** The path to the independent child domain for `key`. */
+  domain(key: number): SamplerPath;
+  /**
+   * The path to sub-sample `sub` of `size` per sample (child index `index * size + sub`, in
+   * the child domain for `key`): globally stratified across samples. `size = 0` acts as 1.
+   */
+  split(key: number, size: number, sub: number): SamplerPath;
+  /** Steps (domains and splits). */
+  readonly length: number;
 }

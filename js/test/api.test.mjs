@@ -75,6 +75,17 @@ const SPEC = {
   envmapMarginalConditional: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, { u32: true, good: () => 3 }, { u32: true, good: () => 2 }],
   envmapFromStorage: [{ T: Uint32Array, d: 1, good: () => STORAGE.slice() }],
   memoryStats: [],
+  // The sampler (js/test/sampler.test.mjs tests its arguments in depth).
+  samplerPath: [],
+  ...Object.fromEntries(['samplerDraw', 'samplerDrawU32', 'samplerRnd', 'samplerDrawSlice'].map((name) => [name, [
+    { good: () => 'sobol', bad: [['Sobol', RangeError], [0, TypeError], [null, TypeError], [undefined, TypeError]] },
+    { T: Uint32Array, d: 2, good: () => Uint32Array.of(3, 4) },
+    U32,
+    ...(name === 'samplerDrawSlice' ? [U32, COUNT] : [U32]),
+    U32,
+    { T: Uint32Array, d: 1, good: () => Uint32Array.of(1, 2) },
+    { good: () => 2, bad: [[0, RangeError], [5, RangeError], [1.5, RangeError], ['2', TypeError], [undefined, TypeError]] },
+  ]])),
 };
 const VALUES = ['pmj02bnPoints', 'pmj02bnSets', 'EnvMap'];
 
@@ -90,6 +101,7 @@ function thrown(f, what) {
 }
 
 function badValues(spec) {
+  if (spec.bad) return spec.bad;
   if (spec.count || spec.u32) {
     const max = spec.count ? MAX_COUNT : 0xffffffff;
     return [

@@ -186,6 +186,24 @@ function fingerprint() {
   // pmj02bn
   indexed(h, wc.pmj02bnSample, 2);
   for (const [set, index] of [[0, 0], [1, 1], [3, 4095], [7, 1 << 30]]) h.words(wc.pmj02bnRaw(set, index, 1));
+  // sampler (fingerprint.rs `sampler::<P>`): a slice is the points of new(...).domain(3), one
+  // point (the scalar and lane forms) adds split(7, 4, index & 3); then draw_u32 and rnd of
+  // 64 split states
+  const domain3 = wc.samplerPath().domain(3);
+  const split = [0, 1, 2, 3].map((sub) => domain3.split(7, 4, sub));
+  const pixel = (seed) => Uint32Array.of(seed % 641, seed >>> 20);
+  for (const pattern of ['pmj02bn', 'sobol', 'bluePmj02bn', 'blueSobol']) {
+    indexed(h, (start, seed, n, out) => {
+      const frame = (seed ^ 5) >>> 0;
+      if (n === 1) return wc.samplerDraw(pattern, pixel(seed), frame, start, seed, split[start & 3], 4, out);
+      return wc.samplerDrawSlice(pattern, pixel(seed), frame, start, n, seed, domain3, 4, out);
+    }, 4);
+    for (let k = 0; k < 64; k++) {
+      const index = Math.imul(k, 0x9e3779b9) >>> 0;
+      h.words(wc.samplerDrawU32(pattern, pixel(k), k ^ 5, index, k, split[index & 3], 4));
+      h.floats(wc.samplerRnd(pattern, pixel(k), k ^ 5, index, k, split[index & 3], 4));
+    }
+  }
   // sequence
   indexed(h, wc.sequenceRandom, 2);
   for (const count of [1, 16, 17, 1024]) {

@@ -1,6 +1,6 @@
 // Compiled by js/test/package.test.mjs with `tsc --noEmit --strict` against the installed
 // package's types: a user's code must type-check, and misuse must not (@ts-expect-error).
-import { load, MAX_COUNT, type EnvMap, type Warpcore } from 'warpcore';
+import { load, MAX_COUNT, type EnvMap, type SamplerPath, type SamplerPattern, type Warpcore } from 'warpcore';
 
 const wc: Warpcore = await load();
 const u: Float32Array = wc.pmj02bnSample(0, 42, 16);
@@ -30,4 +30,17 @@ env.width = 3;
 // @ts-expect-error: the constructor is not public
 new wc.EnvMap();
 
-export { kind, ok, n };
+const path: SamplerPath = wc.samplerPath().domain(2).split(0, 4, 1);
+const point: Float32Array = wc.samplerDraw('blueSobol', Uint32Array.of(3, 4), 0, 7, 0, path, 2);
+const words: Uint32Array = wc.samplerDrawU32('sobol', Uint32Array.of(3, 4), 0, 7, 0, Uint32Array.of(1, 2), 4);
+const slice: Float32Array = wc.samplerDrawSlice('pmj02bn', Uint32Array.of(3, 4), 0, 0, 16, 0, path, 3, new Float32Array(48));
+const pattern: SamplerPattern = 'bluePmj02bn';
+wc.samplerRnd(pattern, Uint32Array.of(0, 0), 0, 0, 0, new Uint32Array(0), 1);
+// @ts-expect-error: a draw has 1 to 4 dimensions
+wc.samplerDraw('sobol', Uint32Array.of(3, 4), 0, 7, 0, path, 5);
+// @ts-expect-error: not a pattern
+wc.samplerDraw('halton', Uint32Array.of(3, 4), 0, 7, 0, path, 2);
+// @ts-expect-error: a domain path is a Uint32Array or a SamplerPath
+wc.samplerDraw('sobol', Uint32Array.of(3, 4), 0, 7, 0, [1, 2], 2);
+
+export { kind, ok, n, point, words, slice };
