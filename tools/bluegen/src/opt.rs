@@ -9,10 +9,16 @@
 //! when building screen-space samplers with blue-noise error distribution" (SIGGRAPH Talks
 //! 2021), the keys are chosen offline so that, for a family of test integrands, the errors of
 //! neighbouring pixels differ — here: cancel. Every key of a pool gets an *error vector*: its
-//! signed error on each test integrand (random half-planes of the pixel square, the
-//! discontinuity that dominates rendering error) after 1, 2, 4, ... `2^(levels-1)` samples,
-//! every level normalised to unit RMS over the pool, so that each power-of-two count weighs
-//! the same and the tile is blue noise progressively, at every count.
+//! signed error on each test integrand after 1, 2, 4, ... `2^(levels-1)` samples (the first
+//! two dimensions, `draw::<2>()`, through the library's own code), every level normalised to
+//! unit RMS over the pool and then weighted, so that every power-of-two count counts and the
+//! tile is blue noise progressively, without knowing the count in advance.
+//!
+//! The test integrands are half-planes of the pixel square (the discontinuity that dominates
+//! rendering error), a rank-1 lattice over the lines that cross the square ([`Edge::lattice`]):
+//! with random lines the optimiser fits their accidents (128 random lines: blurred error
+//! 0.59 x white noise at 4 spp on the training lines, 0.75 x on fresh ones), a stratified
+//! family generalises better (256 lattice lines: 0.60 x -> 0.67 x).
 //!
 //! # The energy
 //!
@@ -27,29 +33,40 @@
 //!
 //! on the torus (the tile repeats and is shifted per domain), a quadratic form in the error
 //! vectors with the same effect (neighbours' errors negatively correlated, the pair term
-//! growing as they approach) and the same blue spectrum, measured exactly as the acceptance
+//! growing as they approach) and the same blue spectrum, measured the way the acceptance
 //! figure measures it. Keeping the filtered field `F_p = sum_q G(p - q) e_q` makes every move
 //! `O(dim)` to evaluate:
 //!
+//! * replacing the key of `a` by an unused pool key (`d = e_new - e_a`):
+//!   `dE = 2 d . F_a + G(0) |d|^2 = |e_new + F_a - G(0) e_a|^2 - const`;
 //! * swapping the keys of pixels `a` and `b` (`d = e_b - e_a`):
 //!   `dE = 2 d . (F_a - F_b) + 2 |d|^2 (G(0) - G(a - b))`;
-//! * replacing the key of `a` by an unused pool key (`d = e_new - e_a`):
-//!   `dE = 2 d . F_a + G(0) |d|^2`;
 //!
 //! and `O(taps x dim)` to apply (the field is updated over the kernel's support).
 //!
 //! # The search
 //!
-//! Random proposals (half swaps between two random pixels, half replacements from the pool),
+//! The best replacement for a pixel is the pool key nearest to `-(F_a - G(0) e_a)`, the error
+//! that cancels what its neighbours leave. *Guided sweeps* visit every pixel in a random order
+//! and take that key: a random projection of all error vectors to [`SKETCH`] dimensions
+//! (Johnson-Lindenstrauss) shortlists [`SHORTLIST`] candidates among the whole pool in
+//! `O(pool x SKETCH)`, their exact `dE` decides. Eight sweeps reach what 16 million random
+//! proposals reach (0.60 x white noise at 4 spp on the training lines, equal weights) in a
+//! third of the time. Optional random proposals follow (half swaps, half replacements from the pool),
 //! accepted by *threshold accepting* (Dueck and Scheuer 1990): a move is taken when `dE` is
-//! below a threshold that falls linearly to zero — simulated annealing's schedule without its
-//! `exp`, so every decision is plain IEEE arithmetic in a fixed order.
+//! below a threshold that falls linearly to zero — simulated annealing's schedule without
+//! its `exp`.
+//!
+//! The level weights trade counts against each other (a key is one choice among the pool for
+//! all levels at once): `1, 1, 1, 0.85, 0.7` for 1, 2, 4, 8, 16 spp buys 1-4 spp a few
+//! percent at 16 spp's expense.
 //!
 //! # Determinism
 //!
-//! One SplitMix64 stream per tile, single-threaded, f32/f64 adds and multiplies in a fixed
-//! order (Rust never contracts them into fused multiply-adds), no libm: the kernel's weights
-//! come from our own `exp` series. The same bytes on every machine.
+//! One SplitMix64 stream per tile, single-threaded, integer hit counts, f32/f64 adds and
+//! multiplies in a fixed order (eight explicit lanes; Rust never contracts them into fused
+//! multiply-adds), no libm: the kernel's weights and the lattice's directions come from our
+//! own series. The same bytes on every machine.
 
 use warpcore::sampler::{Pmj02bn, Sampler, Sobol};
 
