@@ -82,7 +82,7 @@ pub const SETS: usize = 1;
 /// Bytes of embedded table data in this build: `8 * POINTS * SETS`.
 pub const TABLE_BYTES: usize = 8 * POINTS * SETS;
 
-const LOG2_POINTS: u32 = POINTS.trailing_zeros();
+pub(crate) const LOG2_POINTS: u32 = POINTS.trailing_zeros();
 
 /// The sets' bytes, one after the other, aligned to a cache line (each set's size is a
 /// multiple of 64 bytes, so a point never straddles two lines).
@@ -259,6 +259,30 @@ pub(crate) fn sample_bits<U: UintLane>(index: U, seed: U) -> [U; 2] {
     let keys = keys(seed, index.shr(LOG2_POINTS));
     let [x, y] = (keys.set | r).gather_pairs(|i| decode(all_points(), i as usize));
     [owen_scramble(x, keys.x), owen_scramble(y, keys.y)]
+}
+
+/// For the sampling core's slices: the set and the two scramble keys (x, y) that `seed` and
+/// `block` (an index `>> log2(POINTS)`) choose, the integers [`sample_bits`] derives per lane.
+#[cfg(feature = "sampler")]
+#[inline(always)]
+pub(crate) fn block_keys(seed: u32, block: u32) -> (&'static [[u8; 8]; POINTS], [u32; 2]) {
+    let k = keys(Wrapping(seed), Wrapping(block));
+    (view(k.set.0 as usize >> LOG2_POINTS), [k.x.0, k.y.0])
+}
+
+/// For the sampling core's slices: the `W` little-endian words of points `r .. r + W / 2` of a
+/// set, in table order (`x_r, y_r, x_{r+1}, ..`); zeros where they would run past the set's
+/// end (the callers read aligned groups, which never do).
+#[cfg(feature = "sampler")]
+#[inline(always)]
+pub(crate) fn table_words<const W: usize>(view: &[[u8; 8]; POINTS], r: usize) -> [u32; W] {
+    let mut words = [0u32; W];
+    if let Some(bytes) = view.as_flattened().get(8 * r..8 * r + 4 * W) {
+        for (w, c) in words.iter_mut().zip(bytes.as_chunks::<4>().0) {
+            *w = u32::from_le_bytes(*c);
+        }
+    }
+    words
 }
 
 /// Point `index` of the pmj02bn sequence for `seed`: a table point (set chosen by the seed),

@@ -409,20 +409,47 @@ fn scalar_x8_x16_agree() {
     lanes_agree::<Blue<Sobol>>();
 }
 
+/// The slice form against the scalar form: every start modulo 16 (the slices run aligned
+/// groups of 8 or 16 indices between scalar-equivalent heads and tails), starts near the
+/// pmj02bn table's blocks and the wrap at `2^32`, every length up to 70 and long runs across
+/// blocks, 1 to 4 dimensions, several pixels, frames, seeds and domains.
 fn slices_agree<P: Pattern>() {
-    for start in [0u32, 5, 4090, 65530, u32::MAX - 20] {
-        let s = Sampler::<P>::new([3, 9], 1, start, 2).domain(4);
-        for len in [0usize, 1, 7, 8, 9, 16, 17, 33] {
-            let mut out4 = vec![[9.0f32; 4]; len];
-            let mut out2 = vec![[9.0f32; 2]; len];
-            assert_eq!(s.draw_slice(&mut out4), len);
-            assert_eq!(s.draw_slice(&mut out2), len);
-            for k in 0..len {
-                let t = s.with_index(start.wrapping_add(k as u32));
-                assert_eq!(out4[k].map(f32::to_bits), t.draw::<4>().map(f32::to_bits));
-                assert_eq!(out2[k].map(f32::to_bits), t.draw::<2>().map(f32::to_bits));
-            }
+    fn check<P: Pattern, const N: usize>(s: Sampler<P>, len: usize) {
+        let mut out = vec![[9.0f32; N]; len];
+        assert_eq!(s.draw_slice(&mut out), len);
+        for (k, o) in out.iter().enumerate() {
+            let t = s.with_index(s.index().wrapping_add(k as u32));
+            let want = t.draw::<N>().map(f32::to_bits);
+            assert_eq!(
+                o.map(f32::to_bits),
+                want,
+                "start {} len {len} k {k}",
+                s.index()
+            );
         }
+    }
+    let mut r = common::rng(23);
+    let mut starts: Vec<u32> = (0..16).chain([4090, 4096 * 3 - 3, 65530]).collect();
+    starts.extend([1 << 20, 0x8000_0000 - 7, u32::MAX - 20, u32::MAX - 100]);
+    for (t, &start) in starts.iter().enumerate() {
+        let s = if t == 0 {
+            Sampler::<P>::new([3, 9], 1, start, 2).domain(4)
+        } else {
+            Sampler::<P>::new([r.random(), r.random()], r.random(), start, r.random())
+                .domain(r.random())
+        };
+        for len in (0..=70).chain([100, 131]) {
+            check::<P, 4>(s, len);
+            check::<P, 2>(s, len);
+        }
+        check::<P, 1>(s, 37);
+        check::<P, 3>(s, 37);
+    }
+    // Long runs cross the pmj02bn table's blocks (and their key changes) inside the slice.
+    for start in [0u32, 4000, 0xffff_f000 + 5] {
+        let s = Sampler::<P>::new([7, 7], 0, start, 1).split(2, 3, 1);
+        check::<P, 4>(s, 9000);
+        check::<P, 2>(s, 4103);
     }
 }
 

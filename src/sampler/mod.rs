@@ -69,8 +69,9 @@
 //! it with a bijective mixer (Wellons' `lowbias32`). A draw derives its shuffle and scramble
 //! keys from the domain hash: nothing is stored, nothing is shared between threads.
 
-use crate::hash::{mix, prefix_shuffle, to_unit};
+use crate::hash::{lk_hash, mix, owen_scramble, prefix_shuffle, to_unit};
 use crate::lanes::{Lane, UintLane};
+use crate::pmj02bn::{LOG2_POINTS, POINTS};
 use core::marker::PhantomData;
 use core::num::Wrapping;
 
@@ -193,10 +194,10 @@ impl<U: UintLane> State<U> {
         }
     }
 
-    /// The stratified point, dimensions `0..N`, 0.32 fixed point.
+    /// The key of the base pattern's draw: the domain hash, or under [`Blue`] the tile key
+    /// of the pixel in this domain.
     #[inline(always)]
-    fn bits<const N: usize>(self, id: u8) -> [U; N] {
-        const { assert!(N >= 1 && N <= 4, "a draw has 1 to 4 dimensions") };
+    fn seed(self, id: u8) -> U {
         #[cfg(feature = "blue-noise")]
         let seed = if id & BLUE != 0 {
             blue::key(id & !BLUE, self.pixel, self.domain)
@@ -204,7 +205,18 @@ impl<U: UintLane> State<U> {
             self.domain
         };
         #[cfg(not(feature = "blue-noise"))]
-        let seed = self.domain;
+        let seed = {
+            let _ = id;
+            self.domain
+        };
+        seed
+    }
+
+    /// The stratified point, dimensions `0..N`, 0.32 fixed point.
+    #[inline(always)]
+    fn bits<const N: usize>(self, id: u8) -> [U; N] {
+        const { assert!(N >= 1 && N <= 4, "a draw has 1 to 4 dimensions") };
+        let seed = self.seed(id);
         if id & !BLUE == SOBOL {
             sobol::point(self.index, seed)
         } else {
@@ -238,6 +250,127 @@ fn pmj02bn_pairs<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
     let a = pair(0);
     let b = if N > 2 { pair(1) } else { a };
     core::array::from_fn(|d| [a[0], a[1], b[0], b[1]][d])
+}
+
+/// The slice form of [`pmj02bn_pairs`] on aligned groups of `LN` consecutive indices (`LN` =
+/// 8 or 16; group `g` holds indices `first + LN g ..`, `first` a multiple of `LN`): lane by
+/// lane the same bits, with what is common to a group computed once.
+///
+/// Per pair, the nested index shuffle maps the group onto an aligned group `high | sigma(l)`
+/// of shuffled indices (`high`: the shuffle of the group's first index, one scalar hash;
+/// `sigma`: a permutation of `0..LN` read off the top bits of the hashed lanes), so the
+/// group's table points are `LN` consecutive points of one set under one block's keys: they
+/// are read as whole vectors, scrambled and converted in table order (x and y keys
+/// alternating by lane), and moved to their lanes by two permutes per coordinate. The
+/// shuffle maps each aligned block of `POINTS` indices onto one block of the table's, so the
+/// keys are derived once per run of groups inside such a block.
+#[inline(always)]
+fn pmj02bn_groups<L: simd::Rows<LN>, const LN: usize, const N: usize>(
+    first: u32,
+    seed: u32,
+    groups: &mut [[[f32; N]; LN]],
+) {
+    let pairs = [0, 1].map(|p| PairRun::<L, LN>::new(seed, p));
+    let mut done = 0;
+    while let Some(rest) = groups.get_mut(done..) {
+        if rest.is_empty() {
+            break;
+        }
+        let b = first.wrapping_add((done * LN) as u32);
+        let in_block = (POINTS - (b as usize & (POINTS - 1))) / LN;
+        let (run, _) = rest.split_at_mut(in_block.min(rest.len()));
+        let keys = pairs.map(|p| p.block_keys(b));
+        for (g, dst) in run.iter_mut().enumerate() {
+            let b = b.wrapping_add((g * LN) as u32).reverse_bits();
+            let [x0, y0] = pairs[0].points(b, &keys[0]);
+            let [x1, y1] = if N > 2 {
+                pairs[1].points(b, &keys[1])
+            } else {
+                [x0, y0]
+            };
+            let comps = [x0, y0, x1, y1];
+            simd::store_rows(core::array::from_fn(|d| comps[d % 4]), dst);
+        }
+        done += run.len();
+    }
+}
+
+/// One pmj02bn pair of the slices (see [`pmj02bn_groups`]): the shuffle key and the scramble
+/// seed of pair `p`, and the lane constants.
+#[derive(Clone, Copy)]
+struct PairRun<L: simd::Rows<LN>, const LN: usize> {
+    shuffle_key: Wrapping<u32>,
+    zero: Wrapping<u32>,
+    scramble_seed: u32,
+    lanes: L::U,
+    reverse_s: L::U,
+}
+
+/// The keys of one block of the table for one pair: the set and the x/y scramble keys
+/// alternating by lane.
+struct BlockKeys<L: simd::Rows<LN>, const LN: usize> {
+    set: &'static [[u8; 8]; POINTS],
+    keys_xy: L::U,
+}
+
+impl<L: simd::Rows<LN>, const LN: usize> PairRun<L, LN> {
+    const S: u32 = LN.trailing_zeros();
+
+    #[inline(always)]
+    fn new(seed: u32, p: usize) -> Self {
+        let [k_shuffle, k_scramble] = K_PAIR[p % 2];
+        let shuffle_key = mix(Wrapping(seed ^ k_shuffle));
+        PairRun {
+            shuffle_key,
+            zero: lk_hash(Wrapping(0), shuffle_key),
+            scramble_seed: seed ^ k_scramble,
+            lanes: L::words(core::array::from_fn(|l| (l as u32).reverse_bits())),
+            reverse_s: L::words(core::array::from_fn(|v| {
+                (v as u32).reverse_bits() >> (32 - Self::S)
+            })),
+        }
+    }
+
+    /// The shuffled group of the group whose first index, bit-reversed, is `b`: its common
+    /// high bits, and per lane the low bits `sigma`.
+    #[inline(always)]
+    fn shuffled(&self, b: u32) -> (u32, L::U) {
+        let group_mask = Wrapping(!(LN as u32 - 1));
+        let high = (lk_hash(Wrapping(b), self.shuffle_key) ^ self.zero).reverse_bits() & group_mask;
+        let h = lk_hash(L::U::splat(b) | self.lanes, L::U::splat(self.shuffle_key.0))
+            ^ L::U::splat(self.zero.0);
+        (high.0, L::shuffle(self.reverse_s, h.shr(32 - Self::S)))
+    }
+
+    /// The keys of the table block that the group starting at index `first` reads.
+    #[inline(always)]
+    fn block_keys(&self, first: u32) -> BlockKeys<L, LN> {
+        let (high, _) = self.shuffled(first.reverse_bits());
+        let (set, [kx, ky]) = crate::pmj02bn::block_keys(self.scramble_seed, high >> LOG2_POINTS);
+        BlockKeys {
+            set,
+            keys_xy: L::words(core::array::from_fn(|l| [kx, ky][l % 2])),
+        }
+    }
+
+    /// The pair's `x` and `y` of the group whose first index, bit-reversed, is `b`.
+    #[inline(always)]
+    fn points(&self, b: u32, keys: &BlockKeys<L, LN>) -> [L; 2] {
+        let (high, sigma) = self.shuffled(b);
+        let row = high as usize & (POINTS - 1);
+        let scrambled = |r: usize| {
+            let words = L::words(crate::pmj02bn::table_words::<LN>(keys.set, r));
+            to_unit::<L>(owen_scramble(words, keys.keys_xy)).to_bits()
+        };
+        let (lo, hi) = (scrambled(row), scrambled(row + LN / 2));
+        // Point sigma(l) is words 2 sigma (x) and 2 sigma + 1 (y) of lo ++ hi.
+        let in_lo = sigma.simd_lt(L::U::splat(LN as u32 / 2));
+        let ix = (sigma + sigma) & L::U::splat(LN as u32 - 1);
+        let iy = ix + L::U::splat(1);
+        let pick =
+            |i: L::U| L::from_bits(L::U::select(in_lo, L::shuffle(lo, i), L::shuffle(hi, i)));
+        [pick(ix), pick(iy)]
+    }
 }
 
 /// One sample's sampler: a pattern, a pixel, a domain path and a sample index, in 12 bytes.

@@ -6,7 +6,7 @@ use crate::batch::{self, Vector};
 use crate::lanes::UintLane;
 use core::marker::PhantomData;
 use core::num::Wrapping;
-use wide::{f32x8, f32x16, u32x8, u32x16};
+use wide::{f32x8, f32x16, u32x8, u32x16, u64x4, u64x8};
 
 /// [`Sampler`] for eight lanes: lane `j` of every method equals the scalar method on
 /// [`lane(j)`](Self::lane), bit for bit.
@@ -133,19 +133,162 @@ macro_rules! wide_sampler {
 wide_sampler!(SamplerX8, f32x8, u32x8, 8);
 wide_sampler!(SamplerX16, f32x16, u32x16, 16);
 
-/// [`Sampler::draw_slice`] on `LN`-lane vectors: the scalar state broadcast, the index
-/// counting up lane by lane.
+/// The slices' vectors: [`Vector`] with the full-width interleaves of `wide`, from which the
+/// array-of-structs stores of 2 and 4 components are built.
+pub(super) trait Rows<const LN: usize>: Vector<LN> {
+    /// `[a0, b0, a1, b1, ..]`: the low halves of `a` and `b` interleaved, then the high halves.
+    fn zip32(a: Self::U, b: Self::U) -> [Self::U; 2];
+    /// The same with pairs of lanes as the elements.
+    fn zip64(a: Self::U, b: Self::U) -> [Self::U; 2];
+}
+
+impl Rows<8> for f32x8 {
+    #[inline(always)]
+    fn zip32(a: u32x8, b: u32x8) -> [u32x8; 2] {
+        [a.unpack_lo(b), a.unpack_hi(b)]
+    }
+    #[inline(always)]
+    fn zip64(a: u32x8, b: u32x8) -> [u32x8; 2] {
+        let (a, b): (u64x4, u64x4) = (bytemuck::cast(a), bytemuck::cast(b));
+        [
+            bytemuck::cast(a.unpack_lo(b)),
+            bytemuck::cast(a.unpack_hi(b)),
+        ]
+    }
+}
+
+impl Rows<16> for f32x16 {
+    #[inline(always)]
+    fn zip32(a: u32x16, b: u32x16) -> [u32x16; 2] {
+        [a.unpack_lo(b), a.unpack_hi(b)]
+    }
+    #[inline(always)]
+    fn zip64(a: u32x16, b: u32x16) -> [u32x16; 2] {
+        let (a, b): (u64x8, u64x8) = (bytemuck::cast(a), bytemuck::cast(b));
+        [
+            bytemuck::cast(a.unpack_lo(b)),
+            bytemuck::cast(a.unpack_hi(b)),
+        ]
+    }
+}
+
+/// `LN` points of `N` components, one vector per component, stored as an array of points:
+/// two interleaves per pair of components (4 components: the pairs `(x, y)`, `(z, w)`, then
+/// their pairs of lanes), or [`batch::store`]'s permutes for 3.
 #[inline(always)]
-pub(super) fn draw_slice<P: Pattern, L: Vector<LN>, const LN: usize, const N: usize>(
+pub(super) fn store_rows<L: Rows<LN>, const LN: usize, const N: usize>(
+    v: [L; N],
+    dst: &mut [[f32; N]; LN],
+) {
+    let w = |k: usize| v[k % N].to_bits();
+    let rows: &mut [[f32; LN]] = dst.as_flattened_mut().as_chunks_mut::<LN>().0;
+    let mut put = |r: usize, words: L::U| {
+        if let Some(row) = rows.get_mut(r) {
+            *row = bytemuck::cast(L::to_words(words));
+        }
+    };
+    match N {
+        1 => put(0, w(0)),
+        2 => {
+            let [r0, r1] = L::zip32(w(0), w(1));
+            put(0, r0);
+            put(1, r1);
+        }
+        4 => {
+            let [xy0, xy1] = L::zip32(w(0), w(1));
+            let [zw0, zw1] = L::zip32(w(2), w(3));
+            let [r0, r1] = L::zip64(xy0, zw0);
+            let [r2, r3] = L::zip64(xy1, zw1);
+            put(0, r0);
+            put(1, r1);
+            put(2, r2);
+            put(3, r3);
+        }
+        _ => *dst = batch::store(v),
+    }
+}
+
+/// [`Sampler::draw_slice`] on `LN`-lane vectors.
+///
+/// The aligned groups of `LN` indices take each pattern's group form (the keys of the one
+/// domain derived once, the shuffle's common high bits once per group: see
+/// `sobol::fill_groups` and `super::pmj02bn_groups`); the 0 to `LN - 1` indices before the
+/// first aligned group and after the last run the generic body on lanes, the state
+/// broadcast and the index counting up. Both give the scalar bits (tested at every start
+/// and length).
+#[inline(always)]
+pub(super) fn draw_slice<P: Pattern, L: Rows<LN>, const LN: usize, const N: usize>(
     s: State<Wrapping<u32>>,
     out: &mut [[f32; N]],
 ) -> usize {
+    let n = out.len();
     let wide = State {
         pixel: L::U::splat(s.pixel.0),
         domain: L::U::splat(s.domain.0),
         index: L::U::splat(0),
     };
-    batch::fill_indexed::<L, LN, N>(s.index.0, out, |index| {
-        State { index, ..wide }.bits::<N>(P::ID).map(unit::<L>)
-    })
+    let lanes = |start: u32, part: &mut [[f32; N]]| {
+        batch::fill_indexed::<L, LN, N>(start, part, |index| {
+            State { index, ..wide }.bits::<N>(P::ID).map(unit::<L>)
+        })
+    };
+    let start = s.index.0;
+    let head = (start.wrapping_neg() as usize % LN).min(n);
+    let (head_out, rest) = out.split_at_mut(head);
+    lanes(start, head_out);
+    let first = start.wrapping_add(head as u32);
+    let (groups, tail) = rest.as_chunks_mut::<LN>();
+    let seed = s.seed(P::ID).0;
+    if P::ID & !super::BLUE == super::SOBOL {
+        super::sobol::fill_groups::<L, LN, N>(first, seed, groups);
+    } else {
+        super::pmj02bn_groups::<L, LN, N>(first, seed, groups);
+    }
+    lanes(first.wrapping_add((groups.len() * LN) as u32), tail);
+    n
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::sampler::{Pmj02bn, Sobol};
+    use std::vec;
+
+    /// The slice form at both widths (whatever `batch::Widest` this build has) against the
+    /// scalar form: starts on both sides of the aligned groups and the wrap, lengths up to
+    /// three groups of 16 and a run across a pmj02bn table block.
+    fn slices_agree<P: Pattern, L: Rows<LN>, const LN: usize, const N: usize>() {
+        for (t, start) in (0..17u32).chain([4096 - 21, u32::MAX - 40]).enumerate() {
+            let s = Sampler::<P>::new([t as u32, 5], 3, start, 7).domain(t as u32);
+            for len in (0..50).chain([4200]) {
+                let mut out = vec![[9.0f32; N]; len];
+                assert_eq!(draw_slice::<P, L, LN, N>(s.state, &mut out), len);
+                for (k, o) in out.iter().enumerate() {
+                    let want = s.with_index(start.wrapping_add(k as u32)).draw::<N>();
+                    assert_eq!(
+                        o.map(f32::to_bits),
+                        want.map(f32::to_bits),
+                        "{start} {len} {k}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn slices_agree_at_both_widths() {
+        slices_agree::<Sobol, f32x8, 8, 4>();
+        slices_agree::<Sobol, f32x16, 16, 4>();
+        slices_agree::<Sobol, f32x16, 16, 1>();
+        slices_agree::<Pmj02bn, f32x8, 8, 4>();
+        slices_agree::<Pmj02bn, f32x16, 16, 4>();
+        slices_agree::<Pmj02bn, f32x16, 16, 2>();
+        #[cfg(feature = "blue-noise")]
+        {
+            use crate::sampler::Blue;
+            slices_agree::<Blue<Sobol>, f32x16, 16, 3>();
+            slices_agree::<Blue<Pmj02bn>, f32x8, 8, 4>();
+        }
+    }
 }

@@ -25,8 +25,9 @@
 //! dimension: the tables below hold `reverse(v_{d,k})`, so their XOR is `reverse(x_d(i))`,
 //! which is exactly what the scramble hashes.
 
-use crate::hash::lk_hash;
+use crate::hash::{lk_hash, mix, to_unit};
 use crate::lanes::UintLane;
+use core::num::Wrapping;
 
 /// Primitive polynomial degree `s`, its middle coefficients `a` (bit `s - 2 - j` is `a_{j+1}`)
 /// and the initial `m_1 .. m_s` for dimensions 1, 2 and 3 (Joe and Kuo 2008, dimensions 2-4).
@@ -97,9 +98,17 @@ static TABLE: [[u32; 3]; 1024] = {
 /// `reverse(x_d(i))` for dimensions 1, 2, 3 (dimension 0 is `i` itself in this form).
 #[inline(always)]
 fn reversed_dims<U: UintLane>(i: U) -> [U; 3] {
+    // Spelled out: an array `map` over the four bytes stayed out of line in the slices.
     let byte = |b: u32| (i.shr(8 * b) & U::splat(0xff)) | U::splat(256 * b);
-    let [a, b, c, d] = [0, 1, 2, 3].map(|k| U::gather(&TABLE, byte(k)));
-    core::array::from_fn(|k| a[k] ^ b[k] ^ c[k] ^ d[k])
+    let a = U::gather(&TABLE, byte(0));
+    let b = U::gather(&TABLE, byte(1));
+    let c = U::gather(&TABLE, byte(2));
+    let d = U::gather(&TABLE, byte(3));
+    [
+        a[0] ^ b[0] ^ c[0] ^ d[0],
+        a[1] ^ b[1] ^ c[1] ^ d[1],
+        a[2] ^ b[2] ^ c[2] ^ d[2],
+    ]
 }
 
 /// Key constants (arbitrary odd values, distinct per use): index shuffle, then dimensions.
@@ -123,6 +132,57 @@ pub(super) fn point<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
         let r = if d == 0 { i } else { rev[d - 1] };
         lk_hash(r, key(d + 1)).reverse_bits()
     })
+}
+
+/// The slice form on aligned groups of `LN` consecutive indices (`LN` = 8 or 16), group `g`
+/// holding the points of indices `first + LN g ..` (`first` a multiple of `LN`), for the same
+/// `seed`: lane by lane the bits of [`point`], with everything that is common to a group
+/// computed once, as a scalar.
+///
+/// The keys depend on the seed alone. The index shuffle is nested, so it maps the aligned
+/// group `b + l` (`l < LN`) onto an aligned group: the shuffled index is `high | sigma(l)`,
+/// where `high` (the bits above the group) is the shuffle of `b` itself and `sigma` a
+/// permutation of `0..LN` read off the top bits of the hashed lanes. The generator matrices
+/// are linear over GF(2): the reversed dimensions of `high | sigma` are those of `high` (one
+/// scalar table product per group) XOR those of `sigma` (a lane permute of a constant).
+#[inline(always)]
+pub(super) fn fill_groups<L: super::simd::Rows<LN>, const LN: usize, const N: usize>(
+    first: u32,
+    seed: u32,
+    groups: &mut [[[f32; N]; LN]],
+) {
+    let s = LN.trailing_zeros();
+    let keys = KEYS.map(|k| mix(Wrapping(seed ^ k)));
+    // Lane l holds the bit-reversed l: the low index bits of the group, reversed in place.
+    let lanes = L::words(core::array::from_fn(|l| (l as u32).reverse_bits()));
+    // Indexed by the top `s` bits `v` of a hashed lane: the low bits `sigma = reverse_s(v)`
+    // of the shuffled index (dimension 0 in reversed form), and their products with the
+    // matrices of dimensions 1..3 (byte 0 of `TABLE`).
+    let low: [L::U; 4] = core::array::from_fn(|d| {
+        L::words(core::array::from_fn(|v| {
+            let sigma = (v as u32).reverse_bits() >> (32 - s);
+            match d {
+                0 => sigma,
+                _ => TABLE[sigma as usize & 0xff][(d - 1) % 3],
+            }
+        }))
+    });
+    let shuffle_key = L::U::splat(keys[0].0);
+    let group_mask = Wrapping(!(LN as u32 - 1));
+    for (g, dst) in groups.iter_mut().enumerate() {
+        let b = first.wrapping_add((g * LN) as u32).reverse_bits();
+        let high = lk_hash(Wrapping(b), keys[0]).reverse_bits() & group_mask;
+        let dims = reversed_dims(high);
+        let v = lk_hash(L::U::splat(b) | lanes, shuffle_key).shr(32 - s);
+        // Plain loops: `core::array::from_fn` closures can stay out of line (see `batch`).
+        let mut point = [L::splat(0.0); N];
+        for (d, p) in point.iter_mut().enumerate() {
+            let common = if d == 0 { high } else { dims[(d - 1) % 3] };
+            let r = L::U::splat(common.0) ^ L::shuffle(low[d % 4], v);
+            *p = to_unit(lk_hash(r, L::U::splat(keys[(d + 1) % 5].0)).reverse_bits());
+        }
+        super::simd::store_rows(point, dst);
+    }
 }
 
 #[cfg(test)]
