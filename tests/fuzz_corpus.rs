@@ -5,6 +5,9 @@
 
 #[path = "../fuzz/checks.rs"]
 mod checks;
+#[cfg(feature = "sampler")]
+#[path = "../fuzz/sampler_checks.rs"]
+mod sampler_checks;
 
 use std::path::Path;
 
@@ -57,4 +60,10 @@ fn envmap_corpus() {
 #[test]
 fn envmap_storage_corpus() {
     replay("envmap_storage", checks::envmap_storage);
+}
+
+#[cfg(feature = "sampler")]
+#[test]
+fn sampler_corpus() {
+    replay("sampler", sampler_checks::sampler);
 }
