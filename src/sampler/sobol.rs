@@ -169,16 +169,42 @@ pub(super) fn fill_groups<L: super::simd::Rows<LN>, const LN: usize, const N: us
     });
     let shuffle_key = L::U::splat(keys[0].0);
     let group_mask = Wrapping(!(LN as u32 - 1));
-    for (g, dst) in groups.iter_mut().enumerate() {
+    // What a group needs before its vector work: the bits of its shuffled indices common to
+    // the group, and the lanes' table positions, computed one group ahead (software
+    // pipelining: that chain of hashes and reversals then overlaps the previous group's
+    // vector work instead of preceding it). The reversed dimensions of the common bits are
+    // byte 0's table row XOR those of the bits above, which change once per 256 indices
+    // (the shuffle maps aligned blocks onto aligned blocks).
+    let ahead = |g: usize| {
         let b = first.wrapping_add((g * LN) as u32).reverse_bits();
         let high = lk_hash(Wrapping(b), keys[0]).reverse_bits() & group_mask;
-        let dims = reversed_dims(high);
         let v = lk_hash(L::U::splat(b) | lanes, shuffle_key).shr(32 - s);
+        (high.0, v)
+    };
+    let mut above = (u32::MAX, [0u32; 3]);
+    let mut next = ahead(0);
+    for (g, dst) in groups.iter_mut().enumerate() {
+        let (high, v) = next;
+        next = ahead(g + 1);
+        if high >> 8 != above.0 {
+            let byte = |k: u32| (256 * k + ((high >> (8 * k)) & 0xff)) as usize;
+            let rows = [TABLE[byte(1)], TABLE[byte(2)], TABLE[byte(3)]];
+            above = (
+                high >> 8,
+                core::array::from_fn(|d| rows[0][d] ^ rows[1][d] ^ rows[2][d]),
+            );
+        }
+        let byte0 = TABLE[high as usize & 0xff];
+        let common = [
+            Wrapping(high),
+            Wrapping(above.1[0] ^ byte0[0]),
+            Wrapping(above.1[1] ^ byte0[1]),
+            Wrapping(above.1[2] ^ byte0[2]),
+        ];
         // Plain loops: `core::array::from_fn` closures can stay out of line (see `batch`).
         let mut point = [L::splat(0.0); N];
         for (d, p) in point.iter_mut().enumerate() {
-            let common = if d == 0 { high } else { dims[(d - 1) % 3] };
-            let r = L::U::splat(common.0) ^ L::shuffle(low[d % 4], v);
+            let r = L::U::splat(common[d % 4].0) ^ L::shuffle(low[d % 4], v);
             *p = to_unit(lk_hash(r, L::U::splat(keys[(d + 1) % 5].0)).reverse_bits());
         }
         super::simd::store_rows(point, dst);
