@@ -344,8 +344,8 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_verify(
 /// a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
 /// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) for
 /// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
-/// overlaps `u` (in place is refused too: a sample is larger than a point) or the storage, or
-/// a storage that fails `wc_envmap_hierarchical_validate`.
+/// overlaps `u` (`out == u` too: a sample is larger than a point) or the storage, or a
+/// storage that fails `wc_envmap_hierarchical_validate`.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
@@ -366,8 +366,8 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_sample(
 /// the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
 /// sample at that point reports. Returns `n`, or 0 (writing nothing) for `n == 0`, a null or
 /// misaligned pointer, a count whose byte size overflows, an `out` that overlaps the storage
-/// or overlaps `uv` other than exactly in place (`out == uv` is allowed: density `i`
-/// overwrites float `i` after point `i` was read), or a storage that fails
+/// or overlaps `uv` other than exactly in place (`out == uv`: density `i` overwrites float
+/// `i` after point `i / 2` was read), or a storage that fails
 /// `wc_envmap_hierarchical_validate`.
 ///
 /// # Safety
@@ -466,8 +466,8 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_verify(
 /// a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
 /// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) for
 /// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
-/// overlaps `u` (in place is refused too: a sample is larger than a point) or the storage, or
-/// a storage that fails `wc_envmap_marginal_conditional_validate`.
+/// overlaps `u` (`out == u` too: a sample is larger than a point) or the storage, or a
+/// storage that fails `wc_envmap_marginal_conditional_validate`.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
@@ -488,8 +488,8 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_sample(
 /// the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
 /// sample at that point reports. Returns `n`, or 0 (writing nothing) for `n == 0`, a null or
 /// misaligned pointer, a count whose byte size overflows, an `out` that overlaps the storage
-/// or overlaps `uv` other than exactly in place (`out == uv` is allowed: density `i`
-/// overwrites float `i` after point `i` was read), or a storage that fails
+/// or overlaps `uv` other than exactly in place (`out == uv`: density `i` overwrites float
+/// `i` after point `i / 2` was read), or a storage that fails
 /// `wc_envmap_marginal_conditional_validate`.
 ///
 /// # Safety
