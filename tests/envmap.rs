@@ -1159,10 +1159,38 @@ fn luminance_helpers() {
     for (c, &l) in rgb.iter().zip(&out) {
         assert_eq!(l.to_bits(), image::luminance(*c).to_bits());
         let want = 0.2126 * c[0] as f64 + 0.7152 * c[1] as f64 + 0.0722 * c[2] as f64;
-        assert!((l as f64 - want).abs() <= 1e-6 * (1.0 + want.abs()));
+        assert!((l as f64 - want.max(0.0)).abs() <= 1e-6 * (1.0 + want.abs()));
     }
     assert_eq!(image::luminance([1.0, 1.0, 1.0]), 1.0);
-    assert!(image::luminance([f32::NAN, 0.0, 0.0]).is_nan());
+    // Bad texels: the weight rule (never NaN, never negative, `+0.0`), `+inf` kept; the slice
+    // form (SIMD lanes) gives the same bits, NaN payloads included (there are none).
+    let inf = f32::INFINITY;
+    let bad: Vec<[f32; 3]> = vec![
+        [f32::NAN, 0.0, 0.0],
+        [0.0, f32::from_bits(0xffff_0000), 1.0],
+        [inf, -inf, 0.0],
+        [-1.0, 0.0, 0.0],
+        [-0.0, -0.0, -0.0],
+        [0.0, 0.0, -inf],
+        [1.0, -2.0, 1.0],
+        [inf, 0.0, 0.0],
+        [inf, 1.0, f32::NAN],
+        [f32::MAX, f32::MAX, f32::MAX],
+        [1e-45, 0.0, 0.0],
+    ];
+    let want = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, inf, 0.0, f32::MAX, 0.0];
+    let mut out = vec![9.0f32; bad.len() + 9];
+    let mut many = bad.clone();
+    many.extend(bad.iter().take(9)); // past one 8-lane group
+    assert_eq!(image::luminance_slice(&many, &mut out), many.len());
+    for (k, c) in bad.iter().enumerate() {
+        let l = image::luminance(*c);
+        assert_eq!(l.to_bits(), want[k].to_bits(), "{c:?} -> {l}");
+        assert_eq!(out[k].to_bits(), l.to_bits(), "slice form, {c:?}");
+    }
+    for (k, c) in bad.iter().take(9).enumerate() {
+        assert_eq!(out[bad.len() + k].to_bits(), image::luminance(*c).to_bits());
+    }
 }
 
 #[test]

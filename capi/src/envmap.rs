@@ -507,15 +507,13 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_pdf(
     unsafe { pdf::<MarginalConditional>(storage, storage_len, uv, out, n) }
 }
 
-/// Rec. 709 luminance of `n` linear RGB texels (`3n` floats) to `n` floats,
-/// `0.2126 R + 0.7152 G + 0.0722 B` evaluated in that order without FMA, bit-identical to the
-/// Rust crate's `image::luminance`. Values are not cleaned: a NaN channel gives NaN, negative
-/// channels can give a negative result, infinite channels `+inf`, `-inf` or NaN (`inf - inf`).
-/// Pass the results to a build, which applies the weight rule (NaN, negatives and `-inf` weigh
-/// 0; `+inf` is `WC_ERR_INFINITE_WEIGHT`, reported with its texel instead of being hidden).
-/// Returns `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count
-/// whose byte size overflows, or overlapping arrays other than exactly in place
-/// (`rgb == out`).
+/// Rec. 709 luminance of `n` linear RGB texels (`3n` floats) as `n` weights:
+/// `0.2126 R + 0.7152 G + 0.0722 B` (in that order, without FMA) where positive, else `+0.0`:
+/// NaN (a NaN channel, or infinite channels of opposite signs) and negatives weigh 0, as in
+/// the builds; `+inf` stays `+inf` (a build then returns `WC_ERR_INFINITE_WEIGHT`). Never NaN
+/// or negative; bit-identical to the Rust crate's `image::luminance`. Returns `n`, or 0
+/// (writing nothing) for `n == 0`, a null or misaligned pointer, a count whose byte size
+/// overflows, or overlapping arrays other than exactly in place (`rgb == out`).
 ///
 /// # Safety
 /// `rgb` must be readable for `3n` floats and `out` writable for `n` floats.

@@ -35,14 +35,22 @@ const INV_2_PI_SQ: f32 = (1.0 / (2.0 * PI * PI)) as f32;
 
 #[inline(always)]
 fn luminance_body<L: Lane>(rgb: [L; 3]) -> [L; 1] {
-    [L::splat(LUMINANCE[0]) * rgb[0]
+    let l = L::splat(LUMINANCE[0]) * rgb[0]
         + L::splat(LUMINANCE[1]) * rgb[1]
-        + L::splat(LUMINANCE[2]) * rgb[2]]
+        + L::splat(LUMINANCE[2]) * rgb[2];
+    // The weight rule, by compare + select: NaN (a NaN channel, or `inf - inf`), `-0.0` and
+    // negatives become `+0.0`; `+inf` stays.
+    let zero = L::splat(0.0);
+    [L::select(zero.simd_lt(l), l, zero)]
 }
 
-/// Luminance of a linear RGB texel, `0.2126 R + 0.7152 G + 0.0722 B` (evaluated in that
-/// order, without FMA). Bad values propagate (a NaN channel gives NaN, which a distribution
-/// then weighs 0; an infinite one gives an infinite weight, which it rejects).
+/// Luminance of a linear RGB texel as a weight: `0.2126 R + 0.7152 G + 0.0722 B` (evaluated
+/// in that order, without FMA) where that is positive, `+0.0` otherwise — NaN (a NaN channel,
+/// or infinite channels of opposite signs), `-0.0`, negative values and `-inf` give `+0.0`,
+/// the weight the distributions give them anyway. `+inf` stays `+inf`, so a build reports
+/// [`Error::InfiniteWeight`](super::Error::InfiniteWeight) with the texel's index rather than
+/// dropping it. Never NaN, never negative: the result's bits are the same on every target and
+/// in every form (a NaN's bits would not be).
 #[inline]
 pub fn luminance(rgb: [f32; 3]) -> f32 {
     luminance_body(rgb)[0]
