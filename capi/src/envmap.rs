@@ -306,8 +306,8 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_build(
 }
 
 /// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
-/// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage` null with
-/// `storage_len > 0`, misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
+/// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
+/// and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
 /// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 8 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
 /// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT` (a size or length word
 /// a build never writes), `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
@@ -428,8 +428,8 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_build(
 }
 
 /// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
-/// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage` null with
-/// `storage_len > 0`, misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
+/// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
+/// and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
 /// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 8 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
 /// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT` (a size or length word
 /// a build never writes), `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).

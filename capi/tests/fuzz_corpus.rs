@@ -5,6 +5,15 @@
 //! crate's results. CI also runs it under AddressSanitizer (nightly `-Zsanitizer=address`).
 #![cfg(feature = "envmap")]
 
+// The C functions through their Rust signatures: the library's own sources, compiled in
+// (the crate has no `rlib`, see Cargo.toml).
+#[allow(dead_code)]
+#[path = "../src/ffi.rs"]
+mod ffi;
+
+#[path = "../src/envmap.rs"]
+mod envmap;
+
 #[path = "../../fuzz/capi_checks.rs"]
 mod capi_checks;
 

@@ -719,9 +719,10 @@ static void one_check(const struct dist *D, const struct dist *other, int verify
     switch (rnd() % 14) {
     case 0: s = NULL; want = WC_ERR_INVALID_ARGUMENT; break;
     case 1: s = NULL; len = 0; want = WC_ERR_STORAGE_TOO_SMALL; break;
-    case 2:
+    case 2: /* misaligned: refused, unless there is nothing to read */
         s = place(0, need * 4, end, 1 + below(3));
-        want = WC_ERR_INVALID_ARGUMENT;
+        len = rnd() % 4 ? need : 0;
+        want = len ? WC_ERR_INVALID_ARGUMENT : WC_ERR_STORAGE_TOO_SMALL;
         break;
     case 3: len = (size_t)PTRDIFF_MAX / 4 + 1 + below(3); want = WC_ERR_INVALID_ARGUMENT; break;
     case 4: len = SIZE_MAX; want = WC_ERR_INVALID_ARGUMENT; break;
