@@ -325,7 +325,9 @@ function create(x) {
     try {
       const p = [0, 0, 0];
       for (let k = 0; k < regions.length; k++) {
-        const [type, length, source] = [regions[k][0], regions[k][1], regions[k][2]];
+        const type = regions[k][0];
+        const length = regions[k][1];
+        const source = regions[k][2];
         p[k] = base + offsets[k];
         if (source !== undefined) {
           const from = TA_LENGTH(source) === length ? source : prefix(source, type, length);
