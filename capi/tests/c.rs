@@ -47,7 +47,8 @@ fn root() -> PathBuf {
 fn staticlib() -> PathBuf {
     static LIB: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
     LIB.get_or_init(|| match std::env::var_os("WARPCORE_CAPI_LIB") {
-        Some(lib) => PathBuf::from(lib),
+        // Relative to the workspace root (tests run in `capi/`).
+        Some(lib) => root().join(lib),
         None => build_staticlib(),
     })
     .clone()

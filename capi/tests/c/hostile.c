@@ -161,6 +161,7 @@ static void fill_floats(float *p, size_t n) {
 
 /* Byte size of `n` elements of `elem` bytes fits PTRDIFF_MAX (overflow-safe). */
 static int fits(size_t n, size_t elem) { return n <= (size_t)PTRDIFF_MAX / elem; }
+static int fits_u32(uint64_t n) { return n <= UINT32_MAX; } /* (a function: no -Wtype-limits on 32-bit) */
 static int fits64(uint64_t n, size_t elem) { return n <= (uint64_t)((size_t)PTRDIFF_MAX / elem); }
 
 /* Bytes from `p` to the end of its guarded region (0 outside every region). */
@@ -620,7 +621,7 @@ static void one_storage_len(const struct dist *D) {
         CHECK((uint64_t)w * h > UINT32_MAX / 8);
     } else {
         reach(D->len_name, "words");
-        CHECK((uint64_t)got >= 8 + (uint64_t)w * h && (uint64_t)got <= UINT32_MAX);
+        CHECK((uint64_t)got >= 8 + (uint64_t)w * h && fits_u32(got));
     }
 }
 
