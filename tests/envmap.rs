@@ -1005,6 +1005,42 @@ fn all_zero_maps_sample_uniformly() {
     }
 }
 
+/// The documented bound on an all-zero map's pdf, on every size up to 32 x 32 (and the
+/// documented example: one row of a 3 x 21 hierarchical map at 0.99999994).
+#[test]
+fn all_zero_pdf_bound() {
+    let mut below_one_3x21 = false;
+    for w in 1..=32usize {
+        for h in 1..=32usize {
+            let m = vec![0.0f32; w * h];
+            let bound = 2f64.powi(-22) + (w + h) as f64 * 2f64.powi(-29);
+            with_both(&m, w, h, |d| {
+                for r in 0..h {
+                    for c in 0..w {
+                        let uv = [(c as f32 + 0.5) / w as f32, (r as f32 + 0.5) / h as f32];
+                        let p = d.pdf(uv) as f64;
+                        assert!(
+                            (p - 1.0).abs() <= bound,
+                            "{} {w}x{h} [{c}, {r}]: {p}",
+                            d.name()
+                        );
+                        if w.is_power_of_two() && h.is_power_of_two() {
+                            assert_eq!(p, 1.0, "{} {w}x{h}", d.name());
+                        }
+                    }
+                }
+            });
+        }
+    }
+    let m = vec![0.0f32; 3 * 21];
+    let mut s = vec![0u32; Hierarchical::storage_len(3, 21)];
+    let d = Hierarchical::new(&m, 3, 21, &mut s).unwrap();
+    for r in 0..21 {
+        below_one_3x21 |= d.pdf([0.5, (r as f32 + 0.5) / 21.0]) == 0.999_999_94;
+    }
+    assert!(below_one_3x21);
+}
+
 /// Extreme finite values: all `f32::MAX` (sums overflow f32 but not the distributions), and a
 /// subnormal texel next to huge ones.
 #[test]
