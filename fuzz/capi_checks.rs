@@ -465,7 +465,7 @@ fn check(b: &mut Bytes, state: &State) {
     let verify = b.byte() & 1 == 1;
     let words = damaged(b, state, kind);
     let plan = b.plan();
-    let lie = b.byte() % 8 == 0; // a length no array can have
+    let lie = b.byte().is_multiple_of(8); // a length no array can have
     let len = if lie {
         isize::MAX as usize / 4 + 1 + (b.byte() % 4) as usize
     } else {
@@ -759,9 +759,13 @@ fn to_equal_area(b: &mut Bytes) {
         WC_ERR_ZERO_SIZE
     } else if !(1..=4).contains(&c) {
         WC_ERR_INVALID_ARGUMENT
-    } else if side(sw) || side(sh) || side(size) || ss as usize > image::MAX_SUPERSAMPLE {
-        WC_ERR_TOO_LARGE
-    } else if !fits64(src_n, 4) || !fits64(dst_n, 4) {
+    } else if side(sw)
+        || side(sh)
+        || side(size)
+        || ss as usize > image::MAX_SUPERSAMPLE
+        || !fits64(src_n, 4)
+        || !fits64(dst_n, 4)
+    {
         WC_ERR_TOO_LARGE
     } else if !ok_ptr(srcp)
         || !ok_ptr(dstp)
