@@ -48,9 +48,9 @@ fn luminance_body<L: Lane>(rgb: [L; 3]) -> [L; 1] {
 /// in that order, without FMA) where that is positive, `+0.0` otherwise — NaN (a NaN channel,
 /// or infinite channels of opposite signs), `-0.0`, negative values and `-inf` give `+0.0`,
 /// the weight the distributions give them anyway. `+inf` stays `+inf`, so a build reports
-/// [`Error::InfiniteWeight`](super::Error::InfiniteWeight) with the texel's index rather than
-/// dropping it. Never NaN, never negative: the result's bits are the same on every target and
-/// in every form (a NaN's bits would not be).
+/// [`Error::InfiniteWeight`] with the texel's index rather than dropping it. Never NaN, never
+/// negative: the result's bits are the same on every target and in every form (a NaN's bits
+/// would not be).
 #[inline]
 pub fn luminance(rgb: [f32; 3]) -> f32 {
     luminance_body(rgb)[0]
