@@ -5,9 +5,11 @@
  *
  * Conventions: interleaved float arrays (n points = 2n or 3n floats), size_t counts. Every
  * function returns the number of elements written, and 0 (writing nothing) for n = 0, a null
- * or misaligned pointer, or overlapping arrays (except exactly in place when an output
- * element is no larger than an input element). The environment-map builders and checks
- * return WC_OK or a negative WC_ERR_* code. Nothing unwinds into C. No global state: every
+ * or misaligned pointer, a count whose byte size exceeds PTRDIFF_MAX, or overlapping arrays
+ * (except exactly in place when an output element is no larger than an input element). The
+ * environment-map builders and checks return WC_OK or a negative WC_ERR_* code, checking
+ * every argument in the documented order before reading or writing any array (a call that
+ * fails those checks may pass any pointers). Nothing unwinds into C. No global state: every
  * function is thread-safe. Functions of a family left out of the build (Cargo features) are
  * declared here but absent from the library.
  *
@@ -29,10 +31,12 @@
 // `width` or `height` is zero.
 #define WC_ERR_ZERO_SIZE (-1)
 
-// A side exceeds 2^24, or the tables would exceed 2^32 words.
+// A side exceeds 2^24, the tables would exceed 2^32 words, or an array's byte size would
+// exceed `PTRDIFF_MAX` (possible on 32-bit targets); see each function.
 #define WC_ERR_TOO_LARGE (-2)
 
-// An array length does not match the sizes.
+// An array length does not match the sizes (the Rust crate's error; no function of this
+// header returns it, since C arrays carry no length).
 #define WC_ERR_LENGTH_MISMATCH (-3)
 
 // The storage is shorter than `storage_len` (or than its header says).
@@ -50,7 +54,8 @@
 // A header word (or, for `verify`, a table word) holds a value a build never writes.
 #define WC_ERR_CORRUPT (-8)
 
-// A null or misaligned pointer, or arrays that overlap where they must not.
+// A null or misaligned pointer, arrays that overlap where they must not, or (see each
+// function) a bad `channels` or a `storage_len` no array can have.
 #define WC_ERR_INVALID_ARGUMENT (-9)
 
 // An error this version of the header has no name for.
@@ -142,8 +147,9 @@ size_t wc_disk_concentric_inverse(const float *p, float *out, size_t n);
 // polar4 (Christensen 2018): `n` disk samples (`2n` floats) from `n_points` points of the
 // square (`2 n_points` floats), four per point: sample `i` uses point `i / 4` in quadrant
 // `i % 4` (`r = sqrt(u0)`, `theta = (pi/2) u1 + (pi/2) (i % 4)`). Returns
-// `min(n, 4 n_points)`, or 0 (writing nothing) for a null or misaligned pointer or
-// overlapping arrays.
+// `min(n, 4 n_points)`, or 0 (writing nothing) when that is 0, for a null or misaligned
+// pointer, a count whose byte size overflows, or overlapping arrays (the
+// `ceil(min(n, 4 n_points) / 4)` points the call reads and the outputs it writes).
 //
 // # Safety
 // `points` must be readable for `2 n_points` floats and `out` writable for `2n` floats.
@@ -161,7 +167,8 @@ size_t wc_disk_polar4_inverse(const float *p, float *out, uint32_t *quadrant, si
 // concentric4: `n` disk samples (`2n` floats) from `n_points` points of the square (`2
 // n_points` floats), four per point: sample `i` is the quarter-disk Shirley-Chiu map of point
 // `i / 4`, turned into quadrant `i % 4`. Returns `min(n, 4 n_points)`, or 0 (writing nothing)
-// for a null or misaligned pointer or overlapping arrays.
+// when that is 0, for a null or misaligned pointer, a count whose byte size overflows, or
+// overlapping arrays (as for `wc_disk_polar4`).
 //
 // # Safety
 // `points` must be readable for `2 n_points` floats and `out` writable for `2n` floats.
@@ -178,22 +185,33 @@ size_t wc_disk_concentric4(const float *points, size_t n_points, float *out, siz
 size_t wc_disk_concentric4_inverse(const float *p, float *out, uint32_t *quadrant, size_t n);
 
 // Words of storage `wc_envmap_hierarchical_build` needs for a `width x height` map (the hierarchical (MIP-pyramid) distribution: compact 2D strata), the
-// 8-word header included; `SIZE_MAX` when the map is too large, 0 for a zero side.
+// 8-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
+// tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE` and
+// `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
 size_t wc_envmap_hierarchical_storage_len(uint32_t width,
                                           uint32_t height);
 
-// Builds the hierarchical (MIP-pyramid) distribution: compact 2D strata of `weights` (row-major, `width * height` floats; NaN, negatives and
+// Builds the hierarchical (MIP-pyramid) distribution: compact 2D strata, of `weights` (row-major, `width * height` floats; NaN, negatives and
 // `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. Returns `WC_OK` (0) or
-// a negative `WC_ERR_*`: `ZERO_SIZE`, `TOO_LARGE`, `STORAGE_TOO_SMALL` (`storage_len` below
-// `wc_envmap_hierarchical_storage_len`), `INFINITE_WEIGHT`, `INVALID_ARGUMENT` (null or misaligned
-// pointer, weights overlapping the storage). Writes only the first
-// `wc_envmap_hierarchical_storage_len(width, height)` words (also when it fails after the checks).
-// The storage's bytes are the file format: write them to a file and sample them later, on
-// any machine.
+// the first failed check, in this order:
+//
+// * `WC_ERR_ZERO_SIZE`: `width` or `height` is 0;
+// * `WC_ERR_TOO_LARGE`: a side above 2^24, tables above 2^32 words (`wc_envmap_hierarchical_storage_len` is
+//   `SIZE_MAX`), or weights or tables larger than `PTRDIFF_MAX` bytes (32-bit targets);
+// * `WC_ERR_STORAGE_TOO_SMALL`: `storage_len` is below `wc_envmap_hierarchical_storage_len(width, height)`;
+// * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or weights overlapping the
+//   storage's first `wc_envmap_hierarchical_storage_len(width, height)` words;
+// * `WC_ERR_INFINITE_WEIGHT`: a weight is `+inf`.
+//
+// Nothing is written before these checks but the last: on the other errors the storage is
+// untouched; on success and on `WC_ERR_INFINITE_WEIGHT` exactly the first
+// `wc_envmap_hierarchical_storage_len(width, height)` words are written, never more. The storage's bytes are
+// the file format: write them to a file and sample them later, on any machine.
 //
 // # Safety
 // `weights` must be readable for `width * height` floats and `storage` writable for
-// `storage_len` words.
+// `storage_len` words (only when the checks above pass, so a call that returns one of the
+// errors before `WC_ERR_INFINITE_WEIGHT` may pass any pointers).
 int32_t wc_envmap_hierarchical_build(const float *weights,
                                      uint32_t width,
                                      uint32_t height,
@@ -201,18 +219,21 @@ int32_t wc_envmap_hierarchical_build(const float *weights,
                                      size_t storage_len);
 
 // Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
-// or `WC_ERR_WRONG_FORMAT`, `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`,
-// `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_INVALID_ARGUMENT`. Sampling a storage that passes is
-// safe whatever its table words hold (samples stay in the map); the sample and pdf functions
-// run this check on every call.
+// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
+// and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
+// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 8 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
+// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT` (a size or length word
+// a build never writes), `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
+// Sampling a storage that passes is safe whatever its table words hold (samples stay in the
+// map); the sample and pdf functions run this check on every call. Reads only.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words.
 int32_t wc_envmap_hierarchical_validate(const uint32_t *storage, size_t storage_len);
 
-// `wc_envmap_hierarchical_validate` plus one pass over every table word, rejecting
-// (`WC_ERR_CORRUPT`) tables that break the format's invariants: for loaders that want to
-// catch a corrupted file. Time proportional to the storage.
+// `wc_envmap_hierarchical_validate` (the same codes, in the same order) plus one pass over every
+// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants: for
+// loaders that want to catch a corrupted file. Time proportional to the storage. Reads only.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words.
@@ -220,9 +241,10 @@ int32_t wc_envmap_hierarchical_verify(const uint32_t *storage, size_t storage_le
 
 // Draws `n` samples from a built (or loaded) storage: texels in proportion to their weight,
 // a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
-// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) if the
-// storage fails `wc_envmap_hierarchical_validate`, for a null or misaligned pointer, or if `out`
-// overlaps `u` or the storage.
+// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) for
+// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
+// overlaps `u` (`out == u` too: a sample is larger than a point) or the storage, or a
+// storage that fails `wc_envmap_hierarchical_validate`.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
@@ -235,7 +257,11 @@ size_t wc_envmap_hierarchical_sample(const uint32_t *storage,
 
 // Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
 // the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
-// sample at that point reports. Returns `n`, or 0 as for `wc_envmap_hierarchical_sample`.
+// sample at that point reports. Returns `n`, or 0 (writing nothing) for `n == 0`, a null or
+// misaligned pointer, a count whose byte size overflows, an `out` that overlaps the storage
+// or overlaps `uv` other than exactly in place (`out == uv`: density `i` overwrites float
+// `i` after point `i / 2` was read), or a storage that fails
+// `wc_envmap_hierarchical_validate`.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
@@ -247,22 +273,33 @@ size_t wc_envmap_hierarchical_pdf(const uint32_t *storage,
                                   size_t n);
 
 // Words of storage `wc_envmap_marginal_conditional_build` needs for a `width x height` map (the marginal-conditional distribution (a row by its total, then a column)), the
-// 8-word header included; `SIZE_MAX` when the map is too large, 0 for a zero side.
+// 8-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
+// tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE` and
+// `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
 size_t wc_envmap_marginal_conditional_storage_len(uint32_t width,
                                                   uint32_t height);
 
-// Builds the marginal-conditional distribution (a row by its total, then a column) of `weights` (row-major, `width * height` floats; NaN, negatives and
+// Builds the marginal-conditional distribution (a row by its total, then a column), of `weights` (row-major, `width * height` floats; NaN, negatives and
 // `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. Returns `WC_OK` (0) or
-// a negative `WC_ERR_*`: `ZERO_SIZE`, `TOO_LARGE`, `STORAGE_TOO_SMALL` (`storage_len` below
-// `wc_envmap_marginal_conditional_storage_len`), `INFINITE_WEIGHT`, `INVALID_ARGUMENT` (null or misaligned
-// pointer, weights overlapping the storage). Writes only the first
-// `wc_envmap_marginal_conditional_storage_len(width, height)` words (also when it fails after the checks).
-// The storage's bytes are the file format: write them to a file and sample them later, on
-// any machine.
+// the first failed check, in this order:
+//
+// * `WC_ERR_ZERO_SIZE`: `width` or `height` is 0;
+// * `WC_ERR_TOO_LARGE`: a side above 2^24, tables above 2^32 words (`wc_envmap_marginal_conditional_storage_len` is
+//   `SIZE_MAX`), or weights or tables larger than `PTRDIFF_MAX` bytes (32-bit targets);
+// * `WC_ERR_STORAGE_TOO_SMALL`: `storage_len` is below `wc_envmap_marginal_conditional_storage_len(width, height)`;
+// * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or weights overlapping the
+//   storage's first `wc_envmap_marginal_conditional_storage_len(width, height)` words;
+// * `WC_ERR_INFINITE_WEIGHT`: a weight is `+inf`.
+//
+// Nothing is written before these checks but the last: on the other errors the storage is
+// untouched; on success and on `WC_ERR_INFINITE_WEIGHT` exactly the first
+// `wc_envmap_marginal_conditional_storage_len(width, height)` words are written, never more. The storage's bytes are
+// the file format: write them to a file and sample them later, on any machine.
 //
 // # Safety
 // `weights` must be readable for `width * height` floats and `storage` writable for
-// `storage_len` words.
+// `storage_len` words (only when the checks above pass, so a call that returns one of the
+// errors before `WC_ERR_INFINITE_WEIGHT` may pass any pointers).
 int32_t wc_envmap_marginal_conditional_build(const float *weights,
                                              uint32_t width,
                                              uint32_t height,
@@ -270,28 +307,33 @@ int32_t wc_envmap_marginal_conditional_build(const float *weights,
                                              size_t storage_len);
 
 // Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
-// or `WC_ERR_WRONG_FORMAT`, `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`,
-// `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_INVALID_ARGUMENT`. Sampling a storage that passes is
-// safe whatever its table words hold (samples stay in the map); the sample and pdf functions
-// run this check on every call.
+// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
+// and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
+// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 8 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
+// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT` (a size or length word
+// a build never writes), `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
+// Sampling a storage that passes is safe whatever its table words hold (samples stay in the
+// map); the sample and pdf functions run this check on every call. Reads only.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words.
 int32_t wc_envmap_marginal_conditional_validate(const uint32_t *storage, size_t storage_len);
 
-// `wc_envmap_marginal_conditional_validate` plus one pass over every table word, rejecting
-// (`WC_ERR_CORRUPT`) tables that break the format's invariants: for loaders that want to
-// catch a corrupted file. Time proportional to the storage.
+// `wc_envmap_marginal_conditional_validate` (the same codes, in the same order) plus one pass over every
+// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants: for
+// loaders that want to catch a corrupted file. Time proportional to the storage. Reads only.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words.
-int32_t wc_envmap_marginal_conditional_verify(const uint32_t *storage, size_t storage_len);
+int32_t wc_envmap_marginal_conditional_verify(const uint32_t *storage,
+                                              size_t storage_len);
 
 // Draws `n` samples from a built (or loaded) storage: texels in proportion to their weight,
 // a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
-// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) if the
-// storage fails `wc_envmap_marginal_conditional_validate`, for a null or misaligned pointer, or if `out`
-// overlaps `u` or the storage.
+// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) for
+// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
+// overlaps `u` (`out == u` too: a sample is larger than a point) or the storage, or a
+// storage that fails `wc_envmap_marginal_conditional_validate`.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
@@ -304,7 +346,11 @@ size_t wc_envmap_marginal_conditional_sample(const uint32_t *storage,
 
 // Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
 // the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
-// sample at that point reports. Returns `n`, or 0 as for `wc_envmap_marginal_conditional_sample`.
+// sample at that point reports. Returns `n`, or 0 (writing nothing) for `n == 0`, a null or
+// misaligned pointer, a count whose byte size overflows, an `out` that overlaps the storage
+// or overlaps `uv` other than exactly in place (`out == uv`: density `i` overwrites float
+// `i` after point `i / 2` was read), or a storage that fails
+// `wc_envmap_marginal_conditional_validate`.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
@@ -315,25 +361,34 @@ size_t wc_envmap_marginal_conditional_pdf(const uint32_t *storage,
                                           float *out,
                                           size_t n);
 
-// Rec. 709 luminance of `n` RGB texels (`3n` floats) to `n` weights (NaN and negatives
-// weigh 0). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or
-// overlapping arrays other than `rgb == out`.
+// Rec. 709 luminance of `n` linear RGB texels (`3n` floats) as `n` weights:
+// `0.2126 R + 0.7152 G + 0.0722 B` (in that order, without FMA) where positive, else `+0.0`:
+// NaN (a NaN channel, or infinite channels of opposite signs) and negatives weigh 0, as in
+// the builds; `+inf` stays `+inf` (a build then returns `WC_ERR_INFINITE_WEIGHT`). Never NaN
+// or negative; bit-identical to the Rust crate's `image::luminance`. Returns `n`, or 0
+// (writing nothing) for `n == 0`, a null or misaligned pointer, a count whose byte size
+// overflows, or overlapping arrays other than exactly in place (`rgb == out`).
 //
 // # Safety
 // `rgb` must be readable for `3n` floats and `out` writable for `n` floats.
 size_t wc_envmap_luminance(const float *rgb, float *out, size_t n);
 
 // Multiplies row `r` of a lat-long weight map (in place, `width * height` floats) by
-// `sin(pi (r + 1/2) / height)`, its solid-angle factor. Returns `WC_OK`, `WC_ERR_ZERO_SIZE`
-// or `WC_ERR_INVALID_ARGUMENT` (null or misaligned pointer).
+// `sin(pi (r + 1/2) / height)`, its solid-angle factor. Returns `WC_OK` or the first failed
+// check, in this order: `WC_ERR_ZERO_SIZE` (`width` or `height` is 0), `WC_ERR_TOO_LARGE`
+// (`width * height` floats larger than `PTRDIFF_MAX` bytes: no such array exists),
+// `WC_ERR_INVALID_ARGUMENT` (a null or misaligned pointer). Writes nothing on error.
 //
 // # Safety
-// `weights` must be readable and writable for `width * height` floats.
+// `weights` must be readable and writable for `width * height` floats (only when the checks
+// above pass).
 int32_t wc_envmap_latlong_solid_angle_weights(float *weights, uint32_t width, uint32_t height);
 
 // Lat-long density conversion: `n` densities over the square (`pdf`) at rows `v` (`n`
 // floats) to densities per steradian, `pdf / (2 pi^2 sin(pi v))` (0 at the poles). Returns
-// `n`, or 0 (writing nothing) for a null or misaligned pointer or an `out` overlapping `v`.
+// `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count whose byte
+// size overflows, an `out` overlapping `v`, or an `out` overlapping `pdf` other than
+// exactly in place (`pdf == out`).
 //
 // # Safety
 // `pdf` and `v` must be readable for `n` floats and `out` writable for `n` floats.
@@ -341,14 +396,22 @@ size_t wc_envmap_latlong_pdf_to_solid_angle(const float *pdf, const float *v, fl
 
 // Resamples a lat-long image (`src_width x src_height` texels of `channels` floats, 1 to 4)
 // onto the `size x size` equal-area octahedral square (`dst`, `size * size * channels`
-// floats), each output texel the average of `supersample^2` stratified point samples
-// (bilinear, wrapping in longitude). Returns `WC_OK` or `WC_ERR_ZERO_SIZE`,
-// `WC_ERR_TOO_LARGE`, `WC_ERR_INVALID_ARGUMENT` (channels outside 1..=4, a null or
-// misaligned pointer, overlapping arrays).
+// floats), each output texel the average of `supersample^2` stratified point samples of the
+// source (nearest texel; NaN and negative channels count as 0). Returns `WC_OK` or the first
+// failed check, in this order:
+//
+// * `WC_ERR_ZERO_SIZE`: `src_width`, `src_height`, `size` or `supersample` is 0;
+// * `WC_ERR_INVALID_ARGUMENT`: `channels` is not 1, 2, 3 or 4;
+// * `WC_ERR_TOO_LARGE`: `src_width`, `src_height` or `size` above 2^24, `supersample` above
+//   64, or `src` or `dst` larger than `PTRDIFF_MAX` bytes (32-bit targets);
+// * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or `src` and `dst` overlapping.
+//
+// Nothing is read or written before these checks pass, so on error `dst` is untouched; on
+// success exactly `size * size * channels` floats are written.
 //
 // # Safety
 // `src` must be readable for `src_width * src_height * channels` floats and `dst` writable
-// for `size * size * channels` floats.
+// for `size * size * channels` floats (only when the checks above pass).
 int32_t wc_envmap_latlong_to_equal_area(const float *src,
                                         uint32_t src_width,
                                         uint32_t src_height,

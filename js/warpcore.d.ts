@@ -152,11 +152,17 @@ export interface Warpcore {
   envmapHierarchical(weights: Float32Array, width: number, height: number): EnvMap;
   /** Marginal-conditional distribution (a row by its total, then a column). */
   envmapMarginalConditional(weights: Float32Array, width: number, height: number): EnvMap;
-  /** An EnvMap from storage words (`EnvMap.storage()` or a file written through the C API). */
+  /**
+   * An EnvMap from storage words (`EnvMap.storage()` or a file written through the C API).
+   * `options.verify` (default true) is read once, first; a throwing getter becomes a TypeError.
+   */
   envmapFromStorage(words: Uint32Array, options?: { verify?: boolean }): EnvMap;
   /** The EnvMap class of this instance, for `instanceof` (its constructor is not public). */
   readonly EnvMap: abstract new (...args: never[]) => EnvMap;
-  /** Rec. 709 luminance of RGB texels (`3n` floats) to `n` weights. */
+  /**
+   * Rec. 709 luminance of RGB texels (`3n` floats) as `n` weights: 0.2126 R + 0.7152 G +
+   * 0.0722 B where positive, else +0 (NaN and negatives weigh 0; +Infinity stays).
+   */
   envmapLuminance(rgb: Float32Array, out?: Float32Array): Float32Array;
   /** A copy of the weights with row r multiplied by sin(pi (r + 1/2) / height). */
   envmapLatlongSolidAngleWeights(weights: Float32Array, width: number, height: number): Float32Array;

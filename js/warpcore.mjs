@@ -14,10 +14,60 @@
 // The memory grows on demand and is never shrunk (WebAssembly cannot shrink memory).
 // See docs/javascript.md.
 
-const TYPED_ARRAY_TAG = Object.getOwnPropertyDescriptor(
-  Object.getPrototypeOf(Uint8Array.prototype),
-  Symbol.toStringTag,
-).get;
+// Intrinsics, captured when this module is evaluated. The argument checks, the copies in and
+// out of wasm memory and the error messages use only these: no user code runs during a call
+// (not a typed-array subclass's methods or getters, a Proxy trap, a `toString`/`valueOf`, or a
+// built-in prototype patched after loading), and no view of the module's memory is ever
+// handed to anything but these intrinsics. See docs/javascript.md, "Hostile callers".
+const {
+  ArrayBuffer: ArrayBuffer_,
+  Error: Error_,
+  FinalizationRegistry: FinalizationRegistry_,
+  Float32Array: F32,
+  Function: Function_,
+  Int32Array: I32,
+  Math: Math_,
+  Number: Number_,
+  Object: Object_,
+  RangeError: RangeError_,
+  Symbol: Symbol_,
+  TypeError: TypeError_,
+  Uint8Array: U8,
+  Uint32Array: U32,
+  WebAssembly: WebAssembly_,
+} = globalThis;
+const uncurry = Function_.prototype.bind.bind(Function_.prototype.call);
+const getPrototypeOf = Object_.getPrototypeOf;
+const defineProperty = Object_.defineProperty;
+const freeze = Object_.freeze;
+const isView = ArrayBuffer_.isView;
+const isInteger = Number_.isInteger;
+const ceil = Math_.ceil;
+const getter = (o, key) => uncurry(Object_.getOwnPropertyDescriptor(o, key).get);
+const TypedArray = getPrototypeOf(U8.prototype);
+const TA_TAG = getter(TypedArray, Symbol_.toStringTag);
+const TA_LENGTH = getter(TypedArray, 'length');
+const TA_BUFFER = getter(TypedArray, 'buffer');
+const TA_BYTE_OFFSET = getter(TypedArray, 'byteOffset');
+const TA_SET = uncurry(TypedArray.set);
+const MEMORY_BUFFER = getter(WebAssembly_.Memory.prototype, 'buffer');
+const MEMORY_GROW = uncurry(WebAssembly_.Memory.prototype.grow);
+const AB_BYTE_LENGTH = getter(ArrayBuffer_.prototype, 'byteLength');
+const REGISTER = FinalizationRegistry_ ? uncurry(FinalizationRegistry_.prototype.register) : null;
+const UNREGISTER = FinalizationRegistry_ ? uncurry(FinalizationRegistry_.prototype.unregister) : null;
+const instantiate = WebAssembly_.instantiate;
+const compileBytes = WebAssembly_.compile;
+const DISPOSE = Symbol_.dispose ?? Symbol_.for('Symbol.dispose');
+
+// The typed-array types the API takes: constructor, exact prototype, name (the intrinsic
+// [Symbol.toStringTag]) and element size.
+const TYPES = { __proto__: null };
+for (const [T, name] of [[F32, 'Float32Array'], [U32, 'Uint32Array'], [I32, 'Int32Array']]) {
+  TYPES[name] = { T, proto: T.prototype, name, bytes: 4 };
+}
+const F = TYPES.Float32Array;
+const U = TYPES.Uint32Array;
+const I = TYPES.Int32Array;
 
 const isNode = typeof process === 'object' && process !== null && typeof process.versions?.node === 'string';
 
@@ -38,7 +88,7 @@ export async function load(source) {
   const module = await compile(source === undefined || source === null ? new URL('./warpcore.wasm', import.meta.url) : source);
   // An empty import object: the module imports nothing (if a panic path were linked, the
   // module would import `env.abort` and this would throw a LinkError).
-  const instance = await WebAssembly.instantiate(module, {});
+  const instance = await instantiate(module, {});
   return create(instance.exports);
 }
 
@@ -73,34 +123,63 @@ async function compile(source) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Argument checks
+// Argument checks: intrinsics only (see the top of this file)
 
+const typeError = (message) => new TypeError_(`warpcore: ${message}`);
+const rangeError = (message) => new RangeError_(`warpcore: ${message}`);
+
+/** What `x` is, for an error message, without running user code. */
 function describe(x) {
   if (x === null) return 'null';
-  if (ArrayBuffer.isView(x)) return TYPED_ARRAY_TAG.call(x) ?? 'DataView';
-  if (Array.isArray(x)) return 'an Array';
-  return typeof x === 'object' ? (x.constructor?.name ?? 'an object') : typeof x;
+  const t = typeof x;
+  if (t !== 'object' && t !== 'function') return t;
+  if (isView(x)) {
+    const tag = TA_TAG(x);
+    if (tag === undefined) return 'a DataView';
+    const known = TYPES[tag];
+    return known !== undefined && getPrototypeOf(x) !== known.proto ? `a ${tag} subclass (or one from another realm)` : `a ${tag}`;
+  }
+  return t === 'function' ? 'a function' : 'an object';
 }
 
-function array(a, Type, name) {
-  if (!ArrayBuffer.isView(a) || TYPED_ARRAY_TAG.call(a) !== Type.name) {
-    throw new TypeError(`warpcore: ${name} must be a ${Type.name}, not ${describe(a)}`);
+/** Is the typed array `a` over a detached buffer? (Its intrinsic length then reads 0.) */
+function detached(a) {
+  if (TA_LENGTH(a) !== 0) return false;
+  try {
+    new U8(TA_BUFFER(a), 0, 0);
+    return false;
+  } catch {
+    return true;
   }
-  return a;
 }
 
-function elements(a, Type, dim, name) {
-  array(a, Type, name);
-  if (a.length % dim !== 0) {
-    throw new RangeError(`warpcore: ${name}.length must be a multiple of ${dim}, got ${a.length}`);
+/**
+ * Checks that `a` is exactly a `type` (a typed array of this realm whose prototype is the
+ * type's own: no subclass, no Proxy, no DataView) over a live buffer, and returns its length
+ * read with the intrinsic getter.
+ */
+function array(a, type, name) {
+  // `isView` is false for a Proxy; for a real typed array the tag getter and the prototype
+  // lookup run no user code.
+  if (!isView(a) || TA_TAG(a) !== type.name || getPrototypeOf(a) !== type.proto) {
+    throw typeError(`${name} must be a ${type.name}, not ${describe(a)}`);
   }
-  return a.length / dim;
+  if (detached(a)) throw typeError(`${name} is a ${type.name} over a detached ArrayBuffer`);
+  return TA_LENGTH(a);
+}
+
+function elements(a, type, dim, name) {
+  const length = array(a, type, name);
+  if (length % dim !== 0) {
+    throw rangeError(`${name}.length must be a multiple of ${dim}, got ${length}`);
+  }
+  return length / dim;
 }
 
 function integer(x, name, max) {
-  if (typeof x !== 'number') throw new TypeError(`warpcore: ${name} must be a number, not ${describe(x)}`);
-  if (!Number.isInteger(x) || x < 0 || x > max) {
-    throw new RangeError(`warpcore: ${name} must be an integer in [0, ${max}], got ${x}`);
+  if (typeof x !== 'number') throw typeError(`${name} must be a number, not ${describe(x)}`);
+  if (!isInteger(x) || x < 0 || x > max) {
+    throw rangeError(`${name} must be an integer in [0, ${max}], got ${x}`);
   }
   return x;
 }
@@ -108,12 +187,15 @@ function integer(x, name, max) {
 const count = (n, name = 'n') => integer(n, name, MAX_COUNT);
 const u32 = (x, name) => integer(x, name, 0xffff_ffff);
 
-function output(out, Type, length) {
-  if (out === undefined) return new Type(length);
-  array(out, Type, 'out');
-  if (out.length !== length) throw new RangeError(`warpcore: out.length must be ${length}, got ${out.length}`);
+function output(out, type, length) {
+  if (out === undefined) return new type.T(length);
+  const got = array(out, type, 'out');
+  if (got !== length) throw rangeError(`out.length must be ${length}, got ${got}`);
   return out;
 }
+
+/** The first `length` elements of the typed array `a`, as a new view of its buffer. */
+const prefix = (a, type, length) => new type.T(TA_BUFFER(a), TA_BYTE_OFFSET(a), length);
 
 // ---------------------------------------------------------------------------------------------
 // The heap above __heap_base
@@ -121,59 +203,77 @@ function output(out, Type, length) {
 const BLOCK_ALIGN = 64; // env-map tables are best 64-byte aligned; every block is
 const PAGE = 65536;
 const ADDRESS_SPACE = 2 ** 32;
-const alignUp = (x, a) => Math.ceil(x / a) * a;
+const alignUp = (x, a) => ceil(x / a) * a;
 
 class Heap {
   constructor(memory, base) {
     this.memory = memory;
     this.base = alignUp(base, BLOCK_ALIGN);
-    this.blocks = []; // live blocks [start, end), sorted by start
+    // Live blocks [start, end), sorted by start: two parallel arrays of numbers, edited by
+    // index (no Array.prototype method runs).
+    this.starts = [];
+    this.ends = [];
   }
 
   /** Reserves `bytes` (first fit), growing the memory when needed; RangeError when it cannot. */
   alloc(bytes) {
-    const size = alignUp(Math.max(bytes, 1), BLOCK_ALIGN);
+    const size = alignUp(bytes > 1 ? bytes : 1, BLOCK_ALIGN);
+    const { starts, ends } = this;
     let at = this.base;
     let i = 0;
-    for (; i < this.blocks.length; i++) {
-      if (this.blocks[i].start - at >= size) break;
-      at = this.blocks[i].end;
+    for (; i < starts.length; i++) {
+      if (starts[i] - at >= size) break;
+      at = ends[i];
     }
     const end = at + size;
     if (end > ADDRESS_SPACE) {
-      throw new RangeError(`warpcore: ${bytes} bytes do not fit in the 4 GiB of wasm32 memory`);
+      throw rangeError(`${bytes} bytes do not fit in the 4 GiB of wasm32 memory`);
     }
-    const have = this.memory.buffer.byteLength;
+    const have = AB_BYTE_LENGTH(MEMORY_BUFFER(this.memory));
     if (end > have) {
       try {
-        this.memory.grow(Math.ceil((end - have) / PAGE));
-      } catch (e) {
-        throw new RangeError(`warpcore: cannot grow the wasm memory to ${end} bytes (${e.message})`);
+        MEMORY_GROW(this.memory, ceil((end - have) / PAGE));
+      } catch {
+        throw rangeError(`cannot grow the wasm memory to ${end} bytes`);
       }
     }
-    this.blocks.splice(i, 0, { start: at, end });
+    for (let k = starts.length; k > i; k--) {
+      starts[k] = starts[k - 1];
+      ends[k] = ends[k - 1];
+    }
+    starts[i] = at;
+    ends[i] = end;
     return at;
   }
 
   free(start) {
-    const i = this.blocks.findIndex((b) => b.start === start);
-    if (i >= 0) this.blocks.splice(i, 1);
+    const { starts, ends } = this;
+    for (let i = 0; i < starts.length; i++) {
+      if (starts[i] === start) {
+        for (let k = i; k + 1 < starts.length; k++) {
+          starts[k] = starts[k + 1];
+          ends[k] = ends[k + 1];
+        }
+        starts.length -= 1;
+        ends.length -= 1;
+        return;
+      }
+    }
   }
 
   /** Bytes reserved by live blocks. */
   get used() {
-    return this.blocks.reduce((s, b) => s + b.end - b.start, 0);
+    let sum = 0;
+    for (let i = 0; i < this.starts.length; i++) sum += this.ends[i] - this.starts[i];
+    return sum;
   }
 }
 
 // ---------------------------------------------------------------------------------------------
 // The API
 
-const F32 = Float32Array;
-const U32 = Uint32Array;
-const I32 = Int32Array;
-
 const CODES = {
+  __proto__: null,
   '-1': ['WC_ERR_ZERO_SIZE', 'a zero width or height'],
   '-2': ['WC_ERR_TOO_LARGE', 'a side above 2^24, or tables above 2^32 words'],
   '-3': ['WC_ERR_LENGTH_MISMATCH', 'an array length that does not match the sizes'],
@@ -186,15 +286,19 @@ const CODES = {
 };
 
 function fail(code, what) {
-  const [name, meaning] = CODES[code] ?? ['WC_ERR_OTHER', `error ${code}`];
-  const e = new RangeError(`warpcore: ${what}: ${meaning} (${name})`);
-  e.code = name;
+  const known = CODES[code];
+  const name = known !== undefined ? known[0] : 'WC_ERR_OTHER';
+  const meaning = known !== undefined ? known[1] : `error ${code}`;
+  const e = new RangeError_(`warpcore: ${what}: ${meaning} (${name})`);
+  // defineProperty, not assignment: no setter a caller put on RangeError.prototype runs.
+  defineProperty(e, 'code', { value: name, writable: true, enumerable: true, configurable: true });
   return e;
 }
 
 // Environment-map storage tags (header word 0, little-endian bytes "wcHI" / "wcMC").
 const tag = (s) => s.charCodeAt(0) | (s.charCodeAt(1) << 8) | (s.charCodeAt(2) << 16) | ((s.charCodeAt(3) << 24) >>> 0);
 const KINDS = {
+  __proto__: null,
   hierarchical: { prefix: 'wc_envmap_hierarchical_', tag: tag('wcHI') },
   'marginal-conditional': { prefix: 'wc_envmap_marginal_conditional_', tag: tag('wcMC') },
 };
@@ -204,32 +308,45 @@ const SAMPLE_WORDS = 5; // WcEnvSample: uv[2], pdf, texel[2]
 function create(x) {
   const memory = x.memory;
   const heap = new Heap(memory, x.__heap_base.value);
+  /** A view of the module's memory: only ever passed to the intrinsics, never returned. */
+  const view = (type, p, length) => new type.T(MEMORY_BUFFER(memory), p, length);
 
-  // Runs `body(pointers)` with one block holding `regions` ([Type, length, source?] each,
-  // 64-byte aligned, `source` copied in); the block is released afterwards.
+  // Runs `body(p0, p1, p2)` with one block holding up to three regions, each
+  // `[type, length, source]` (64-byte aligned; `source`, a checked typed array of `length`
+  // or more elements, copied in); the block is released afterwards.
   function scratch(regions, body) {
-    const offsets = [];
+    const offsets = [0, 0, 0];
     let total = 0;
-    for (const [Type, length] of regions) {
-      offsets.push(total);
-      total += alignUp(length * Type.BYTES_PER_ELEMENT, BLOCK_ALIGN);
+    for (let k = 0; k < regions.length; k++) {
+      offsets[k] = total;
+      total += alignUp(regions[k][1] * regions[k][0].bytes, BLOCK_ALIGN);
     }
     const base = heap.alloc(total);
     try {
-      const pointers = regions.map(([Type, length, source], k) => {
-        const p = base + offsets[k];
-        if (source) new Type(memory.buffer, p, length).set(source);
-        return p;
-      });
-      return body(pointers);
+      const p = [0, 0, 0];
+      for (let k = 0; k < regions.length; k++) {
+        const type = regions[k][0];
+        const length = regions[k][1];
+        const source = regions[k][2];
+        p[k] = base + offsets[k];
+        if (source !== undefined) {
+          const from = TA_LENGTH(source) === length ? source : prefix(source, type, length);
+          TA_SET(view(type, p[k], length), from);
+        }
+      }
+      return body(p[0], p[1], p[2]);
     } finally {
       heap.free(base);
     }
   }
 
-  const read = (Type, p, length, out) => (out.set(new Type(memory.buffer, p, length)), out);
+  /** Copies `length` elements at `p` into `out` and returns it. */
+  const read = (type, p, length, out) => {
+    TA_SET(out, view(type, p, length));
+    return out;
+  };
   const expect = (got, want, what) => {
-    if (got >>> 0 !== want) throw new Error(`warpcore: internal error: ${what} returned ${got >>> 0}, expected ${want}`);
+    if (got >>> 0 !== want) throw new Error_(`warpcore: internal error: ${what} returned ${got >>> 0}, expected ${want}`);
   };
 
   // `n` elements of `I` values of `In` to `n` elements of `O` values of `Out`: C `f(in, out, n)`.
@@ -237,107 +354,109 @@ function create(x) {
     const n = elements(input, In, I, name);
     const result = output(out, Out, n * O);
     if (n === 0) return result;
-    return scratch([[In, n * I, input], [Out, n * O]], ([pi, po]) => {
-      expect(f(pi, po, n), n, f.name);
+    return scratch([[In, n * I, input], [Out, n * O]], (pi, po) => {
+      expect(f(pi, po, n), n, name);
       return read(Out, po, n * O, result);
     });
   };
 
-  // Index-driven sequences: C `f(...args, out, n)` filling `n` elements of `O` floats.
-  const generate = (f, O, n, out, ...args) => {
+  // Index-driven sequences: C `f(a, b, out, n)` (or `f(a, b, c, out, n)`) filling `n`
+  // elements of `O` floats.
+  const generate = (f, O, n, out, a, b, c) => {
     count(n);
-    const result = output(out, F32, n * O);
+    const result = output(out, F, n * O);
     if (n === 0) return result;
-    return scratch([[F32, n * O]], ([po]) => {
-      expect(f(...args, po, n), n, f.name);
-      return read(F32, po, n * O, result);
+    return scratch([[F, n * O]], (po) => {
+      expect(c === undefined ? f(a, b, po, n) : f(a, b, c, po, n), n, 'generator');
+      return read(F, po, n * O, result);
     });
   };
 
   // Four disk samples per point: C `f(points, n_points, out, n)`.
   const fourPerPoint = (f) => (points, n, out) => {
-    const np = elements(points, F32, 2, 'points');
+    const np = elements(points, F, 2, 'points');
     n = n === undefined ? 4 * np : count(n);
-    if (n > 4 * np) throw new RangeError(`warpcore: n = ${n} needs ${Math.ceil(n / 4)} points, got ${np}`);
-    const result = output(out, F32, 2 * n);
+    if (n > 4 * np) throw rangeError(`n = ${n} needs ${ceil(n / 4)} points, got ${np}`);
+    const result = output(out, F, 2 * n);
     if (n === 0) return result;
-    const used = Math.ceil(n / 4);
-    return scratch([[F32, 2 * used, points.subarray(0, 2 * used)], [F32, 2 * n]], ([pp, po]) => {
-      expect(f(pp, used, po, n), n, f.name);
-      return read(F32, po, 2 * n, result);
+    const used = ceil(n / 4);
+    return scratch([[F, 2 * used, points], [F, 2 * n]], (pp, po) => {
+      expect(f(pp, used, po, n), n, 'four per point');
+      return read(F, po, 2 * n, result);
     });
   };
 
   // Inverse with quadrants: C `f(p, out, quadrant, n)`.
   const withQuadrant = (f) => (p) => {
-    const n = elements(p, F32, 2, 'p');
+    const n = elements(p, F, 2, 'p');
     const u = new F32(2 * n);
     const quadrant = new U32(n);
     if (n === 0) return { u, quadrant };
-    return scratch([[F32, 2 * n, p], [F32, 2 * n], [U32, n]], ([pp, pu, pq]) => {
-      expect(f(pp, pu, pq, n), n, f.name);
-      return { u: read(F32, pu, 2 * n, u), quadrant: read(U32, pq, n, quadrant) };
+    return scratch([[F, 2 * n, p], [F, 2 * n], [U, n]], (pp, pu, pq) => {
+      expect(f(pp, pu, pq, n), n, 'inverse');
+      return { u: read(F, pu, 2 * n, u), quadrant: read(U, pq, n, quadrant) };
     });
   };
 
   // Two inputs of `n` and `n * D` floats to `n` floats: C `f(a, b, out, n)`.
   const pair = (f, D, nameA, nameB) => (a, b, out) => {
-    const n = elements(a, F32, 1, nameA);
-    if (elements(b, F32, D, nameB) !== n) {
-      throw new RangeError(`warpcore: ${nameB}.length must be ${D * n} (${D} per ${nameA} value), got ${b.length}`);
+    const n = elements(a, F, 1, nameA);
+    const m = elements(b, F, D, nameB);
+    if (m !== n) {
+      throw rangeError(`${nameB}.length must be ${D * n} (${D} per ${nameA} value), got ${D * m}`);
     }
-    const result = output(out, F32, n);
+    const result = output(out, F, n);
     if (n === 0) return result;
-    return scratch([[F32, n, a], [F32, D * n, b], [F32, n]], ([pa, pb, po]) => {
-      expect(f(pa, pb, po, n), n, f.name);
-      return read(F32, po, n, result);
+    return scratch([[F, n, a], [F, D * n, b], [F, n]], (pa, pb, po) => {
+      expect(f(pa, pb, po, n), n, nameA);
+      return read(F, po, n, result);
     });
   };
 
   const api = {
     // disk
-    diskPolar: map(x.wc_disk_polar, F32, 2, F32, 2),
-    diskPolarInverse: map(x.wc_disk_polar_inverse, F32, 2, F32, 2, 'p'),
-    diskConcentric: map(x.wc_disk_concentric, F32, 2, F32, 2),
-    diskConcentricInverse: map(x.wc_disk_concentric_inverse, F32, 2, F32, 2, 'p'),
+    diskPolar: map(x.wc_disk_polar, F, 2, F, 2),
+    diskPolarInverse: map(x.wc_disk_polar_inverse, F, 2, F, 2, 'p'),
+    diskConcentric: map(x.wc_disk_concentric, F, 2, F, 2),
+    diskConcentricInverse: map(x.wc_disk_concentric_inverse, F, 2, F, 2, 'p'),
     diskPolar4: fourPerPoint(x.wc_disk_polar4),
     diskPolar4Inverse: withQuadrant(x.wc_disk_polar4_inverse),
     diskConcentric4: fourPerPoint(x.wc_disk_concentric4),
     diskConcentric4Inverse: withQuadrant(x.wc_disk_concentric4_inverse),
 
     // triangle
-    triangleUniform: map(x.wc_triangle_uniform, F32, 2, F32, 3),
-    triangleUniformInverse: map(x.wc_triangle_uniform_inverse, F32, 3, F32, 2, 'b'),
-    triangleSqrtMap: map(x.wc_triangle_sqrt_map, F32, 2, F32, 3),
-    triangleSqrtMapInverse: map(x.wc_triangle_sqrt_map_inverse, F32, 3, F32, 2, 'b'),
+    triangleUniform: map(x.wc_triangle_uniform, F, 2, F, 3),
+    triangleUniformInverse: map(x.wc_triangle_uniform_inverse, F, 3, F, 2, 'b'),
+    triangleSqrtMap: map(x.wc_triangle_sqrt_map, F, 2, F, 3),
+    triangleSqrtMapInverse: map(x.wc_triangle_sqrt_map_inverse, F, 3, F, 2, 'b'),
     triangleBasuOwen: (start, seed, n, out) =>
       generate(x.wc_triangle_basu_owen, 3, n, out, u32(start, 'start'), u32(seed, 'seed')),
     triangleBasuOwenPermuted: (start, seed, n, out) =>
       generate(x.wc_triangle_basu_owen_permuted, 3, n, out, u32(start, 'start'), u32(seed, 'seed')),
 
     // sphere
-    sphereEqualArea: map(x.wc_sphere_equal_area, F32, 2, F32, 3),
-    sphereEqualAreaInverse: map(x.wc_sphere_equal_area_inverse, F32, 3, F32, 2, 'd'),
-    sphereEqualAreaWrap: map(x.wc_sphere_equal_area_wrap, F32, 2, F32, 2),
-    sphereEquirect: map(x.wc_sphere_equirect, F32, 2, F32, 3),
-    sphereEquirectInverse: map(x.wc_sphere_equirect_inverse, F32, 3, F32, 2, 'd'),
-    sphereUniform: map(x.wc_sphere_uniform, F32, 2, F32, 3),
-    sphereUniformInverse: map(x.wc_sphere_uniform_inverse, F32, 3, F32, 2, 'd'),
-    sphereUniformHemisphere: map(x.wc_sphere_uniform_hemisphere, F32, 2, F32, 3),
-    sphereUniformHemisphereInverse: map(x.wc_sphere_uniform_hemisphere_inverse, F32, 3, F32, 2, 'd'),
-    sphereCosineHemisphere: map(x.wc_sphere_cosine_hemisphere, F32, 2, F32, 3),
-    sphereCosineHemisphereInverse: map(x.wc_sphere_cosine_hemisphere_inverse, F32, 3, F32, 2, 'd'),
-    sphereEqualAreaPdfToSolidAngle: map(x.wc_sphere_equal_area_pdf_to_solid_angle, F32, 1, F32, 1, 'pdf'),
-    sphereCosineHemispherePdf: map(x.wc_sphere_cosine_hemisphere_pdf, F32, 1, F32, 1, 'cosTheta'),
+    sphereEqualArea: map(x.wc_sphere_equal_area, F, 2, F, 3),
+    sphereEqualAreaInverse: map(x.wc_sphere_equal_area_inverse, F, 3, F, 2, 'd'),
+    sphereEqualAreaWrap: map(x.wc_sphere_equal_area_wrap, F, 2, F, 2),
+    sphereEquirect: map(x.wc_sphere_equirect, F, 2, F, 3),
+    sphereEquirectInverse: map(x.wc_sphere_equirect_inverse, F, 3, F, 2, 'd'),
+    sphereUniform: map(x.wc_sphere_uniform, F, 2, F, 3),
+    sphereUniformInverse: map(x.wc_sphere_uniform_inverse, F, 3, F, 2, 'd'),
+    sphereUniformHemisphere: map(x.wc_sphere_uniform_hemisphere, F, 2, F, 3),
+    sphereUniformHemisphereInverse: map(x.wc_sphere_uniform_hemisphere_inverse, F, 3, F, 2, 'd'),
+    sphereCosineHemisphere: map(x.wc_sphere_cosine_hemisphere, F, 2, F, 3),
+    sphereCosineHemisphereInverse: map(x.wc_sphere_cosine_hemisphere_inverse, F, 3, F, 2, 'd'),
+    sphereEqualAreaPdfToSolidAngle: map(x.wc_sphere_equal_area_pdf_to_solid_angle, F, 1, F, 1, 'pdf'),
+    sphereCosineHemispherePdf: map(x.wc_sphere_cosine_hemisphere_pdf, F, 1, F, 1, 'cosTheta'),
     sphereEquirectPdfToSolidAngle: pair(x.wc_sphere_equirect_pdf_to_solid_angle, 3, 'pdf', 'd'),
     sphereEqualAreaWrapTexel(texels, size, out) {
-      const n = elements(texels, I32, 2, 'texels');
-      if (u32(size, 'size') === 0) throw new RangeError('warpcore: size must be at least 1');
-      const result = output(out, U32, 2 * n);
+      const n = elements(texels, I, 2, 'texels');
+      if (u32(size, 'size') === 0) throw rangeError('size must be at least 1');
+      const result = output(out, U, 2 * n);
       if (n === 0) return result;
-      return scratch([[I32, 2 * n, texels], [U32, 2 * n]], ([pt, po]) => {
+      return scratch([[I, 2 * n, texels], [U, 2 * n]], (pt, po) => {
         expect(x.wc_sphere_equal_area_wrap_texel(pt, size, po, n), n, 'wc_sphere_equal_area_wrap_texel');
-        return read(U32, po, 2 * n, result);
+        return read(U, po, 2 * n, result);
       });
     },
 
@@ -348,21 +467,21 @@ function create(x) {
       u32(set, 'set');
       u32(start, 'start');
       count(n);
-      const result = output(out, U32, 2 * n);
+      const result = output(out, U, 2 * n);
       if (n === 0) return result;
-      return scratch([[U32, 2 * n]], ([po]) => {
+      return scratch([[U, 2 * n]], (po) => {
         expect(x.wc_pmj02bn_raw(set, start, po, n), n, 'wc_pmj02bn_raw');
-        return read(U32, po, 2 * n, result);
+        return read(U, po, 2 * n, result);
       });
     },
     pmj02bnShuffle(index, seed, out) {
-      const n = elements(index, U32, 1, 'index');
+      const n = elements(index, U, 1, 'index');
       u32(seed, 'seed');
-      const result = output(out, U32, n);
+      const result = output(out, U, n);
       if (n === 0) return result;
-      return scratch([[U32, n, index], [U32, n]], ([pi, po]) => {
+      return scratch([[U, n, index], [U, n]], (pi, po) => {
         expect(x.wc_pmj02bn_shuffle(pi, seed, po, n), n, 'wc_pmj02bn_shuffle');
-        return read(U32, po, n, result);
+        return read(U, po, n, result);
       });
     },
     pmj02bnPoints: x.wc_pmj02bn_points() >>> 0,
@@ -373,79 +492,79 @@ function create(x) {
       generate(x.wc_sequence_stratified, 2, n, out, u32(start, 'start'), u32(count_, 'count'), u32(seed, 'seed')),
 
     // environment maps: helpers
-    envmapLuminance: map(x.wc_envmap_luminance, F32, 3, F32, 1, 'rgb'),
+    envmapLuminance: map(x.wc_envmap_luminance, F, 3, F, 1, 'rgb'),
     envmapLatlongPdfToSolidAngle: pair(x.wc_envmap_latlong_pdf_to_solid_angle, 1, 'pdf', 'v'),
     envmapLatlongSolidAngleWeights(weights, width, height) {
       const n = size(weights, width, height, 1, 'weights');
       const result = new F32(n);
-      return scratch([[F32, n, weights]], ([pw]) => {
+      return scratch([[F, n, weights]], (pw) => {
         const code = x.wc_envmap_latlong_solid_angle_weights(pw, width, height);
         if (code !== 0) throw fail(code, 'envmapLatlongSolidAngleWeights');
-        return read(F32, pw, n, result);
+        return read(F, pw, n, result);
       });
     },
     envmapLatlongToEqualArea(src, srcWidth, srcHeight, channels, size_, supersample) {
-      if (typeof channels !== 'number' || !Number.isInteger(channels) || channels < 1 || channels > 4) {
-        throw new (typeof channels === 'number' ? RangeError : TypeError)(`warpcore: channels must be 1, 2, 3 or 4, got ${channels}`);
+      if (typeof channels !== 'number') throw typeError(`channels must be a number, not ${describe(channels)}`);
+      if (!isInteger(channels) || channels < 1 || channels > 4) {
+        throw rangeError(`channels must be 1, 2, 3 or 4, got ${channels}`);
       }
       const n = size(src, srcWidth, srcHeight, channels, 'src');
       u32(size_, 'size');
       u32(supersample, 'supersample');
       if (size_ === 0 || supersample === 0) throw fail(-1, 'envmapLatlongToEqualArea');
+      if (size_ > 1 << 24 || supersample > 64) throw fail(-2, 'envmapLatlongToEqualArea');
       const m = size_ * size_ * channels;
       if (m > MAX_COUNT) throw fail(-2, 'envmapLatlongToEqualArea');
       const result = new F32(m);
-      return scratch([[F32, n, src], [F32, m]], ([ps, pd]) => {
+      return scratch([[F, n, src], [F, m]], (ps, pd) => {
         const code = x.wc_envmap_latlong_to_equal_area(ps, srcWidth, srcHeight, channels, pd, size_, supersample);
         if (code !== 0) throw fail(code, 'envmapLatlongToEqualArea');
-        return read(F32, pd, m, result);
+        return read(F, pd, m, result);
       });
     },
   };
 
   // Checks `width x height` texels of `channels` floats in `a`; returns the length.
   function size(a, width, height, channels, name) {
-    array(a, F32, name);
+    const length = array(a, F, name);
     u32(width, 'width');
     u32(height, 'height');
     if (width === 0 || height === 0) throw fail(-1, name);
     const n = width * height * channels;
-    if (a.length !== n) {
-      throw new RangeError(`warpcore: ${name}.length must be ${n} (${width} x ${height}${channels > 1 ? ` x ${channels}` : ''}), got ${a.length}`);
+    if (length !== n) {
+      throw rangeError(`${name}.length must be ${n} (${width} x ${height}${channels > 1 ? ` x ${channels}` : ''}), got ${length}`);
     }
     return n;
   }
 
   // ---- environment maps: tables in wasm memory, owned by an EnvMap ----
 
-  const registry = typeof FinalizationRegistry === 'function' ? new FinalizationRegistry((p) => heap.free(p)) : null;
-  const secret = Symbol('EnvMap');
+  const registry = FinalizationRegistry_ ? new FinalizationRegistry_((p) => heap.free(p)) : null;
+  const secret = Symbol_('EnvMap');
+  const own = (o, key, value) => defineProperty(o, key, { value, writable: false, enumerable: true, configurable: false });
 
   /** An environment-map distribution whose tables live in the module's memory. */
   class EnvMap {
     #p;
     #len;
-    #f;
+    #sample;
+    #pdf;
     constructor(key, kind, p, len) {
-      if (key !== secret) throw new TypeError('warpcore: use envmapHierarchical, envmapMarginalConditional or envmapFromStorage');
+      if (key !== secret) throw typeError('use envmapHierarchical, envmapMarginalConditional or envmapFromStorage');
       this.#p = p;
       this.#len = len;
-      this.#f = {
-        sample: x[KINDS[kind].prefix + 'sample'],
-        pdf: x[KINDS[kind].prefix + 'pdf'],
-      };
-      /** `'hierarchical'` or `'marginal-conditional'`. */
-      this.kind = kind;
-      const header = new U32(memory.buffer, p, HEADER_WORDS);
-      /** Texels per row. */
-      this.width = header[2];
-      /** Rows. */
-      this.height = header[3];
-      registry?.register(this, p, this);
+      this.#sample = x[KINDS[kind].prefix + 'sample'];
+      this.#pdf = x[KINDS[kind].prefix + 'pdf'];
+      const header = view(U, p, HEADER_WORDS);
+      /** `'hierarchical'` or `'marginal-conditional'`; texels per row; rows. */
+      own(this, 'kind', kind);
+      own(this, 'width', header[2]);
+      own(this, 'height', header[3]);
+      if (registry !== null) REGISTER(registry, this, p, this);
     }
 
     #live() {
-      if (this.#p === 0) throw new TypeError('warpcore: this EnvMap has been freed');
+      if (this.#p === 0) throw typeError('this EnvMap has been freed');
       return this.#p;
     }
 
@@ -461,16 +580,17 @@ function create(x) {
      */
     sample(u) {
       const p = this.#live();
-      const n = elements(u, F32, 2, 'u');
+      const n = elements(u, F, 2, 'u');
       const uv = new F32(2 * n);
       const pdf = new F32(n);
       const texel = new U32(2 * n);
       if (n === 0) return { uv, pdf, texel };
-      return scratch([[F32, 2 * n, u], [U32, SAMPLE_WORDS * n]], ([pu, po]) => {
-        expect(this.#f.sample(p, this.#len, pu, po, n), n, 'sample');
-        const w = new U32(memory.buffer, po, SAMPLE_WORDS * n);
-        const uvBits = new U32(uv.buffer);
-        const pdfBits = new U32(pdf.buffer);
+      const f = this.#sample;
+      return scratch([[F, 2 * n, u], [U, SAMPLE_WORDS * n]], (pu, po) => {
+        expect(f(p, this.#len, pu, po, n), n, 'sample');
+        const w = view(U, po, SAMPLE_WORDS * n);
+        const uvBits = new U32(TA_BUFFER(uv));
+        const pdfBits = new U32(TA_BUFFER(pdf));
         for (let i = 0, k = 0; i < n; i++, k += SAMPLE_WORDS) {
           uvBits[2 * i] = w[k];
           uvBits[2 * i + 1] = w[k + 1];
@@ -485,33 +605,37 @@ function create(x) {
     /** Densities over the unit square at `n` points `uv` (`2n` floats), bit-equal to `sample`'s. */
     pdf(uv, out) {
       const p = this.#live();
-      const n = elements(uv, F32, 2, 'uv');
-      const result = output(out, F32, n);
+      const n = elements(uv, F, 2, 'uv');
+      const result = output(out, F, n);
       if (n === 0) return result;
-      return scratch([[F32, 2 * n, uv], [F32, n]], ([pu, po]) => {
-        expect(this.#f.pdf(p, this.#len, pu, po, n), n, 'pdf');
-        return read(F32, po, n, result);
+      const f = this.#pdf;
+      return scratch([[F, 2 * n, uv], [F, n]], (pu, po) => {
+        expect(f(p, this.#len, pu, po, n), n, 'pdf');
+        return read(F, po, n, result);
       });
     }
 
     /** A copy of the storage words: the file format (little-endian bytes on every target). */
     storage() {
-      return read(U32, this.#live(), this.#len, new U32(this.#len));
+      return read(U, this.#live(), this.#len, new U32(this.#len));
     }
 
     /** Releases the tables' memory (also done when the object is garbage-collected). */
     free() {
       if (this.#p !== 0) {
-        registry?.unregister(this);
+        if (registry !== null) UNREGISTER(registry, this);
         heap.free(this.#p);
         this.#p = 0;
       }
     }
 
-    [Symbol.dispose ?? Symbol.for('Symbol.dispose')]() {
+    [DISPOSE]() {
       this.free();
     }
   }
+  // Frozen: a caller cannot replace a method or add a setter the constructor would run.
+  freeze(EnvMap.prototype);
+  freeze(EnvMap);
 
   function build(kind, weights, width, height) {
     const k = KINDS[kind];
@@ -520,7 +644,7 @@ function create(x) {
     if (len === 0xffff_ffff) throw fail(-2, `envmap ${kind}`);
     const p = heap.alloc(4 * len);
     try {
-      scratch([[F32, n, weights]], ([pw]) => {
+      scratch([[F, n, weights]], (pw) => {
         const code = x[k.prefix + 'build'](pw, width, height, p, len);
         if (code !== 0) throw fail(code, `envmap ${kind}`);
       });
@@ -531,21 +655,39 @@ function create(x) {
     return new EnvMap(secret, kind, p, len);
   }
 
-  Object.assign(api, {
+  Object_.assign(api, {
     EnvMap,
     /** The hierarchical (MIP-pyramid) distribution of `width x height` row-major weights. */
     envmapHierarchical: (weights, width, height) => build('hierarchical', weights, width, height),
     /** The marginal-conditional distribution of `width x height` row-major weights. */
     envmapMarginalConditional: (weights, width, height) => build('marginal-conditional', weights, width, height),
-    /** An EnvMap from storage words (`EnvMap.storage()`, or a file written by the C API). */
-    envmapFromStorage(words, { verify = true } = {}) {
-      array(words, U32, 'words');
-      const kind = Object.keys(KINDS).find((k) => words.length > 0 && words[0] === KINDS[k].tag);
-      if (kind === undefined) throw fail(words.length < HEADER_WORDS ? -4 : -6, 'envmapFromStorage');
-      const len = words.length;
+    /**
+     * An EnvMap from storage words (`EnvMap.storage()`, or a file written by the C API).
+     * `options.verify` (default true) is the one property of a caller's object this module
+     * reads: once, first; an exception from reading it becomes a TypeError.
+     */
+    envmapFromStorage(words, options) {
+      let verify = true;
+      if (options !== undefined) {
+        if (options === null || typeof options !== 'object') {
+          throw typeError(`options must be an object, not ${describe(options)}`);
+        }
+        let v;
+        try {
+          v = options.verify;
+        } catch {
+          throw typeError('options.verify could not be read');
+        }
+        if (v !== undefined && typeof v !== 'boolean') throw typeError(`options.verify must be a boolean, not ${describe(v)}`);
+        if (v === false) verify = false;
+      }
+      const len = array(words, U, 'words');
+      const first = len > 0 ? words[0] : -1;
+      const kind = first === KINDS.hierarchical.tag ? 'hierarchical' : first === KINDS['marginal-conditional'].tag ? 'marginal-conditional' : undefined;
+      if (kind === undefined) throw fail(len < HEADER_WORDS ? -4 : -6, 'envmapFromStorage');
       const p = heap.alloc(4 * len);
       try {
-        new U32(memory.buffer, p, len).set(words);
+        TA_SET(view(U, p, len), words);
         const code = x[KINDS[kind].prefix + (verify ? 'verify' : 'validate')](p, len);
         if (code !== 0) throw fail(code, 'envmapFromStorage');
       } catch (e) {
@@ -555,10 +697,10 @@ function create(x) {
       return new EnvMap(secret, kind, p, len);
     },
     /** Bytes of wasm memory: total, and reserved by live env maps and calls. */
-    memoryStats: () => ({ memory: memory.buffer.byteLength, reserved: heap.used }),
+    memoryStats: () => ({ memory: AB_BYTE_LENGTH(MEMORY_BUFFER(memory)), reserved: heap.used }),
   });
   Object.assign(api, samplerApi(x, memory, heap));
-  return Object.freeze(api);
+  return freeze(api);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1005,6 +1005,42 @@ fn all_zero_maps_sample_uniformly() {
     }
 }
 
+/// The documented bound on an all-zero map's pdf, on every size up to 32 x 32 (and the
+/// documented example: one row of a 3 x 21 hierarchical map at 0.99999994).
+#[test]
+fn all_zero_pdf_bound() {
+    let mut below_one_3x21 = false;
+    for w in 1..=32usize {
+        for h in 1..=32usize {
+            let m = vec![0.0f32; w * h];
+            let bound = 2f64.powi(-22) + (w + h) as f64 * 2f64.powi(-29);
+            with_both(&m, w, h, |d| {
+                for r in 0..h {
+                    for c in 0..w {
+                        let uv = [(c as f32 + 0.5) / w as f32, (r as f32 + 0.5) / h as f32];
+                        let p = d.pdf(uv) as f64;
+                        assert!(
+                            (p - 1.0).abs() <= bound,
+                            "{} {w}x{h} [{c}, {r}]: {p}",
+                            d.name()
+                        );
+                        if w.is_power_of_two() && h.is_power_of_two() {
+                            assert_eq!(p, 1.0, "{} {w}x{h}", d.name());
+                        }
+                    }
+                }
+            });
+        }
+    }
+    let m = vec![0.0f32; 3 * 21];
+    let mut s = vec![0u32; Hierarchical::storage_len(3, 21)];
+    let d = Hierarchical::new(&m, 3, 21, &mut s).unwrap();
+    for r in 0..21 {
+        below_one_3x21 |= d.pdf([0.5, (r as f32 + 0.5) / 21.0]) == 0.999_999_94;
+    }
+    assert!(below_one_3x21);
+}
+
 /// Extreme finite values: all `f32::MAX` (sums overflow f32 but not the distributions), and a
 /// subnormal texel next to huge ones.
 #[test]
@@ -1159,10 +1195,38 @@ fn luminance_helpers() {
     for (c, &l) in rgb.iter().zip(&out) {
         assert_eq!(l.to_bits(), image::luminance(*c).to_bits());
         let want = 0.2126 * c[0] as f64 + 0.7152 * c[1] as f64 + 0.0722 * c[2] as f64;
-        assert!((l as f64 - want).abs() <= 1e-6 * (1.0 + want.abs()));
+        assert!((l as f64 - want.max(0.0)).abs() <= 1e-6 * (1.0 + want.abs()));
     }
     assert_eq!(image::luminance([1.0, 1.0, 1.0]), 1.0);
-    assert!(image::luminance([f32::NAN, 0.0, 0.0]).is_nan());
+    // Bad texels: the weight rule (never NaN, never negative, `+0.0`), `+inf` kept; the slice
+    // form (SIMD lanes) gives the same bits, NaN payloads included (there are none).
+    let inf = f32::INFINITY;
+    let bad: Vec<[f32; 3]> = vec![
+        [f32::NAN, 0.0, 0.0],
+        [0.0, f32::from_bits(0xffff_0000), 1.0],
+        [inf, -inf, 0.0],
+        [-1.0, 0.0, 0.0],
+        [-0.0, -0.0, -0.0],
+        [0.0, 0.0, -inf],
+        [1.0, -2.0, 1.0],
+        [inf, 0.0, 0.0],
+        [inf, 1.0, f32::NAN],
+        [f32::MAX, f32::MAX, f32::MAX],
+        [1e-45, 0.0, 0.0],
+    ];
+    let want = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, inf, 0.0, f32::MAX, 0.0];
+    let mut out = vec![9.0f32; bad.len() + 9];
+    let mut many = bad.clone();
+    many.extend(bad.iter().take(9)); // past one 8-lane group
+    assert_eq!(image::luminance_slice(&many, &mut out), many.len());
+    for (k, c) in bad.iter().enumerate() {
+        let l = image::luminance(*c);
+        assert_eq!(l.to_bits(), want[k].to_bits(), "{c:?} -> {l}");
+        assert_eq!(out[k].to_bits(), l.to_bits(), "slice form, {c:?}");
+    }
+    for (k, c) in bad.iter().take(9).enumerate() {
+        assert_eq!(out[bad.len() + k].to_bits(), image::luminance(*c).to_bits());
+    }
 }
 
 #[test]

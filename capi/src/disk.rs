@@ -60,8 +60,9 @@ pub unsafe extern "C" fn wc_disk_concentric_inverse(
 /// polar4 (Christensen 2018): `n` disk samples (`2n` floats) from `n_points` points of the
 /// square (`2 n_points` floats), four per point: sample `i` uses point `i / 4` in quadrant
 /// `i % 4` (`r = sqrt(u0)`, `theta = (pi/2) u1 + (pi/2) (i % 4)`). Returns
-/// `min(n, 4 n_points)`, or 0 (writing nothing) for a null or misaligned pointer or
-/// overlapping arrays.
+/// `min(n, 4 n_points)`, or 0 (writing nothing) when that is 0, for a null or misaligned
+/// pointer, a count whose byte size overflows, or overlapping arrays (the
+/// `ceil(min(n, 4 n_points) / 4)` points the call reads and the outputs it writes).
 ///
 /// # Safety
 /// `points` must be readable for `2 n_points` floats and `out` writable for `2n` floats.
@@ -99,7 +100,8 @@ pub unsafe extern "C" fn wc_disk_polar4_inverse(
 /// concentric4: `n` disk samples (`2n` floats) from `n_points` points of the square (`2
 /// n_points` floats), four per point: sample `i` is the quarter-disk Shirley-Chiu map of point
 /// `i / 4`, turned into quadrant `i % 4`. Returns `min(n, 4 n_points)`, or 0 (writing nothing)
-/// for a null or misaligned pointer or overlapping arrays.
+/// when that is 0, for a null or misaligned pointer, a count whose byte size overflows, or
+/// overlapping arrays (as for `wc_disk_polar4`).
 ///
 /// # Safety
 /// `points` must be readable for `2 n_points` floats and `out` writable for `2n` floats.

@@ -2,16 +2,18 @@
 //! weights (or load them from a file: the storage is self-describing and little-endian on
 //! every target), then sample texels in proportion to their weight.
 
-use crate::ffi::{map, slice, span};
-use warpcore::envmap::{self, Error, Hierarchical, MarginalConditional, Sample, image};
+use crate::ffi::{fits, map, overlap, slice, span};
+use warpcore::envmap::{self, Error, Hierarchical, MAX_SIDE, MarginalConditional, Sample, image};
 
 /// Success.
 pub const WC_OK: i32 = 0;
 /// `width` or `height` is zero.
 pub const WC_ERR_ZERO_SIZE: i32 = -1;
-/// A side exceeds 2^24, or the tables would exceed 2^32 words.
+/// A side exceeds 2^24, the tables would exceed 2^32 words, or an array's byte size would
+/// exceed `PTRDIFF_MAX` (possible on 32-bit targets); see each function.
 pub const WC_ERR_TOO_LARGE: i32 = -2;
-/// An array length does not match the sizes.
+/// An array length does not match the sizes (the Rust crate's error; no function of this
+/// header returns it, since C arrays carry no length).
 pub const WC_ERR_LENGTH_MISMATCH: i32 = -3;
 /// The storage is shorter than `storage_len` (or than its header says).
 pub const WC_ERR_STORAGE_TOO_SMALL: i32 = -4;
@@ -23,7 +25,8 @@ pub const WC_ERR_WRONG_FORMAT: i32 = -6;
 pub const WC_ERR_UNSUPPORTED_VERSION: i32 = -7;
 /// A header word (or, for `verify`, a table word) holds a value a build never writes.
 pub const WC_ERR_CORRUPT: i32 = -8;
-/// A null or misaligned pointer, or arrays that overlap where they must not.
+/// A null or misaligned pointer, arrays that overlap where they must not, or (see each
+/// function) a bad `channels` or a `storage_len` no array can have.
 pub const WC_ERR_INVALID_ARGUMENT: i32 = -9;
 /// An error this version of the header has no name for.
 pub const WC_ERR_OTHER: i32 = -10;
@@ -121,16 +124,27 @@ unsafe fn build<'a, D: Dist<'a>>(
     if needed == usize::MAX {
         return WC_ERR_TOO_LARGE;
     }
+    // Both sides are at most 2^24 here, yet `w * h` overflows a 32-bit `size_t`: checked, as
+    // are the byte sizes of both arrays (no C array exceeds `PTRDIFF_MAX` bytes).
+    let texels = match w.checked_mul(h) {
+        Some(t) if fits::<f32>(t) && fits::<u32>(needed) => t,
+        _ => return WC_ERR_TOO_LARGE,
+    };
     if storage_len < needed {
         return WC_ERR_STORAGE_TOO_SMALL;
     }
-    let Some(range) = span(storage.cast_const(), needed) else {
+    let (Some(range), Some(read)) = (span(storage.cast_const(), needed), span(weights, texels))
+    else {
         return WC_ERR_INVALID_ARGUMENT;
     };
-    // SAFETY: the caller's contract (weights readable for `w * h` floats, unchanged during
-    // the call); `slice` checks null, alignment, size and that the storage we write does not
-    // overlap them.
-    let Some(weights) = (unsafe { slice(weights, w * h, Some(range)) }) else {
+    if overlap(range, read) {
+        return WC_ERR_INVALID_ARGUMENT;
+    }
+    // Every check is done: from here on the call writes the storage.
+    // SAFETY: the caller's contract (weights readable for `texels` floats, unchanged during
+    // the call); non-null, aligned, of valid size and disjoint from the storage (checked
+    // above; `slice` checks again).
+    let Some(weights) = (unsafe { slice(weights, texels, Some(range)) }) else {
         return WC_ERR_INVALID_ARGUMENT;
     };
     // The storage may be uninitialized C memory: zero the words we use through the raw
@@ -151,7 +165,8 @@ unsafe fn build<'a, D: Dist<'a>>(
 /// # Safety
 /// `storage` readable for `storage_len` words, unchanged during the call.
 unsafe fn check<'a, D: Dist<'a>>(storage: *const u32, storage_len: usize, verified: bool) -> i32 {
-    // SAFETY: the caller's contract; `slice` checks null, alignment and size.
+    // SAFETY: the caller's contract; `slice` checks null (with `storage_len > 0`), alignment
+    // and that `storage_len` words fit `PTRDIFF_MAX` bytes.
     let Some(s) = (unsafe { slice(storage, storage_len, None) }) else {
         return WC_ERR_INVALID_ARGUMENT;
     };
@@ -166,6 +181,22 @@ unsafe fn check<'a, D: Dist<'a>>(storage: *const u32, storage_len: usize, verifi
     }
 }
 
+/// The pointer rules of `sample` and `pdf` for `n` points `uv` (`2n` floats) and `n` outputs
+/// of `O`: `n > 0`, both non-null, aligned and of valid size, and disjoint — except, when
+/// `in_place` (an output no larger than a point), exactly in place. Returns the range of
+/// `out`.
+fn arrays<O>(uv: *const f32, out: *mut O, n: usize, in_place: bool) -> Option<(usize, usize)> {
+    if n == 0 {
+        return None;
+    }
+    let src = span(uv, n.checked_mul(2)?)?;
+    let dst = span(out.cast_const(), n)?;
+    if overlap(src, dst) && !(in_place && src.0 == dst.0) {
+        return None;
+    }
+    Some(dst)
+}
+
 /// # Safety
 /// As the exported `sample` functions.
 unsafe fn sample<'a, D: Dist<'a>>(
@@ -175,19 +206,20 @@ unsafe fn sample<'a, D: Dist<'a>>(
     out: *mut WcEnvSample,
     n: usize,
 ) -> usize {
-    if n == 0 {
+    // Every pointer rule first, before the storage becomes a slice.
+    let Some(writes) = arrays::<WcEnvSample>(u, out, n, false) else {
         return 0;
-    }
+    };
     // SAFETY: the caller's contract; `slice` checks null, alignment, size and that `out`
     // (which we write) does not overlap the storage (which we read throughout).
-    let Some(s) = (unsafe { slice(storage, storage_len, span(out.cast_const(), n)) }) else {
+    let Some(s) = (unsafe { slice(storage, storage_len, Some(writes)) }) else {
         return 0;
     };
     let Ok(d) = D::from_storage(s) else {
         return 0;
     };
     // SAFETY: the caller's contract; `map` checks null, alignment, size and overlap of `u`
-    // and `out`.
+    // and `out` again.
     unsafe {
         map::<f32, WcEnvSample, 2, 1>(u, out, n, |u, o| {
             let mut tmp = [Sample {
@@ -217,11 +249,11 @@ unsafe fn pdf<'a, D: Dist<'a>>(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    if n == 0 {
+    let Some(writes) = arrays::<f32>(uv, out, n, true) else {
         return 0;
-    }
+    };
     // SAFETY: as in `sample`.
-    let Some(s) = (unsafe { slice(storage, storage_len, span(out.cast_const(), n)) }) else {
+    let Some(s) = (unsafe { slice(storage, storage_len, Some(writes)) }) else {
         return 0;
     };
     let Ok(d) = D::from_storage(s) else {
@@ -232,24 +264,35 @@ unsafe fn pdf<'a, D: Dist<'a>>(
 }
 
 /// Words of storage `wc_envmap_hierarchical_build` needs for a `width x height` map (the hierarchical (MIP-pyramid) distribution: compact 2D strata), the
-/// 8-word header included; `SIZE_MAX` when the map is too large, 0 for a zero side.
+/// 8-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
+/// tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE` and
+/// `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
 #[unsafe(no_mangle)]
 pub extern "C" fn wc_envmap_hierarchical_storage_len(width: u32, height: u32) -> usize {
     storage_len::<Hierarchical>(width, height)
 }
 
-/// Builds the hierarchical (MIP-pyramid) distribution: compact 2D strata of `weights` (row-major, `width * height` floats; NaN, negatives and
+/// Builds the hierarchical (MIP-pyramid) distribution: compact 2D strata, of `weights` (row-major, `width * height` floats; NaN, negatives and
 /// `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. Returns `WC_OK` (0) or
-/// a negative `WC_ERR_*`: `ZERO_SIZE`, `TOO_LARGE`, `STORAGE_TOO_SMALL` (`storage_len` below
-/// `wc_envmap_hierarchical_storage_len`), `INFINITE_WEIGHT`, `INVALID_ARGUMENT` (null or misaligned
-/// pointer, weights overlapping the storage). Writes only the first
-/// `wc_envmap_hierarchical_storage_len(width, height)` words (also when it fails after the checks).
-/// The storage's bytes are the file format: write them to a file and sample them later, on
-/// any machine.
+/// the first failed check, in this order:
+///
+/// * `WC_ERR_ZERO_SIZE`: `width` or `height` is 0;
+/// * `WC_ERR_TOO_LARGE`: a side above 2^24, tables above 2^32 words (`wc_envmap_hierarchical_storage_len` is
+///   `SIZE_MAX`), or weights or tables larger than `PTRDIFF_MAX` bytes (32-bit targets);
+/// * `WC_ERR_STORAGE_TOO_SMALL`: `storage_len` is below `wc_envmap_hierarchical_storage_len(width, height)`;
+/// * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or weights overlapping the
+///   storage's first `wc_envmap_hierarchical_storage_len(width, height)` words;
+/// * `WC_ERR_INFINITE_WEIGHT`: a weight is `+inf`.
+///
+/// Nothing is written before these checks but the last: on the other errors the storage is
+/// untouched; on success and on `WC_ERR_INFINITE_WEIGHT` exactly the first
+/// `wc_envmap_hierarchical_storage_len(width, height)` words are written, never more. The storage's bytes are
+/// the file format: write them to a file and sample them later, on any machine.
 ///
 /// # Safety
 /// `weights` must be readable for `width * height` floats and `storage` writable for
-/// `storage_len` words.
+/// `storage_len` words (only when the checks above pass, so a call that returns one of the
+/// errors before `WC_ERR_INFINITE_WEIGHT` may pass any pointers).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn wc_envmap_hierarchical_build(
     weights: *const f32,
@@ -263,10 +306,13 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_build(
 }
 
 /// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
-/// or `WC_ERR_WRONG_FORMAT`, `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`,
-/// `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_INVALID_ARGUMENT`. Sampling a storage that passes is
-/// safe whatever its table words hold (samples stay in the map); the sample and pdf functions
-/// run this check on every call.
+/// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
+/// and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
+/// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 8 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
+/// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT` (a size or length word
+/// a build never writes), `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
+/// Sampling a storage that passes is safe whatever its table words hold (samples stay in the
+/// map); the sample and pdf functions run this check on every call. Reads only.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words.
@@ -279,9 +325,9 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_validate(
     unsafe { check::<Hierarchical>(storage, storage_len, false) }
 }
 
-/// `wc_envmap_hierarchical_validate` plus one pass over every table word, rejecting
-/// (`WC_ERR_CORRUPT`) tables that break the format's invariants: for loaders that want to
-/// catch a corrupted file. Time proportional to the storage.
+/// `wc_envmap_hierarchical_validate` (the same codes, in the same order) plus one pass over every
+/// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants: for
+/// loaders that want to catch a corrupted file. Time proportional to the storage. Reads only.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words.
@@ -296,9 +342,10 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_verify(
 
 /// Draws `n` samples from a built (or loaded) storage: texels in proportion to their weight,
 /// a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
-/// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) if the
-/// storage fails `wc_envmap_hierarchical_validate`, for a null or misaligned pointer, or if `out`
-/// overlaps `u` or the storage.
+/// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) for
+/// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
+/// overlaps `u` (`out == u` too: a sample is larger than a point) or the storage, or a
+/// storage that fails `wc_envmap_hierarchical_validate`.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
@@ -317,7 +364,11 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_sample(
 
 /// Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
 /// the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
-/// sample at that point reports. Returns `n`, or 0 as for `wc_envmap_hierarchical_sample`.
+/// sample at that point reports. Returns `n`, or 0 (writing nothing) for `n == 0`, a null or
+/// misaligned pointer, a count whose byte size overflows, an `out` that overlaps the storage
+/// or overlaps `uv` other than exactly in place (`out == uv`: density `i` overwrites float
+/// `i` after point `i / 2` was read), or a storage that fails
+/// `wc_envmap_hierarchical_validate`.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
@@ -335,24 +386,35 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_pdf(
 }
 
 /// Words of storage `wc_envmap_marginal_conditional_build` needs for a `width x height` map (the marginal-conditional distribution (a row by its total, then a column)), the
-/// 8-word header included; `SIZE_MAX` when the map is too large, 0 for a zero side.
+/// 8-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
+/// tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE` and
+/// `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
 #[unsafe(no_mangle)]
 pub extern "C" fn wc_envmap_marginal_conditional_storage_len(width: u32, height: u32) -> usize {
     storage_len::<MarginalConditional>(width, height)
 }
 
-/// Builds the marginal-conditional distribution (a row by its total, then a column) of `weights` (row-major, `width * height` floats; NaN, negatives and
+/// Builds the marginal-conditional distribution (a row by its total, then a column), of `weights` (row-major, `width * height` floats; NaN, negatives and
 /// `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. Returns `WC_OK` (0) or
-/// a negative `WC_ERR_*`: `ZERO_SIZE`, `TOO_LARGE`, `STORAGE_TOO_SMALL` (`storage_len` below
-/// `wc_envmap_marginal_conditional_storage_len`), `INFINITE_WEIGHT`, `INVALID_ARGUMENT` (null or misaligned
-/// pointer, weights overlapping the storage). Writes only the first
-/// `wc_envmap_marginal_conditional_storage_len(width, height)` words (also when it fails after the checks).
-/// The storage's bytes are the file format: write them to a file and sample them later, on
-/// any machine.
+/// the first failed check, in this order:
+///
+/// * `WC_ERR_ZERO_SIZE`: `width` or `height` is 0;
+/// * `WC_ERR_TOO_LARGE`: a side above 2^24, tables above 2^32 words (`wc_envmap_marginal_conditional_storage_len` is
+///   `SIZE_MAX`), or weights or tables larger than `PTRDIFF_MAX` bytes (32-bit targets);
+/// * `WC_ERR_STORAGE_TOO_SMALL`: `storage_len` is below `wc_envmap_marginal_conditional_storage_len(width, height)`;
+/// * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or weights overlapping the
+///   storage's first `wc_envmap_marginal_conditional_storage_len(width, height)` words;
+/// * `WC_ERR_INFINITE_WEIGHT`: a weight is `+inf`.
+///
+/// Nothing is written before these checks but the last: on the other errors the storage is
+/// untouched; on success and on `WC_ERR_INFINITE_WEIGHT` exactly the first
+/// `wc_envmap_marginal_conditional_storage_len(width, height)` words are written, never more. The storage's bytes are
+/// the file format: write them to a file and sample them later, on any machine.
 ///
 /// # Safety
 /// `weights` must be readable for `width * height` floats and `storage` writable for
-/// `storage_len` words.
+/// `storage_len` words (only when the checks above pass, so a call that returns one of the
+/// errors before `WC_ERR_INFINITE_WEIGHT` may pass any pointers).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn wc_envmap_marginal_conditional_build(
     weights: *const f32,
@@ -366,10 +428,13 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_build(
 }
 
 /// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
-/// or `WC_ERR_WRONG_FORMAT`, `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`,
-/// `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_INVALID_ARGUMENT`. Sampling a storage that passes is
-/// safe whatever its table words hold (samples stay in the map); the sample and pdf functions
-/// run this check on every call.
+/// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
+/// and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
+/// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 8 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
+/// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT` (a size or length word
+/// a build never writes), `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
+/// Sampling a storage that passes is safe whatever its table words hold (samples stay in the
+/// map); the sample and pdf functions run this check on every call. Reads only.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words.
@@ -382,9 +447,9 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_validate(
     unsafe { check::<MarginalConditional>(storage, storage_len, false) }
 }
 
-/// `wc_envmap_marginal_conditional_validate` plus one pass over every table word, rejecting
-/// (`WC_ERR_CORRUPT`) tables that break the format's invariants: for loaders that want to
-/// catch a corrupted file. Time proportional to the storage.
+/// `wc_envmap_marginal_conditional_validate` (the same codes, in the same order) plus one pass over every
+/// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants: for
+/// loaders that want to catch a corrupted file. Time proportional to the storage. Reads only.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words.
@@ -399,9 +464,10 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_verify(
 
 /// Draws `n` samples from a built (or loaded) storage: texels in proportion to their weight,
 /// a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
-/// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) if the
-/// storage fails `wc_envmap_marginal_conditional_validate`, for a null or misaligned pointer, or if `out`
-/// overlaps `u` or the storage.
+/// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) for
+/// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
+/// overlaps `u` (`out == u` too: a sample is larger than a point) or the storage, or a
+/// storage that fails `wc_envmap_marginal_conditional_validate`.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
@@ -420,7 +486,11 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_sample(
 
 /// Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
 /// the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
-/// sample at that point reports. Returns `n`, or 0 as for `wc_envmap_marginal_conditional_sample`.
+/// sample at that point reports. Returns `n`, or 0 (writing nothing) for `n == 0`, a null or
+/// misaligned pointer, a count whose byte size overflows, an `out` that overlaps the storage
+/// or overlaps `uv` other than exactly in place (`out == uv`: density `i` overwrites float
+/// `i` after point `i / 2` was read), or a storage that fails
+/// `wc_envmap_marginal_conditional_validate`.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
@@ -437,9 +507,13 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_pdf(
     unsafe { pdf::<MarginalConditional>(storage, storage_len, uv, out, n) }
 }
 
-/// Rec. 709 luminance of `n` RGB texels (`3n` floats) to `n` weights (NaN and negatives
-/// weigh 0). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or
-/// overlapping arrays other than `rgb == out`.
+/// Rec. 709 luminance of `n` linear RGB texels (`3n` floats) as `n` weights:
+/// `0.2126 R + 0.7152 G + 0.0722 B` (in that order, without FMA) where positive, else `+0.0`:
+/// NaN (a NaN channel, or infinite channels of opposite signs) and negatives weigh 0, as in
+/// the builds; `+inf` stays `+inf` (a build then returns `WC_ERR_INFINITE_WEIGHT`). Never NaN
+/// or negative; bit-identical to the Rust crate's `image::luminance`. Returns `n`, or 0
+/// (writing nothing) for `n == 0`, a null or misaligned pointer, a count whose byte size
+/// overflows, or overlapping arrays other than exactly in place (`rgb == out`).
 ///
 /// # Safety
 /// `rgb` must be readable for `3n` floats and `out` writable for `n` floats.
@@ -454,11 +528,14 @@ pub unsafe extern "C" fn wc_envmap_luminance(rgb: *const f32, out: *mut f32, n: 
 }
 
 /// Multiplies row `r` of a lat-long weight map (in place, `width * height` floats) by
-/// `sin(pi (r + 1/2) / height)`, its solid-angle factor. Returns `WC_OK`, `WC_ERR_ZERO_SIZE`
-/// or `WC_ERR_INVALID_ARGUMENT` (null or misaligned pointer).
+/// `sin(pi (r + 1/2) / height)`, its solid-angle factor. Returns `WC_OK` or the first failed
+/// check, in this order: `WC_ERR_ZERO_SIZE` (`width` or `height` is 0), `WC_ERR_TOO_LARGE`
+/// (`width * height` floats larger than `PTRDIFF_MAX` bytes: no such array exists),
+/// `WC_ERR_INVALID_ARGUMENT` (a null or misaligned pointer). Writes nothing on error.
 ///
 /// # Safety
-/// `weights` must be readable and writable for `width * height` floats.
+/// `weights` must be readable and writable for `width * height` floats (only when the checks
+/// above pass).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn wc_envmap_latlong_solid_angle_weights(
     weights: *mut f32,
@@ -469,12 +546,16 @@ pub unsafe extern "C" fn wc_envmap_latlong_solid_angle_weights(
     if w == 0 || h == 0 {
         return WC_ERR_ZERO_SIZE;
     }
-    if span(weights.cast_const(), w * h).is_none() {
+    let count = match w.checked_mul(h) {
+        Some(c) if fits::<f32>(c) => c,
+        _ => return WC_ERR_TOO_LARGE,
+    };
+    if span(weights.cast_const(), count).is_none() {
         return WC_ERR_INVALID_ARGUMENT;
     }
-    // SAFETY: readable and writable for `w * h` initialized floats (the caller's contract);
+    // SAFETY: readable and writable for `count` initialized floats (the caller's contract);
     // non-null, aligned and of valid size (checked by `span`).
-    let weights = unsafe { core::slice::from_raw_parts_mut(weights, w * h) };
+    let weights = unsafe { core::slice::from_raw_parts_mut(weights, count) };
     match image::latlong_solid_angle_weights(weights, w, h) {
         Ok(()) => WC_OK,
         Err(e) => code(e),
@@ -483,7 +564,9 @@ pub unsafe extern "C" fn wc_envmap_latlong_solid_angle_weights(
 
 /// Lat-long density conversion: `n` densities over the square (`pdf`) at rows `v` (`n`
 /// floats) to densities per steradian, `pdf / (2 pi^2 sin(pi v))` (0 at the poles). Returns
-/// `n`, or 0 (writing nothing) for a null or misaligned pointer or an `out` overlapping `v`.
+/// `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count whose byte
+/// size overflows, an `out` overlapping `v`, or an `out` overlapping `pdf` other than
+/// exactly in place (`pdf == out`).
 ///
 /// # Safety
 /// `pdf` and `v` must be readable for `n` floats and `out` writable for `n` floats.
@@ -497,8 +580,16 @@ pub unsafe extern "C" fn wc_envmap_latlong_pdf_to_solid_angle(
     if n == 0 {
         return 0;
     }
-    // SAFETY: the caller's contract; `slice` checks null, alignment, size and overlap.
-    let Some(v) = (unsafe { slice(v, n, span(out.cast_const(), n)) }) else {
+    // Every pointer rule first (`map` checks `pdf` against `out` again).
+    let (Some(p), Some(r), Some(o)) = (span(pdf, n), span(v, n), span(out.cast_const(), n)) else {
+        return 0;
+    };
+    if overlap(r, o) || (overlap(p, o) && p != o) {
+        return 0;
+    }
+    // SAFETY: the caller's contract; checked above (and again by `slice`): non-null,
+    // aligned, of valid size, not written by this call.
+    let Some(v) = (unsafe { slice(v, n, Some(o)) }) else {
         return 0;
     };
     let mut i = 0usize;
@@ -519,14 +610,22 @@ pub unsafe extern "C" fn wc_envmap_latlong_pdf_to_solid_angle(
 
 /// Resamples a lat-long image (`src_width x src_height` texels of `channels` floats, 1 to 4)
 /// onto the `size x size` equal-area octahedral square (`dst`, `size * size * channels`
-/// floats), each output texel the average of `supersample^2` stratified point samples
-/// (bilinear, wrapping in longitude). Returns `WC_OK` or `WC_ERR_ZERO_SIZE`,
-/// `WC_ERR_TOO_LARGE`, `WC_ERR_INVALID_ARGUMENT` (channels outside 1..=4, a null or
-/// misaligned pointer, overlapping arrays).
+/// floats), each output texel the average of `supersample^2` stratified point samples of the
+/// source (nearest texel; NaN and negative channels count as 0). Returns `WC_OK` or the first
+/// failed check, in this order:
+///
+/// * `WC_ERR_ZERO_SIZE`: `src_width`, `src_height`, `size` or `supersample` is 0;
+/// * `WC_ERR_INVALID_ARGUMENT`: `channels` is not 1, 2, 3 or 4;
+/// * `WC_ERR_TOO_LARGE`: `src_width`, `src_height` or `size` above 2^24, `supersample` above
+///   64, or `src` or `dst` larger than `PTRDIFF_MAX` bytes (32-bit targets);
+/// * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or `src` and `dst` overlapping.
+///
+/// Nothing is read or written before these checks pass, so on error `dst` is untouched; on
+/// success exactly `size * size * channels` floats are written.
 ///
 /// # Safety
 /// `src` must be readable for `src_width * src_height * channels` floats and `dst` writable
-/// for `size * size * channels` floats.
+/// for `size * size * channels` floats (only when the checks above pass).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn wc_envmap_latlong_to_equal_area(
     src: *const f32,
@@ -545,22 +644,32 @@ pub unsafe extern "C" fn wc_envmap_latlong_to_equal_area(
     if !(1..=4).contains(&c) {
         return WC_ERR_INVALID_ARGUMENT;
     }
-    let (Some(src_len), Some(dst_len)) = (
+    // The core's own size checks, first: it must not fail after `dst` is zeroed below.
+    if sw > MAX_SIDE || sh > MAX_SIDE || n > MAX_SIDE || ss > image::MAX_SUPERSAMPLE {
+        return WC_ERR_TOO_LARGE;
+    }
+    let (src_len, dst_len) = match (
         sw.checked_mul(sh).and_then(|x| x.checked_mul(c)),
         n.checked_mul(n).and_then(|x| x.checked_mul(c)),
-    ) else {
-        return WC_ERR_TOO_LARGE;
+    ) {
+        (Some(a), Some(b)) if fits::<f32>(a) && fits::<f32>(b) => (a, b),
+        _ => return WC_ERR_TOO_LARGE,
     };
-    let Some(out) = span(dst.cast_const(), dst_len) else {
+    let (Some(read), Some(write)) = (span(src, src_len), span(dst.cast_const(), dst_len)) else {
         return WC_ERR_INVALID_ARGUMENT;
     };
-    // SAFETY: the caller's contract; `slice` checks null, alignment, size and that `dst`
-    // does not overlap the source.
-    let Some(src) = (unsafe { slice(src, src_len, Some(out)) }) else {
+    if overlap(read, write) {
+        return WC_ERR_INVALID_ARGUMENT;
+    }
+    // Every check is done (the core repeats them and cannot fail now).
+    // SAFETY: the caller's contract; non-null, aligned, of valid size, disjoint from `dst`
+    // (checked above; `slice` checks again).
+    let Some(src) = (unsafe { slice(src, src_len, Some(write)) }) else {
         return WC_ERR_INVALID_ARGUMENT;
     };
-    // SAFETY: `dst` is writable for `dst_len` floats (the caller's contract), checked by
-    // `span`, disjoint from `src`; zeroed first so the slice refers to initialized floats.
+    // SAFETY: `dst` is writable for `dst_len` floats (the caller's contract), non-null,
+    // aligned, of valid size and disjoint from `src` (checked above); zeroed first so the
+    // slice refers to initialized floats.
     let dst = unsafe {
         core::ptr::write_bytes(dst, 0, dst_len);
         core::slice::from_raw_parts_mut(dst, dst_len)

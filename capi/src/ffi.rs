@@ -24,15 +24,26 @@ use core::ptr::copy_nonoverlapping;
 /// point), small enough for a microcontroller's stack (at most a few KiB per buffer).
 pub(crate) const CHUNK: usize = 64;
 
+/// Can an array of `count` elements of `T` exist: is its byte size at most `isize::MAX`
+/// (`PTRDIFF_MAX`)? Checked arithmetic: false when `count * size_of::<T>()` overflows.
+pub fn fits<T>(count: usize) -> bool {
+    count
+        .checked_mul(size_of::<T>())
+        .is_some_and(|bytes| bytes <= isize::MAX as usize)
+}
+
 /// Address range `[start, end)` of `count` elements of `T` at `p`, if `p` is non-null,
 /// aligned for `T`, and the byte size fits `isize` without wrapping the address space.
 pub fn span<T>(p: *const T, count: usize) -> Option<(usize, usize)> {
     let start = p as usize;
-    let bytes = count.checked_mul(size_of::<T>())?;
-    if p.is_null() || !start.is_multiple_of(align_of::<T>()) || bytes > isize::MAX as usize {
+    if p.is_null() || !start.is_multiple_of(align_of::<T>()) || !fits::<T>(count) {
         return None;
     }
-    Some((start, start.checked_add(bytes)?))
+    // `fits` bounds the product.
+    Some((
+        start,
+        start.checked_add(count.checked_mul(size_of::<T>())?)?,
+    ))
 }
 
 /// Do two address ranges share a byte?

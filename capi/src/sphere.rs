@@ -2,7 +2,7 @@
 //! direction (clamped to `[-1, 1]` per coordinate, then normalized); hemisphere inverses map a
 //! direction below the horizon like its mirror image.
 
-use crate::ffi::{map, slice, span};
+use crate::ffi::{map, overlap, slice, span};
 use warpcore::sphere;
 
 /// Equal-area octahedral map (Clarberg 2008; the square's centre is +z, its corners -z): `n` points `u` (`2n` floats) to `n` unit directions (`3n` floats). Returns `n`, or
@@ -258,9 +258,18 @@ pub unsafe extern "C" fn wc_sphere_equirect_pdf_to_solid_angle(
     if n == 0 {
         return 0;
     }
-    // The directions are read throughout: a shared slice, which `out` must not overlap.
-    // SAFETY: the caller's contract above; `slice` checks null, alignment, size and overlap.
-    let Some(d) = (unsafe { slice(d.cast::<[f32; 3]>(), n, span(out, n)) }) else {
+    // Every pointer rule first (`map` checks `pdf` against `out` again).
+    let (Some(p), Some(r), Some(o)) = (span(pdf, n), span(d.cast::<[f32; 3]>(), n), span(out, n))
+    else {
+        return 0;
+    };
+    if overlap(r, o) || (overlap(p, o) && p != o) {
+        return 0;
+    }
+    // The directions are read throughout: a shared slice, which `out` does not overlap.
+    // SAFETY: the caller's contract above; checked above (and again by `slice`): non-null,
+    // aligned, of valid size, not written by this call.
+    let Some(d) = (unsafe { slice(d.cast::<[f32; 3]>(), n, Some(o)) }) else {
         return 0;
     };
     let mut i = 0usize;

@@ -8,7 +8,17 @@
 //!   Rust crate.
 //! * `rules.c` checks the pointer and count rules, the env-map errors and a storage written
 //!   to a file and read back.
+//! * `hostile.c` makes randomized hostile calls against arrays flush with guard pages and
+//!   reports which (function, documented outcome) rows it reached; [`TABLE`] lists every
+//!   function's documented outcomes, and the test fails on a function or outcome without its
+//!   row.
 //! * The header also compiles as C++ (`c++ -std=c++11 -pedantic`), warnings as errors.
+//!
+//! Environment: `WARPCORE_CFLAGS` adds compiler flags to every C and C++ compile and link
+//! (CI: `-fsanitize=address,undefined -fno-sanitize-recover=all`, and `-m32`);
+//! `WARPCORE_CAPI_LIB` links that static library instead of building one (CI: a nightly
+//! `-Zsanitizer=address` build, or the `i686-unknown-linux-gnu` one for `-m32`);
+//! `WARPCORE_HOSTILE_ROUNDS` sets `hostile.c`'s rounds (about 50 calls each).
 #![cfg(all(
     feature = "disk",
     feature = "triangle",
@@ -36,7 +46,21 @@ fn root() -> PathBuf {
 /// per test process; a no-op when it is up to date) with the same profile.
 fn staticlib() -> PathBuf {
     static LIB: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
-    LIB.get_or_init(build_staticlib).clone()
+    LIB.get_or_init(|| match std::env::var_os("WARPCORE_CAPI_LIB") {
+        // Relative to the workspace root (tests run in `capi/`).
+        Some(lib) => root().join(lib),
+        None => build_staticlib(),
+    })
+    .clone()
+}
+
+/// `WARPCORE_CFLAGS`, split at whitespace.
+fn extra_flags() -> Vec<String> {
+    std::env::var("WARPCORE_CFLAGS")
+        .unwrap_or_default()
+        .split_whitespace()
+        .map(str::to_string)
+        .collect()
 }
 
 fn build_staticlib() -> PathBuf {
@@ -64,6 +88,10 @@ fn compiler(var: &str, default: &str) -> String {
 /// Compiles `capi/tests/c/<name>.c` and runs it; returns its stdout (the test fails on a
 /// compiler error or a nonzero exit).
 fn compile_and_run(name: &str) -> String {
+    compile_and_run_with(name, &[])
+}
+
+fn compile_and_run_with(name: &str, args: &[&str]) -> String {
     let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capi-c");
     std::fs::create_dir_all(&out_dir).unwrap();
     let exe = out_dir.join(name);
@@ -78,6 +106,7 @@ fn compile_and_run(name: &str) -> String {
             "-Werror",
             "-pedantic",
         ])
+        .args(extra_flags())
         .arg("-I")
         .arg(root().join("include"))
         .arg(&src)
@@ -90,6 +119,7 @@ fn compile_and_run(name: &str) -> String {
         .unwrap_or_else(|e| panic!("cannot run the C compiler `{cc}`: {e}"));
     assert!(status.success(), "{cc} failed on {}", src.display());
     let run = Command::new(&exe)
+        .args(args)
         .current_dir(&out_dir)
         .output()
         .expect("run the C test");
@@ -244,6 +274,7 @@ fn header_compiles_as_cpp() {
             "-pedantic",
             "-fsyntax-only",
         ])
+        .args(extra_flags())
         .arg("-I")
         .arg(root().join("include"))
         .arg(&src)
@@ -269,6 +300,7 @@ fn cpp_example_renders_and_checks_itself() {
             "-Werror",
             "-pedantic",
         ])
+        .args(extra_flags())
         .arg("-I")
         .arg(root().join("include"))
         .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/envlight.cpp"))
@@ -309,6 +341,7 @@ fn readme_c_example_runs() {
     let cc = compiler("CC", "cc");
     let status = Command::new(&cc)
         .args(["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"])
+        .args(extra_flags())
         .arg("-I")
         .arg(root().join("include"))
         .arg(&src)
@@ -323,4 +356,322 @@ fn readme_c_example_runs() {
     let stdout = String::from_utf8_lossy(&run.stdout);
     assert!(run.status.success(), "{run:?}");
     assert!(stdout.starts_with("64 samples, first ("), "{stdout}");
+}
+
+/// Every C function x every documented outcome: the rows `hostile.c` must reach. Outcomes of
+/// the `WC_ERR_*` functions are the codes; of the `size_t` functions: `n` (all written),
+/// `in-place`, `capped` (`min(n, 4 n_points)`), and the documented reasons for 0: `0:n=0`,
+/// `0:null`, `0:misaligned`, `0:size` (a count whose byte size overflows), `0:overlap`,
+/// `0:invalid-storage`, `0:size=0`; of `storage_len`: `words`, `0:zero-side`, `SIZE_MAX`.
+///
+/// [`hostile_calls_reach_every_documented_outcome`] checks the table against the header
+/// (every declared function has rows, and the rows are exactly the outcomes its
+/// documentation names) and against what `hostile.c` reached.
+const TABLE: &[(&str, &[&str])] = {
+    const MAP: &[&str] = &[
+        "n",
+        "0:n=0",
+        "0:null",
+        "0:misaligned",
+        "0:size",
+        "0:overlap",
+    ];
+    const MAP_IN_PLACE: &[&str] = &[
+        "n",
+        "in-place",
+        "0:n=0",
+        "0:null",
+        "0:misaligned",
+        "0:size",
+        "0:overlap",
+    ];
+    const GEN: &[&str] = &["n", "0:n=0", "0:null", "0:misaligned", "0:size"];
+    const FOUR: &[&str] = &[
+        "n",
+        "capped",
+        "0:n=0",
+        "0:null",
+        "0:misaligned",
+        "0:size",
+        "0:overlap",
+    ];
+    const LEN: &[&str] = &["words", "0:zero-side", "SIZE_MAX"];
+    const BUILD: &[&str] = &[
+        "WC_OK",
+        "WC_ERR_ZERO_SIZE",
+        "WC_ERR_TOO_LARGE",
+        "WC_ERR_STORAGE_TOO_SMALL",
+        "WC_ERR_INVALID_ARGUMENT",
+        "WC_ERR_INFINITE_WEIGHT",
+    ];
+    const CHECK: &[&str] = &[
+        "WC_OK",
+        "WC_ERR_INVALID_ARGUMENT",
+        "WC_ERR_STORAGE_TOO_SMALL",
+        "WC_ERR_WRONG_FORMAT",
+        "WC_ERR_UNSUPPORTED_VERSION",
+        "WC_ERR_CORRUPT",
+    ];
+    const SAMPLE: &[&str] = &[
+        "n",
+        "0:n=0",
+        "0:null",
+        "0:misaligned",
+        "0:size",
+        "0:overlap",
+        "0:invalid-storage",
+    ];
+    const PDF: &[&str] = &[
+        "n",
+        "in-place",
+        "0:n=0",
+        "0:null",
+        "0:misaligned",
+        "0:size",
+        "0:overlap",
+        "0:invalid-storage",
+    ];
+    const IMAGE: &[&str] = &[
+        "WC_OK",
+        "WC_ERR_ZERO_SIZE",
+        "WC_ERR_TOO_LARGE",
+        "WC_ERR_INVALID_ARGUMENT",
+    ];
+    &[
+        ("wc_disk_polar", MAP_IN_PLACE),
+        ("wc_disk_polar_inverse", MAP_IN_PLACE),
+        ("wc_disk_concentric", MAP_IN_PLACE),
+        ("wc_disk_concentric_inverse", MAP_IN_PLACE),
+        ("wc_disk_polar4", FOUR),
+        ("wc_disk_polar4_inverse", MAP_IN_PLACE),
+        ("wc_disk_concentric4", FOUR),
+        ("wc_disk_concentric4_inverse", MAP_IN_PLACE),
+        ("wc_triangle_uniform", MAP),
+        ("wc_triangle_uniform_inverse", MAP_IN_PLACE),
+        ("wc_triangle_sqrt_map", MAP),
+        ("wc_triangle_sqrt_map_inverse", MAP_IN_PLACE),
+        ("wc_triangle_basu_owen", GEN),
+        ("wc_triangle_basu_owen_permuted", GEN),
+        ("wc_sphere_equal_area", MAP),
+        ("wc_sphere_equal_area_inverse", MAP_IN_PLACE),
+        ("wc_sphere_equirect", MAP),
+        ("wc_sphere_equirect_inverse", MAP_IN_PLACE),
+        ("wc_sphere_uniform", MAP),
+        ("wc_sphere_uniform_inverse", MAP_IN_PLACE),
+        ("wc_sphere_uniform_hemisphere", MAP),
+        ("wc_sphere_uniform_hemisphere_inverse", MAP_IN_PLACE),
+        ("wc_sphere_cosine_hemisphere", MAP),
+        ("wc_sphere_cosine_hemisphere_inverse", MAP_IN_PLACE),
+        ("wc_sphere_equal_area_wrap", MAP_IN_PLACE),
+        (
+            "wc_sphere_equal_area_wrap_texel",
+            &[
+                "n",
+                "in-place",
+                "0:n=0",
+                "0:null",
+                "0:misaligned",
+                "0:size",
+                "0:overlap",
+                "0:size=0",
+            ],
+        ),
+        ("wc_sphere_equal_area_pdf_to_solid_angle", MAP_IN_PLACE),
+        ("wc_sphere_cosine_hemisphere_pdf", MAP_IN_PLACE),
+        ("wc_sphere_equirect_pdf_to_solid_angle", MAP_IN_PLACE),
+        ("wc_pmj02bn_sample", GEN),
+        ("wc_pmj02bn_raw", GEN),
+        ("wc_pmj02bn_shuffle", MAP_IN_PLACE),
+        ("wc_pmj02bn_points", &["value"]),
+        ("wc_pmj02bn_sets", &["value"]),
+        ("wc_sequence_random", GEN),
+        ("wc_sequence_stratified", GEN),
+        ("wc_envmap_hierarchical_storage_len", LEN),
+        ("wc_envmap_hierarchical_build", BUILD),
+        ("wc_envmap_hierarchical_validate", CHECK),
+        ("wc_envmap_hierarchical_verify", CHECK),
+        ("wc_envmap_hierarchical_sample", SAMPLE),
+        ("wc_envmap_hierarchical_pdf", PDF),
+        ("wc_envmap_marginal_conditional_storage_len", LEN),
+        ("wc_envmap_marginal_conditional_build", BUILD),
+        ("wc_envmap_marginal_conditional_validate", CHECK),
+        ("wc_envmap_marginal_conditional_verify", CHECK),
+        ("wc_envmap_marginal_conditional_sample", SAMPLE),
+        ("wc_envmap_marginal_conditional_pdf", PDF),
+        ("wc_envmap_luminance", MAP_IN_PLACE),
+        ("wc_envmap_latlong_solid_angle_weights", IMAGE),
+        ("wc_envmap_latlong_pdf_to_solid_angle", MAP_IN_PLACE),
+        ("wc_envmap_latlong_to_equal_area", IMAGE),
+    ]
+};
+
+/// The functions `include/warpcore.h` declares: name, declaration (return type and
+/// parameters) and doc comment.
+fn declarations() -> Vec<(String, String, String)> {
+    let header = std::fs::read_to_string(root().join("include/warpcore.h")).unwrap();
+    let mut out = Vec::new();
+    let mut doc = String::new();
+    let mut lines = header.lines();
+    while let Some(line) = lines.next() {
+        if let Some(c) = line.trim_start().strip_prefix("//") {
+            doc.push_str(c.trim());
+            doc.push(' ');
+            continue;
+        }
+        if let Some(at) = line.find("wc_").filter(|_| !line.starts_with('#')) {
+            let name: String = line[at..]
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
+            if line[at + name.len()..].starts_with('(') {
+                let mut decl = line.to_string();
+                while !decl.contains(';') {
+                    decl.push(' ');
+                    decl.push_str(lines.next().unwrap().trim());
+                }
+                out.push((name, decl, std::mem::take(&mut doc)));
+                continue;
+            }
+        }
+        doc.clear();
+    }
+    out
+}
+
+/// The outcomes a function's documentation names (its own comment, and the comments of the
+/// functions it refers to, as in "0 as for `wc_disk_polar`").
+fn documented_outcomes(
+    name: &str,
+    decl: &str,
+    docs: &HashMap<String, String>,
+) -> std::collections::BTreeSet<String> {
+    let own = &docs[name];
+    let mut doc = own.clone();
+    for (other, text) in docs {
+        if other != name && own.contains(&format!("`{other}`")) {
+            doc.push_str(text);
+        }
+    }
+    let mut out = std::collections::BTreeSet::new();
+    if decl.starts_with("int32_t") {
+        out.insert("WC_OK".to_string());
+        for piece in doc.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')) {
+            if piece.starts_with("WC_ERR_") {
+                out.insert(piece.to_string());
+            }
+        }
+        return out;
+    }
+    let mut add = |k: &str, yes: bool| {
+        if yes {
+            out.insert(k.to_string());
+        }
+    };
+    let counted = decl.contains("size_t n)");
+    // The header's rules for every `n`: 0 for n = 0, null, misaligned, overflowing counts.
+    for k in ["n", "0:n=0", "0:null", "0:misaligned", "0:size"] {
+        add(k, counted);
+    }
+    add("0:overlap", counted && doc.contains("overlap"));
+    add(
+        "in-place",
+        doc.contains("other than `") || doc.contains("other than exactly in place"),
+    );
+    add("capped", doc.contains("min(n, 4 n_points)"));
+    add("0:invalid-storage", doc.contains("fails `wc_"));
+    add("0:size=0", doc.contains("size == 0"));
+    let len = name.ends_with("_storage_len");
+    add("words", len);
+    add("0:zero-side", len && doc.contains("0 for a zero side"));
+    add("SIZE_MAX", len && doc.contains("`SIZE_MAX`"));
+    add("value", decl.contains("(void)"));
+    out
+}
+
+/// The header preamble states the rules every counted function follows; the table relies on
+/// them.
+#[test]
+fn header_states_the_general_rules() {
+    let header = std::fs::read_to_string(root().join("include/warpcore.h")).unwrap();
+    let preamble = &header[..header.find("#ifndef").unwrap()].replace("\n *", "");
+    for rule in [
+        "0 (writing nothing) for n = 0",
+        "a null or misaligned pointer",
+        "a count whose byte size exceeds PTRDIFF_MAX",
+    ] {
+        assert!(
+            preamble.contains(rule),
+            "the header preamble lacks {rule:?}"
+        );
+    }
+}
+
+#[test]
+fn hostile_calls_reach_every_documented_outcome() {
+    // The table against the header.
+    let decls = declarations();
+    let docs: HashMap<String, String> = decls
+        .iter()
+        .map(|(n, _, d)| (n.clone(), d.clone()))
+        .collect();
+    let table: HashMap<&str, &[&str]> = TABLE.iter().copied().collect();
+    assert_eq!(table.len(), TABLE.len(), "a function twice in TABLE");
+    assert!(decls.len() >= 50, "only {} declarations found", decls.len());
+    for (name, decl, _) in &decls {
+        let rows = table
+            .get(name.as_str())
+            .unwrap_or_else(|| panic!("{name} has no rows in TABLE (function x outcome)"));
+        let rows: std::collections::BTreeSet<String> = rows.iter().map(|s| s.to_string()).collect();
+        let documented = documented_outcomes(name, decl, &docs);
+        assert_eq!(
+            rows, documented,
+            "{name}: TABLE's rows differ from the outcomes its documentation names"
+        );
+    }
+    for (name, _) in TABLE {
+        assert!(
+            decls.iter().any(|(n, _, _)| n == name),
+            "{name} is in TABLE but not in the header"
+        );
+    }
+
+    // The hostile calls reached every row, and only rows of the table.
+    let rounds = std::env::var("WARPCORE_HOSTILE_ROUNDS").unwrap_or_else(|_| "2000".into());
+    let out = compile_and_run_with("hostile", &[&rounds]);
+    let mut reached: HashMap<(String, String), u64> = HashMap::new();
+    for line in out.lines() {
+        let mut w = line.split(' ');
+        if w.next() == Some("row") {
+            let (f, o, c) = (w.next().unwrap(), w.next().unwrap(), w.next().unwrap());
+            reached.insert((f.to_string(), o.to_string()), c.parse().unwrap());
+        }
+    }
+    for (f, o) in reached.keys() {
+        assert!(
+            table
+                .get(f.as_str())
+                .is_some_and(|r| r.contains(&o.as_str())),
+            "hostile.c reached ({f}, {o}), which TABLE does not list"
+        );
+    }
+    let mut missing = Vec::new();
+    for (f, outcomes) in TABLE {
+        for o in *outcomes {
+            if !reached.contains_key(&(f.to_string(), o.to_string())) {
+                missing.push(format!("({f}, {o})"));
+            }
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "rows never reached: {}",
+        missing.join(" ")
+    );
+    let last = out.lines().last().unwrap_or("");
+    assert!(
+        last.ends_with(" failed") && last.contains(", 0 failed"),
+        "{last}"
+    );
+    let rows: usize = TABLE.iter().map(|(_, o)| o.len()).sum();
+    eprintln!("{rows} rows (function x documented outcome), all reached; {last}");
 }

@@ -35,14 +35,22 @@ const INV_2_PI_SQ: f32 = (1.0 / (2.0 * PI * PI)) as f32;
 
 #[inline(always)]
 fn luminance_body<L: Lane>(rgb: [L; 3]) -> [L; 1] {
-    [L::splat(LUMINANCE[0]) * rgb[0]
+    let l = L::splat(LUMINANCE[0]) * rgb[0]
         + L::splat(LUMINANCE[1]) * rgb[1]
-        + L::splat(LUMINANCE[2]) * rgb[2]]
+        + L::splat(LUMINANCE[2]) * rgb[2];
+    // The weight rule, by compare + select: NaN (a NaN channel, or `inf - inf`), `-0.0` and
+    // negatives become `+0.0`; `+inf` stays.
+    let zero = L::splat(0.0);
+    [L::select(zero.simd_lt(l), l, zero)]
 }
 
-/// Luminance of a linear RGB texel, `0.2126 R + 0.7152 G + 0.0722 B` (evaluated in that
-/// order, without FMA). Bad values propagate (a NaN channel gives NaN, which a distribution
-/// then weighs 0; an infinite one gives an infinite weight, which it rejects).
+/// Luminance of a linear RGB texel as a weight: `0.2126 R + 0.7152 G + 0.0722 B` (evaluated
+/// in that order, without FMA) where that is positive, `+0.0` otherwise — NaN (a NaN channel,
+/// or infinite channels of opposite signs), `-0.0`, negative values and `-inf` give `+0.0`,
+/// the weight the distributions give them anyway. `+inf` stays `+inf`, so a build reports
+/// [`Error::InfiniteWeight`] with the texel's index rather than dropping it. Never NaN, never
+/// negative: the result's bits are the same on every target and in every form (a NaN's bits
+/// would not be).
 #[inline]
 pub fn luminance(rgb: [f32; 3]) -> f32 {
     luminance_body(rgb)[0]
@@ -170,10 +178,12 @@ pub const MAX_SUPERSAMPLE: usize = 64;
 /// they are, except that NaN and negative channels count as 0 (the weight rule, so a bad
 /// source texel cannot spoil its neighbours' averages); `+inf` stays infinite.
 ///
-/// Errors: [`Error::ZeroSize`] (a zero size or `supersample`), [`Error::LengthMismatch`]
-/// (`src.len() != src_width * src_height`, or `dst.len() != size * size`, reported for
-/// `dst`), [`Error::TooLarge`] (a side above [`MAX_SIDE`] or `supersample` above
-/// [`MAX_SUPERSAMPLE`]).
+/// Errors, checked in this order before anything is written: [`Error::ZeroSize`] (a zero
+/// side, `size` or `supersample`), [`Error::TooLarge`] (a side or `size` above [`MAX_SIDE`],
+/// or `supersample` above [`MAX_SUPERSAMPLE`]), [`Error::LengthMismatch`]
+/// (`src.len() != src_width * src_height`, then `dst.len() != size * size`; `expected`
+/// saturates at `usize::MAX` where the product overflows `usize`, as it can on 32-bit
+/// targets). On error `dst` is unchanged.
 pub fn latlong_to_equal_area<const C: usize>(
     src: &[[f32; C]],
     src_width: usize,
@@ -192,37 +202,43 @@ pub fn latlong_to_equal_area<const C: usize>(
     {
         return Err(Error::TooLarge);
     }
-    let expected = src_width * src_height;
+    // Checked: on 32-bit targets (wasm32) two sides of at most `MAX_SIDE` can overflow
+    // `usize`, and no slice can then have the length (`expected` saturates).
+    let expected = src_width.saturating_mul(src_height);
     if src.len() != expected {
         return Err(Error::LengthMismatch {
             expected,
             got: src.len(),
         });
     }
-    let expected = size * size;
+    let expected = size.saturating_mul(size);
     if dst.len() != expected {
         return Err(Error::LengthMismatch {
             expected,
             got: dst.len(),
         });
     }
+    // Sample positions are computed in `f64` (integers below 2^31: exact, so the same bits
+    // as integer arithmetic) and the source index with checked arithmetic.
     let (sw, sh) = (src_width as f64, src_height as f64);
-    let inv = 1.0 / (size * supersample) as f64;
-    let norm = 1.0 / (supersample * supersample) as f64;
+    let (n, ss) = (size as f64, supersample as f64);
+    let inv = 1.0 / (n * ss);
+    let norm = 1.0 / (ss * ss);
     let clean = |x: f32| if x > 0.0 { f64::from(x) } else { 0.0 };
     for (row, out_row) in dst.chunks_exact_mut(size.max(1)).enumerate() {
         for (column, out) in out_row.iter_mut().enumerate() {
             let mut acc = [0.0f64; C];
             for b in 0..supersample {
-                let v = ((row * supersample + b) as f64 + 0.5) * inv;
+                let v = (row as f64 * ss + b as f64 + 0.5) * inv;
                 for a in 0..supersample {
-                    let u = ((column * supersample + a) as f64 + 0.5) * inv;
+                    let u = (column as f64 * ss + a as f64 + 0.5) * inv;
                     let d = sphere::equal_area([u as f32, v as f32]);
                     let [su, sv] = sphere::equirect_inverse(d);
                     // `su, sv` are in [0, 1): the products floor into range.
                     let x = ((f64::from(su) * sw) as usize).min(src_width - 1);
                     let y = ((f64::from(sv) * sh) as usize).min(src_height - 1);
-                    if let Some(texel) = src.get(y * src_width + x) {
+                    let at = y.checked_mul(src_width).and_then(|i| i.checked_add(x));
+                    if let Some(texel) = at.and_then(|i| src.get(i)) {
                         for (s, &t) in acc.iter_mut().zip(texel) {
                             *s += clean(t);
                         }

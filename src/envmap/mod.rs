@@ -62,7 +62,11 @@
 //! * NaN, `-0.0`, negative values and `-inf` weigh **0** (they are never sampled).
 //! * `+inf` is an error, [`Error::InfiniteWeight`] with the texel's index: an infinite weight
 //!   cannot be normalized, and sampling only that texel would silently drop the rest.
-//! * An all-zero map (after the rule above) samples **uniformly**, with pdf 1.
+//! * An all-zero map (after the rule above) samples **uniformly**: every texel gets an equal
+//!   share of the tables' fixed-point intervals up to their rounding, so its pdf is exactly 1
+//!   when `width` and `height` are powers of two, and otherwise within
+//!   `2^-22 + (width + height) 2^-29` of 1 (measured over every size up to 128 x 128 and 300
+//!   sizes up to 5000 x 3000; for example 0.99999994 on one row of a 3 x 21 hierarchical map).
 //! * Any finite weights work, subnormals and `f32::MAX` included: sums are taken in `f64`
 //!   (marginal-conditional) or in a rescaled `f32` pyramid (hierarchical), never overflow.
 //! * Maps of any size from `1 x 1` to `MAX_SIDE x MAX_SIDE` (that fit the 32-bit table

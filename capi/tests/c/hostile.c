@@ -1,0 +1,993 @@
+/*
+ * Hostile and careless callers of the C API, under AddressSanitizer and UBSan in CI
+ * (capi/tests/c.rs; WARPCORE_CFLAGS="-fsanitize=address,undefined ...") and as a 32-bit
+ * program (-m32).
+ *
+ * Every array lives flush against a PROT_NONE guard page (mmap + mprotect), at the end of its
+ * region (an overrun by one element faults) or at its start (an underrun faults), and the
+ * bytes the library must not write are filled with a sentinel and compared afterwards. Each
+ * call's arguments are drawn at random (counts from 0 to SIZE_MAX, null, misaligned and
+ * overlapping pointers, sizes past every limit, lying storage lengths, corrupted storage), a
+ * model of the documented rules says what the call must return and whether it may touch
+ * memory, and the library's answer is compared with it. A call the model says gets past the
+ * checks is only made with arrays of the documented sizes (the caller's contract).
+ *
+ * Output: one line "row <function> <outcome> <calls>" per (function, documented outcome)
+ * reached, then "<calls> hostile calls, <checks> passed, <failed> failed". capi/tests/c.rs
+ * holds the table of every function x documented outcome and fails when a row is missing:
+ * a new function without its rows fails the test.
+ */
+#define _DEFAULT_SOURCE
+#include "warpcore.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+static unsigned long passed, failed, calls;
+#define CHECK(cond)                                                                      \
+    do {                                                                                 \
+        if (cond) {                                                                      \
+            passed++;                                                                    \
+        } else {                                                                         \
+            if (failed++ < 50)                                                           \
+                fprintf(stderr, "%s:%d: CHECK(%s) failed (case %s)\n", __FILE__, __LINE__, \
+                        #cond, current);                                                 \
+        }                                                                                \
+    } while (0)
+
+static const char *current = "";
+
+/* ---- rows: function x outcome ---- */
+
+#define MAX_ROWS 512
+static struct row {
+    const char *fn, *outcome;
+    unsigned long calls;
+} rows[MAX_ROWS];
+static int nrows;
+
+static void reach(const char *fn, const char *outcome) {
+    calls++;
+    for (int i = 0; i < nrows; i++) {
+        if (strcmp(rows[i].fn, fn) == 0 && strcmp(rows[i].outcome, outcome) == 0) {
+            rows[i].calls++;
+            return;
+        }
+    }
+    if (nrows == MAX_ROWS) {
+        fprintf(stderr, "too many rows\n");
+        exit(2);
+    }
+    rows[nrows].fn = fn;
+    rows[nrows].outcome = outcome;
+    rows[nrows].calls = 1;
+    nrows++;
+}
+
+/* ---- random numbers ---- */
+
+static uint32_t seed = 0x9e3779b9u;
+static uint32_t rnd(void) {
+    seed ^= seed << 13;
+    seed ^= seed >> 17;
+    seed ^= seed << 5;
+    return seed;
+}
+static size_t below(size_t n) { return n ? (size_t)rnd() % n : 0; }
+static float rnd_float(void) {
+    static const float specials[] = {0.0f, -0.0f, 1.0f, 0.5f, 0.99999994f, -1.0f, 2.0f, 1e-40f};
+    uint32_t r = rnd();
+    if (r % 16 == 0) return specials[(r >> 4) % 8];
+    if (r % 16 == 1) return (r & 32) ? INFINITY : -INFINITY;
+    if (r % 16 == 2) return NAN;
+    return (float)(rnd() >> 8) * (1.0f / 16777216.0f) * 1.4f - 0.2f;
+}
+
+/* ---- guarded memory ---- */
+
+#define REGIONS 6
+#define REGION_BYTES ((size_t)1 << 20)
+#define SENTINEL 0xa5
+static unsigned char *region[REGIONS];
+
+static void guard_pages(void) {
+    size_t page = (size_t)sysconf(_SC_PAGESIZE);
+    for (int k = 0; k < REGIONS; k++) {
+        unsigned char *base = mmap(NULL, REGION_BYTES + 2 * page, PROT_READ | PROT_WRITE,
+                                   MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (base == MAP_FAILED || mprotect(base, page, PROT_NONE) != 0 ||
+            mprotect(base + page + REGION_BYTES, page, PROT_NONE) != 0) {
+            perror("mmap");
+            exit(2);
+        }
+        region[k] = base + page;
+        memset(region[k], SENTINEL, REGION_BYTES);
+    }
+}
+
+/* The ranges handed out since the last reset (with a margin), to restore the sentinel. */
+#define MAX_USED 32
+static struct {
+    unsigned char *lo, *hi;
+} used[MAX_USED];
+static int nused;
+
+/* An array of `bytes` in region k: flush against the guard page after it (`end`), or the one
+   before it; `skew` bytes further (misaligned pointers), kept inside the region. */
+static void *place(int k, size_t bytes, int end, size_t skew) {
+    if (bytes + skew > REGION_BYTES) bytes = REGION_BYTES - skew;
+    unsigned char *p = end ? region[k] + REGION_BYTES - bytes - skew : region[k] + skew;
+    if (nused < MAX_USED) {
+        unsigned char *lo = p - 64 < region[k] ? region[k] : p - 64;
+        unsigned char *hi = p + bytes + 64 > region[k] + REGION_BYTES ? region[k] + REGION_BYTES : p + bytes + 64;
+        used[nused].lo = lo;
+        used[nused].hi = hi;
+        nused++;
+    }
+    return p;
+}
+
+static int is_sentinel(const void *p, size_t n) {
+    const unsigned char *b = p;
+    for (size_t i = 0; i < n; i++)
+        if (b[i] != SENTINEL) return 0;
+    return 1;
+}
+
+/* The ranges a case used back to the sentinel. */
+static void reset(void) {
+    for (int i = 0; i < nused; i++) memset(used[i].lo, SENTINEL, (size_t)(used[i].hi - used[i].lo));
+    nused = 0;
+}
+
+/* The ranges a case used still hold the sentinel. */
+static int untouched_all(void) {
+    for (int i = 0; i < nused; i++)
+        if (!is_sentinel(used[i].lo, (size_t)(used[i].hi - used[i].lo))) return 0;
+    return 1;
+}
+
+/* Fills `n` floats (or words) with data whose bytes are never all the sentinel. */
+static void fill_floats(float *p, size_t n) {
+    for (size_t i = 0; i < n; i++) p[i] = rnd_float();
+}
+
+/* ---- sizes ---- */
+
+/* Byte size of `n` elements of `elem` bytes fits PTRDIFF_MAX (overflow-safe). */
+static int fits(size_t n, size_t elem) { return n <= (size_t)PTRDIFF_MAX / elem; }
+static int fits_u32(uint64_t n) { return n <= UINT32_MAX; } /* (a function: no -Wtype-limits on 32-bit) */
+static int fits64(uint64_t n, size_t elem) { return n <= (uint64_t)((size_t)PTRDIFF_MAX / elem); }
+
+/* Bytes from `p` to the end of its guarded region (0 outside every region). */
+static size_t avail(const void *p) {
+    for (int k = 0; k < REGIONS; k++) {
+        uintptr_t lo = (uintptr_t)region[k], x = (uintptr_t)p;
+        if (x >= lo && x < lo + REGION_BYTES) return lo + REGION_BYTES - x;
+    }
+    return 0;
+}
+
+/* Snapshots of memory a call must not change. */
+static unsigned char snap_bytes[4][1 << 16];
+static const void *snap_at[4];
+static size_t snap_len[4];
+static void snapshot(int i, const void *p, size_t bytes) {
+    size_t a = p ? avail(p) : 0;
+    if (bytes > a) bytes = a;
+    if (bytes > sizeof snap_bytes[i]) bytes = sizeof snap_bytes[i];
+    snap_at[i] = p;
+    snap_len[i] = bytes;
+    if (bytes) memcpy(snap_bytes[i], p, bytes);
+}
+static int unchanged(void) {
+    int same = 1;
+    for (int i = 0; i < 4; i++) {
+        if (snap_len[i]) same &= memcmp(snap_bytes[i], snap_at[i], snap_len[i]) == 0;
+        snap_len[i] = 0;
+    }
+    return same;
+}
+
+/* A count: usually small, sometimes 0, sometimes one whose byte size overflows for
+   elements of `elem` bytes. */
+static size_t hostile_count(size_t elem, size_t small) {
+    uint32_t r = rnd() % 16;
+    if (r == 0) return 0;
+    if (r == 1) {
+        const size_t huge[] = {SIZE_MAX, SIZE_MAX - 1, SIZE_MAX / 2 + 1, SIZE_MAX / 3 + 1,
+                               SIZE_MAX / 4 + 1, (size_t)PTRDIFF_MAX / 4 + 1,
+                               (size_t)PTRDIFF_MAX / 8 + 1, (size_t)PTRDIFF_MAX / 12 + 1};
+        size_t n = huge[rnd() % 8];
+        return fits(n, elem) ? SIZE_MAX : n;
+    }
+    return 1 + below(small);
+}
+
+static int overlaps(const void *a, size_t an, const void *b, size_t bn) {
+    uintptr_t x = (uintptr_t)a, y = (uintptr_t)b;
+    return an && bn && x < y + bn && y < x + an;
+}
+
+static int aligned(const void *p) { return ((uintptr_t)p & 3u) == 0; }
+
+/* ---- one-to-one maps: f(in, out, n) ---- */
+
+typedef size_t (*map_fn)(const float *, float *, size_t);
+struct map {
+    const char *name;
+    map_fn f;
+    size_t I, O; /* 4-byte values per element */
+    int refuses; /* always returns 0 (wrap_texel with size 0) */
+};
+
+static size_t shuffle7(const float *in, float *out, size_t n) {
+    return wc_pmj02bn_shuffle((const uint32_t *)(const void *)in, 7, (uint32_t *)(void *)out, n);
+}
+static size_t wrap_texel32(const float *in, float *out, size_t n) {
+    return wc_sphere_equal_area_wrap_texel((const int32_t *)(const void *)in, 32,
+                                           (uint32_t *)(void *)out, n);
+}
+static size_t wrap_texel0(const float *in, float *out, size_t n) {
+    return wc_sphere_equal_area_wrap_texel((const int32_t *)(const void *)in, 0,
+                                           (uint32_t *)(void *)out, n);
+}
+
+static const struct map MAPS[] = {
+    {"wc_disk_polar", wc_disk_polar, 2, 2, 0},
+    {"wc_disk_polar_inverse", wc_disk_polar_inverse, 2, 2, 0},
+    {"wc_disk_concentric", wc_disk_concentric, 2, 2, 0},
+    {"wc_disk_concentric_inverse", wc_disk_concentric_inverse, 2, 2, 0},
+    {"wc_triangle_uniform", wc_triangle_uniform, 2, 3, 0},
+    {"wc_triangle_uniform_inverse", wc_triangle_uniform_inverse, 3, 2, 0},
+    {"wc_triangle_sqrt_map", wc_triangle_sqrt_map, 2, 3, 0},
+    {"wc_triangle_sqrt_map_inverse", wc_triangle_sqrt_map_inverse, 3, 2, 0},
+    {"wc_sphere_equal_area", wc_sphere_equal_area, 2, 3, 0},
+    {"wc_sphere_equal_area_inverse", wc_sphere_equal_area_inverse, 3, 2, 0},
+    {"wc_sphere_equal_area_wrap", wc_sphere_equal_area_wrap, 2, 2, 0},
+    {"wc_sphere_equirect", wc_sphere_equirect, 2, 3, 0},
+    {"wc_sphere_equirect_inverse", wc_sphere_equirect_inverse, 3, 2, 0},
+    {"wc_sphere_uniform", wc_sphere_uniform, 2, 3, 0},
+    {"wc_sphere_uniform_inverse", wc_sphere_uniform_inverse, 3, 2, 0},
+    {"wc_sphere_uniform_hemisphere", wc_sphere_uniform_hemisphere, 2, 3, 0},
+    {"wc_sphere_uniform_hemisphere_inverse", wc_sphere_uniform_hemisphere_inverse, 3, 2, 0},
+    {"wc_sphere_cosine_hemisphere", wc_sphere_cosine_hemisphere, 2, 3, 0},
+    {"wc_sphere_cosine_hemisphere_inverse", wc_sphere_cosine_hemisphere_inverse, 3, 2, 0},
+    {"wc_sphere_equal_area_pdf_to_solid_angle", wc_sphere_equal_area_pdf_to_solid_angle, 1, 1, 0},
+    {"wc_sphere_cosine_hemisphere_pdf", wc_sphere_cosine_hemisphere_pdf, 1, 1, 0},
+    {"wc_envmap_luminance", wc_envmap_luminance, 3, 1, 0},
+    {"wc_pmj02bn_shuffle", shuffle7, 1, 1, 0},
+    {"wc_sphere_equal_area_wrap_texel", wrap_texel32, 2, 2, 0},
+    {"wc_sphere_equal_area_wrap_texel", wrap_texel0, 2, 2, 1},
+};
+#define NMAPS (sizeof MAPS / sizeof MAPS[0])
+
+static float ref_in[4096 * 3], ref_out[4096 * 3];
+
+/* Pointer plans shared by the array functions. */
+enum plan { SEPARATE, NULL_IN, NULL_OUT, SKEW_IN, SKEW_OUT, OVERLAP, IN_PLACE, PLANS };
+
+static void one_map(const struct map *M) {
+    size_t n = hostile_count(4 * (M->I > M->O ? M->I : M->O), 300);
+    enum plan plan = (enum plan)(rnd() % PLANS);
+    int end = rnd() & 1;
+    size_t small = n <= 4096 ? n : 0; /* elements actually placed */
+    float *in = place(0, small * M->I * 4, end, 0);
+    float *out = place(1, small * M->O * 4, !end, 0);
+    switch (plan) {
+    case NULL_IN: in = NULL; break;
+    case NULL_OUT: out = NULL; break;
+    case SKEW_IN: in = place(0, small * M->I * 4, end, 1 + below(3)); break;
+    case SKEW_OUT: out = place(1, small * M->O * 4, !end, 1 + below(3)); break;
+    case OVERLAP: {
+        /* The output anywhere from ending one float before the input to starting at its end. */
+        float *base = place(2, (2 * (small * M->O + 1) + small * M->I) * 4, 1, 0);
+        in = base + small * M->O + 1;
+        out = base + below(small * (M->I + M->O) + 2);
+        break;
+    }
+    case IN_PLACE: {
+        size_t bytes = small * (M->I > M->O ? M->I : M->O) * 4;
+        in = out = place(2, bytes, end, 0);
+        break;
+    }
+    default: break;
+    }
+    if (in && small && aligned(in)) fill_floats(in, small * M->I);
+    /* The model. */
+    const char *outcome;
+    size_t want = 0;
+    if (M->refuses) outcome = "0:size=0";
+    else if (n == 0) outcome = "0:n=0";
+    else if (!in || !out) outcome = "0:null";
+    else if (!aligned(in) || !aligned(out)) outcome = "0:misaligned";
+    else if (!fits(n, 4 * M->I) || !fits(n, 4 * M->O)) outcome = "0:size";
+    else if (overlaps(in, n * M->I * 4, out, n * M->O * 4) && !(in == out && M->O <= M->I))
+        outcome = "0:overlap";
+    else {
+        outcome = in == out ? "in-place" : "n";
+        want = n;
+    }
+    if (want) {
+        memcpy(ref_in, in, n * M->I * 4);
+        M->f(ref_in, ref_out, n);
+    }
+    /* What must not change: everything, on a refused call; the input, unless in place. */
+    if (!want) snapshot(0, out, small * M->O * 4 + 64);
+    if (!want || in != out) snapshot(1, in, small * M->I * 4);
+    size_t got = M->f(in, out, n);
+    reach(M->name, outcome);
+    current = M->name;
+    CHECK(got == want);
+    if (want) CHECK(memcmp(out, ref_out, n * M->O * 4) == 0);
+    CHECK(unchanged());
+    reset();
+}
+
+/* ---- generators: f(a, b, out, n) ---- */
+
+typedef size_t (*gen_fn)(uint32_t, uint32_t, float *, size_t);
+struct gen {
+    const char *name;
+    gen_fn f;
+    size_t O;
+};
+static size_t stratified(uint32_t a, uint32_t s, float *o, size_t n) {
+    return wc_sequence_stratified(a, s % 5000, s, o, n);
+}
+static size_t raw(uint32_t a, uint32_t s, float *o, size_t n) {
+    return wc_pmj02bn_raw(s, a, (uint32_t *)(void *)o, n);
+}
+static const struct gen GENS[] = {
+    {"wc_pmj02bn_sample", wc_pmj02bn_sample, 2},
+    {"wc_pmj02bn_raw", raw, 2},
+    {"wc_sequence_random", wc_sequence_random, 2},
+    {"wc_sequence_stratified", stratified, 2},
+    {"wc_triangle_basu_owen", wc_triangle_basu_owen, 3},
+    {"wc_triangle_basu_owen_permuted", wc_triangle_basu_owen_permuted, 3},
+};
+#define NGENS (sizeof GENS / sizeof GENS[0])
+
+static void one_gen(const struct gen *G) {
+    size_t n = hostile_count(4 * G->O, 300);
+    uint32_t a = rnd(), b = rnd();
+    size_t small = n <= 4096 ? n : 0;
+    int end = rnd() & 1;
+    float *out = place(0, small * G->O * 4, end, 0);
+    uint32_t r = rnd() % 4;
+    if (r == 0) out = NULL;
+    if (r == 1) out = place(0, small * G->O * 4, end, 1 + below(3));
+    const char *outcome;
+    size_t want = 0;
+    if (n == 0) outcome = "0:n=0";
+    else if (!out) outcome = "0:null";
+    else if (!aligned(out)) outcome = "0:misaligned";
+    else if (!fits(n, 4 * G->O)) outcome = "0:size";
+    else {
+        outcome = "n";
+        want = n;
+        G->f(a, b, ref_out, n);
+    }
+    size_t got = G->f(a, b, out, n);
+    reach(G->name, outcome);
+    current = G->name;
+    CHECK(got == want);
+    if (want) CHECK(memcmp(out, ref_out, n * G->O * 4) == 0);
+    CHECK(untouched_all() == !want);
+    reset();
+}
+
+/* ---- two inputs: f(a, b, out, n), a: n floats, b: D n floats ---- */
+
+typedef size_t (*pair_fn)(const float *, const float *, float *, size_t);
+struct pair {
+    const char *name;
+    pair_fn f;
+    size_t D;
+};
+static const struct pair PAIRS[] = {
+    {"wc_sphere_equirect_pdf_to_solid_angle", wc_sphere_equirect_pdf_to_solid_angle, 3},
+    {"wc_envmap_latlong_pdf_to_solid_angle", wc_envmap_latlong_pdf_to_solid_angle, 1},
+};
+
+static void one_pair(const struct pair *P) {
+    size_t n = hostile_count(4 * P->D, 300);
+    size_t small = n <= 4096 ? n : 0;
+    int end = rnd() & 1;
+    float *a = place(0, small * 4, end, 0), *b = place(1, small * P->D * 4, !end, 0),
+          *out = place(3, small * 4, end, 0);
+    uint32_t r = rnd() % 10;
+    float *base = place(2, small * (P->D + 4) * 4 + 64, 1, 0);
+    switch (r) {
+    case 0: a = NULL; break;
+    case 1: b = NULL; break;
+    case 2: out = NULL; break;
+    case 3: a = place(0, small * 4, end, 1 + below(3)); break;
+    case 4: out = place(3, small * 4, end, 1 + below(3)); break;
+    case 5: out = a; break;                                                   /* in place */
+    case 6: b = base; out = base + below(small * P->D + 1); break;            /* out in b */
+    case 7: a = base + 2; out = base + below(small + 4); break;               /* near a */
+    case 8: a = base; b = base + below(small + 1); break;                     /* a and b */
+    default: break;
+    }
+    if (a && aligned(a) && small) fill_floats(a, small);
+    if (b && aligned(b) && small && b != a) fill_floats(b, small * P->D);
+    const char *outcome;
+    size_t want = 0;
+    if (n == 0) outcome = "0:n=0";
+    else if (!a || !b || !out) outcome = "0:null";
+    else if (!aligned(a) || !aligned(b) || !aligned(out)) outcome = "0:misaligned";
+    else if (!fits(n, 4 * P->D)) outcome = "0:size";
+    else if (overlaps(out, n * 4, b, n * P->D * 4) || (overlaps(out, n * 4, a, n * 4) && out != a))
+        outcome = "0:overlap";
+    else {
+        outcome = out == a ? "in-place" : "n";
+        want = n;
+        static float ra[4096], rb[4096 * 3];
+        memcpy(ra, a, n * 4);
+        memcpy(rb, b, n * P->D * 4);
+        P->f(ra, rb, ref_out, n);
+    }
+    if (!want) snapshot(0, out, small * 4);
+    if (!want || out != a) snapshot(1, a, small * 4);
+    snapshot(2, b, small * P->D * 4);
+    size_t got = P->f(a, b, out, n);
+    reach(P->name, outcome);
+    current = P->name;
+    CHECK(got == want);
+    if (want) CHECK(memcmp(out, ref_out, n * 4) == 0);
+    CHECK(unchanged());
+    reset();
+}
+
+/* ---- four disk samples per point: f(points, n_points, out, n) ---- */
+
+typedef size_t (*four_fn)(const float *, size_t, float *, size_t);
+static const struct {
+    const char *name;
+    four_fn f;
+} FOURS[] = {{"wc_disk_polar4", wc_disk_polar4}, {"wc_disk_concentric4", wc_disk_concentric4}};
+
+static void one_four(int which) {
+    four_fn f = FOURS[which].f;
+    size_t np = below(80), n = hostile_count(8, 400);
+    if (rnd() % 16 == 0) { /* counts whose byte sizes overflow, with a lying n_points */
+        np = rnd() % 2 ? SIZE_MAX : SIZE_MAX / 4 + 1;
+        n = rnd() % 2 ? SIZE_MAX : (size_t)PTRDIFF_MAX / 8 + 1;
+    }
+    size_t m = np > SIZE_MAX / 4 ? n : (n < 4 * np ? n : 4 * np);
+    size_t used = (m + 3) / 4, small = m <= 4096 ? m : 0, placed = np < 4096 ? np : 0;
+    int end = rnd() & 1;
+    float *pts = place(0, placed * 8, end, 0), *out = place(1, small * 8, !end, 0);
+    uint32_t r = rnd() % 7;
+    if (r == 0) pts = NULL;
+    if (r == 1) out = NULL;
+    if (r == 2) pts = place(0, placed * 8, end, 1 + below(3));
+    if (r == 3) out = place(1, small * 8, !end, 1 + below(3));
+    if (r == 4 && placed) { /* out overlapping the used points, or just past them */
+        pts = place(2, placed * 8 + small * 8 + 16, 0, 0);
+        out = pts + below(2 * used + 2);
+    }
+    if (pts && aligned(pts)) fill_floats(pts, placed * 2);
+    const char *outcome;
+    size_t want = 0;
+    if (m == 0) outcome = "0:n=0";
+    else if (!pts || !out) outcome = "0:null";
+    else if (!aligned(pts) || !aligned(out)) outcome = "0:misaligned";
+    else if (!fits(m, 8)) outcome = "0:size";
+    else if (overlaps(pts, used * 8, out, m * 8)) outcome = "0:overlap";
+    else {
+        outcome = m < n ? "capped" : "n";
+        want = m;
+        static float rp[4096];
+        memcpy(rp, pts, np * 8);
+        f(rp, np, ref_out, n);
+    }
+    if (!want) snapshot(0, out, small * 8 + 64);
+    snapshot(1, pts, (want ? used : placed) * 8); /* outputs may follow the used points */
+    size_t got = f(pts, np, out, n);
+    reach(FOURS[which].name, outcome);
+    current = FOURS[which].name;
+    CHECK(got == want);
+    if (want) CHECK(memcmp(out, ref_out, m * 8) == 0);
+    CHECK(unchanged());
+    reset();
+}
+
+/* ---- inverses with quadrants: f(p, out, quadrant, n) ---- */
+
+typedef size_t (*quad_fn)(const float *, float *, uint32_t *, size_t);
+static const struct {
+    const char *name;
+    quad_fn f;
+} QUADS[] = {{"wc_disk_polar4_inverse", wc_disk_polar4_inverse},
+             {"wc_disk_concentric4_inverse", wc_disk_concentric4_inverse}};
+
+static void one_quad(int which) {
+    quad_fn f = QUADS[which].f;
+    size_t n = hostile_count(8, 300);
+    size_t small = n <= 4096 ? n : 0;
+    int end = rnd() & 1;
+    float *p = place(0, small * 8, end, 0), *out = place(1, small * 8, !end, 0);
+    uint32_t *q = place(3, small * 4, end, 0);
+    float *base = place(2, small * 24 + 64, 1, 0);
+    switch (rnd() % 10) {
+    case 0: p = NULL; break;
+    case 1: out = NULL; break;
+    case 2: q = NULL; break;
+    case 3: p = place(0, small * 8, end, 1 + below(3)); break;
+    case 4: q = place(3, small * 4, end, 1 + below(3)); break;
+    case 5: out = p; break;
+    case 6: p = base; out = base + below(4 * small + 2); break;
+    case 7: p = base; q = (uint32_t *)(void *)(base + below(3 * small + 2)); break;
+    case 8: out = base; q = (uint32_t *)(void *)(base + below(3 * small + 2)); break;
+    default: break;
+    }
+    if (p && aligned(p) && small) fill_floats(p, small * 2);
+    const char *outcome;
+    size_t want = 0;
+    if (n == 0) outcome = "0:n=0";
+    else if (!p || !out || !q) outcome = "0:null";
+    else if (!aligned(p) || !aligned(out) || !aligned(q)) outcome = "0:misaligned";
+    else if (!fits(n, 8)) outcome = "0:size";
+    else if (overlaps(q, n * 4, p, n * 8) || overlaps(q, n * 4, out, n * 8) ||
+             (overlaps(p, n * 8, out, n * 8) && p != out))
+        outcome = "0:overlap";
+    else {
+        outcome = p == out ? "in-place" : "n";
+        want = n;
+        static float rp[8192];
+        memcpy(rp, p, n * 8);
+        f(rp, ref_out, (uint32_t *)(void *)ref_in, n);
+    }
+    if (!want) {
+        snapshot(0, out, small * 8);
+        snapshot(1, q, small * 4);
+        snapshot(2, p, small * 8);
+    }
+    size_t got = f(p, out, q, n);
+    reach(QUADS[which].name, outcome);
+    current = QUADS[which].name;
+    CHECK(got == want);
+    if (want) {
+        CHECK(memcmp(out, ref_out, n * 8) == 0);
+        CHECK(memcmp(q, ref_in, n * 4) == 0);
+    }
+    CHECK(unchanged());
+    reset();
+}
+
+/* ---- environment maps ---- */
+
+typedef size_t (*len_fn)(uint32_t, uint32_t);
+typedef int32_t (*build_fn)(const float *, uint32_t, uint32_t, uint32_t *, size_t);
+typedef int32_t (*check_fn)(const uint32_t *, size_t);
+typedef size_t (*sample_fn)(const uint32_t *, size_t, const float *, WcEnvSample *, size_t);
+typedef size_t (*pdf_fn)(const uint32_t *, size_t, const float *, float *, size_t);
+struct dist {
+    const char *len_name, *build_name, *validate_name, *verify_name, *sample_name, *pdf_name;
+    len_fn len;
+    build_fn build;
+    check_fn validate, verify;
+    sample_fn sample;
+    pdf_fn pdf;
+    uint32_t tag;
+};
+static const struct dist DISTS[2] = {
+    {"wc_envmap_hierarchical_storage_len", "wc_envmap_hierarchical_build",
+     "wc_envmap_hierarchical_validate", "wc_envmap_hierarchical_verify",
+     "wc_envmap_hierarchical_sample", "wc_envmap_hierarchical_pdf",
+     wc_envmap_hierarchical_storage_len, wc_envmap_hierarchical_build,
+     wc_envmap_hierarchical_validate, wc_envmap_hierarchical_verify,
+     wc_envmap_hierarchical_sample, wc_envmap_hierarchical_pdf, 0x49486377u},
+    {"wc_envmap_marginal_conditional_storage_len", "wc_envmap_marginal_conditional_build",
+     "wc_envmap_marginal_conditional_validate", "wc_envmap_marginal_conditional_verify",
+     "wc_envmap_marginal_conditional_sample", "wc_envmap_marginal_conditional_pdf",
+     wc_envmap_marginal_conditional_storage_len, wc_envmap_marginal_conditional_build,
+     wc_envmap_marginal_conditional_validate, wc_envmap_marginal_conditional_verify,
+     wc_envmap_marginal_conditional_sample, wc_envmap_marginal_conditional_pdf, 0x434d6377u},
+};
+
+#define MAX_SIDE ((uint32_t)1 << 24)
+
+/* A side: small, zero, or past a limit. */
+static uint32_t hostile_side(void) {
+    static const uint32_t big[] = {MAX_SIDE,  MAX_SIDE + 1, UINT32_MAX, 65536, 65537,
+                                   40000,     1u << 20,     1u << 31,   46341, 100000};
+    uint32_t r = rnd() % 16;
+    if (r == 0) return 0;
+    if (r <= 3) return big[rnd() % 10];
+    return 1 + (uint32_t)below(40);
+}
+
+static void one_storage_len(const struct dist *D) {
+    uint32_t w = hostile_side(), h = hostile_side();
+    size_t got = D->len(w, h);
+    current = D->len_name;
+    if (w == 0 || h == 0) {
+        reach(D->len_name, "0:zero-side");
+        CHECK(got == 0);
+    } else if (w > MAX_SIDE || h > MAX_SIDE) {
+        reach(D->len_name, "SIZE_MAX");
+        CHECK(got == SIZE_MAX);
+    } else if (got == SIZE_MAX) {
+        /* Tables above 2^32 words (hierarchical pads to powers of two: up to 4x). */
+        reach(D->len_name, "SIZE_MAX");
+        CHECK((uint64_t)w * h > UINT32_MAX / 8);
+    } else {
+        reach(D->len_name, "words");
+        CHECK((uint64_t)got >= 8 + (uint64_t)w * h && fits_u32(got));
+    }
+}
+
+/* A small built storage of each kind for the checks and samplers (words at the start of
+   `built[k]`, `built_len[k]` of them). */
+static uint32_t built[2][8192];
+static size_t built_len[2];
+#define BW 13
+#define BH 7
+
+static void one_build(const struct dist *D) {
+    uint32_t w = hostile_side(), h = hostile_side();
+    size_t need = D->len(w, h);
+    size_t len;
+    switch (rnd() % 6) {
+    case 0: len = 0; break;
+    case 1: len = need - 1; break;
+    case 2: len = SIZE_MAX; break;
+    case 3: len = need + below(9); break;
+    default: len = need; break;
+    }
+    uint64_t texels = (uint64_t)w * h;
+    int small = w && h && texels <= 4096 && need <= 60000; /* arrays can be placed */
+    size_t placed_w = small ? (size_t)texels * 4 : 64, placed_s = small ? need * 4 : 64;
+    int slack = small && len > need && len - need <= 8; /* words the call must not write */
+    if (slack) placed_s = len * 4;
+    int end = rnd() & 1;
+    float *weights = place(0, placed_w, end, 0);
+    uint32_t *storage = place(1, placed_s, !end, 0);
+    switch (rnd() % 8) {
+    case 0: weights = NULL; break;
+    case 1: storage = NULL; break;
+    case 2: weights = place(0, placed_w, end, 1 + below(3)); break;
+    case 3: storage = place(1, placed_s, !end, 1 + below(3)); break;
+    case 4: { /* the weights overlapping the storage, or ending just before it */
+        float *base = place(2, 2 * placed_w + placed_s, 1, 0);
+        storage = (uint32_t *)(void *)(base + placed_w / 4);
+        weights = base + below(placed_w / 4 + placed_s / 4);
+        break;
+    }
+    default: break;
+    }
+    int inf_at = -1;
+    if (weights && aligned(weights) && small) {
+        fill_floats(weights, (size_t)texels);
+        for (size_t i = 0; i < texels; i++)
+            if (weights[i] == INFINITY) weights[i] = 1.0f;
+        if (rnd() % 4 == 0) {
+            inf_at = (int)below((size_t)texels);
+            weights[inf_at] = INFINITY;
+        }
+    }
+    /* The model, in the documented order. */
+    int32_t want;
+    int access = 0;
+    if (w == 0 || h == 0) want = WC_ERR_ZERO_SIZE;
+    else if (need == SIZE_MAX || !fits64(texels, 4) || !fits(need, 4))
+        want = WC_ERR_TOO_LARGE;
+    else if (len < need) want = WC_ERR_STORAGE_TOO_SMALL;
+    else if (!weights || !storage || !aligned(weights) || !aligned(storage))
+        want = WC_ERR_INVALID_ARGUMENT;
+    else if (overlaps(weights, (size_t)texels * 4, storage, need * 4)) want = WC_ERR_INVALID_ARGUMENT;
+    else {
+        access = 1;
+        want = inf_at >= 0 ? WC_ERR_INFINITE_WEIGHT : WC_OK;
+    }
+    if (access && !small) return; /* would need arrays this test does not place */
+    snapshot(0, weights, placed_w);
+    if (!access) snapshot(1, storage, placed_s);
+    int32_t got = D->build(weights, w, h, storage, len);
+    const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "WC_ERR_LENGTH_MISMATCH",
+                           "WC_ERR_STORAGE_TOO_SMALL", "WC_ERR_INFINITE_WEIGHT", "WC_ERR_WRONG_FORMAT",
+                           "WC_ERR_UNSUPPORTED_VERSION", "WC_ERR_CORRUPT", "WC_ERR_INVALID_ARGUMENT"};
+    reach(D->build_name, names[-want]);
+    current = D->build_name;
+    CHECK(got == want);
+    CHECK(unchanged()); /* the weights always; the storage when refused */
+    if (access) {
+        /* Exactly `need` words written: the words after them keep the sentinel. */
+        if (slack) CHECK(is_sentinel(storage + need, (len - need) * 4));
+        if (want == WC_OK) CHECK(D->validate(storage, need) == WC_OK && D->verify(storage, need) == WC_OK);
+    }
+    reset();
+}
+
+/* A storage to check: built, then damaged in one of many ways; `want` is the documented
+   code. */
+static void one_check(const struct dist *D, const struct dist *other, int verify) {
+    int k = (int)(D - DISTS);
+    size_t need = built_len[k];
+    int end = rnd() & 1;
+    size_t len = need;
+    uint32_t *s = place(0, need * 4, end, 0);
+    memcpy(s, built[k], need * 4);
+    int32_t want = WC_OK;
+    switch (rnd() % 14) {
+    case 0: s = NULL; want = WC_ERR_INVALID_ARGUMENT; break;
+    case 1: s = NULL; len = 0; want = WC_ERR_STORAGE_TOO_SMALL; break;
+    case 2: /* misaligned: refused, unless there is nothing to read */
+        s = place(0, need * 4, end, 1 + below(3));
+        len = rnd() % 4 ? need : 0;
+        want = len ? WC_ERR_INVALID_ARGUMENT : WC_ERR_STORAGE_TOO_SMALL;
+        break;
+    case 3: len = (size_t)PTRDIFF_MAX / 4 + 1 + below(3); want = WC_ERR_INVALID_ARGUMENT; break;
+    case 4: len = SIZE_MAX; want = WC_ERR_INVALID_ARGUMENT; break;
+    case 5: /* shorter than the header, flush against the guard */
+        len = below(8);
+        s = place(0, len * 4, 1, 0);
+        memcpy(s, built[k], len * 4);
+        want = WC_ERR_STORAGE_TOO_SMALL;
+        break;
+    case 6: /* shorter than the header says */
+        len = 8 + below(need - 8);
+        s = place(0, len * 4, 1, 0);
+        memcpy(s, built[k], len * 4);
+        want = WC_ERR_STORAGE_TOO_SMALL;
+        break;
+    case 7: memcpy(s, built[other - DISTS], 8 * 4); want = WC_ERR_WRONG_FORMAT; break;
+    case 8: s[0] = rnd() | 1u; want = s[0] == D->tag ? WC_OK : WC_ERR_WRONG_FORMAT; break;
+    case 9: s[1] = 2 + rnd() % 100; want = WC_ERR_UNSUPPORTED_VERSION; break;
+    case 10: s[2 + rnd() % 2] = rnd() % 2 ? 0 : MAX_SIDE + 1 + rnd() % 1000; want = WC_ERR_CORRUPT; break;
+    case 11: s[4 + rnd() % 4] += 1 + rnd() % 1000; want = WC_ERR_CORRUPT; break;
+    case 12: /* longer than needed: fine */
+        len = need + 1 + below(30);
+        s = place(0, len * 4, end, 0);
+        memcpy(s, built[k], need * 4);
+        want = WC_OK;
+        break;
+    default: /* a table word: the O(1) check cannot see it; verify may */
+        s[8 + below(need - 8)] ^= 1u << (rnd() % 32);
+        want = verify ? 1 : WC_OK; /* 1: either WC_OK or WC_ERR_CORRUPT */
+        break;
+    }
+    snapshot(0, s, len < need + 64 ? len * 4 : need * 4);
+    int32_t got = (verify ? D->verify : D->validate)(s, len);
+    const char *name = verify ? D->verify_name : D->validate_name;
+    const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "WC_ERR_LENGTH_MISMATCH",
+                           "WC_ERR_STORAGE_TOO_SMALL", "WC_ERR_INFINITE_WEIGHT", "WC_ERR_WRONG_FORMAT",
+                           "WC_ERR_UNSUPPORTED_VERSION", "WC_ERR_CORRUPT", "WC_ERR_INVALID_ARGUMENT"};
+    current = name;
+    if (want == 1) {
+        CHECK(got == WC_OK || got == WC_ERR_CORRUPT);
+        if (got == WC_OK || got == WC_ERR_CORRUPT) reach(name, names[-got]);
+        else reach(name, "unexpected");
+    } else {
+        CHECK(got == want);
+        reach(name, names[-want]);
+    }
+    /* Reads only. */
+    CHECK(unchanged());
+    reset();
+}
+
+static WcEnvSample ref_samples[4096];
+
+static void one_sample(const struct dist *D, int pdf) {
+    int k = (int)(D - DISTS);
+    size_t need = built_len[k];
+    size_t elem = pdf ? 4 : sizeof(WcEnvSample);
+    size_t n = hostile_count(elem > 8 ? elem : 8, 300);
+    size_t small = n <= 4096 ? n : 0;
+    int end = rnd() & 1;
+    uint32_t *s = place(0, need * 4, end, 0);
+    memcpy(s, built[k], need * 4);
+    size_t len = need;
+    float *u = place(1, small * 8, !end, 0);
+    void *out = place(3, small * elem, end, 0);
+    float *base = place(2, small * (8 + elem) + need * 4 + 64, 1, 0);
+    switch (rnd() % 14) {
+    case 0: s = NULL; break;
+    case 1: u = NULL; break;
+    case 2: out = NULL; break;
+    case 3: s = place(0, need * 4, end, 1 + below(3)); break;
+    case 4: u = place(1, small * 8, !end, 1 + below(3)); break;
+    case 5: out = place(3, small * elem, end, 1 + below(3)); break;
+    case 6: out = u; break; /* in place: pdf only */
+    case 7: u = base; out = base + below(2 * small + 2); break;
+    case 8: /* out over the storage */
+        s = (uint32_t *)(void *)base;
+        memcpy(s, built[k], need * 4);
+        out = base + below(need + 1);
+        break;
+    case 9: len = below(need); break;                         /* truncated */
+    case 10: s[below(8)] ^= 1u << (rnd() % 32); break;         /* bad header (usually) */
+    case 11: s[8 + below(need - 8)] = rnd(); break;            /* garbage table word */
+    default: break;
+    }
+    if (u && aligned(u) && small) fill_floats(u, small * 2);
+    int storage_ok = s && aligned(s) && D->validate(s, len) == WC_OK;
+    const char *outcome;
+    size_t want = 0;
+    if (n == 0) outcome = "0:n=0";
+    else if (!s || !u || !out) outcome = "0:null";
+    else if (!aligned(s) || !aligned(u) || !aligned(out)) outcome = "0:misaligned";
+    else if (!fits(n, 8) || !fits(n, elem)) outcome = "0:size";
+    else if ((overlaps(u, n * 8, out, n * elem) && !(pdf && (void *)u == out)) ||
+             overlaps(s, len * 4, out, n * elem))
+        outcome = "0:overlap";
+    else if (!storage_ok) outcome = "0:invalid-storage";
+    else {
+        outcome = (void *)u == out ? "in-place" : "n";
+        want = n;
+        static float ru[8192];
+        static uint32_t rs[8192];
+        memcpy(ru, u, n * 8);
+        memcpy(rs, s, len * 4);
+        if (pdf) D->pdf(rs, len, ru, ref_out, n);
+        else D->sample(rs, len, ru, ref_samples, n);
+    }
+    if (!want) snapshot(0, out, small * elem);
+    if (!want || (void *)u != out) snapshot(1, u, small * 8);
+    snapshot(2, s, len < need ? len * 4 : need * 4);
+    size_t got = pdf ? D->pdf(s, len, u, out, n) : D->sample(s, len, u, out, n);
+    const char *name = pdf ? D->pdf_name : D->sample_name;
+    reach(name, outcome);
+    current = name;
+    CHECK(got == want);
+    if (want) {
+        CHECK(memcmp(out, pdf ? (const void *)ref_out : (const void *)ref_samples, n * elem) == 0);
+        if (!pdf) {
+            const WcEnvSample *o = out;
+            int inside = 1;
+            for (size_t i = 0; i < n; i++)
+                inside &= o[i].texel[0] < BW && o[i].texel[1] < BH && o[i].uv[0] >= 0.0f &&
+                          o[i].uv[0] < 1.0f && o[i].uv[1] >= 0.0f && o[i].uv[1] < 1.0f &&
+                          o[i].pdf >= 0.0f && o[i].pdf <= 3.4e38f;
+            CHECK(inside);
+        }
+    }
+    CHECK(unchanged());
+    reset();
+}
+
+static void one_weights(void) {
+    uint32_t w = hostile_side(), h = hostile_side();
+    if (rnd() % 16 == 0) w = h = UINT32_MAX - (uint32_t)below(3); /* no such array */
+    uint64_t texels = (uint64_t)w * h;
+    int small = w && h && texels <= 8192;
+    int end = rnd() & 1;
+    float *p = place(0, small ? (size_t)texels * 4 : 64, end, 0);
+    uint32_t r = rnd() % 5;
+    if (r == 0) p = NULL;
+    if (r == 1) p = place(0, small ? (size_t)texels * 4 : 64, end, 1 + below(3));
+    int32_t want;
+    int access = 0;
+    if (w == 0 || h == 0) want = WC_ERR_ZERO_SIZE;
+    else if (!fits64(texels, 4)) want = WC_ERR_TOO_LARGE;
+    else if (!p || !aligned(p)) want = WC_ERR_INVALID_ARGUMENT;
+    else {
+        want = WC_OK;
+        access = 1;
+    }
+    if (access && !small) return;
+    static float copy[8192];
+    if (access) {
+        fill_floats(p, (size_t)texels);
+        memcpy(copy, p, (size_t)texels * 4);
+        wc_envmap_latlong_solid_angle_weights(copy, w, h);
+    }
+    int32_t got = wc_envmap_latlong_solid_angle_weights(p, w, h);
+    const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "", "", "", "", "", "", "WC_ERR_INVALID_ARGUMENT"};
+    reach("wc_envmap_latlong_solid_angle_weights", names[-want]);
+    current = "wc_envmap_latlong_solid_angle_weights";
+    CHECK(got == want);
+    if (access) CHECK(memcmp(p, copy, (size_t)texels * 4) == 0);
+    else CHECK(untouched_all());
+    reset();
+}
+
+static void one_equal_area(void) {
+    uint32_t sw = hostile_side(), sh = hostile_side(), size = hostile_side();
+    uint32_t c = rnd() % 8 == 0 ? rnd() % 7 : 1 + rnd() % 4;
+    uint32_t ss = rnd() % 8 == 0 ? (rnd() % 2 ? 65 + rnd() % 100 : 0) : 1 + rnd() % 3;
+    if (rnd() % 8 == 0) size = MAX_SIDE + 1; /* the old out-of-bounds write */
+    if (size > 24 && size <= MAX_SIDE && rnd() % 2) size = 1 + rnd() % 24;
+    uint64_t src_n = (uint64_t)sw * sh * c, dst_n = (uint64_t)size * size * c;
+    int small = src_n && dst_n && src_n <= 8192 && dst_n <= 8192;
+    /* src below dst in one region, dst flush against the guard page: zeroing or writing
+       past a 1-texel dst faults. */
+    size_t dst_bytes = small ? (size_t)dst_n * 4 : 4 * (c ? c : 1);
+    float *dst = place(1, dst_bytes, 1, 0);
+    float *src = place(0, small ? (size_t)src_n * 4 : 64, rnd() & 1, 0);
+    switch (rnd() % 8) {
+    case 0: src = NULL; break;
+    case 1: dst = NULL; break;
+    case 2: src = place(0, small ? (size_t)src_n * 4 : 64, 0, 1 + below(3)); break;
+    case 3: dst = place(1, dst_bytes, 1, 1 + below(3)); break;
+    case 4: /* overlapping */
+        src = place(2, (small ? (size_t)(src_n + dst_n) * 4 : 128) + 64, 0, 0);
+        dst = src + below(small ? (size_t)src_n + 1 : 16);
+        break;
+    default: break;
+    }
+    int32_t want;
+    int access = 0;
+    if (!sw || !sh || !size || !ss) want = WC_ERR_ZERO_SIZE;
+    else if (c < 1 || c > 4) want = WC_ERR_INVALID_ARGUMENT;
+    else if (sw > MAX_SIDE || sh > MAX_SIDE || size > MAX_SIDE || ss > 64) want = WC_ERR_TOO_LARGE;
+    else if (!fits64(src_n, 4) || !fits64(dst_n, 4))
+        want = WC_ERR_TOO_LARGE;
+    else if (!src || !dst || !aligned(src) || !aligned(dst)) want = WC_ERR_INVALID_ARGUMENT;
+    else if (overlaps(src, (size_t)src_n * 4, dst, (size_t)dst_n * 4)) want = WC_ERR_INVALID_ARGUMENT;
+    else {
+        want = WC_OK;
+        access = 1;
+    }
+    if (access && !small) return;
+    static float rs[8192], rd[8192];
+    if (src && aligned(src) && small) fill_floats(src, (size_t)src_n);
+    if (access) {
+        memcpy(rs, src, (size_t)src_n * 4);
+        wc_envmap_latlong_to_equal_area(rs, sw, sh, c, rd, size, ss);
+    }
+    if (!access) snapshot(0, dst, dst_bytes);
+    snapshot(1, src, small ? (size_t)src_n * 4 : 64);
+    int32_t got = wc_envmap_latlong_to_equal_area(src, sw, sh, c, dst, size, ss);
+    const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "", "", "", "", "", "", "WC_ERR_INVALID_ARGUMENT"};
+    reach("wc_envmap_latlong_to_equal_area", names[-want]);
+    current = "wc_envmap_latlong_to_equal_area";
+    CHECK(got == want);
+    if (access) CHECK(memcmp(dst, rd, (size_t)dst_n * 4) == 0);
+    CHECK(unchanged());
+    reset();
+}
+
+/* Calls with no arguments to get wrong. */
+static void constants(void) {
+    current = "constants";
+    CHECK(wc_pmj02bn_points() >= 1024 && (wc_pmj02bn_points() & (wc_pmj02bn_points() - 1)) == 0);
+    reach("wc_pmj02bn_points", "value");
+    CHECK(wc_pmj02bn_sets() == 1 || wc_pmj02bn_sets() == 4);
+    reach("wc_pmj02bn_sets", "value");
+}
+
+int main(int argc, char **argv) {
+    unsigned long rounds = argc > 1 ? strtoul(argv[1], NULL, 10) : 400;
+    guard_pages();
+    /* The storages the checks and samplers damage. */
+    for (int k = 0; k < 2; k++) {
+        float w[BW * BH];
+        for (int i = 0; i < BW * BH; i++) w[i] = i % 5 == 0 ? 0.0f : (float)(i % 7) + 0.5f;
+        built_len[k] = DISTS[k].len(BW, BH);
+        if (built_len[k] > 8192 || DISTS[k].build(w, BW, BH, built[k], built_len[k]) != WC_OK) {
+            fprintf(stderr, "cannot build the reference storage\n");
+            return 2;
+        }
+    }
+    constants();
+    for (unsigned long r = 0; r < rounds; r++) {
+        for (size_t i = 0; i < NMAPS; i++) one_map(&MAPS[i]);
+        for (size_t i = 0; i < NGENS; i++) one_gen(&GENS[i]);
+        for (int i = 0; i < 2; i++) {
+            one_pair(&PAIRS[i]);
+            one_four(i);
+            one_quad(i);
+            one_storage_len(&DISTS[i]);
+            one_build(&DISTS[i]);
+            one_check(&DISTS[i], &DISTS[1 - i], 0);
+            one_check(&DISTS[i], &DISTS[1 - i], 1);
+            one_sample(&DISTS[i], 0);
+            one_sample(&DISTS[i], 1);
+        }
+        one_weights();
+        one_equal_area();
+    }
+    for (int i = 0; i < nrows; i++) printf("row %s %s %lu\n", rows[i].fn, rows[i].outcome, rows[i].calls);
+    printf("%lu hostile calls, %lu passed, %lu failed\n", calls, passed, failed);
+    return failed == 0 ? 0 : 1;
+}

@@ -1,0 +1,528 @@
+// Hostile callers of the JavaScript API. Every function gets, in every argument, typed-array
+// subclasses that override `set`, `subarray`, `length` and `constructor`, Proxies, DataViews,
+// typed arrays from another realm or over detached buffers, objects whose `toString`,
+// `valueOf` or `Symbol.toPrimitive` throw, shared and resizable buffers, and `out` arrays
+// aliasing the inputs; and every call runs with the built-in prototypes the module could
+// touch patched to record any use. The test asserts:
+//
+// * the exact error type (TypeError or RangeError, never a user's exception, never a wasm
+//   trap), or for valid arguments the same result as a plain call;
+// * no user code ran during any call: no override, trap, getter, conversion method or patched
+//   built-in was invoked (the one documented exception, reading `options.verify`, is tested
+//   apart);
+// * no view of the module's wasm memory escaped: not in a result, an error, or anything the
+//   user's code could have received;
+// * afterwards every EnvMap still samples what it sampled before, and no memory is reserved.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import vm from 'node:vm';
+import { pathToFileURL } from 'node:url';
+
+// ---- the module's memory, caught at instantiation (the module captures `instantiate` when it
+// is evaluated, so the hook goes in before the import) ----
+const memories = [];
+const realInstantiate = WebAssembly.instantiate;
+WebAssembly.instantiate = async (...args) => {
+  const r = await realInstantiate(...args);
+  memories.push((r instanceof WebAssembly.Instance ? r : r.instance).exports.memory);
+  return r;
+};
+const { load } = await import('../warpcore.mjs');
+const wasmUrl = process.env.WARPCORE_WASM ? pathToFileURL(process.env.WARPCORE_WASM) : new URL('../warpcore.wasm', import.meta.url);
+const wc = await load(wasmUrl);
+WebAssembly.instantiate = realInstantiate;
+assert.equal(memories.length, 1);
+const memory = memories[0];
+
+const TypedArray = Object.getPrototypeOf(Uint8Array.prototype);
+const taBuffer = Object.getOwnPropertyDescriptor(TypedArray, 'buffer').get;
+const dvBuffer = Object.getOwnPropertyDescriptor(DataView.prototype, 'buffer').get;
+const memoryBuffer = Object.getOwnPropertyDescriptor(WebAssembly.Memory.prototype, 'buffer').get;
+const { TypeError: TE, RangeError: RE } = globalThis;
+
+// Every buffer the memory ever had (it is replaced when it grows).
+const wasmBuffers = new WeakSet();
+const noteBuffer = () => wasmBuffers.add(memoryBuffer.call(memory));
+noteBuffer();
+
+/** Is `v`, or anything reachable from it (two levels), the module's memory or a view of it? */
+function escapes(v, depth = 0) {
+  if (v === null || (typeof v !== 'object' && typeof v !== 'function')) return false;
+  if (v === memory || wasmBuffers.has(v)) return true;
+  if (ArrayBuffer.isView(v)) {
+    const b = v instanceof DataView ? dvBuffer.call(v) : taBuffer.call(v);
+    return wasmBuffers.has(b);
+  }
+  if (depth >= 2) return false;
+  for (const key of Reflect.ownKeys(v)) {
+    const d = Reflect.getOwnPropertyDescriptor(v, key);
+    if (d && 'value' in d && escapes(d.value, depth + 1)) return true;
+  }
+  return false;
+}
+
+// ---- spies on everything a caller could patch: installed only while a call runs (they would
+// disturb the test runner otherwise), recording any use ----
+const ran = []; // [what, this, args]
+let active = false;
+let recording = false; // re-entrancy guard: recording must not record itself
+const record = (what, self, args) => {
+  if (!active || recording) return;
+  recording = true;
+  ran[ran.length] = [what, self, args];
+  recording = false;
+};
+const SPIES = []; // [object, key, original descriptor, spy descriptor]
+function spyOn(o, key, what) {
+  const d = Object.getOwnPropertyDescriptor(o, key);
+  if (!d || !d.configurable) return;
+  let spy;
+  if (typeof d.value === 'function' && key !== 'constructor') {
+    const f = d.value;
+    spy = {
+      ...d,
+      value: function (...args) {
+        record(what, this, args);
+        return new.target ? Reflect.construct(f, args, new.target) : Reflect.apply(f, this, args);
+      },
+    };
+  } else if ('value' in d) {
+    const v = d.value;
+    spy = {
+      configurable: true,
+      enumerable: d.enumerable,
+      get() {
+        record(`get ${what}`, this, []);
+        return v;
+      },
+      set(x) {
+        record(`set ${what}`, this, [x]);
+      },
+    };
+  } else {
+    const g = d.get;
+    spy = {
+      ...d,
+      get() {
+        record(`get ${what}`, this, []);
+        return g && Reflect.apply(g, this, []);
+      },
+    };
+  }
+  SPIES.push([o, key, d, spy]);
+}
+for (const key of Reflect.ownKeys(TypedArray)) spyOn(TypedArray, key, `%TypedArray%.prototype.${String(key)}`);
+for (const T of [Float32Array, Uint32Array, Int32Array, Uint8Array, Float64Array]) {
+  spyOn(T.prototype, 'constructor', `${T.name}.prototype.constructor`);
+}
+spyOn(TypedArray.constructor, Symbol.species, '%TypedArray%[Symbol.species]');
+for (const key of Reflect.ownKeys(Array.prototype)) if (key !== 'length') spyOn(Array.prototype, key, `Array.prototype.${String(key)}`);
+for (const key of ['buffer', 'grow']) spyOn(WebAssembly.Memory.prototype, key, `Memory.prototype.${key}`);
+for (const key of ['byteLength', 'slice', 'resize']) spyOn(ArrayBuffer.prototype, key, `ArrayBuffer.prototype.${key}`);
+spyOn(ArrayBuffer, 'isView', 'ArrayBuffer.isView');
+for (const key of ['getPrototypeOf', 'keys', 'assign', 'defineProperty', 'freeze', 'entries']) spyOn(Object, key, `Object.${key}`);
+for (const key of ['ceil', 'max', 'min', 'floor']) spyOn(Math, key, `Math.${key}`);
+spyOn(Number, 'isInteger', 'Number.isInteger');
+for (const key of ['register', 'unregister']) spyOn(FinalizationRegistry.prototype, key, `FinalizationRegistry.prototype.${key}`);
+for (const key of ['toString', 'valueOf']) spyOn(Object.prototype, key, `Object.prototype.${key}`);
+spyOn(Number.prototype, 'toString', 'Number.prototype.toString');
+for (const key of ['call', 'apply', 'bind']) spyOn(Function.prototype, key, `Function.prototype.${key}`);
+spyOn(Symbol.prototype, 'toString', 'Symbol.prototype.toString');
+for (const key of ['message', 'name']) spyOn(Error.prototype, key, `Error.prototype.${key}`);
+// Setters a caller could plant for the properties the module defines on its own objects.
+for (const [o, key] of [[Object.prototype, 'code'], [Error.prototype, 'code'], [RangeError.prototype, 'code'], [TypeError.prototype, 'code'], [Object.prototype, 'kind'], [Object.prototype, 'width'], [Object.prototype, 'height']]) {
+  SPIES.push([o, key, undefined, { configurable: true, set(v) { record(`set ${key}`, this, [v]); } }]); // prettier-ignore
+}
+function arm() {
+  for (let i = 0; i < SPIES.length; i++) Reflect.defineProperty(SPIES[i][0], SPIES[i][1], SPIES[i][3]);
+  active = true;
+}
+function disarm() {
+  active = false;
+  for (let i = SPIES.length - 1; i >= 0; i--) {
+    const [o, key, d] = SPIES[i];
+    if (d) Reflect.defineProperty(o, key, d);
+    else Reflect.deleteProperty(o, key);
+  }
+}
+
+let calls = 0;
+/** Runs one API call with the spies armed; returns [result, error]. */
+function call(f) {
+  calls++;
+  ran.length = 0;
+  arm();
+  let result;
+  let error;
+  try {
+    result = f();
+  } catch (e) {
+    error = e;
+  } finally {
+    disarm();
+  }
+  noteBuffer();
+  assert.deepEqual(ran.map(([what]) => what), [], 'user code ran during the call');
+  assert.ok(!escapes(result), 'a wasm memory view in the result');
+  assert.ok(!escapes(error), 'a wasm memory view in the error');
+  if (error !== undefined) assert.ok(!(error instanceof WebAssembly.RuntimeError), `a wasm trap: ${error.message}`);
+  return [result, error];
+}
+const expectError = (f, Want, what) => {
+  const [, e] = call(f);
+  assert.ok(e !== undefined, `${what}: no error`);
+  assert.equal(Object.getPrototypeOf(e), Want.prototype, `${what}: ${e?.constructor?.name}: ${e?.message}`);
+  return e;
+};
+const expectSame = (f, want, what) => {
+  const [r, e] = call(f);
+  assert.equal(e, undefined, `${what}: ${e?.message}`);
+  assert.deepEqual(r, want, what);
+  return r;
+};
+
+// ---- arguments ----
+const STORAGE = (() => {
+  const env = wc.envmapMarginalConditional(new Float32Array([1, 2, 0, 3, 1, 1]), 3, 2);
+  const words = env.storage();
+  env.free();
+  return words;
+})();
+
+const vec = (T, d, n = 3) => ({ T, d, good: () => new T(d * n).map((_, i) => (i % 7) * 0.125) });
+const NUM = (v) => ({ num: true, good: () => v });
+const SPEC = {
+  diskPolar: [vec(Float32Array, 2)],
+  diskPolarInverse: [vec(Float32Array, 2)],
+  diskConcentric: [vec(Float32Array, 2)],
+  diskConcentricInverse: [vec(Float32Array, 2)],
+  diskPolar4: [vec(Float32Array, 2), NUM(5)],
+  diskPolar4Inverse: [vec(Float32Array, 2)],
+  diskConcentric4: [vec(Float32Array, 2), NUM(5)],
+  diskConcentric4Inverse: [vec(Float32Array, 2)],
+  triangleUniform: [vec(Float32Array, 2)],
+  triangleUniformInverse: [vec(Float32Array, 3)],
+  triangleSqrtMap: [vec(Float32Array, 2)],
+  triangleSqrtMapInverse: [vec(Float32Array, 3)],
+  triangleBasuOwen: [NUM(1), NUM(2), NUM(3)],
+  triangleBasuOwenPermuted: [NUM(1), NUM(2), NUM(3)],
+  sphereEqualArea: [vec(Float32Array, 2)],
+  sphereEqualAreaInverse: [vec(Float32Array, 3)],
+  sphereEqualAreaWrap: [vec(Float32Array, 2)],
+  sphereEquirect: [vec(Float32Array, 2)],
+  sphereEquirectInverse: [vec(Float32Array, 3)],
+  sphereUniform: [vec(Float32Array, 2)],
+  sphereUniformInverse: [vec(Float32Array, 3)],
+  sphereUniformHemisphere: [vec(Float32Array, 2)],
+  sphereUniformHemisphereInverse: [vec(Float32Array, 3)],
+  sphereCosineHemisphere: [vec(Float32Array, 2)],
+  sphereCosineHemisphereInverse: [vec(Float32Array, 3)],
+  sphereEqualAreaPdfToSolidAngle: [vec(Float32Array, 1)],
+  sphereCosineHemispherePdf: [vec(Float32Array, 1)],
+  sphereEquirectPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 3)],
+  sphereEqualAreaWrapTexel: [vec(Int32Array, 2), NUM(8)],
+  pmj02bnSample: [NUM(0), NUM(9), NUM(4)],
+  pmj02bnRaw: [NUM(0), NUM(9), NUM(4)],
+  pmj02bnShuffle: [vec(Uint32Array, 1), NUM(3)],
+  sequenceRandom: [NUM(0), NUM(9), NUM(4)],
+  sequenceStratified: [NUM(0), NUM(16), NUM(9), NUM(4)],
+  envmapLuminance: [vec(Float32Array, 3)],
+  envmapLatlongPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
+  envmapLatlongSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, NUM(3), NUM(2)],
+  envmapLatlongToEqualArea: [{ T: Float32Array, d: 18, good: () => new Float32Array(18).fill(0.5) }, NUM(3), NUM(2), NUM(3), NUM(4), NUM(2)],
+  envmapHierarchical: [{ T: Float32Array, d: 6, good: () => new Float32Array([1, 2, 0, 3, 1, 1]) }, NUM(3), NUM(2)],
+  envmapMarginalConditional: [{ T: Float32Array, d: 6, good: () => new Float32Array([1, 2, 0, 3, 1, 1]) }, NUM(3), NUM(2)],
+  envmapFromStorage: [{ T: Uint32Array, d: 1, good: () => STORAGE.slice() }],
+};
+// Functions whose last argument is an optional `out` of this type and length (for the good
+// arguments).
+const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapFromStorage', 'envmapLatlongSolidAngleWeights', 'envmapLatlongToEqualArea']);
+const OUT = {};
+for (const [name, specs] of Object.entries(SPEC)) {
+  if (NO_OUT.has(name)) continue;
+  const r = wc[name](...specs.map((s) => s.good()));
+  OUT[name] = { T: { Float32Array, Uint32Array, Int32Array }[r[Symbol.toStringTag]], length: r.length, at: specs.length };
+}
+
+const free = (r) => {
+  if (r instanceof wc.EnvMap) r.free();
+};
+/** The plain result of a call (for comparing), with EnvMaps reduced to their samples. */
+const TAG = Object.getOwnPropertyDescriptor(TypedArray, Symbol.toStringTag).get;
+const TYPES = { Float32Array, Uint32Array, Int32Array };
+const plain = (r) => {
+  if (r instanceof wc.EnvMap) return envSummary(r);
+  if (ArrayBuffer.isView(r)) return new TYPES[TAG.call(r)](r); // a plain copy (`r` may be a caller's odd array)
+  return r;
+};
+const U_PROBE = new Float32Array([0.1, 0.2, 0.7, 0.4, 0.95, 0.99, 0, 0]);
+const envSummary = (env) => ({ kind: env.kind, width: env.width, height: env.height, sample: env.sample(U_PROBE) });
+
+// Hostile stand-ins for a typed array of type T holding `source`; `Want` is the error each
+// must throw (null: must succeed with the plain result).
+const otherRealm = vm.runInNewContext('({ Float32Array, Uint32Array, Int32Array })');
+function hostileArrays(T, source) {
+  const log = (what) => (...args) => record(`user ${what}`, null, args);
+  class Sub extends T {
+    set(...a) {
+      log('Sub.set')(this, a);
+      return super.set(...a);
+    }
+    subarray(...a) {
+      log('Sub.subarray')(this, a);
+      return super.subarray(...a);
+    }
+    get length() {
+      log('Sub.length')();
+      return 2;
+    }
+    static get [Symbol.species]() {
+      log('Sub[species]')();
+      return T;
+    }
+  }
+  const sub = new Sub(source.length);
+  T.prototype.set.call(sub, source);
+  const shadowed = new T(source);
+  for (const key of ['set', 'subarray', 'slice', 'constructor', 'length', 'buffer', 'byteOffset']) {
+    Object.defineProperty(shadowed, key, {
+      get() {
+        log(`own ${key}`)();
+        throw new Error(`own ${key}`);
+      },
+    });
+  }
+  const traps = {};
+  for (const trap of ['get', 'getPrototypeOf', 'has', 'ownKeys', 'getOwnPropertyDescriptor', 'set', 'apply']) {
+    traps[trap] = (...a) => {
+      log(`Proxy ${trap}`)(a);
+      return Reflect[trap](...a);
+    };
+  }
+  const detachedBuffer = new ArrayBuffer(source.length * T.BYTES_PER_ELEMENT);
+  const detachedArray = new T(detachedBuffer);
+  structuredClone(detachedBuffer, { transfer: [detachedBuffer] });
+  const shared = new T(new SharedArrayBuffer(source.length * T.BYTES_PER_ELEMENT + 8), 4, source.length);
+  shared.set(source);
+  const resizable = new T(new ArrayBuffer(source.length * T.BYTES_PER_ELEMENT, { maxByteLength: 4096 }));
+  resizable.set(source);
+  const foreign = new otherRealm[T.name](source.length);
+  foreign.set(source);
+  const revoked = Proxy.revocable(new T(source), {});
+  revoked.revoke();
+  return [
+    ['subclass', sub, TE],
+    ['own properties shadowing the prototype', shadowed, null],
+    ['Proxy', new Proxy(new T(source), traps), TE],
+    ['revoked Proxy', revoked.proxy, TE],
+    ['DataView', new DataView(new ArrayBuffer(4 * source.length)), TE],
+    ['another realm', foreign, TE],
+    ['detached', detachedArray, TE],
+    ['shared buffer', shared, null],
+    ['resizable buffer', resizable, null],
+    ['plain object with a length', { length: source.length, 0: 1 }, TE],
+  ];
+}
+
+// Hostile stand-ins for a number: conversion methods that throw (or lie) must never run.
+function hostileNumbers() {
+  const log = (what) => () => {
+    record(`user ${what}`, null, []);
+    throw new Error(what);
+  };
+  return [
+    ['valueOf', { valueOf: log('valueOf') }, TE],
+    ['toString', { toString: log('toString') }, TE],
+    ['Symbol.toPrimitive', { [Symbol.toPrimitive]: log('toPrimitive') }, TE],
+    ['Number object', Object(4), TE],
+    ['getter-laden object', Object.defineProperty({}, 'valueOf', { get: log('valueOf getter') }), TE],
+    ['Proxy', new Proxy({}, { get: log('Proxy get'), getPrototypeOf: log('Proxy getPrototypeOf') }), TE],
+    ['symbol', Symbol('n'), TE],
+    ['BigInt', 4n, TE],
+    ['function', Object.assign(() => 4, { valueOf: log('fn valueOf') }), TE],
+  ];
+}
+
+test('hostile arguments: exact errors, no user code, no wasm memory view', (t) => {
+  const reserved = wc.memoryStats().reserved;
+  const kept = wc.envmapHierarchical(new Float32Array([1, 2, 0, 3, 1, 1, 4, 0]), 4, 2);
+  const keptBefore = envSummary(kept);
+  let cases = 0;
+  for (const [name, specs] of Object.entries(SPEC)) {
+    const good = () => specs.map((s) => s.good());
+    const goodArgs = good();
+    const want = call(() => Reflect.apply(wc[name], wc, goodArgs))[0];
+    const wantPlain = plain(want);
+    free(want);
+    const positions = specs.map((s, k) => [s, k]);
+    if (OUT[name]) positions.push([{ T: OUT[name].T, d: 1, good: () => new OUT[name].T(OUT[name].length), out: true }, OUT[name].at]);
+    for (const [spec, k] of positions) {
+      const variants = spec.num ? hostileNumbers() : hostileArrays(spec.T, spec.good());
+      for (const [what, value, Want] of variants) {
+        const args = good();
+        args[k] = value;
+        const label = `${name} argument ${k} (${spec.out ? 'out' : ''}): ${what}`;
+        if (Want) {
+          expectError(() => Reflect.apply(wc[name], wc, args), Want, label);
+        } else {
+          const [r, e] = call(() => Reflect.apply(wc[name], wc, args));
+          assert.equal(e, undefined, `${label}: ${e?.message}`);
+          assert.deepEqual(plain(r), wantPlain, label);
+          if (spec.out) assert.equal(r, value, `${label}: out is returned`);
+          free(r);
+        }
+        cases++;
+      }
+    }
+  }
+  // EnvMap methods on hostile arrays, and on objects that are not EnvMaps.
+  for (const method of ['sample', 'pdf']) {
+    for (const [what, value, Want] of hostileArrays(Float32Array, U_PROBE)) {
+      if (Want) expectError(() => kept[method](value), Want, `EnvMap.${method}: ${what}`);
+      else expectSame(() => kept[method](value), kept[method](U_PROBE), `EnvMap.${method}: ${what}`);
+      cases++;
+    }
+    for (const self of [{}, null, Object.create(wc.EnvMap.prototype), new Proxy(kept, {})]) {
+      expectError(() => Reflect.apply(wc.EnvMap.prototype[method], self, [U_PROBE]), TE, `EnvMap.${method} on a non-EnvMap`);
+      cases++;
+    }
+  }
+  for (const [what, value, Want] of hostileArrays(Float32Array, new Float32Array(4))) {
+    if (Want) expectError(() => kept.pdf(U_PROBE, value), Want, `EnvMap.pdf out: ${what}`);
+    cases++;
+  }
+  // The class and its prototype are frozen: no method swapped, no setter planted.
+  assert.throws(() => {
+    wc.EnvMap.prototype.sample = () => 0;
+  }, TypeError);
+  assert.throws(() => Object.defineProperty(wc.EnvMap.prototype, 'kind', { set() {} }), TypeError);
+  assert.ok(Object.isFrozen(wc.EnvMap) && Object.isFrozen(wc));
+  assert.deepEqual(envSummary(kept), keptBefore, 'the EnvMap still samples what it did');
+  kept.free();
+  assert.equal(wc.memoryStats().reserved, reserved, 'no memory left reserved');
+  t.diagnostic(`${cases} hostile arguments, ${calls} calls so far`);
+  assert.ok(cases > 900, `${cases} cases`);
+});
+
+test('aliasing: out is an input, or overlaps one through another view', (t) => {
+  let cases = 0;
+  const u = new Float32Array(64).map((_, i) => ((i * 37) % 64) / 64);
+  for (const name of ['diskPolar', 'diskConcentric', 'diskConcentricInverse', 'sphereEqualAreaWrap', 'sphereEqualAreaPdfToSolidAngle', 'envmapLuminance', 'triangleUniformInverse']) {
+    const I = { envmapLuminance: 3, triangleUniformInverse: 3, sphereEqualAreaPdfToSolidAngle: 1 }[name] ?? 2;
+    const O = { envmapLuminance: 1, sphereEqualAreaPdfToSolidAngle: 1 }[name] ?? 2;
+    const input = u.slice(0, I * 8);
+    const want = wc[name](input);
+    if (I === O) {
+      const same = input.slice();
+      expectSame(() => wc[name](same, same), want, `${name}(x, x)`);
+      cases++;
+    }
+    for (const shift of [-3, -1, 1, 2, 5]) {
+      // One buffer; the output view starts `shift` elements from the input's.
+      const buffer = new ArrayBuffer(4 * (I * 8 + O * 8 + 16));
+      const a = new Float32Array(buffer, 4 * 8, I * 8);
+      a.set(input);
+      const out = new Float32Array(buffer, 4 * (8 + shift), O * 8);
+      expectSame(() => wc[name](a, out), want, `${name} out shifted ${shift}`);
+      cases++;
+    }
+  }
+  // Two-input functions: out aliasing either input.
+  const pdf = new Float32Array([1, 2, 3, 4]);
+  const d = new Float32Array([1, 0, 0, 0, 1, 0, 0, 0, 1, 0.6, 0.8, 0]);
+  const want = wc.sphereEquirectPdfToSolidAngle(pdf, d);
+  const p2 = pdf.slice();
+  const d3 = d.slice();
+  expectSame(() => wc.sphereEquirectPdfToSolidAngle(p2, d3, p2), want, 'pair out = pdf');
+  const d2 = d.slice();
+  const d2out = d2.subarray(4, 8);
+  expectSame(() => wc.sphereEquirectPdfToSolidAngle(pdf, d2, d2out), want, 'pair out inside d');
+  const v = new Float32Array([0.1, 0.5, 0.9, 0.3]);
+  const wantV = wc.envmapLatlongPdfToSolidAngle(pdf, v);
+  const v2 = v.slice();
+  expectSame(() => wc.envmapLatlongPdfToSolidAngle(pdf, v2, v2), wantV, 'latlong out = v');
+  cases += 3;
+  // EnvMap.pdf into its own input.
+  const env = wc.envmapMarginalConditional(new Float32Array([1, 2, 3, 4]), 2, 2);
+  const uv = new Float32Array([0.1, 0.2, 0.6, 0.7, 0.3, 0.9, 0.8, 0.1]);
+  const wantPdf = env.pdf(uv);
+  const uv2 = uv.slice();
+  const uv2out = uv2.subarray(0, 4);
+  expectSame(() => env.pdf(uv2, uv2out), wantPdf, 'EnvMap.pdf out inside uv');
+  env.free();
+  cases++;
+  t.diagnostic(`${cases} aliasing cases`);
+});
+
+test('patched built-ins after loading change nothing', (t) => {
+  // Break the methods and getters a careless module would call; the API must not notice.
+  // (Indexed loops only: the test's own code must not use what it breaks.)
+  const targets = [
+    [TypedArray, ['set', 'subarray', 'slice', 'length', 'buffer', 'byteOffset', Symbol.toStringTag, Symbol.iterator]],
+    [Array.prototype, [Symbol.iterator, 'map', 'find', 'splice', 'push', 'findIndex', 'reduce']],
+    [WebAssembly.Memory.prototype, ['buffer', 'grow']],
+    [ArrayBuffer, ['isView']],
+    [Object, ['getPrototypeOf', 'keys', 'defineProperty']],
+    [Math, ['ceil']],
+  ];
+  const saved = [];
+  for (let i = 0; i < targets.length; i++) {
+    const keys = targets[i][1];
+    for (let j = 0; j < keys.length; j++) saved[saved.length] = [targets[i][0], keys[j], Object.getOwnPropertyDescriptor(targets[i][0], keys[j])];
+  }
+  const thrower = () => {
+    throw new Error('a patched built-in ran');
+  };
+  const u = new Float32Array([0.1, 0.2, 0.3, 0.4]);
+  const weights = new Float32Array([1, 1, 1, 1]);
+  let results;
+  let error;
+  for (let i = 0; i < saved.length; i++) {
+    const d = saved[i][2];
+    Reflect.defineProperty(saved[i][0], saved[i][1], d.get ? { configurable: true, get: thrower } : { configurable: true, writable: true, value: thrower });
+  }
+  try {
+    const env = wc.envmapHierarchical(weights, 2, 2);
+    results = [wc.diskConcentric(u), wc.pmj02bnSample(0, 1, 300_000), wc.diskPolar4(u, 6), env.sample(u).pdf, env.storage()];
+    env.free();
+  } catch (e) {
+    error = e;
+  } finally {
+    for (let i = saved.length - 1; i >= 0; i--) Reflect.defineProperty(saved[i][0], saved[i][1], saved[i][2]);
+  }
+  assert.equal(error, undefined, `a call used a patched built-in: ${error?.stack}`);
+  assert.deepEqual(results[0], wc.diskConcentric(new Float32Array([0.1, 0.2, 0.3, 0.4])));
+  assert.equal(results[1].length, 600_000, 'grew the memory');
+  assert.deepEqual([...results[3]], [1, 1]);
+  t.diagnostic(`6 calls with ${saved.length} built-ins broken`);
+});
+
+test('options.verify: read once, first; a throwing getter becomes a TypeError', () => {
+  let reads = 0;
+  const words = STORAGE.slice();
+  const env = wc.envmapFromStorage(words, {
+    get verify() {
+      reads++;
+      return false;
+    },
+  });
+  assert.equal(reads, 1);
+  env.free();
+  for (const [options, Want] of [
+    [{ get verify() { throw new RangeError('mine'); } }, TypeError], // prettier-ignore
+    [new Proxy({}, { get() { throw new Error('trap'); } }), TypeError], // prettier-ignore
+    [{ verify: 'yes' }, TypeError],
+    [{ verify: 1 }, TypeError],
+    [null, TypeError],
+    ['verify', TypeError],
+  ]) {
+    const e = assert.throws(() => wc.envmapFromStorage(words, options), (e) => Object.getPrototypeOf(e) === Want.prototype);
+    void e;
+  }
+  for (const verify of [true, false, undefined]) wc.envmapFromStorage(words, { verify }).free();
+  wc.envmapFromStorage(words).free();
+});
+
+test('summary', (t) => {
+  t.diagnostic(`${calls} hostile calls made through the spies`);
+});
