@@ -6,8 +6,11 @@
 //! Every scalar and lane form builds its sampler from (pixel, frame, index, seed) for every
 //! sample and draws from a child domain: `Sampler::new(pixel, frame, i, seed).domain(k)
 //! .draw::<4>()` (openqmc-rs: `X::new(x, y, frame, i).new_domain(k).draw_sample_f32::<4>()`).
-//! The pixel goes through `black_box` per sample, so the construction cannot be hoisted out
-//! of the loop. The slice form fills the same `BATCH` points of one domain in one call.
+//! The pixel goes through `black_box` per sample, so the whole construction runs for every
+//! sample (as when a progressive renderer's loop moves from pixel to pixel). The "pixel loop"
+//! entries build it the same way over one pixel's samples with the pixel fixed, so the
+//! compiler may hoist what does not depend on the index (as in a loop over a pixel's
+//! samples). The slice form fills the same `BATCH` points of one domain in one call.
 //!
 //! Run: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench sampler`
 
@@ -27,8 +30,9 @@ const SEED: u32 = 0x5eed;
 /// The child domain every form draws from (a path's "light sample at bounce 2", say).
 const DOMAIN: u32 = 5;
 
-/// The four warpcore forms of one pattern.
-fn ours<P: Pattern>(g: &mut BenchmarkGroup<'_, WallTime>, name: &str) {
+/// The four warpcore forms of one pattern (and, with `pixel_loop`, the scalar form over one
+/// pixel's samples, where the compiler may hoist what does not depend on the index).
+fn ours<P: Pattern>(g: &mut BenchmarkGroup<'_, WallTime>, name: &str, pixel_loop: bool) {
     let mut out = vec![[0.0f32; 4]; BATCH];
     g.bench_function(format!("warpcore Sampler<{name}> scalar"), |b| {
         b.iter(|| {
@@ -39,6 +43,21 @@ fn ours<P: Pattern>(g: &mut BenchmarkGroup<'_, WallTime>, name: &str) {
             black_box(&mut out);
         })
     });
+    if pixel_loop {
+        g.bench_function(
+            format!("warpcore Sampler<{name}> scalar, pixel loop"),
+            |b| {
+                b.iter(|| {
+                    let pixel = black_box(PIXEL);
+                    for (i, o) in out.iter_mut().enumerate() {
+                        let s = Sampler::<P>::new(pixel, FRAME, i as u32, SEED);
+                        *o = s.domain(DOMAIN).draw::<4>();
+                    }
+                    black_box(&mut out);
+                })
+            },
+        );
+    }
     let mut out8 = vec![[f32x8::ZERO; 4]; BATCH / 8];
     g.bench_function(format!("warpcore Sampler<{name}> x8"), |b| {
         let lane = u32x8::new(std::array::from_fn(|j| j as u32));
@@ -80,6 +99,7 @@ fn ours<P: Pattern>(g: &mut BenchmarkGroup<'_, WallTime>, name: &str) {
 fn openqmc(
     g: &mut BenchmarkGroup<'_, WallTime>,
     name: &str,
+    pixel_loop: bool,
     draw: impl Fn(i32, i32, i32, i32) -> [f32; 4],
 ) {
     let mut out = vec![[0.0f32; 4]; BATCH];
@@ -92,14 +112,25 @@ fn openqmc(
             black_box(&mut out);
         })
     });
+    if pixel_loop {
+        g.bench_function(format!("openqmc-rs {name}, pixel loop"), |b| {
+            b.iter(|| {
+                let [x, y] = black_box(PIXEL).map(|c| c as i32);
+                for (i, o) in out.iter_mut().enumerate() {
+                    *o = draw(x, y, FRAME as i32, i as i32);
+                }
+                black_box(&mut out);
+            })
+        });
+    }
 }
 
 /// `X::new(x, y, frame, index).new_domain(DOMAIN).draw_sample_f32::<4>()` for an openqmc-rs
 /// sampler type, after `X::warm_cache()`.
 macro_rules! openqmc {
-    ($g:expr, $x:ident) => {{
+    ($g:expr, $x:ident, $pixel_loop:expr) => {{
         $x::warm_cache();
-        openqmc($g, stringify!($x), |x, y, f, i| {
+        openqmc($g, stringify!($x), $pixel_loop, |x, y, f, i| {
             $x::new(x, y, f, i)
                 .new_domain(DOMAIN as i32)
                 .draw_sample_f32::<4>()
@@ -111,15 +142,15 @@ fn main() {
     let mut c = common::criterion();
     let mut g = c.benchmark_group("sampler");
     g.throughput(Throughput::Elements(BATCH as u64));
-    ours::<Sobol>(&mut g, "Sobol");
-    ours::<Pmj02bn>(&mut g, "Pmj02bn");
-    ours::<Blue<Sobol>>(&mut g, "Blue<Sobol>");
-    ours::<Blue<Pmj02bn>>(&mut g, "Blue<Pmj02bn>");
-    openqmc!(&mut g, SobolSampler);
-    openqmc!(&mut g, SobolBnSampler);
-    openqmc!(&mut g, PmjSampler);
-    openqmc!(&mut g, PmjBnSampler);
-    openqmc!(&mut g, LatticeSampler);
+    ours::<Sobol>(&mut g, "Sobol", true);
+    ours::<Pmj02bn>(&mut g, "Pmj02bn", true);
+    ours::<Blue<Sobol>>(&mut g, "Blue<Sobol>", false);
+    ours::<Blue<Pmj02bn>>(&mut g, "Blue<Pmj02bn>", false);
+    openqmc!(&mut g, SobolSampler, true);
+    openqmc!(&mut g, SobolBnSampler, false);
+    openqmc!(&mut g, PmjSampler, true);
+    openqmc!(&mut g, PmjBnSampler, false);
+    openqmc!(&mut g, LatticeSampler, false);
     let mut out = vec![[0.0f32; 4]; BATCH];
     g.bench_function("sobol_burley::sample_4d", |b| {
         b.iter(|| {
