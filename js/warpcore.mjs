@@ -714,19 +714,15 @@ function create(x) {
 // trap); numbers and strings are primitives. Every check happens before any wasm memory is
 // reserved.
 
-const TA_PROTO = Object.getPrototypeOf(Uint8Array.prototype);
-const TA_LENGTH = Object.getOwnPropertyDescriptor(TA_PROTO, 'length').get;
-const TA_BUFFER = Object.getOwnPropertyDescriptor(TA_PROTO, 'buffer').get;
-const TA_SET = TA_PROTO.set;
 
 /** The pattern names and their `WC_PATTERN_*` values. */
-const PATTERNS = Object.freeze({ __proto__: null, pmj02bn: 0, sobol: 1, bluePmj02bn: 2, blueSobol: 3 });
+const PATTERNS = freeze({ __proto__: null, pmj02bn: 0, sobol: 1, bluePmj02bn: 2, blueSobol: 3 });
 
 const samplerError = (Type, what, rule) => new Type(`warpcore: ${what}: ${rule}`);
 
 function samplerInteger(v, name, min, max, what) {
-  if (typeof v !== 'number') throw samplerError(TypeError, what, `${name} must be a number`);
-  if (!Number.isInteger(v) || v < min || v > max) throw samplerError(RangeError, what, `${name} must be an integer in [${min}, ${max}]`);
+  if (typeof v !== 'number') throw samplerError(TypeError_, what, `${name} must be a number`);
+  if (!isInteger(v) || v < min || v > max) throw samplerError(RangeError_, what, `${name} must be an integer in [${min}, ${max}]`);
   return v;
 }
 const samplerU32 = (v, name, what) => samplerInteger(v, name, 0, 0xffff_ffff, what);
@@ -743,9 +739,9 @@ const PATH_SECRET = Symbol('SamplerPath');
 class SamplerPath {
   #steps;
   constructor(secret, steps) {
-    if (secret !== PATH_SECRET) throw new TypeError('warpcore: use samplerPath() to make a SamplerPath');
+    if (secret !== PATH_SECRET) throw new TypeError_('warpcore: use samplerPath() to make a SamplerPath');
     this.#steps = steps;
-    Object.freeze(this);
+    freeze(this);
   }
 
   static steps(p) {
@@ -753,10 +749,10 @@ class SamplerPath {
   }
 
   #then(what, step) {
-    if (!(#steps in this)) throw samplerError(TypeError, what, 'this must be a SamplerPath');
-    const steps = new Uint32Array(this.#steps.length + 4);
-    steps.set(this.#steps);
-    steps.set(step, this.#steps.length);
+    if (!(#steps in this)) throw samplerError(TypeError_, what, 'this must be a SamplerPath');
+    const steps = new U32(TA_LENGTH(this.#steps) + 4);
+    TA_SET(steps, this.#steps);
+    TA_SET(steps, step, TA_LENGTH(this.#steps));
     return new SamplerPath(PATH_SECRET, steps);
   }
 
@@ -773,12 +769,12 @@ class SamplerPath {
 
   /** Steps (domains and splits). */
   get length() {
-    if (!(#steps in this)) throw samplerError(TypeError, 'SamplerPath.length', 'this must be a SamplerPath');
-    return this.#steps.length / 4;
+    if (!(#steps in this)) throw samplerError(TypeError_, 'SamplerPath.length', 'this must be a SamplerPath');
+    return TA_LENGTH(this.#steps) / 4;
   }
 }
-Object.freeze(SamplerPath.prototype);
-const ROOT_PATH = new SamplerPath(PATH_SECRET, new Uint32Array(0));
+freeze(SamplerPath.prototype);
+const ROOT_PATH = new SamplerPath(PATH_SECRET, new U32(0));
 
 function samplerApi(x, memory, heap) {
   // A build without the sampler (capi features) has no sampler functions.
@@ -787,29 +783,30 @@ function samplerApi(x, memory, heap) {
   // pointer to a copy, a returned one through a pointer first argument.
   const arity = { wc_sampler_new: 7, wc_sampler_domain: 3, wc_sampler_split: 5, wc_sampler_draw: 3, wc_sampler_draw_u32: 3, wc_sampler_rnd: 3, wc_sampler_draw_slice: 4 };
   for (const name in arity) {
-    if (x[name].length !== arity[name]) throw new Error(`warpcore: ${name} has an unexpected signature: rebuild warpcore.wasm (js/build.sh)`);
+    if (x[name].length !== arity[name]) throw new Error_(`warpcore: ${name} has an unexpected signature: rebuild warpcore.wasm (js/build.sh)`);
   }
   const u32 = samplerU32;
   const integer = samplerInteger;
 
   function pattern(p, what) {
-    if (typeof p !== 'string') throw samplerError(TypeError, what, "pattern must be a string: 'pmj02bn', 'sobol', 'bluePmj02bn' or 'blueSobol'");
-    if (!(p in PATTERNS)) throw samplerError(RangeError, what, "pattern must be 'pmj02bn', 'sobol', 'bluePmj02bn' or 'blueSobol'");
+    if (typeof p !== 'string') throw samplerError(TypeError_, what, "pattern must be a string: 'pmj02bn', 'sobol', 'bluePmj02bn' or 'blueSobol'");
+    if (!(p in PATTERNS)) throw samplerError(RangeError_, what, "pattern must be 'pmj02bn', 'sobol', 'bluePmj02bn' or 'blueSobol'");
     const id = PATTERNS[p];
-    if (x.wc_sampler_pattern_supported(id) !== 1) throw samplerError(RangeError, what, 'this build has no blue-noise patterns');
+    if (x.wc_sampler_pattern_supported(id) !== 1) throw samplerError(RangeError_, what, 'this build has no blue-noise patterns');
     return id;
   }
 
   /** The length of `a` if it is a `Type` (intrinsic checks), else a TypeError. */
   function typed(a, Type, name, what) {
-    if (!ArrayBuffer.isView(a) || TYPED_ARRAY_TAG.call(a) !== Type.name) throw samplerError(TypeError, what, `${name} must be a ${Type.name}`);
-    const length = TA_LENGTH.call(a);
+    if (!isView(a) || TA_TAG(a) !== Type.name || getPrototypeOf(a) !== Type.proto) throw samplerError(TypeError_, what, `${name} must be a ${Type.name}`);
+    if (detached(a)) throw samplerError(TypeError_, what, `${name} is over a detached ArrayBuffer`);
+    const length = TA_LENGTH(a);
     if (length === 0) {
       // Zero elements, or a detached buffer (a view over it cannot be constructed).
       try {
-        new Uint8Array(TA_BUFFER.call(a), 0, 0);
+        new U8(TA_BUFFER(a), 0, 0);
       } catch {
-        throw samplerError(TypeError, what, `${name} is detached`);
+        throw samplerError(TypeError_, what, `${name} is detached`);
       }
     }
     return length;
@@ -819,25 +816,25 @@ function samplerApi(x, memory, heap) {
   function path(p, what) {
     const steps = SamplerPath.steps(p);
     if (steps !== null) return steps;
-    if (!ArrayBuffer.isView(p) || TYPED_ARRAY_TAG.call(p) !== 'Uint32Array') {
-      throw samplerError(TypeError, what, 'domainPath must be a Uint32Array of keys or a SamplerPath');
+    if (!isView(p) || TA_TAG(p) !== 'Uint32Array') {
+      throw samplerError(TypeError_, what, 'domainPath must be a Uint32Array of keys or a SamplerPath');
     }
-    const length = typed(p, Uint32Array, 'domainPath', what);
-    const keys = new Uint32Array(length);
-    TA_SET.call(keys, p);
-    const out = new Uint32Array(4 * length);
+    const length = typed(p, U, 'domainPath', what);
+    const keys = new U32(length);
+    TA_SET(keys, p);
+    const out = new U32(4 * length);
     for (let k = 0; k < length; k++) out[4 * k + 1] = keys[k];
     return out;
   }
 
   function pixel(p, what) {
-    if (typed(p, Uint32Array, 'pixel', what) !== 2) throw samplerError(RangeError, what, 'pixel must hold 2 values [x, y]');
+    if (typed(p, U, 'pixel', what) !== 2) throw samplerError(RangeError_, what, 'pixel must hold 2 values [x, y]');
     return [p[0], p[1]];
   }
 
   function output(out, Type, length, what) {
-    if (out === undefined) return new Type(length);
-    if (typed(out, Type, 'out', what) !== length) throw samplerError(RangeError, what, 'out must have exactly the length of the result');
+    if (out === undefined) return new Type.T(length);
+    if (typed(out, Type, 'out', what) !== length) throw samplerError(RangeError_, what, 'out must have exactly the length of the result');
     return out;
   }
 
@@ -849,7 +846,7 @@ function samplerApi(x, memory, heap) {
       let s = base;
       let t = base + 16;
       x.wc_sampler_new(s, id, px, py, frame, index, seed);
-      for (let k = 0; k < steps.length; k += 4) {
+      for (let k = 0; k < TA_LENGTH(steps); k += 4) {
         if (steps[k] === SPLIT) x.wc_sampler_split(t, s, steps[k + 1], steps[k + 2], steps[k + 3]);
         else x.wc_sampler_domain(t, s, steps[k + 1]);
         [s, t] = [t, s];
@@ -871,17 +868,17 @@ function samplerApi(x, memory, heap) {
     integer(n, 'n', 1, 4, what);
     const result = output(out, Type, n, what);
     return withSampler(id, xy, frame, index, seed, steps, 16, (s, po) => {
-      if (f(s, n, po) >>> 0 !== n) throw new Error(`warpcore: internal error in ${what}`);
-      TA_SET.call(result, new Type(memory.buffer, po, n));
+      if (f(s, n, po) >>> 0 !== n) throw new Error_(`warpcore: internal error in ${what}`);
+      TA_SET(result, new Type.T(MEMORY_BUFFER(memory), po, n));
       return result;
     });
   };
 
   return {
     samplerPath: () => ROOT_PATH,
-    samplerDraw: one(x.wc_sampler_draw, Float32Array, 'samplerDraw'),
-    samplerDrawU32: one(x.wc_sampler_draw_u32, Uint32Array, 'samplerDrawU32'),
-    samplerRnd: one(x.wc_sampler_rnd, Float32Array, 'samplerRnd'),
+    samplerDraw: one(x.wc_sampler_draw, F, 'samplerDraw'),
+    samplerDrawU32: one(x.wc_sampler_draw_u32, U, 'samplerDrawU32'),
+    samplerRnd: one(x.wc_sampler_rnd, F, 'samplerRnd'),
     samplerDrawSlice(p, pix, frame, start, count, seed, domainPath, n, out) {
       const what = 'samplerDrawSlice';
       const id = pattern(p, what);
@@ -893,13 +890,13 @@ function samplerApi(x, memory, heap) {
       const steps = path(domainPath, what);
       integer(n, 'n', 1, 4, what);
       // 4 * count * n bytes, and the block's 32 more, within wasm32's 4 GiB.
-      if (count * n > (ADDRESS_SPACE - 2 * PAGE) / 4) throw samplerError(RangeError, what, 'count * n floats do not fit in the 4 GiB of wasm32 memory');
+      if (count * n > (ADDRESS_SPACE - 2 * PAGE) / 4) throw samplerError(RangeError_, what, 'count * n floats do not fit in the 4 GiB of wasm32 memory');
       const length = count * n;
-      const result = output(out, Float32Array, length, what);
+      const result = output(out, F, length, what);
       if (count === 0) return result;
       return withSampler(id, xy, frame, start, seed, steps, 4 * length, (s, po) => {
-        if (x.wc_sampler_draw_slice(s, n, po, count) >>> 0 !== count) throw new Error(`warpcore: internal error in ${what}`);
-        TA_SET.call(result, new Float32Array(memory.buffer, po, length));
+        if (x.wc_sampler_draw_slice(s, n, po, count) >>> 0 !== count) throw new Error_(`warpcore: internal error in ${what}`);
+        TA_SET(result, new F32(MEMORY_BUFFER(memory), po, length));
         return result;
       });
     },
