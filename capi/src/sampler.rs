@@ -228,7 +228,8 @@ pub unsafe extern "C" fn wc_sampler_rnd(s: WcSampler, n: usize, out: *mut f32) -
 /// (wrapping after `UINT32_MAX`), `n_dims` (1 to 4) dimensions each: `count * n_dims` floats,
 /// interleaved, the same bits as `count` calls of `wc_sampler_draw` (eight or sixteen points at
 /// a time). Returns `count`, or 0 (writing nothing) for `count = 0`, `n_dims` outside 1..=4,
-/// an unknown pattern, or a null or misaligned `out`.
+/// an unknown pattern, a null or misaligned `out`, or `count * n_dims` floats whose byte size
+/// exceeds `PTRDIFF_MAX`.
 ///
 /// # Safety
 /// `out` must be writable for `count * n_dims` floats.

@@ -25,7 +25,8 @@
     feature = "sphere",
     feature = "pmj02bn",
     feature = "sequence",
-    feature = "envmap"
+    feature = "envmap",
+    feature = "sampler"
 ))]
 
 #[path = "../../examples/wasm-demo/src/fingerprint.rs"]
@@ -363,6 +364,10 @@ fn readme_c_example_runs() {
 /// `in-place`, `capped` (`min(n, 4 n_points)`), and the documented reasons for 0: `0:n=0`,
 /// `0:null`, `0:misaligned`, `0:size` (a count whose byte size overflows), `0:overlap`,
 /// `0:invalid-storage`, `0:size=0`; of `storage_len`: `words`, `0:zero-side`, `SIZE_MAX`.
+/// The sampler: its draws return `n` (or `count`, for the slice), and 0 for `0:n-range` (`n`
+/// outside 1..=4), `0:n_dims-range`, `0:count=0`, `0:null`, `0:misaligned`, `0:size` and
+/// `0:unknown-pattern`; its constructors give a `sampler`, or for an `unknown-pattern` the
+/// documented value; `wc_sampler_pattern_supported` returns `1` or `0`.
 ///
 /// [`hostile_calls_reach_every_documented_outcome`] checks the table against the header
 /// (every declared function has rows, and the rows are exactly the outcomes its
@@ -437,6 +442,14 @@ const TABLE: &[(&str, &[&str])] = {
         "WC_ERR_TOO_LARGE",
         "WC_ERR_INVALID_ARGUMENT",
     ];
+    const DRAW: &[&str] = &[
+        "n",
+        "0:n-range",
+        "0:null",
+        "0:misaligned",
+        "0:unknown-pattern",
+    ];
+    const SAMPLER: &[&str] = &["sampler", "unknown-pattern"];
     &[
         ("wc_disk_polar", MAP_IN_PLACE),
         ("wc_disk_polar_inverse", MAP_IN_PLACE),
@@ -484,6 +497,25 @@ const TABLE: &[(&str, &[&str])] = {
         ("wc_pmj02bn_shuffle", MAP_IN_PLACE),
         ("wc_pmj02bn_points", &["value"]),
         ("wc_pmj02bn_sets", &["value"]),
+        ("wc_sampler_pattern_supported", &["1", "0"]),
+        ("wc_sampler_new", SAMPLER),
+        ("wc_sampler_domain", SAMPLER),
+        ("wc_sampler_split", SAMPLER),
+        ("wc_sampler_draw", DRAW),
+        ("wc_sampler_draw_u32", DRAW),
+        ("wc_sampler_rnd", DRAW),
+        (
+            "wc_sampler_draw_slice",
+            &[
+                "count",
+                "0:count=0",
+                "0:n_dims-range",
+                "0:null",
+                "0:misaligned",
+                "0:size",
+                "0:unknown-pattern",
+            ],
+        ),
         ("wc_sequence_random", GEN),
         ("wc_sequence_stratified", GEN),
         ("wc_envmap_hierarchical_storage_len", LEN),
@@ -585,6 +617,31 @@ fn documented_outcomes(
     add("0:zero-side", len && doc.contains("0 for a zero side"));
     add("SIZE_MAX", len && doc.contains("`SIZE_MAX`"));
     add("value", decl.contains("(void)"));
+    // The sampler (its own comment only: the draws refer to `wc_sampler_draw`). A draw of
+    // `n` (or `n_dims`, for `count` points) dimensions from a `WcSampler`.
+    if decl.contains("WcSampler s, size_t n") {
+        let slice = decl.ends_with("size_t count);");
+        add(if slice { "count" } else { "n" }, true);
+        add("0:n-range", !slice && own.contains("`n` outside 1..=4"));
+        add(
+            "0:n_dims-range",
+            slice && own.contains("`n_dims` outside 1..=4"),
+        );
+        add("0:count=0", slice && own.contains("`count = 0`"));
+        add("0:null", own.contains("null"));
+        add("0:misaligned", own.contains("misaligned"));
+        add("0:size", slice && own.contains("exceeds `PTRDIFF_MAX`"));
+        add("0:unknown-pattern", own.contains("an unknown pattern"));
+    }
+    let sampler = decl.starts_with("WcSampler ");
+    add("sampler", sampler);
+    add(
+        "unknown-pattern",
+        sampler && (own.contains("unknown pattern") || own.contains("unknown `pattern`")),
+    );
+    let predicate = decl.starts_with("uint32_t ") && own.contains(", 0 otherwise.");
+    add("1", predicate && own.contains("? 1 for"));
+    add("0", predicate);
     out
 }
 

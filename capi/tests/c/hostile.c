@@ -691,6 +691,9 @@ static void one_build(const struct dist *D) {
     if (access && !small) return; /* would need arrays this test does not place */
     snapshot(0, weights, placed_w);
     if (!access) snapshot(1, storage, placed_s);
+    /* Exactly `need` words written: the words after them keep what they held (the sentinel,
+       or the weights of case 4, which may start there). */
+    else if (slack) snapshot(1, storage + need, (len - need) * 4);
     int32_t got = D->build(weights, w, h, storage, len);
     const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "WC_ERR_LENGTH_MISMATCH",
                            "WC_ERR_STORAGE_TOO_SMALL", "WC_ERR_INFINITE_WEIGHT", "WC_ERR_WRONG_FORMAT",
@@ -698,10 +701,8 @@ static void one_build(const struct dist *D) {
     reach(D->build_name, names[-want]);
     current = D->build_name;
     CHECK(got == want);
-    CHECK(unchanged()); /* the weights always; the storage when refused */
+    CHECK(unchanged()); /* the weights always; the storage when refused, its slack if not */
     if (access) {
-        /* Exactly `need` words written: the words after them keep the sentinel. */
-        if (slack) CHECK(is_sentinel(storage + need, (len - need) * 4));
         if (want == WC_OK) CHECK(D->validate(storage, need) == WC_OK && D->verify(storage, need) == WC_OK);
     }
     reset();
@@ -743,7 +744,13 @@ static void one_check(const struct dist *D, const struct dist *other, int verify
     case 8: s[0] = rnd() | 1u; want = s[0] == D->tag ? WC_OK : WC_ERR_WRONG_FORMAT; break;
     case 9: s[1] = 2 + rnd() % 100; want = WC_ERR_UNSUPPORTED_VERSION; break;
     case 10: s[2 + rnd() % 2] = rnd() % 2 ? 0 : MAX_SIDE + 1 + rnd() % 1000; want = WC_ERR_CORRUPT; break;
-    case 11: s[4 + rnd() % 4] += 1 + rnd() % 1000; want = WC_ERR_CORRUPT; break;
+    case 11: { /* a region length; word 4 of the hierarchical storage is a padding of 0 to 15
+                  words (any of them valid): moved past 15 */
+        uint32_t k = 4 + rnd() % 4;
+        s[k] += (k == 4 ? 16 : 1) + rnd() % 1000;
+        want = WC_ERR_CORRUPT;
+        break;
+    }
     case 12: /* longer than needed: fine */
         len = need + 1 + below(30);
         s = place(0, len * 4, end, 0);
@@ -947,6 +954,216 @@ static void one_equal_area(void) {
     reset();
 }
 
+/* ---- the sampler: WcSampler values, draws of n (1 to 4) dimensions, slices ---- */
+
+static int blue; /* the blue-noise patterns are patterns of this build */
+
+/* Is `pattern` a pattern of this build (the documented model)? */
+static int known(uint32_t pattern) {
+    return pattern == WC_PATTERN_PMJ02BN || pattern == WC_PATTERN_SOBOL ||
+           (blue && (pattern == WC_PATTERN_BLUE_PMJ02BN || pattern == WC_PATTERN_BLUE_SOBOL));
+}
+
+/* A pattern: usually one of the four constants, sometimes garbage. */
+static uint32_t hostile_pattern(void) {
+    uint32_t r = rnd() % 8;
+    if (r < 6) return r % 4;
+    return r == 6 ? 4 + rnd() % 8 : rnd();
+}
+
+/* A sampler struct with any bits: a root, a child, or garbage fields. */
+static WcSampler hostile_sampler(void) {
+    uint32_t p = hostile_pattern();
+    WcSampler s = wc_sampler_new(p, rnd() % 4 ? rnd() % 256 : rnd(), rnd() % 4 ? rnd() % 256 : rnd(),
+                                 rnd(), rnd() % 4 ? rnd() % 64 : rnd(), rnd());
+    switch (rnd() % 4) {
+    case 0: s = wc_sampler_domain(s, rnd()); break;
+    case 1: s = wc_sampler_split(s, rnd(), rnd() % 16, rnd() % 16); break;
+    case 2: s.pixel = rnd(); s.domain = rnd(); s.index = rnd() % 2 ? rnd() : UINT32_MAX - rnd() % 8; break;
+    default: break;
+    }
+    s.pattern = p;
+    return s;
+}
+
+/* A dimension count: usually 1 to 4, sometimes 0, just past 4, or huge. */
+static size_t hostile_dims(void) {
+    uint32_t r = rnd() % 8;
+    if (r == 0) return 0;
+    if (r == 1) {
+        const size_t bad[] = {5, 6, 8, 255, SIZE_MAX, SIZE_MAX - 3, (size_t)PTRDIFF_MAX + 1, 1u << 31};
+        return bad[rnd() % 8];
+    }
+    return 1 + below(4);
+}
+
+/* The ranges a case used hold the sentinel, except `bytes` at `p`. */
+static int untouched_except(const void *p, size_t bytes) {
+    const unsigned char *lo = p, *hi = lo + bytes;
+    for (int i = 0; i < nused; i++)
+        for (const unsigned char *b = used[i].lo; b < used[i].hi; b++)
+            if ((b < lo || b >= hi) && *b != SENTINEL) return 0;
+    return 1;
+}
+
+static int same_sampler(WcSampler a, WcSampler b) {
+    return a.pattern == b.pattern && a.pixel == b.pixel && a.domain == b.domain && a.index == b.index;
+}
+
+/* A value of wc_sampler_draw or wc_sampler_rnd: in [0, 1 - 2^-24], a multiple of 2^-24. */
+static int unit24(float v) {
+    return v >= 0.0f && v <= 1.0f - 1.0f / 16777216.0f && v * 16777216.0f == floorf(v * 16777216.0f);
+}
+
+static void one_sampler_value(void) {
+    uint32_t p = hostile_pattern(), k = rnd(), size = rnd() % 4 ? rnd() % 9 : rnd(), sub = rnd() % 4 ? rnd() % 9 : rnd();
+    uint32_t r = rnd() % 4;
+    current = "wc_sampler_pattern_supported";
+    CHECK(wc_sampler_pattern_supported(p) == (uint32_t)known(p));
+    reach("wc_sampler_pattern_supported", known(p) ? "1" : "0");
+
+    uint32_t x = r ? rnd() % 256 : rnd(), y = r ? rnd() % 256 : rnd(), frame = rnd(), index = rnd() % 2 ? rnd() % 64 : rnd(),
+             sd = rnd();
+    WcSampler s = wc_sampler_new(p, x, y, frame, index, sd);
+    current = "wc_sampler_new";
+    float v[4];
+    if (known(p)) {
+        reach("wc_sampler_new", "sampler");
+        CHECK(s.pattern == p && s.index == index);
+        CHECK(same_sampler(s, wc_sampler_new(p, x, y, frame, index, sd)));
+        CHECK(wc_sampler_draw(s, 2, v) == 2 && unit24(v[0]) && unit24(v[1]));
+    } else {
+        reach("wc_sampler_new", "unknown-pattern");
+        WcSampler z = {p, 0, 0, 0};
+        CHECK(same_sampler(s, z));
+    }
+
+    /* Children of any struct: garbage fields are safe. */
+    if (rnd() % 2) {
+        s.pixel = rnd();
+        s.domain = rnd();
+        s.index = rnd();
+    }
+    WcSampler d = wc_sampler_domain(s, k), d2 = wc_sampler_domain(s, k ^ (1u + rnd() % 0xffffffu));
+    current = "wc_sampler_domain";
+    if (known(p)) {
+        reach("wc_sampler_domain", "sampler");
+        CHECK(d.pattern == p && d.pixel == s.pixel && d.index == s.index);
+        CHECK(same_sampler(d, wc_sampler_domain(s, k)));
+        CHECK(d.domain != d2.domain); /* different keys, different children */
+    } else {
+        reach("wc_sampler_domain", "unknown-pattern");
+        CHECK(same_sampler(d, s) && same_sampler(d2, s));
+    }
+    WcSampler c = wc_sampler_split(s, k, size, sub);
+    current = "wc_sampler_split";
+    if (known(p)) {
+        reach("wc_sampler_split", "sampler");
+        CHECK(c.pattern == p && c.pixel == s.pixel && c.index == s.index * (size ? size : 1u) + sub);
+        CHECK(same_sampler(c, wc_sampler_split(s, k, size, sub)));
+        CHECK(size > 1 || same_sampler(c, wc_sampler_split(s, k, 1u - size, sub))); /* 0 acts as 1 */
+    } else {
+        reach("wc_sampler_split", "unknown-pattern");
+        CHECK(same_sampler(c, s));
+    }
+}
+
+/* wc_sampler_draw (0), wc_sampler_draw_u32 (1), wc_sampler_rnd (2). */
+static void one_sampler_draw(int which) {
+    static const char *names[] = {"wc_sampler_draw", "wc_sampler_draw_u32", "wc_sampler_rnd"};
+    WcSampler s = hostile_sampler();
+    size_t n = hostile_dims();
+    size_t small = n >= 1 && n <= 4 ? n : 4; /* elements placed */
+    int end = rnd() & 1;
+    float *out = place(0, small * 4, end, 0);
+    uint32_t r = rnd() % 6;
+    if (r == 0) out = NULL;
+    if (r == 1) out = place(0, small * 4, end, 1 + below(3));
+    const char *outcome;
+    size_t want = 0;
+    if (n < 1 || n > 4) outcome = "0:n-range";
+    else if (!known(s.pattern)) outcome = "0:unknown-pattern";
+    else if (!out) outcome = "0:null";
+    else if (!aligned(out)) outcome = "0:misaligned";
+    else {
+        outcome = "n";
+        want = n;
+    }
+    size_t got = which == 0 ? wc_sampler_draw(s, n, out)
+               : which == 1 ? wc_sampler_draw_u32(s, n, (uint32_t *)(void *)out)
+                            : wc_sampler_rnd(s, n, out);
+    reach(names[which], outcome);
+    current = names[which];
+    CHECK(got == want);
+    if (want) {
+        /* Exactly n values written, each documented. */
+        CHECK(untouched_except(out, n * 4));
+        float f[4];
+        uint32_t w[4];
+        int ok = 1;
+        if (which == 2) {
+            CHECK(wc_sampler_rnd(s, n, f) == n && memcmp(f, out, n * 4) == 0);
+            for (size_t i = 0; i < n; i++) ok &= unit24(out[i]);
+        } else {
+            CHECK(wc_sampler_draw(s, n, f) == n && wc_sampler_draw_u32(s, n, w) == n);
+            CHECK(memcmp(which == 0 ? (const void *)f : (const void *)w, out, n * 4) == 0);
+            for (size_t i = 0; i < n; i++)
+                ok &= unit24(f[i]) && f[i] == (float)(w[i] >> 8) * (1.0f / 16777216.0f) && f[i] < 1.0f;
+        }
+        CHECK(ok);
+    } else {
+        CHECK(untouched_all());
+    }
+    reset();
+}
+
+static float slice_ref[4 * 300];
+
+static void one_sampler_slice(void) {
+    WcSampler s = hostile_sampler();
+    size_t n_dims = hostile_dims();
+    int dims_ok = n_dims >= 1 && n_dims <= 4;
+    size_t count = hostile_count(4 * (dims_ok ? n_dims : 1), 300);
+    size_t placed = dims_ok && count <= 300 ? count * n_dims : 16; /* floats */
+    int end = rnd() & 1;
+    float *out = place(0, placed * 4, end, 0);
+    uint32_t r = rnd() % 6;
+    if (r == 0) out = NULL;
+    if (r == 1) out = place(0, placed * 4, end, 1 + below(3));
+    const char *outcome;
+    size_t want = 0;
+    if (count == 0) outcome = "0:count=0";
+    else if (!dims_ok) outcome = "0:n_dims-range";
+    else if (!known(s.pattern)) outcome = "0:unknown-pattern";
+    else if (!out) outcome = "0:null";
+    else if (!aligned(out)) outcome = "0:misaligned";
+    else if (!fits(count, 4 * n_dims)) outcome = "0:size";
+    else {
+        outcome = "count";
+        want = count;
+    }
+    if (want && count > 300) return; /* would need arrays this test does not place */
+    size_t got = wc_sampler_draw_slice(s, n_dims, out, count);
+    reach("wc_sampler_draw_slice", outcome);
+    current = "wc_sampler_draw_slice";
+    CHECK(got == want);
+    if (want) {
+        /* Exactly count * n_dims floats: the scalar draws at s.index, s.index + 1, ... */
+        CHECK(untouched_except(out, count * n_dims * 4));
+        int ok = 1;
+        for (size_t i = 0; i < count; i++) {
+            WcSampler t = s;
+            t.index = s.index + (uint32_t)i; /* wrapping */
+            ok &= wc_sampler_draw(t, n_dims, slice_ref + i * n_dims) == n_dims;
+        }
+        for (size_t i = 0; i < count * n_dims; i++) ok &= unit24(out[i]);
+        CHECK(ok && memcmp(out, slice_ref, count * n_dims * 4) == 0);
+    } else {
+        CHECK(untouched_all());
+    }
+    reset();
+}
+
 /* Calls with no arguments to get wrong. */
 static void constants(void) {
     current = "constants";
@@ -970,6 +1187,10 @@ int main(int argc, char **argv) {
         }
     }
     constants();
+    /* The blue-noise patterns are both of this build, or neither (the `blue-noise` feature). */
+    blue = wc_sampler_pattern_supported(WC_PATTERN_BLUE_PMJ02BN) != 0;
+    current = "constants";
+    CHECK(wc_sampler_pattern_supported(WC_PATTERN_BLUE_SOBOL) == (uint32_t)blue);
     for (unsigned long r = 0; r < rounds; r++) {
         for (size_t i = 0; i < NMAPS; i++) one_map(&MAPS[i]);
         for (size_t i = 0; i < NGENS; i++) one_gen(&GENS[i]);
@@ -986,6 +1207,9 @@ int main(int argc, char **argv) {
         }
         one_weights();
         one_equal_area();
+        one_sampler_value();
+        for (int i = 0; i < 3; i++) one_sampler_draw(i);
+        one_sampler_slice();
     }
     for (int i = 0; i < nrows; i++) printf("row %s %s %lu\n", rows[i].fn, rows[i].outcome, rows[i].calls);
     printf("%lu hostile calls, %lu passed, %lu failed\n", calls, passed, failed);
