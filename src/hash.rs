@@ -41,6 +41,17 @@ pub(crate) fn owen_scramble<U: UintLane>(v: U, seed: U) -> U {
     lk_hash(v.reverse_bits(), seed).reverse_bits()
 }
 
+/// Burley's nested uniform shuffle of sample indices (Burley 2020, section 4): the
+/// Laine-Karras hash of the bit-reversed index, reversed back. Nested: every aligned block of
+/// `2^k` indices maps onto an aligned block of `2^k` (not necessarily the first, unlike
+/// [`prefix_shuffle`]); for a (0,2)-sequence every aligned block is a net, so every prefix
+/// of the shuffled sequence still is one.
+#[cfg(feature = "sampler")]
+#[inline(always)]
+pub(crate) fn nested_shuffle<U: UintLane>(index: U, seed: U) -> U {
+    lk_hash(index.reverse_bits(), seed).reverse_bits()
+}
+
 /// A permutation of sample indices that keeps every prefix `[0, 2^k)` as a set and maps every
 /// aligned block of `2^k` indices onto an aligned block of `2^k` indices: the nested scramble
 /// of [`owen_scramble`] applied to the index read least significant bit first, with the image

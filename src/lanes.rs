@@ -86,6 +86,14 @@ pub(crate) trait UintLane:
     #[allow(dead_code)] // for the table-driven families (pmj02bn)
     fn gather_pairs(self, f: impl Fn(u32) -> [u32; 2]) -> [Self; 2];
 
+    /// Each lane rotated right by `n` bits (`n` in `1..32`): the cheap derived keys of the
+    /// sampling core.
+    #[allow(dead_code)] // for the sampling core
+    #[inline(always)]
+    fn rotr(self, n: u32) -> Self {
+        self.shr(n) | self.shl(32 - n)
+    }
+
     /// The bits of each lane in reverse order (bit 0 <-> bit 31): the swap network of
     /// Warren's *Hacker's Delight*, 7-1. Integer results, so every lane type agrees.
     #[allow(dead_code)] // for the scrambled sequences (pmj02bn)

@@ -251,23 +251,19 @@ fn sample_body<L: Lane>(index: L::U, seed: L::U) -> [L; 2] {
     point(r, keys(seed, index.shr(LOG2_POINTS)))
 }
 
-/// [`sample`] before the conversion to `f32`: the Owen-scrambled 0.32 fixed-point words (the
-/// sampling core's `draw_u32`). `to_unit` of these is exactly what [`sample`] returns.
-#[inline(always)]
-pub(crate) fn sample_bits<U: UintLane>(index: U, seed: U) -> [U; 2] {
-    let r = index & U::splat(POINTS as u32 - 1);
-    let keys = keys(seed, index.shr(LOG2_POINTS));
-    let [x, y] = (keys.set | r).gather_pairs(|i| decode(all_points(), i as usize));
-    [owen_scramble(x, keys.x), owen_scramble(y, keys.y)]
-}
-
-/// For the sampling core's slices: the set and the two scramble keys (x, y) that `seed` and
-/// `block` (an index `>> log2(POINTS)`) choose, the integers [`sample_bits`] derives per lane.
+/// For the sampling core: the two words of flat table point `set_row` (the set in the bits
+/// above `log2(POINTS)`, reduced modulo the build's sizes), lane by lane.
 #[cfg(feature = "sampler")]
 #[inline(always)]
-pub(crate) fn block_keys(seed: u32, block: u32) -> (&'static [[u8; 8]; POINTS], [u32; 2]) {
-    let k = keys(Wrapping(seed), Wrapping(block));
-    (view(k.set.0 as usize >> LOG2_POINTS), [k.x.0, k.y.0])
+pub(crate) fn table_bits<U: UintLane>(set_row: U) -> [U; 2] {
+    set_row.gather_pairs(|i| decode(all_points(), i as usize))
+}
+
+/// For the sampling core's slices: the points of set `set` (reduced modulo [`SETS`]).
+#[cfg(feature = "sampler")]
+#[inline(always)]
+pub(crate) fn set_view(set: u32) -> &'static [[u8; 8]; POINTS] {
+    view(set as usize)
 }
 
 /// For the sampling core's slices: the `W` little-endian words of points `r .. r + W / 2` of a

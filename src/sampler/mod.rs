@@ -63,15 +63,22 @@
 //! ## How the state works
 //!
 //! A [`Sampler`] is three words (12 bytes): the pixel (`x` and `y`, 16 bits each), a 32-bit
-//! domain hash and the sample index. [`new`](Sampler::new) hashes the seed, the frame and —
-//! except for [`Blue`], whose pixels must share one key tile — the full pixel coordinates
-//! into the domain hash; [`domain`](Sampler::domain) and [`split`](Sampler::split) re-hash
-//! it with a bijective mixer (Wellons' `lowbias32`). A draw derives its shuffle and scramble
-//! keys from the domain hash: nothing is stored, nothing is shared between threads.
+//! domain hash and the sample index. [`new`](Sampler::new) hashes the seed and the frame into
+//! a root (two mixes a renderer's loop hoists), then — except for [`Blue`], whose pixels must
+//! share one key tile — folds in the pixel with one more mix: the pixel enters one-to-one
+//! below `2^16` per coordinate, so every pixel of any real image gets its own domain hash
+//! (larger coordinates are folded in too, by an odd multiple of their high halves);
+//! [`domain`](Sampler::domain) and [`split`](Sampler::split) re-hash it with a bijective
+//! mixer (Wellons' `lowbias32`). A draw derives its shuffle and scramble keys from the domain
+//! hash by **rotations**, not by more hashing (the low bits of a Laine-Karras key drive the
+//! top levels of its scramble, so rotations give each key its own bits there; OpenQMC
+//! rotates bytes the same way): a draw is one shuffle, a table product and the scrambles,
+//! which is what makes the scalar form as fast as OpenQMC's (`docs/sampler-performance.md`).
+//! Nothing is stored, nothing is shared between threads.
 
-use crate::hash::{lk_hash, mix, owen_scramble, prefix_shuffle, to_unit};
+use crate::hash::{lk_hash, mix, nested_shuffle, owen_scramble, to_unit};
 use crate::lanes::{Lane, UintLane};
-use crate::pmj02bn::{LOG2_POINTS, POINTS};
+use crate::pmj02bn::{LOG2_POINTS, POINTS, SETS};
 use core::marker::PhantomData;
 use core::num::Wrapping;
 
@@ -148,7 +155,8 @@ const K_PIXEL: u32 = 0x85eb_ca6b;
 const K_DOMAIN: u32 = 0xc2b2_ae35;
 const K_SPLIT: u32 = 0x27d4_eb2f;
 const K_RND: u32 = 0x1656_67b1;
-const K_PAIR: [[u32; 2]; 2] = [[0x5851_f42d, 0x4c95_7f2d], [0xd1b5_4a33, 0xa54f_f53a]];
+const K_BLOCK: u32 = 0x5851_f42d;
+const K_SET: [u32; 2] = [0x4c95_7f2d, 0xd1b5_4a35];
 
 /// The three words of a sampler, for one lane type: `Wrapping<u32>`, `u32x8` or `u32x16`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -164,12 +172,17 @@ impl<U: UintLane> State<U> {
     #[inline(always)]
     fn new(id: u8, pixel: [U; 2], frame: U, index: U, seed: U) -> Self {
         let root = mix(mix(seed ^ U::splat(K_SEED)) ^ (frame * U::splat(K_FRAME)));
+        // The pixel packed in one word (16 bits per coordinate, what the blue-noise tile
+        // position reads), plus the coordinates' high halves times an odd constant: one-to-one
+        // for pixels below 2^16, so one mix separates every pixel of any real image.
+        let packed = (pixel[0] & U::splat(0xffff)) | pixel[1].shl(16);
+        let high = pixel[0].shr(16) | (pixel[1] & U::splat(0xffff_0000));
         let domain = if id & BLUE != 0 {
             root
         } else {
-            mix(root ^ mix(pixel[0] ^ mix(pixel[1] ^ U::splat(K_PIXEL))))
+            mix(root ^ packed ^ (high * U::splat(K_PIXEL)))
         };
-        let pixel = (pixel[0] & U::splat(0xffff)) | pixel[1].shl(16);
+        let pixel = packed;
         State {
             pixel,
             domain,
@@ -242,14 +255,39 @@ impl<U: UintLane> State<U> {
 /// `N > 2`).
 #[inline(always)]
 fn pmj02bn_pairs<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
+    let shuffle = pmj02bn_shuffle_keys(seed);
+    let (set, scramble) = pmj02bn_block_keys(seed, index.shr(LOG2_POINTS));
     let pair = |p: usize| {
-        let [k_shuffle, k_scramble] = K_PAIR[p];
-        let i = prefix_shuffle(index, mix(seed ^ U::splat(k_shuffle)));
-        crate::pmj02bn::sample_bits(i, seed ^ U::splat(k_scramble))
+        let i = nested_shuffle(index, shuffle[p]) & U::splat(POINTS as u32 - 1);
+        let [x, y] = crate::pmj02bn::table_bits(set[p] | i);
+        [
+            owen_scramble(x, scramble[2 * p]),
+            owen_scramble(y, scramble[2 * p + 1]),
+        ]
     };
     let a = pair(0);
     let b = if N > 2 { pair(1) } else { a };
     core::array::from_fn(|d| [a[0], a[1], b[0], b[1]][d])
+}
+
+/// The two pairs' index-shuffle keys: the draw's key `seed` and its half-turn.
+#[inline(always)]
+fn pmj02bn_shuffle_keys<U: UintLane>(seed: U) -> [U; 2] {
+    [seed, seed.rotr(16)]
+}
+
+/// What a block of [`POINTS`] consecutive indices (`block = index >> log2(POINTS)`) of a
+/// draw keyed by `seed` uses: each pair's table set (pre-shifted, the high bits of a flat
+/// table index) and the four Owen-scramble keys (x and y of pair 0, then of pair 1). One
+/// mix re-keys every block (the shuffle maps each block onto a block, so every block is a
+/// complete scrambled table set); the keys are rotations of it (see [`sobol::keys`]) and the
+/// sets the top bits of two odd multiples.
+#[inline(always)]
+fn pmj02bn_block_keys<U: UintLane>(seed: U, block: U) -> ([U; 2], [U; 4]) {
+    let k = mix(seed ^ (block * U::splat(K_BLOCK)));
+    let set =
+        |p: usize| ((k * U::splat(K_SET[p])).shr(30) & U::splat(SETS as u32 - 1)).shl(LOG2_POINTS);
+    ([set(0), set(1)], [k, k.rotr(8), k.rotr(16), k.rotr(24)])
 }
 
 /// The slice form of [`pmj02bn_pairs`] on aligned groups of `LN` consecutive indices (`LN` =
@@ -295,13 +333,13 @@ fn pmj02bn_groups<L: simd::Rows<LN>, const LN: usize, const N: usize>(
     }
 }
 
-/// One pmj02bn pair of the slices (see [`pmj02bn_groups`]): the shuffle key and the scramble
-/// seed of pair `p`, and the lane constants.
+/// One pmj02bn pair of the slices (see [`pmj02bn_groups`]): the draw's key, the pair, its
+/// shuffle key, and the lane constants.
 #[derive(Clone, Copy)]
 struct PairRun<L: simd::Rows<LN>, const LN: usize> {
+    seed: u32,
+    pair: usize,
     shuffle_key: Wrapping<u32>,
-    zero: Wrapping<u32>,
-    scramble_seed: u32,
     lanes: L::U,
     reverse_s: L::U,
 }
@@ -318,12 +356,11 @@ impl<L: simd::Rows<LN>, const LN: usize> PairRun<L, LN> {
 
     #[inline(always)]
     fn new(seed: u32, p: usize) -> Self {
-        let [k_shuffle, k_scramble] = K_PAIR[p % 2];
-        let shuffle_key = mix(Wrapping(seed ^ k_shuffle));
+        let pair = p % 2;
         PairRun {
-            shuffle_key,
-            zero: lk_hash(Wrapping(0), shuffle_key),
-            scramble_seed: seed ^ k_scramble,
+            seed,
+            pair,
+            shuffle_key: pmj02bn_shuffle_keys(Wrapping(seed))[pair],
             lanes: L::words(core::array::from_fn(|l| (l as u32).reverse_bits())),
             reverse_s: L::words(core::array::from_fn(|v| {
                 (v as u32).reverse_bits() >> (32 - Self::S)
@@ -336,19 +373,18 @@ impl<L: simd::Rows<LN>, const LN: usize> PairRun<L, LN> {
     #[inline(always)]
     fn shuffled(&self, b: u32) -> (u32, L::U) {
         let group_mask = Wrapping(!(LN as u32 - 1));
-        let high = (lk_hash(Wrapping(b), self.shuffle_key) ^ self.zero).reverse_bits() & group_mask;
-        let h = lk_hash(L::U::splat(b) | self.lanes, L::U::splat(self.shuffle_key.0))
-            ^ L::U::splat(self.zero.0);
+        let high = lk_hash(Wrapping(b), self.shuffle_key).reverse_bits() & group_mask;
+        let h = lk_hash(L::U::splat(b) | self.lanes, L::U::splat(self.shuffle_key.0));
         (high.0, L::shuffle(self.reverse_s, h.shr(32 - Self::S)))
     }
 
-    /// The keys of the table block that the group starting at index `first` reads.
+    /// The keys of the block of indices that holds index `first`.
     #[inline(always)]
     fn block_keys(&self, first: u32) -> BlockKeys<L, LN> {
-        let (high, _) = self.shuffled(first.reverse_bits());
-        let (set, [kx, ky]) = crate::pmj02bn::block_keys(self.scramble_seed, high >> LOG2_POINTS);
+        let (set, keys) = pmj02bn_block_keys(Wrapping(self.seed), Wrapping(first >> LOG2_POINTS));
+        let [kx, ky] = [keys[2 * self.pair].0, keys[2 * self.pair + 1].0];
         BlockKeys {
-            set,
+            set: crate::pmj02bn::set_view(set[self.pair].0 >> LOG2_POINTS),
             keys_xy: L::words(core::array::from_fn(|l| [kx, ky][l % 2])),
         }
     }

@@ -25,7 +25,7 @@
 //! dimension: the tables below hold `reverse(v_{d,k})`, so their XOR is `reverse(x_d(i))`,
 //! which is exactly what the scramble hashes.
 
-use crate::hash::{lk_hash, mix, to_unit};
+use crate::hash::{lk_hash, to_unit};
 use crate::lanes::UintLane;
 use core::num::Wrapping;
 
@@ -67,71 +67,73 @@ const fn directions(d: usize) -> [u32; 32] {
     v
 }
 
-/// `TABLE[256 b + byte]` holds, for dimensions 1, 2, 3, the XOR of `reverse(v_{d, 8b + j})`
-/// over the set bits `j` of `byte`: the product of the (bit-reversed) generator matrix with
-/// byte `b` of the index. Four lookups and three XORs give the whole 32-bit product
-/// (12 KiB, built at compile time).
-static TABLE: [[u32; 3]; 1024] = {
+/// The generator matrices of dimensions 0..3 applied to an index given *bit-reversed*, by
+/// bytes: `TABLE[256 b + byte][d]` is the XOR of `reverse(v_{d,k})` over the set bits `j` of
+/// `byte`, where `k = 31 - (8 b + j)` is the index bit that bit `8 b + j` of the reversed
+/// index holds (for dimension 0, `reverse(v_{0,k})` is bit `k`). Four 16-byte rows and three
+/// XORs give `reverse(x_d(i))` for all four dimensions from `reverse(i)`, which is what the
+/// nested shuffle produces before its last reversal, and what the scrambles hash: the index
+/// is never reversed back (OpenQMC's tables take the reversed index the same way). 16 KiB,
+/// built at compile time.
+static TABLE: [[u32; 4]; 1024] = {
     let dirs = [directions(1), directions(2), directions(3)];
-    let mut t = [[0u32; 3]; 1024];
+    let mut t = [[0u32; 4]; 1024];
     let mut e = 0;
     while e < 1024 {
         let (b, byte) = (e / 256, e % 256);
-        let mut d = 0;
-        while d < 3 {
-            let mut x = 0u32;
-            let mut j = 0;
-            while j < 8 {
-                if (byte >> j) & 1 == 1 {
-                    x ^= dirs[d][8 * b + j].reverse_bits();
+        let mut j = 0;
+        while j < 8 {
+            if (byte >> j) & 1 == 1 {
+                let k = 31 - (8 * b + j);
+                t[e][0] ^= 1 << k;
+                let mut d = 1;
+                while d < 4 {
+                    t[e][d] ^= dirs[d - 1][k].reverse_bits();
+                    d += 1;
                 }
-                j += 1;
             }
-            t[e][d] = x;
-            d += 1;
+            j += 1;
         }
         e += 1;
     }
     t
 };
 
-/// `reverse(x_d(i))` for dimensions 1, 2, 3 (dimension 0 is `i` itself in this form).
+/// `reverse(x_d(i))` for dimensions 0..3 from `r = reverse(i)`.
 #[inline(always)]
-fn reversed_dims<U: UintLane>(i: U) -> [U; 3] {
+fn reversed_dims<U: UintLane>(r: U) -> [U; 4] {
     // Spelled out: an array `map` over the four bytes stayed out of line in the slices.
-    let byte = |b: u32| (i.shr(8 * b) & U::splat(0xff)) | U::splat(256 * b);
+    let byte = |b: u32| (r.shr(8 * b) & U::splat(0xff)) | U::splat(256 * b);
     let a = U::gather(&TABLE, byte(0));
     let b = U::gather(&TABLE, byte(1));
     let c = U::gather(&TABLE, byte(2));
     let d = U::gather(&TABLE, byte(3));
-    [
-        a[0] ^ b[0] ^ c[0] ^ d[0],
-        a[1] ^ b[1] ^ c[1] ^ d[1],
-        a[2] ^ b[2] ^ c[2] ^ d[2],
-    ]
+    core::array::from_fn(|k| a[k] ^ b[k] ^ c[k] ^ d[k])
 }
 
-/// Key constants (arbitrary odd values, distinct per use): index shuffle, then dimensions.
-const KEYS: [u32; 5] = [
-    0x2c1b_3c6d,
-    0x297a_2d39,
-    0xa1ab_8e27,
-    0x6c8e_9cf5,
-    0x4f6c_dd1d,
-];
+/// The index shuffle's key and the four dimensions' scramble keys, derived from one
+/// well-mixed word `h` (the domain hash, or a blue-noise tile key) by rotations. The top
+/// levels of a Laine-Karras scramble are driven by the low bits of its key (bit `j` of the
+/// output depends on bits `0..=j` of the key), so rotations by 6, 13, 19 and 26 give the
+/// shuffle and the four scrambles disjoint key bits for their first six levels (64 strata
+/// per dimension), and the multiplier (`key >> 16`) differs for each. OpenQMC derives its
+/// per-dimension keys from one hash in the same spirit (byte rotations). Five rotations cost
+/// less than one hash: they keep the draw short (`docs/sampler-performance.md`).
+#[inline(always)]
+pub(super) fn keys<U: UintLane>(h: U) -> [U; 5] {
+    [h, h.rotr(6), h.rotr(13), h.rotr(19), h.rotr(26)]
+}
 
 /// Point `index` of the Owen-scrambled Sobol' sequence keyed by `seed`, dimensions `0..N`, as
 /// 0.32 fixed point. Exact integer arithmetic: no rounding at all.
 #[inline(always)]
 pub(super) fn point<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
-    let key = |k: usize| crate::hash::mix(seed ^ U::splat(KEYS[k]));
-    // Nested uniform shuffle of the index (Burley 2020, section 4), then the matrices.
-    let i = lk_hash(index.reverse_bits(), key(0)).reverse_bits();
-    let rev = reversed_dims(i);
-    core::array::from_fn(|d| {
-        let r = if d == 0 { i } else { rev[d - 1] };
-        lk_hash(r, key(d + 1)).reverse_bits()
-    })
+    let keys = keys(seed);
+    // Nested uniform shuffle of the index (Burley 2020, section 4), kept bit-reversed, then
+    // the matrices and the scrambles, which work on reversed values.
+    let r = lk_hash(index.reverse_bits(), keys[0]);
+    let rev = reversed_dims(r);
+    core::array::from_fn(|d| lk_hash(rev[d], keys[d + 1]).reverse_bits())
 }
 
 /// The slice form on aligned groups of `LN` consecutive indices (`LN` = 8 or 16), group `g`
@@ -139,12 +141,13 @@ pub(super) fn point<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
 /// `seed`: lane by lane the bits of [`point`], with everything that is common to a group
 /// computed once, as a scalar.
 ///
-/// The keys depend on the seed alone. The index shuffle is nested, so it maps the aligned
-/// group `b + l` (`l < LN`) onto an aligned group: the shuffled index is `high | sigma(l)`,
-/// where `high` (the bits above the group) is the shuffle of `b` itself and `sigma` a
-/// permutation of `0..LN` read off the top bits of the hashed lanes. The generator matrices
-/// are linear over GF(2): the reversed dimensions of `high | sigma` are those of `high` (one
-/// scalar table product per group) XOR those of `sigma` (a lane permute of a constant).
+/// The keys depend on the seed alone. The reversed indices of an aligned group differ only in
+/// their top `s = log2(LN)` bits, and bit `j` of the Laine-Karras hash depends only on bits
+/// `0..=j` of its input, so the hashed (shuffled, reversed) indices share their low `32 - s`
+/// bits, the hash of the group's first index, and differ in their top `s` bits `v`, a
+/// permutation of `0..LN`. The generator matrices are linear over GF(2): the reversed
+/// dimensions are those of the common bits (one scalar table product per group; bytes 0-2
+/// change once per 256 indices) XOR those of `v` (a lane permute of a constant).
 #[inline(always)]
 pub(super) fn fill_groups<L: super::simd::Rows<LN>, const LN: usize, const N: usize>(
     first: u32,
@@ -152,59 +155,43 @@ pub(super) fn fill_groups<L: super::simd::Rows<LN>, const LN: usize, const N: us
     groups: &mut [[[f32; N]; LN]],
 ) {
     let s = LN.trailing_zeros();
-    let keys = KEYS.map(|k| mix(Wrapping(seed ^ k)));
+    let keys = keys(Wrapping(seed));
     // Lane l holds the bit-reversed l: the low index bits of the group, reversed in place.
     let lanes = L::words(core::array::from_fn(|l| (l as u32).reverse_bits()));
-    // Indexed by the top `s` bits `v` of a hashed lane: the low bits `sigma = reverse_s(v)`
-    // of the shuffled index (dimension 0 in reversed form), and their products with the
-    // matrices of dimensions 1..3 (byte 0 of `TABLE`).
+    // Indexed by the top `s` bits `v` of a hashed lane: their products with the matrices
+    // (byte 3 of `TABLE`, `v` in its top bits).
     let low: [L::U; 4] = core::array::from_fn(|d| {
-        L::words(core::array::from_fn(|v| {
-            let sigma = (v as u32).reverse_bits() >> (32 - s);
-            match d {
-                0 => sigma,
-                _ => TABLE[sigma as usize & 0xff][(d - 1) % 3],
-            }
-        }))
+        L::words(core::array::from_fn(|v| TABLE[768 + (v << (8 - s))][d]))
     });
     let shuffle_key = L::U::splat(keys[0].0);
-    let group_mask = Wrapping(!(LN as u32 - 1));
-    // What a group needs before its vector work: the bits of its shuffled indices common to
-    // the group, and the lanes' table positions, computed one group ahead (software
-    // pipelining: that chain of hashes and reversals then overlaps the previous group's
-    // vector work instead of preceding it). The reversed dimensions of the common bits are
-    // byte 0's table row XOR those of the bits above, which change once per 256 indices
-    // (the shuffle maps aligned blocks onto aligned blocks).
+    let byte3_mask = (1u32 << (8 - s)) - 1;
+    // What a group needs before its vector work: its hashed first index and the lanes' top
+    // bits, computed one group ahead (software pipelining: that chain of hashes then overlaps
+    // the previous group's vector work instead of preceding it).
     let ahead = |g: usize| {
         let b = first.wrapping_add((g * LN) as u32).reverse_bits();
-        let high = lk_hash(Wrapping(b), keys[0]).reverse_bits() & group_mask;
+        let r = lk_hash(Wrapping(b), keys[0]).0;
         let v = lk_hash(L::U::splat(b) | lanes, shuffle_key).shr(32 - s);
-        (high.0, v)
+        (r, v)
     };
-    let mut above = (u32::MAX, [0u32; 3]);
+    let mut above = (u32::MAX, [0u32; 4]);
     let mut next = ahead(0);
     for (g, dst) in groups.iter_mut().enumerate() {
-        let (high, v) = next;
+        let (r, v) = next;
         next = ahead(g + 1);
-        if high >> 8 != above.0 {
-            let byte = |k: u32| (256 * k + ((high >> (8 * k)) & 0xff)) as usize;
-            let rows = [TABLE[byte(1)], TABLE[byte(2)], TABLE[byte(3)]];
+        if r & 0x00ff_ffff != above.0 {
+            let rows = [0, 1, 2].map(|k| TABLE[(256 * k + ((r >> (8 * k)) & 0xff)) as usize]);
             above = (
-                high >> 8,
+                r & 0x00ff_ffff,
                 core::array::from_fn(|d| rows[0][d] ^ rows[1][d] ^ rows[2][d]),
             );
         }
-        let byte0 = TABLE[high as usize & 0xff];
-        let common = [
-            Wrapping(high),
-            Wrapping(above.1[0] ^ byte0[0]),
-            Wrapping(above.1[1] ^ byte0[1]),
-            Wrapping(above.1[2] ^ byte0[2]),
-        ];
+        let byte3 = TABLE[(768 + ((r >> 24) & byte3_mask)) as usize];
+        let common: [u32; 4] = core::array::from_fn(|d| above.1[d] ^ byte3[d]);
         // Plain loops: `core::array::from_fn` closures can stay out of line (see `batch`).
         let mut point = [L::splat(0.0); N];
         for (d, p) in point.iter_mut().enumerate() {
-            let r = L::U::splat(common[d % 4].0) ^ L::shuffle(low[d % 4], v);
+            let r = L::U::splat(common[d % 4]) ^ L::shuffle(low[d % 4], v);
             *p = to_unit(lk_hash(r, L::U::splat(keys[(d + 1) % 5].0)).reverse_bits());
         }
         super::simd::store_rows(point, dst);
@@ -257,9 +244,9 @@ mod tests {
         let mut x = 0x1234_5678u32;
         for _ in 0..20_000 {
             x = x.wrapping_mul(0x9e37_79b9).wrapping_add(0x7f4a_7c15);
-            let r = reversed_dims(Wrapping(x));
-            for d in 1..4 {
-                assert_eq!(r[d - 1].0, plain(x, d).reverse_bits());
+            let r = reversed_dims(Wrapping(x.reverse_bits()));
+            for (d, r) in r.iter().enumerate() {
+                assert_eq!(r.0, plain(x, d).reverse_bits(), "index {x:#x} dim {d}");
             }
         }
     }
