@@ -36,6 +36,14 @@ pub(crate) fn lk_hash<U: UintLane>(x: U, seed: U) -> U {
 /// reverse back: a random permutation of base-2 digits that maps every dyadic interval onto
 /// a dyadic interval of the same length. Applied to both coordinates, it maps every
 /// elementary interval onto one of the same shape, so a (0,m,2)-net stays one.
+/// [`lk_hash`] then a bit reversal, of `v` bit-reversed first when `REVERSE_IN`
+/// ([`owen_scramble`]) or of `v` as it is (a value already held bit-reversed).
+#[inline(always)]
+pub(crate) fn scramble<U: UintLane, const REVERSE_IN: bool>(v: U, seed: U) -> U {
+    let v = if REVERSE_IN { v.reverse_bits() } else { v };
+    lk_hash(v, seed).reverse_bits()
+}
+
 #[inline(always)]
 pub(crate) fn owen_scramble<U: UintLane>(v: U, seed: U) -> U {
     lk_hash(v.reverse_bits(), seed).reverse_bits()

@@ -36,7 +36,7 @@ pub(crate) use interleaved::Interleaved;
 
 use core::num::Wrapping;
 use core::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
-use wide::{f32x8, f32x16, u32x4, u32x8, u32x16};
+use wide::{f32x4, f32x8, f32x16, u32x4, u32x8, u32x16};
 
 /// `1 - 2^-24`, the largest `f32` below one: the top of every warp's input range.
 pub(crate) const ONE_MINUS_EPSILON: f32 = 1.0 - 1.0 / 16_777_216.0;
@@ -85,6 +85,18 @@ pub(crate) trait UintLane:
     /// Per lane, `f(lane)` split into two lanes: the table lookups of the sequences.
     #[allow(dead_code)] // for the table-driven families (pmj02bn)
     fn gather_pairs(self, f: impl Fn(u32) -> [u32; 2]) -> [Self; 2];
+
+    /// The four words of one 4D point (in each lane) scrambled under four keys: the
+    /// Laine-Karras hash of each word (bit-reversed first when `REVERSE_IN`, i.e. Owen's
+    /// nested scramble of [`owen_scramble`](crate::hash::owen_scramble); Sobol' words arrive
+    /// reversed already), reversed back. A scalar runs the four as one 4-lane vector (the same
+    /// integer operations, so the same bits): one vector hash and vector bit reversals instead
+    /// of four hashes and up to eight scalar reversals (no bit-reverse instruction on x86).
+    #[allow(dead_code)] // for the sampling core
+    #[inline(always)]
+    fn scramble4<const REVERSE_IN: bool>(words: [Self; 4], keys: [Self; 4]) -> [Self; 4] {
+        core::array::from_fn(|d| crate::hash::scramble::<Self, REVERSE_IN>(words[d], keys[d]))
+    }
 
     /// Each lane rotated right by `n` bits (`n` in `1..32`): the cheap derived keys of the
     /// sampling core.
@@ -185,6 +197,15 @@ impl UintLane for Wrapping<u32> {
     fn reverse_bits(self) -> Self {
         // One instruction on aarch64 and thumbv7em; the same bits as the swap network.
         Wrapping(self.0.reverse_bits())
+    }
+
+    #[inline(always)]
+    fn scramble4<const REVERSE_IN: bool>(words: [Self; 4], keys: [Self; 4]) -> [Self; 4] {
+        let w = u32x4::new(words.map(|w| w.0));
+        let k = u32x4::new(keys.map(|k| k.0));
+        crate::hash::scramble::<u32x4, REVERSE_IN>(w, k)
+            .to_array()
+            .map(Wrapping)
     }
 
     #[inline(always)]
@@ -471,6 +492,7 @@ macro_rules! simd_lanes {
     };
 }
 
+simd_lanes!(f32x4, u32x4, 4, from_i32x4);
 simd_lanes!(f32x8, u32x8, 8, from_i32x8);
 simd_lanes!(f32x16, u32x16, 16, from_i32x16);
 

@@ -259,14 +259,12 @@ fn pmj02bn_pairs<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
     let (set, scramble) = pmj02bn_block_keys(seed, index.shr(LOG2_POINTS));
     let pair = |p: usize| {
         let i = nested_shuffle(index, shuffle[p]) & U::splat(POINTS as u32 - 1);
-        let [x, y] = crate::pmj02bn::table_bits(set[p] | i);
-        [
-            owen_scramble(x, scramble[2 * p]),
-            owen_scramble(y, scramble[2 * p + 1]),
-        ]
+        crate::pmj02bn::table_bits(set[p] | i)
     };
     let a = pair(0);
     let b = if N > 2 { pair(1) } else { a };
+    let [x0, y0, x1, y1] = U::scramble4::<true>([a[0], a[1], b[0], b[1]], scramble);
+    let (a, b) = ([x0, y0], [x1, y1]);
     core::array::from_fn(|d| [a[0], a[1], b[0], b[1]][d])
 }
 

@@ -132,8 +132,9 @@ pub(super) fn point<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
     // Nested uniform shuffle of the index (Burley 2020, section 4), kept bit-reversed, then
     // the matrices and the scrambles, which work on reversed values.
     let r = lk_hash(index.reverse_bits(), keys[0]);
-    let rev = reversed_dims(r);
-    core::array::from_fn(|d| lk_hash(rev[d], keys[d + 1]).reverse_bits())
+    let [_, k1, k2, k3, k4] = keys;
+    let out = U::scramble4::<false>(reversed_dims(r), [k1, k2, k3, k4]);
+    core::array::from_fn(|d| out[d])
 }
 
 /// The slice form on aligned groups of `LN` consecutive indices (`LN` = 8 or 16), group `g`
