@@ -14,7 +14,7 @@ probes=(
   "probe-pmj02bn-4096:only pmj02bn::sample, 4096 points x 1 set"
   "probe-pmj02bn-16384:only pmj02bn::sample, 16384 points x 1 set"
   "probe-pmj02bn-65536:only pmj02bn::sample, 65536 points x 1 set"
-  "probe-sampler-sobol:only sampler::Sampler<Sobol> (domains, 4D draws; 12 KiB matrices)"
+  "probe-sampler-sobol:only sampler::Sampler<Sobol> (domains, 4D draws; 16 KiB matrices)"
   "probe-sampler-pmj02bn:only sampler::Sampler<Pmj02bn>, 1024 points x 1 set"
   "probe-sampler-blue:only sampler::Sampler<Blue<Sobol>> (with the 64 x 64 key tile)"
 )
