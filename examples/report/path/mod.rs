@@ -51,6 +51,10 @@ pub struct PathConfig {
     /// Where the cached references live (`docs/report`).
     pub reference_dir: PathBuf,
     pub reference_spp_per_half: u32,
+    /// Image side: [`SIZE`], or half of it with `--quick` (the reference is averaged over 2 x 2
+    /// pixels: with a box pixel filter that is exactly the expected value of the coarser
+    /// pixels).
+    pub size: usize,
 }
 
 impl PathConfig {
@@ -67,6 +71,7 @@ impl PathConfig {
             rebuild_reference: rebuild,
             reference_dir: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/report"),
             reference_spp_per_half: REFERENCE_SPP_PER_HALF,
+            size: if quick { SIZE / 2 } else { SIZE },
         }
     }
 
@@ -76,8 +81,8 @@ impl PathConfig {
             (true, s) if FILTERED_SPPS.contains(&s) => 2,
             (true, _) => 1,
             (false, 0..=16) => 8,
-            (false, 17..=64) => 3,
-            _ => 2,
+            (false, 17..=64) => 2,
+            _ => 1,
         }
     }
 }
@@ -101,8 +106,8 @@ pub struct PathRow {
 }
 
 impl PathRow {
-    pub fn ns_per_sample(&self) -> f64 {
-        self.frame_s * 1e9 / (SIZE * SIZE) as f64 / self.spp as f64
+    pub fn ns_per_sample(&self, pixels: usize) -> f64 {
+        self.frame_s * 1e9 / pixels as f64 / self.spp as f64
     }
 }
 
@@ -190,6 +195,9 @@ pub fn run_scene(cfg: &PathConfig, name: &str) -> Result<PathResult, String> {
     let start = Instant::now();
     let scene = Scene::by_name(name, SIZE).ok_or_else(|| format!("unknown path scene {name}"))?;
     let (refr, reference_bytes) = reference(cfg, &scene)?;
+    let f = SIZE / cfg.size.clamp(1, SIZE);
+    let refr = refr.downsample(f);
+    let scene = Scene::by_name(name, SIZE / f).ok_or("unknown path scene")?;
     let rmean = refr.mean();
     let rhalf = refr.half_difference();
     let ref_var: [(f64, f64); 5] = SIGMAS.map(|s| mean_se(&squares(&blur(&rhalf, s))));
@@ -319,7 +327,7 @@ pub fn results_csv_rows(results: &[PathResult]) -> String {
                 row.kind.name(),
                 row.spp,
                 row.mse,
-                row.ns_per_sample()
+                row.ns_per_sample(r.reference.px.len())
             );
         }
     }
@@ -368,7 +376,7 @@ pub fn details_csv(results: &[PathResult]) -> String {
                 row.mean_error,
                 row.bias_z,
                 row.frame_s * 1e3,
-                row.ns_per_sample(),
+                row.ns_per_sample(r.reference.px.len()),
                 r.ref_var[0].0
             );
         }
@@ -403,8 +411,10 @@ pub fn markdown(results: &[PathResult]) -> String {
             .collect();
         let _ = writeln!(
             s,
-            "### {}\n\n64 x 64 pixels; reference 2 x {} spp ({:.0} s to render, {} bytes cached); reference variance {} (+- {:.0}%), subtracted from every MSE.\n",
+            "### {}\n\n{} x {} pixels; reference 2 x {} spp ({:.0} s to render, {} bytes cached); reference variance {} (+- {:.0}%), subtracted from every MSE.\n",
             r.scene,
+            r.reference.width,
+            r.reference.height,
             r.reference_spp_per_half,
             r.reference_seconds,
             r.reference_bytes,

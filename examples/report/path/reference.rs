@@ -40,6 +40,32 @@ impl Reference {
         }
     }
 
+    /// Both halves averaged over `f x f` pixel blocks (`f = 1`: unchanged).
+    pub fn downsample(self, f: usize) -> Reference {
+        if f <= 1 {
+            return self;
+        }
+        let down = |im: &Image| {
+            let (w, h) = (im.width / f, im.height / f);
+            let mut out = Image::new(w, h);
+            for y in 0..h * f {
+                for x in 0..w * f {
+                    let p = im.px[y * im.width + x];
+                    let o = &mut out.px[(y / f) * w + x / f];
+                    for c in 0..3 {
+                        o[c] += p[c] / (f * f) as f64;
+                    }
+                }
+            }
+            out
+        };
+        Reference {
+            a: down(&self.a),
+            b: down(&self.b),
+            ..self
+        }
+    }
+
     /// `(A + B) / 2`.
     pub fn mean(&self) -> Image {
         self.combine(|a, b| 0.5 * (a + b))

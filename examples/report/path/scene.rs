@@ -186,6 +186,34 @@ pub struct Scene {
     pub max_bounces: usize,
     pub width: usize,
     pub height: usize,
+    /// Groups of objects behind a bounding box (the blocks): `(lo, hi, first..end)`.
+    pub groups: Vec<(V, V, std::ops::Range<usize>)>,
+    /// The objects outside every group (tested on every ray).
+    pub loose: Vec<usize>,
+}
+
+/// Whether the ray `o + t d`, `t` in `(tmin, tmax)`, meets the box `[lo, hi]` (slabs).
+#[inline]
+fn meets_box(o: V, d: V, lo: V, hi: V, tmin: f64, tmax: f64) -> bool {
+    let (mut t0, mut t1) = (tmin, tmax);
+    for a in 0..3 {
+        let inv = 1.0 / d[a];
+        let (mut n, mut f) = ((lo[a] - o[a]) * inv, (hi[a] - o[a]) * inv);
+        if n > f {
+            std::mem::swap(&mut n, &mut f);
+        }
+        // NaN (0 * inf on a slab's plane) keeps the interval: conservative.
+        if n > t0 {
+            t0 = n;
+        }
+        if f < t1 {
+            t1 = f;
+        }
+        if t0 > t1 {
+            return false;
+        }
+    }
+    true
 }
 
 const WHITE: V = [0.725, 0.71, 0.68];
@@ -296,6 +324,8 @@ impl Scene {
                 light: None,
             })
             .collect();
+        let mut groups = Vec::new();
+        let first = objects.len();
         for shape in block(0.68, 0.35, 0.15, 0.3, -0.3) {
             objects.push(Object {
                 shape,
@@ -303,6 +333,8 @@ impl Scene {
                 light: None,
             });
         }
+        groups.push(first..objects.len());
+        let first = objects.len();
         for shape in block(0.32, 0.68, 0.15, 0.6, 0.3) {
             objects.push(Object {
                 shape,
@@ -314,6 +346,7 @@ impl Scene {
                 light: None,
             });
         }
+        groups.push(first..objects.len());
         let power = if disk { 0.5 } else { 1.0 };
         objects.push(Object {
             shape: Shape::quad(
@@ -333,7 +366,7 @@ impl Scene {
             });
         }
         let name = if disk { "cornell-disk" } else { "cornell" };
-        Scene::finish(name, objects, 5, size)
+        Scene::finish(name, objects, groups, 5, size)
     }
 
     /// The white furnace: every wall emits 1 and reflects `rho` (diffuse).
@@ -350,10 +383,36 @@ impl Scene {
                 light: None,
             })
             .collect();
-        Scene::finish("furnace", objects, 5, size)
+        Scene::finish("furnace", objects, Vec::new(), 5, size)
     }
 
-    fn finish(name: &str, mut objects: Vec<Object>, max_bounces: usize, size: usize) -> Scene {
+    fn finish(
+        name: &str,
+        mut objects: Vec<Object>,
+        groups: Vec<std::ops::Range<usize>>,
+        max_bounces: usize,
+        size: usize,
+    ) -> Scene {
+        let groups: Vec<(V, V, std::ops::Range<usize>)> = groups
+            .into_iter()
+            .map(|r| {
+                let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+                for o in &objects[r.clone()] {
+                    if let Shape::Quad { p, e1, e2, .. } = o.shape {
+                        for q in [p, add(p, e1), add(p, e2), add(add(p, e1), e2)] {
+                            for a in 0..3 {
+                                lo[a] = lo[a].min(q[a] - 1e-9);
+                                hi[a] = hi[a].max(q[a] + 1e-9);
+                            }
+                        }
+                    }
+                }
+                (lo, hi, r)
+            })
+            .collect();
+        let loose = (0..objects.len())
+            .filter(|i| !groups.iter().any(|g| g.2.contains(i)))
+            .collect();
         let mut lights = Vec::new();
         let mut power = Vec::new();
         for (i, o) in objects.iter_mut().enumerate() {
@@ -381,6 +440,8 @@ impl Scene {
             max_bounces,
             width: size,
             height: size,
+            groups,
+            loose,
         }
     }
 
@@ -394,13 +455,40 @@ impl Scene {
     pub fn intersect(&self, o: V, d: V, tmin: f64, tmax: f64) -> Option<(usize, f64)> {
         let mut best = None;
         let mut tmax = tmax;
-        for (i, ob) in self.objects.iter().enumerate() {
-            if let Some(t) = ob.shape.hit(o, d, tmin, tmax) {
+        for &i in &self.loose {
+            if let Some(t) = self.objects[i].shape.hit(o, d, tmin, tmax) {
                 tmax = t;
                 best = Some((i, t));
             }
         }
+        for (lo, hi, r) in &self.groups {
+            if meets_box(o, d, *lo, *hi, tmin, tmax) {
+                for i in r.clone() {
+                    if let Some(t) = self.objects[i].shape.hit(o, d, tmin, tmax) {
+                        tmax = t;
+                        best = Some((i, t));
+                    }
+                }
+            }
+        }
         best
+    }
+
+    /// Whether anything lies along `d` from `o` within `(tmin, tmax)` (any hit).
+    #[inline]
+    pub fn occluded(&self, o: V, d: V, tmin: f64, tmax: f64) -> bool {
+        for (lo, hi, r) in &self.groups {
+            if meets_box(o, d, *lo, *hi, tmin, tmax)
+                && self.objects[r.clone()]
+                    .iter()
+                    .any(|ob| ob.shape.hit(o, d, tmin, tmax).is_some())
+            {
+                return true;
+            }
+        }
+        self.loose
+            .iter()
+            .any(|&i| self.objects[i].shape.hit(o, d, tmin, tmax).is_some())
     }
 }
 
@@ -422,6 +510,35 @@ mod tests {
         }
         assert_eq!(s.lights.len(), 2);
         assert!((s.light_cdf[1] - 1.0).abs() < 1e-12);
+    }
+
+    /// The culled intersection finds what a test of every object finds.
+    #[test]
+    fn culled_intersection_matches_brute_force() {
+        let s = Scene::by_name("cornell", 8).unwrap();
+        let mut rng = crate::math::Rng::new(5);
+        for _ in 0..20000 {
+            let o = [
+                rng.uniform(),
+                rng.uniform() * 0.7,
+                rng.uniform() * 2.0 - 1.0,
+            ];
+            let d = rng.direction();
+            let mut brute = None;
+            for (i, ob) in s.objects.iter().enumerate() {
+                if let Some(t) = ob.shape.hit(o, d, 1e-7, f64::INFINITY) {
+                    if brute.is_none_or(|(_, bt)| t < bt) {
+                        brute = Some((i, t));
+                    }
+                }
+            }
+            assert_eq!(s.intersect(o, d, 1e-7, f64::INFINITY), brute);
+            assert_eq!(s.occluded(o, d, 1e-7, 1e9), brute.is_some());
+            if let Some((_, t)) = brute {
+                assert!(s.occluded(o, d, 1e-7, t * 1.01));
+                assert!(!s.occluded(o, d, 1e-7, t * 0.99));
+            }
+        }
     }
 
     #[test]

@@ -137,3 +137,50 @@ fn frames_are_reproducible() {
         assert_eq!(a.px, b.px);
     }
 }
+
+/// `--quick` compares 32 x 32 renders with the 64 x 64 reference averaged over 2 x 2 pixels:
+/// with a box pixel filter the two have the same expectation. Checked at 8 x 8: 8 references
+/// of 16 x 16 pixels at 256 spp averaged down, and 8 direct 8 x 8 references at 1024 spp
+/// (same samples per coarse pixel), differ by their noise only: summed over the 192 pixel
+/// channels, the squared difference of the two means over the sum of their variances (each
+/// from its 8 replicates) lies in [0.5, 2] (measured 1.2).
+#[test]
+fn downsampled_reference_matches_a_coarser_render() {
+    let fine = Scene::by_name("cornell", 16).unwrap();
+    let coarse = Scene::by_name("cornell", 8).unwrap();
+    let reps = |scene: &Scene, spp: u32, down: usize| -> Vec<Image> {
+        (0..8u32)
+            .map(|k| {
+                let im = trace::render_parallel(
+                    scene,
+                    &ReferenceRandom,
+                    spp,
+                    0x00d0_0000 + k + 16 * spp,
+                    2,
+                );
+                Reference {
+                    a: im.clone(),
+                    b: im,
+                    spp_per_half: spp,
+                    seconds: 0.0,
+                }
+                .downsample(down)
+                .a
+            })
+            .collect()
+    };
+    let (d, c) = (reps(&fine, 256, 2), reps(&coarse, 1024, 1));
+    let (mut num, mut den) = (0.0, 0.0);
+    for p in 0..64 {
+        for ch in 0..3 {
+            let a: Vec<f64> = d.iter().map(|im| im.px[p][ch]).collect();
+            let b: Vec<f64> = c.iter().map(|im| im.px[p][ch]).collect();
+            let ((ma, sa), (mb, sb)) = (mean_se(&a), mean_se(&b));
+            num += (ma - mb).powi(2);
+            den += sa * sa + sb * sb;
+        }
+    }
+    let ratio = num / den;
+    eprintln!("downsampled reference: squared difference / variance = {ratio:.3}");
+    assert!((0.5..=2.0).contains(&ratio), "ratio {ratio}");
+}

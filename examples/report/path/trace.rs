@@ -170,9 +170,7 @@ pub fn radiance<S: PathSampler>(scene: &Scene, s: &S, smp: &S::Sample, pixel: [u
             let cos_l = -dot(lshape.normal(), wi);
             if cos_l > 0.0 && dot(n, wi) > 0.0 {
                 let (f, pb) = eval(m, n, wo, wi);
-                if f.iter().any(|&c| c > 0.0)
-                    && scene.intersect(xo, wi, 0.0, dist * (1.0 - 1e-7)).is_none()
-                {
+                if f.iter().any(|&c| c > 0.0) && !scene.occluded(xo, wi, 0.0, dist * (1.0 - 1e-7)) {
                     let pl = p * dist2 / (cos_l * lshape.area());
                     let le = scene.objects[lobj].material.emission;
                     let g = dot(n, wi) / pl * power2(pl, pb);
