@@ -320,7 +320,12 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
     output::write(&opts.out.join("tables.md"), &tables)?;
     output::write(
         &opts.out.join("recommendations.md"),
-        &output::recommendations_markdown(&results),
+        &(output::recommendations_markdown(&results)
+            + &if path_results.is_empty() {
+                String::new()
+            } else {
+                crate::path::recommendations_markdown(&path_results)
+            }),
     )?;
     output::write(
         &opts.out.join("comparison.md"),

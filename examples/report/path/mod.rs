@@ -532,3 +532,72 @@ pub fn run(cfg: &PathConfig, out: &Path) -> Result<Vec<PathResult>, Box<dyn std:
 
 #[cfg(test)]
 mod tests;
+
+/// The recommendations' rows of the path scenes: "offline, 64+ spp" (lowest MSE at each
+/// count from 64 up) and "real-time, 1-4 spp, denoised" (lowest MSE after a sigma = 2 px
+/// blur at 1 and 4 spp), each with the samplers tied with it (within two standard errors of
+/// the difference) and the lowest MSE x frame time.
+pub fn recommendations_markdown(results: &[PathResult]) -> String {
+    let mut s = String::from(
+        "\n## Path-traced scenes: which sampler drives the whole path\n\n| scene | use | spp | lowest error | tied (2 s.e.) | lowest error x frame time |\n|---|---|---:|---|---|---|\n",
+    );
+    for r in results {
+        let mut cases: Vec<(&str, u32, usize)> = Vec::new();
+        for spp in [64, 256] {
+            if r.row(Kind::Random, spp).is_some() {
+                cases.push(("offline, 64+ spp (MSE)", spp, 0));
+            }
+        }
+        for spp in [1, 4] {
+            if r.row(Kind::Random, spp)
+                .is_some_and(|x| x.filtered.is_some())
+            {
+                cases.push((
+                    "real-time, 1-4 spp, denoised (MSE after a 2 px blur)",
+                    spp,
+                    3,
+                ));
+            }
+        }
+        for (what, spp, sigma) in cases {
+            let val = |x: &PathRow| -> (f64, f64) {
+                if sigma == 0 {
+                    (x.mse, x.mse_se)
+                } else {
+                    x.filtered.map_or((f64::NAN, f64::NAN), |f| f[sigma])
+                }
+            };
+            let rows: Vec<&PathRow> = r.rows.iter().filter(|x| x.spp == spp).collect();
+            let Some(best) = rows.iter().min_by(|a, b| val(a).0.total_cmp(&val(b).0)) else {
+                continue;
+            };
+            let (bm, bs) = val(best);
+            let tied: Vec<&str> = rows
+                .iter()
+                .filter(|x| x.kind != best.kind)
+                .filter(|x| {
+                    let (m, se) = val(x);
+                    m - bm <= 2.0 * (se * se + bs * bs).sqrt()
+                })
+                .map(|x| x.kind.name())
+                .collect();
+            let cost = rows
+                .iter()
+                .min_by(|a, b| (val(a).0 * a.frame_s).total_cmp(&(val(b).0 * b.frame_s)))
+                .map_or("-", |x| x.kind.name());
+            let _ = writeln!(
+                s,
+                "| {} | {what} | {spp} | **{}** ({}) | {} | {cost} |",
+                r.scene,
+                best.kind.name(),
+                sci(bm),
+                if tied.is_empty() {
+                    "-".to_string()
+                } else {
+                    tied.join(", ")
+                }
+            );
+        }
+    }
+    s
+}

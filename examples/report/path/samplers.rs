@@ -315,18 +315,6 @@ impl Kind {
         self.index() < 4
     }
 
-    /// A screen-space blue-noise variant.
-    pub fn is_blue(self) -> bool {
-        matches!(
-            self,
-            Kind::BluePmj02bn
-                | Kind::BlueSobol
-                | Kind::OpenqmcSobolbn
-                | Kind::OpenqmcPmjbn
-                | Kind::OpenqmcLatticebn
-        )
-    }
-
     /// Builds any tables the peers build lazily, so no timing pays for them.
     pub fn warm_all() {
         openqmc::SobolSampler::warm_cache();

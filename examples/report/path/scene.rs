@@ -370,6 +370,7 @@ impl Scene {
     }
 
     /// The white furnace: every wall emits 1 and reflects `rho` (diffuse).
+    #[cfg(test)]
     pub fn furnace(rho: f64, size: usize) -> Scene {
         let objects = walls()
             .iter()

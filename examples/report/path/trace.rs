@@ -258,8 +258,3 @@ pub fn render_parallel<S: PathSampler>(
     drop(chunks);
     img
 }
-
-/// The image's mean over pixels and channels (for quick checks).
-pub fn mean(img: &Image) -> f64 {
-    img.px.iter().map(|p| p.iter().sum::<f64>()).sum::<f64>() / (3 * img.px.len()) as f64
-}
