@@ -145,13 +145,12 @@ impl PathResult {
 /// The cached reference of `scene`, rendered (and cached) when missing or asked for.
 pub fn reference(cfg: &PathConfig, scene: &Scene) -> Result<(Reference, usize), String> {
     let path = Reference::path(&cfg.reference_dir, &scene.name);
-    if !cfg.rebuild_reference {
-        if let Ok(bytes) = std::fs::read(&path) {
-            let r =
-                Reference::from_bytes(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
-            if r.a.width == scene.width && r.a.height == scene.height {
-                return Ok((r, bytes.len()));
-            }
+    if !cfg.rebuild_reference
+        && let Ok(bytes) = std::fs::read(&path)
+    {
+        let r = Reference::from_bytes(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+        if r.a.width == scene.width && r.a.height == scene.height {
+            return Ok((r, bytes.len()));
         }
     }
     eprintln!(

@@ -527,10 +527,10 @@ mod tests {
             let d = rng.direction();
             let mut brute = None;
             for (i, ob) in s.objects.iter().enumerate() {
-                if let Some(t) = ob.shape.hit(o, d, 1e-7, f64::INFINITY) {
-                    if brute.is_none_or(|(_, bt)| t < bt) {
-                        brute = Some((i, t));
-                    }
+                if let Some(t) = ob.shape.hit(o, d, 1e-7, f64::INFINITY)
+                    && brute.is_none_or(|(_, bt)| t < bt)
+                {
+                    brute = Some((i, t));
                 }
             }
             assert_eq!(s.intersect(o, d, 1e-7, f64::INFINITY), brute);
