@@ -24,6 +24,8 @@ mod envscene;
 mod math;
 #[path = "../examples/report/output.rs"]
 mod output;
+#[path = "../examples/report/path/mod.rs"]
+mod path;
 #[cfg(feature = "envmap")]
 #[path = "common/pfm.rs"]
 mod pfm;
@@ -449,9 +451,29 @@ fn quick_run_writes_a_well_formed_csv() {
     // and `pmj02bn`; the peers' point-set randomizations do not apply.
     let rows_of = |warp: &str| if warp.starts_with("basu_owen") { 3 } else { 5 };
     let mut seen = std::collections::HashSet::new();
+    let mut path_rows = std::collections::HashSet::new();
     for line in lines {
         let f: Vec<&str> = line.split(',').collect();
         assert_eq!(f.len(), 6, "{line}");
+        // The path-traced scenes (warp `path`): 13 samplers at 1 to 16 spp in the quick run.
+        if f[2] == "path" {
+            assert!(path::scene::Scene::NAMES.contains(&f[0]), "{line}");
+            assert!(
+                path::samplers::KINDS.iter().any(|k| k.name() == f[1]),
+                "{line}"
+            );
+            assert!(["1", "2", "4", "8", "16"].contains(&f[3]), "{line}");
+            let (mse, ns): (f64, f64) = (f[4].parse().unwrap(), f[5].parse().unwrap());
+            assert!(
+                mse.is_finite() && mse > 0.0 && ns.is_finite() && ns > 0.0,
+                "{line}"
+            );
+            assert!(
+                path_rows.insert((f[0].to_string(), f[1], f[3])),
+                "duplicate row {line}"
+            );
+            continue;
+        }
         let warps = &warps_of.iter().find(|(s, _)| s == f[0]).expect(line).1;
         assert!(samplers.contains(&f[1]), "{line}");
         assert!(warps.contains(&f[2]), "{line}");
@@ -474,6 +496,10 @@ fn quick_run_writes_a_well_formed_csv() {
         .map(|(_, w)| w.iter().map(|w| rows_of(w)).sum::<usize>() * spps.len())
         .sum();
     assert_eq!(seen.len(), expected);
+    assert_eq!(path_rows.len(), 2 * 13 * 5);
+    let filtered = std::fs::read_to_string(out.join("filtered.csv")).unwrap();
+    assert_eq!(filtered.lines().next(), Some("scene,sampler,spp,sigma,mse"));
+    assert_eq!(filtered.lines().count(), 1 + 2 * 13 * 3 * 5);
     assert_eq!(results.len(), warps_of.len());
     for (scene, _) in &warps_of {
         assert!(out.join(plots::file_name(scene)).exists(), "{scene} plot");

@@ -29,6 +29,8 @@ pub struct Options {
     pub threads: usize,
     /// Only scenes whose name starts with one of these (all when empty).
     pub scenes: Vec<String>,
+    /// Re-render the path scenes' cached references.
+    pub reference: bool,
 }
 
 impl Default for Options {
@@ -42,6 +44,7 @@ impl Default for Options {
             max_spp: 256,
             threads: std::thread::available_parallelism().map_or(2, |n| n.get()),
             scenes: Vec::new(),
+            reference: false,
         }
     }
 }
@@ -50,6 +53,60 @@ impl Options {
     pub fn spps(&self) -> Vec<usize> {
         std::iter::successors(Some(4usize), |n| n.checked_mul(4))
             .take_while(|&n| n <= self.max_spp.max(4))
+            .collect()
+    }
+
+    /// Every scene name `--scene` may select (by prefix).
+    pub fn scene_names(&self) -> Vec<String> {
+        let mut names = Vec::new();
+        for s in AreaScene::all() {
+            if !names.contains(&s.light.to_string()) {
+                names.push(s.light.to_string());
+            }
+            names.push(s.name());
+        }
+        #[cfg(feature = "envmap")]
+        {
+            names.push("envmap:sky".into());
+            names.push("envmap:interior".into());
+            for p in &self.envmaps {
+                let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned());
+                names.push(format!("envmap:{}", stem.unwrap_or_else(|| "map".into())));
+            }
+        }
+        names.extend(crate::path::scene::Scene::NAMES.map(String::from));
+        names
+    }
+
+    /// The checks made before any work (`main` exits with code 2 on an error): every
+    /// `--scene` prefix selects some scene, every `--envmap` file reads as a usable map.
+    pub fn check(&self) -> Result<(), String> {
+        let names = self.scene_names();
+        for s in &self.scenes {
+            if !names.iter().any(|n| n.starts_with(s.as_str())) {
+                return Err(format!(
+                    "--scene {s:?} selects no scene; the scenes (any prefix selects): {}",
+                    names.join(", ")
+                ));
+            }
+        }
+        #[cfg(feature = "envmap")]
+        for path in &self.envmaps {
+            load_envmap(path).map_err(|e| format!("--envmap: {e}"))?;
+        }
+        #[cfg(not(feature = "envmap"))]
+        if !self.envmaps.is_empty() {
+            return Err("--envmap: this build has no envmap feature".into());
+        }
+        Ok(())
+    }
+
+    /// The path scenes to run.
+    fn path_scenes(&self) -> Vec<String> {
+        crate::path::scene::Scene::NAMES
+            .iter()
+            .filter(|n| self.wants(n))
+            .map(|n| n.to_string())
             .collect()
     }
 
@@ -235,8 +292,20 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         eprintln!("report: built without the envmap feature: no environment-map scenes");
     }
 
+    // The path-traced scenes (issue 21): their own CSVs, tables and pictures; their rows
+    // join results.csv.
+    let path_cfg = crate::path::PathConfig::new(
+        opts.path_scenes(),
+        opts.quick,
+        opts.threads.max(1),
+        opts.reference,
+    );
+    let path_results = crate::path::run(&path_cfg, &opts.out)?;
     let csv = opts.out.join("results.csv");
-    output::write(&csv, &output::csv(&results))?;
+    output::write(
+        &csv,
+        &(output::csv(&results) + &crate::path::results_csv_rows(&path_results)),
+    )?;
     output::write(
         &opts.out.join("details.csv"),
         &output::details_csv(&results),
@@ -251,7 +320,12 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
     output::write(&opts.out.join("tables.md"), &tables)?;
     output::write(
         &opts.out.join("recommendations.md"),
-        &output::recommendations_markdown(&results),
+        &(output::recommendations_markdown(&results)
+            + &if path_results.is_empty() {
+                String::new()
+            } else {
+                crate::path::recommendations_markdown(&path_results)
+            }),
     )?;
     output::write(
         &opts.out.join("comparison.md"),
@@ -271,7 +345,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
 
 /// A lat-long PFM map as a scene named by its file stem.
 #[cfg(feature = "envmap")]
-fn load_envmap(path: &std::path::Path) -> Result<EnvScene, Box<dyn std::error::Error>> {
+pub fn load_envmap(path: &std::path::Path) -> Result<EnvScene, Box<dyn std::error::Error>> {
     let img = crate::pfm::read(path)?;
     let mut lum = vec![0.0f32; img.rgb.len()];
     warpcore::envmap::image::luminance_slice(&img.rgb, &mut lum);

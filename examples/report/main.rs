@@ -12,6 +12,7 @@ mod area;
 mod envscene;
 mod math;
 mod output;
+mod path;
 #[cfg(feature = "envmap")]
 #[path = "../../tests/common/pfm.rs"]
 mod pfm;
@@ -27,8 +28,9 @@ mod strata_env;
 use clap::{Arg, ArgAction, Command, value_parser};
 use std::path::PathBuf;
 
-fn main() {
-    let m = Command::new("report")
+/// The command line.
+fn command() -> Command {
+    Command::new("report")
         .about(
             "Error versus run time for every sampler x warp of warpcore, against exact references",
         )
@@ -90,9 +92,54 @@ fn main() {
                 .long("scene")
                 .value_name("PREFIX")
                 .action(ArgAction::Append)
-                .help("run only scenes whose name starts with PREFIX (repeatable)"),
+                .help("run only scenes whose name starts with PREFIX (repeatable; see the valid names in an error message)"),
         )
-        .get_matches();
+        .arg(
+            Arg::new("reference")
+                .long("reference")
+                .action(ArgAction::SetTrue)
+                .help("re-render the path scenes' cached references (docs/report/path-*.ref; about a minute each on 2 cores)"),
+        )
+}
+
+/// A command line that fails before any work: clap's own errors (help, version, a value
+/// that is no number) or ours, each a message for the user and exit code 2.
+pub enum CliError {
+    Clap(clap::Error),
+    Invalid(String),
+}
+
+/// Limits on the counts (a value outside is a mistake, not a request).
+const MAX_PIXELS: usize = 1 << 22;
+const MAX_ENV_PIXELS: usize = 1 << 20;
+const MAX_SPP: usize = 1 << 16;
+const MAX_THREADS: usize = 1024;
+
+fn count(
+    m: &clap::ArgMatches,
+    name: &str,
+    lo: usize,
+    hi: usize,
+) -> Result<Option<usize>, CliError> {
+    match m.get_one::<usize>(name).copied() {
+        Some(n) if n < lo || n > hi => Err(CliError::Invalid(format!(
+            "--{name} {n}: must be between {lo} and {hi}"
+        ))),
+        v => Ok(v),
+    }
+}
+
+/// Parses and checks the arguments (`args[0]` is the program name): unknown scenes, counts
+/// out of range and unreadable or malformed `--envmap` files are refused here, before any
+/// scene runs.
+pub fn parse<I, T>(args: I) -> Result<app::Options, CliError>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let m = command()
+        .try_get_matches_from(args)
+        .map_err(CliError::Clap)?;
     let mut opts = app::Options {
         quick: m.get_flag("quick"),
         ..app::Options::default()
@@ -100,24 +147,122 @@ fn main() {
     if let Some(out) = m.get_one::<PathBuf>("out") {
         opts.out = out.clone();
     }
-    opts.pixels = m.get_one::<usize>("pixels").copied();
-    opts.env_pixels = m.get_one::<usize>("env-pixels").copied();
+    opts.pixels = count(&m, "pixels", 1, MAX_PIXELS)?;
+    opts.env_pixels = count(&m, "env-pixels", 1, MAX_ENV_PIXELS)?;
     opts.envmaps = m
         .get_many::<PathBuf>("envmap")
         .map(|v| v.cloned().collect())
         .unwrap_or_default();
-    if let Some(&n) = m.get_one::<usize>("max-spp") {
+    if let Some(n) = count(&m, "max-spp", 4, MAX_SPP)? {
         opts.max_spp = n;
     }
-    if let Some(&n) = m.get_one::<usize>("threads") {
+    if let Some(n) = count(&m, "threads", 1, MAX_THREADS)? {
         opts.threads = n;
     }
+    opts.reference = m.get_flag("reference");
     opts.scenes = m
         .get_many::<String>("scene")
         .map(|v| v.cloned().collect())
         .unwrap_or_default();
+    opts.check().map_err(CliError::Invalid)?;
+    Ok(opts)
+}
+
+fn main() {
+    let opts = match parse(std::env::args_os()) {
+        Ok(o) => o,
+        Err(CliError::Clap(e)) => e.exit(),
+        Err(CliError::Invalid(msg)) => {
+            eprintln!("report: {msg}");
+            std::process::exit(2);
+        }
+    };
     if let Err(e) = app::run(&opts) {
         eprintln!("report: {e}");
         std::process::exit(1);
+    }
+}
+
+#[cfg(test)]
+mod cli_tests {
+    use super::*;
+
+    fn err(args: &[&str]) -> String {
+        match parse(std::iter::once("report").chain(args.iter().copied())) {
+            Ok(_) => panic!("{args:?} was accepted"),
+            Err(CliError::Invalid(m)) => m,
+            Err(CliError::Clap(e)) => {
+                assert_eq!(e.exit_code(), 2, "{args:?}");
+                e.to_string()
+            }
+        }
+    }
+
+    #[test]
+    fn valid_command_lines_parse() {
+        for args in [
+            &[][..],
+            &["--quick"],
+            &["--scene", "cornell"],
+            &["--scene", "cornell-disk", "--scene", "disk/lit"],
+            &["--scene", "square", "--max-spp", "64", "--pixels", "16"],
+            &["--scene", "envmap:sky"],
+            &["--threads", "1", "--reference", "--scene", "corn"],
+        ] {
+            assert!(
+                parse(std::iter::once("report").chain(args.iter().copied())).is_ok(),
+                "{args:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn unknown_scenes_name_the_valid_ones() {
+        let m = err(&["--scene", "nonsense"]);
+        assert!(
+            m.contains("nonsense") && m.contains("cornell-disk") && m.contains("square"),
+            "{m}"
+        );
+        assert!(err(&["--scene", "cornell", "--scene", "x"]).contains("\"x\""));
+    }
+
+    #[test]
+    fn zero_and_absurd_counts_are_refused() {
+        for (flag, v) in [
+            ("--max-spp", "0"),
+            ("--max-spp", "3"),
+            ("--max-spp", "99999999"),
+            ("--pixels", "0"),
+            ("--pixels", "100000000"),
+            ("--env-pixels", "0"),
+            ("--threads", "0"),
+            ("--max-spp", "many"),
+        ] {
+            let m = err(&[flag, v]);
+            assert!(m.contains(flag), "{flag} {v}: {m}");
+        }
+        // clap reads "-1" as an unknown flag: still an error (exit code 2, checked in err).
+        err(&["--pixels", "-1"]);
+    }
+
+    #[cfg(feature = "envmap")]
+    #[test]
+    fn unreadable_or_malformed_maps_are_refused() {
+        let m = err(&["--envmap", "/nonexistent/map.pfm"]);
+        assert!(m.contains("/nonexistent/map.pfm"), "{m}");
+        let dir = std::env::temp_dir().join(format!("warpcore-cli-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let bad = dir.join("bad.pfm");
+        std::fs::write(&bad, b"P6\n2 2\n255\nxxxxxxxxxxxx").unwrap();
+        let m = err(&["--envmap", bad.to_str().unwrap()]);
+        assert!(m.contains("bad.pfm"), "{m}");
+        // A PFM header whose pixel data is cut short.
+        let short = dir.join("short.pfm");
+        let mut bytes = b"PF\n4 2\n-1.0\n".to_vec();
+        bytes.extend(std::iter::repeat_n(0u8, 4 * 2 * 3 * 4 - 5));
+        std::fs::write(&short, &bytes).unwrap();
+        let m = err(&["--envmap", short.to_str().unwrap()]);
+        assert!(m.contains("short.pfm"), "{m}");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -1,0 +1,260 @@
+//! The path tracer: a thin-lens camera with a box pixel filter, next-event estimation and
+//! BSDF sampling combined by multiple importance sampling (power heuristic), Russian roulette
+//! from the third vertex on, at most `max_bounces` scattering events.
+//!
+//! Dimensions (all through [`PathSampler`] domains): domain 0 the position in the pixel,
+//! domain 1 the lens (warpcore's concentric disk), domain `2 + d` at vertex `d` four: the
+//! light choice and the light point (the choice reuses the first dimension, rescaled, so it
+//! stays stratified; a disk light's point goes through warpcore's concentric map) and the
+//! BSDF direction (warpcore's cosine hemisphere for diffuse surfaces; the concentric disk
+//! lifted to the modified-Phong lobe `cos^e` about the mirror direction for the glossy one).
+//! Five vertices: `2 + 2 + 5 x 4 = 24` stratified dimensions, and one unstratified number per
+//! roulette decision.
+
+use super::samplers::PathSampler;
+use super::scene::{Material, Scene, V, add, basis, dot, had, mul, norm, sub};
+use std::f64::consts::FRAC_1_PI;
+
+const EPS: f64 = 1e-7;
+
+/// An RGB image, row-major, `width x height`.
+#[derive(Clone, Debug)]
+pub struct Image {
+    pub width: usize,
+    pub height: usize,
+    pub px: Vec<V>,
+}
+
+impl Image {
+    pub fn new(width: usize, height: usize) -> Image {
+        Image {
+            width,
+            height,
+            px: vec![[0.0; 3]; width * height],
+        }
+    }
+}
+
+/// `f`, `pdf` (solid angle) of the material for `wo` -> `wi` about the normal `n`.
+fn eval(m: &Material, n: V, wo: V, wi: V) -> (V, f64) {
+    let cos_i = dot(n, wi);
+    if cos_i <= 0.0 {
+        return ([0.0; 3], 0.0);
+    }
+    match m.gloss {
+        None => (mul(m.albedo, FRAC_1_PI), cos_i * FRAC_1_PI),
+        Some(e) => {
+            let r = sub(mul(n, 2.0 * dot(n, wo)), wo);
+            let c = dot(r, wi);
+            if c <= 0.0 {
+                return ([0.0; 3], 0.0);
+            }
+            let ce = c.powf(e);
+            (
+                mul(m.albedo, (e + 2.0) * 0.5 * FRAC_1_PI * ce),
+                (e + 1.0) * 0.5 * FRAC_1_PI * ce,
+            )
+        }
+    }
+}
+
+/// A direction for `u`: `(wi, f cos / pdf, pdf)`, `None` below the surface.
+fn sample(m: &Material, n: V, wo: V, u: [f32; 2]) -> Option<(V, V, f64)> {
+    match m.gloss {
+        None => {
+            let [x, y, z] = warpcore::sphere::cosine_hemisphere(u).map(f64::from);
+            let (t1, t2) = basis(n);
+            let wi = norm(add(add(mul(t1, x), mul(t2, y)), mul(n, z)));
+            let c = dot(n, wi);
+            (c > 0.0).then_some((wi, m.albedo, c * FRAC_1_PI))
+        }
+        Some(e) => {
+            let r = sub(mul(n, 2.0 * dot(n, wo)), wo);
+            let [x, y] = warpcore::disk::concentric(u).map(f64::from);
+            let r2 = (x * x + y * y).min(1.0);
+            let cos_a = (1.0 - r2).powf(1.0 / (e + 1.0));
+            let sin_a = (1.0 - cos_a * cos_a).max(0.0).sqrt();
+            let (cx, cy) = if r2 > 0.0 {
+                let l = r2.sqrt();
+                (x / l, y / l)
+            } else {
+                (1.0, 0.0)
+            };
+            let (t1, t2) = basis(r);
+            let wi = norm(add(
+                add(mul(t1, sin_a * cx), mul(t2, sin_a * cy)),
+                mul(r, cos_a),
+            ));
+            let c = dot(n, wi);
+            if c <= 0.0 {
+                return None;
+            }
+            let (f, pdf) = eval(m, n, wo, wi);
+            (pdf > 0.0).then(|| (wi, mul(f, c / pdf), pdf))
+        }
+    }
+}
+
+/// The solid-angle density of choosing and sampling the point `t` away along `d` on light
+/// object `obj` whose normal makes the cosine `cos_l` with `-d`.
+fn light_pdf(scene: &Scene, obj: usize, t: f64, cos_l: f64) -> f64 {
+    let o = &scene.objects[obj];
+    let l = o.light.unwrap_or(0);
+    scene.light_prob(l) * t * t / (cos_l * o.shape.area())
+}
+
+fn power2(a: f64, b: f64) -> f64 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
+}
+
+/// The radiance of one path sample through `pixel`.
+pub fn radiance<S: PathSampler>(scene: &Scene, s: &S, smp: &S::Sample, pixel: [u32; 2]) -> V {
+    let cam = &scene.camera;
+    let [px, py] = s.draw2(smp, 0);
+    let (w, h) = (scene.width as f64, scene.height as f64);
+    let sx = (2.0 * (pixel[0] as f64 + px as f64) / w - 1.0) * cam.tan_half;
+    let sy = (1.0 - 2.0 * (pixel[1] as f64 + py as f64) / h) * cam.tan_half * h / w;
+    let focus = add(cam.eye, mul([sx, sy, 1.0], cam.focus));
+    let [lx, ly] = warpcore::disk::concentric(s.draw2(smp, 1)).map(f64::from);
+    let mut o = add(cam.eye, [cam.aperture * lx, cam.aperture * ly, 0.0]);
+    let mut d = norm(sub(focus, o));
+    let mut beta = [1.0; 3];
+    let mut l = [0.0; 3];
+    let mut pdf_prev = 0.0;
+    for depth in 0..=scene.max_bounces {
+        let Some((i, t)) = scene.intersect(o, d, EPS, f64::INFINITY) else {
+            break;
+        };
+        let ob = &scene.objects[i];
+        let x = add(o, mul(d, t));
+        let ng = ob.shape.normal();
+        let cos_o = -dot(ng, d);
+        if ob.light.is_some() && cos_o > 0.0 {
+            let wgt = if depth == 0 {
+                1.0
+            } else {
+                power2(pdf_prev, light_pdf(scene, i, t, cos_o))
+            };
+            l = add(l, mul(had(beta, ob.material.emission), wgt));
+        }
+        if depth == scene.max_bounces {
+            break;
+        }
+        let m = &ob.material;
+        if m.albedo.iter().all(|&a| a == 0.0) {
+            break;
+        }
+        let n = if cos_o > 0.0 { ng } else { mul(ng, -1.0) };
+        let wo = mul(d, -1.0);
+        let xo = add(x, mul(n, EPS));
+        let [u0, u1, u2, u3] = s.draw4(smp, 2 + depth as u32);
+        // Next-event estimation: choose a light by power with u0, rescaled for its point.
+        if !scene.lights.is_empty() {
+            let u = u0 as f64;
+            let k = scene
+                .light_cdf
+                .iter()
+                .position(|&c| u < c)
+                .unwrap_or(scene.lights.len() - 1);
+            let lo = if k == 0 { 0.0 } else { scene.light_cdf[k - 1] };
+            let p = scene.light_prob(k);
+            let ur = (((u - lo) / p) as f32).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
+            let lobj = scene.lights[k];
+            let lshape = &scene.objects[lobj].shape;
+            let y = lshape.point([ur, u1]);
+            let to = sub(y, xo);
+            let dist2 = dot(to, to);
+            let dist = dist2.sqrt();
+            let wi = mul(to, 1.0 / dist);
+            let cos_l = -dot(lshape.normal(), wi);
+            if cos_l > 0.0 && dot(n, wi) > 0.0 {
+                let (f, pb) = eval(m, n, wo, wi);
+                if f.iter().any(|&c| c > 0.0) && !scene.occluded(xo, wi, 0.0, dist * (1.0 - 1e-7)) {
+                    let pl = p * dist2 / (cos_l * lshape.area());
+                    let le = scene.objects[lobj].material.emission;
+                    let g = dot(n, wi) / pl * power2(pl, pb);
+                    l = add(l, mul(had(had(beta, f), le), g));
+                }
+            }
+        }
+        // BSDF sampling.
+        let Some((wi, weight, pdf)) = sample(m, n, wo, [u2, u3]) else {
+            break;
+        };
+        beta = had(beta, weight);
+        pdf_prev = pdf;
+        if depth >= 2 {
+            let q = beta.iter().cloned().fold(0.0, f64::max).min(0.95);
+            if (s.rnd(smp, depth as u32) as f64) >= q {
+                break;
+            }
+            beta = mul(beta, 1.0 / q);
+        }
+        o = xo;
+        d = wi;
+    }
+    l
+}
+
+/// The pixels of rows `y0..y1` at `spp` samples (indices `first..first + spp`) into `img`.
+pub fn render_rows<S: PathSampler>(
+    scene: &Scene,
+    s: &S,
+    spp: u32,
+    first: u32,
+    seed: u32,
+    rows: std::ops::Range<usize>,
+    out: &mut [V],
+) {
+    let w = scene.width;
+    for (r, y) in rows.enumerate() {
+        for x in 0..w {
+            let pixel = [x as u32, y as u32];
+            let mut acc = [0.0; 3];
+            for i in 0..spp {
+                let smp = s.sample(pixel, first + i, spp, seed);
+                acc = add(acc, radiance(scene, s, &smp, pixel));
+            }
+            out[r * w + x] = mul(acc, 1.0 / spp as f64);
+        }
+    }
+}
+
+/// One frame at `spp` samples per pixel, single-threaded.
+pub fn render<S: PathSampler>(scene: &Scene, s: &S, spp: u32, seed: u32) -> Image {
+    let mut img = Image::new(scene.width, scene.height);
+    render_rows(scene, s, spp, 0, seed, 0..scene.height, &mut img.px);
+    img
+}
+
+/// One frame on `threads` threads (rows shared out), for the references.
+pub fn render_parallel<S: PathSampler>(
+    scene: &Scene,
+    s: &S,
+    spp: u32,
+    seed: u32,
+    threads: usize,
+) -> Image {
+    let mut img = Image::new(scene.width, scene.height);
+    let w = scene.width;
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let chunks: Vec<std::sync::Mutex<&mut [V]>> =
+        img.px.chunks_mut(w).map(std::sync::Mutex::new).collect();
+    std::thread::scope(|sc| {
+        for _ in 0..threads.max(1) {
+            sc.spawn(|| {
+                loop {
+                    let y = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    if y >= scene.height {
+                        break;
+                    }
+                    let mut row = chunks[y].lock().unwrap();
+                    render_rows(scene, s, spp, 0, seed, y..y + 1, &mut row);
+                }
+            });
+        }
+    });
+    drop(chunks);
+    img
+}
