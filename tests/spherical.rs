@@ -61,10 +61,15 @@ fn tri_kappa(v: [[f32; 3]; 3], p: [f32; 3]) -> f64 {
 
 fn rect_kappa(c: [f32; 3], ex: [f32; 3], ey: [f32; 3], p: [f32; 3]) -> f64 {
     let (a, n) = (sub(d3(c), d3(p)), cross(d3(ex), d3(ey)));
-    let far = [a, add(a, d3(ex)), add(a, d3(ey)), add(add(a, d3(ex)), d3(ey))]
-        .iter()
-        .map(|&q| norm(q))
-        .fold(0.0, f64::max);
+    let far = [
+        a,
+        add(a, d3(ex)),
+        add(a, d3(ey)),
+        add(add(a, d3(ex)), d3(ey)),
+    ]
+    .iter()
+    .map(|&q| norm(q))
+    .fold(0.0, f64::max);
     far * norm(n) / dot(a, n).abs()
 }
 
@@ -100,17 +105,28 @@ fn f3(v: V3) -> [f32; 3] {
 
 /// A random triangle of size ~`size` at distance `dist` from a random shading point whose
 /// coordinates are of order `offset`; shapes from equilateral-ish to thin.
-fn random_triangle(r: &mut Xoshiro256PlusPlus, size: f64, dist: f64, offset: f64) -> ([[f32; 3]; 3], [f32; 3]) {
+fn random_triangle(
+    r: &mut Xoshiro256PlusPlus,
+    size: f64,
+    dist: f64,
+    offset: f64,
+) -> ([[f32; 3]; 3], [f32; 3]) {
     let p = mul(dir(r), offset * r.random::<f64>());
     let centre = add(p, mul(dir(r), dist));
-    let v: [[f32; 3]; 3] = std::array::from_fn(|_| f3(add(centre, mul(dir(r), size * (0.2 + r.random::<f64>())))));
+    let v: [[f32; 3]; 3] =
+        std::array::from_fn(|_| f3(add(centre, mul(dir(r), size * (0.2 + r.random::<f64>())))));
     (v, f3(p))
 }
 
 /// A random rectangle (orthogonal sides, aspect up to 16) of size ~`size` at distance
 /// `dist`; the sides are exactly orthogonal in f32 (axis-aligned frame rotated by one of a
 /// few exact permutations and sign flips).
-fn random_rect(r: &mut Xoshiro256PlusPlus, size: f64, dist: f64, offset: f64) -> ([f32; 3], [f32; 3], [f32; 3], [f32; 3]) {
+fn random_rect(
+    r: &mut Xoshiro256PlusPlus,
+    size: f64,
+    dist: f64,
+    offset: f64,
+) -> ([f32; 3], [f32; 3], [f32; 3], [f32; 3]) {
     let p = mul(dir(r), offset * r.random::<f64>());
     let centre = add(p, mul(dir(r), dist));
     let w = size * (0.25 + r.random::<f64>());
@@ -130,10 +146,16 @@ fn random_rect(r: &mut Xoshiro256PlusPlus, size: f64, dist: f64, offset: f64) ->
 
 fn assert_total_tri(v: [[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) {
     let (b, pdf) = spherical::triangle(v, p, u);
-    assert!(b.iter().all(|x| (0.0..=1.0).contains(x)), "{v:?} {p:?} {u:?}: {b:?}");
+    assert!(
+        b.iter().all(|x| (0.0..=1.0).contains(x)),
+        "{v:?} {p:?} {u:?}: {b:?}"
+    );
     let s = b[0] as f64 + b[1] as f64 + b[2] as f64;
     assert!((s - 1.0).abs() <= 3e-7, "{v:?} {p:?} {u:?}: sum {s}");
-    assert!(pdf.is_finite() && pdf >= 0.0, "{v:?} {p:?} {u:?}: pdf {pdf}");
+    assert!(
+        pdf.is_finite() && pdf >= 0.0,
+        "{v:?} {p:?} {u:?}: pdf {pdf}"
+    );
     let w = spherical::triangle_inverse(v, p, b);
     assert!(w.iter().all(|x| (0.0..1.0).contains(x)), "inverse {w:?}");
     let o = spherical::triangle_solid_angle(v, p);
@@ -142,8 +164,14 @@ fn assert_total_tri(v: [[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) {
 
 fn assert_total_rect(c: [f32; 3], ex: [f32; 3], ey: [f32; 3], p: [f32; 3], u: [f32; 2]) {
     let (st, pdf) = spherical::rectangle(c, ex, ey, p, u);
-    assert!(st.iter().all(|x| (0.0..=1.0).contains(x)), "{c:?} {ex:?} {ey:?} {p:?} {u:?}: {st:?}");
-    assert!(pdf.is_finite() && pdf >= 0.0, "{c:?} {ex:?} {ey:?} {p:?} {u:?}: pdf {pdf}");
+    assert!(
+        st.iter().all(|x| (0.0..=1.0).contains(x)),
+        "{c:?} {ex:?} {ey:?} {p:?} {u:?}: {st:?}"
+    );
+    assert!(
+        pdf.is_finite() && pdf >= 0.0,
+        "{c:?} {ex:?} {ey:?} {p:?} {u:?}: pdf {pdf}"
+    );
     let w = spherical::rectangle_inverse(c, ex, ey, p, st);
     assert!(w.iter().all(|x| (0.0..1.0).contains(x)), "inverse {w:?}");
     let o = spherical::rectangle_solid_angle(c, ex, ey, p);
@@ -219,7 +247,6 @@ fn accuracy_against_f64() {
     assert!(count[0] > 2000 && count[1] > 2000);
 }
 
-
 /// A few lights with every kind of trouble: slivers, collinear and repeated vertices, `p` at
 /// a vertex, on an edge, on the plane inside and outside, at 1e-6 and 1e6, tiny and huge
 /// coordinates.
@@ -227,25 +254,56 @@ fn stiff_triangles() -> Vec<([[f32; 3]; 3], [f32; 3])> {
     let t = [[0.0f32, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
     let mut out = vec![
         (t, [0.0, 0.0, 0.0]),
-        (t, [0.2, 0.2, 1.0]),                      // on the plane, inside
-        (t, [3.0, 3.0, 1.0]),                      // on the plane, outside
-        (t, [0.5, 0.0, 1.0]),                      // on an edge
-        (t, t[1]),                                 // at a vertex
-        (t, [0.2, 0.2, 1.0 - 1e-6]),               // just below the plane
-        (t, [0.2, 0.2, 1.0 + 1e-6]),               // just above
-        (t, [0.2, 0.2, 1e6]),                      // far
-        (t, [1e6, -1e6, 1e6]),                     // far and oblique
+        (t, [0.2, 0.2, 1.0]),        // on the plane, inside
+        (t, [3.0, 3.0, 1.0]),        // on the plane, outside
+        (t, [0.5, 0.0, 1.0]),        // on an edge
+        (t, t[1]),                   // at a vertex
+        (t, [0.2, 0.2, 1.0 - 1e-6]), // just below the plane
+        (t, [0.2, 0.2, 1.0 + 1e-6]), // just above
+        (t, [0.2, 0.2, 1e6]),        // far
+        (t, [1e6, -1e6, 1e6]),       // far and oblique
         (t, [0.2, 0.2, -1e30]),
-        ([[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [2.0, 0.0, 1.0]], [0.0; 3]), // collinear
-        ([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [0.0, 1.0, 1.0]], [0.0; 3]), // repeated vertex
-        ([[0.0, 0.0, 1.0]; 3], [0.0; 3]),          // a point
-        ([[0.0, 0.0, 1.0], [1.0, 1e-7, 1.0], [2.0, 0.0, 1.0]], [0.0; 3]), // sliver
-        ([[0.0, 0.0, 1e-6], [1e-6, 0.0, 1e-6], [0.0, 1e-6, 1e-6]], [0.0; 3]), // 1e-6 away
-        ([[0.0, 0.0, 1e6], [1.0, 0.0, 1e6], [0.0, 1.0, 1e6]], [0.0; 3]), // 1e-12 sr
-        ([[0.0, 0.0, 1e-30], [1e-30, 0.0, 1e-30], [0.0, 1e-30, 1e-30]], [0.0; 3]),
-        ([[-1e30, -1e30, 1.0], [1e30, -1e30, 1.0], [0.0, 1e30, 1.0]], [0.0; 3]), // nearly 2 pi
-        ([[-3e38, 0.0, 1.0], [3e38, 0.0, 1.0], [0.0, 3e38, 1.0]], [0.0; 3]), // edges overflow
-        ([[0.0, 0.0, f32::MIN_POSITIVE], [f32::from_bits(1), 0.0, 1.0], [0.0, 1.0, 1.0]], [0.0; 3]),
+        (
+            [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [2.0, 0.0, 1.0]],
+            [0.0; 3],
+        ), // collinear
+        (
+            [[0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [0.0, 1.0, 1.0]],
+            [0.0; 3],
+        ), // repeated vertex
+        ([[0.0, 0.0, 1.0]; 3], [0.0; 3]), // a point
+        (
+            [[0.0, 0.0, 1.0], [1.0, 1e-7, 1.0], [2.0, 0.0, 1.0]],
+            [0.0; 3],
+        ), // sliver
+        (
+            [[0.0, 0.0, 1e-6], [1e-6, 0.0, 1e-6], [0.0, 1e-6, 1e-6]],
+            [0.0; 3],
+        ), // 1e-6 away
+        (
+            [[0.0, 0.0, 1e6], [1.0, 0.0, 1e6], [0.0, 1.0, 1e6]],
+            [0.0; 3],
+        ), // 1e-12 sr
+        (
+            [[0.0, 0.0, 1e-30], [1e-30, 0.0, 1e-30], [0.0, 1e-30, 1e-30]],
+            [0.0; 3],
+        ),
+        (
+            [[-1e30, -1e30, 1.0], [1e30, -1e30, 1.0], [0.0, 1e30, 1.0]],
+            [0.0; 3],
+        ), // nearly 2 pi
+        (
+            [[-3e38, 0.0, 1.0], [3e38, 0.0, 1.0], [0.0, 3e38, 1.0]],
+            [0.0; 3],
+        ), // edges overflow
+        (
+            [
+                [0.0, 0.0, f32::MIN_POSITIVE],
+                [f32::from_bits(1), 0.0, 1.0],
+                [0.0, 1.0, 1.0],
+            ],
+            [0.0; 3],
+        ),
     ];
     // Every special value in every one of the 12 coordinates of the plain case.
     for x in specials() {
@@ -262,24 +320,42 @@ fn stiff_triangles() -> Vec<([[f32; 3]; 3], [f32; 3])> {
     out
 }
 
-fn stiff_rects() -> Vec<([f32; 3], [f32; 3], [f32; 3], [f32; 3])> {
+/// A rectangle light and a shading point: `(corner, ex, ey, p)`.
+type RectCase = ([f32; 3], [f32; 3], [f32; 3], [f32; 3]);
+
+fn stiff_rects() -> Vec<RectCase> {
     let (c, ex, ey) = ([-0.5f32, -0.5, 1.0], [1.0f32, 0.0, 0.0], [0.0f32, 1.0, 0.0]);
     let mut out = vec![
         (c, ex, ey, [0.0, 0.0, 0.0]),
-        (c, ex, ey, [0.1, 0.1, 1.0]),         // on the plane, inside
-        (c, ex, ey, [3.0, 0.1, 1.0]),         // on the plane, outside
-        (c, ex, ey, c),                       // at the corner
+        (c, ex, ey, [0.1, 0.1, 1.0]), // on the plane, inside
+        (c, ex, ey, [3.0, 0.1, 1.0]), // on the plane, outside
+        (c, ex, ey, c),               // at the corner
         (c, ex, ey, [0.1, 0.1, 1.0 - 1e-6]),
         (c, ex, ey, [0.0, 0.0, -1e6]),
         (c, ex, ey, [1e6, 1e6, 1.0 - 1e-3]), // far and grazing
-        (c, [0.0; 3], ey, [0.0; 3]),          // zero-area
+        (c, [0.0; 3], ey, [0.0; 3]),         // zero-area
         (c, ex, [0.0; 3], [0.0; 3]),
-        (c, ex, ex, [0.0; 3]),                // parallel sides
-        (c, [1e-7, 0.0, 0.0], ey, [0.0; 3]),  // sliver
-        ([-1e30, -1e30, 1.0], [2e30, 0.0, 0.0], [0.0, 2e30, 0.0], [0.0; 3]), // nearly 2 pi
-        ([0.0, 0.0, 1e-6], [1e-6, 0.0, 0.0], [0.0, 1e-6, 0.0], [0.0; 3]),
+        (c, ex, ex, [0.0; 3]),               // parallel sides
+        (c, [1e-7, 0.0, 0.0], ey, [0.0; 3]), // sliver
+        (
+            [-1e30, -1e30, 1.0],
+            [2e30, 0.0, 0.0],
+            [0.0, 2e30, 0.0],
+            [0.0; 3],
+        ), // nearly 2 pi
+        (
+            [0.0, 0.0, 1e-6],
+            [1e-6, 0.0, 0.0],
+            [0.0, 1e-6, 0.0],
+            [0.0; 3],
+        ),
         ([0.0, 0.0, 1e6], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0; 3]), // 1e-12 sr
-        ([-3e38, 0.0, 1.0], [f32::MAX, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0; 3]),
+        (
+            [-3e38, 0.0, 1.0],
+            [f32::MAX, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0; 3],
+        ),
     ];
     for x in specials() {
         for k in 0..12 {
@@ -310,9 +386,17 @@ fn total_on_stiff_input() {
         for &u in &us {
             assert_total_tri(v, p, u);
         }
-        for b in [[f32::NAN, 0.5, 0.5], [-1.0, 2.0, f32::INFINITY], [0.0; 3], [1.0, 0.0, 0.0]] {
+        for b in [
+            [f32::NAN, 0.5, 0.5],
+            [-1.0, 2.0, f32::INFINITY],
+            [0.0; 3],
+            [1.0, 0.0, 0.0],
+        ] {
             let w = spherical::triangle_inverse(v, p, b);
-            assert!(w.iter().all(|x| (0.0..1.0).contains(x)), "{v:?} {p:?} {b:?}: {w:?}");
+            assert!(
+                w.iter().all(|x| (0.0..1.0).contains(x)),
+                "{v:?} {p:?} {b:?}: {w:?}"
+            );
         }
     }
     for (c, ex, ey, p) in stiff_rects() {
@@ -338,16 +422,31 @@ fn total_on_stiff_input() {
 #[test]
 fn degenerate_and_fallback_densities() {
     let t = [[0.0f32, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
-    for p in [[0.2f32, 0.2, 1.0], [3.0, 3.0, 1.0], t[0], [f32::NAN, 0.0, 0.0]] {
+    for p in [
+        [0.2f32, 0.2, 1.0],
+        [3.0, 3.0, 1.0],
+        t[0],
+        [f32::NAN, 0.0, 0.0],
+    ] {
         assert_eq!(spherical::triangle(t, p, [0.3, 0.6]).1, 0.0, "{p:?}");
     }
     let (c, ex, ey) = ([-0.5f32, -0.5, 1.0], [1.0f32, 0.0, 0.0], [0.0f32, 1.0, 0.0]);
-    assert_eq!(spherical::rectangle(c, [0.0; 3], ey, [0.0; 3], [0.3, 0.6]).1, 0.0);
-    assert_eq!(spherical::rectangle(c, ex, ey, [0.1, 0.1, 1.0], [0.3, 0.6]).1, 0.0);
+    assert_eq!(
+        spherical::rectangle(c, [0.0; 3], ey, [0.0; 3], [0.3, 0.6]).1,
+        0.0
+    );
+    assert_eq!(
+        spherical::rectangle(c, ex, ey, [0.1, 0.1, 1.0], [0.3, 0.6]).1,
+        0.0
+    );
     // 1e-12 sr: area sampling; the density is |q - p|^2 / (cos area) at the returned point.
     let far = [[0.0f32, 0.0, 1e6], [1.0, 0.0, 1e6], [0.0, 1.0, 1e6]];
     let (b, pdf) = spherical::triangle(far, [0.0; 3], [0.3, 0.6]);
-    let q: V3 = std::array::from_fn(|k| b[0] as f64 * far[0][k] as f64 + b[1] as f64 * far[1][k] as f64 + b[2] as f64 * far[2][k] as f64);
+    let q: V3 = std::array::from_fn(|k| {
+        b[0] as f64 * far[0][k] as f64
+            + b[1] as f64 * far[1][k] as f64
+            + b[2] as f64 * far[2][k] as f64
+    });
     let want = dot(q, q) / ((q[2] / norm(q)) * 0.5);
     assert!((pdf as f64 / want - 1.0).abs() < 1e-5, "{pdf} {want}");
     assert_eq!(b, warpcore::triangle::uniform([0.3, 0.6]));
@@ -369,9 +468,18 @@ fn degenerate_and_fallback_densities() {
 #[test]
 fn chi2_triangle_uniform_in_solid_angle() {
     let lights: [([[f32; 3]; 3], [f32; 3]); 3] = [
-        ([[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]], [0.1, 0.1, 0.0]),
-        ([[0.0, 0.0, 0.2], [4.0, 0.0, 0.2], [0.5, 3.0, 0.2]], [-0.5, 0.3, 0.0]),
-        ([[-3.0, -2.0, 0.5], [3.0, -2.0, 0.5], [0.0, 4.0, 0.5]], [0.0, 0.0, 0.0]),
+        (
+            [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]],
+            [0.1, 0.1, 0.0],
+        ),
+        (
+            [[0.0, 0.0, 0.2], [4.0, 0.0, 0.2], [0.5, 3.0, 0.2]],
+            [-0.5, 0.3, 0.0],
+        ),
+        (
+            [[-3.0, -2.0, 0.5], [3.0, -2.0, 0.5], [0.0, 4.0, 0.5]],
+            [0.0, 0.0, 0.0],
+        ),
     ];
     let n = 4usize;
     for (li, (v, p)) in lights.into_iter().enumerate() {
@@ -382,7 +490,11 @@ fn chi2_triangle_uniform_in_solid_angle() {
         let h = 1.0 / n as f64;
         for i in 0..n {
             for j in 0..n - i {
-                let (a, b, c) = (at(i as f64 * h, j as f64 * h), at((i + 1) as f64 * h, j as f64 * h), at(i as f64 * h, (j + 1) as f64 * h));
+                let (a, b, c) = (
+                    at(i as f64 * h, j as f64 * h),
+                    at((i + 1) as f64 * h, j as f64 * h),
+                    at(i as f64 * h, (j + 1) as f64 * h),
+                );
                 expected.push(vos(sub(a, pp), sub(b, a), sub(c, a)));
                 if i + j + 1 < n {
                     let d = at((i + 1) as f64 * h, (j + 1) as f64 * h);
@@ -419,9 +531,24 @@ fn chi2_triangle_uniform_in_solid_angle() {
 #[test]
 fn chi2_rectangle_uniform_in_solid_angle() {
     let lights = [
-        ([-0.5f32, -0.5, 1.0], [1.0f32, 0.0, 0.0], [0.0f32, 1.0, 0.0], [0.0f32; 3]),
-        ([0.0, -0.125, 0.5], [4.0, 0.0, 0.0], [0.0, 0.25, 0.0], [-1.0, 0.3, 0.0]),
-        ([1.0, -2.0, 0.1], [0.0, 4.0, 0.0], [3.0, 0.0, 0.0], [0.0, 0.0, 0.0]),
+        (
+            [-0.5f32, -0.5, 1.0],
+            [1.0f32, 0.0, 0.0],
+            [0.0f32, 1.0, 0.0],
+            [0.0f32; 3],
+        ),
+        (
+            [0.0, -0.125, 0.5],
+            [4.0, 0.0, 0.0],
+            [0.0, 0.25, 0.0],
+            [-1.0, 0.3, 0.0],
+        ),
+        (
+            [1.0, -2.0, 0.1],
+            [0.0, 4.0, 0.0],
+            [3.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0],
+        ),
     ];
     let n = 8usize;
     for (li, (c, ex, ey, p)) in lights.into_iter().enumerate() {
@@ -429,8 +556,18 @@ fn chi2_rectangle_uniform_in_solid_angle() {
         let mut expected = vec![0.0; n * n];
         for j in 0..n {
             for i in 0..n {
-                let corner = add(cc, add(mul(ex64, i as f64 / n as f64), mul(ey64, j as f64 / n as f64)));
-                let (a, ux, uy) = (sub(corner, d3(p)), mul(ex64, 1.0 / n as f64), mul(ey64, 1.0 / n as f64));
+                let corner = add(
+                    cc,
+                    add(
+                        mul(ex64, i as f64 / n as f64),
+                        mul(ey64, j as f64 / n as f64),
+                    ),
+                );
+                let (a, ux, uy) = (
+                    sub(corner, d3(p)),
+                    mul(ex64, 1.0 / n as f64),
+                    mul(ey64, 1.0 / n as f64),
+                );
                 expected[j * n + i] = vos(a, ux, add(ux, uy)) + vos(a, add(ux, uy), uy);
             }
         }
@@ -457,7 +594,9 @@ fn compact_strata_stay_compact() {
     let m = 5;
     let v = [[0.0f32, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
     let p = [0.2f32, 0.3, 0.0];
-    let pos = |b: [f32; 3]| -> V3 { std::array::from_fn(|k| (0..3).map(|i| b[i] as f64 * v[i][k] as f64).sum()) };
+    let pos = |b: [f32; 3]| -> V3 {
+        std::array::from_fn(|k| (0..3).map(|i| b[i] as f64 * v[i][k] as f64).sum())
+    };
     let mut worst = [0.0f64; 2];
     for ci in 0..n {
         for cj in 0..n {
@@ -465,18 +604,34 @@ fn compact_strata_stay_compact() {
             let mut rect = vec![];
             for a in 0..m {
                 for b in 0..m {
-                    let u = [(ci as f32 + a as f32 / (m - 1) as f32 * 0.999) / n as f32, (cj as f32 + b as f32 / (m - 1) as f32 * 0.999) / n as f32];
+                    let u = [
+                        (ci as f32 + a as f32 / (m - 1) as f32 * 0.999) / n as f32,
+                        (cj as f32 + b as f32 / (m - 1) as f32 * 0.999) / n as f32,
+                    ];
                     tri.push(pos(spherical::triangle(v, p, u).0));
-                    let (st, _) = spherical::rectangle([-0.5, -0.5, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.2, 0.1, 0.0], u);
+                    let (st, _) = spherical::rectangle(
+                        [-0.5, -0.5, 1.0],
+                        [1.0, 0.0, 0.0],
+                        [0.0, 1.0, 0.0],
+                        [0.2, 0.1, 0.0],
+                        u,
+                    );
                     rect.push([st[0] as f64, st[1] as f64, 0.0]);
                 }
             }
-            let diam = |pts: &[V3]| pts.iter().flat_map(|a| pts.iter().map(move |b| norm(sub(*a, *b)))).fold(0.0, f64::max);
+            let diam = |pts: &[V3]| {
+                pts.iter()
+                    .flat_map(|a| pts.iter().map(move |b| norm(sub(*a, *b))))
+                    .fold(0.0, f64::max)
+            };
             worst[0] = worst[0].max(diam(&tri) / 2f64.sqrt());
             worst[1] = worst[1].max(diam(&rect) / 2f64.sqrt());
         }
     }
-    eprintln!("largest stratum diameter / light diameter: triangle {:.3}, rectangle {:.3}", worst[0], worst[1]);
+    eprintln!(
+        "largest stratum diameter / light diameter: triangle {:.3}, rectangle {:.3}",
+        worst[0], worst[1]
+    );
     assert!(worst[0] < 0.5 && worst[1] < 0.3, "{worst:?}");
 }
 
@@ -502,26 +657,40 @@ fn widths_agree_bit_for_bit() {
         let mut tv = vec![];
         let mut rv = vec![];
         for j in 0..16 {
-            let u = if j % 3 == 0 { us[(round * 16 + j) % us.len()] } else { unit2(&mut r) };
+            let u = if j % 3 == 0 {
+                us[(round * 16 + j) % us.len()]
+            } else {
+                unit2(&mut r)
+            };
             let dist = 10f64.powf(-3.0 + 6.0 * r.random::<f64>());
             let size = dist * r.random::<f64>();
-            let (v, p) = if j % 4 == 1 { tris[(round * 7 + j) % tris.len()] } else { random_triangle(&mut r, size, dist, dist) };
-            let rc = if j % 4 == 1 { rects[(round * 7 + j) % rects.len()] } else { random_rect(&mut r, size, dist, dist) };
+            let (v, p) = if j % 4 == 1 {
+                tris[(round * 7 + j) % tris.len()]
+            } else {
+                random_triangle(&mut r, size, dist, dist)
+            };
+            let rc = if j % 4 == 1 {
+                rects[(round * 7 + j) % rects.len()]
+            } else {
+                random_rect(&mut r, size, dist, dist)
+            };
             tv.push((v, p, u));
             rv.push((rc, u));
         }
-        let t8 = |g: &dyn Fn(usize) -> f32| f32x8::new(std::array::from_fn(|j| g(j)));
-        let t16 = |g: &dyn Fn(usize) -> f32| f32x16::new(std::array::from_fn(|j| g(j)));
+        let t8 = |g: &dyn Fn(usize) -> f32| f32x8::new(std::array::from_fn(g));
+        let t16 = |g: &dyn Fn(usize) -> f32| f32x16::new(std::array::from_fn(g));
         macro_rules! soa {
             ($mk:ident, $f:expr) => {
                 $mk(&$f)
             };
         }
         // Triangles.
-        let v8: [[f32x8; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|k| soa!(t8, |j| tv[j].0[i][k])));
+        let v8: [[f32x8; 3]; 3] =
+            std::array::from_fn(|i| std::array::from_fn(|k| soa!(t8, |j| tv[j].0[i][k])));
         let p8: [f32x8; 3] = std::array::from_fn(|k| soa!(t8, |j| tv[j].1[k]));
         let u8_: [f32x8; 2] = std::array::from_fn(|k| soa!(t8, |j| tv[j].2[k]));
-        let v16: [[f32x16; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|k| soa!(t16, |j| tv[j].0[i][k])));
+        let v16: [[f32x16; 3]; 3] =
+            std::array::from_fn(|i| std::array::from_fn(|k| soa!(t16, |j| tv[j].0[i][k])));
         let p16: [f32x16; 3] = std::array::from_fn(|k| soa!(t16, |j| tv[j].1[k]));
         let u16_: [f32x16; 2] = std::array::from_fn(|k| soa!(t16, |j| tv[j].2[k]));
         let (b8, d8) = spherical::triangle_x8(v8, p8, u8_);
@@ -547,9 +716,14 @@ fn widths_agree_bit_for_bit() {
             }
         }
         // Rectangles.
-        let g = |k: usize, i: usize| -> [f32; 3] { let ((c, ex, ey, p), _) = rv[k]; [c, ex, ey, p][i] };
-        let a8: [[f32x8; 3]; 4] = std::array::from_fn(|i| std::array::from_fn(|k| soa!(t8, |j| g(j, i)[k])));
-        let a16: [[f32x16; 3]; 4] = std::array::from_fn(|i| std::array::from_fn(|k| soa!(t16, |j| g(j, i)[k])));
+        let g = |k: usize, i: usize| -> [f32; 3] {
+            let ((c, ex, ey, p), _) = rv[k];
+            [c, ex, ey, p][i]
+        };
+        let a8: [[f32x8; 3]; 4] =
+            std::array::from_fn(|i| std::array::from_fn(|k| soa!(t8, |j| g(j, i)[k])));
+        let a16: [[f32x16; 3]; 4] =
+            std::array::from_fn(|i| std::array::from_fn(|k| soa!(t16, |j| g(j, i)[k])));
         let ru8: [f32x8; 2] = std::array::from_fn(|k| soa!(t8, |j| rv[j].1[k]));
         let ru16: [f32x16; 2] = std::array::from_fn(|k| soa!(t16, |j| rv[j].1[k]));
         let (s8, e8) = spherical::rectangle_x8(a8[0], a8[1], a8[2], a8[3], ru8);
@@ -578,7 +752,15 @@ fn widths_agree_bit_for_bit() {
         let (v, p, _) = tv[round % 16];
         let ((c, ex, ey, rp), _) = rv[round % 16];
         let n = [0usize, 1, 7, 8, 9, 15, 16, 17, 33][round % 9];
-        let uu: Vec<[f32; 2]> = (0..n).map(|k| if k % 5 == 0 { us[(round + k) % us.len()] } else { unit2(&mut r) }).collect();
+        let uu: Vec<[f32; 2]> = (0..n)
+            .map(|k| {
+                if k % 5 == 0 {
+                    us[(round + k) % us.len()]
+                } else {
+                    unit2(&mut r)
+                }
+            })
+            .collect();
         let mut out4 = vec![[0.0f32; 4]; n + 2];
         assert_eq!(spherical::triangle_slice(v, p, &uu, &mut out4), n);
         let mut out3 = vec![[0.0f32; 3]; n];
@@ -588,14 +770,23 @@ fn widths_agree_bit_for_bit() {
         let mut inv_t = vec![[0.0f32; 2]; n];
         let mut inv_r = vec![[0.0f32; 2]; n];
         assert_eq!(spherical::triangle_inverse_slice(v, p, &bb, &mut inv_t), n);
-        assert_eq!(spherical::rectangle_inverse_slice(c, ex, ey, rp, &ss, &mut inv_r), n);
+        assert_eq!(
+            spherical::rectangle_inverse_slice(c, ex, ey, rp, &ss, &mut inv_r),
+            n
+        );
         for k in 0..n {
             let (b, d) = spherical::triangle(v, p, uu[k]);
             assert_eq!(bits([b[0], b[1], b[2], d]), bits(out4[k]));
-            assert_eq!(bits(spherical::triangle_inverse(v, p, bb[k])), bits(inv_t[k]));
+            assert_eq!(
+                bits(spherical::triangle_inverse(v, p, bb[k])),
+                bits(inv_t[k])
+            );
             let (st, d) = spherical::rectangle(c, ex, ey, rp, uu[k]);
             assert_eq!(bits([st[0], st[1], d]), bits(out3[k]));
-            assert_eq!(bits(spherical::rectangle_inverse(c, ex, ey, rp, ss[k])), bits(inv_r[k]));
+            assert_eq!(
+                bits(spherical::rectangle_inverse(c, ex, ey, rp, ss[k])),
+                bits(inv_r[k])
+            );
         }
         assert_eq!(out4[n], [0.0; 4], "untouched beyond the common length");
     }

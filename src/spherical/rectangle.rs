@@ -193,18 +193,25 @@ pub(super) fn sample_body<L: Lane>(
     let area_pdf = ql * ql * ql / (z * w * h);
     let area_pdf = L::select(
         r.ok & zero.simd_lt(z),
-        L::select(area_pdf.simd_lt(L::splat(f32::MAX)), area_pdf, L::splat(f32::MAX)),
+        L::select(
+            area_pdf.simd_lt(L::splat(f32::MAX)),
+            area_pdf,
+            L::splat(f32::MAX),
+        ),
         zero,
     );
     let pdf = L::select(exact, L::splat(INV_4PI) / r.turns, area_pdf);
-    (
-        [L::select(exact, s, u0), L::select(exact, t, u1)],
-        pdf,
-    )
+    ([L::select(exact, s, u0), L::select(exact, t, u1)], pdf)
 }
 
 #[inline(always)]
-pub(super) fn inverse_body<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>, st: [L; 2]) -> [L; 2] {
+pub(super) fn inverse_body<L: Lane>(
+    corner: V<L>,
+    ex: V<L>,
+    ey: V<L>,
+    p: V<L>,
+    st: [L; 2],
+) -> [L; 2] {
     let one = L::splat(1.0);
     let zero = L::splat(0.0);
     let (s, t) = (clamp0(st[0], one), clamp0(st[1], one));

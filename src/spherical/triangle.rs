@@ -35,11 +35,7 @@ pub(super) fn setup<L: Lane>(v: [V<L>; 3], p: V<L>) -> Tri<L> {
     let (e1, e2, f2) = (scale(e1, k), scale(e2, k), scale(f2, k));
     let len = [norm(a[0]), norm(a[1]), norm(a[2])];
     let zero = L::splat(0.0);
-    let ok = finite
-        & scaled
-        & zero.simd_lt(len[0])
-        & zero.simd_lt(len[1])
-        & zero.simd_lt(len[2]);
+    let ok = finite & scaled & zero.simd_lt(len[0]) & zero.simd_lt(len[1]) & zero.simd_lt(len[2]);
     let det = dot(a[0], cross(e1, e2));
     let turns = half_angle_turns(a, len, det.abs());
     Tri {
@@ -98,7 +94,10 @@ pub(super) fn sample_body<L: Lane>(v: [V<L>; 3], p: V<L>, u: [L; 2]) -> ([L; 3],
     let pp = tt * ch - s * sh;
     let q = one_ab * sh;
     let dl = d2.sqrt();
-    let tau = clamp0(q * (pp + pp - q * d2) / ((pp - q * dl) * (pp + q * dl)), one);
+    let tau = clamp0(
+        q * (pp + pp - q * d2) / ((pp - q * dl) * (pp + q * dl)),
+        one,
+    );
     // Every direction below is an offset from a^ (the direction of v0 - p), built from the
     // chords and edges: the vertex vectors v1 - p and v2 - p are rounded independently of
     // the edges, and mixing them in would cost ulp(1) / (angular size) of precision.
@@ -150,7 +149,11 @@ pub(super) fn sample_body<L: Lane>(v: [V<L>; 3], p: V<L>, u: [L; 2]) -> ([L; 3],
     let area_pdf = (ql * ql * ql + ql * ql * ql) / t.det.abs();
     let area_pdf = L::select(
         t.ok & zero.simd_lt(t.det.abs()),
-        L::select(area_pdf.simd_lt(L::splat(f32::MAX)), area_pdf, L::splat(f32::MAX)),
+        L::select(
+            area_pdf.simd_lt(L::splat(f32::MAX)),
+            area_pdf,
+            L::splat(f32::MAX),
+        ),
         zero,
     );
     let pdf = L::select(arvo, L::splat(INV_4PI) / t.turns, area_pdf);
@@ -169,7 +172,11 @@ pub(super) fn inverse_body<L: Lane>(v: [V<L>; 3], p: V<L>, bary: [L; 3]) -> [L; 
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
     let third = L::splat(1.0 / 3.0);
-    let b = [clamp0(bary[0], one), clamp0(bary[1], one), clamp0(bary[2], one)];
+    let b = [
+        clamp0(bary[0], one),
+        clamp0(bary[1], one),
+        clamp0(bary[2], one),
+    ];
     let sb = b[0] + b[1] + b[2];
     let has = zero.simd_lt(sb);
     let inv = one / sb;

@@ -42,7 +42,11 @@ pub(super) fn norm<L: Lane>(a: V<L>) -> L {
 /// `x` clamped to `[0, hi]`; NaN and `-0.0` become `+0.0` (compare and select).
 #[inline(always)]
 pub(super) fn clamp0<L: Lane>(x: L, hi: L) -> L {
-    L::select(L::splat(0.0).simd_lt(x), L::select(x.simd_lt(hi), x, hi), L::splat(0.0))
+    L::select(
+        L::splat(0.0).simd_lt(x),
+        L::select(x.simd_lt(hi), x, hi),
+        L::splat(0.0),
+    )
 }
 
 /// `0 < x < +inf` (false for NaN).
