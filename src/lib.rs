@@ -118,7 +118,8 @@ pub mod triangle;
     feature = "sphere",
     feature = "pmj02bn",
     feature = "sequence",
-    feature = "blue-noise"
+    feature = "blue-noise",
+    feature = "spherical"
 ))]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
