@@ -33,6 +33,9 @@ mod plots;
 mod run;
 #[path = "../examples/report/samplers.rs"]
 mod samplers;
+#[cfg(feature = "spherical")]
+#[path = "../examples/report/solid_angle.rs"]
+mod solid_angle;
 #[cfg(feature = "envmap")]
 #[path = "../examples/report/sphere_ref.rs"]
 mod sphere_ref;

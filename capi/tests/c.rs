@@ -463,8 +463,14 @@ const TABLE: &[(&str, &[&str])] = {
         ("wc_spherical_triangle_inverse", MAP_IN_PLACE),
         ("wc_spherical_rectangle", MAP),
         ("wc_spherical_rectangle_inverse", MAP_IN_PLACE),
-        ("wc_spherical_triangle_solid_angle", &["omega", "0:null", "0:misaligned"]),
-        ("wc_spherical_rectangle_solid_angle", &["omega", "0:null", "0:misaligned"]),
+        (
+            "wc_spherical_triangle_solid_angle",
+            &["omega", "0:null", "0:misaligned"],
+        ),
+        (
+            "wc_spherical_rectangle_solid_angle",
+            &["omega", "0:null", "0:misaligned"],
+        ),
         ("wc_triangle_uniform", MAP),
         ("wc_triangle_uniform_inverse", MAP_IN_PLACE),
         ("wc_triangle_sqrt_map", MAP),
