@@ -706,3 +706,86 @@ pub fn envmap_storage(data: &[u8]) {
         both_loads!(MarginalConditional, "marginal");
     }
 }
+
+/// Lights by solid angle: the first 24 words are a triangle light and point (12 floats) and a
+/// rectangle light and point (12 floats), any bits; the rest are samples. Every form of every
+/// map stays in its domain (barycentrics in the closed simplex, `(s, t)` in `[0, 1]^2`,
+/// density finite and >= 0, inverses in `[0, 1)^2`) and scalar == x8 == slice.
+#[cfg(feature = "spherical")]
+pub fn spherical(data: &[u8]) {
+    use warpcore::spherical as s;
+    let mut w = words(data);
+    w.resize(w.len().max(24), 0);
+    let f = |k: usize| f32::from_bits(w[k]);
+    let v: [[f32; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|k| f(3 * i + k)));
+    let p: [f32; 3] = std::array::from_fn(|k| f(9 + k));
+    let r: [[f32; 3]; 4] = std::array::from_fn(|i| std::array::from_fn(|k| f(12 + 3 * i + k)));
+    let rest = &w[24..];
+    let p2 = points::<2>(rest);
+    let p3 = points::<3>(rest);
+    let sp = |x: [f32; 3]| x.map(f32x8::splat);
+    let vv = [sp(v[0]), sp(v[1]), sp(v[2])];
+    let tri_ok = |o: [f32; 4]| {
+        o[..3].iter().all(|c| (0.0..=1.0).contains(c))
+            && ((o[0] as f64 + o[1] as f64 + o[2] as f64) - 1.0).abs() <= 3e-7
+            && o[3].is_finite()
+            && o[3] >= 0.0
+    };
+    widths(
+        "spherical::triangle",
+        &p2,
+        |u| {
+            let (b, d) = s::triangle(v, p, u);
+            [b[0], b[1], b[2], d]
+        },
+        |u| {
+            let (b, d) = s::triangle_x8(vv, sp(p), u);
+            [b[0], b[1], b[2], d]
+        },
+        |u, o| s::triangle_slice(v, p, u, o),
+        tri_ok,
+    );
+    widths(
+        "spherical::triangle_inverse",
+        &p3,
+        |b| s::triangle_inverse(v, p, b),
+        |b| s::triangle_inverse_x8(vv, sp(p), b),
+        |b, o| s::triangle_inverse_slice(v, p, b, o),
+        in_unit_square,
+    );
+    let rect_ok = |o: [f32; 3]| {
+        o[..2].iter().all(|c| (0.0..=1.0).contains(c)) && o[2].is_finite() && o[2] >= 0.0
+    };
+    widths(
+        "spherical::rectangle",
+        &p2,
+        |u| {
+            let (st, d) = s::rectangle(r[0], r[1], r[2], r[3], u);
+            [st[0], st[1], d]
+        },
+        |u| {
+            let (st, d) = s::rectangle_x8(sp(r[0]), sp(r[1]), sp(r[2]), sp(r[3]), u);
+            [st[0], st[1], d]
+        },
+        |u, o| s::rectangle_slice(r[0], r[1], r[2], r[3], u, o),
+        rect_ok,
+    );
+    widths(
+        "spherical::rectangle_inverse",
+        &p2,
+        |st| s::rectangle_inverse(r[0], r[1], r[2], r[3], st),
+        |st| s::rectangle_inverse_x8(sp(r[0]), sp(r[1]), sp(r[2]), sp(r[3]), st),
+        |st, o| s::rectangle_inverse_slice(r[0], r[1], r[2], r[3], st, o),
+        in_unit_square,
+    );
+    let om = s::triangle_solid_angle(v, p);
+    assert!(
+        (0.0..=core::f32::consts::TAU).contains(&om),
+        "triangle omega {om}"
+    );
+    let om = s::rectangle_solid_angle(r[0], r[1], r[2], r[3]);
+    assert!(
+        (0.0..=core::f32::consts::TAU).contains(&om),
+        "rectangle omega {om}"
+    );
+}

@@ -666,6 +666,54 @@ size_t wc_sphere_equirect_pdf_to_solid_angle(const float *pdf,
                                              float *out,
                                              size_t n);
 
+// Uniform in solid angle over triangle `light[0..9]` seen from `light[9..12]`: `n` points
+// `u` (`2n` floats) to `n` records `b0, b1, b2, density` (`4n` floats; barycentrics
+// weighting the vertices, density with respect to solid angle). Returns `n`, or 0 (writing
+// nothing) for a null or misaligned pointer, a size past `PTRDIFF_MAX` or overlapping `u`
+// and `out`.
+//
+// # Safety
+// `light` must be readable for 12 floats, `u` for `2n` and `out` writable for `4n`.
+size_t wc_spherical_triangle(const float *light, const float *u, float *out, size_t n);
+
+// Inverse of `wc_spherical_triangle`: `n` barycentrics (`3n` floats) to `n` points of the
+// square (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or misaligned
+// pointer, a size past `PTRDIFF_MAX` or overlapping arrays other than `b == out`.
+//
+// # Safety
+// `light` must be readable for 12 floats, `b` for `3n` and `out` writable for `2n`.
+size_t wc_spherical_triangle_inverse(const float *light, const float *b, float *out, size_t n);
+
+// Uniform in solid angle over the rectangle `corner + s ex + t ey` (`light[0..9]`) seen
+// from `light[9..12]`: `n` points `u` (`2n` floats) to `n` records `s, t, density` (`3n`
+// floats). Returns `n`, or 0 as for `wc_spherical_triangle`.
+//
+// # Safety
+// `light` must be readable for 12 floats, `u` for `2n` and `out` writable for `3n`.
+size_t wc_spherical_rectangle(const float *light, const float *u, float *out, size_t n);
+
+// Inverse of `wc_spherical_rectangle`: `n` pairs `s, t` (`2n` floats) to `n` points of the
+// square (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or misaligned
+// pointer, a size past `PTRDIFF_MAX` or overlapping arrays other than `st == out`.
+//
+// # Safety
+// `light` must be readable for 12 floats, `st` for `2n` and `out` writable for `2n`.
+size_t wc_spherical_rectangle_inverse(const float *light, const float *st, float *out, size_t n);
+
+// The solid angle of triangle `light[0..9]` at `light[9..12]`, in `[0, 2 pi]`; 0 for a
+// null or misaligned `light` (and for degenerate triangles, see `warpcore::spherical`).
+//
+// # Safety
+// `light` must be readable for 12 floats.
+float wc_spherical_triangle_solid_angle(const float *light);
+
+// The solid angle of the rectangle `light[0..9]` at `light[9..12]`, in `[0, 2 pi]`; 0 for a
+// null or misaligned `light`.
+//
+// # Safety
+// `light` must be readable for 12 floats.
+float wc_spherical_rectangle_solid_angle(const float *light);
+
 // Low-distortion map (Heitz 2019): `n` points `u` (`2n` floats) to `n` barycentrics (`3n`
 // floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or
 // overlapping arrays.

@@ -94,6 +94,14 @@ export interface Warpcore {
 
   // ---- triangle: barycentrics [b0, b1, b2] weighting the caller's vertices ----
   /** Low-distortion map (Heitz 2019): `2n` floats to `3n`. */
+  /** Uniform in solid angle over triangle `light` (v0, v1, v2, p: 12 floats): `[b0, b1, b2, density]` per sample. */
+  sphericalTriangle(light: Float32Array, u: Float32Array, out?: Float32Array): Float32Array;
+  sphericalTriangleInverse(light: Float32Array, b: Float32Array, out?: Float32Array): Float32Array;
+  /** Uniform in solid angle over rectangle `light` (corner, ex, ey, p: 12 floats): `[s, t, density]` per sample. */
+  sphericalRectangle(light: Float32Array, u: Float32Array, out?: Float32Array): Float32Array;
+  sphericalRectangleInverse(light: Float32Array, st: Float32Array, out?: Float32Array): Float32Array;
+  sphericalTriangleSolidAngle(light: Float32Array): number;
+  sphericalRectangleSolidAngle(light: Float32Array): number;
   triangleUniform(u: Float32Array, out?: Float32Array): Float32Array;
   triangleUniformInverse(b: Float32Array, out?: Float32Array): Float32Array;
   /** b0 = 1 - sqrt(u0), b1 = u1 sqrt(u0): `2n` floats to `3n`. */

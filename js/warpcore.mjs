@@ -413,6 +413,28 @@ function create(x) {
     });
   };
 
+  // Lights by solid angle: one light and shading point (`light`, 12 floats: v0, v1, v2, p or
+  // corner, ex, ey, p), then C `f(light, in, out, n)`.
+  const lightArg = (light) => {
+    if (elements(light, F, 12, 'light') !== 1) {
+      throw rangeError(`light.length must be 12, got ${TA_LENGTH(light)}`);
+    }
+  };
+  const withLight = (f, I, O, name) => (light, input, out) => {
+    lightArg(light);
+    const n = elements(input, F, I, name);
+    const result = output(out, F, n * O);
+    if (n === 0) return result;
+    return scratch([[F, 12, light], [F, n * I, input], [F, n * O]], (pl, pi, po) => {
+      expect(f(pl, pi, po, n), n, name);
+      return read(F, po, n * O, result);
+    });
+  };
+  const solidAngle = (f) => (light) => {
+    lightArg(light);
+    return scratch([[F, 12, light]], (pl) => f(pl));
+  };
+
   const api = {
     // disk
     diskPolar: map(x.wc_disk_polar, F, 2, F, 2),
@@ -433,6 +455,14 @@ function create(x) {
       generate(x.wc_triangle_basu_owen, 3, n, out, u32(start, 'start'), u32(seed, 'seed')),
     triangleBasuOwenPermuted: (start, seed, n, out) =>
       generate(x.wc_triangle_basu_owen_permuted, 3, n, out, u32(start, 'start'), u32(seed, 'seed')),
+
+    // lights by solid angle
+    sphericalTriangle: withLight(x.wc_spherical_triangle, 2, 4, 'u'),
+    sphericalTriangleInverse: withLight(x.wc_spherical_triangle_inverse, 3, 2, 'b'),
+    sphericalRectangle: withLight(x.wc_spherical_rectangle, 2, 3, 'u'),
+    sphericalRectangleInverse: withLight(x.wc_spherical_rectangle_inverse, 2, 2, 'st'),
+    sphericalTriangleSolidAngle: solidAngle(x.wc_spherical_triangle_solid_angle),
+    sphericalRectangleSolidAngle: solidAngle(x.wc_spherical_rectangle_solid_angle),
 
     // sphere
     sphereEqualArea: map(x.wc_sphere_equal_area, F, 2, F, 3),

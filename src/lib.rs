@@ -60,6 +60,7 @@
 //! | `envmap` | [`envmap`]: marginal-conditional and hierarchical image distributions, caller-owned storage; enables `sphere` | yes |
 //! | `sampler` | [`sampler`]: the sampling core (domain tree, splitting, Owen-scrambled Sobol' and pmj02bn patterns, 8/16 lanes, slices); enables `pmj02bn` | yes |
 //! | `blue-noise` | [`sampler::Blue`]: screen-space blue-noise error, a 64 x 64 key tile per pattern (32 KiB); enables `sampler` | yes |
+//! | `spherical` | [`spherical`]: lights by solid angle, spherical triangles (Arvo) and rectangles (Urena et al.), inverses, solid angles; enables `triangle` | yes |
 //! | `std` | forwards `wide/std`; the library never needs it | no |
 
 #![no_std]
@@ -76,7 +77,8 @@
         feature = "sequence",
         feature = "envmap",
         feature = "sampler",
-        feature = "blue-noise"
+        feature = "blue-noise",
+        feature = "spherical"
     )),
     allow(dead_code)
 )]
@@ -102,6 +104,8 @@ pub mod sampler;
 pub mod sequence;
 #[cfg(feature = "sphere")]
 pub mod sphere;
+#[cfg(feature = "spherical")]
+pub mod spherical;
 #[cfg(feature = "triangle")]
 pub mod triangle;
 
@@ -114,7 +118,8 @@ pub mod triangle;
     feature = "sphere",
     feature = "pmj02bn",
     feature = "sequence",
-    feature = "blue-noise"
+    feature = "blue-noise",
+    feature = "spherical"
 ))]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;

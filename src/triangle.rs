@@ -87,7 +87,7 @@ fn unit_closed<L: Lane>(x: L) -> L {
 // Low-distortion map (Heitz 2019)
 
 #[inline(always)]
-fn uniform_body<L: Lane>(u: [L; 2]) -> [L; 3] {
+pub(crate) fn uniform_body<L: Lane>(u: [L; 2]) -> [L; 3] {
     let one = L::splat(1.0);
     let (u0, u1) = (unit_interval(u[0]), unit_interval(u[1]));
     // Heitz's two cases are one computation on (big, small) = the larger and smaller input.
@@ -111,7 +111,7 @@ fn uniform_body<L: Lane>(u: [L; 2]) -> [L; 3] {
 }
 
 #[inline(always)]
-fn uniform_inverse_body<L: Lane>(b: [L; 3]) -> [L; 2] {
+pub(crate) fn uniform_inverse_body<L: Lane>(b: [L; 3]) -> [L; 2] {
     let (b0, b1) = (unit_closed(b[0]), unit_closed(b[1]));
     // The forward map gives b1 > b0 exactly when u0 < u1 (ties go to the second case).
     let upper = b0.simd_lt(b1);

@@ -44,6 +44,12 @@ fn triangle_corpus() {
     replay("triangle", checks::triangle);
 }
 
+#[cfg(feature = "spherical")]
+#[test]
+fn spherical_corpus() {
+    replay("spherical", checks::spherical);
+}
+
 #[cfg(feature = "sphere")]
 #[test]
 fn sphere_corpus() {

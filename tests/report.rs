@@ -35,6 +35,9 @@ mod plots;
 mod run;
 #[path = "../examples/report/samplers.rs"]
 mod samplers;
+#[cfg(feature = "spherical")]
+#[path = "../examples/report/solid_angle.rs"]
+mod solid_angle;
 #[cfg(feature = "envmap")]
 #[path = "../examples/report/sphere_ref.rs"]
 mod sphere_ref;
@@ -439,6 +442,21 @@ fn quick_run_writes_a_well_formed_csv() {
             warps_of.push((format!("{map}/lit"), env.clone()));
         }
     }
+    // Lights by solid angle (issue 22): by area and by solid angle at three distances.
+    if cfg!(feature = "spherical") {
+        for light in ["triangle", "square", "skinny"] {
+            let warps = if light == "triangle" {
+                vec!["area", "area_basu_owen_permuted", "solid_angle"]
+            } else {
+                vec!["area", "solid_angle"]
+            };
+            for ratio in ["4", "1", "0.25"] {
+                for class in ["/lit", "/penumbra"] {
+                    warps_of.push((format!("sa_{light}_r{ratio}{class}"), warps.clone()));
+                }
+            }
+        }
+    }
     let spps = ["4", "16", "64", "256"];
     let samplers = [
         "random",
@@ -449,7 +467,7 @@ fn quick_run_writes_a_well_formed_csv() {
     ];
     // Index-driven Basu-Owen rows: random indices, and the construction under `stratified`
     // and `pmj02bn`; the peers' point-set randomizations do not apply.
-    let rows_of = |warp: &str| if warp.starts_with("basu_owen") { 3 } else { 5 };
+    let rows_of = |warp: &str| if warp.contains("basu_owen") { 3 } else { 5 };
     let mut seen = std::collections::HashSet::new();
     let mut path_rows = std::collections::HashSet::new();
     for line in lines {
@@ -478,7 +496,7 @@ fn quick_run_writes_a_well_formed_csv() {
         assert!(samplers.contains(&f[1]), "{line}");
         assert!(warps.contains(&f[2]), "{line}");
         assert!(
-            !(f[2].starts_with("basu_owen") && ["pmj02bn_cp", "sobol_owen"].contains(&f[1])),
+            !(f[2].contains("basu_owen") && ["pmj02bn_cp", "sobol_owen"].contains(&f[1])),
             "{line}"
         );
         assert!(spps.contains(&f[3]), "{line}");

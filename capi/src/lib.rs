@@ -50,6 +50,8 @@ pub mod sampler;
 pub mod sequence;
 #[cfg(feature = "sphere")]
 pub mod sphere;
+#[cfg(feature = "spherical")]
+pub mod spherical;
 #[cfg(feature = "triangle")]
 pub mod triangle;
 

@@ -459,6 +459,18 @@ const TABLE: &[(&str, &[&str])] = {
         ("wc_disk_polar4_inverse", MAP_IN_PLACE),
         ("wc_disk_concentric4", FOUR),
         ("wc_disk_concentric4_inverse", MAP_IN_PLACE),
+        ("wc_spherical_triangle", MAP),
+        ("wc_spherical_triangle_inverse", MAP_IN_PLACE),
+        ("wc_spherical_rectangle", MAP),
+        ("wc_spherical_rectangle_inverse", MAP_IN_PLACE),
+        (
+            "wc_spherical_triangle_solid_angle",
+            &["omega", "0:null", "0:misaligned"],
+        ),
+        (
+            "wc_spherical_rectangle_solid_angle",
+            &["omega", "0:null", "0:misaligned"],
+        ),
         ("wc_triangle_uniform", MAP),
         ("wc_triangle_uniform_inverse", MAP_IN_PLACE),
         ("wc_triangle_sqrt_map", MAP),
@@ -617,6 +629,11 @@ fn documented_outcomes(
     add("0:zero-side", len && doc.contains("0 for a zero side"));
     add("SIZE_MAX", len && doc.contains("`SIZE_MAX`"));
     add("value", decl.contains("(void)"));
+    // A value computed from a light (the solid angles): 0 for a null or misaligned `light`.
+    let light_value = decl.starts_with("float ") && decl.contains("const float *light)");
+    add("omega", light_value);
+    add("0:null", light_value && own.contains("null"));
+    add("0:misaligned", light_value && own.contains("misaligned"));
     // The sampler (its own comment only: the draws refer to `wc_sampler_draw`). A draw of
     // `n` (or `n_dims`, for `count` points) dimensions from a `WcSampler`.
     if decl.contains("WcSampler s, size_t n") {

@@ -256,6 +256,25 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
             results.extend(area_light(lit, penumbra, &opts.config(area_pixels)));
         }
     }
+    // Lights by solid angle against by area (issue 22): lit and penumbra at three distances;
+    // quick: 256 pixels per class.
+    #[cfg(feature = "spherical")]
+    {
+        let sa = crate::solid_angle::SolidAngleScene::all();
+        let cfg = opts.config(opts.pixels.unwrap_or(if opts.quick { 256 } else { 8192 }));
+        for pair in sa.chunks_exact(2) {
+            if opts.wants(&pair[0].light_name()) || opts.wants("sa_") {
+                let mut l = measure(&pair[0], &cfg);
+                let mut p = measure(&pair[1], &cfg);
+                time(&pair[0], &cfg, &mut l, &mut [&mut p]);
+                for r in [&l, &p] {
+                    print!("{}", output::terminal(r));
+                }
+                results.push(l);
+                results.push(p);
+            }
+        }
+    }
     #[cfg(feature = "envmap")]
     {
         let env_pixels = opts

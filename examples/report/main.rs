@@ -19,6 +19,8 @@ mod pfm;
 mod plots;
 mod run;
 mod samplers;
+#[cfg(feature = "spherical")]
+mod solid_angle;
 #[cfg(feature = "envmap")]
 mod sphere_ref;
 mod strata;

@@ -17,6 +17,8 @@ const f32 = (...v) => new Float32Array(v);
 const vec = (T, d, n = 3) => ({ T, d, good: () => new T(d * n).fill(0.25) });
 const COUNT = { count: true, good: () => 5 };
 const U32 = { u32: true, good: () => 7 };
+// A light and shading point of the solid-angle functions (12 floats).
+const LIGHT = { T: Float32Array, d: 12, good: () => Float32Array.of(0, 0, 1, 1, 0, 1, 0, 1, 1, 0.2, 0.2, 0) };
 
 const STORAGE = (() => {
   const env = wc.envmapHierarchical(new Float32Array(4).fill(1), 2, 2);
@@ -34,6 +36,12 @@ const SPEC = {
   diskPolar4Inverse: [vec(Float32Array, 2)],
   diskConcentric4: [vec(Float32Array, 2), COUNT],
   diskConcentric4Inverse: [vec(Float32Array, 2)],
+  sphericalTriangle: [LIGHT, vec(Float32Array, 2)],
+  sphericalTriangleInverse: [LIGHT, vec(Float32Array, 3)],
+  sphericalRectangle: [LIGHT, vec(Float32Array, 2)],
+  sphericalRectangleInverse: [LIGHT, vec(Float32Array, 2)],
+  sphericalTriangleSolidAngle: [LIGHT],
+  sphericalRectangleSolidAngle: [LIGHT],
   triangleUniform: [vec(Float32Array, 2)],
   triangleUniformInverse: [vec(Float32Array, 3)],
   triangleSqrtMap: [vec(Float32Array, 2)],

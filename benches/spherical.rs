@@ -1,0 +1,192 @@
+//! Lights by solid angle: throughput of warpcore's scalar loop and slice form (one light, one
+//! shading point, `BATCH` samples) against straightforward scalar `f32` transcriptions of
+//! Arvo 1995 and Urena et al. 2013 (libm `acosf`, `sinf`, `cosf`, as a user would write them
+//! from the papers; they lose the density below about 1e-3 sr, see `src/spherical`).
+//!
+//! Run: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench spherical`
+
+mod common;
+
+use common::{BATCH, uniform_points};
+use criterion::Throughput;
+use std::hint::black_box;
+use warpcore::spherical;
+
+type V = [f32; 3];
+fn sub(a: V, b: V) -> V {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn dot(a: V, b: V) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: V, b: V) -> V {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn scale(a: V, k: f32) -> V {
+    [a[0] * k, a[1] * k, a[2] * k]
+}
+fn add(a: V, b: V) -> V {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+fn normalize(a: V) -> V {
+    scale(a, 1.0 / libm::sqrtf(dot(a, a)))
+}
+/// `a` without its component along unit `b`, normalised.
+fn ortho(a: V, b: V) -> V {
+    normalize(sub(a, scale(b, dot(a, b))))
+}
+
+/// Arvo 1995 as printed: angles by `acos` of normalised plane normals, the sub-triangle's
+/// new vertex by the cosine `q`, the final point by `z = 1 - u1 (1 - cos)`; barycentrics by
+/// intersecting the ray with the plane (Cramer's rule).
+fn arvo_textbook(v: [V; 3], p: V, u: [f32; 2]) -> ([f32; 3], f32) {
+    let (va, vb, vc) = (sub(v[0], p), sub(v[1], p), sub(v[2], p));
+    let (a, b, c) = (normalize(va), normalize(vb), normalize(vc));
+    let (nab, nbc, nca) = (
+        normalize(cross(a, b)),
+        normalize(cross(b, c)),
+        normalize(cross(c, a)),
+    );
+    let alpha = libm::acosf(-dot(nab, nca));
+    let beta = libm::acosf(-dot(nab, nbc));
+    let gamma = libm::acosf(-dot(nbc, nca));
+    let area = alpha + beta + gamma - core::f32::consts::PI;
+    let ah = u[0] * area;
+    let (s, t) = (libm::sinf(ah - alpha), libm::cosf(ah - alpha));
+    let (ca, sa) = (libm::cosf(alpha), libm::sinf(alpha));
+    let uu = t - ca;
+    let vv = s + sa * dot(a, b);
+    let q = ((vv * t - uu * s) * ca - vv) / ((vv * s + uu * t) * sa);
+    let q = q.clamp(-1.0, 1.0);
+    let ch = add(scale(a, q), scale(ortho(c, a), libm::sqrtf(1.0 - q * q)));
+    let z = 1.0 - u[1] * (1.0 - dot(ch, b));
+    let z = z.clamp(-1.0, 1.0);
+    let d = add(scale(b, z), scale(ortho(ch, b), libm::sqrtf(1.0 - z * z)));
+    let l0 = dot(d, cross(vb, vc));
+    let l1 = dot(d, cross(vc, va));
+    let l2 = dot(d, cross(va, vb));
+    let sum = l0 + l1 + l2;
+    ([l0 / sum, l1 / sum, l2 / sum], 1.0 / area)
+}
+
+/// Urena, Fajardo and King 2013 as printed (their Algorithm 1), for an axis frame given by
+/// `ex`, `ey`.
+fn urena_textbook(corner: V, ex: V, ey: V, p: V, u: [f32; 2]) -> ([f32; 2], f32) {
+    let (w, h) = (libm::sqrtf(dot(ex, ex)), libm::sqrtf(dot(ey, ey)));
+    let (x, y) = (scale(ex, 1.0 / w), scale(ey, 1.0 / h));
+    let mut z = cross(x, y);
+    let d = sub(corner, p);
+    let mut z0 = dot(d, z);
+    if z0 > 0.0 {
+        z = scale(z, -1.0);
+        z0 = -z0;
+    }
+    let _ = z;
+    let (x0, y0) = (dot(d, x), dot(d, y));
+    let (x1, y1) = (x0 + w, y0 + h);
+    let n0 = normalize([0.0, z0, -y0]);
+    let n1 = normalize([-z0, 0.0, x1]);
+    let n2 = normalize([0.0, -z0, y1]);
+    let n3 = normalize([z0, 0.0, -x0]);
+    let g0 = libm::acosf(-n0[0] * n1[0] - n0[1] * n1[1] - n0[2] * n1[2]);
+    let g1 = libm::acosf(-n1[0] * n2[0] - n1[1] * n2[1] - n1[2] * n2[2]);
+    let g2 = libm::acosf(-n2[0] * n3[0] - n2[1] * n3[1] - n2[2] * n3[2]);
+    let g3 = libm::acosf(-n3[0] * n0[0] - n3[1] * n0[1] - n3[2] * n0[2]);
+    let k = 2.0 * core::f32::consts::PI - g2 - g3;
+    let s = g0 + g1 - k;
+    let (b0, b1) = (n0[2], n2[2]);
+    let au = u[0] * s + k;
+    let fu = (libm::cosf(au) * b0 - b1) / libm::sinf(au);
+    let cu = (1.0 / libm::sqrtf(fu * fu + b0 * b0))
+        .copysign(fu)
+        .clamp(-1.0, 1.0);
+    let xu = (-(cu * z0) / libm::sqrtf(1.0 - cu * cu)).clamp(x0, x1);
+    let dd = libm::sqrtf(xu * xu + z0 * z0);
+    let h0 = y0 / libm::sqrtf(dd * dd + y0 * y0);
+    let h1 = y1 / libm::sqrtf(dd * dd + y1 * y1);
+    let hv = h0 + u[1] * (h1 - h0);
+    let hv2 = hv * hv;
+    let yv = if hv2 < 1.0 - 1e-6 {
+        hv * dd / libm::sqrtf(1.0 - hv2)
+    } else {
+        y1
+    };
+    ([(xu - x0) / w, (yv - y0) / h], 1.0 / s)
+}
+
+fn main() {
+    let mut c = common::criterion();
+    let input = uniform_points::<2>(BATCH, 1);
+    // A triangle and a square of about 0.5 sr seen obliquely.
+    let tri = [[0.0f32, 0.0, 1.0], [1.0, 0.0, 1.2], [0.0, 1.0, 0.9]];
+    let tp = [0.2f32, 0.1, 0.0];
+    let (corner, ex, ey, rp) = (
+        [-0.5f32, -0.5, 1.0],
+        [1.0f32, 0.0, 0.0],
+        [0.0f32, 1.0, 0.0],
+        [0.3f32, 0.2, 0.0],
+    );
+    {
+        let mut g = c.benchmark_group("spherical triangle");
+        g.throughput(Throughput::Elements(BATCH as u64));
+        let mut out = vec![([0.0f32; 3], 0.0f32); BATCH];
+        g.bench_function("warpcore scalar loop", |b| {
+            b.iter(|| {
+                for (o, u) in out.iter_mut().zip(black_box(&input)) {
+                    *o = spherical::triangle(tri, tp, *u);
+                }
+                black_box(&mut out);
+            })
+        });
+        let mut out4 = vec![[0.0f32; 4]; BATCH];
+        g.bench_function("warpcore slice", |b| {
+            b.iter(|| {
+                spherical::triangle_slice(tri, tp, black_box(&input), &mut out4);
+                black_box(&mut out4);
+            })
+        });
+        g.bench_function("Arvo textbook f32 scalar", |b| {
+            b.iter(|| {
+                for (o, u) in out.iter_mut().zip(black_box(&input)) {
+                    *o = arvo_textbook(tri, tp, *u);
+                }
+                black_box(&mut out);
+            })
+        });
+        g.finish();
+    }
+    {
+        let mut g = c.benchmark_group("spherical rectangle");
+        g.throughput(Throughput::Elements(BATCH as u64));
+        let mut out = vec![([0.0f32; 2], 0.0f32); BATCH];
+        g.bench_function("warpcore scalar loop", |b| {
+            b.iter(|| {
+                for (o, u) in out.iter_mut().zip(black_box(&input)) {
+                    *o = spherical::rectangle(corner, ex, ey, rp, *u);
+                }
+                black_box(&mut out);
+            })
+        });
+        let mut out3 = vec![[0.0f32; 3]; BATCH];
+        g.bench_function("warpcore slice", |b| {
+            b.iter(|| {
+                spherical::rectangle_slice(corner, ex, ey, rp, black_box(&input), &mut out3);
+                black_box(&mut out3);
+            })
+        });
+        g.bench_function("Urena textbook f32 scalar", |b| {
+            b.iter(|| {
+                for (o, u) in out.iter_mut().zip(black_box(&input)) {
+                    *o = urena_textbook(corner, ex, ey, rp, *u);
+                }
+                black_box(&mut out);
+            })
+        });
+        g.finish();
+    }
+    c.final_summary();
+}

@@ -1,0 +1,153 @@
+//! Lights by solid angle: spherical triangles (Arvo 1995) and rectangles (Urena, Fajardo and
+//! King 2013). Each call takes one light and one shading point as 12 floats, `light`:
+//! `v0, v1, v2, p` (triangle) or `corner, ex, ey, p` (rectangle, the point
+//! `corner + s ex + t ey`), read before anything is written (so `light` may even overlap
+//! `out`). See `warpcore::spherical` for the maps, their precision and the degenerate cases
+//! (density 0 where the solid angle is 0).
+
+use warpcore::spherical;
+
+/// The 12 floats at `light`, or `None` for a null or misaligned pointer.
+///
+/// # Safety
+/// `light` must be readable for 12 floats.
+unsafe fn read_light(light: *const f32) -> Option<[[f32; 3]; 4]> {
+    // SAFETY: the caller's contract; `slice` checks null, alignment and size. The slice is
+    // copied at once and dropped before anything is written.
+    let s = unsafe { crate::ffi::slice(light, 12, None)? };
+    let mut l = [[0.0f32; 3]; 4];
+    for (k, x) in s.iter().enumerate() {
+        l[k / 3][k % 3] = *x;
+    }
+    Some(l)
+}
+
+/// Uniform in solid angle over triangle `light[0..9]` seen from `light[9..12]`: `n` points
+/// `u` (`2n` floats) to `n` records `b0, b1, b2, density` (`4n` floats; barycentrics
+/// weighting the vertices, density with respect to solid angle). Returns `n`, or 0 (writing
+/// nothing) for a null or misaligned pointer, a size past `PTRDIFF_MAX` or overlapping `u`
+/// and `out`.
+///
+/// # Safety
+/// `light` must be readable for 12 floats, `u` for `2n` and `out` writable for `4n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_spherical_triangle(
+    light: *const f32,
+    u: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    let Some([v0, v1, v2, p]) = (unsafe { read_light(light) }) else {
+        return 0;
+    };
+    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    unsafe {
+        crate::ffi::map::<f32, f32, 2, 4>(u, out, n, |u, o| {
+            spherical::triangle_slice([v0, v1, v2], p, u, o)
+        })
+    }
+}
+
+/// Inverse of `wc_spherical_triangle`: `n` barycentrics (`3n` floats) to `n` points of the
+/// square (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or misaligned
+/// pointer, a size past `PTRDIFF_MAX` or overlapping arrays other than `b == out`.
+///
+/// # Safety
+/// `light` must be readable for 12 floats, `b` for `3n` and `out` writable for `2n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_spherical_triangle_inverse(
+    light: *const f32,
+    b: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    let Some([v0, v1, v2, p]) = (unsafe { read_light(light) }) else {
+        return 0;
+    };
+    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    unsafe {
+        crate::ffi::map::<f32, f32, 3, 2>(b, out, n, |b, o| {
+            spherical::triangle_inverse_slice([v0, v1, v2], p, b, o)
+        })
+    }
+}
+
+/// Uniform in solid angle over the rectangle `corner + s ex + t ey` (`light[0..9]`) seen
+/// from `light[9..12]`: `n` points `u` (`2n` floats) to `n` records `s, t, density` (`3n`
+/// floats). Returns `n`, or 0 as for `wc_spherical_triangle`.
+///
+/// # Safety
+/// `light` must be readable for 12 floats, `u` for `2n` and `out` writable for `3n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_spherical_rectangle(
+    light: *const f32,
+    u: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    let Some([c, ex, ey, p]) = (unsafe { read_light(light) }) else {
+        return 0;
+    };
+    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    unsafe {
+        crate::ffi::map::<f32, f32, 2, 3>(u, out, n, |u, o| {
+            spherical::rectangle_slice(c, ex, ey, p, u, o)
+        })
+    }
+}
+
+/// Inverse of `wc_spherical_rectangle`: `n` pairs `s, t` (`2n` floats) to `n` points of the
+/// square (`2n` floats). Returns `n`, or 0 (writing nothing) for a null or misaligned
+/// pointer, a size past `PTRDIFF_MAX` or overlapping arrays other than `st == out`.
+///
+/// # Safety
+/// `light` must be readable for 12 floats, `st` for `2n` and `out` writable for `2n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_spherical_rectangle_inverse(
+    light: *const f32,
+    st: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    let Some([c, ex, ey, p]) = (unsafe { read_light(light) }) else {
+        return 0;
+    };
+    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    unsafe {
+        crate::ffi::map::<f32, f32, 2, 2>(st, out, n, |s, o| {
+            spherical::rectangle_inverse_slice(c, ex, ey, p, s, o)
+        })
+    }
+}
+
+/// The solid angle of triangle `light[0..9]` at `light[9..12]`, in `[0, 2 pi]`; 0 for a
+/// null or misaligned `light` (and for degenerate triangles, see `warpcore::spherical`).
+///
+/// # Safety
+/// `light` must be readable for 12 floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_spherical_triangle_solid_angle(light: *const f32) -> f32 {
+    // SAFETY: the caller's contract above.
+    match unsafe { read_light(light) } {
+        Some([v0, v1, v2, p]) => spherical::triangle_solid_angle([v0, v1, v2], p),
+        None => 0.0,
+    }
+}
+
+/// The solid angle of the rectangle `light[0..9]` at `light[9..12]`, in `[0, 2 pi]`; 0 for a
+/// null or misaligned `light`.
+///
+/// # Safety
+/// `light` must be readable for 12 floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_spherical_rectangle_solid_angle(light: *const f32) -> f32 {
+    // SAFETY: the caller's contract above.
+    match unsafe { read_light(light) } {
+        Some([c, ex, ey, p]) => spherical::rectangle_solid_angle(c, ex, ey, p),
+        None => 0.0,
+    }
+}

@@ -1,0 +1,352 @@
+//! Lights by solid angle: points on a triangle or a rectangle distributed uniformly in the
+//! solid angle they subtend at a shading point `p`, their inverses, and the solid angles.
+//!
+//! | function | maps | source |
+//! |---|---|---|
+//! | [`triangle`] | `u` to the barycentrics of a point of triangle `v`, uniform in solid angle at `p` | Arvo 1995, "Stratified Sampling of Spherical Triangles" (SIGGRAPH) |
+//! | [`rectangle`] | `u` to `(s, t)` of the point `corner + s ex + t ey`, uniform in solid angle | Urena, Fajardo and King 2013, "An Area-Preserving Parametrization for Spherical Rectangles" (EGSR) |
+//! | [`triangle_solid_angle`], [`rectangle_solid_angle`] | the solid angle `omega` in `[0, 2 pi]` | Van Oosterom and Strackee 1983, "The Solid Angle of a Plane Triangle" (IEEE TBME) |
+//!
+//! Near a light, sampling the solid angle removes the `cos' / r^2` factor from the estimator
+//! that area sampling ([`crate::triangle`], `s, t = u`) leaves in it; far away both agree and
+//! area sampling is cheaper. `docs/REPORT.md` measures where the switch pays.
+//!
+//! **Density.** The second result is the density with respect to solid angle at `p`:
+//! `1 / omega`. Below [`AREA_FALLBACK_SR`] (`1e-8` sr), where `f32` cannot place points
+//! faithfully by angle, both maps sample by area instead ([`crate::triangle::uniform`], or
+//! `(s, t) = u`) and return the matching solid-angle density `|q - p|^2 / (cos' area)`; the
+//! inverses follow the same switch, so round trips hold there too.
+//!
+//! **How the maps stay exact.** A straight `f32` transcription of the papers loses the
+//! density and the round trip below about `1e-3` sr (`acos` of nearly 1, `1 - cos`,
+//! `k + u0 omega` with `k` near `2 pi`). Here: the light is translated to `p` and scaled by
+//! an exact power of two (no overflow or underflow for any finite input); edges come from
+//! the caller's vertices, not from differences of nearly equal vectors; the solid angle is
+//! Van Oosterom-Strackee's `atan2` of the triple product (computed from edges) through the
+//! crate's own `atan` kernel; chords between directions come from edges (`|x| - |y| =
+//! -(y - x).(x + y) / (|x| + |y|)`); Arvo's first step is solved in closed form for the
+//! point on the chord (a quadratic with no `acos`), his second by chord lengths; the
+//! rectangle's `x` starts from a closed form and takes two Newton steps on the strip's
+//! solid angle computed by Van Oosterom-Strackee (relative, not absolute, accuracy), its
+//! `y` uses `1 -+ y/r` forms. Every square root and inverse sine/cosine argument is clamped,
+//! every `0/0` selected away.
+//!
+//! **Precision** (`tests/spherical.rs`, 20 000 random lights per shape from `1e-8` sr to
+//! nearly `2 pi`, distances `1e-6 .. 1e6`, against `f64` on the same `f32` input). The
+//! conditioning of any light computation is `kappa = |v - p| |n| / |(v - p) . n|` (one over
+//! the cosine at which `p` sees the light's plane; the farthest vertex for rectangles): the
+//! input's own rounding moves the solid angle by about `ulp * kappa`. Measured: solid angle
+//! and density `1 / omega` within `7.7e-7 kappa` relative (triangle) and `9.8e-7 kappa`
+//! (rectangle), so within 1e-4 for every light seen at more than 0.6 degrees from grazing
+//! (`kappa <= 100`); round trip `inverse(sample(u))` for solid angles `1e-4 .. 2` sr within
+//! 2.0e-5 of `u` (triangle, `kappa <= 100`, `u1 >= 0.01`: at the apex `v1` the map
+//! collapses `u0` and its error grows like `1 / sqrt(u1)`) and 6.0e-6 (rectangle,
+//! `kappa <= 100`), and within `3.1e-6 kappa` for every light. Samples are uniform in solid
+//! angle (chi-square over sub-regions whose solid angles are computed in `f64`, 2^21
+//! samples per light).
+//!
+//! **Totality.** Every function accepts any `f32`. `u` is first mapped onto `[0, 1 - 2^-24]`
+//! (NaN, negatives to 0; `>= 1`, `+inf` to `1 - 2^-24`); barycentrics are in the closed
+//! simplex (each in `[0, 1]`, summing to 1 within 3e-7), `(s, t)` in `[0, 1]^2`, the density
+//! finite and `>= 0`. The density is 0 exactly where the solid angle is 0: a degenerate
+//! light (zero area, collinear vertices, `ex` or `ey` zero), `p` on the light's plane or at
+//! a vertex, or non-finite input (NaN or inf anywhere, or coordinate differences of
+//! `2^127` or more; differences below `2^-126` count as zero); the point is then the
+//! area-sampling one. Solid angles of such lights are 0, except that `p` on the plane inside
+//! the light may report `2 pi` (the `atan2` of `+0` over a negative number). Inverses clamp
+//! barycentrics to `[0, 1]` and renormalise (all zero: the centroid), `(s, t)` to
+//! `[0, 1]^2`, NaN to 0; their results are in `[0, 1 - 2^-24]`. `ey` is made orthogonal to
+//! `ex` (its component along `ex` is dropped), a no-op for the rectangles of the contract.
+//!
+//! ```
+//! use warpcore::spherical;
+//!
+//! // A unit square light one unit above the shading point.
+//! let (corner, ex, ey, p) = ([-0.5f32, -0.5, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0; 3]);
+//! let ([s, t], pdf) = spherical::rectangle(corner, ex, ey, p, [0.3, 0.8]);
+//! let omega = spherical::rectangle_solid_angle(corner, ex, ey, p);
+//! assert!((pdf * omega - 1.0).abs() < 1e-5);
+//! let u = spherical::rectangle_inverse(corner, ex, ey, p, [s, t]);
+//! assert!((u[0] - 0.3).abs() < 1e-5 && (u[1] - 0.8).abs() < 1e-5);
+//!
+//! // A triangle: barycentrics weight the vertices.
+//! let v = [[0.0f32, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
+//! let (b, pdf) = spherical::triangle(v, p, [0.5, 0.5]);
+//! assert!(b.iter().all(|&x| (0.0..=1.0).contains(&x)) && pdf > 0.0);
+//! ```
+
+mod rectangle;
+mod triangle;
+mod vec;
+
+use crate::batch;
+use crate::lanes::Lane;
+use wide::{f32x8, f32x16};
+
+/// Below this solid angle (steradians) [`triangle`] and [`rectangle`] sample by area (with
+/// the matching solid-angle density), and their inverses invert that.
+pub const AREA_FALLBACK_SR: f32 = 1e-8;
+
+#[inline(always)]
+fn splat3<L: Lane>(v: [f32; 3]) -> [L; 3] {
+    [L::splat(v[0]), L::splat(v[1]), L::splat(v[2])]
+}
+
+#[inline(always)]
+fn splat33<L: Lane>(v: [[f32; 3]; 3]) -> [[L; 3]; 3] {
+    [splat3(v[0]), splat3(v[1]), splat3(v[2])]
+}
+
+/// Uniform in solid angle over the spherical triangle that triangle `v` subtends at `p`
+/// (Arvo 1995): returns the barycentrics `b` of the point `b0 v0 + b1 v1 + b2 v2` and the
+/// density with respect to solid angle at `p`, `1 / omega`.
+///
+/// `u0` picks the sub-triangle `(v0, v1, x)`, `x` on the edge `v0 v2`, whose solid angle is
+/// `u0 omega`; `u1` a point on the arc from `v1` to `x` with `1 - cos(angle from v1) = u1
+/// (1 - cos(angle(v1, x)))`. Strata of the square become wedges at `v1` (like
+/// [`crate::triangle::sqrt_map`]'s at `v0`). See the [module docs](self) for the exact
+/// forms, the precision (density 1e-4 relative and round trip 1e-4 for `1e-4 .. 2` sr where
+/// the light is seen at more than 0.6 degrees from grazing) and
+/// the out-of-domain rule (degenerate lights: area sampling, density 0).
+#[inline]
+pub fn triangle(v: [[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) -> ([f32; 3], f32) {
+    triangle::sample_body(v, p, u)
+}
+
+/// [`triangle`] on eight (light, point, sample) triples at once; bit-identical to eight
+/// scalar calls.
+#[inline]
+pub fn triangle_x8(v: [[f32x8; 3]; 3], p: [f32x8; 3], u: [f32x8; 2]) -> ([f32x8; 3], f32x8) {
+    triangle::sample_body(v, p, u)
+}
+
+/// [`triangle`] on sixteen triples at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn triangle_x16(v: [[f32x16; 3]; 3], p: [f32x16; 3], u: [f32x16; 2]) -> ([f32x16; 3], f32x16) {
+    triangle::sample_body(v, p, u)
+}
+
+/// [`triangle`] for one light and one shading point over a batch of samples: writes
+/// `out[i] = [b0, b1, b2, density]` of `triangle(v, p, u[i])` for
+/// `i < min(u.len(), out.len())` and returns that count. Bit-identical to the scalar form.
+#[inline]
+pub fn triangle_slice(
+    v: [[f32; 3]; 3],
+    p: [f32; 3],
+    u: &[[f32; 2]],
+    out: &mut [[f32; 4]],
+) -> usize {
+    batch::map_lanes(u, out, |u: [batch::Widest; 2]| {
+        let (b, d) = triangle::sample_body(splat33(v), splat3(p), u);
+        [b[0], b[1], b[2], d]
+    })
+}
+
+/// Inverse of [`triangle`]: the `u` that maps to barycentrics `b` (the solid angle of the
+/// sub-triangle `(v0, v1, x)` over `omega`, and the ratio of squared chords from `v1`).
+///
+/// Round trip `triangle_inverse(triangle(u))` within 1e-4 of `u` for solid angles
+/// `1e-4 .. 2` sr, except `u0` where `u1 = 0` (the apex `v1`, where `u0` is lost). Below
+/// [`AREA_FALLBACK_SR`] it inverts the area map ([`crate::triangle::uniform_inverse`]).
+#[inline]
+pub fn triangle_inverse(v: [[f32; 3]; 3], p: [f32; 3], b: [f32; 3]) -> [f32; 2] {
+    triangle::inverse_body(v, p, b)
+}
+
+/// [`triangle_inverse`] on eight triples at once; bit-identical to eight scalar calls.
+#[inline]
+pub fn triangle_inverse_x8(v: [[f32x8; 3]; 3], p: [f32x8; 3], b: [f32x8; 3]) -> [f32x8; 2] {
+    triangle::inverse_body(v, p, b)
+}
+
+/// [`triangle_inverse`] on sixteen triples at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn triangle_inverse_x16(v: [[f32x16; 3]; 3], p: [f32x16; 3], b: [f32x16; 3]) -> [f32x16; 2] {
+    triangle::inverse_body(v, p, b)
+}
+
+/// [`triangle_inverse`] for one light and point over a batch, with the length rule of
+/// [`triangle_slice`].
+#[inline]
+pub fn triangle_inverse_slice(
+    v: [[f32; 3]; 3],
+    p: [f32; 3],
+    b: &[[f32; 3]],
+    out: &mut [[f32; 2]],
+) -> usize {
+    batch::map_lanes(b, out, |b: [batch::Widest; 3]| {
+        triangle::inverse_body(splat33(v), splat3(p), b)
+    })
+}
+
+/// Uniform in solid angle over the spherical rectangle that the rectangle
+/// `corner + s ex + t ey` (`s, t` in `[0, 1]`, `ex` orthogonal to `ey`) subtends at `p`
+/// (Urena, Fajardo and King 2013): returns `(s, t)` and the density with respect to solid
+/// angle, `1 / omega`.
+///
+/// `u0` picks `s` so that the strip `[0, s] x [0, 1]` subtends `u0 omega` (closed-form
+/// start, two Newton steps), `u1` picks `t` uniformly in `y / sqrt(d^2 + y^2)` along that
+/// line. Compact strata of the square stay compact. See the [module docs](self) for the
+/// precision (density 1e-4 relative, round trip 1e-4 for `1e-4 .. 2` sr, away from grazing)
+/// and the out-of-domain rule.
+#[inline]
+pub fn rectangle(
+    corner: [f32; 3],
+    ex: [f32; 3],
+    ey: [f32; 3],
+    p: [f32; 3],
+    u: [f32; 2],
+) -> ([f32; 2], f32) {
+    rectangle::sample_body(corner, ex, ey, p, u)
+}
+
+/// [`rectangle`] on eight (light, point, sample) triples at once; bit-identical to eight
+/// scalar calls.
+#[inline]
+pub fn rectangle_x8(
+    corner: [f32x8; 3],
+    ex: [f32x8; 3],
+    ey: [f32x8; 3],
+    p: [f32x8; 3],
+    u: [f32x8; 2],
+) -> ([f32x8; 2], f32x8) {
+    rectangle::sample_body(corner, ex, ey, p, u)
+}
+
+/// [`rectangle`] on sixteen triples at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn rectangle_x16(
+    corner: [f32x16; 3],
+    ex: [f32x16; 3],
+    ey: [f32x16; 3],
+    p: [f32x16; 3],
+    u: [f32x16; 2],
+) -> ([f32x16; 2], f32x16) {
+    rectangle::sample_body(corner, ex, ey, p, u)
+}
+
+/// [`rectangle`] for one light and one shading point over a batch of samples: writes
+/// `out[i] = [s, t, density]` for `i < min(u.len(), out.len())` and returns that count.
+/// Bit-identical to the scalar form.
+#[inline]
+pub fn rectangle_slice(
+    corner: [f32; 3],
+    ex: [f32; 3],
+    ey: [f32; 3],
+    p: [f32; 3],
+    u: &[[f32; 2]],
+    out: &mut [[f32; 3]],
+) -> usize {
+    batch::map_lanes(u, out, |u: [batch::Widest; 2]| {
+        let (st, d) = rectangle::sample_body(splat3(corner), splat3(ex), splat3(ey), splat3(p), u);
+        [st[0], st[1], d]
+    })
+}
+
+/// Inverse of [`rectangle`]: `u0` is the solid angle of the strip `[0, s] x [0, 1]` over
+/// `omega`, `u1` the fraction of `y / sqrt(d^2 + y^2)` between the edges. Closed form (no
+/// iteration). Round trip within 1e-4 for solid angles `1e-4 .. 2` sr; below
+/// [`AREA_FALLBACK_SR`] it returns `(s, t)` clamped.
+#[inline]
+pub fn rectangle_inverse(
+    corner: [f32; 3],
+    ex: [f32; 3],
+    ey: [f32; 3],
+    p: [f32; 3],
+    st: [f32; 2],
+) -> [f32; 2] {
+    rectangle::inverse_body(corner, ex, ey, p, st)
+}
+
+/// [`rectangle_inverse`] on eight triples at once; bit-identical to eight scalar calls.
+#[inline]
+pub fn rectangle_inverse_x8(
+    corner: [f32x8; 3],
+    ex: [f32x8; 3],
+    ey: [f32x8; 3],
+    p: [f32x8; 3],
+    st: [f32x8; 2],
+) -> [f32x8; 2] {
+    rectangle::inverse_body(corner, ex, ey, p, st)
+}
+
+/// [`rectangle_inverse`] on sixteen triples at once; bit-identical to sixteen scalar calls.
+#[inline]
+pub fn rectangle_inverse_x16(
+    corner: [f32x16; 3],
+    ex: [f32x16; 3],
+    ey: [f32x16; 3],
+    p: [f32x16; 3],
+    st: [f32x16; 2],
+) -> [f32x16; 2] {
+    rectangle::inverse_body(corner, ex, ey, p, st)
+}
+
+/// [`rectangle_inverse`] for one light and point over a batch, with the length rule of
+/// [`rectangle_slice`].
+#[inline]
+pub fn rectangle_inverse_slice(
+    corner: [f32; 3],
+    ex: [f32; 3],
+    ey: [f32; 3],
+    p: [f32; 3],
+    st: &[[f32; 2]],
+    out: &mut [[f32; 2]],
+) -> usize {
+    batch::map_lanes(st, out, |st: [batch::Widest; 2]| {
+        rectangle::inverse_body(splat3(corner), splat3(ex), splat3(ey), splat3(p), st)
+    })
+}
+
+/// The solid angle of triangle `v` at `p`, in `[0, 2 pi]` (Van Oosterom and Strackee 1983:
+/// `tan(omega / 2) = |a . (b x c)| / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|)`, with
+/// `a, b, c` the vertices relative to `p` and the triple product from edges). Relative
+/// error against `f64` at most `7.7e-7 kappa` measured (see the [module docs](self)). 0 for
+/// degenerate triangles, `p` at a vertex, non-finite input; `p` on the plane inside may give
+/// `2 pi`.
+#[inline]
+pub fn triangle_solid_angle(v: [[f32; 3]; 3], p: [f32; 3]) -> f32 {
+    triangle::solid_angle_body(v, p)
+}
+
+/// [`triangle_solid_angle`] on eight lights/points at once; bit-identical to scalar calls.
+#[inline]
+pub fn triangle_solid_angle_x8(v: [[f32x8; 3]; 3], p: [f32x8; 3]) -> f32x8 {
+    triangle::solid_angle_body(v, p)
+}
+
+/// [`triangle_solid_angle`] on sixteen lights/points at once; bit-identical to scalar calls.
+#[inline]
+pub fn triangle_solid_angle_x16(v: [[f32x16; 3]; 3], p: [f32x16; 3]) -> f32x16 {
+    triangle::solid_angle_body(v, p)
+}
+
+/// The solid angle of the rectangle `corner + s ex + t ey` at `p`, in `[0, 2 pi]`: the two
+/// triangles of the rectangle by Van Oosterom-Strackee, added in one `atan2`. Precision and
+/// degenerate cases as [`triangle_solid_angle`].
+#[inline]
+pub fn rectangle_solid_angle(corner: [f32; 3], ex: [f32; 3], ey: [f32; 3], p: [f32; 3]) -> f32 {
+    rectangle::solid_angle_body(corner, ex, ey, p)
+}
+
+/// [`rectangle_solid_angle`] on eight lights/points at once; bit-identical to scalar calls.
+#[inline]
+pub fn rectangle_solid_angle_x8(
+    corner: [f32x8; 3],
+    ex: [f32x8; 3],
+    ey: [f32x8; 3],
+    p: [f32x8; 3],
+) -> f32x8 {
+    rectangle::solid_angle_body(corner, ex, ey, p)
+}
+
+/// [`rectangle_solid_angle`] on sixteen lights/points at once; bit-identical to scalar calls.
+#[inline]
+pub fn rectangle_solid_angle_x16(
+    corner: [f32x16; 3],
+    ex: [f32x16; 3],
+    ey: [f32x16; 3],
+    p: [f32x16; 3],
+) -> f32x16 {
+    rectangle::solid_angle_body(corner, ex, ey, p)
+}

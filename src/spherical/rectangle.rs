@@ -1,0 +1,231 @@
+//! Urena, Fajardo and King's spherical-rectangle map (2013) in cancellation-free form: a
+//! closed-form start refined by Newton steps on an accurate residual, its inverse, and the
+//! solid angle as two Van Oosterom-Strackee triangles joined in one `atan2`.
+
+use super::triangle::FALLBACK_TURNS;
+use super::vec::*;
+use crate::kernels::{atan2_turns, sin_cos_turns};
+use crate::lanes::{Lane, unit_interval};
+
+/// The rectangle in its own frame seen from `p` (all lengths scaled by one exact power of
+/// two): `x` along `ex` from `x0` to `x0 + w`, `y` along `ey`'s component orthogonal to `ex`
+/// from `y0` to `y0 + h`, and `p` at height `z` above its plane.
+pub(super) struct Rect<L: Lane> {
+    pub x0: L,
+    pub w: L,
+    pub y0: L,
+    pub h: L,
+    pub z: L,
+    /// Solid angle in turns of `4 pi`, `[0, 1/2]`; 0 where `ok` is false.
+    pub turns: L,
+    /// Finite input, nonzero sides.
+    pub ok: L::Mask,
+}
+
+#[inline(always)]
+pub(super) fn setup<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Rect<L> {
+    let zero = L::splat(0.0);
+    let one = L::splat(1.0);
+    let c = sub(corner, p);
+    let finite = all_finite([c, ex, ey]);
+    let (k, scaled) = pow2_scale([c, ex, ey]);
+    let (c, ex, ey) = (scale(c, k), scale(ex, k), scale(ey, k));
+    let w = norm(ex);
+    let xh = scale(ex, one / w);
+    let eyp = sub(ey, scale(xh, dot(ey, xh)));
+    let h = norm(eyp);
+    let yh = scale(eyp, one / h);
+    let nh = cross(xh, yh);
+    let x0 = dot(c, xh);
+    let y0 = dot(c, yh);
+    let z = dot(c, nh).abs();
+    let ok = finite & scaled & zero.simd_lt(w) & zero.simd_lt(h);
+    let turns = quad_turns(x0, w, y0, h, z);
+    Rect {
+        x0,
+        w,
+        y0,
+        h,
+        z,
+        turns: L::select(ok, turns, zero),
+        ok,
+    }
+}
+
+/// Solid angle (turns of `4 pi`) of `[x0, x0 + dx] x [y0, y0 + dy]` at height `z`: the
+/// triangles `(00, 10, 11)` and `(00, 11, 01)` by Van Oosterom-Strackee (both have
+/// `|det| = z dx dy`), their half angles added as the argument of a product of complex
+/// numbers, so one `atan2`.
+#[inline(always)]
+pub(super) fn quad_turns<L: Lane>(x0: L, dx: L, y0: L, dy: L, z: L) -> L {
+    let x1 = x0 + dx;
+    let y1 = y0 + dy;
+    let z2 = z * z;
+    let r = |x: L, y: L| (x * x + y * y + z2).sqrt();
+    let (r00, r10, r11, r01) = (r(x0, y0), r(x1, y0), r(x1, y1), r(x0, y1));
+    let d = |xa: L, ya: L, xb: L, yb: L| xa * xb + ya * yb + z2;
+    let d00_10 = d(x0, y0, x1, y0);
+    let d00_11 = d(x0, y0, x1, y1);
+    let d10_11 = d(x1, y0, x1, y1);
+    let d00_01 = d(x0, y0, x0, y1);
+    let d11_01 = d(x1, y1, x0, y1);
+    let den1 = r00 * r10 * r11 + d00_10 * r11 + d00_11 * r10 + d10_11 * r00;
+    let den2 = r00 * r11 * r01 + d00_11 * r01 + d00_01 * r11 + d11_01 * r00;
+    let n = z * dx * dy;
+    let y = n * (den1 + den2);
+    let zero = L::splat(0.0);
+    atan2_turns(L::select(zero.simd_lt(y), y, zero), den1 * den2 - n * n)
+}
+
+/// `b / sqrt(d2 + b^2) - a / sqrt(d2 + a^2)` given `ba = b - a` accurately: for `a`, `b` of
+/// one sign as `d2 (b - a)(b + a) / ((b ra + a rb) ra rb)`, else directly (no cancellation).
+#[inline(always)]
+fn h_diff<L: Lane>(a: L, ba: L, d2: L) -> L {
+    let b = a + ba;
+    let ra = (d2 + a * a).sqrt();
+    let rb = (d2 + b * b).sqrt();
+    let zero = L::splat(0.0);
+    let same = zero.simd_lt(a * b);
+    let num = L::select(same, d2 * ba * (b + a) / (b * ra + a * rb), b * ra - a * rb);
+    num / (ra * rb)
+}
+
+/// `(1 - y / r, 1 + y / r)` with `r = sqrt(d2 + y^2)`, each without cancellation.
+#[inline(always)]
+fn one_mp<L: Lane>(y: L, d2: L) -> (L, L) {
+    let r = (d2 + y * y).sqrt();
+    let zero = L::splat(0.0);
+    let small = d2 / (r * (r + y.abs()));
+    let big = (r + y.abs()) / r;
+    let pos = zero.simd_lt(y);
+    (L::select(pos, small, big), L::select(pos, big, small))
+}
+
+#[inline(always)]
+pub(super) fn solid_angle_body<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> L {
+    setup(corner, ex, ey, p).turns * L::splat(FOUR_PI)
+}
+
+/// Newton steps on `quad_turns(x0, dx, ..) = target` after the closed-form start.
+const NEWTON_STEPS: usize = 2;
+
+#[inline(always)]
+pub(super) fn sample_body<L: Lane>(
+    corner: V<L>,
+    ex: V<L>,
+    ey: V<L>,
+    p: V<L>,
+    u: [L; 2],
+) -> ([L; 2], L) {
+    let zero = L::splat(0.0);
+    let one = L::splat(1.0);
+    let (u0, u1) = (unit_interval(u[0]), unit_interval(u[1]));
+    let r = setup(corner, ex, ey, p);
+    let (x0, w, y0, h, z) = (r.x0, r.w, r.y0, r.h, r.z);
+    let y1 = y0 + h;
+    let z2 = z * z;
+    // Closed form (Urena et al.'s step, rewritten): with psi the angle of x seen in the
+    // xz-plane, beta_j that of y_j in the yz-plane, and db = beta1 - beta0, the strip from
+    // psi = -pi/2 to psi subtends G(psi) + db. Let A_l and A_r be what the solution leaves
+    // on each side (A_l + A_r = 2 db, both sums of positive terms: the half-infinite strips
+    // beyond x0 and x1, Van Oosterom-Strackee triangles with a vertex at -+x, plus u0 omega
+    // or (1 - u0) omega). With g = (A_l - A_r) / 2, b_j = cos beta_j and
+    // cos g - cos db = 2 sin(A_l / 2) sin(A_r / 2) = k:
+    //   tan psi = sin g / sqrt(k (k + 2 b0 b1)),
+    // with no cancellation where Urena's `1 - cu^2` and `k + u0 S` lose it (grazing views,
+    // small lights). Angles are in turns of 4 pi (half angles in turns of 2 pi).
+    let r00 = (x0 * x0 + y0 * y0 + z2).sqrt();
+    let r01 = (x0 * x0 + y1 * y1 + z2).sqrt();
+    let x1 = x0 + w;
+    let r10 = (x1 * x1 + y0 * y0 + z2).sqrt();
+    let r11 = (x1 * x1 + y1 * y1 + z2).sqrt();
+    let zh = z * h;
+    let yy = y0 * y1 + z2;
+    let left = atan2_turns(zh, r00 * r01 + (x0 * x0 + yy) - x0 * (r00 + r01));
+    let right = atan2_turns(zh, r10 * r11 + (x1 * x1 + yy) + x1 * (r10 + r11));
+    let both = atan2_turns(zh, yy); // 2 db in turns of 4 pi
+    let target = u0 * r.turns;
+    let tl = left + target;
+    let tr = right + (r.turns - target);
+    let tl2 = L::select(zero.simd_lt(x0), both - tr, tl);
+    let tr = L::select(x1.simd_lt(zero), both - tl, tr);
+    let tl = tl2;
+    let (sa, ca) = sin_cos_turns(clamp0(tl, L::splat(0.5)));
+    let (sb, cb) = sin_cos_turns(clamp0(tr, L::splat(0.5)));
+    let sg = sa * cb - ca * sb;
+    let k = (sa + sa) * sb;
+    let b01 = z2 / ((y0 * y0 + z2).sqrt() * (y1 * y1 + z2).sqrt());
+    let xu = z * sg / (k * (k + b01 + b01)).sqrt();
+    let mut dx = clamp0(xu - x0, w);
+    for _ in 0..NEWTON_STEPS {
+        let res = quad_turns(x0, dx, y0, h, z) - target;
+        let x = x0 + dx;
+        let d2 = x * x + z2;
+        // d(turns)/dx = z (y1 / r1 - y0 / r0) / (4 pi (x^2 + z^2)).
+        let slope = z * h_diff(y0, h, d2) / (d2 * L::splat(FOUR_PI));
+        let step = L::select(positive_finite(slope), res / slope, zero);
+        dx = clamp0(dx - step, w);
+    }
+    // The height: uniform in y / sqrt(d^2 + y^2) between its values at y0 and y1.
+    let x = x0 + dx;
+    let d2 = x * x + z2;
+    let (m0, p0) = one_mp(y0, d2);
+    let (m1, p1) = one_mp(y1, d2);
+    let v1 = one - u1;
+    let r0 = (d2 + y0 * y0).sqrt();
+    let h0 = y0 / r0;
+    let dh = u1 * h_diff(y0, h, d2);
+    let hv = h0 + dh;
+    let om = v1 * m0 + u1 * m1; // 1 - hv
+    let op = v1 * p0 + u1 * p1; // 1 + hv
+    // With h = sin phi, y = d tan phi: y - y0 = d sin(phi - phi0) / (cos phi cos phi0) and
+    // sin(phi - phi0) = dh (1 + cos(phi - phi0)) / (cos phi0 + cos phi): no cancellation.
+    let c0 = d2.sqrt() / r0;
+    let cv = (om * op).sqrt();
+    let dy = d2.sqrt() * dh * (one + c0 * cv + h0 * hv) / ((c0 + cv) * cv * c0);
+    let s = clamp0(dx / w, one);
+    let t = clamp0(dy / h, one);
+    let exact = r.ok & zero.simd_lt(z) & L::splat(FALLBACK_TURNS).simd_le(r.turns);
+    // Area sampling: density |q|^3 / (z w h).
+    let qx = x0 + u0 * w;
+    let qy = y0 + u1 * h;
+    let ql = (qx * qx + qy * qy + z2).sqrt();
+    let area_pdf = ql * ql * ql / (z * w * h);
+    let area_pdf = L::select(
+        r.ok & zero.simd_lt(z),
+        L::select(
+            area_pdf.simd_lt(L::splat(f32::MAX)),
+            area_pdf,
+            L::splat(f32::MAX),
+        ),
+        zero,
+    );
+    let pdf = L::select(exact, L::splat(INV_4PI) / r.turns, area_pdf);
+    ([L::select(exact, s, u0), L::select(exact, t, u1)], pdf)
+}
+
+#[inline(always)]
+pub(super) fn inverse_body<L: Lane>(
+    corner: V<L>,
+    ex: V<L>,
+    ey: V<L>,
+    p: V<L>,
+    st: [L; 2],
+) -> [L; 2] {
+    let one = L::splat(1.0);
+    let zero = L::splat(0.0);
+    let (s, t) = (clamp0(st[0], one), clamp0(st[1], one));
+    let r = setup(corner, ex, ey, p);
+    let dx = s * r.w;
+    let u0 = quad_turns(r.x0, dx, r.y0, r.h, r.z) / r.turns;
+    let x = r.x0 + dx;
+    let d2 = x * x + r.z * r.z;
+    let full = h_diff(r.y0, r.h, d2);
+    let part = h_diff(r.y0, t * r.h, d2);
+    let u1 = L::select(zero.simd_lt(full), part / full, zero);
+    let exact = r.ok & zero.simd_lt(r.z) & L::splat(FALLBACK_TURNS).simd_le(r.turns);
+    [
+        L::select(exact, unit_interval(u0), unit_interval(s)),
+        L::select(exact, unit_interval(u1), unit_interval(t)),
+    ]
+}

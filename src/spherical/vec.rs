@@ -1,0 +1,103 @@
+//! Three-vectors over a [`Lane`], the light's frame (translated to the shading point and
+//! scaled by a power of two), and the small cancellation-free helpers the spherical maps share.
+
+use crate::lanes::{Lane, UintLane};
+
+pub(super) type V<L> = [L; 3];
+
+#[inline(always)]
+pub(super) fn sub<L: Lane>(a: V<L>, b: V<L>) -> V<L> {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+#[inline(always)]
+pub(super) fn add<L: Lane>(a: V<L>, b: V<L>) -> V<L> {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+#[inline(always)]
+pub(super) fn scale<L: Lane>(a: V<L>, k: L) -> V<L> {
+    [a[0] * k, a[1] * k, a[2] * k]
+}
+
+#[inline(always)]
+pub(super) fn dot<L: Lane>(a: V<L>, b: V<L>) -> L {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline(always)]
+pub(super) fn cross<L: Lane>(a: V<L>, b: V<L>) -> V<L> {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+#[inline(always)]
+pub(super) fn norm<L: Lane>(a: V<L>) -> L {
+    dot(a, a).sqrt()
+}
+
+/// `x` clamped to `[0, hi]`; NaN and `-0.0` become `+0.0` (compare and select).
+#[inline(always)]
+pub(super) fn clamp0<L: Lane>(x: L, hi: L) -> L {
+    L::select(
+        L::splat(0.0).simd_lt(x),
+        L::select(x.simd_lt(hi), x, hi),
+        L::splat(0.0),
+    )
+}
+
+/// `0 < x < +inf` (false for NaN).
+#[inline(always)]
+pub(super) fn positive_finite<L: Lane>(x: L) -> L::Mask {
+    L::splat(0.0).simd_lt(x) & x.simd_lt(L::splat(f32::INFINITY))
+}
+
+/// The chord `y/|y| - x/|x|` between the directions of `x` and `y`, from the accurately known
+/// difference `e = y - x` (an edge of the light, not a difference of nearly equal unit
+/// vectors): `(e - x^ (e . (x + y)) / (|x| + |y|)) / |y|`, since
+/// `|x| - |y| = -(e . (x + y)) / (|x| + |y|)`. Relative error a few ulps whatever the angle.
+#[inline(always)]
+pub(super) fn chord<L: Lane>(x: V<L>, y: V<L>, e: V<L>, lx: L, ly: L) -> V<L> {
+    let k = dot(e, add(x, y)) / ((lx + ly) * lx);
+    scale(sub(e, scale(x, k)), L::splat(1.0) / ly)
+}
+
+/// Whether every component of every vector is finite: `x * 0 == 0` fails for NaN and inf.
+#[inline(always)]
+pub(super) fn all_finite<L: Lane, const N: usize>(vs: [V<L>; N]) -> L::Mask {
+    let zero = L::splat(0.0);
+    let mut acc = zero;
+    for v in vs {
+        acc = acc + v[0] * zero + v[1] * zero + v[2] * zero;
+    }
+    acc.simd_eq(zero)
+}
+
+/// A power of two `2^k` such that `2^k max|x_i|` lies in `[1, 2)`, and whether it exists: the
+/// largest magnitude must be a normal `f32` below `2^127` (smaller differences count as zero,
+/// larger as non-finite). Scaling by it is exact, so every length, dot and cross product of
+/// the scaled vectors is free of overflow and (but for what the caller's data underflows)
+/// of underflow.
+#[inline(always)]
+pub(super) fn pow2_scale<L: Lane, const N: usize>(vs: [V<L>; N]) -> (L, L::Mask) {
+    let mut m = L::splat(0.0);
+    for v in vs {
+        for x in v {
+            let a = x.abs();
+            m = L::select(m.simd_lt(a), a, m);
+        }
+    }
+    let e = m.to_bits().shr(23);
+    let ok = L::U::splat(0).simd_lt(e) & e.simd_lt(L::U::splat(254));
+    let bits = (L::U::splat(254) - e).shl(23);
+    (L::from_bits(L::U::select(ok, bits, L::U::splat(0))), ok)
+}
+
+/// `1 / (4 pi)`: solid angles are carried in turns of `4 pi` (`atan2_turns` of the
+/// Van Oosterom-Strackee half angle) and the density is `INV_4PI / turns`.
+pub(super) const INV_4PI: f32 = (0.25 * core::f64::consts::FRAC_1_PI) as f32;
+/// `4 pi`.
+pub(super) const FOUR_PI: f32 = (4.0 * core::f64::consts::PI) as f32;
