@@ -65,7 +65,7 @@
 #define WC_ENVMAP_HEADER_WORDS 8
 
 // The storage format version this library writes and reads (header word 1).
-#define WC_ENVMAP_FORMAT_VERSION 1
+#define WC_ENVMAP_FORMAT_VERSION 2
 
 // Owen-scrambled pmj02bn points: a draw of up to four dimensions is two independent (0,2)
 // pairs (dimensions 0-1 and 2-3).

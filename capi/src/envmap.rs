@@ -34,7 +34,7 @@ pub const WC_ERR_OTHER: i32 = -10;
 /// Words of the header at the start of every storage.
 pub const WC_ENVMAP_HEADER_WORDS: u32 = 8;
 /// The storage format version this library writes and reads (header word 1).
-pub const WC_ENVMAP_FORMAT_VERSION: u32 = 1;
+pub const WC_ENVMAP_FORMAT_VERSION: u32 = 2;
 
 // Literals, so that cbindgen can write them; checked against the core crate here.
 const _: () = assert!(WC_ENVMAP_HEADER_WORDS as usize == envmap::HEADER_WORDS);

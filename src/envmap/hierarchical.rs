@@ -87,6 +87,9 @@ pub struct Hierarchical<'a> {
     /// The padded map is `2^xbits x 2^ybits` texels.
     xbits: u32,
     ybits: u32,
+    /// Where the map sits in the padded square: texel `(c, r)` is padded texel
+    /// `(c + off[0], r + off[1])`, `off = floor((2^bits - size) / 2)` per axis (centred).
+    off: [u32; 2],
     /// `width * height * 2^-60`: turns the product of the two final interval lengths into a
     /// density.
     pdf_scale: f32,
@@ -140,6 +143,14 @@ impl Shape {
     fn shift(self, k: u32) -> u32 {
         self.virtual_levels() - 1 - k
     }
+    /// Splits of each axis at virtual levels `k` and finer: a node of level `k` at
+    /// coordinate `c` covers padded texels `[c << below, (c + 1) << below)` on that axis.
+    fn below(self, k: u32) -> [u32; 2] {
+        (k..self.virtual_levels()).fold([0, 0], |[x, y], l| {
+            let (sx, sy) = self.splits(l);
+            [x + u32::from(sx), y + u32::from(sy)]
+        })
+    }
     /// Nodes at virtual level `k`.
     fn nodes(self, k: u32) -> u64 {
         (0..k).fold(1u64, |n, l| n << self.branch_bits(l))
@@ -152,15 +163,57 @@ impl Shape {
     }
 }
 
+/// Where a `width x height` map sits in its `2^xbits x 2^ybits` padded square: centred,
+/// `off = floor((2^bits - size) / 2)` texels of padding before it on each axis (and the rest
+/// after it), so that the pyramid's split lines fall symmetrically about the map's centre
+/// (measured: see `docs/envmaps.md`).
+#[derive(Clone, Copy, Debug)]
+struct Placement {
+    off: [u64; 2],
+    size: [u64; 2],
+}
+
+impl Placement {
+    fn new(shape: Shape, width: usize, height: usize) -> Self {
+        let size = [width as u64, height as u64];
+        let padded = [shape.xbits, shape.ybits].map(|b| 1u64.checked_shl(b).unwrap_or(0));
+        Placement {
+            off: [0, 1].map(|a| padded[a].saturating_sub(size[a]) / 2),
+            size,
+        }
+    }
+    /// The offsets as `u32` (they are below `2^24`).
+    fn offsets(self) -> [u32; 2] {
+        self.off.map(|o| o as u32)
+    }
+    /// Is the node at `(x, y)` whose extent is `1 << below` padded texels per axis all
+    /// padding (outside the map on some axis)?
+    fn padding(self, below: [u32; 2], x: u32, y: u32) -> bool {
+        [x, y].into_iter().enumerate().any(|(a, c)| {
+            let start = u64::from(c) << below[a];
+            let end = (u64::from(c) + 1) << below[a];
+            end <= self.off[a] || start >= self.off[a] + self.size[a]
+        })
+    }
+}
+
 /// Fixed-point one of the fractions: `2^31`.
 const FRACTION_ONE: u32 = 1 << 31;
 /// Fixed-point one of the keys and intervals: `2^30`.
 const KEY_ONE: u32 = 1 << 30;
 
-/// `a / (a + b)` as a 0.31 fixed-point fraction: `2^31` (1) when `b = 0` (also for an empty
-/// node, which is never reached), `0` when `a = 0 < b`, and strictly inside `[1, 2^31 - 1]`
-/// when both are positive.
-fn fraction(a: f64, b: f64) -> u32 {
+/// `a / (a + b)` as a 0.31 fixed-point fraction: `2^31` (1) when the upper part is all
+/// padding or missing (`b_pad`) or `b = 0` (also for an empty node, which is never reached),
+/// `0` when the lower part is all padding (`a_pad`) or `a = 0 < b`, and strictly inside
+/// `[1, 2^31 - 1]` when both are positive. The padding rules make the structural fractions
+/// independent of the weights, which is what `from_storage_verified` checks.
+fn fraction(a: f64, b: f64, a_pad: bool, b_pad: bool) -> u32 {
+    if b_pad {
+        return FRACTION_ONE;
+    }
+    if a_pad {
+        return 0;
+    }
     if b <= 0.0 {
         return FRACTION_ONE;
     }
@@ -172,15 +225,17 @@ fn fraction(a: f64, b: f64) -> u32 {
     p.clamp(1, FRACTION_ONE - 1)
 }
 
-/// The fractions of a node with children sums `s[bx][by]`, and its sum.
-fn node(s: [[f32; 2]; 2]) -> ([u32; 3], f32) {
+/// The fractions of a node with children sums `s[bx][by]`, and its sum; `pad[bx][by]` says
+/// which children are all padding or missing.
+fn node((s, pad): ([[f32; 2]; 2], [[bool; 2]; 2])) -> ([u32; 3], f32) {
     let c = s.map(|col| col.map(f64::from));
     let (left, right) = (c[0][0] + c[0][1], c[1][0] + c[1][1]);
+    let column_pad = pad.map(|col| col[0] && col[1]);
     (
         [
-            fraction(left, right),
-            fraction(c[0][0], c[0][1]),
-            fraction(c[1][0], c[1][1]),
+            fraction(left, right, column_pad[0], column_pad[1]),
+            fraction(c[0][0], c[0][1], pad[0][0], pad[0][1]),
+            fraction(c[1][0], c[1][1], pad[1][0], pad[1][1]),
         ],
         (left + right) as f32,
     )
@@ -194,18 +249,23 @@ fn split<U: UintLane>(len: U, p: U) -> U {
     (len + len).mul_high(p)
 }
 
-/// Children sums `s[bx][by]` of a node, from `child(bx, by)`, zero where the level does not
-/// split that axis.
-fn children(sx: bool, sy: bool, mut child: impl FnMut(u32, u32) -> f32) -> [[f32; 2]; 2] {
+/// Children sums `s[bx][by]` of a node and whether each is all padding, from
+/// `child(bx, by)`; zero and padding where the level does not split that axis.
+fn children(
+    sx: bool,
+    sy: bool,
+    mut child: impl FnMut(u32, u32) -> (f32, bool),
+) -> ([[f32; 2]; 2], [[bool; 2]; 2]) {
     let mut s = [[0.0f32; 2]; 2];
-    for (bx, col) in (0u32..).zip(s.iter_mut()) {
-        for (by, v) in (0u32..).zip(col.iter_mut()) {
+    let mut pad = [[true; 2]; 2];
+    for (bx, (col, pcol)) in (0u32..).zip(s.iter_mut().zip(pad.iter_mut())) {
+        for (by, (v, p)) in (0u32..).zip(col.iter_mut().zip(pcol.iter_mut())) {
             if (bx == 0 || sx) && (by == 0 || sy) {
-                *v = child(bx, by);
+                (*v, *p) = child(bx, by);
             }
         }
     }
-    s
+    (s, pad)
 }
 
 /// Writes a node's fractions at `at` in `block`.
@@ -304,7 +364,11 @@ impl<'a> Hierarchical<'a> {
         } else {
             1.0
         };
+        let place = Placement::new(shape, w, h);
+        let [ox, oy] = place.offsets();
+        // Padded texel `(tx, ty)`: map texel `(tx - ox, ty - oy)`, or padding.
         let weight = |tx: u32, ty: u32| -> f32 {
+            let (tx, ty) = (tx.wrapping_sub(ox), ty.wrapping_sub(oy));
             if tx as usize >= w || ty as usize >= h {
                 return 0.0;
             }
@@ -340,34 +404,35 @@ impl<'a> Hierarchical<'a> {
             let (upper, lower) = all.split_at_mut(next.min(all.len()));
             let upper = upper.get_mut(here..).unwrap_or(&mut []);
             let finest = b + 1 == block_levels;
+            let (below1, below2) = (shape.below(k + 1), shape.below(k + 2));
             for (i, block) in upper.iter_mut().enumerate() {
                 // Slots of children the level does not have stay 0.
                 block.fill(0);
-                // Texel coordinates of this node (finest level only): walk its index bits.
-                let (x, y) = if finest {
-                    node_coords(shape, k, i as u32)
-                } else {
-                    (0, 0)
-                };
+                // Coordinates of this node: walk its index bits.
+                let (x, y) = node_coords(shape, k, i as u32);
                 let own = children(sx, sy, |bx, by| {
                     let c = bx | (by << u32::from(sx));
-                    let grand = children(csx, csy, |gx, gy| {
+                    let cx = (x << u32::from(sx)) | bx;
+                    let cy = (y << u32::from(sy)) | by;
+                    let child_pad = place.padding(below1, cx, cy);
+                    let grand = children(csx, csy, |lx, ly| {
+                        let (gx, gy) = ((cx << u32::from(csx)) | lx, (cy << u32::from(csy)) | ly);
+                        let pad = place.padding(below2, gx, gy);
                         if finest {
-                            let cx = (x << u32::from(sx)) | bx;
-                            let cy = (y << u32::from(sy)) | by;
-                            weight((cx << u32::from(csx)) | gx, (cy << u32::from(csy)) | gy)
+                            (weight(gx, gy), pad)
                         } else {
                             let j = (i << shape.branch_bits(k)) | c as usize;
                             let g = (j << shape.branch_bits(k + 1))
-                                | (gx | (gy << u32::from(csx))) as usize;
-                            lower
+                                | (lx | (ly << u32::from(csx))) as usize;
+                            let sum = lower
                                 .get(g)
-                                .map_or(0.0, |blk| f32::from_bits(blk[BLOCK - 1]))
+                                .map_or(0.0, |blk| f32::from_bits(blk[BLOCK - 1]));
+                            (sum, pad)
                         }
                     });
                     let (fr, sum) = node(grand);
                     put(block, 3 + 3 * c as usize, fr);
-                    sum
+                    (sum, child_pad)
                 });
                 let (fr, sum) = node(own);
                 put(block, 0, fr);
@@ -422,6 +487,7 @@ impl<'a> Hierarchical<'a> {
             height: h as u32,
             xbits: shape.xbits,
             ybits: shape.ybits,
+            off: Placement::new(shape, w, h).offsets(),
             pdf_scale: (w as f64 * h as f64 / (1u64 << 60) as f64) as f32,
         })
     }
@@ -473,39 +539,32 @@ impl<'a> Hierarchical<'a> {
                 .get(k)
                 .map_or(0, |&x| from_storage_order(core::num::Wrapping(x)).0)
         };
-        let size = [self.width, self.height].map(u64::from);
-        // Splits of each axis at the virtual levels at and below `k` (the finer ones): a node
-        // of level `k` at coordinate `c` covers `[c, c + 1) << below[k]` on that axis.
-        let mut below = [[0u32; 2]; 2 * 14 + 2];
-        let levels = shape.virtual_levels() as usize;
-        for k in (0..levels).rev() {
-            let (sx, sy) = shape.splits(k as u32);
-            let next = below.get(k + 1).copied().unwrap_or([0; 2]);
-            if let Some(b) = below.get_mut(k) {
-                *b = [next[0] + u32::from(sx), next[1] + u32::from(sy)];
-            }
-        }
-        let below = |k: u32, axis: usize| below.get(k as usize).map_or(0, |b| b[axis]);
-        // Does `[start, ...) << shift` on `axis` begin in the padding?
-        let padding =
-            |start: u32, shift: u32, axis: usize| (u64::from(start) << shift) >= size[axis];
+        let place = Placement::new(shape, self.width as usize, self.height as usize);
         // Checks the fractions at `at` of the node at `(x, y)` of virtual level `k`: at most 1,
-        // and exactly 1 where the upper part is missing (axis not split) or all padding.
+        // exactly 1 where the upper part is missing (axis not split) or all padding, and
+        // exactly 0 where only the lower part is all padding (what `fraction` writes).
         let node_ok = |at: usize, k: u32, x: u32, y: u32| -> Option<usize> {
             let (sx, sy) = shape.splits(k);
             let [px, py0, py1] = [0, 1, 2].map(|j| word(at + j));
             let one = FRACTION_ONE;
-            let (bx, by) = (below(k, 0), below(k, 1));
-            let empty = padding(x, bx, 0) || padding(y, by, 1);
-            let upper_x = !sx || empty || padding(2 * x + 1, bx.wrapping_sub(1), 0);
-            if px > one || (upper_x && px != one) {
+            let below = shape.below(k + 1);
+            // Child (bx, by) all padding or missing?
+            let pad = |bx: u32, by: u32| {
+                (bx == 1 && !sx)
+                    || (by == 1 && !sy)
+                    || place.padding(below, (x << u32::from(sx)) | bx, (y << u32::from(sy)) | by)
+            };
+            let column = |bx: u32| pad(bx, 0) && pad(bx, 1);
+            let expect = |p: u32, lower: bool, upper: bool| {
+                p > one || (upper && p != one) || (!upper && lower && p != 0)
+            };
+            if expect(px, column(0), column(1)) {
                 return Some(at);
             }
-            let upper_y = !sy || empty || padding(2 * y + 1, by.wrapping_sub(1), 1);
-            if py0 > one || (upper_y && py0 != one) {
+            if expect(py0, pad(0, 0), pad(0, 1)) {
                 return Some(at + 1);
             }
-            if py1 > one || ((upper_y || upper_x) && py1 != one) {
+            if expect(py1, pad(1, 0), pad(1, 1)) {
                 return Some(at + 2);
             }
             None
@@ -630,9 +689,11 @@ impl<'a> Hierarchical<'a> {
     /// The sample a finished walk describes.
     #[inline(always)]
     fn finish<L: Lane>(&self, walk: &Walk<L::U>) -> ([L; 2], L, [L::U; 2]) {
+        // Padded coordinates to the map's (wrapping: a corrupt table could lead into the
+        // padding before the map, which then clamps to the last texel).
         let texel = [
-            clamp_below(walk.texel[0], self.width),
-            clamp_below(walk.texel[1], self.height),
+            clamp_below(walk.texel[0] - L::U::splat(self.off[0]), self.width),
+            clamp_below(walk.texel[1] - L::U::splat(self.off[1]), self.height),
         ];
         let uv = [
             edges::point(
@@ -660,8 +721,8 @@ impl<'a> Hierarchical<'a> {
     #[inline(always)]
     fn pdf_body<L: Lane>(&self, uv: [L; 2]) -> L {
         let texel = [
-            edges::texel(self.edges_x, uv[0], self.width),
-            edges::texel(self.edges_y, uv[1], self.height),
+            edges::texel(self.edges_x, uv[0], self.width) + L::U::splat(self.off[0]),
+            edges::texel(self.edges_y, uv[1], self.height) + L::U::splat(self.off[1]),
         ];
         let (zero, one) = (L::U::splat(0), L::U::splat(1));
         let walk = self.descend([zero; 2], |shift, _, _, axis| {

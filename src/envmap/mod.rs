@@ -66,7 +66,7 @@
 //!   share of the tables' fixed-point intervals up to their rounding, so its pdf is exactly 1
 //!   when `width` and `height` are powers of two, and otherwise within
 //!   `2^-22 + (width + height) 2^-29` of 1 (measured over every size up to 128 x 128 and 300
-//!   sizes up to 5000 x 3000; for example 0.99999994 on one row of a 3 x 21 hierarchical map).
+//!   sizes up to 5000 x 3000; for example 0.99999994 on the first row of a 1 x 13 hierarchical map).
 //! * Any finite weights work, subnormals and `f32::MAX` included: sums are taken in `f64`
 //!   (marginal-conditional) or in a rescaled `f32` pyramid (hierarchical), never overflow.
 //! * Maps of any size from `1 x 1` to `MAX_SIDE x MAX_SIDE` (that fit the 32-bit table
@@ -147,7 +147,7 @@ pub const MAX_SIDE: usize = 1 << 24;
 pub const HEADER_WORDS: usize = 8;
 
 /// The storage format version this build writes (word 1 of the header) and reads.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 /// One sample of an environment-map distribution.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -270,6 +270,12 @@ impl fmt::Display for Error {
                     "storage format tag {found:#010x} is not this distribution's"
                 )
             }
+            Error::UnsupportedVersion { found } if found < FORMAT_VERSION => write!(
+                f,
+                "storage format version {found} was written by an older warpcore (version 1: \
+                 hierarchical pyramids padded in the corner); this build reads version \
+                 {FORMAT_VERSION}: rebuild the tables from the weights"
+            ),
             Error::UnsupportedVersion { found } => {
                 write!(
                     f,
