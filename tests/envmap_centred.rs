@@ -55,12 +55,20 @@ fn build(wts: &[f32], w: usize, h: usize) -> Vec<Word> {
 fn samples_land_on_positive_texels_with_their_share() {
     for (i, &(w, h)) in SIZES.iter().enumerate() {
         let wts = weights(w, h, 10 + i as u64);
-        let wts = if wts.iter().all(|&x| x == 0.0) { vec![1.0; w * h] } else { wts };
+        let wts = if wts.iter().all(|&x| x == 0.0) {
+            vec![1.0; w * h]
+        } else {
+            wts
+        };
         let total: f64 = wts.iter().map(|&x| f64::from(x)).sum();
         let s = build(&wts, w, h);
         let map = Hierarchical::from_storage_verified(&s).expect("verified");
         let rects = model_rectangles(&wts, w, h);
-        let levels = f64::from(w.next_power_of_two().max(h.next_power_of_two()).trailing_zeros());
+        let levels = f64::from(
+            w.next_power_of_two()
+                .max(h.next_power_of_two())
+                .trailing_zeros(),
+        );
         let mut r = rng(100 + i as u64);
         let mut us: Vec<[f32; 2]> = (0..20_000).map(|_| unit2(&mut r)).collect();
         let n = 64;
@@ -80,7 +88,10 @@ fn samples_land_on_positive_texels_with_their_share() {
             assert!(c < w && row < h, "{ctx}");
             let weight = wts[row * w + c];
             assert!(weight > 0.0, "zero-weight texel: {ctx}");
-            let (x, y) = (f64::from(smp.uv[0]) * w as f64, f64::from(smp.uv[1]) * h as f64);
+            let (x, y) = (
+                f64::from(smp.uv[0]) * w as f64,
+                f64::from(smp.uv[1]) * h as f64,
+            );
             assert!(x >= c as f64 && x < c as f64 + 1.0, "{ctx}");
             assert!(y >= row as f64 && y < row as f64 + 1.0, "{ctx}");
             assert_eq!(smp.pdf.to_bits(), map.pdf(smp.uv).to_bits(), "{ctx}");
@@ -136,7 +147,14 @@ fn frequencies_follow_the_pdf() {
         let n = 1usize << 20;
         let mut r = rng(60 + i as u64);
         let us: Vec<[f32; 2]> = (0..n).map(|_| unit2(&mut r)).collect();
-        let mut out = vec![warpcore::envmap::Sample { uv: [0.0; 2], pdf: 0.0, texel: [0; 2] }; n];
+        let mut out = vec![
+            warpcore::envmap::Sample {
+                uv: [0.0; 2],
+                pdf: 0.0,
+                texel: [0; 2]
+            };
+            n
+        ];
         assert_eq!(map.sample_slice(&us, &mut out), n);
         let mut counts = vec![0u64; w * h];
         for smp in &out {
@@ -241,9 +259,16 @@ fn model_rectangles(wts: &[f32], w: usize, h: usize) -> Vec<[f64; 4]> {
 /// rectangles of non-separable maps and fails this for many texels.)
 #[test]
 fn the_pyramid_is_centred() {
-    for (i, &(w, h)) in [(5usize, 5usize), (3, 5), (181, 181), (200, 100), (17, 3), (6, 6)]
-        .iter()
-        .enumerate()
+    for (i, &(w, h)) in [
+        (5usize, 5usize),
+        (3, 5),
+        (181, 181),
+        (200, 100),
+        (17, 3),
+        (6, 6),
+    ]
+    .iter()
+    .enumerate()
     {
         let wts = weights(w, h, 70 + i as u64);
         let s = build(&wts, w, h);
@@ -263,7 +288,10 @@ fn the_pyramid_is_centred() {
             );
             checked += 1;
         }
-        assert!(checked * 2 > w * h / 2, "{w}x{h}: only {checked} texels checked");
+        assert!(
+            checked * 2 > w * h / 2,
+            "{w}x{h}: only {checked} texels checked"
+        );
     }
 }
 
@@ -286,9 +314,97 @@ fn version_one_storage_is_refused() {
     assert_eq!(Hierarchical::from_storage(&hs).err(), Some(old));
     assert_eq!(Hierarchical::from_storage_verified(&hs).err(), Some(old));
     assert_eq!(MarginalConditional::from_storage(&ms).err(), Some(old));
-    assert_eq!(MarginalConditional::from_storage_verified(&ms).err(), Some(old));
+    assert_eq!(
+        MarginalConditional::from_storage_verified(&ms).err(),
+        Some(old)
+    );
     let msg = old.to_string();
     assert!(msg.contains("older") && msg.contains("rebuild"), "{msg}");
     let newer = Error::UnsupportedVersion { found: 3 }.to_string();
     assert!(!newer.contains("older"), "{newer}");
+}
+
+/// Generic over [`Distribution`]: one function serves both distributions, and the trait's
+/// methods give the inherent methods' bits at every width.
+#[test]
+fn generic_over_the_distribution_trait() {
+    use warpcore::envmap::{Distribution, Sample};
+    use warpcore::{f32x8, f32x16};
+
+    fn check<D: Distribution>(
+        d: &D,
+        inherent: impl Fn([f32; 2]) -> (Sample, f32),
+        w: usize,
+        h: usize,
+    ) {
+        assert_eq!((d.width(), d.height()), (w, h));
+        let mut r = rng(7);
+        let us: Vec<[f32; 2]> = (0..37).map(|_| unit2(&mut r)).collect();
+        let mut out = vec![
+            Sample {
+                uv: [0.0; 2],
+                pdf: 0.0,
+                texel: [0; 2]
+            };
+            us.len()
+        ];
+        assert_eq!(d.sample_slice(&us, &mut out), us.len());
+        let uvs: Vec<[f32; 2]> = out.iter().map(|s| s.uv).collect();
+        let mut pdfs = vec![0.0f32; us.len()];
+        assert_eq!(d.pdf_slice(&uvs, &mut pdfs), us.len());
+        for (k, &u) in us.iter().enumerate() {
+            let s = d.sample(u);
+            let (si, pi) = inherent(u);
+            assert_eq!(s, si);
+            assert_eq!(out[k], s);
+            assert_eq!(d.pdf(s.uv).to_bits(), pi.to_bits());
+            assert_eq!(pdfs[k].to_bits(), s.pdf.to_bits());
+        }
+        let chunk: [[f32; 2]; 16] = core::array::from_fn(|j| us[j]);
+        let x16 = d.sample_x16([0, 1].map(|a| f32x16::from(chunk.map(|u| u[a]))));
+        let x8 = d.sample_x8(
+            [0, 1].map(|a| f32x8::from(core::array::from_fn::<f32, 8, _>(|j| chunk[j][a]))),
+        );
+        let p16 = d.pdf_x16([0, 1].map(|a| f32x16::from(chunk.map(|u| d.sample(u).uv[a]))));
+        let p8 = d.pdf_x8([0, 1].map(|a| {
+            f32x8::from(core::array::from_fn::<f32, 8, _>(|j| {
+                d.sample(chunk[j]).uv[a]
+            }))
+        }));
+        for j in 0..16 {
+            assert_eq!(x16.to_array()[j], d.sample(chunk[j]));
+            assert_eq!(
+                p16.to_array()[j].to_bits(),
+                d.sample(chunk[j]).pdf.to_bits()
+            );
+            if j < 8 {
+                assert_eq!(x8.to_array()[j], d.sample(chunk[j]));
+                assert_eq!(p8.to_array()[j].to_bits(), d.sample(chunk[j]).pdf.to_bits());
+            }
+        }
+    }
+    let (w, h) = (181usize, 181usize);
+    let wts = weights(w, h, 95);
+    let hs = build(&wts, w, h);
+    let hm = Hierarchical::from_storage(&hs).unwrap();
+    check(
+        &hm,
+        |u| {
+            let s = hm.sample(u);
+            (s, hm.pdf(s.uv))
+        },
+        w,
+        h,
+    );
+    let mut ms = vec![0 as Word; MarginalConditional::storage_len(w, h)];
+    let mm = MarginalConditional::new(&wts, w, h, &mut ms).unwrap();
+    check(
+        &mm,
+        |u| {
+            let s = mm.sample(u);
+            (s, mm.pdf(s.uv))
+        },
+        w,
+        h,
+    );
 }

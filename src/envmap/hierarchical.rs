@@ -1,7 +1,14 @@
 //! Hierarchical sampling: walk a MIP pyramid from the whole map down to one texel, splitting
 //! the sample square at each level in proportion to the four children.
 //!
-//! The map is padded with zero weight to `2^a x 2^b` texels (`2^a >= width`, `2^b >= height`).
+//! The map is padded with zero weight to `2^a x 2^b` texels (`2^a >= width`, `2^b >= height`),
+//! **centred**: `floor((2^a - width) / 2)` columns of padding before the map and the rest after
+//! it (likewise rows), so the pyramid's split lines fall symmetrically about the map's centre
+//! instead of wherever the power-of-two boundaries of a corner-padded map happen to cut it
+//! (storage format version 2; version 1 padded in the corner). A fraction whose lower part is
+//! all padding is exactly 0 and one whose upper part is all padding or missing exactly 1, so
+//! no walk can enter the padding.
+//!
 //! Level `L - 1` groups texels 2x2, each level above groups the one below 2x2, and on a
 //! non-square map the top `|a - b|` levels split the longer axis only (2x1 or 1x2), exactly
 //! the MIP chain of a non-square image read from the top. Every internal node stores three
@@ -50,12 +57,12 @@
 //! integer operations per level and one division per axis at the end.
 
 use super::{
-    Error, HEADER_WORDS, Sample, SampleX8, SampleX16, Word, carve, carve_ref, check_lens,
-    check_size, checked_len, clean, edges, from_storage_order, load4, read_header, scalar_sample,
-    simd_sample, simd16_sample, slices, tag, take, to_storage_order, u32_to_f32, write_header,
+    Error, HEADER_WORDS, Sample, Word, carve, carve_ref, check_lens, check_size, checked_len,
+    clean, edges, from_storage_order, load4, read_header, slices, tag, take, to_storage_order,
+    u32_to_f32, write_header,
 };
 use crate::lanes::{Lane, UintLane, unit_interval};
-use wide::{f32x8, f32x16};
+use wide::f32x8;
 
 /// Words per block: own fractions (3), four children's fractions (12), the block's sum (1).
 const BLOCK: usize = 16;
@@ -73,6 +80,12 @@ const TAG: u32 = tag(*b"wcHI");
 /// per padded texel, 34.1 MiB for 4096 x 2048. Padding to powers of two costs up to (just
 /// under) 4 times that on unlucky sizes. See the [module docs](super) for the format, which
 /// [`from_storage`](Self::from_storage) loads back.
+///
+/// Sampling ([`Distribution`](super::Distribution), or the same methods inherent): one node
+/// read per pyramid level (`ceil(log2(max(width, height)))` levels) and one division per
+/// axis; `sample_slice` interleaves six groups of eight lanes with AVX2 or AVX-512, two
+/// elsewhere. A side that is not a power of two is padded with zero weight on both sides,
+/// the map centred in its pyramid (`docs/envmaps.md` has the measurements).
 #[derive(Clone, Copy, Debug)]
 pub struct Hierarchical<'a> {
     /// The blocks, block level by block level from the root, 64-byte aligned. Block `i`:
@@ -275,16 +288,30 @@ fn put(block: &mut [u32], at: usize, fractions: [u32; 3]) {
     }
 }
 
+// Sealed supertrait of `Distribution`, generic over the crate's private lane traits.
+#[allow(private_bounds, private_interfaces)]
 impl slices::Body for Hierarchical<'_> {
     #[inline(always)]
-    fn sample<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
+    fn sample_lanes<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
         self.sample_body(u)
     }
     #[inline(always)]
-    fn pdf<L: Lane>(&self, uv: [L; 2]) -> L {
+    fn pdf_lanes<L: Lane>(&self, uv: [L; 2]) -> L {
         self.pdf_body(uv)
     }
+    #[inline(always)]
+    fn size(&self) -> [u32; 2] {
+        [self.width, self.height]
+    }
+    fn slice_sample(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
+        slices::sample::<Self, f32x8, 8, { slices::HIER }>(self, u, out)
+    }
+    fn slice_pdf(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
+        slices::pdf::<Self, f32x8, 8, { slices::HIER }>(self, uv, out)
+    }
 }
+
+impl super::Distribution for Hierarchical<'_> {}
 
 impl<'a> Hierarchical<'a> {
     /// Words of storage `new` needs for a `width x height` map; `usize::MAX` when the map is
@@ -609,17 +636,7 @@ impl<'a> Hierarchical<'a> {
         None
     }
 
-    /// Width of the map in texels.
-    #[inline]
-    pub fn width(&self) -> usize {
-        self.width as usize
-    }
-
-    /// Height of the map in texels.
-    #[inline]
-    pub fn height(&self) -> usize {
-        self.height as usize
-    }
+    super::inherent_methods!();
 
     /// Walks the pyramid from the root to a texel, starting with the keys `key` (the pdf
     /// lookup passes zeros). At each split, `left(shift, r, m, axis)` says (per lane) whether
@@ -730,63 +747,6 @@ impl<'a> Hierarchical<'a> {
             (t.shr(shift) & one).simd_eq(zero)
         });
         self.density(&walk)
-    }
-
-    /// Draws a texel with probability proportional to its weight and a uniform point in it.
-    ///
-    /// Each coordinate is first mapped onto `[0, 1 - 2^-24]` by the forward rule. Cost: one
-    /// node read per pyramid level (`ceil(log2(max(width, height)))` levels) and one division
-    /// per axis. The pdf equals [`pdf`](Self::pdf)`(uv)` bit for bit.
-    #[inline]
-    pub fn sample(&self, u: [f32; 2]) -> Sample {
-        scalar_sample(self.sample_body(u))
-    }
-
-    /// [`sample`](Self::sample) on eight points at once; bit-identical to eight scalar calls.
-    #[inline]
-    pub fn sample_x8(&self, u: [f32x8; 2]) -> SampleX8 {
-        simd_sample(self.sample_body(u))
-    }
-
-    /// [`sample`](Self::sample) on sixteen points at once; bit-identical to sixteen scalar
-    /// calls. One AVX-512 register per coordinate where the build has AVX-512F; elsewhere
-    /// `wide` runs two 8-lane halves.
-    #[inline]
-    pub fn sample_x16(&self, u: [f32x16; 2]) -> SampleX16 {
-        simd16_sample(self.sample_body(u))
-    }
-
-    /// [`sample`](Self::sample) over a batch: `out[i] = sample(u[i])` for
-    /// `i < min(u.len(), out.len())`; returns that count. Bit-identical to the scalar form.
-    /// Runs several groups of eight lanes interleaved, so that their table reads overlap
-    /// (six groups with AVX2 or AVX-512, two elsewhere).
-    pub fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
-        slices::sample::<Self, f32x8, 8, { slices::HIER }>(self, u, out)
-    }
-
-    /// Density at `uv` with respect to area on `[0, 1]^2`: `P(texel) * width * height` for
-    /// the texel holding `uv` (0 on zero-weight texels). `uv` is clamped by the forward rule.
-    #[inline]
-    pub fn pdf(&self, uv: [f32; 2]) -> f32 {
-        self.pdf_body(uv)
-    }
-
-    /// [`pdf`](Self::pdf) on eight points at once; bit-identical to eight scalar calls.
-    #[inline]
-    pub fn pdf_x8(&self, uv: [f32x8; 2]) -> f32x8 {
-        self.pdf_body(uv)
-    }
-
-    /// [`pdf`](Self::pdf) on sixteen points at once; bit-identical to sixteen scalar calls.
-    #[inline]
-    pub fn pdf_x16(&self, uv: [f32x16; 2]) -> f32x16 {
-        self.pdf_body(uv)
-    }
-
-    /// [`pdf`](Self::pdf) over a batch, with the length rule of
-    /// [`sample_slice`](Self::sample_slice).
-    pub fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
-        slices::pdf::<Self, f32x8, 8, { slices::HIER }>(self, uv, out)
     }
 }
 

@@ -123,12 +123,15 @@
 //! `2^31`, split fractions above 1, reachable padding, nonzero unused words, wrong texel
 //! edges), for loaders that want to catch a corrupted file.
 
+mod distribution;
 mod edges;
 mod hierarchical;
 pub mod image;
 mod marginal;
 mod slices;
 
+pub use distribution::Distribution;
+use distribution::inherent_methods;
 pub use hierarchical::Hierarchical;
 pub use marginal::MarginalConditional;
 
