@@ -57,9 +57,9 @@
 //! integer operations per level and one division per axis at the end.
 
 use super::{
-    Error, HEADER_WORDS, Sample, Word, carve, carve_ref, check_lens, check_size, checked_len,
-    clean, edges, from_storage_order, load4, read_header, slices, tag, take, to_storage_order,
-    u32_to_f32, write_header,
+    Compensation, Compensator, Error, HEADER_WORDS, Sample, Word, carve, carve_ref, check_lens,
+    check_size, checked_len, clean, edges, from_storage_order, load4, read_header, slices, tag,
+    take, to_storage_order, u32_to_f32, write_header,
 };
 use crate::lanes::{Lane, UintLane, unit_interval};
 use wide::f32x8;
@@ -343,6 +343,21 @@ impl<'a> Hierarchical<'a> {
         height: usize,
         storage: &'a mut [Word],
     ) -> Result<Self, Error> {
+        Self::new_compensated(weights, width, height, Compensation::None, storage)
+    }
+
+    /// [`new`](Self::new) with MIS compensation: the tables (and so every pdf) are those of
+    /// the compensated weights, `max(0, w - fraction * average)` (see [`Compensation`] for
+    /// the lat-long form), falling back to the weights as given when compensation would
+    /// remove them all. One more pass over the weights (two for `MarginalConditional`'s
+    /// check); `Compensation::None` is `new`. Errors: those of `new`.
+    pub fn new_compensated(
+        weights: &[f32],
+        width: usize,
+        height: usize,
+        compensation: Compensation,
+        storage: &'a mut [Word],
+    ) -> Result<Self, Error> {
         let needed = Self::storage_len(width, height);
         check_size(weights, width, height, needed)?;
         let storage = take(storage, needed)?;
@@ -383,7 +398,9 @@ impl<'a> Hierarchical<'a> {
             }
             total += f64::from(clean(x));
         }
-        // All zero: uniform over the real texels. Otherwise scale so no f32 sum overflows.
+        let compensator = Compensator::new(weights, w, h, compensation)?;
+        // All zero: uniform over the real texels. Otherwise scale so no f32 sum overflows
+        // (compensated weights are smaller).
         let uniform = total <= 0.0;
         let exponent = ((total.to_bits() >> 52) & 0x7ff) as i32 - 1023;
         let scale = if exponent > 120 {
@@ -402,8 +419,16 @@ impl<'a> Hierarchical<'a> {
             if uniform {
                 return 1.0;
             }
-            let x = weights.get(ty as usize * w + tx as usize).copied();
-            clean(x.unwrap_or(0.0)) * scale
+            let x = clean(
+                weights
+                    .get(ty as usize * w + tx as usize)
+                    .copied()
+                    .unwrap_or(0.0),
+            );
+            match compensator {
+                Some(c) => (c.apply(x, ty as usize) * f64::from(scale)) as f32,
+                None => x * scale,
+            }
         };
 
         // Block offsets (in blocks) per block level.

@@ -73,6 +73,11 @@ fn sin_pi<L: Lane>(v: L) -> L {
     sin_cos_turns(v * L::splat(0.5)).0.abs()
 }
 
+/// `sin(pi v)`, the row factor of [`latlong_solid_angle_weights`] (for MIS compensation).
+pub(super) fn row_sine(v: f32) -> f32 {
+    sin_pi(v)
+}
+
 /// Multiplies each row of a lat-long weight map by `sin(theta)` at the row's centre,
 /// `theta = pi (row + 1/2) / height`, so that a texel's weight is proportional to radiance
 /// times the solid angle it covers.

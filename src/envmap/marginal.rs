@@ -23,9 +23,9 @@
 //! at `50,000 : 1`.
 
 use super::{
-    Error, HEADER_WORDS, Word, carve, carve_ref, check_lens, check_size, checked_len, clean, edges,
-    fixed_key, from_storage_order, load, read_header, tag, take, to_storage_order, u32_to_f32,
-    write_header,
+    Compensation, Compensator, Error, HEADER_WORDS, Word, carve, carve_ref, check_lens, check_size,
+    checked_len, clean, edges, fixed_key, from_storage_order, load, read_header, tag, take,
+    to_storage_order, u32_to_f32, write_header,
 };
 use super::{Sample, slices};
 use crate::lanes::{Lane, UintLane, unit_interval};
@@ -114,6 +114,21 @@ impl<'a> MarginalConditional<'a> {
         height: usize,
         storage: &'a mut [Word],
     ) -> Result<Self, Error> {
+        Self::new_compensated(weights, width, height, Compensation::None, storage)
+    }
+
+    /// [`new`](Self::new) with MIS compensation: the tables (and so every pdf) are those of
+    /// the compensated weights, `max(0, w - fraction * average)` (see [`Compensation`] for
+    /// the lat-long form), falling back to the weights as given when compensation would
+    /// remove them all. One more pass over the weights (two for `MarginalConditional`'s
+    /// check); `Compensation::None` is `new`. Errors: those of `new`.
+    pub fn new_compensated(
+        weights: &[f32],
+        width: usize,
+        height: usize,
+        compensation: Compensation,
+        storage: &'a mut [Word],
+    ) -> Result<Self, Error> {
         let needed = Self::storage_len(width, height);
         check_size(weights, width, height, needed)?;
         let storage = take(storage, needed)?;
@@ -127,17 +142,23 @@ impl<'a> MarginalConditional<'a> {
                 },
             )?;
         write_header(header, TAG, w, h, lens);
+        let compensator = Compensator::new(weights, w, h, compensation)?;
+        let weigh = |x: f32, r: usize| match compensator {
+            Some(c) => c.apply(clean(x), r),
+            None => f64::from(clean(x)),
+        };
 
         // Pass over each row: its f64 sum and positive count, then its CDF. The row sums wait
         // in `rows[r + 1]` (low word) and `edges_y[r]` (high word) until the row CDF is built.
         let mut total = 0.0f64;
         let mut positive_rows = 0u32;
         let mut index = 0usize;
-        for (((row, cdf), lo), hi) in weights
+        for (r, (((row, cdf), lo), hi)) in weights
             .chunks_exact(w.max(1))
             .zip(columns.chunks_exact_mut(w.max(1) + 1))
             .zip(rows.iter_mut().skip(1))
             .zip(edges_y.iter_mut())
+            .enumerate()
         {
             let (mut sum, mut positive) = (0.0f64, 0u32);
             for &x in row {
@@ -145,12 +166,12 @@ impl<'a> MarginalConditional<'a> {
                     return Err(Error::InfiniteWeight { index });
                 }
                 index += 1;
-                let x = clean(x);
-                sum += f64::from(x);
+                let x = weigh(x, r);
+                sum += x;
                 positive += u32::from(x > 0.0);
             }
             if positive > 0 {
-                fill_cdf(cdf, row.iter().map(|&x| f64::from(clean(x))), sum, positive);
+                fill_cdf(cdf, row.iter().map(|&x| weigh(x, r)), sum, positive);
             } else {
                 // Never chosen (its row interval is empty), but keep a valid CDF.
                 fill_cdf(cdf, row.iter().map(|_| 1.0), w as f64, w as u32);

@@ -123,6 +123,7 @@
 //! `2^31`, split fractions above 1, reachable padding, nonzero unused words, wrong texel
 //! edges), for loaders that want to catch a corrupted file.
 
+mod compensation;
 mod distribution;
 mod edges;
 mod hierarchical;
@@ -130,6 +131,8 @@ pub mod image;
 mod marginal;
 mod slices;
 
+pub use compensation::Compensation;
+use compensation::Compensator;
 pub use distribution::Distribution;
 use distribution::inherent_methods;
 pub use hierarchical::Hierarchical;
