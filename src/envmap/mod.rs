@@ -4,7 +4,7 @@
 //! | distribution | build | sample | keeps | source |
 //! |---|---|---|---|---|
 //! | [`MarginalConditional`] | row CDF + one CDF per row, 0.31 fixed point, from `f64` sums; 4 bytes per texel | two branch-free binary searches | strata along each axis | pbrt-v4 `PiecewiseConstant2D`, Mitsuba 3 `DiscreteDistribution2D` |
-//! | [`Hierarchical`] | a MIP pyramid of 0.31 split fractions, from pairwise sums, in 64-byte two-level blocks; about 4.3 bytes per padded texel | one 2x2 split per level, exact integer interval arithmetic on the sample | compact 2D strata | Mitsuba 3 `Hierarchical2D`; McCool and Harwood 1997, "Probability Trees"; Clarberg et al. 2005, "Wavelet Importance Sampling" |
+//! | [`Hierarchical`] | a centred MIP pyramid of 0.31 split fractions, from pairwise sums, in 64-byte two-level blocks; about 4.3 bytes per padded texel | one 2x2 split per level, exact integer interval arithmetic on the sample | compact 2D strata | Mitsuba 3 `Hierarchical2D`; McCool and Harwood 1997, "Probability Trees"; Clarberg et al. 2005, "Wavelet Importance Sampling" |
 //!
 //! Both take a row-major `width x height` array of weights — a piecewise-constant density on
 //! the unit square, texel `(column, row)` covering `[column/width, (column+1)/width) x
@@ -29,6 +29,10 @@
 //! assert!((s.pdf - 8.0 * weights[(s.texel[1] * 4 + s.texel[0]) as usize] / 9.0).abs() < 1e-5);
 //! # Ok::<(), warpcore::envmap::Error>(())
 //! ```
+//!
+//! Both implement the sealed trait [`Distribution`] (`sample`, `pdf` and their `_x8`, `_x16`
+//! and `_slice` forms), so a renderer can be generic over them; the same methods are inherent.
+//! [`Compensation`] builds either from MIS-compensated weights (`new_compensated`).
 //!
 //! # What every distribution here promises
 //!
@@ -152,7 +156,9 @@ pub const MAX_SIDE: usize = 1 << 24;
 /// Words of the header at the start of every storage (included in `storage_len`).
 pub const HEADER_WORDS: usize = 8;
 
-/// The storage format version this build writes (word 1 of the header) and reads.
+/// The storage format version this build writes (word 1 of the header) and reads: 2 since
+/// hierarchical pyramids centre a non-power-of-two map (version 1 padded it in the corner;
+/// such storages are refused with [`Error::UnsupportedVersion`], never misread).
 pub const FORMAT_VERSION: u32 = 2;
 
 /// One sample of an environment-map distribution.
