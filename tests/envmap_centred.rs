@@ -5,6 +5,7 @@
 //! independent `f64` model of the centred walk predicts which texel each point of the sample
 //! square lands on), and an old (version 1, corner-padded) storage read as if it were new.
 #![cfg(feature = "envmap")]
+#![allow(clippy::needless_range_loop)]
 
 mod common;
 

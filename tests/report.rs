@@ -301,7 +301,7 @@ fn area_scenes_samples_land_on_the_light() {
 /// warp, sampler) of the area scenes — per class (lit, penumbra): square and skinny 5 each,
 /// disk 6 x 5, triangle 2 x 5 + 2 x 2 (Basu-Owen: random indices, and the construction) —
 /// and of the two built-in environment-map scenes (2 classes x 4 warps x 5 samplers each).
-const BIAS_FAMILY: u32 = 2 * (5 + 5 + 30 + 14) + 2 * 2 * 4 * 5;
+const BIAS_FAMILY: u32 = 2 * (5 + 5 + 30 + 14) + 2 * 2 * 8 * 5;
 
 /// Mean over `pixels` pixels of `estimate - reference` at `spp` samples, in units of its
 /// standard error: a standard normal variable (by the central limit theorem over
@@ -431,6 +431,10 @@ fn quick_run_writes_a_well_formed_csv() {
             "hierarchical_equirect",
             "marginal_equal_area",
             "hierarchical_equal_area",
+            "marginal_equirect_mis",
+            "hierarchical_equirect_mis",
+            "marginal_equal_area_mis",
+            "hierarchical_equal_area_mis",
         ];
         for map in ["envmap:sky", "envmap:interior"] {
             warps_of.push((map.to_string(), env.clone()));

@@ -23,7 +23,18 @@ use super::{Error, clean, image};
 
 /// How [`Hierarchical::new_compensated`](super::Hierarchical::new_compensated) and
 /// [`MarginalConditional::new_compensated`](super::MarginalConditional::new_compensated)
-/// compensate the weights for MIS (see the [module docs](self)).
+/// compensate the weights for multiple importance sampling.
+///
+/// A renderer that combines env-map sampling with BSDF sampling by MIS should sample the map by
+/// `max(0, L - avg L)` (Karlik, Sik, Vevoda, Skrivan and Krivanek 2019, "MIS Compensation:
+/// Optimizing Sampling Techniques in Multiple Importance Sampling", ACM TOG 38(6); pbrt-v4's
+/// `compensatedDistribution`, Mitsuba 3's `mis_compensation`): the BSDF samples already cover
+/// the map's dim, flat part. The pdf the distribution reports is the compensated one (use it
+/// in the MIS weights; the map is still evaluated as `L`). Weights are cleaned first (NaN,
+/// negatives as 0; `+inf` is [`Error::InfiniteWeight`]); the subtraction is in `f64`. When
+/// compensation would remove every texel (a constant map, an all-zero map, `+inf`), the
+/// build falls back to the weights as given — bit for bit `new` (pbrt-v4 falls back to
+/// uniform instead).
 ///
 /// `fraction` is how much of the average to subtract: `1.0` is pbrt-v4's and Mitsuba 3's
 /// choice. NaN, zero and negative fractions mean no compensation; `+inf` removes everything,
@@ -66,7 +77,8 @@ impl Compensator {
             Compensation::Uniform(f) => (f, false),
             Compensation::LatLong(f) => (f, true),
         };
-        if !(fraction > 0.0) {
+        // NaN, zero and negative fractions: no compensation.
+        if fraction.is_nan() || fraction <= 0.0 {
             return Ok(None);
         }
         let mut total = 0.0f64;
