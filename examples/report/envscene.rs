@@ -33,7 +33,9 @@
 //! solid-angle density (a sample whose density converts to 0 — only exactly at the lat-long
 //! pole — contributes 0, as in pbrt and Mitsuba).
 //!
-//! **MIS warps** (`<warp>_mis`, issue 25): the same distribution built from MIS-compensated
+//! **MIS warps** (`hierarchical_equirect_mis`, `hierarchical_equal_area_mis`; issue 25; for
+//! random points, pmj02bn and Sobol' only, the report's time budget): the hierarchical
+//! distribution built from MIS-compensated
 //! weights (`Compensation::LatLong` / `Compensation::Uniform` with fraction 1: the map minus
 //! its solid-angle average, clamped at 0; Karlik et al. 2019, pbrt-v4's
 //! `compensatedDistribution`, Mitsuba 3's `mis_compensation`), combined with cosine-weighted
@@ -57,16 +59,19 @@ use warpcore::envmap::{
 };
 use warpcore::sphere;
 
-pub const WARPS: [&str; 8] = [
+pub const WARPS: [&str; 6] = [
     "marginal_equirect",
     "hierarchical_equirect",
     "marginal_equal_area",
     "hierarchical_equal_area",
-    "marginal_equirect_mis",
     "hierarchical_equirect_mis",
-    "marginal_equal_area_mis",
     "hierarchical_equal_area_mis",
 ];
+
+/// The plain warp (`0..4`) whose distribution and parameterization a warp uses.
+fn base(warp: usize) -> usize {
+    [0, 1, 2, 3, 1, 3].get(warp).copied().unwrap_or(3)
+}
 
 /// The compensation fraction of the `_mis` warps: 1, or `REPORT_MIS_FRACTION`.
 fn mis_fraction() -> f32 {
@@ -111,8 +116,7 @@ pub struct Side<P: Param> {
     pub radiance: Vec<f64>,
     pub marginal: MarginalConditional<'static>,
     pub hierarchical: Hierarchical<'static>,
-    /// The same distributions of MIS-compensated weights (the `_mis` warps).
-    pub marginal_mis: MarginalConditional<'static>,
+    /// The hierarchical distribution of MIS-compensated weights (the `_mis` warps).
     pub hierarchical_mis: Hierarchical<'static>,
 }
 
@@ -126,13 +130,6 @@ impl<P: Param> Side<P> {
         weights: Vec<f32>,
         compensation: Compensation,
     ) -> Result<Self, envmap::Error> {
-        let marginal_mis = MarginalConditional::new_compensated(
-            &weights,
-            width,
-            height,
-            compensation,
-            leak(MarginalConditional::storage_len(width, height)),
-        )?;
         let hierarchical_mis = Hierarchical::new_compensated(
             &weights,
             width,
@@ -160,7 +157,6 @@ impl<P: Param> Side<P> {
                 .collect(),
             marginal,
             hierarchical,
-            marginal_mis,
             hierarchical_mis,
         })
     }
@@ -425,6 +421,16 @@ impl Scene for EnvView<'_> {
         WARPS.to_vec()
     }
 
+    /// The `_mis` rows (two integrand evaluations per point) run for random points, pmj02bn
+    /// and Sobol' only: the report's time budget.
+    fn applies(&self, warp: usize, sampler: Sampler) -> bool {
+        warp < 4
+            || matches!(
+                sampler,
+                Sampler::Random | Sampler::Pmj02bn | Sampler::SobolOwen
+            )
+    }
+
     fn pixel(&self, index: u64) -> EnvPixel {
         let (n, m) = self.geometry(index);
         // Without the occluder: the half-space m . w >= 0 with m = n hides only directions
@@ -444,7 +450,7 @@ impl Scene for EnvView<'_> {
     }
 
     fn reference(&self, pixel: &EnvPixel, warp: usize) -> f64 {
-        pixel.reference[(warp % 4) / 2]
+        pixel.reference[base(warp) / 2]
     }
 
     fn penumbra(&self, _pixel: &EnvPixel) -> bool {
@@ -461,15 +467,13 @@ impl Scene for EnvView<'_> {
             1 => self.latlong.hierarchical.sample_slice(points, samples),
             2 => self.equal_area.marginal.sample_slice(points, samples),
             3 => self.equal_area.hierarchical.sample_slice(points, samples),
-            4 => self.latlong.marginal_mis.sample_slice(points, samples),
-            5 => self.latlong.hierarchical_mis.sample_slice(points, samples),
-            6 => self.equal_area.marginal_mis.sample_slice(points, samples),
+            4 => self.latlong.hierarchical_mis.sample_slice(points, samples),
             _ => self
                 .equal_area
                 .hierarchical_mis
                 .sample_slice(points, samples),
         };
-        let warp = warp % 4;
+        let warp = base(warp);
         for (uv, smp) in env.uv.iter_mut().zip(samples.iter()) {
             *uv = smp.uv;
         }
@@ -489,7 +493,7 @@ impl Scene for EnvView<'_> {
 
     fn evaluate(&self, pixel: &EnvPixel, warp: usize, spp: usize, s: &Scratch) -> f64 {
         if warp >= 4 {
-            return self.evaluate_mis(pixel, warp % 4, spp, s);
+            return self.evaluate_mis(pixel, base(warp), spp, s);
         }
         let (radiance, width) = if warp < 2 {
             (&self.latlong.radiance, self.latlong.width())
@@ -514,8 +518,8 @@ impl Scene for EnvView<'_> {
 }
 
 impl EnvView<'_> {
-    /// The `_mis` estimator (see the module docs): `warp` in `0..4` names the distribution
-    /// and parameterization, whose compensated tables `draw` sampled.
+    /// The `_mis` estimator (see the module docs): `warp` (1 or 3) names the
+    /// parameterization, whose compensated hierarchical tables `draw` sampled.
     fn evaluate_mis(&self, pixel: &EnvPixel, warp: usize, spp: usize, s: &Scratch) -> f64 {
         let latlong = warp < 2;
         let (radiance, width, height) = if latlong {
@@ -530,11 +534,10 @@ impl EnvView<'_> {
         };
         // The light technique's density over directions at `uv`.
         let light_pdf = |uv: [f32; 2]| -> f64 {
-            let p = match warp {
-                0 => self.latlong.marginal_mis.pdf(uv),
-                1 => self.latlong.hierarchical_mis.pdf(uv),
-                2 => self.equal_area.marginal_mis.pdf(uv),
-                _ => self.equal_area.hierarchical_mis.pdf(uv),
+            let p = if latlong {
+                self.latlong.hierarchical_mis.pdf(uv)
+            } else {
+                self.equal_area.hierarchical_mis.pdf(uv)
             };
             f64::from(if latlong {
                 image::latlong_pdf_to_solid_angle(p, uv[1])
