@@ -179,10 +179,12 @@ pub const MAX_SUPERSAMPLE: usize = 64;
 ///
 /// Choose `size` so that `size^2` is about the source's texel count or more, and
 /// `supersample >= 2`: a source texel smaller than an output texel's samples can be missed.
-/// **When the result feeds [`Hierarchical`](super::Hierarchical), make `size` a power of two**
-/// (256, 512, 1024): the pyramid then has no padding and splits the square at its own halves
-/// (the octahedral seams). Other sizes are centred in the next power of two, which recovers
-/// most but not all of the loss (`docs/envmaps.md` has the measurements).
+/// **When the result feeds [`Hierarchical`](super::Hierarchical), prefer a power-of-two
+/// `size`** (256, 512, 1024): the pyramid then has no padding and splits the square at its own
+/// halves (the octahedral seams). Other sizes are centred in the next power of two (storage
+/// format version 2), which measured as well as a power of two in the report's scenes and
+/// better than the old corner placement (`docs/envmaps.md` has the measurements); they cost
+/// up to about 4x the storage of the map's own texels.
 /// `src` is row-major, row 0 around `+z` (`v` in `[0, 1/src_height)`). Values are taken as
 /// they are, except that NaN and negative channels count as 0 (the weight rule, so a bad
 /// source texel cannot spoil its neighbours' averages); `+inf` stays infinite.
