@@ -441,6 +441,14 @@ pub fn envmap(data: &[u8]) {
     let get = |k: usize| w.get(k).copied().unwrap_or(0);
     let (width, height) = ((get(0) % 40 + 1) as usize, (get(1) % 40 + 1) as usize);
     let short = (get(2) % 8) as usize; // storage words missing (0: exactly enough, often)
+    // MIS compensation (issue 25), from the same word's higher bits and an arbitrary fraction:
+    // the samples of a compensated build must satisfy every check below as well.
+    let fraction = f32::from_bits(get(2).rotate_left(7));
+    let compensation = match (get(2) >> 3) % 4 {
+        1 => warpcore::envmap::Compensation::Uniform(fraction),
+        2 => warpcore::envmap::Compensation::LatLong(fraction),
+        _ => warpcore::envmap::Compensation::None,
+    };
     let weights: Vec<f32> = (0..width * height)
         .map(|k| f32::from_bits(get(3 + k)))
         .collect();
@@ -526,7 +534,7 @@ pub fn envmap(data: &[u8]) {
     let got = storage.len();
     run(
         "marginal",
-        MarginalConditional::new(&weights, width, height, &mut storage),
+        MarginalConditional::new_compensated(&weights, width, height, compensation, &mut storage),
         expected(need, got),
         &us,
         (
@@ -541,7 +549,7 @@ pub fn envmap(data: &[u8]) {
     let got = storage.len();
     run(
         "hierarchical",
-        Hierarchical::new(&weights, width, height, &mut storage),
+        Hierarchical::new_compensated(&weights, width, height, compensation, &mut storage),
         expected(need, got),
         &us,
         (

@@ -65,7 +65,18 @@
 #define WC_ENVMAP_HEADER_WORDS 8
 
 // The storage format version this library writes and reads (header word 1).
-#define WC_ENVMAP_FORMAT_VERSION 1
+#define WC_ENVMAP_FORMAT_VERSION 2
+
+// `compensation` of the `build_compensated` functions: the weights as given.
+#define WC_ENVMAP_COMPENSATION_NONE 0
+
+// `compensation`: subtract `fraction` times the mean weight (texels of equal solid angle:
+// equal-area maps), clamp at 0.
+#define WC_ENVMAP_COMPENSATION_UNIFORM 1
+
+// `compensation`: lat-long weights (radiance times the row's `sin(theta)`): subtract
+// `fraction` times the radiance's solid-angle average times the row's `sin(theta)`, clamp at 0.
+#define WC_ENVMAP_COMPENSATION_LATLONG 2
 
 // Owen-scrambled pmj02bn points: a draw of up to four dimensions is two independent (0,2)
 // pairs (dimensions 0-1 and 2-3).
@@ -218,6 +229,32 @@ int32_t wc_envmap_hierarchical_build(const float *weights,
                                      uint32_t *storage,
                                      size_t storage_len);
 
+// `wc_envmap_hierarchical_build` with MIS compensation (Karlik et al. 2019; pbrt-v4's
+// `compensatedDistribution`, Mitsuba 3's `mis_compensation`): the tables, and every pdf
+// the distribution reports, are those of `max(0, w - fraction * average)`.
+// `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_hierarchical_build`),
+// `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
+// `WC_ENVMAP_COMPENSATION_LATLONG` (lat-long weights made by
+// `wc_envmap_latlong_solid_angle_weights`: the radiance's solid-angle average, times each
+// row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
+// zero and negative mean no compensation. When compensation would remove every weight (a
+// constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
+// given, bit for bit `wc_envmap_hierarchical_build`.
+//
+// Returns `WC_OK` or the first failed check: `WC_ERR_INVALID_ARGUMENT` if `compensation`
+// is not one of the three constants (checked first: nothing is read or written), then
+// exactly the checks, order and writes of `wc_envmap_hierarchical_build`.
+//
+// # Safety
+// As `wc_envmap_hierarchical_build`.
+int32_t wc_envmap_hierarchical_build_compensated(const float *weights,
+                                                 uint32_t width,
+                                                 uint32_t height,
+                                                 uint32_t compensation,
+                                                 float fraction,
+                                                 uint32_t *storage,
+                                                 size_t storage_len);
+
 // Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
 // or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
 // and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
@@ -305,6 +342,32 @@ int32_t wc_envmap_marginal_conditional_build(const float *weights,
                                              uint32_t height,
                                              uint32_t *storage,
                                              size_t storage_len);
+
+// `wc_envmap_marginal_conditional_build` with MIS compensation (Karlik et al. 2019; pbrt-v4's
+// `compensatedDistribution`, Mitsuba 3's `mis_compensation`): the tables, and every pdf
+// the distribution reports, are those of `max(0, w - fraction * average)`.
+// `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_marginal_conditional_build`),
+// `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
+// `WC_ENVMAP_COMPENSATION_LATLONG` (lat-long weights made by
+// `wc_envmap_latlong_solid_angle_weights`: the radiance's solid-angle average, times each
+// row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
+// zero and negative mean no compensation. When compensation would remove every weight (a
+// constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
+// given, bit for bit `wc_envmap_marginal_conditional_build`.
+//
+// Returns `WC_OK` or the first failed check: `WC_ERR_INVALID_ARGUMENT` if `compensation`
+// is not one of the three constants (checked first: nothing is read or written), then
+// exactly the checks, order and writes of `wc_envmap_marginal_conditional_build`.
+//
+// # Safety
+// As `wc_envmap_marginal_conditional_build`.
+int32_t wc_envmap_marginal_conditional_build_compensated(const float *weights,
+                                                         uint32_t width,
+                                                         uint32_t height,
+                                                         uint32_t compensation,
+                                                         float fraction,
+                                                         uint32_t *storage,
+                                                         size_t storage_len);
 
 // Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
 // or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`

@@ -161,6 +161,14 @@ export interface Warpcore {
   /** Marginal-conditional distribution (a row by its total, then a column). */
   envmapMarginalConditional(weights: Float32Array, width: number, height: number): EnvMap;
   /**
+   * MIS-compensated hierarchical distribution: tables (and pdfs) of `max(0, w - fraction * average)`;
+   * 'uniform' for equal-area maps, 'latlong' for weights made by `envmapLatlongSolidAngleWeights`.
+   * Falls back to the weights as given when nothing would be left.
+   */
+  envmapHierarchicalCompensated(weights: Float32Array, width: number, height: number, compensation: 'none' | 'uniform' | 'latlong', fraction: number): EnvMap;
+  /** MIS-compensated marginal-conditional distribution (see `envmapHierarchicalCompensated`). */
+  envmapMarginalConditionalCompensated(weights: Float32Array, width: number, height: number, compensation: 'none' | 'uniform' | 'latlong', fraction: number): EnvMap;
+  /**
    * An EnvMap from storage words (`EnvMap.storage()` or a file written through the C API).
    * `options.verify` (default true) is read once, first; a throwing getter becomes a TypeError.
    */

@@ -667,15 +667,27 @@ function create(x) {
   freeze(EnvMap.prototype);
   freeze(EnvMap);
 
-  function build(kind, weights, width, height) {
+  // MIS compensation of a build: the C ABI's WC_ENVMAP_COMPENSATION_* values.
+  const COMPENSATIONS = { __proto__: null, none: 0, uniform: 1, latlong: 2 };
+
+  function build(kind, weights, width, height, compensated, compensation, fraction) {
     const k = KINDS[kind];
+    let c = 0;
+    if (compensated) {
+      if (typeof compensation !== 'string') throw typeError(`compensation must be a string, not ${describe(compensation)}`);
+      c = COMPENSATIONS[compensation];
+      if (c === undefined) throw rangeError(`compensation must be 'none', 'uniform' or 'latlong', got ${describe(compensation)}`);
+      if (typeof fraction !== 'number') throw typeError(`fraction must be a number, not ${describe(fraction)}`);
+    }
     const n = size(weights, width, height, 1, 'weights');
     const len = x[k.prefix + 'storage_len'](width, height) >>> 0;
     if (len === 0xffff_ffff) throw fail(-2, `envmap ${kind}`);
     const p = heap.alloc(4 * len);
     try {
       scratch([[F, n, weights]], (pw) => {
-        const code = x[k.prefix + 'build'](pw, width, height, p, len);
+        const code = compensated
+          ? x[k.prefix + 'build_compensated'](pw, width, height, c, fraction, p, len)
+          : x[k.prefix + 'build'](pw, width, height, p, len);
         if (code !== 0) throw fail(code, `envmap ${kind}`);
       });
     } catch (e) {
@@ -691,6 +703,18 @@ function create(x) {
     envmapHierarchical: (weights, width, height) => build('hierarchical', weights, width, height),
     /** The marginal-conditional distribution of `width x height` row-major weights. */
     envmapMarginalConditional: (weights, width, height) => build('marginal-conditional', weights, width, height),
+    /**
+     * The hierarchical distribution of MIS-compensated weights: `max(0, w - fraction * average)`
+     * (`compensation` 'uniform': the mean weight, for equal-area maps; 'latlong': the radiance's
+     * solid-angle average times each row's sin(theta), for weights made by
+     * `envmapLatlongSolidAngleWeights`; 'none': the weights as given). Falls back to the weights as
+     * given when nothing would be left; NaN, zero and negative fractions mean no compensation.
+     */
+    envmapHierarchicalCompensated: (weights, width, height, compensation, fraction) =>
+      build('hierarchical', weights, width, height, true, compensation, fraction),
+    /** The marginal-conditional distribution of MIS-compensated weights (see envmapHierarchicalCompensated). */
+    envmapMarginalConditionalCompensated: (weights, width, height, compensation, fraction) =>
+      build('marginal-conditional', weights, width, height, true, compensation, fraction),
     /**
      * An EnvMap from storage words (`EnvMap.storage()`, or a file written by the C API).
      * `options.verify` (default true) is the one property of a caller's object this module

@@ -256,10 +256,12 @@ fn header_errors<F: Format, Other: Format>() {
         t[k] = v.to_le();
         t
     };
-    assert_eq!(
-        err(&with(1, 2)),
-        Some(Error::UnsupportedVersion { found: 2 })
-    );
+    for v in [0, 1, FORMAT_VERSION + 1, u32::MAX] {
+        assert_eq!(
+            err(&with(1, v)),
+            Some(Error::UnsupportedVersion { found: v })
+        );
+    }
     assert_eq!(err(&with(2, 0)), Some(Error::Corrupt { word: 2 }));
     assert_eq!(err(&with(3, 0)), Some(Error::Corrupt { word: 3 }));
     assert_eq!(

@@ -201,7 +201,7 @@ proptest! {
         for hierarchical in [false, true] {
             let tag = if hierarchical { u32::from_le_bytes(*b"wcHI") } else { u32::from_le_bytes(*b"wcMC") };
             let (wu, hu) = (w as usize, h as usize);
-            let mut header = vec![tag.to_le(), 1u32.to_le(), w.to_le(), h.to_le()];
+            let mut header = vec![tag.to_le(), warpcore::envmap::FORMAT_VERSION.to_le(), w.to_le(), h.to_le()];
             // Optionally the lengths a real storage of these sizes has (then only the storage
             // length can be wrong).
             let real = if true_lens && wu <= 8 && hu <= 8 {

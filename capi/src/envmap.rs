@@ -3,7 +3,9 @@
 //! every target), then sample texels in proportion to their weight.
 
 use crate::ffi::{fits, map, overlap, slice, span};
-use warpcore::envmap::{self, Error, Hierarchical, MAX_SIDE, MarginalConditional, Sample, image};
+use warpcore::envmap::{
+    self, Compensation, Error, Hierarchical, MAX_SIDE, MarginalConditional, Sample, image,
+};
 
 /// Success.
 pub const WC_OK: i32 = 0;
@@ -34,7 +36,16 @@ pub const WC_ERR_OTHER: i32 = -10;
 /// Words of the header at the start of every storage.
 pub const WC_ENVMAP_HEADER_WORDS: u32 = 8;
 /// The storage format version this library writes and reads (header word 1).
-pub const WC_ENVMAP_FORMAT_VERSION: u32 = 1;
+pub const WC_ENVMAP_FORMAT_VERSION: u32 = 2;
+
+/// `compensation` of the `build_compensated` functions: the weights as given.
+pub const WC_ENVMAP_COMPENSATION_NONE: u32 = 0;
+/// `compensation`: subtract `fraction` times the mean weight (texels of equal solid angle:
+/// equal-area maps), clamp at 0.
+pub const WC_ENVMAP_COMPENSATION_UNIFORM: u32 = 1;
+/// `compensation`: lat-long weights (radiance times the row's `sin(theta)`): subtract
+/// `fraction` times the radiance's solid-angle average times the row's `sin(theta)`, clamp at 0.
+pub const WC_ENVMAP_COMPENSATION_LATLONG: u32 = 2;
 
 // Literals, so that cbindgen can write them; checked against the core crate here.
 const _: () = assert!(WC_ENVMAP_HEADER_WORDS as usize == envmap::HEADER_WORDS);
@@ -69,7 +80,13 @@ fn code(e: Error) -> i32 {
 /// The two distributions behind one interface.
 trait Dist<'a>: Sized {
     fn storage_len(width: usize, height: usize) -> usize;
-    fn new(weights: &[f32], w: usize, h: usize, storage: &'a mut [u32]) -> Result<Self, Error>;
+    fn new(
+        weights: &[f32],
+        w: usize,
+        h: usize,
+        c: Compensation,
+        storage: &'a mut [u32],
+    ) -> Result<Self, Error>;
     fn from_storage(storage: &'a [u32]) -> Result<Self, Error>;
     fn from_storage_verified(storage: &'a [u32]) -> Result<Self, Error>;
     fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize;
@@ -82,8 +99,14 @@ macro_rules! dist {
             fn storage_len(width: usize, height: usize) -> usize {
                 $t::storage_len(width, height)
             }
-            fn new(w8: &[f32], w: usize, h: usize, s: &'a mut [u32]) -> Result<Self, Error> {
-                $t::new(w8, w, h, s)
+            fn new(
+                w8: &[f32],
+                w: usize,
+                h: usize,
+                c: Compensation,
+                s: &'a mut [u32],
+            ) -> Result<Self, Error> {
+                $t::new_compensated(w8, w, h, c, s)
             }
             fn from_storage(storage: &'a [u32]) -> Result<Self, Error> {
                 $t::from_storage(storage)
@@ -113,6 +136,7 @@ unsafe fn build<'a, D: Dist<'a>>(
     weights: *const f32,
     width: u32,
     height: u32,
+    compensation: Compensation,
     storage: *mut u32,
     storage_len: usize,
 ) -> i32 {
@@ -156,9 +180,19 @@ unsafe fn build<'a, D: Dist<'a>>(
         core::ptr::write_bytes(storage, 0, needed);
         core::slice::from_raw_parts_mut(storage, needed)
     };
-    match D::new(weights, w, h, storage) {
+    match D::new(weights, w, h, compensation, storage) {
         Ok(_) => WC_OK,
         Err(e) => code(e),
+    }
+}
+
+/// The compensation a C caller asked for, `None` for an unknown `compensation`.
+fn compensation_of(compensation: u32, fraction: f32) -> Option<Compensation> {
+    match compensation {
+        WC_ENVMAP_COMPENSATION_NONE => Some(Compensation::None),
+        WC_ENVMAP_COMPENSATION_UNIFORM => Some(Compensation::Uniform(fraction)),
+        WC_ENVMAP_COMPENSATION_LATLONG => Some(Compensation::LatLong(fraction)),
+        _ => None,
     }
 }
 
@@ -302,7 +336,51 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_build(
     storage_len: usize,
 ) -> i32 {
     // SAFETY: the caller's contract above.
-    unsafe { build::<Hierarchical>(weights, width, height, storage, storage_len) }
+    unsafe {
+        build::<Hierarchical>(
+            weights,
+            width,
+            height,
+            Compensation::None,
+            storage,
+            storage_len,
+        )
+    }
+}
+
+/// `wc_envmap_hierarchical_build` with MIS compensation (Karlik et al. 2019; pbrt-v4's
+/// `compensatedDistribution`, Mitsuba 3's `mis_compensation`): the tables, and every pdf
+/// the distribution reports, are those of `max(0, w - fraction * average)`.
+/// `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_hierarchical_build`),
+/// `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
+/// `WC_ENVMAP_COMPENSATION_LATLONG` (lat-long weights made by
+/// `wc_envmap_latlong_solid_angle_weights`: the radiance's solid-angle average, times each
+/// row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
+/// zero and negative mean no compensation. When compensation would remove every weight (a
+/// constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
+/// given, bit for bit `wc_envmap_hierarchical_build`.
+///
+/// Returns `WC_OK` or the first failed check: `WC_ERR_INVALID_ARGUMENT` if `compensation`
+/// is not one of the three constants (checked first: nothing is read or written), then
+/// exactly the checks, order and writes of `wc_envmap_hierarchical_build`.
+///
+/// # Safety
+/// As `wc_envmap_hierarchical_build`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_hierarchical_build_compensated(
+    weights: *const f32,
+    width: u32,
+    height: u32,
+    compensation: u32,
+    fraction: f32,
+    storage: *mut u32,
+    storage_len: usize,
+) -> i32 {
+    let Some(c) = compensation_of(compensation, fraction) else {
+        return WC_ERR_INVALID_ARGUMENT;
+    };
+    // SAFETY: the caller's contract above.
+    unsafe { build::<Hierarchical>(weights, width, height, c, storage, storage_len) }
 }
 
 /// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
@@ -424,7 +502,51 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_build(
     storage_len: usize,
 ) -> i32 {
     // SAFETY: the caller's contract above.
-    unsafe { build::<MarginalConditional>(weights, width, height, storage, storage_len) }
+    unsafe {
+        build::<MarginalConditional>(
+            weights,
+            width,
+            height,
+            Compensation::None,
+            storage,
+            storage_len,
+        )
+    }
+}
+
+/// `wc_envmap_marginal_conditional_build` with MIS compensation (Karlik et al. 2019; pbrt-v4's
+/// `compensatedDistribution`, Mitsuba 3's `mis_compensation`): the tables, and every pdf
+/// the distribution reports, are those of `max(0, w - fraction * average)`.
+/// `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_marginal_conditional_build`),
+/// `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
+/// `WC_ENVMAP_COMPENSATION_LATLONG` (lat-long weights made by
+/// `wc_envmap_latlong_solid_angle_weights`: the radiance's solid-angle average, times each
+/// row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
+/// zero and negative mean no compensation. When compensation would remove every weight (a
+/// constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
+/// given, bit for bit `wc_envmap_marginal_conditional_build`.
+///
+/// Returns `WC_OK` or the first failed check: `WC_ERR_INVALID_ARGUMENT` if `compensation`
+/// is not one of the three constants (checked first: nothing is read or written), then
+/// exactly the checks, order and writes of `wc_envmap_marginal_conditional_build`.
+///
+/// # Safety
+/// As `wc_envmap_marginal_conditional_build`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_marginal_conditional_build_compensated(
+    weights: *const f32,
+    width: u32,
+    height: u32,
+    compensation: u32,
+    fraction: f32,
+    storage: *mut u32,
+    storage_len: usize,
+) -> i32 {
+    let Some(c) = compensation_of(compensation, fraction) else {
+        return WC_ERR_INVALID_ARGUMENT;
+    };
+    // SAFETY: the caller's contract above.
+    unsafe { build::<MarginalConditional>(weights, width, height, c, storage, storage_len) }
 }
 
 /// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`

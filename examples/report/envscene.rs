@@ -33,6 +33,20 @@
 //! solid-angle density (a sample whose density converts to 0 — only exactly at the lat-long
 //! pole — contributes 0, as in pbrt and Mitsuba).
 //!
+//! **MIS warps** (`hierarchical_equirect_mis`, `hierarchical_equal_area_mis`; issue 25; for
+//! random points, pmj02bn and Sobol' only, the report's time budget): the hierarchical
+//! distribution built from MIS-compensated
+//! weights (`Compensation::LatLong` / `Compensation::Uniform` with fraction 1: the map minus
+//! its solid-angle average, clamped at 0; Karlik et al. 2019, pbrt-v4's
+//! `compensatedDistribution`, Mitsuba 3's `mis_compensation`), combined with cosine-weighted
+//! BSDF sampling by the balance heuristic: each of the `N` sample points gives one map sample
+//! `w_l` and one BSDF sample `w_b` (the point shifted by (1/2, 1/2) modulo 1, warped by
+//! `sphere::cosine_hemisphere` around `n`), and the estimate is
+//! `(1 / N) sum [f(w_l) / (p_l(w_l) + p_b(w_l)) + f(w_b) / (p_l(w_b) + p_b(w_b))]` with
+//! `p_b = max(0, n . w) / pi`. Two integrand evaluations per point: compare these rows at
+//! equal cost with the plain rows at twice the sample count. The environment variable
+//! `REPORT_MIS_FRACTION` changes the fraction (0: MIS without compensation), for studies.
+//!
 //! **Reference**: [`crate::sphere_ref`], exact for each parameterization's map.
 
 use crate::math::{Rng, dot3, hash};
@@ -40,15 +54,32 @@ use crate::run::{Scene, Scratch};
 use crate::samplers::Sampler;
 use crate::sphere_ref::{EqualArea, Grid, LatLong, Param};
 use std::f64::consts::{PI, TAU};
-use warpcore::envmap::{self, Hierarchical, MarginalConditional, Sample, Word, image};
+use warpcore::envmap::{
+    self, Compensation, Hierarchical, MarginalConditional, Sample, Word, image,
+};
 use warpcore::sphere;
 
-pub const WARPS: [&str; 4] = [
+pub const WARPS: [&str; 6] = [
     "marginal_equirect",
     "hierarchical_equirect",
     "marginal_equal_area",
     "hierarchical_equal_area",
+    "hierarchical_equirect_mis",
+    "hierarchical_equal_area_mis",
 ];
+
+/// The plain warp (`0..4`) whose distribution and parameterization a warp uses.
+fn base(warp: usize) -> usize {
+    [0, 1, 2, 3, 1, 3].get(warp).copied().unwrap_or(3)
+}
+
+/// The compensation fraction of the `_mis` warps: 1, or `REPORT_MIS_FRACTION`.
+fn mis_fraction() -> f32 {
+    std::env::var("REPORT_MIS_FRACTION")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1.0)
+}
 
 /// Buffers of the environment-map draws.
 #[derive(Default)]
@@ -85,6 +116,8 @@ pub struct Side<P: Param> {
     pub radiance: Vec<f64>,
     pub marginal: MarginalConditional<'static>,
     pub hierarchical: Hierarchical<'static>,
+    /// The hierarchical distribution of MIS-compensated weights (the `_mis` warps).
+    pub hierarchical_mis: Hierarchical<'static>,
 }
 
 impl<P: Param> Side<P> {
@@ -95,7 +128,15 @@ impl<P: Param> Side<P> {
         height: usize,
         luminance: &[f32],
         weights: Vec<f32>,
+        compensation: Compensation,
     ) -> Result<Self, envmap::Error> {
+        let hierarchical_mis = Hierarchical::new_compensated(
+            &weights,
+            width,
+            height,
+            compensation,
+            leak(Hierarchical::storage_len(width, height)),
+        )?;
         let marginal = MarginalConditional::new(
             &weights,
             width,
@@ -116,6 +157,7 @@ impl<P: Param> Side<P> {
                 .collect(),
             marginal,
             hierarchical,
+            hierarchical_mis,
         })
     }
 
@@ -263,8 +305,22 @@ impl EnvScene {
         let ea_weights: Vec<f32> = ea.iter().map(|&l| if l > 0.0 { l } else { 0.0 }).collect();
         Ok(EnvScene {
             name: format!("envmap:{name}"),
-            latlong: Side::new(LatLong, w, h, &ll, ll_weights)?,
-            equal_area: Side::new(EqualArea, s, s, &ea, ea_weights)?,
+            latlong: Side::new(
+                LatLong,
+                w,
+                h,
+                &ll,
+                ll_weights,
+                Compensation::LatLong(mis_fraction()),
+            )?,
+            equal_area: Side::new(
+                EqualArea,
+                s,
+                s,
+                &ea,
+                ea_weights,
+                Compensation::Uniform(mis_fraction()),
+            )?,
             id: hash(&name.bytes().map(u64::from).collect::<Vec<_>>()),
         })
     }
@@ -365,6 +421,16 @@ impl Scene for EnvView<'_> {
         WARPS.to_vec()
     }
 
+    /// The `_mis` rows (two integrand evaluations per point) run for random points, pmj02bn
+    /// and Sobol' only: the report's time budget.
+    fn applies(&self, warp: usize, sampler: Sampler) -> bool {
+        warp < 4
+            || matches!(
+                sampler,
+                Sampler::Random | Sampler::Pmj02bn | Sampler::SobolOwen
+            )
+    }
+
     fn pixel(&self, index: u64) -> EnvPixel {
         let (n, m) = self.geometry(index);
         // Without the occluder: the half-space m . w >= 0 with m = n hides only directions
@@ -384,7 +450,7 @@ impl Scene for EnvView<'_> {
     }
 
     fn reference(&self, pixel: &EnvPixel, warp: usize) -> f64 {
-        pixel.reference[warp / 2]
+        pixel.reference[base(warp) / 2]
     }
 
     fn penumbra(&self, _pixel: &EnvPixel) -> bool {
@@ -400,8 +466,14 @@ impl Scene for EnvView<'_> {
             0 => self.latlong.marginal.sample_slice(points, samples),
             1 => self.latlong.hierarchical.sample_slice(points, samples),
             2 => self.equal_area.marginal.sample_slice(points, samples),
-            _ => self.equal_area.hierarchical.sample_slice(points, samples),
+            3 => self.equal_area.hierarchical.sample_slice(points, samples),
+            4 => self.latlong.hierarchical_mis.sample_slice(points, samples),
+            _ => self
+                .equal_area
+                .hierarchical_mis
+                .sample_slice(points, samples),
         };
+        let warp = base(warp);
         for (uv, smp) in env.uv.iter_mut().zip(samples.iter()) {
             *uv = smp.uv;
         }
@@ -420,6 +492,9 @@ impl Scene for EnvView<'_> {
     }
 
     fn evaluate(&self, pixel: &EnvPixel, warp: usize, spp: usize, s: &Scratch) -> f64 {
+        if warp >= 4 {
+            return self.evaluate_mis(pixel, base(warp), spp, s);
+        }
         let (radiance, width) = if warp < 2 {
             (&self.latlong.radiance, self.latlong.width())
         } else {
@@ -440,6 +515,83 @@ impl Scene for EnvView<'_> {
         }
         sum / spp as f64
     }
+}
+
+impl EnvView<'_> {
+    /// The `_mis` estimator (see the module docs): `warp` (1 or 3) names the
+    /// parameterization, whose compensated hierarchical tables `draw` sampled.
+    fn evaluate_mis(&self, pixel: &EnvPixel, warp: usize, spp: usize, s: &Scratch) -> f64 {
+        let latlong = warp < 2;
+        let (radiance, width, height) = if latlong {
+            (
+                &self.latlong.radiance,
+                self.latlong.width(),
+                self.latlong.height(),
+            )
+        } else {
+            let ea = &self.equal_area;
+            (&ea.radiance, ea.width(), ea.height())
+        };
+        // The light technique's density over directions at `uv`.
+        let light_pdf = |uv: [f32; 2]| -> f64 {
+            let p = if latlong {
+                self.latlong.hierarchical_mis.pdf(uv)
+            } else {
+                self.equal_area.hierarchical_mis.pdf(uv)
+            };
+            f64::from(if latlong {
+                image::latlong_pdf_to_solid_angle(p, uv[1])
+            } else {
+                image::equal_area_pdf_to_solid_angle(p)
+            })
+        };
+        let (n, m) = (pixel.n, pixel.m);
+        let frame = basis(n);
+        let mut sum = 0.0;
+        for k in 0..spp {
+            // The map's sample.
+            let smp = &s.env.samples[k];
+            let d = s.out3[k].map(f64::from);
+            let c = dot3(n, d);
+            let p = s.env.pdf[k] as f64;
+            if c > 0.0 && dot3(m, d) >= 0.0 && p > 0.0 {
+                let t = smp.texel[1] as usize * width + smp.texel[0] as usize;
+                sum += radiance[t] * c / (p + c / PI);
+            }
+            // The BSDF's sample: the point shifted by (1/2, 1/2), cosine-weighted around n.
+            let u = s.points[k].map(|x| {
+                let y = x + 0.5;
+                if y >= 1.0 { y - 1.0 } else { y }
+            });
+            let l = sphere::cosine_hemisphere(u).map(f64::from);
+            let d = [0, 1, 2].map(|i| frame[0][i] * l[0] + frame[1][i] * l[1] + n[i] * l[2]);
+            let c = dot3(n, d);
+            if c <= 0.0 || dot3(m, d) < 0.0 {
+                continue;
+            }
+            let df = d.map(|x| x as f32);
+            let uv = if latlong {
+                sphere::equirect_inverse(df)
+            } else {
+                sphere::equal_area_inverse(df)
+            };
+            let tx = ((uv[0] as f64 * width as f64) as usize).min(width - 1);
+            let ty = ((uv[1] as f64 * height as f64) as usize).min(height - 1);
+            sum += radiance[ty * width + tx] * c / (light_pdf(uv) + c / PI);
+        }
+        sum / spp as f64
+    }
+}
+
+/// Two unit vectors completing `n` to an orthonormal basis (Duff et al. 2017).
+fn basis(n: [f64; 3]) -> [[f64; 3]; 2] {
+    let sign = 1f64.copysign(n[2]);
+    let a = -1.0 / (sign + n[2]);
+    let b = n[0] * n[1] * a;
+    [
+        [1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0]],
+        [b, sign + n[1] * n[1] * a, -n[1]],
+    ]
 }
 
 /// `4 pi`: solid angle of the sphere (for tests and docs).

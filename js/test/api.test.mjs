@@ -81,6 +81,13 @@ const SPEC = {
   ],
   envmapHierarchical: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, { u32: true, good: () => 3 }, { u32: true, good: () => 2 }],
   envmapMarginalConditional: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, { u32: true, good: () => 3 }, { u32: true, good: () => 2 }],
+  ...Object.fromEntries(['envmapHierarchicalCompensated', 'envmapMarginalConditionalCompensated'].map((name) => [name, [
+    { T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) },
+    { u32: true, good: () => 3 },
+    { u32: true, good: () => 2 },
+    { good: () => 'uniform', bad: [['Uniform', RangeError], ['', RangeError], [1, TypeError], [null, TypeError], [undefined, TypeError]] },
+    { good: () => 1, bad: [['1', TypeError], [1n, TypeError], [null, TypeError], [undefined, TypeError], [{}, TypeError]] },
+  ]])),
   envmapFromStorage: [{ T: Uint32Array, d: 1, good: () => STORAGE.slice() }],
   memoryStats: [],
   // The sampler (js/test/sampler.test.mjs tests its arguments in depth).
@@ -347,4 +354,41 @@ test('EnvMap: sampling, pdf, storage round trip, errors, free', () => {
   assert.deepEqual([...zero.pdf(f32(0.1, 0.1, 0.9, 0.9))], [1, 1]);
   zero[Symbol.dispose ?? Symbol.for('Symbol.dispose')]();
   assert.equal(wc.memoryStats().reserved, before, 'every table freed');
+});
+
+test('MIS-compensated env maps: pdf of max(0, w - average), fallback, none = plain', () => {
+  const pairs = [
+    [wc.envmapHierarchical, wc.envmapHierarchicalCompensated],
+    [wc.envmapMarginalConditional, wc.envmapMarginalConditionalCompensated],
+  ];
+  for (const [plain, compensated] of pairs) {
+    // Mean 4: the compensated weights are [0, 0, 0, 12], so only texel [1, 1] is left (pdf 4).
+    const w = f32(1, 1, 2, 12);
+    const env = compensated(w, 2, 2, 'uniform', 1);
+    const pdf = env.pdf(f32(0.25, 0.25, 0.75, 0.25, 0.25, 0.75, 0.75, 0.75));
+    assert.deepEqual([...pdf], [0, 0, 0, 4]);
+    const s = env.sample(f32(0.1, 0.9, 0.6, 0.2));
+    assert.deepEqual([...s.texel], [1, 1, 1, 1]);
+    env.free();
+    // Half the mean: [0, 0, 0, 10] as well; a fraction of 0.1: [0.6, 0.6, 1.6, 11.6] / 14.4.
+    const tenth = compensated(w, 2, 2, 'uniform', 0.1);
+    const p = tenth.pdf(f32(0.25, 0.25, 0.75, 0.75));
+    assert.ok(Math.abs(p[0] - (4 * 0.6) / 14.4) < 1e-5 && Math.abs(p[1] - (4 * 11.6) / 14.4) < 1e-5, `${p}`);
+    tenth.free();
+    // 'none', NaN and negative fractions, and a constant map (everything removed: the fallback)
+    // give the plain tables word for word.
+    for (const [map, how, f] of [[w, 'none', 1], [w, 'uniform', NaN], [w, 'latlong', -1], [f32(3, 3, 3, 3), 'uniform', 1]]) {
+      const a = plain(map, 2, 2);
+      const b = compensated(map, 2, 2, how, f);
+      const [sa, sb] = [a.storage(), b.storage()];
+      // The hierarchical alignment padding (header word 4) may differ: compare the samples.
+      const u = f32(0.1, 0.2, 0.7, 0.4, 0.99, 0.99);
+      assert.deepEqual([...a.sample(u).pdf], [...b.sample(u).pdf], `${how} ${f}`);
+      assert.equal(sa[1], sb[1]);
+      a.free();
+      b.free();
+    }
+    const inf = f32(1, Infinity, 1, 1);
+    assert.equal(thrown(() => compensated(inf, 2, 2, 'latlong', 1), 'inf').code, 'WC_ERR_INFINITE_WEIGHT');
+  }
 });

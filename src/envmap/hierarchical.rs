@@ -1,7 +1,14 @@
 //! Hierarchical sampling: walk a MIP pyramid from the whole map down to one texel, splitting
 //! the sample square at each level in proportion to the four children.
 //!
-//! The map is padded with zero weight to `2^a x 2^b` texels (`2^a >= width`, `2^b >= height`).
+//! The map is padded with zero weight to `2^a x 2^b` texels (`2^a >= width`, `2^b >= height`),
+//! **centred**: `floor((2^a - width) / 2)` columns of padding before the map and the rest after
+//! it (likewise rows), so the pyramid's split lines fall symmetrically about the map's centre
+//! instead of wherever the power-of-two boundaries of a corner-padded map happen to cut it
+//! (storage format version 2; version 1 padded in the corner). A fraction whose lower part is
+//! all padding is exactly 0 and one whose upper part is all padding or missing exactly 1, so
+//! no walk can enter the padding.
+//!
 //! Level `L - 1` groups texels 2x2, each level above groups the one below 2x2, and on a
 //! non-square map the top `|a - b|` levels split the longer axis only (2x1 or 1x2), exactly
 //! the MIP chain of a non-square image read from the top. Every internal node stores three
@@ -50,12 +57,12 @@
 //! integer operations per level and one division per axis at the end.
 
 use super::{
-    Error, HEADER_WORDS, Sample, SampleX8, SampleX16, Word, carve, carve_ref, check_lens,
-    check_size, checked_len, clean, edges, from_storage_order, load4, read_header, scalar_sample,
-    simd_sample, simd16_sample, slices, tag, take, to_storage_order, u32_to_f32, write_header,
+    Compensation, Compensator, Error, HEADER_WORDS, Sample, Word, carve, carve_ref, check_lens,
+    check_size, checked_len, clean, edges, from_storage_order, load4, read_header, slices, tag,
+    take, to_storage_order, u32_to_f32, write_header,
 };
 use crate::lanes::{Lane, UintLane, unit_interval};
-use wide::{f32x8, f32x16};
+use wide::f32x8;
 
 /// Words per block: own fractions (3), four children's fractions (12), the block's sum (1).
 const BLOCK: usize = 16;
@@ -73,6 +80,12 @@ const TAG: u32 = tag(*b"wcHI");
 /// per padded texel, 34.1 MiB for 4096 x 2048. Padding to powers of two costs up to (just
 /// under) 4 times that on unlucky sizes. See the [module docs](super) for the format, which
 /// [`from_storage`](Self::from_storage) loads back.
+///
+/// Sampling ([`Distribution`](super::Distribution), or the same methods inherent): one node
+/// read per pyramid level (`ceil(log2(max(width, height)))` levels) and one division per
+/// axis; `sample_slice` interleaves six groups of eight lanes with AVX2 or AVX-512, two
+/// elsewhere. A side that is not a power of two is padded with zero weight on both sides,
+/// the map centred in its pyramid (`docs/envmaps.md` has the measurements).
 #[derive(Clone, Copy, Debug)]
 pub struct Hierarchical<'a> {
     /// The blocks, block level by block level from the root, 64-byte aligned. Block `i`:
@@ -87,6 +100,9 @@ pub struct Hierarchical<'a> {
     /// The padded map is `2^xbits x 2^ybits` texels.
     xbits: u32,
     ybits: u32,
+    /// Where the map sits in the padded square: texel `(c, r)` is padded texel
+    /// `(c + off[0], r + off[1])`, `off = floor((2^bits - size) / 2)` per axis (centred).
+    off: [u32; 2],
     /// `width * height * 2^-60`: turns the product of the two final interval lengths into a
     /// density.
     pdf_scale: f32,
@@ -140,6 +156,14 @@ impl Shape {
     fn shift(self, k: u32) -> u32 {
         self.virtual_levels() - 1 - k
     }
+    /// Splits of each axis at virtual levels `k` and finer: a node of level `k` at
+    /// coordinate `c` covers padded texels `[c << below, (c + 1) << below)` on that axis.
+    fn below(self, k: u32) -> [u32; 2] {
+        (k..self.virtual_levels()).fold([0, 0], |[x, y], l| {
+            let (sx, sy) = self.splits(l);
+            [x + u32::from(sx), y + u32::from(sy)]
+        })
+    }
     /// Nodes at virtual level `k`.
     fn nodes(self, k: u32) -> u64 {
         (0..k).fold(1u64, |n, l| n << self.branch_bits(l))
@@ -152,15 +176,57 @@ impl Shape {
     }
 }
 
+/// Where a `width x height` map sits in its `2^xbits x 2^ybits` padded square: centred,
+/// `off = floor((2^bits - size) / 2)` texels of padding before it on each axis (and the rest
+/// after it), so that the pyramid's split lines fall symmetrically about the map's centre
+/// (measured: see `docs/envmaps.md`).
+#[derive(Clone, Copy, Debug)]
+struct Placement {
+    off: [u64; 2],
+    size: [u64; 2],
+}
+
+impl Placement {
+    fn new(shape: Shape, width: usize, height: usize) -> Self {
+        let size = [width as u64, height as u64];
+        let padded = [shape.xbits, shape.ybits].map(|b| 1u64.checked_shl(b).unwrap_or(0));
+        Placement {
+            off: [0, 1].map(|a| padded[a].saturating_sub(size[a]) / 2),
+            size,
+        }
+    }
+    /// The offsets as `u32` (they are below `2^24`).
+    fn offsets(self) -> [u32; 2] {
+        self.off.map(|o| o as u32)
+    }
+    /// Is the node at `(x, y)` whose extent is `1 << below` padded texels per axis all
+    /// padding (outside the map on some axis)?
+    fn padding(self, below: [u32; 2], x: u32, y: u32) -> bool {
+        [x, y].into_iter().enumerate().any(|(a, c)| {
+            let start = u64::from(c) << below[a];
+            let end = (u64::from(c) + 1) << below[a];
+            end <= self.off[a] || start >= self.off[a] + self.size[a]
+        })
+    }
+}
+
 /// Fixed-point one of the fractions: `2^31`.
 const FRACTION_ONE: u32 = 1 << 31;
 /// Fixed-point one of the keys and intervals: `2^30`.
 const KEY_ONE: u32 = 1 << 30;
 
-/// `a / (a + b)` as a 0.31 fixed-point fraction: `2^31` (1) when `b = 0` (also for an empty
-/// node, which is never reached), `0` when `a = 0 < b`, and strictly inside `[1, 2^31 - 1]`
-/// when both are positive.
-fn fraction(a: f64, b: f64) -> u32 {
+/// `a / (a + b)` as a 0.31 fixed-point fraction: `2^31` (1) when the upper part is all
+/// padding or missing (`b_pad`) or `b = 0` (also for an empty node, which is never reached),
+/// `0` when the lower part is all padding (`a_pad`) or `a = 0 < b`, and strictly inside
+/// `[1, 2^31 - 1]` when both are positive. The padding rules make the structural fractions
+/// independent of the weights, which is what `from_storage_verified` checks.
+fn fraction(a: f64, b: f64, a_pad: bool, b_pad: bool) -> u32 {
+    if b_pad {
+        return FRACTION_ONE;
+    }
+    if a_pad {
+        return 0;
+    }
     if b <= 0.0 {
         return FRACTION_ONE;
     }
@@ -172,15 +238,17 @@ fn fraction(a: f64, b: f64) -> u32 {
     p.clamp(1, FRACTION_ONE - 1)
 }
 
-/// The fractions of a node with children sums `s[bx][by]`, and its sum.
-fn node(s: [[f32; 2]; 2]) -> ([u32; 3], f32) {
+/// The fractions of a node with children sums `s[bx][by]`, and its sum; `pad[bx][by]` says
+/// which children are all padding or missing.
+fn node((s, pad): ([[f32; 2]; 2], [[bool; 2]; 2])) -> ([u32; 3], f32) {
     let c = s.map(|col| col.map(f64::from));
     let (left, right) = (c[0][0] + c[0][1], c[1][0] + c[1][1]);
+    let column_pad = pad.map(|col| col[0] && col[1]);
     (
         [
-            fraction(left, right),
-            fraction(c[0][0], c[0][1]),
-            fraction(c[1][0], c[1][1]),
+            fraction(left, right, column_pad[0], column_pad[1]),
+            fraction(c[0][0], c[0][1], pad[0][0], pad[0][1]),
+            fraction(c[1][0], c[1][1], pad[1][0], pad[1][1]),
         ],
         (left + right) as f32,
     )
@@ -194,18 +262,23 @@ fn split<U: UintLane>(len: U, p: U) -> U {
     (len + len).mul_high(p)
 }
 
-/// Children sums `s[bx][by]` of a node, from `child(bx, by)`, zero where the level does not
-/// split that axis.
-fn children(sx: bool, sy: bool, mut child: impl FnMut(u32, u32) -> f32) -> [[f32; 2]; 2] {
+/// Children sums `s[bx][by]` of a node and whether each is all padding, from
+/// `child(bx, by)`; zero and padding where the level does not split that axis.
+fn children(
+    sx: bool,
+    sy: bool,
+    mut child: impl FnMut(u32, u32) -> (f32, bool),
+) -> ([[f32; 2]; 2], [[bool; 2]; 2]) {
     let mut s = [[0.0f32; 2]; 2];
-    for (bx, col) in (0u32..).zip(s.iter_mut()) {
-        for (by, v) in (0u32..).zip(col.iter_mut()) {
+    let mut pad = [[true; 2]; 2];
+    for (bx, (col, pcol)) in (0u32..).zip(s.iter_mut().zip(pad.iter_mut())) {
+        for (by, (v, p)) in (0u32..).zip(col.iter_mut().zip(pcol.iter_mut())) {
             if (bx == 0 || sx) && (by == 0 || sy) {
-                *v = child(bx, by);
+                (*v, *p) = child(bx, by);
             }
         }
     }
-    s
+    (s, pad)
 }
 
 /// Writes a node's fractions at `at` in `block`.
@@ -215,16 +288,30 @@ fn put(block: &mut [u32], at: usize, fractions: [u32; 3]) {
     }
 }
 
+// Sealed supertrait of `Distribution`, generic over the crate's private lane traits.
+#[allow(private_bounds, private_interfaces)]
 impl slices::Body for Hierarchical<'_> {
     #[inline(always)]
-    fn sample<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
+    fn sample_lanes<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
         self.sample_body(u)
     }
     #[inline(always)]
-    fn pdf<L: Lane>(&self, uv: [L; 2]) -> L {
+    fn pdf_lanes<L: Lane>(&self, uv: [L; 2]) -> L {
         self.pdf_body(uv)
     }
+    #[inline(always)]
+    fn size(&self) -> [u32; 2] {
+        [self.width, self.height]
+    }
+    fn slice_sample(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
+        slices::sample::<Self, f32x8, 8, { slices::HIER }>(self, u, out)
+    }
+    fn slice_pdf(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
+        slices::pdf::<Self, f32x8, 8, { slices::HIER }>(self, uv, out)
+    }
 }
+
+impl super::Distribution for Hierarchical<'_> {}
 
 impl<'a> Hierarchical<'a> {
     /// Words of storage `new` needs for a `width x height` map; `usize::MAX` when the map is
@@ -254,6 +341,21 @@ impl<'a> Hierarchical<'a> {
         weights: &[f32],
         width: usize,
         height: usize,
+        storage: &'a mut [Word],
+    ) -> Result<Self, Error> {
+        Self::new_compensated(weights, width, height, Compensation::None, storage)
+    }
+
+    /// [`new`](Self::new) with MIS compensation: the tables (and so every pdf) are those of
+    /// the compensated weights, `max(0, w - fraction * average)` (see [`Compensation`] for
+    /// the lat-long form), falling back to the weights as given when compensation would
+    /// remove them all. One more pass over the weights (two for `MarginalConditional`'s
+    /// check); `Compensation::None` is `new`. Errors: those of `new`.
+    pub fn new_compensated(
+        weights: &[f32],
+        width: usize,
+        height: usize,
+        compensation: Compensation,
         storage: &'a mut [Word],
     ) -> Result<Self, Error> {
         let needed = Self::storage_len(width, height);
@@ -296,7 +398,9 @@ impl<'a> Hierarchical<'a> {
             }
             total += f64::from(clean(x));
         }
-        // All zero: uniform over the real texels. Otherwise scale so no f32 sum overflows.
+        let compensator = Compensator::new(weights, w, h, compensation)?;
+        // All zero: uniform over the real texels. Otherwise scale so no f32 sum overflows
+        // (compensated weights are smaller).
         let uniform = total <= 0.0;
         let exponent = ((total.to_bits() >> 52) & 0x7ff) as i32 - 1023;
         let scale = if exponent > 120 {
@@ -304,15 +408,27 @@ impl<'a> Hierarchical<'a> {
         } else {
             1.0
         };
+        let place = Placement::new(shape, w, h);
+        let [ox, oy] = place.offsets();
+        // Padded texel `(tx, ty)`: map texel `(tx - ox, ty - oy)`, or padding.
         let weight = |tx: u32, ty: u32| -> f32 {
+            let (tx, ty) = (tx.wrapping_sub(ox), ty.wrapping_sub(oy));
             if tx as usize >= w || ty as usize >= h {
                 return 0.0;
             }
             if uniform {
                 return 1.0;
             }
-            let x = weights.get(ty as usize * w + tx as usize).copied();
-            clean(x.unwrap_or(0.0)) * scale
+            let x = clean(
+                weights
+                    .get(ty as usize * w + tx as usize)
+                    .copied()
+                    .unwrap_or(0.0),
+            );
+            match compensator {
+                Some(c) => (c.apply(x, ty as usize) * f64::from(scale)) as f32,
+                None => x * scale,
+            }
         };
 
         // Block offsets (in blocks) per block level.
@@ -340,34 +456,35 @@ impl<'a> Hierarchical<'a> {
             let (upper, lower) = all.split_at_mut(next.min(all.len()));
             let upper = upper.get_mut(here..).unwrap_or(&mut []);
             let finest = b + 1 == block_levels;
+            let (below1, below2) = (shape.below(k + 1), shape.below(k + 2));
             for (i, block) in upper.iter_mut().enumerate() {
                 // Slots of children the level does not have stay 0.
                 block.fill(0);
-                // Texel coordinates of this node (finest level only): walk its index bits.
-                let (x, y) = if finest {
-                    node_coords(shape, k, i as u32)
-                } else {
-                    (0, 0)
-                };
+                // Coordinates of this node: walk its index bits.
+                let (x, y) = node_coords(shape, k, i as u32);
                 let own = children(sx, sy, |bx, by| {
                     let c = bx | (by << u32::from(sx));
-                    let grand = children(csx, csy, |gx, gy| {
+                    let cx = (x << u32::from(sx)) | bx;
+                    let cy = (y << u32::from(sy)) | by;
+                    let child_pad = place.padding(below1, cx, cy);
+                    let grand = children(csx, csy, |lx, ly| {
+                        let (gx, gy) = ((cx << u32::from(csx)) | lx, (cy << u32::from(csy)) | ly);
+                        let pad = place.padding(below2, gx, gy);
                         if finest {
-                            let cx = (x << u32::from(sx)) | bx;
-                            let cy = (y << u32::from(sy)) | by;
-                            weight((cx << u32::from(csx)) | gx, (cy << u32::from(csy)) | gy)
+                            (weight(gx, gy), pad)
                         } else {
                             let j = (i << shape.branch_bits(k)) | c as usize;
                             let g = (j << shape.branch_bits(k + 1))
-                                | (gx | (gy << u32::from(csx))) as usize;
-                            lower
+                                | (lx | (ly << u32::from(csx))) as usize;
+                            let sum = lower
                                 .get(g)
-                                .map_or(0.0, |blk| f32::from_bits(blk[BLOCK - 1]))
+                                .map_or(0.0, |blk| f32::from_bits(blk[BLOCK - 1]));
+                            (sum, pad)
                         }
                     });
                     let (fr, sum) = node(grand);
                     put(block, 3 + 3 * c as usize, fr);
-                    sum
+                    (sum, child_pad)
                 });
                 let (fr, sum) = node(own);
                 put(block, 0, fr);
@@ -422,6 +539,7 @@ impl<'a> Hierarchical<'a> {
             height: h as u32,
             xbits: shape.xbits,
             ybits: shape.ybits,
+            off: Placement::new(shape, w, h).offsets(),
             pdf_scale: (w as f64 * h as f64 / (1u64 << 60) as f64) as f32,
         })
     }
@@ -473,39 +591,32 @@ impl<'a> Hierarchical<'a> {
                 .get(k)
                 .map_or(0, |&x| from_storage_order(core::num::Wrapping(x)).0)
         };
-        let size = [self.width, self.height].map(u64::from);
-        // Splits of each axis at the virtual levels at and below `k` (the finer ones): a node
-        // of level `k` at coordinate `c` covers `[c, c + 1) << below[k]` on that axis.
-        let mut below = [[0u32; 2]; 2 * 14 + 2];
-        let levels = shape.virtual_levels() as usize;
-        for k in (0..levels).rev() {
-            let (sx, sy) = shape.splits(k as u32);
-            let next = below.get(k + 1).copied().unwrap_or([0; 2]);
-            if let Some(b) = below.get_mut(k) {
-                *b = [next[0] + u32::from(sx), next[1] + u32::from(sy)];
-            }
-        }
-        let below = |k: u32, axis: usize| below.get(k as usize).map_or(0, |b| b[axis]);
-        // Does `[start, ...) << shift` on `axis` begin in the padding?
-        let padding =
-            |start: u32, shift: u32, axis: usize| (u64::from(start) << shift) >= size[axis];
+        let place = Placement::new(shape, self.width as usize, self.height as usize);
         // Checks the fractions at `at` of the node at `(x, y)` of virtual level `k`: at most 1,
-        // and exactly 1 where the upper part is missing (axis not split) or all padding.
+        // exactly 1 where the upper part is missing (axis not split) or all padding, and
+        // exactly 0 where only the lower part is all padding (what `fraction` writes).
         let node_ok = |at: usize, k: u32, x: u32, y: u32| -> Option<usize> {
             let (sx, sy) = shape.splits(k);
             let [px, py0, py1] = [0, 1, 2].map(|j| word(at + j));
             let one = FRACTION_ONE;
-            let (bx, by) = (below(k, 0), below(k, 1));
-            let empty = padding(x, bx, 0) || padding(y, by, 1);
-            let upper_x = !sx || empty || padding(2 * x + 1, bx.wrapping_sub(1), 0);
-            if px > one || (upper_x && px != one) {
+            let below = shape.below(k + 1);
+            // Child (bx, by) all padding or missing?
+            let pad = |bx: u32, by: u32| {
+                (bx == 1 && !sx)
+                    || (by == 1 && !sy)
+                    || place.padding(below, (x << u32::from(sx)) | bx, (y << u32::from(sy)) | by)
+            };
+            let column = |bx: u32| pad(bx, 0) && pad(bx, 1);
+            let expect = |p: u32, lower: bool, upper: bool| {
+                p > one || (upper && p != one) || (!upper && lower && p != 0)
+            };
+            if expect(px, column(0), column(1)) {
                 return Some(at);
             }
-            let upper_y = !sy || empty || padding(2 * y + 1, by.wrapping_sub(1), 1);
-            if py0 > one || (upper_y && py0 != one) {
+            if expect(py0, pad(0, 0), pad(0, 1)) {
                 return Some(at + 1);
             }
-            if py1 > one || ((upper_y || upper_x) && py1 != one) {
+            if expect(py1, pad(1, 0), pad(1, 1)) {
                 return Some(at + 2);
             }
             None
@@ -550,17 +661,7 @@ impl<'a> Hierarchical<'a> {
         None
     }
 
-    /// Width of the map in texels.
-    #[inline]
-    pub fn width(&self) -> usize {
-        self.width as usize
-    }
-
-    /// Height of the map in texels.
-    #[inline]
-    pub fn height(&self) -> usize {
-        self.height as usize
-    }
+    super::inherent_methods!();
 
     /// Walks the pyramid from the root to a texel, starting with the keys `key` (the pdf
     /// lookup passes zeros). At each split, `left(shift, r, m, axis)` says (per lane) whether
@@ -630,9 +731,11 @@ impl<'a> Hierarchical<'a> {
     /// The sample a finished walk describes.
     #[inline(always)]
     fn finish<L: Lane>(&self, walk: &Walk<L::U>) -> ([L; 2], L, [L::U; 2]) {
+        // Padded coordinates to the map's (wrapping: a corrupt table could lead into the
+        // padding before the map, which then clamps to the last texel).
         let texel = [
-            clamp_below(walk.texel[0], self.width),
-            clamp_below(walk.texel[1], self.height),
+            clamp_below(walk.texel[0] - L::U::splat(self.off[0]), self.width),
+            clamp_below(walk.texel[1] - L::U::splat(self.off[1]), self.height),
         ];
         let uv = [
             edges::point(
@@ -660,8 +763,8 @@ impl<'a> Hierarchical<'a> {
     #[inline(always)]
     fn pdf_body<L: Lane>(&self, uv: [L; 2]) -> L {
         let texel = [
-            edges::texel(self.edges_x, uv[0], self.width),
-            edges::texel(self.edges_y, uv[1], self.height),
+            edges::texel(self.edges_x, uv[0], self.width) + L::U::splat(self.off[0]),
+            edges::texel(self.edges_y, uv[1], self.height) + L::U::splat(self.off[1]),
         ];
         let (zero, one) = (L::U::splat(0), L::U::splat(1));
         let walk = self.descend([zero; 2], |shift, _, _, axis| {
@@ -669,63 +772,6 @@ impl<'a> Hierarchical<'a> {
             (t.shr(shift) & one).simd_eq(zero)
         });
         self.density(&walk)
-    }
-
-    /// Draws a texel with probability proportional to its weight and a uniform point in it.
-    ///
-    /// Each coordinate is first mapped onto `[0, 1 - 2^-24]` by the forward rule. Cost: one
-    /// node read per pyramid level (`ceil(log2(max(width, height)))` levels) and one division
-    /// per axis. The pdf equals [`pdf`](Self::pdf)`(uv)` bit for bit.
-    #[inline]
-    pub fn sample(&self, u: [f32; 2]) -> Sample {
-        scalar_sample(self.sample_body(u))
-    }
-
-    /// [`sample`](Self::sample) on eight points at once; bit-identical to eight scalar calls.
-    #[inline]
-    pub fn sample_x8(&self, u: [f32x8; 2]) -> SampleX8 {
-        simd_sample(self.sample_body(u))
-    }
-
-    /// [`sample`](Self::sample) on sixteen points at once; bit-identical to sixteen scalar
-    /// calls. One AVX-512 register per coordinate where the build has AVX-512F; elsewhere
-    /// `wide` runs two 8-lane halves.
-    #[inline]
-    pub fn sample_x16(&self, u: [f32x16; 2]) -> SampleX16 {
-        simd16_sample(self.sample_body(u))
-    }
-
-    /// [`sample`](Self::sample) over a batch: `out[i] = sample(u[i])` for
-    /// `i < min(u.len(), out.len())`; returns that count. Bit-identical to the scalar form.
-    /// Runs several groups of eight lanes interleaved, so that their table reads overlap
-    /// (six groups with AVX2 or AVX-512, two elsewhere).
-    pub fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
-        slices::sample::<Self, f32x8, 8, { slices::HIER }>(self, u, out)
-    }
-
-    /// Density at `uv` with respect to area on `[0, 1]^2`: `P(texel) * width * height` for
-    /// the texel holding `uv` (0 on zero-weight texels). `uv` is clamped by the forward rule.
-    #[inline]
-    pub fn pdf(&self, uv: [f32; 2]) -> f32 {
-        self.pdf_body(uv)
-    }
-
-    /// [`pdf`](Self::pdf) on eight points at once; bit-identical to eight scalar calls.
-    #[inline]
-    pub fn pdf_x8(&self, uv: [f32x8; 2]) -> f32x8 {
-        self.pdf_body(uv)
-    }
-
-    /// [`pdf`](Self::pdf) on sixteen points at once; bit-identical to sixteen scalar calls.
-    #[inline]
-    pub fn pdf_x16(&self, uv: [f32x16; 2]) -> f32x16 {
-        self.pdf_body(uv)
-    }
-
-    /// [`pdf`](Self::pdf) over a batch, with the length rule of
-    /// [`sample_slice`](Self::sample_slice).
-    pub fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
-        slices::pdf::<Self, f32x8, 8, { slices::HIER }>(self, uv, out)
     }
 }
 

@@ -73,6 +73,11 @@ fn sin_pi<L: Lane>(v: L) -> L {
     sin_cos_turns(v * L::splat(0.5)).0.abs()
 }
 
+/// `sin(pi v)`, the row factor of [`latlong_solid_angle_weights`] (for MIS compensation).
+pub(super) fn row_sine(v: f32) -> f32 {
+    sin_pi(v)
+}
+
 /// Multiplies each row of a lat-long weight map by `sin(theta)` at the row's centre,
 /// `theta = pi (row + 1/2) / height`, so that a texel's weight is proportional to radiance
 /// times the solid angle it covers.
@@ -174,6 +179,12 @@ pub const MAX_SUPERSAMPLE: usize = 64;
 ///
 /// Choose `size` so that `size^2` is about the source's texel count or more, and
 /// `supersample >= 2`: a source texel smaller than an output texel's samples can be missed.
+/// **When the result feeds [`Hierarchical`](super::Hierarchical), prefer a power-of-two
+/// `size`** (256, 512, 1024): the pyramid then has no padding and splits the square at its own
+/// halves (the octahedral seams). Other sizes are centred in the next power of two (storage
+/// format version 2), which measured as well as a power of two in the report's scenes and
+/// better than the old corner placement (`docs/envmaps.md` has the measurements); they cost
+/// up to about 4x the storage of the map's own texels.
 /// `src` is row-major, row 0 around `+z` (`v` in `[0, 1/src_height)`). Values are taken as
 /// they are, except that NaN and negative channels count as 0 (the weight rule, so a bad
 /// source texel cannot spoil its neighbours' averages); `+inf` stays infinite.

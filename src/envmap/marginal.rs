@@ -23,13 +23,13 @@
 //! at `50,000 : 1`.
 
 use super::{
-    Error, HEADER_WORDS, SampleX8, Word, carve, carve_ref, check_lens, check_size, checked_len,
-    clean, edges, fixed_key, from_storage_order, load, read_header, scalar_sample, simd_sample,
-    simd16_sample, tag, take, to_storage_order, u32_to_f32, write_header,
+    Compensation, Compensator, Error, HEADER_WORDS, Word, carve, carve_ref, check_lens, check_size,
+    checked_len, clean, edges, fixed_key, from_storage_order, load, read_header, tag, take,
+    to_storage_order, u32_to_f32, write_header,
 };
-use super::{Sample, SampleX16, slices};
+use super::{Sample, slices};
 use crate::lanes::{Lane, UintLane, unit_interval};
-use wide::{f32x8, f32x16};
+use wide::f32x8;
 
 /// Fixed-point scale of the CDFs: `2^31` (so `2^31` itself, the end of every CDF, fits a `u32`).
 const ONE: u64 = 1 << 31;
@@ -49,6 +49,11 @@ fn regions(w: usize, h: usize) -> [usize; 4] {
 /// the header, the per-row CDFs, the row CDF and the exact texel edges of both axes (4 bytes
 /// per texel plus a little: 32.0 MiB for 4096 x 2048). See the [module docs](super) for the
 /// format, which [`from_storage`](Self::from_storage) loads back.
+///
+/// Sampling ([`Distribution`](super::Distribution), or the same methods inherent): `u[1]`
+/// picks the row, `u[0]` the column, by two binary searches of `log2(height)` and
+/// `log2(width)` steps; `sample_slice` interleaves four groups of eight lanes with AVX2 or
+/// AVX-512, two elsewhere.
 #[derive(Clone, Copy, Debug)]
 pub struct MarginalConditional<'a> {
     /// Row CDF: `height + 1` starts, `0` first and `2^31` last.
@@ -63,16 +68,30 @@ pub struct MarginalConditional<'a> {
     pdf_scale: f32,
 }
 
+// Sealed supertrait of `Distribution`, generic over the crate's private lane traits.
+#[allow(private_bounds, private_interfaces)]
 impl slices::Body for MarginalConditional<'_> {
     #[inline(always)]
-    fn sample<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
+    fn sample_lanes<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
         self.sample_body(u)
     }
     #[inline(always)]
-    fn pdf<L: Lane>(&self, uv: [L; 2]) -> L {
+    fn pdf_lanes<L: Lane>(&self, uv: [L; 2]) -> L {
         self.pdf_body(uv)
     }
+    #[inline(always)]
+    fn size(&self) -> [u32; 2] {
+        [self.width, self.height]
+    }
+    fn slice_sample(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
+        slices::sample::<Self, f32x8, 8, { slices::MC }>(self, u, out)
+    }
+    fn slice_pdf(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
+        slices::pdf::<Self, f32x8, 8, { slices::MC }>(self, uv, out)
+    }
 }
+
+impl super::Distribution for MarginalConditional<'_> {}
 
 impl<'a> MarginalConditional<'a> {
     /// Words of storage `new` needs for a `width x height` map; `usize::MAX` when the map is
@@ -95,6 +114,21 @@ impl<'a> MarginalConditional<'a> {
         height: usize,
         storage: &'a mut [Word],
     ) -> Result<Self, Error> {
+        Self::new_compensated(weights, width, height, Compensation::None, storage)
+    }
+
+    /// [`new`](Self::new) with MIS compensation: the tables (and so every pdf) are those of
+    /// the compensated weights, `max(0, w - fraction * average)` (see [`Compensation`] for
+    /// the lat-long form), falling back to the weights as given when compensation would
+    /// remove them all. One more pass over the weights (two for `MarginalConditional`'s
+    /// check); `Compensation::None` is `new`. Errors: those of `new`.
+    pub fn new_compensated(
+        weights: &[f32],
+        width: usize,
+        height: usize,
+        compensation: Compensation,
+        storage: &'a mut [Word],
+    ) -> Result<Self, Error> {
         let needed = Self::storage_len(width, height);
         check_size(weights, width, height, needed)?;
         let storage = take(storage, needed)?;
@@ -108,17 +142,23 @@ impl<'a> MarginalConditional<'a> {
                 },
             )?;
         write_header(header, TAG, w, h, lens);
+        let compensator = Compensator::new(weights, w, h, compensation)?;
+        let weigh = |x: f32, r: usize| match compensator {
+            Some(c) => c.apply(clean(x), r),
+            None => f64::from(clean(x)),
+        };
 
         // Pass over each row: its f64 sum and positive count, then its CDF. The row sums wait
         // in `rows[r + 1]` (low word) and `edges_y[r]` (high word) until the row CDF is built.
         let mut total = 0.0f64;
         let mut positive_rows = 0u32;
         let mut index = 0usize;
-        for (((row, cdf), lo), hi) in weights
+        for (r, (((row, cdf), lo), hi)) in weights
             .chunks_exact(w.max(1))
             .zip(columns.chunks_exact_mut(w.max(1) + 1))
             .zip(rows.iter_mut().skip(1))
             .zip(edges_y.iter_mut())
+            .enumerate()
         {
             let (mut sum, mut positive) = (0.0f64, 0u32);
             for &x in row {
@@ -126,12 +166,12 @@ impl<'a> MarginalConditional<'a> {
                     return Err(Error::InfiniteWeight { index });
                 }
                 index += 1;
-                let x = clean(x);
-                sum += f64::from(x);
+                let x = weigh(x, r);
+                sum += x;
                 positive += u32::from(x > 0.0);
             }
             if positive > 0 {
-                fill_cdf(cdf, row.iter().map(|&x| f64::from(clean(x))), sum, positive);
+                fill_cdf(cdf, row.iter().map(|&x| weigh(x, r)), sum, positive);
             } else {
                 // Never chosen (its row interval is empty), but keep a valid CDF.
                 fill_cdf(cdf, row.iter().map(|_| 1.0), w as f64, w as u32);
@@ -218,17 +258,7 @@ impl<'a> MarginalConditional<'a> {
         Ok(map)
     }
 
-    /// Width of the map in texels.
-    #[inline]
-    pub fn width(&self) -> usize {
-        self.width as usize
-    }
-
-    /// Height of the map in texels.
-    #[inline]
-    pub fn height(&self) -> usize {
-        self.height as usize
-    }
+    super::inherent_methods!();
 
     #[inline(always)]
     fn sample_body<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
@@ -269,63 +299,6 @@ impl<'a> MarginalConditional<'a> {
         let c0 = load(self.columns, base + column);
         let c1 = load(self.columns, base + column + one);
         self.density(c1 - c0, r1 - r0)
-    }
-
-    /// Draws a texel with probability proportional to its weight and a uniform point in it.
-    ///
-    /// `u[1]` picks the row, `u[0]` the column; each is first mapped onto `[0, 1 - 2^-24]`
-    /// by the forward rule. Cost: two binary searches of `log2(height)` and `log2(width)`
-    /// steps. The pdf equals [`pdf`](Self::pdf)`(uv)` bit for bit.
-    #[inline]
-    pub fn sample(&self, u: [f32; 2]) -> Sample {
-        scalar_sample(self.sample_body(u))
-    }
-
-    /// [`sample`](Self::sample) on eight points at once; bit-identical to eight scalar calls.
-    #[inline]
-    pub fn sample_x8(&self, u: [f32x8; 2]) -> SampleX8 {
-        simd_sample(self.sample_body(u))
-    }
-
-    /// [`sample`](Self::sample) on sixteen points at once; bit-identical to sixteen scalar
-    /// calls. One AVX-512 register per coordinate where the build has AVX-512F; elsewhere
-    /// `wide` runs two 8-lane halves.
-    #[inline]
-    pub fn sample_x16(&self, u: [f32x16; 2]) -> SampleX16 {
-        simd16_sample(self.sample_body(u))
-    }
-
-    /// [`sample`](Self::sample) over a batch: `out[i] = sample(u[i])` for
-    /// `i < min(u.len(), out.len())`; returns that count. Bit-identical to the scalar form.
-    /// Runs several groups of eight lanes interleaved, so that their table reads overlap
-    /// (four groups with AVX2 or AVX-512, two elsewhere).
-    pub fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
-        slices::sample::<Self, f32x8, 8, { slices::MC }>(self, u, out)
-    }
-
-    /// Density at `uv` with respect to area on `[0, 1]^2`: `P(texel) * width * height` for
-    /// the texel holding `uv` (0 on zero-weight texels). `uv` is clamped by the forward rule.
-    #[inline]
-    pub fn pdf(&self, uv: [f32; 2]) -> f32 {
-        self.pdf_body(uv)
-    }
-
-    /// [`pdf`](Self::pdf) on eight points at once; bit-identical to eight scalar calls.
-    #[inline]
-    pub fn pdf_x8(&self, uv: [f32x8; 2]) -> f32x8 {
-        self.pdf_body(uv)
-    }
-
-    /// [`pdf`](Self::pdf) on sixteen points at once; bit-identical to sixteen scalar calls.
-    #[inline]
-    pub fn pdf_x16(&self, uv: [f32x16; 2]) -> f32x16 {
-        self.pdf_body(uv)
-    }
-
-    /// [`pdf`](Self::pdf) over a batch, with the length rule of
-    /// [`sample_slice`](Self::sample_slice).
-    pub fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
-        slices::pdf::<Self, f32x8, 8, { slices::MC }>(self, uv, out)
     }
 }
 

@@ -4,7 +4,7 @@
 //! | distribution | build | sample | keeps | source |
 //! |---|---|---|---|---|
 //! | [`MarginalConditional`] | row CDF + one CDF per row, 0.31 fixed point, from `f64` sums; 4 bytes per texel | two branch-free binary searches | strata along each axis | pbrt-v4 `PiecewiseConstant2D`, Mitsuba 3 `DiscreteDistribution2D` |
-//! | [`Hierarchical`] | a MIP pyramid of 0.31 split fractions, from pairwise sums, in 64-byte two-level blocks; about 4.3 bytes per padded texel | one 2x2 split per level, exact integer interval arithmetic on the sample | compact 2D strata | Mitsuba 3 `Hierarchical2D`; McCool and Harwood 1997, "Probability Trees"; Clarberg et al. 2005, "Wavelet Importance Sampling" |
+//! | [`Hierarchical`] | a centred MIP pyramid of 0.31 split fractions, from pairwise sums, in 64-byte two-level blocks; about 4.3 bytes per padded texel | one 2x2 split per level, exact integer interval arithmetic on the sample | compact 2D strata | Mitsuba 3 `Hierarchical2D`; McCool and Harwood 1997, "Probability Trees"; Clarberg et al. 2005, "Wavelet Importance Sampling" |
 //!
 //! Both take a row-major `width x height` array of weights — a piecewise-constant density on
 //! the unit square, texel `(column, row)` covering `[column/width, (column+1)/width) x
@@ -29,6 +29,10 @@
 //! assert!((s.pdf - 8.0 * weights[(s.texel[1] * 4 + s.texel[0]) as usize] / 9.0).abs() < 1e-5);
 //! # Ok::<(), warpcore::envmap::Error>(())
 //! ```
+//!
+//! Both implement the sealed trait [`Distribution`] (`sample`, `pdf` and their `_x8`, `_x16`
+//! and `_slice` forms), so a renderer can be generic over them; the same methods are inherent.
+//! [`Compensation`] builds either from MIS-compensated weights (`new_compensated`).
 //!
 //! # What every distribution here promises
 //!
@@ -66,7 +70,7 @@
 //!   share of the tables' fixed-point intervals up to their rounding, so its pdf is exactly 1
 //!   when `width` and `height` are powers of two, and otherwise within
 //!   `2^-22 + (width + height) 2^-29` of 1 (measured over every size up to 128 x 128 and 300
-//!   sizes up to 5000 x 3000; for example 0.99999994 on one row of a 3 x 21 hierarchical map).
+//!   sizes up to 5000 x 3000; for example 0.99999994 on the first row of a 1 x 13 hierarchical map).
 //! * Any finite weights work, subnormals and `f32::MAX` included: sums are taken in `f64`
 //!   (marginal-conditional) or in a rescaled `f32` pyramid (hierarchical), never overflow.
 //! * Maps of any size from `1 x 1` to `MAX_SIDE x MAX_SIDE` (that fit the 32-bit table
@@ -123,12 +127,18 @@
 //! `2^31`, split fractions above 1, reachable padding, nonzero unused words, wrong texel
 //! edges), for loaders that want to catch a corrupted file.
 
+mod compensation;
+mod distribution;
 mod edges;
 mod hierarchical;
 pub mod image;
 mod marginal;
 mod slices;
 
+pub use compensation::Compensation;
+use compensation::Compensator;
+pub use distribution::Distribution;
+use distribution::inherent_methods;
 pub use hierarchical::Hierarchical;
 pub use marginal::MarginalConditional;
 
@@ -146,8 +156,10 @@ pub const MAX_SIDE: usize = 1 << 24;
 /// Words of the header at the start of every storage (included in `storage_len`).
 pub const HEADER_WORDS: usize = 8;
 
-/// The storage format version this build writes (word 1 of the header) and reads.
-pub const FORMAT_VERSION: u32 = 1;
+/// The storage format version this build writes (word 1 of the header) and reads: 2 since
+/// hierarchical pyramids centre a non-power-of-two map (version 1 padded it in the corner;
+/// such storages are refused with [`Error::UnsupportedVersion`], never misread).
+pub const FORMAT_VERSION: u32 = 2;
 
 /// One sample of an environment-map distribution.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -270,6 +282,12 @@ impl fmt::Display for Error {
                     "storage format tag {found:#010x} is not this distribution's"
                 )
             }
+            Error::UnsupportedVersion { found } if found < FORMAT_VERSION => write!(
+                f,
+                "storage format version {found} was written by an older warpcore (version 1: \
+                 hierarchical pyramids padded in the corner); this build reads version \
+                 {FORMAT_VERSION}: rebuild the tables from the weights"
+            ),
             Error::UnsupportedVersion { found } => {
                 write!(
                     f,

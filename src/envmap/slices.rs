@@ -41,12 +41,24 @@ pub(super) const MC: usize = 2;
 /// What a body's `sample` returns over lane type `L`: `(uv, pdf, texel)`.
 type Results<L> = ([L; 2], L, [<L as Lane>::U; 2]);
 
-/// A distribution's generic bodies, as the slice loops call them.
-pub(super) trait Body {
+/// A distribution's generic bodies, as [`Distribution`](super::Distribution)'s provided
+/// methods and the slice loops call them.
+///
+/// Public in a private module: the sealed supertrait of `Distribution` (users can name and
+/// call `Distribution` but not implement it). Its methods are generic over the crate's
+/// private lane traits, hence the `private_bounds` allowances here and on the two impls.
+#[allow(private_bounds, private_interfaces)]
+pub trait Body {
     /// `sample` over any lane type: `(uv, pdf, texel)`.
-    fn sample<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]);
+    fn sample_lanes<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]);
     /// `pdf` over any lane type.
-    fn pdf<L: Lane>(&self, uv: [L; 2]) -> L;
+    fn pdf_lanes<L: Lane>(&self, uv: [L; 2]) -> L;
+    /// `[width, height]` in texels.
+    fn size(&self) -> [u32; 2];
+    /// The slice form of `sample` (each distribution picks its interleaving).
+    fn slice_sample(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize;
+    /// The slice form of `pdf`.
+    fn slice_pdf(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize;
 }
 
 /// `G` groups of `N` elements as one interleaved vector per component.
@@ -127,10 +139,10 @@ pub(super) fn sample<D: Body, L: Vector<N>, const N: usize, const G: usize>(
         u,
         out,
         |src| {
-            let r = d.sample::<Interleaved<L, G>>(load(src));
+            let r = d.sample_lanes::<Interleaved<L, G>>(load(src));
             core::array::from_fn(|g| samples(part(r, g)))
         },
-        |src| samples(d.sample::<L>(batch::load(src))),
+        |src| samples(d.sample_lanes::<L>(batch::load(src))),
     )
 }
 
@@ -145,7 +157,7 @@ pub(super) fn pdf<D: Body, L: Vector<N>, const N: usize, const G: usize>(
     run::<f32, N, G>(
         uv,
         out,
-        |src| d.pdf::<Interleaved<L, G>>(load(src)).0.map(words),
-        |src| words(d.pdf::<L>(batch::load(src))),
+        |src| d.pdf_lanes::<Interleaved<L, G>>(load(src)).0.map(words),
+        |src| words(d.pdf_lanes::<L>(batch::load(src))),
     )
 }

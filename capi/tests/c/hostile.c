@@ -638,6 +638,7 @@ static void one_quad(int which) {
 
 typedef size_t (*len_fn)(uint32_t, uint32_t);
 typedef int32_t (*build_fn)(const float *, uint32_t, uint32_t, uint32_t *, size_t);
+typedef int32_t (*build_c_fn)(const float *, uint32_t, uint32_t, uint32_t, float, uint32_t *, size_t);
 typedef int32_t (*check_fn)(const uint32_t *, size_t);
 typedef size_t (*sample_fn)(const uint32_t *, size_t, const float *, WcEnvSample *, size_t);
 typedef size_t (*pdf_fn)(const uint32_t *, size_t, const float *, float *, size_t);
@@ -649,6 +650,8 @@ struct dist {
     sample_fn sample;
     pdf_fn pdf;
     uint32_t tag;
+    const char *build_c_name;
+    build_c_fn build_c;
 };
 static const struct dist DISTS[2] = {
     {"wc_envmap_hierarchical_storage_len", "wc_envmap_hierarchical_build",
@@ -656,13 +659,16 @@ static const struct dist DISTS[2] = {
      "wc_envmap_hierarchical_sample", "wc_envmap_hierarchical_pdf",
      wc_envmap_hierarchical_storage_len, wc_envmap_hierarchical_build,
      wc_envmap_hierarchical_validate, wc_envmap_hierarchical_verify,
-     wc_envmap_hierarchical_sample, wc_envmap_hierarchical_pdf, 0x49486377u},
+     wc_envmap_hierarchical_sample, wc_envmap_hierarchical_pdf, 0x49486377u,
+     "wc_envmap_hierarchical_build_compensated", wc_envmap_hierarchical_build_compensated},
     {"wc_envmap_marginal_conditional_storage_len", "wc_envmap_marginal_conditional_build",
      "wc_envmap_marginal_conditional_validate", "wc_envmap_marginal_conditional_verify",
      "wc_envmap_marginal_conditional_sample", "wc_envmap_marginal_conditional_pdf",
      wc_envmap_marginal_conditional_storage_len, wc_envmap_marginal_conditional_build,
      wc_envmap_marginal_conditional_validate, wc_envmap_marginal_conditional_verify,
-     wc_envmap_marginal_conditional_sample, wc_envmap_marginal_conditional_pdf, 0x434d6377u},
+     wc_envmap_marginal_conditional_sample, wc_envmap_marginal_conditional_pdf, 0x434d6377u,
+     "wc_envmap_marginal_conditional_build_compensated",
+     wc_envmap_marginal_conditional_build_compensated},
 };
 
 #define MAX_SIDE ((uint32_t)1 << 24)
@@ -746,10 +752,20 @@ static void one_build(const struct dist *D) {
             weights[inf_at] = INFINITY;
         }
     }
+    /* Half the calls go to the compensated build, with any compensation (known or not) and
+       any fraction. */
+    int compensated = rnd() & 1;
+    uint32_t kinds[] = {WC_ENVMAP_COMPENSATION_NONE, WC_ENVMAP_COMPENSATION_UNIFORM,
+                        WC_ENVMAP_COMPENSATION_LATLONG, 3, UINT32_MAX};
+    uint32_t kind = kinds[rnd() % 5];
+    float fraction;
+    fill_floats(&fraction, 1);
+    const char *name = compensated ? D->build_c_name : D->build_name;
     /* The model, in the documented order. */
     int32_t want;
     int access = 0;
-    if (w == 0 || h == 0) want = WC_ERR_ZERO_SIZE;
+    if (compensated && kind > WC_ENVMAP_COMPENSATION_LATLONG) want = WC_ERR_INVALID_ARGUMENT;
+    else if (w == 0 || h == 0) want = WC_ERR_ZERO_SIZE;
     else if (need == SIZE_MAX || !fits64(texels, 4) || !fits(need, 4))
         want = WC_ERR_TOO_LARGE;
     else if (len < need) want = WC_ERR_STORAGE_TOO_SMALL;
@@ -766,12 +782,13 @@ static void one_build(const struct dist *D) {
     /* Exactly `need` words written: the words after them keep what they held (the sentinel,
        or the weights of case 4, which may start there). */
     else if (slack) snapshot(1, storage + need, (len - need) * 4);
-    int32_t got = D->build(weights, w, h, storage, len);
+    int32_t got = compensated ? D->build_c(weights, w, h, kind, fraction, storage, len)
+                              : D->build(weights, w, h, storage, len);
     const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "WC_ERR_LENGTH_MISMATCH",
                            "WC_ERR_STORAGE_TOO_SMALL", "WC_ERR_INFINITE_WEIGHT", "WC_ERR_WRONG_FORMAT",
                            "WC_ERR_UNSUPPORTED_VERSION", "WC_ERR_CORRUPT", "WC_ERR_INVALID_ARGUMENT"};
-    reach(D->build_name, names[-want]);
-    current = D->build_name;
+    reach(name, names[-want]);
+    current = name;
     CHECK(got == want);
     CHECK(unchanged()); /* the weights always; the storage when refused, its slack if not */
     if (access) {
@@ -814,7 +831,12 @@ static void one_check(const struct dist *D, const struct dist *other, int verify
         break;
     case 7: memcpy(s, built[other - DISTS], 8 * 4); want = WC_ERR_WRONG_FORMAT; break;
     case 8: s[0] = rnd() | 1u; want = s[0] == D->tag ? WC_OK : WC_ERR_WRONG_FORMAT; break;
-    case 9: s[1] = 2 + rnd() % 100; want = WC_ERR_UNSUPPORTED_VERSION; break;
+    case 9: { /* any other version: 0, 1 (the corner-padded format), later ones */
+        uint32_t v = rnd() % 100;
+        s[1] = v == WC_ENVMAP_FORMAT_VERSION ? 1 : v;
+        want = WC_ERR_UNSUPPORTED_VERSION;
+        break;
+    }
     case 10: s[2 + rnd() % 2] = rnd() % 2 ? 0 : MAX_SIDE + 1 + rnd() % 1000; want = WC_ERR_CORRUPT; break;
     case 11: { /* a region length; word 4 of the hierarchical storage is a padding of 0 to 15
                   words (any of them valid): moved past 15 */

@@ -363,8 +363,11 @@ static void envmap(struct dist D, struct dist O) {
     CHECK(D.validate(other, other_need) == WC_ERR_WRONG_FORMAT);
     CHECK(D.sample(other, other_need, us, got, 4) == 0 && untouched(got, sizeof got));
     memcpy(loaded, storage, need * 4);
-    loaded[1] = 2;
+    loaded[1] = WC_ENVMAP_FORMAT_VERSION + 1;
     CHECK(D.validate(loaded, need) == WC_ERR_UNSUPPORTED_VERSION);
+    loaded[1] = 1; /* version 1 (corner-padded pyramids): refused, never misread */
+    CHECK(D.validate(loaded, need) == WC_ERR_UNSUPPORTED_VERSION);
+    CHECK(D.verify(loaded, need) == WC_ERR_UNSUPPORTED_VERSION);
     memcpy(loaded, storage, need * 4);
     loaded[2] = 0;
     CHECK(D.validate(loaded, need) == WC_ERR_CORRUPT);
