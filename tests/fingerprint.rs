@@ -13,7 +13,8 @@
     feature = "sphere",
     feature = "pmj02bn",
     feature = "sequence",
-    feature = "envmap"
+    feature = "envmap",
+    feature = "spherical"
 ))]
 
 #[path = "../examples/wasm-demo/src/fingerprint.rs"]

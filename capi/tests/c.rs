@@ -26,7 +26,8 @@
     feature = "pmj02bn",
     feature = "sequence",
     feature = "envmap",
-    feature = "sampler"
+    feature = "sampler",
+    feature = "spherical"
 ))]
 
 #[path = "../../examples/wasm-demo/src/fingerprint.rs"]

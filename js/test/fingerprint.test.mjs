@@ -163,6 +163,79 @@ function envmap(h, build) {
   }
 }
 
+// Lights for the spherical family, as fingerprint.rs's SPHERICAL_TRIANGLES (v0, v1, v2, p) and
+// SPHERICAL_RECTANGLES (corner, ex, ey, p); every constant is rounded to f32 once.
+const TRIANGLES = [
+  [0, 0, 1, 1, 0, 1, 0, 1, 1, 0.1, 0.2, 0],
+  [-1, -1, 0.05, 2, -1, 0.05, -1, 2, 0.05, 0, 0, 0],
+  [0.3, -2, 0.5, -0.7, 0.4, 1.9, 1.5, 0.8, -0.3, -0.2, 0.1, 0.05],
+  [0, 0, 1, 1, 0, 1, 1, 1e-5, 1, 0.3, 0.4, 0],
+  [0, 0, 1, 1, 1, 1, 3, 3, 1, 0, 0, 0],
+  [0, 0, 1, 1e-4, 0, 1, 0, 1e-4, 1, 0, 0, 0],
+  [0, 0, 1, 1, 0, 1, 0, 1, 1, 0.2, 0.2, 1],
+  [0, 0, 1, 1, 0, 1, 0, 1, 1, 5, -3, 1],
+  [0, 0, 1, 1, 0, 1, 0, 1, 1, 0.2, 0.2, 0.999999],
+  [0, 0, 1, 1, 0, 1, 0, 1, 1, 3e5, -2e5, 1e6],
+  [-1e5, 0, 1e6, 1e5, -1e5, 1e6, 0, 1e5, 1e6, 0, 0, 0],
+  [0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 0, 1],
+  [0, 0, 1e30, 1e30, 0, 1e30, 0, 1e30, 1e30, 1e29, 2e29, 0],
+  [0, 0, 1e-30, 1e-30, 0, 1e-30, 0, 1e-30, 1e-30, 1e-31, 2e-31, 0],
+  [NaN, 0, 1, 1, 0, 1, 0, 1, 1, 0, 0, 0],
+  [0, 0, 1, 1, 0, 1, 0, 1, 1, 0, Infinity, 0],
+  [-3e38, 0, 1, 3e38, 0, 1, 0, 1, 1, 0, 0, 0],
+].map((l) => Float32Array.from(l));
+const RECTANGLES = [
+  [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 0.1, 0.2, 0],
+  [0.3, -0.2, 0.7, 0.6, 0.8, 0, 0, 0, 1.5, 0, 0, 0],
+  [-50, -50, 0.01, 100, 0, 0, 0, 100, 0, 0, 0, 0],
+  [-0.5, -0.5, 1, 1, 0, 0, 0, 1e-6, 0, 0, 0, 0],
+  [-0.5, -0.5, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0],
+  [0, 0, 1, 5e-5, 0, 0, 0, 5e-5, 0, 0, 0, 0],
+  [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 0, 0, 1],
+  [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 3, 0.5, 1],
+  [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 0.1, 0.1, 0.999999],
+  [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 2e5, -1e5, -1e6],
+  [-1e5, -1e5, 1e6, 2e5, 0, 0, 0, 2e5, 0, 0, 0, 0],
+  [-0.5, -0.5, 1, 1, 0, 0, 0.3, 1, 0, 0.2, -0.1, 2.5],
+  [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, -0.5, -0.5, 1],
+  [-5e29, -5e29, 1e30, 1e30, 0, 0, 0, 1e30, 0, 1e29, 0, 0],
+  [-5e-31, -5e-31, 1e-30, 1e-30, 0, 0, 0, 1e-30, 0, 0, 0, 0],
+  [-0.5, -0.5, 1, 1, NaN, 0, 0, 1, 0, 0, 0, 0],
+  [-Infinity, 0, 1, 1, 0, 0, 0, 1, 0, 0, 0, 0],
+].map((l) => Float32Array.from(l));
+
+// fingerprint.rs's `lights`: for each light l, the slice over all inputs in chunks of 37 and
+// one call per input; then the lane forms as single calls, input i with light (l + i) % L.
+function lights(h, ls, f, I, O) {
+  const L = ls.length;
+  for (let l = 0; l < L; l++) {
+    for (let i = 0; i < N; i += 37) {
+      const n = Math.min(37, N - i);
+      const input = inputs(i, n, I);
+      const out = oddOut(n * O);
+      assert.equal(f(ls[l], input, out), out);
+      h.word(n);
+      for (let k = 0; k < n; k++) {
+        h.floats(f(ls[l], input.subarray(k * I, (k + 1) * I)));
+        h.floats(out.subarray(k * O, (k + 1) * O));
+      }
+    }
+    for (let g = 0; g + 8 <= N; g += 8) {
+      const lanes = [];
+      for (let j = 0; j < 8; j++) lanes.push(new Uint32Array(f(ls[(l + g + j) % L], inputs(g + j, 1, I)).buffer));
+      for (let c = 0; c < O; c++) for (let j = 0; j < 8; j++) h.word(lanes[j][c]);
+    }
+  }
+}
+
+// fingerprint.rs's `solid_angles`: every light, then lane j of group g holding light
+// (g + j) % L, for 16 lanes and g < L.
+function solidAngles(h, ls, f) {
+  const L = ls.length;
+  for (const l of ls) h.floats(Float32Array.of(f(l)));
+  for (let g = 0; g < L; g++) for (let j = 0; j < 16; j++) h.floats(Float32Array.of(f(ls[(g + j) % L])));
+}
+
 function fingerprint() {
   const h = new Fnv();
   // disk
@@ -241,6 +314,13 @@ function fingerprint() {
   // envmap
   envmap(h, wc.envmapMarginalConditional);
   envmap(h, wc.envmapHierarchical);
+  // spherical
+  lights(h, TRIANGLES, wc.sphericalTriangle, 2, 4);
+  lights(h, TRIANGLES, wc.sphericalTriangleInverse, 3, 2);
+  solidAngles(h, TRIANGLES, wc.sphericalTriangleSolidAngle);
+  lights(h, RECTANGLES, wc.sphericalRectangle, 2, 3);
+  lights(h, RECTANGLES, wc.sphericalRectangleInverse, 2, 2);
+  solidAngles(h, RECTANGLES, wc.sphericalRectangleSolidAngle);
   return h.hex();
 }
 

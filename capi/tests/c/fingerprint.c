@@ -11,6 +11,7 @@
 #include "warpcore.h"
 
 #include <inttypes.h>
+#include <math.h> /* NAN, INFINITY */
 #include <stdio.h>
 #include <string.h>
 
@@ -250,6 +251,88 @@ static void envmap(len_fn len, build_fn build, sample_fn sample, pdf_fn pdf) {
     }
 }
 
+/* ---- spherical lights: fingerprint.rs's SPHERICAL_TRIANGLES (v0, v1, v2, p) and
+   SPHERICAL_RECTANGLES (corner, ex, ey, p) ---- */
+
+#define LIGHTS 17
+static const float TRIANGLES[LIGHTS][12] = {
+    {0.0f, 0.0f, 1.0f, 1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 1.0f, 0.1f, 0.2f, 0.0f},
+    {-1.0f, -1.0f, 0.05f, 2.0f, -1.0f, 0.05f, -1.0f, 2.0f, 0.05f, 0.0f, 0.0f, 0.0f},
+    {0.3f, -2.0f, 0.5f, -0.7f, 0.4f, 1.9f, 1.5f, 0.8f, -0.3f, -0.2f, 0.1f, 0.05f},
+    {0.0f, 0.0f, 1.0f, 1.0f, 0.0f, 1.0f, 1.0f, 1e-5f, 1.0f, 0.3f, 0.4f, 0.0f},
+    {0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f, 3.0f, 3.0f, 1.0f, 0.0f, 0.0f, 0.0f},
+    {0.0f, 0.0f, 1.0f, 1e-4f, 0.0f, 1.0f, 0.0f, 1e-4f, 1.0f, 0.0f, 0.0f, 0.0f},
+    {0.0f, 0.0f, 1.0f, 1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 1.0f, 0.2f, 0.2f, 1.0f},
+    {0.0f, 0.0f, 1.0f, 1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 1.0f, 5.0f, -3.0f, 1.0f},
+    {0.0f, 0.0f, 1.0f, 1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 1.0f, 0.2f, 0.2f, 0.999999f},
+    {0.0f, 0.0f, 1.0f, 1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 1.0f, 3e5f, -2e5f, 1e6f},
+    {-1e5f, 0.0f, 1e6f, 1e5f, -1e5f, 1e6f, 0.0f, 1e5f, 1e6f, 0.0f, 0.0f, 0.0f},
+    {0.0f, 0.0f, 1.0f, 1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 1.0f, 1.0f, 0.0f, 1.0f},
+    {0.0f, 0.0f, 1e30f, 1e30f, 0.0f, 1e30f, 0.0f, 1e30f, 1e30f, 1e29f, 2e29f, 0.0f},
+    {0.0f, 0.0f, 1e-30f, 1e-30f, 0.0f, 1e-30f, 0.0f, 1e-30f, 1e-30f, 1e-31f, 2e-31f, 0.0f},
+    {NAN, 0.0f, 1.0f, 1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f},
+    {0.0f, 0.0f, 1.0f, 1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 1.0f, 0.0f, INFINITY, 0.0f},
+    {-3e38f, 0.0f, 1.0f, 3e38f, 0.0f, 1.0f, 0.0f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f},
+};
+static const float RECTANGLES[LIGHTS][12] = {
+    {-0.5f, -0.5f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.1f, 0.2f, 0.0f},
+    {0.3f, -0.2f, 0.7f, 0.6f, 0.8f, 0.0f, 0.0f, 0.0f, 1.5f, 0.0f, 0.0f, 0.0f},
+    {-50.0f, -50.0f, 0.01f, 100.0f, 0.0f, 0.0f, 0.0f, 100.0f, 0.0f, 0.0f, 0.0f, 0.0f},
+    {-0.5f, -0.5f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1e-6f, 0.0f, 0.0f, 0.0f, 0.0f},
+    {-0.5f, -0.5f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f},
+    {0.0f, 0.0f, 1.0f, 5e-5f, 0.0f, 0.0f, 0.0f, 5e-5f, 0.0f, 0.0f, 0.0f, 0.0f},
+    {-0.5f, -0.5f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f},
+    {-0.5f, -0.5f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 3.0f, 0.5f, 1.0f},
+    {-0.5f, -0.5f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.1f, 0.1f, 0.999999f},
+    {-0.5f, -0.5f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 2e5f, -1e5f, -1e6f},
+    {-1e5f, -1e5f, 1e6f, 2e5f, 0.0f, 0.0f, 0.0f, 2e5f, 0.0f, 0.0f, 0.0f, 0.0f},
+    {-0.5f, -0.5f, 1.0f, 1.0f, 0.0f, 0.0f, 0.3f, 1.0f, 0.0f, 0.2f, -0.1f, 2.5f},
+    {-0.5f, -0.5f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, -0.5f, -0.5f, 1.0f},
+    {-5e29f, -5e29f, 1e30f, 1e30f, 0.0f, 0.0f, 0.0f, 1e30f, 0.0f, 1e29f, 0.0f, 0.0f},
+    {-5e-31f, -5e-31f, 1e-30f, 1e-30f, 0.0f, 0.0f, 0.0f, 1e-30f, 0.0f, 0.0f, 0.0f, 0.0f},
+    {-0.5f, -0.5f, 1.0f, 1.0f, NAN, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f},
+    {-INFINITY, 0.0f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f},
+};
+
+typedef size_t (*light_fn)(const float *light, const float *in, float *out, size_t n);
+
+/* fingerprint.rs's `lights`: for each light l, the slice over all inputs in chunks of 37 and
+   one call per input; then the lane forms as single calls, input i with light (l + i) % 17. */
+static void lights(const float (*ls)[12], light_fn f, int I, int O) {
+    for (size_t l = 0; l < LIGHTS; l++) {
+        float in[37 * 3], buf[1 + 37 * 4], one[4];
+        float *out = buf + 1; /* odd offset */
+        for (size_t i = 0; i < N; i += 37) {
+            size_t n = N - i < 37 ? N - i : 37;
+            inputs(in, i, n, I);
+            EXPECT(f(ls[l], in, out, n) == n);
+            word((uint32_t)n);
+            for (size_t k = 0; k < n; k++) {
+                EXPECT(f(ls[l], in + k * I, one, 1) == 1);
+                floats(one, O);
+                floats(out + k * O, O);
+            }
+        }
+        for (size_t g = 0; g + 8 <= N; g += 8) {
+            float u[3], out8[8 * 4];
+            for (size_t j = 0; j < 8; j++) {
+                inputs(u, g + j, 1, I);
+                EXPECT(f(ls[(l + g + j) % LIGHTS], u, out8 + j * O, 1) == 1);
+            }
+            for (int c = 0; c < O; c++)
+                for (int j = 0; j < 8; j++) word(bits(out8[j * O + c]));
+        }
+    }
+}
+
+/* fingerprint.rs's `solid_angles`: every light, then lane j of group g holding light
+   (g + j) % 17, for 16 lanes and g < 17. */
+static void solid_angles(const float (*ls)[12], float (*f)(const float *)) {
+    for (size_t l = 0; l < LIGHTS; l++) word(bits(f(ls[l])));
+    for (size_t g = 0; g < LIGHTS; g++)
+        for (size_t j = 0; j < 16; j++) word(bits(f(ls[(g + j) % LIGHTS])));
+}
+
 static uint64_t fingerprint(void) {
     h = UINT64_C(0xcbf29ce484222325);
     /* disk */
@@ -351,6 +434,13 @@ static uint64_t fingerprint(void) {
            wc_envmap_marginal_conditional_sample, wc_envmap_marginal_conditional_pdf);
     envmap(wc_envmap_hierarchical_storage_len, wc_envmap_hierarchical_build,
            wc_envmap_hierarchical_sample, wc_envmap_hierarchical_pdf);
+    /* spherical */
+    lights(TRIANGLES, wc_spherical_triangle, 2, 4);
+    lights(TRIANGLES, wc_spherical_triangle_inverse, 3, 2);
+    solid_angles(TRIANGLES, wc_spherical_triangle_solid_angle);
+    lights(RECTANGLES, wc_spherical_rectangle, 2, 3);
+    lights(RECTANGLES, wc_spherical_rectangle_inverse, 2, 2);
+    solid_angles(RECTANGLES, wc_spherical_rectangle_solid_angle);
     return h;
 }
 

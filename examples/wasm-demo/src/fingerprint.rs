@@ -1,6 +1,7 @@
 //! The golden fingerprint: a 64-bit FNV-1a hash of the output bits of every warp — scalar,
 //! `_x8` and slice forms — over a fixed set of inputs (special values and 1024 pseudo-random
-//! points from a counter hash). Identical on every target and instruction set, or the
+//! points from a counter hash; for the `spherical` lights, those inputs on each of a fixed
+//! set of lights, ordinary and extreme). Identical on every target and instruction set, or the
 //! determinism promise is broken. `no_std`, no allocation; shared by `tests/fingerprint.rs`,
 //! the native `fingerprint` binary and the wasm cdylib.
 //!
@@ -199,6 +200,178 @@ pub fn indexed<const O: usize>(
                 for c in v {
                     h.floats(&c.to_array());
                 }
+            }
+        }
+    }
+}
+
+/// Lights with a shading point for the `spherical` family, 12 floats each: `v0, v1, v2, p`.
+/// Ordinary, nearly `2 pi`, the other winding, a sliver, collinear, below
+/// `AREA_FALLBACK_SR`, `p` on the plane (inside, outside), grazing, far away (`1e6`), large
+/// and far, `p` at a vertex, coordinates near `1e30` and `1e-30`, NaN, inf, and differences
+/// past `2^127`.
+pub const SPHERICAL_TRIANGLES: [[f32; 12]; 17] = {
+    const I: f32 = f32::INFINITY;
+    const NAN: f32 = f32::NAN;
+    #[rustfmt::skip]
+    let t = [
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.1, 0.2, 0.0],
+        [-1.0, -1.0, 0.05, 2.0, -1.0, 0.05, -1.0, 2.0, 0.05, 0.0, 0.0, 0.0],
+        [0.3, -2.0, 0.5, -0.7, 0.4, 1.9, 1.5, 0.8, -0.3, -0.2, 0.1, 0.05],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0, 1e-5, 1.0, 0.3, 0.4, 0.0],
+        [0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 3.0, 3.0, 1.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 1e-4, 0.0, 1.0, 0.0, 1e-4, 1.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.2, 0.2, 1.0],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 5.0, -3.0, 1.0],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.2, 0.2, 0.999_999],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 3e5, -2e5, 1e6],
+        [-1e5, 0.0, 1e6, 1e5, -1e5, 1e6, 0.0, 1e5, 1e6, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 1.0, 0.0, 1.0],
+        [0.0, 0.0, 1e30, 1e30, 0.0, 1e30, 0.0, 1e30, 1e30, 1e29, 2e29, 0.0],
+        [0.0, 0.0, 1e-30, 1e-30, 0.0, 1e-30, 0.0, 1e-30, 1e-30, 1e-31, 2e-31, 0.0],
+        [NAN, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, I, 0.0],
+        [-3e38, 0.0, 1.0, 3e38, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0],
+    ];
+    t
+};
+
+/// Rectangles with a shading point for the `spherical` family, 12 floats each:
+/// `corner, ex, ey, p`. Ordinary, tilted, nearly `2 pi`, a sliver, `ey = 0`, below
+/// `AREA_FALLBACK_SR`, `p` on the plane (inside, outside), grazing, far away (`1e6`), large
+/// and far, `ey` not orthogonal to `ex` with `p` behind, `p` at the corner, coordinates near
+/// `1e30` and `1e-30`, NaN, -inf.
+pub const SPHERICAL_RECTANGLES: [[f32; 12]; 17] = {
+    const I: f32 = f32::INFINITY;
+    const NAN: f32 = f32::NAN;
+    #[rustfmt::skip]
+    let r = [
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.1, 0.2, 0.0],
+        [0.3, -0.2, 0.7, 0.6, 0.8, 0.0, 0.0, 0.0, 1.5, 0.0, 0.0, 0.0],
+        [-50.0, -50.0, 0.01, 100.0, 0.0, 0.0, 0.0, 100.0, 0.0, 0.0, 0.0, 0.0],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1e-6, 0.0, 0.0, 0.0, 0.0],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 5e-5, 0.0, 0.0, 0.0, 5e-5, 0.0, 0.0, 0.0, 0.0],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3.0, 0.5, 1.0],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.1, 0.1, 0.999_999],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 2e5, -1e5, -1e6],
+        [-1e5, -1e5, 1e6, 2e5, 0.0, 0.0, 0.0, 2e5, 0.0, 0.0, 0.0, 0.0],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.3, 1.0, 0.0, 0.2, -0.1, 2.5],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, -0.5, -0.5, 1.0],
+        [-5e29, -5e29, 1e30, 1e30, 0.0, 0.0, 0.0, 1e30, 0.0, 1e29, 0.0, 0.0],
+        [-5e-31, -5e-31, 1e-30, 1e-30, 0.0, 0.0, 0.0, 1e-30, 0.0, 0.0, 0.0, 0.0],
+        [-0.5, -0.5, 1.0, 1.0, NAN, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+        [-I, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+    ];
+    r
+};
+
+/// A light's 12 floats as four points (`v0, v1, v2, p` or `corner, ex, ey, p`).
+fn points<T: Copy>(l: [T; 12]) -> [[T; 3]; 4] {
+    core::array::from_fn(|k| core::array::from_fn(|c| l[3 * k + c]))
+}
+
+/// A triangle light's vertices (its first three points).
+#[cfg(feature = "spherical")]
+fn tri<T: Copy>(l: [[T; 3]; 4]) -> [[T; 3]; 3] {
+    [l[0], l[1], l[2]]
+}
+
+/// Hashes a warp of a light and shading point over every light `l` of `lights`: `slice` on
+/// light `l` over all inputs in chunks of 37 with `scalar` on each input, as [`warp`]; then
+/// the lane forms on groups of 16 inputs, input `i` paired with light `(l + i) % L`, so the
+/// lanes of one call hold different lights (hashed as [`hash_groups`]).
+pub fn lights<const L: usize, const I: usize, const O: usize>(
+    h: &mut Hasher,
+    lights: &[[f32; 12]; L],
+    scalar: impl Fn([[f32; 3]; 4], [f32; I]) -> [f32; O],
+    x8: impl Fn([[f32x8; 3]; 4], [f32x8; I]) -> [f32x8; O],
+    x16: impl Fn([[f32x16; 3]; 4], [f32x16; I]) -> [f32x16; O],
+    slice: impl Fn([[f32; 3]; 4], &[[f32; I]], &mut [[f32; O]]) -> usize,
+) {
+    for l in 0..L {
+        let light = points(lights[l % L]);
+        let mut chunk_in = [[0.0f32; I]; 37];
+        let mut chunk_out = [[0.0f32; O]; 37];
+        let mut i = 0;
+        while i < N {
+            let n = (N - i).min(37);
+            for (k, slot) in chunk_in.iter_mut().enumerate().take(n) {
+                *slot = input(i + k);
+            }
+            let (src, dst) = (
+                chunk_in.get(..n).unwrap_or(&[]),
+                chunk_out.get_mut(..n).unwrap_or(&mut []),
+            );
+            h.word(slice(light, src, dst) as u32);
+            for (u, o) in src.iter().zip(dst.iter()) {
+                h.floats(&scalar(light, *u));
+                h.floats(o);
+            }
+            i += n;
+        }
+        let mut g = 0;
+        while g + 16 <= N {
+            let ls: [[f32; 12]; 16] = core::array::from_fn(|j| lights[(l + g + j) % L]);
+            let us: [[f32; I]; 16] = core::array::from_fn(|j| input(g + j));
+            if h.1 {
+                let v = x16(
+                    points(core::array::from_fn(|c| {
+                        f32x16::new(core::array::from_fn(|j| ls[j][c]))
+                    })),
+                    core::array::from_fn(|d| f32x16::new(core::array::from_fn(|j| us[j][d]))),
+                );
+                for half in 0..2 {
+                    for c in &v {
+                        h.floats(&c.to_array()[8 * half..8 * half + 8]);
+                    }
+                }
+            } else {
+                for half in 0..2 {
+                    let v = x8(
+                        points(core::array::from_fn(|c| {
+                            f32x8::new(core::array::from_fn(|j| ls[8 * half + j][c]))
+                        })),
+                        core::array::from_fn(|d| {
+                            f32x8::new(core::array::from_fn(|j| us[8 * half + j][d]))
+                        }),
+                    );
+                    for c in v {
+                        h.floats(&c.to_array());
+                    }
+                }
+            }
+            g += 16;
+        }
+    }
+}
+
+/// Hashes a light's solid angle: `scalar` on every light, then the lane forms on 16 lights
+/// at a time, lane `j` of group `g` holding light `(g + j) % L`, for `g` in `0..L`.
+pub fn solid_angles<const L: usize>(
+    h: &mut Hasher,
+    lights: &[[f32; 12]; L],
+    scalar: impl Fn([[f32; 3]; 4]) -> f32,
+    x8: impl Fn([[f32x8; 3]; 4]) -> f32x8,
+    x16: impl Fn([[f32x16; 3]; 4]) -> f32x16,
+) {
+    for l in lights {
+        h.floats(&[scalar(points(*l))]);
+    }
+    for g in 0..L {
+        let ls: [[f32; 12]; 16] = core::array::from_fn(|j| lights[(g + j) % L]);
+        if h.1 {
+            let v = x16(points(core::array::from_fn(|c| {
+                f32x16::new(core::array::from_fn(|j| ls[j][c]))
+            })));
+            h.floats(&v.to_array());
+        } else {
+            for half in 0..2 {
+                let v = x8(points(core::array::from_fn(|c| {
+                    f32x8::new(core::array::from_fn(|j| ls[8 * half + j][c]))
+                })));
+                h.floats(&v.to_array());
             }
         }
     }
@@ -587,6 +760,74 @@ fn fingerprint_with(mut h: Hasher) -> u64 {
                 }
             }
         }
+    }
+    #[cfg(feature = "spherical")]
+    {
+        use warpcore::spherical as sp;
+        lights(
+            &mut h,
+            &SPHERICAL_TRIANGLES,
+            |l, u| {
+                let (b, d) = sp::triangle(tri(l), l[3], u);
+                [b[0], b[1], b[2], d]
+            },
+            |l, u| {
+                let (b, d) = sp::triangle_x8(tri(l), l[3], u);
+                [b[0], b[1], b[2], d]
+            },
+            |l, u| {
+                let (b, d) = sp::triangle_x16(tri(l), l[3], u);
+                [b[0], b[1], b[2], d]
+            },
+            |l, u, o| sp::triangle_slice(tri(l), l[3], u, o),
+        );
+        lights(
+            &mut h,
+            &SPHERICAL_TRIANGLES,
+            |l, b| sp::triangle_inverse(tri(l), l[3], b),
+            |l, b| sp::triangle_inverse_x8(tri(l), l[3], b),
+            |l, b| sp::triangle_inverse_x16(tri(l), l[3], b),
+            |l, b, o| sp::triangle_inverse_slice(tri(l), l[3], b, o),
+        );
+        solid_angles(
+            &mut h,
+            &SPHERICAL_TRIANGLES,
+            |l| sp::triangle_solid_angle(tri(l), l[3]),
+            |l| sp::triangle_solid_angle_x8(tri(l), l[3]),
+            |l| sp::triangle_solid_angle_x16(tri(l), l[3]),
+        );
+        lights(
+            &mut h,
+            &SPHERICAL_RECTANGLES,
+            |l, u| {
+                let (st, d) = sp::rectangle(l[0], l[1], l[2], l[3], u);
+                [st[0], st[1], d]
+            },
+            |l, u| {
+                let (st, d) = sp::rectangle_x8(l[0], l[1], l[2], l[3], u);
+                [st[0], st[1], d]
+            },
+            |l, u| {
+                let (st, d) = sp::rectangle_x16(l[0], l[1], l[2], l[3], u);
+                [st[0], st[1], d]
+            },
+            |l, u, o| sp::rectangle_slice(l[0], l[1], l[2], l[3], u, o),
+        );
+        lights(
+            &mut h,
+            &SPHERICAL_RECTANGLES,
+            |l, st| sp::rectangle_inverse(l[0], l[1], l[2], l[3], st),
+            |l, st| sp::rectangle_inverse_x8(l[0], l[1], l[2], l[3], st),
+            |l, st| sp::rectangle_inverse_x16(l[0], l[1], l[2], l[3], st),
+            |l, st, o| sp::rectangle_inverse_slice(l[0], l[1], l[2], l[3], st, o),
+        );
+        solid_angles(
+            &mut h,
+            &SPHERICAL_RECTANGLES,
+            |l| sp::rectangle_solid_angle(l[0], l[1], l[2], l[3]),
+            |l| sp::rectangle_solid_angle_x8(l[0], l[1], l[2], l[3]),
+            |l| sp::rectangle_solid_angle_x16(l[0], l[1], l[2], l[3]),
+        );
     }
     h.finish()
 }
