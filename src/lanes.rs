@@ -92,7 +92,7 @@ pub(crate) trait UintLane:
     /// reversed already), reversed back. A scalar runs the four as one 4-lane vector (the same
     /// integer operations, so the same bits): one vector hash and vector bit reversals instead
     /// of four hashes and up to eight scalar reversals (no bit-reverse instruction on x86).
-    #[allow(dead_code)] // for the sampling core
+    #[cfg(feature = "sampler")]
     #[inline(always)]
     fn scramble4<const REVERSE_IN: bool>(words: [Self; 4], keys: [Self; 4]) -> [Self; 4] {
         core::array::from_fn(|d| crate::hash::scramble::<Self, REVERSE_IN>(words[d], keys[d]))
@@ -199,6 +199,7 @@ impl UintLane for Wrapping<u32> {
         Wrapping(self.0.reverse_bits())
     }
 
+    #[cfg(feature = "sampler")]
     #[inline(always)]
     fn scramble4<const REVERSE_IN: bool>(words: [Self; 4], keys: [Self; 4]) -> [Self; 4] {
         let w = u32x4::new(words.map(|w| w.0));

@@ -17,6 +17,8 @@ probes=(
   "probe-sampler-sobol:only sampler::Sampler<Sobol> (domains, 4D draws; 16 KiB matrices)"
   "probe-sampler-pmj02bn:only sampler::Sampler<Pmj02bn>, 1024 points x 1 set"
   "probe-sampler-blue:only sampler::Sampler<Blue<Sobol>> (with the 64 x 64 key tile)"
+  "probe-spherical-triangle:only spherical::triangle (Arvo, by solid angle)"
+  "probe-spherical-rectangle:only spherical::rectangle (Urena et al., by solid angle)"
 )
 printf '| build | .wasm bytes |\n|---|---|\n'
 for entry in "${probes[@]}" "all:everything (all families, fingerprint)"; do

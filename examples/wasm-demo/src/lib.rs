@@ -113,6 +113,26 @@ pub extern "C" fn sampler_blue_sobol(x: u32, y: u32, index: u32, key: u32, k: u3
         .draw::<4>()[k as usize & 3]
 }
 
+/// Coordinate `k` (0..2 barycentrics, 3 the density) of a point sampled by solid angle on the
+/// triangle `(0,0,1) (1,0,1) (0,1,1)` seen from `(x, y, 0)`.
+#[cfg(any(feature = "all", feature = "probe-spherical-triangle"))]
+#[unsafe(no_mangle)]
+pub extern "C" fn spherical_triangle(x: f32, y: f32, u0: f32, u1: f32, k: u32) -> f32 {
+    let v = [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
+    let (b, pdf) = warpcore::spherical::triangle(v, [x, y, 0.0], [u0, u1]);
+    [b[0], b[1], b[2], pdf][k as usize & 3]
+}
+
+/// Coordinate `k` (0..1 the fractions, 2 the density) of a point sampled by solid angle on the
+/// unit square at height 1 seen from `(x, y, 0)`.
+#[cfg(any(feature = "all", feature = "probe-spherical-rectangle"))]
+#[unsafe(no_mangle)]
+pub extern "C" fn spherical_rectangle(x: f32, y: f32, u0: f32, u1: f32, k: u32) -> f32 {
+    let (c, ex, ey) = ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    let (st, pdf) = warpcore::spherical::rectangle(c, ex, ey, [x, y, 0.0], [u0, u1]);
+    [st[0], st[1], pdf, pdf][k as usize & 3]
+}
+
 // The no-panic proof: this function is never defined. If any code path that can panic is
 // linked into the module, the panic handler (and with it this symbol) is kept, and the wasm
 // module gains an import `env.warpcore_panic_path_reached`. `tools/wasm-demo.mjs` loads the
