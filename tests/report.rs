@@ -18,6 +18,9 @@ mod app;
 #[path = "../examples/report/area.rs"]
 mod area;
 #[cfg(feature = "envmap")]
+#[path = "../examples/report/env_split.rs"]
+mod env_split;
+#[cfg(feature = "envmap")]
 #[path = "../examples/report/envscene.rs"]
 mod envscene;
 #[path = "../examples/report/math.rs"]
@@ -439,7 +442,7 @@ fn quick_run_writes_a_well_formed_csv() {
             "hierarchical_equirect_mis",
             "hierarchical_equal_area_mis",
         ];
-        for map in ["envmap:sky", "envmap:interior"] {
+        for map in ["envmap:sky", "envmap:interior", "envmap:sky_200x100"] {
             warps_of.push((map.to_string(), env.clone()));
             warps_of.push((format!("{map}/lit"), env.clone()));
         }
@@ -629,7 +632,7 @@ mod env {
     #[test]
     #[ignore]
     fn envmap_reference_speed() {
-        let scenes = envscene::EnvScene::builtin();
+        let scenes = envscene::EnvScene::builtin(1);
         let s = &scenes[0];
         let t = std::time::Instant::now();
         let mut acc = 0.0;
@@ -717,7 +720,7 @@ mod env {
     /// degenerate cuts `m = n` (the whole lobe) and `m = -n` (nothing) are handled.
     #[test]
     fn complementary_cuts_add_up() {
-        let scenes = envscene::EnvScene::builtin();
+        let scenes = envscene::EnvScene::builtin(1);
         let mut rng = Rng::new(13);
         let mut worst: f64 = 0.0;
         let neg = |m: [f64; 3]| [-m[0], -m[1], -m[2]];
@@ -749,7 +752,7 @@ mod env {
     /// machinery), agrees with the reference within the Sidak bound over the 8 cases.
     #[test]
     fn envmap_references_match_monte_carlo() {
-        let scenes = envscene::EnvScene::builtin();
+        let scenes = envscene::EnvScene::builtin(1);
         let bound = sidak_bound(8);
         for scene in &scenes {
             for pixel in 0..2u64 {
@@ -833,7 +836,7 @@ mod env {
     #[test]
     fn envmap_estimators_are_unbiased() {
         let bound = sidak_bound(BIAS_FAMILY);
-        let maps = envscene::EnvScene::builtin();
+        let maps = envscene::EnvScene::builtin(1);
         for scene in maps.iter().flat_map(|m| [m.view(false), m.view(true)]) {
             let pixels: Vec<_> = (0..384).map(|i| scene.pixel(i)).collect();
             for (w, name) in scene.warps().iter().enumerate() {

@@ -69,7 +69,8 @@ impl Options {
         {
             names.push("envmap:sky".into());
             names.push("envmap:interior".into());
-            for p in &self.envmaps {
+            names.push("envmap:sky_200x100".into());
+            for p in self.envmaps.iter().chain(&real_envmaps()) {
                 let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned());
                 names.push(format!("envmap:{}", stem.unwrap_or_else(|| "map".into())));
             }
@@ -92,13 +93,49 @@ impl Options {
         }
         #[cfg(feature = "envmap")]
         for path in &self.envmaps {
-            load_envmap(path).map_err(|e| format!("--envmap: {e}"))?;
+            load_envmap(path, 1).map_err(|e| format!("--envmap: {e}"))?;
         }
         #[cfg(not(feature = "envmap"))]
         if !self.envmaps.is_empty() {
             return Err("--envmap: this build has no envmap feature".into());
         }
         Ok(())
+    }
+
+    /// Map rotations each environment-map scene's pixels cycle through: 8 (quick: 2).
+    #[cfg(feature = "envmap")]
+    pub fn rotations(&self) -> usize {
+        if self.quick { 2 } else { 8 }
+    }
+
+    /// The PFM maps to run as scenes: the real maps of `tests/data/envmaps/` (in a quick
+    /// run only when a `--scene` names them) and every `--envmap` file.
+    #[cfg(feature = "envmap")]
+    fn envmap_files(&self) -> Vec<PathBuf> {
+        let named = |p: &PathBuf| {
+            let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned());
+            let name = format!("envmap:{}", stem.unwrap_or_default());
+            self.scenes
+                .iter()
+                .any(|s| name.starts_with(s.as_str()) && s.len() > 7)
+        };
+        real_envmaps()
+            .into_iter()
+            .filter(|p| {
+                if self.quick {
+                    named(p)
+                } else {
+                    self.wants_name(p)
+                }
+            })
+            .chain(self.envmaps.iter().cloned())
+            .collect()
+    }
+
+    #[cfg(feature = "envmap")]
+    fn wants_name(&self, p: &std::path::Path) -> bool {
+        let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned());
+        self.wants(&format!("envmap:{}", stem.unwrap_or_default()))
     }
 
     /// The path scenes to run.
@@ -280,16 +317,29 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         let env_pixels = opts
             .env_pixels
             .unwrap_or(if opts.quick { 192 } else { 6144 });
+        let rotations = opts.rotations();
         let mut envs = Vec::new();
         if opts.wants("envmap:sky") || opts.wants("envmap:interior") {
-            envs = EnvScene::builtin();
+            envs = EnvScene::builtin(rotations);
         }
-        for path in &opts.envmaps {
-            envs.push(load_envmap(path)?);
+        if opts.wants("envmap:sky_200x100") {
+            envs.extend(EnvScene::sky_200x100(rotations));
         }
-        let cfg = opts.config(env_pixels);
+        for path in opts.envmap_files() {
+            envs.push(load_envmap(&path, rotations)?);
+        }
         for scene in &envs {
             if opts.wants(&scene.name) {
+                // The real maps and the 200 x 100 sky: a sixth of the pixels each (the
+                // references of 8 maps at full count would double the report's time).
+                let builtin = scene.name == "envmap:sky" || scene.name == "envmap:interior";
+                let mut cfg = opts.config(if builtin { env_pixels } else { env_pixels / 6 });
+                if !builtin {
+                    // Their sampling and warping cost is the built-in maps' (same sizes):
+                    // shorter timings.
+                    cfg.timing_samples /= 8;
+                    cfg.timing_reps = cfg.timing_reps.min(3);
+                }
                 let (cut, lit) = (scene.view(false), scene.view(true));
                 let mut c = measure(&cut, &cfg);
                 let mut l = measure(&lit, &cfg);
@@ -300,6 +350,21 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
                 results.push(c);
                 results.push(l);
             }
+        }
+        // The variance split per layout (issue 25): 256 pixels per class, 128 x 128 points
+        // (quick: 16 and 32).
+        if !envs.is_empty() {
+            let (pixels, grid) = if opts.quick { (16, 32) } else { (256, 128) };
+            let chosen: Vec<&EnvScene> = envs.iter().filter(|s| opts.wants(&s.name)).collect();
+            let splits = crate::env_split::run(&chosen, pixels, grid, opts.threads);
+            output::write(
+                &opts.out.join("variance_split.csv"),
+                &crate::env_split::csv(&splits),
+            )?;
+            output::write(
+                &opts.out.join("variance_split.md"),
+                &crate::env_split::markdown(&splits, &results, grid),
+            )?;
         }
         if let Some(interior) = envs.iter().find(|s| s.name == "envmap:interior") {
             let grid = if opts.quick { 128 } else { 1024 };
@@ -362,9 +427,24 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
     Ok(results)
 }
 
-/// A lat-long PFM map as a scene named by its file stem.
 #[cfg(feature = "envmap")]
-pub fn load_envmap(path: &std::path::Path) -> Result<EnvScene, Box<dyn std::error::Error>> {
+/// The real environment maps shipped with the tests (CC0, `tests/data/envmaps/README.md`),
+/// scenes `envmap:<stem>`.
+pub fn real_envmaps() -> Vec<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/envmaps");
+    ["apartment", "venice", "night", "forest", "park", "sunset"]
+        .iter()
+        .map(|n| dir.join(format!("{n}.pfm")))
+        .filter(|p| p.exists())
+        .collect()
+}
+
+/// A lat-long PFM map as a scene named by its file stem, over `rotations` rotations.
+#[cfg(feature = "envmap")]
+pub fn load_envmap(
+    path: &std::path::Path,
+    rotations: usize,
+) -> Result<EnvScene, Box<dyn std::error::Error>> {
     let img = crate::pfm::read(path)?;
     let mut lum = vec![0.0f32; img.rgb.len()];
     warpcore::envmap::image::luminance_slice(&img.rgb, &mut lum);
@@ -372,6 +452,6 @@ pub fn load_envmap(path: &std::path::Path) -> Result<EnvScene, Box<dyn std::erro
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "map".into());
-    EnvScene::from_latlong(&stem, img.width, img.height, lum)
+    EnvScene::from_latlong(&stem, img.width, img.height, lum, rotations)
         .map_err(|e| format!("{}: {e:?}", path.display()).into())
 }

@@ -54,6 +54,7 @@ use crate::run::{Scene, Scratch};
 use crate::samplers::Sampler;
 use crate::sphere_ref::{EqualArea, Grid, LatLong, Param};
 use std::f64::consts::{PI, TAU};
+use std::sync::{Arc, Mutex};
 use warpcore::envmap::{
     self, Compensation, Hierarchical, MarginalConditional, Sample, Word, image,
 };
@@ -111,7 +112,8 @@ fn leak(len: usize) -> &'static mut [Word] {
 
 /// One parameterization of a scene: its map, reference grid and both distributions.
 pub struct Side<P: Param> {
-    pub grid: Grid<P>,
+    /// The reference machinery of the parameterization (shared by a scene's rotations).
+    pub grid: Arc<Grid<P>>,
     /// Radiance per texel (row-major, row 0 at `v = 0`).
     pub radiance: Vec<f64>,
     pub marginal: MarginalConditional<'static>,
@@ -123,13 +125,12 @@ pub struct Side<P: Param> {
 impl<P: Param> Side<P> {
     /// `luminance` is the map; `weights` what the distributions sample by.
     pub fn new(
-        param: P,
-        width: usize,
-        height: usize,
+        grid: Arc<Grid<P>>,
         luminance: &[f32],
         weights: Vec<f32>,
         compensation: Compensation,
     ) -> Result<Self, envmap::Error> {
+        let (width, height) = (grid.width, grid.height);
         let hierarchical_mis = Hierarchical::new_compensated(
             &weights,
             width,
@@ -150,7 +151,7 @@ impl<P: Param> Side<P> {
             leak(Hierarchical::storage_len(width, height)),
         )?;
         Ok(Side {
-            grid: Grid::new(param, width, height),
+            grid,
             radiance: luminance
                 .iter()
                 .map(|&l| if l > 0.0 { l as f64 } else { 0.0 })
@@ -176,9 +177,6 @@ impl<P: Param> Side<P> {
         max / min
     }
 }
-
-/// A procedural radiance function of the direction.
-pub type Radiance = fn([f64; 3]) -> f64;
 
 /// Angle between two unit vectors.
 fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -231,9 +229,14 @@ pub fn interior(d: [f64; 3]) -> f64 {
     }
 }
 
-/// Rasterizes `f` into a `w x h` map of `param`: each texel the mean of 8 x 8 point values.
-pub fn rasterize<P: Param>(param: &P, w: usize, h: usize, f: Radiance) -> Vec<f32> {
-    let k = 8;
+/// Rasterizes `f` into a `w x h` map of `param`: each texel the mean of `k x k` point values.
+pub fn rasterize<P: Param>(
+    param: &P,
+    w: usize,
+    h: usize,
+    k: usize,
+    f: &(dyn Fn([f64; 3]) -> f64 + Sync),
+) -> Vec<f32> {
     (0..h)
         .flat_map(|j| (0..w).map(move |i| (i, j)))
         .map(|(i, j)| {
@@ -252,77 +255,187 @@ pub fn rasterize<P: Param>(param: &P, w: usize, h: usize, f: Radiance) -> Vec<f3
         .collect()
 }
 
-/// An environment-map scene: a map, and its pixels with or without the occluder.
+/// A rotation of the sphere, row-major.
+pub type Rotation = [[f64; 3]; 3];
+
+/// The map rotations the report averages over (issue 25): rotation 0 is the identity, the
+/// others are uniformly distributed rotations (Shoemake's unit quaternions) from a fixed
+/// stream, the same for every scene. The layout a map is stored in decides where its bright
+/// features fall relative to the sample square's split lines and the octahedral folds, so
+/// one orientation can flatter or penalize a layout (the sun's position alone moved the
+/// equal-area / lat-long MSE ratio from 1.05 to 2.00 over 12 rotations in the issue's study).
+pub fn rotations(count: usize) -> Vec<Rotation> {
+    let mut rng = Rng::new(0x726f_7461_7465);
+    (0..count.max(1))
+        .map(|k| {
+            let (u1, u2, u3) = (rng.uniform(), rng.uniform(), rng.uniform());
+            if k == 0 {
+                return [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+            }
+            let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
+            let (x, y) = (a * (TAU * u2).sin(), a * (TAU * u2).cos());
+            let (z, w) = (b * (TAU * u3).sin(), b * (TAU * u3).cos());
+            [
+                [
+                    1.0 - 2.0 * (y * y + z * z),
+                    2.0 * (x * y - z * w),
+                    2.0 * (x * z + y * w),
+                ],
+                [
+                    2.0 * (x * y + z * w),
+                    1.0 - 2.0 * (x * x + z * z),
+                    2.0 * (y * z - x * w),
+                ],
+                [
+                    2.0 * (x * z - y * w),
+                    2.0 * (y * z + x * w),
+                    1.0 - 2.0 * (x * x + y * y),
+                ],
+            ]
+        })
+        .collect()
+}
+
+/// `R^T d`: the direction of the unrotated map seen at `d` in the map turned by `R`.
+fn unrotate(r: &Rotation, d: [f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|i| r[0][i] * d[0] + r[1][i] * d[1] + r[2][i] * d[2])
+}
+
+/// An environment-map scene: one map, turned by each of [`rotations`]; its pixels with or
+/// without the occluder.
 pub struct EnvScene {
     pub name: String,
+    /// Rotation 0 (the map as given).
     pub latlong: Side<LatLong>,
     pub equal_area: Side<EqualArea>,
+    /// Rotations 1.. of the same map (the same grids).
+    pub rotated: Vec<(Side<LatLong>, Side<EqualArea>)>,
+    /// Seeds the pixels' geometry: scenes with the same `id` (one map at two resolutions)
+    /// have the same pixels.
     pub id: u64,
 }
 
-/// One pixel: normal, occluder plane normal and the two references.
+/// One pixel: normal, occluder plane normal, the map rotation it sees, and the two
+/// references.
 #[derive(Clone, Debug)]
 pub struct EnvPixel {
     pub n: [f64; 3],
     pub m: [f64; 3],
+    /// Index into [`rotations`]: pixel `i` sees rotation `i % count`.
+    pub rotation: usize,
     /// Per parameterization: lat-long, equal-area.
     pub reference: [f64; 2],
 }
 
+/// The lat-long and equal-area maps of one rotation of a scene, scaled so that the lat-long
+/// map's mean radiance over the sphere is 1 (unoccluded irradiance is then at most pi: MSE
+/// figures comparable across maps), with their distributions.
+fn sides(
+    grids: (&Arc<Grid<LatLong>>, &Arc<Grid<EqualArea>>),
+    mut ll: Vec<f32>,
+    mut ea: Vec<f32>,
+) -> Result<(Side<LatLong>, Side<EqualArea>), envmap::Error> {
+    let (w, h) = (grids.0.width, grids.0.height);
+    let power: f64 = (0..h)
+        .map(|j| {
+            let (t0, t1) = (PI * j as f64 / h as f64, PI * (j + 1) as f64 / h as f64);
+            let omega = TAU / w as f64 * (t0.cos() - t1.cos());
+            omega
+                * ll[j * w..(j + 1) * w]
+                    .iter()
+                    .map(|&l| l.max(0.0) as f64)
+                    .sum::<f64>()
+        })
+        .sum();
+    let scale = if power > 0.0 {
+        (4.0 * PI / power) as f32
+    } else {
+        1.0
+    };
+    for l in ll.iter_mut().chain(ea.iter_mut()) {
+        *l *= scale;
+    }
+    let mut ll_weights: Vec<f32> = ll.iter().map(|&l| if l > 0.0 { l } else { 0.0 }).collect();
+    image::latlong_solid_angle_weights(&mut ll_weights, w, h)?;
+    let ea_weights: Vec<f32> = ea.iter().map(|&l| if l > 0.0 { l } else { 0.0 }).collect();
+    Ok((
+        Side::new(
+            grids.0.clone(),
+            &ll,
+            ll_weights,
+            Compensation::LatLong(mis_fraction()),
+        )?,
+        Side::new(
+            grids.1.clone(),
+            &ea,
+            ea_weights,
+            Compensation::Uniform(mis_fraction()),
+        )?,
+    ))
+}
+
+/// The reference grids of a `w x h` lat-long map and its `s x s` equal-area partner, built
+/// once per size and shared by every scene and rotation of that size.
+fn grids(w: usize, h: usize) -> (Arc<Grid<LatLong>>, Arc<Grid<EqualArea>>) {
+    type Grids = (Arc<Grid<LatLong>>, Arc<Grid<EqualArea>>);
+    static CACHE: Mutex<Vec<((usize, usize), Grids)>> = Mutex::new(Vec::new());
+    let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, g)) = cache.iter().find(|(k, _)| *k == (w, h)) {
+        return g.clone();
+    }
+    let s = ((w * h) as f64).sqrt().round() as usize;
+    let g = (
+        Arc::new(Grid::new(LatLong, w, h)),
+        Arc::new(Grid::new(EqualArea, s, s)),
+    );
+    cache.push(((w, h), g.clone()));
+    g
+}
+
 impl EnvScene {
-    /// A scene from its lat-long luminance map (`w x h`, row 0 around `+z`) and its
-    /// equal-area luminance map (`s x s`).
-    pub fn new(
+    /// A scene of the radiance function `f`, rasterized (`k x k` points per texel) into a
+    /// `w x h` lat-long map and an `s x s` equal-area map (`s = round(sqrt(w h))`, centred in
+    /// its pyramid), once per rotation. `id_name` seeds the pixels.
+    pub fn from_function(
         name: &str,
-        latlong: (usize, usize, Vec<f32>),
-        equal_area: (usize, Vec<f32>),
+        id_name: &str,
+        f: &(dyn Fn([f64; 3]) -> f64 + Sync),
+        (w, h): (usize, usize),
+        k: usize,
+        rotation_count: usize,
     ) -> Result<Self, envmap::Error> {
-        let (w, h, mut ll) = latlong;
-        let (s, mut ea) = equal_area;
-        // Scale both maps so that the lat-long map's mean radiance over the sphere is 1
-        // (unoccluded irradiance then is at most pi): MSE figures comparable across maps.
-        let power: f64 = (0..h)
-            .map(|j| {
-                let (t0, t1) = (PI * j as f64 / h as f64, PI * (j + 1) as f64 / h as f64);
-                let omega = TAU / w as f64 * (t0.cos() - t1.cos());
-                omega
-                    * ll[j * w..(j + 1) * w]
-                        .iter()
-                        .map(|&l| l.max(0.0) as f64)
-                        .sum::<f64>()
-            })
-            .sum();
-        let scale = if power > 0.0 {
-            (4.0 * PI / power) as f32
-        } else {
-            1.0
-        };
-        for l in ll.iter_mut().chain(ea.iter_mut()) {
-            *l *= scale;
+        let s = ((w * h) as f64).sqrt().round() as usize;
+        let (gl, ge) = grids(w, h);
+        let grids = (&gl, &ge);
+        let mut all = Vec::new();
+        for r in rotations(rotation_count) {
+            let g = |d: [f64; 3]| f(unrotate(&r, d));
+            let ll = rasterize(&LatLong, w, h, k, &g);
+            let ea = rasterize(&EqualArea, s, s, k, &g);
+            all.push(sides(grids, ll, ea)?);
         }
-        let mut ll_weights: Vec<f32> = ll.iter().map(|&l| if l > 0.0 { l } else { 0.0 }).collect();
-        image::latlong_solid_angle_weights(&mut ll_weights, w, h)?;
-        let ea_weights: Vec<f32> = ea.iter().map(|&l| if l > 0.0 { l } else { 0.0 }).collect();
+        let mut all = all.into_iter();
+        let (latlong, equal_area) = all.next().ok_or(envmap::Error::ZeroSize)?;
         Ok(EnvScene {
             name: format!("envmap:{name}"),
-            latlong: Side::new(
-                LatLong,
-                w,
-                h,
-                &ll,
-                ll_weights,
-                Compensation::LatLong(mis_fraction()),
-            )?,
-            equal_area: Side::new(
-                EqualArea,
-                s,
-                s,
-                &ea,
-                ea_weights,
-                Compensation::Uniform(mis_fraction()),
-            )?,
-            id: hash(&name.bytes().map(u64::from).collect::<Vec<_>>()),
+            latlong,
+            equal_area,
+            rotated: all.collect(),
+            id: hash(&id_name.bytes().map(u64::from).collect::<Vec<_>>()),
         })
+    }
+
+    /// The number of map rotations the pixels cycle through.
+    pub fn rotation_count(&self) -> usize {
+        1 + self.rotated.len()
+    }
+
+    /// The maps and distributions of rotation `k`.
+    pub fn side(&self, k: usize) -> (&Side<LatLong>, &Side<EqualArea>) {
+        match k.checked_sub(1).and_then(|i| self.rotated.get(i)) {
+            Some((ll, ea)) => (ll, ea),
+            None => (&self.latlong, &self.equal_area),
+        }
     }
 
     /// The scene's pixels with the occluder (`lit = false`, the scene's own name) or without
@@ -331,33 +444,50 @@ impl EnvScene {
         EnvView { scene: self, lit }
     }
 
-    /// A built-in procedural map, rasterized at `w x h` lat-long and the matching square.
-    pub fn procedural(name: &str, f: Radiance, w: usize, h: usize) -> Result<Self, envmap::Error> {
-        let s = ((w * h) as f64).sqrt().round() as usize;
-        let ll = rasterize(&LatLong, w, h, f);
-        let ea = rasterize(&EqualArea, s, s, f);
-        Self::new(name, (w, h, ll), (s, ea))
-    }
-
-    /// A scene from a lat-long luminance image; the equal-area map is resampled from it.
-    pub fn from_latlong(
+    /// A built-in procedural map at `w x h` lat-long and the matching square (8 x 8 points
+    /// per texel).
+    pub fn procedural(
         name: &str,
+        f: fn([f64; 3]) -> f64,
         w: usize,
         h: usize,
-        luminance: Vec<f32>,
+        rotation_count: usize,
     ) -> Result<Self, envmap::Error> {
-        let s = ((w * h) as f64).sqrt().round() as usize;
-        let src: Vec<[f32; 1]> = luminance.iter().map(|&l| [l]).collect();
-        let mut dst = vec![[0.0f32; 1]; s * s];
-        image::latlong_to_equal_area(&src, w, h, &mut dst, s, 4)?;
-        let ea = dst.iter().map(|v| v[0]).collect();
-        Self::new(name, (w, h, luminance), (s, ea))
+        Self::from_function(name, name, &f, (w, h), 8, rotation_count)
     }
 
-    /// The built-in scenes: `envmap:sky` and `envmap:interior`, 256 x 128 lat-long and
-    /// 181 x 181 equal-area.
-    pub fn builtin() -> Vec<EnvScene> {
-        let make = |name: &str, f: Radiance| EnvScene::procedural(name, f, 256, 128).ok();
+    /// A scene from a lat-long luminance image (`width x height`, row 0 around `+z`; its
+    /// negative and NaN texels weigh 0), resampled to the report's 256 x 128 lat-long and
+    /// 181 x 181 equal-area maps (4 x 4 points per texel, each the source texel it falls
+    /// in: for a 512 x 256 source and the unrotated map, exactly a 2 x 2 box filter).
+    pub fn from_latlong(
+        name: &str,
+        width: usize,
+        height: usize,
+        luminance: Vec<f32>,
+        rotation_count: usize,
+    ) -> Result<Self, envmap::Error> {
+        if width == 0 || height == 0 || luminance.len() != width * height {
+            return Err(envmap::Error::ZeroSize);
+        }
+        let lookup = move |d: [f64; 3]| -> f64 {
+            let [u, v] = LatLong.inverse(d);
+            let i = ((u * width as f64) as usize).min(width - 1);
+            let j = ((v * height as f64) as usize).min(height - 1);
+            let l = luminance[j * width + i];
+            if l > 0.0 { l as f64 } else { 0.0 }
+        };
+        Self::from_function(name, name, &lookup, (256, 128), 4, rotation_count)
+    }
+
+    /// The built-in scenes: `envmap:sky` and `envmap:interior` (procedural), 256 x 128
+    /// lat-long and 181 x 181 equal-area, and `envmap:sky_200x100`, the sky at 200 x 100 and
+    /// 141 x 141 with the same pixels (a non-power-of-two lat-long map against
+    /// 256 x 128); each over `rotation_count` rotations.
+    pub fn builtin(rotation_count: usize) -> Vec<EnvScene> {
+        let make = |name: &str, f: fn([f64; 3]) -> f64| {
+            EnvScene::procedural(name, f, 256, 128, rotation_count).ok()
+        };
         // Built on two threads: the reference grids take a moment each.
         let (sky, interior) = std::thread::scope(|s| {
             let a = s.spawn(|| make("sky", sky));
@@ -365,6 +495,11 @@ impl EnvScene {
             (a.join().ok().flatten(), b)
         });
         sky.into_iter().chain(interior).collect()
+    }
+
+    /// `envmap:sky_200x100` (see [`EnvScene::builtin`]).
+    pub fn sky_200x100(rotation_count: usize) -> Option<EnvScene> {
+        Self::from_function("sky_200x100", "sky", &sky, (200, 100), 8, rotation_count).ok()
     }
 
     pub fn geometry(&self, index: u64) -> ([f64; 3], [f64; 3]) {
@@ -437,14 +572,15 @@ impl Scene for EnvView<'_> {
         // the lobe already gives weight 0, so the references and the estimator are the
         // unoccluded ones.
         let m = if self.lit { n } else { m };
+        let rotation = (index % self.rotation_count() as u64) as usize;
+        let (ll, ea) = self.side(rotation);
         EnvPixel {
             n,
             m,
+            rotation,
             reference: [
-                self.latlong.grid.integral(&self.latlong.radiance, n, m),
-                self.equal_area
-                    .grid
-                    .integral(&self.equal_area.radiance, n, m),
+                ll.grid.integral(&ll.radiance, n, m),
+                ea.grid.integral(&ea.radiance, n, m),
             ],
         }
     }
@@ -460,18 +596,64 @@ impl Scene for EnvView<'_> {
     fn draw(&self, warp: usize, sampler: Sampler, spp: usize, seed: u32, s: &mut Scratch) {
         s.reserve(spp);
         sampler.fill(seed, &mut s.points[..spp]);
+        self.warp_points(0, warp, spp, s);
+    }
+
+    fn draw_for(
+        &self,
+        pixel: &EnvPixel,
+        warp: usize,
+        sampler: Sampler,
+        spp: usize,
+        seed: u32,
+        s: &mut Scratch,
+    ) {
+        s.reserve(spp);
+        sampler.fill(seed, &mut s.points[..spp]);
+        self.warp_points(pixel.rotation, warp, spp, s);
+    }
+
+    fn evaluate(&self, pixel: &EnvPixel, warp: usize, spp: usize, s: &Scratch) -> f64 {
+        if warp >= 4 {
+            return self.evaluate_mis(pixel, base(warp), spp, s);
+        }
+        (0..spp).map(|k| self.value(pixel, warp, k, s)).sum::<f64>() / spp as f64
+    }
+}
+
+impl EnvView<'_> {
+    /// One sample's term `L_t max(0, n . w) [m . w >= 0] / p(w)` of the plain estimator
+    /// (`warp < 4`), for sample `k` of those `warp_points` left in `s`.
+    pub fn value(&self, pixel: &EnvPixel, warp: usize, k: usize, s: &Scratch) -> f64 {
+        let side = self.side(pixel.rotation);
+        let (radiance, width) = if warp < 2 {
+            (&side.0.radiance, side.0.width())
+        } else {
+            (&side.1.radiance, side.1.width())
+        };
+        let smp = &s.env.samples[k];
+        let d = s.out3[k].map(f64::from);
+        let c = dot3(pixel.n, d);
+        let p = s.env.pdf[k] as f64;
+        if c <= 0.0 || dot3(pixel.m, d) < 0.0 || p <= 0.0 {
+            return 0.0;
+        }
+        radiance[smp.texel[1] as usize * width + smp.texel[0] as usize] * c / p
+    }
+
+    /// Warps the `spp` points in `s.points` by `warp` of rotation `rotation` into
+    /// `s.env.samples`, `s.out3` (directions) and `s.env.pdf` (solid-angle densities).
+    pub fn warp_points(&self, rotation: usize, warp: usize, spp: usize, s: &mut Scratch) {
+        let (ll, ea) = self.side(rotation);
         let env = &mut s.env;
         let (points, samples) = (&s.points[..spp], &mut env.samples[..spp]);
         match warp {
-            0 => self.latlong.marginal.sample_slice(points, samples),
-            1 => self.latlong.hierarchical.sample_slice(points, samples),
-            2 => self.equal_area.marginal.sample_slice(points, samples),
-            3 => self.equal_area.hierarchical.sample_slice(points, samples),
-            4 => self.latlong.hierarchical_mis.sample_slice(points, samples),
-            _ => self
-                .equal_area
-                .hierarchical_mis
-                .sample_slice(points, samples),
+            0 => ll.marginal.sample_slice(points, samples),
+            1 => ll.hierarchical.sample_slice(points, samples),
+            2 => ea.marginal.sample_slice(points, samples),
+            3 => ea.hierarchical.sample_slice(points, samples),
+            4 => ll.hierarchical_mis.sample_slice(points, samples),
+            _ => ea.hierarchical_mis.sample_slice(points, samples),
         };
         let warp = base(warp);
         for (uv, smp) in env.uv.iter_mut().zip(samples.iter()) {
@@ -491,53 +673,22 @@ impl Scene for EnvView<'_> {
         }
     }
 
-    fn evaluate(&self, pixel: &EnvPixel, warp: usize, spp: usize, s: &Scratch) -> f64 {
-        if warp >= 4 {
-            return self.evaluate_mis(pixel, base(warp), spp, s);
-        }
-        let (radiance, width) = if warp < 2 {
-            (&self.latlong.radiance, self.latlong.width())
-        } else {
-            (&self.equal_area.radiance, self.equal_area.width())
-        };
-        let (n, m) = (pixel.n, pixel.m);
-        let mut sum = 0.0;
-        for k in 0..spp {
-            let smp = &s.env.samples[k];
-            let d = s.out3[k].map(f64::from);
-            let c = dot3(n, d);
-            let p = s.env.pdf[k] as f64;
-            if c <= 0.0 || dot3(m, d) < 0.0 || p <= 0.0 {
-                continue;
-            }
-            let t = smp.texel[1] as usize * width + smp.texel[0] as usize;
-            sum += radiance[t] * c / p;
-        }
-        sum / spp as f64
-    }
-}
-
-impl EnvView<'_> {
     /// The `_mis` estimator (see the module docs): `warp` (1 or 3) names the
     /// parameterization, whose compensated hierarchical tables `draw` sampled.
     fn evaluate_mis(&self, pixel: &EnvPixel, warp: usize, spp: usize, s: &Scratch) -> f64 {
         let latlong = warp < 2;
+        let (ll, ea) = self.side(pixel.rotation);
         let (radiance, width, height) = if latlong {
-            (
-                &self.latlong.radiance,
-                self.latlong.width(),
-                self.latlong.height(),
-            )
+            (&ll.radiance, ll.width(), ll.height())
         } else {
-            let ea = &self.equal_area;
             (&ea.radiance, ea.width(), ea.height())
         };
         // The light technique's density over directions at `uv`.
         let light_pdf = |uv: [f32; 2]| -> f64 {
             let p = if latlong {
-                self.latlong.hierarchical_mis.pdf(uv)
+                ll.hierarchical_mis.pdf(uv)
             } else {
-                self.equal_area.hierarchical_mis.pdf(uv)
+                ea.hierarchical_mis.pdf(uv)
             };
             f64::from(if latlong {
                 image::latlong_pdf_to_solid_angle(p, uv[1])

@@ -9,6 +9,8 @@
 mod app;
 mod area;
 #[cfg(feature = "envmap")]
+mod env_split;
+#[cfg(feature = "envmap")]
 mod envscene;
 mod math;
 mod output;

@@ -67,6 +67,19 @@ pub trait Scene: Sync {
     }
     /// Draws and warps `spp` samples for `seed` into `s` (what the timing measures).
     fn draw(&self, warp: usize, sampler: Sampler, spp: usize, seed: u32, s: &mut Scratch);
+    /// [`Scene::draw`] for one pixel (the environment-map scenes' pixels see different
+    /// rotations of the map, each with its own distributions); what the error runs call.
+    fn draw_for(
+        &self,
+        _pixel: &Self::Pixel,
+        warp: usize,
+        sampler: Sampler,
+        spp: usize,
+        seed: u32,
+        s: &mut Scratch,
+    ) {
+        self.draw(warp, sampler, spp, seed, s)
+    }
     /// The estimate from the samples `draw` left in `s`.
     fn evaluate(&self, pixel: &Self::Pixel, warp: usize, spp: usize, s: &Scratch) -> f64;
 }
@@ -305,7 +318,7 @@ pub fn errors<S: Scene>(scene: &S, cfg: &Config, bar: &ProgressBar) -> SceneResu
                                     {
                                         continue;
                                     }
-                                    scene.draw(w, sampler, spp, seed, &mut s);
+                                    scene.draw_for(&px, w, sampler, spp, seed, &mut s);
                                     let est = scene.evaluate(&px, w, spp, &s);
                                     let c = w * SAMPLERS.len() + sampler.index();
                                     stats[c * ns + k].add(est - scene.reference(&px, w));
