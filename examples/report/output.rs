@@ -242,54 +242,113 @@ pub fn write(path: &Path, text: &str) -> io::Result<()> {
     std::fs::write(path, text)
 }
 
-/// A row's label: `sampler + warp`, or for an index-driven construction (reported under
-/// several sampler names) the warp alone.
-fn label(res: &SceneResult, r: &crate::run::Row) -> String {
+/// The functions a renderer calls for a warp of the report (its CSV name otherwise).
+pub fn warp_api(warp: &str) -> String {
+    let map = [
+        ("identity", ""),
+        ("polar", "disk::polar"),
+        ("concentric", "disk::concentric"),
+        ("polar4", "disk::polar4"),
+        ("concentric4", "disk::concentric4"),
+        (
+            "pad_zero",
+            "disk::polar, 4th quadrant sample dropped (pad_zero)",
+        ),
+        ("rejection", "rejection from the square (rejection)"),
+        ("uniform", "triangle::uniform"),
+        ("sqrt", "triangle::sqrt_map"),
+        ("basu_owen", "triangle::basu_owen"),
+        ("basu_owen_permuted", "triangle::basu_owen_permuted"),
+        (
+            "marginal_equirect",
+            "envmap::MarginalConditional + sphere::equirect",
+        ),
+        (
+            "hierarchical_equirect",
+            "envmap::Hierarchical + sphere::equirect",
+        ),
+        (
+            "marginal_equal_area",
+            "envmap::MarginalConditional + sphere::equal_area",
+        ),
+        (
+            "hierarchical_equal_area",
+            "envmap::Hierarchical + sphere::equal_area",
+        ),
+        ("area", "square / triangle::uniform (by area)"),
+        (
+            "area_basu_owen_permuted",
+            "triangle::basu_owen_permuted (by area)",
+        ),
+        ("solid_angle", "spherical::triangle / spherical::rectangle"),
+    ];
+    match map.iter().find(|(w, _)| *w == warp) {
+        Some((_, api)) => api.to_string(),
+        None => warp.to_string(),
+    }
+}
+
+/// [`label`] in API names: `pmj02bn::sample + disk::polar4` (peers marked as peers).
+fn api_label(res: &SceneResult, r: &crate::run::Row) -> String {
     let index_driven = res
         .rows
         .iter()
         .any(|o| o.warp == r.warp && o.alias_of.is_some());
+    let warp = warp_api(r.warp);
     if index_driven && r.sampler != Sampler::Random {
-        format!("{} (construction)", r.warp)
-    } else if warps(res).len() == 1 {
-        r.sampler.name().to_string()
+        format!("`{warp}` (index-driven)")
+    } else if warp.is_empty() {
+        format!("`{}`", r.sampler.api_name())
     } else {
-        format!("{} + {}", r.sampler.name(), r.warp)
+        format!("`{}` + `{warp}`", r.sampler.api_name())
     }
 }
 
-/// The best row by `score` at count index `k`, and the rows statistically tied with it (their
-/// MSE within two standard errors of the difference, the errors taken as independent).
-fn best(
-    res: &SceneResult,
-    k: usize,
-    score: impl Fn(&crate::run::Row) -> f64,
-) -> Option<(String, f64, Vec<String>)> {
+/// The row with the lowest MSE at count index `k`, the rows statistically tied with it (their
+/// MSE within two standard errors of the difference, the errors taken as independent), and
+/// the cheapest of them all (sampling + warp time per sample).
+struct Best<'a> {
+    top: &'a crate::run::Row,
+    ties: Vec<&'a crate::run::Row>,
+    cheapest: &'a crate::run::Row,
+}
+
+fn best(res: &SceneResult, k: usize) -> Option<Best<'_>> {
     let rows: Vec<&crate::run::Row> = res.rows.iter().filter(|r| r.alias_of.is_none()).collect();
     let top = rows
         .iter()
         .copied()
-        .filter(|r| score(r).is_finite())
-        .min_by(|a, b| score(a).total_cmp(&score(b)))?;
-    let (s0, e0) = (score(top), top.stats[k].rel_se());
-    let ties = rows
+        .filter(|r| r.mse(k).is_finite())
+        .min_by(|a, b| a.mse(k).total_cmp(&b.mse(k)))?;
+    let (s0, e0) = (top.mse(k), top.stats[k].rel_se());
+    let ties: Vec<&crate::run::Row> = rows
         .iter()
-        .filter(|r| !std::ptr::eq(**r, top))
+        .copied()
+        .filter(|r| !std::ptr::eq(*r, top))
         .filter(|r| {
             let e = (e0 * e0 + r.stats[k].rel_se().powi(2)).sqrt();
-            score(r) <= s0 * (1.0 + 2.0 * e)
+            r.mse(k) <= s0 * (1.0 + 2.0 * e)
         })
-        .map(|r| label(res, r))
         .collect();
-    Some((label(res, top), s0, ties))
+    let cheapest = std::iter::once(top)
+        .chain(ties.iter().copied())
+        .filter(|r| r.ns[k].is_finite())
+        .min_by(|a, b| a.ns[k].total_cmp(&b.ns[k]))
+        .unwrap_or(top);
+    Some(Best {
+        top,
+        ties,
+        cheapest,
+    })
 }
 
-/// `recommendations.md`: per light and pixel class, the sampler x warp with the lowest MSE
-/// and the one with the lowest MSE x time (the time to draw and warp the pixel's samples), at
-/// 16 and 256 samples per pixel, with the rows that are statistically tied.
+/// `recommendations.md`: per light and pixel class, at 16 and 256 samples per pixel, the
+/// sampler x warp with the lowest MSE (in API names), the rows statistically tied with it,
+/// and the cheapest of those (the time to draw and warp the samples, native build; a
+/// statistically worse row is never recommended for its speed).
 pub fn recommendations_markdown(results: &[SceneResult]) -> String {
     let mut s = String::from(
-        "| light | pixels | spp | lowest MSE | lowest MSE x time (sampling + warp only) |\n|---|---|---:|---|---|\n",
+        "| light | pixels | spp | lowest MSE | tied (2 s.e.) | cheapest of these (sampling + warp) |\n|---|---|---:|---|---|---|\n",
     );
     for res in results {
         let (light, class) = match res.scene.split_once('/') {
@@ -301,29 +360,31 @@ pub fn recommendations_markdown(results: &[SceneResult]) -> String {
         };
         for spp in [16, 256] {
             let Some(k) = at(res, spp) else { continue };
-            let cell = |b: Option<(String, f64, Vec<String>)>, unit: &str| match b {
-                None => "-".to_string(),
-                Some((name, v, ties)) => {
-                    let tie = match ties.len() {
-                        0 => String::new(),
-                        1..=3 => format!("; tied: {}", ties.join(", ")),
-                        n => format!("; tied: {} and {} more", ties[..3].join(", "), n - 3),
-                    };
-                    format!("**{name}** ({v:.2e}{unit}{tie})")
+            let Some(b) = best(res, k) else { continue };
+            let ties = match b.ties.len() {
+                0 => "-".to_string(),
+                n => {
+                    let names: Vec<String> =
+                        b.ties.iter().take(3).map(|r| api_label(res, r)).collect();
+                    if n > 3 {
+                        format!("{} and {} more", names.join(", "), n - 3)
+                    } else {
+                        names.join(", ")
+                    }
                 }
             };
-            let mse = best(res, k, |r| r.mse(k));
-            let eff = best(res, k, |r| r.mse(k) * r.ns[k] * spp as f64);
             let _ = writeln!(
                 s,
-                "| {light} | {class} | {spp} | {} | {} |",
-                cell(mse, ""),
-                cell(eff, " ns")
+                "| {light} | {class} | {spp} | **{}** ({:.2e}) | {ties} | {} ({:.2} ns) |",
+                api_label(res, b.top),
+                b.top.mse(k),
+                api_label(res, b.cheapest),
+                b.cheapest.ns[k],
             );
         }
     }
     s.push_str(
-        "\nMSE in absolute units (irradiance of a unit-radiance light of unit area at distance 1; environment maps scaled to mean radiance 1). \"tied\": within two standard errors of the best. Index-driven Basu-Owen rows are the construction itself (no sampler).\n",
+        "\nMSE in absolute units (irradiance of a unit-radiance light of unit area at distance 1; environment maps scaled to mean radiance 1). \"tied\": within two standard errors of the best. \"index-driven\": the construction draws its own points from the sample index (no sampler). Samples per pixel count warped samples: `disk::polar4` makes four disk samples from each 2D point, so its 256 spp are 64 points. The CSV files name the same rows by short names (`pmj02bn`, `sobol_owen`, `polar4`, ...).\n",
     );
     s
 }

@@ -56,6 +56,18 @@ impl Sampler {
         self as usize
     }
 
+    /// The API a renderer calls for this sampler's points (peers marked as peers): what the
+    /// generated recommendations print (the CSV keeps the short names).
+    pub fn api_name(self) -> &'static str {
+        match self {
+            Sampler::Random => "sequence::random",
+            Sampler::Stratified => "sequence::stratified",
+            Sampler::Pmj02bn => "pmj02bn::sample",
+            Sampler::Pmj02bnCp => "peer: pbrt-v4 PMJ02BN (table + shift)",
+            Sampler::SobolOwen => "peer: sobol_burley (Owen Sobol')",
+        }
+    }
+
     /// Whether the sampler is one of the peers' randomizations (not warpcore's own).
     pub fn is_peer(self) -> bool {
         matches!(self, Sampler::Pmj02bnCp | Sampler::SobolOwen)
