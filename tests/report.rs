@@ -900,3 +900,47 @@ mod env {
         }
     }
 }
+
+// ----------------------------------------------------------------------------------------
+// docs/REPORT.md quotes the generated files, never a stale copy of them
+
+/// Every `<!-- generated: report/X.md -->` ... `<!-- end: report/X.md -->` block of
+/// docs/REPORT.md is exactly the file docs/report/X.md that the report last wrote (so the
+/// page's tables cannot drift from `results.csv`), and the page quotes at least the
+/// recommendations, the comparison with the source and the variance split that way.
+#[test]
+fn report_page_quotes_the_generated_files_verbatim() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let page = std::fs::read_to_string(root.join("docs/REPORT.md")).unwrap();
+    let mut quoted = Vec::new();
+    let mut rest = page.as_str();
+    while let Some(start) = rest.find("<!-- generated: ") {
+        let after = &rest[start + "<!-- generated: ".len()..];
+        let name = &after[..after.find(" -->").expect("unterminated marker")];
+        let body_start = start + "<!-- generated: ".len() + name.len() + " -->".len();
+        let end_marker = format!("<!-- end: {name} -->");
+        let end = rest[body_start..]
+            .find(&end_marker)
+            .unwrap_or_else(|| panic!("{name}: no end marker"));
+        let body = rest[body_start..body_start + end].trim();
+        let file = std::fs::read_to_string(root.join("docs").join(name))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(
+            body,
+            file.trim(),
+            "docs/REPORT.md's copy of {name} differs from the file: paste the file again"
+        );
+        quoted.push(name.to_string());
+        rest = &rest[body_start + end + end_marker.len()..];
+    }
+    for want in [
+        "report/recommendations.md",
+        "report/comparison.md",
+        "report/variance_split.md",
+    ] {
+        assert!(
+            quoted.iter().any(|q| q == want),
+            "{want} is not quoted; quoted: {quoted:?}"
+        );
+    }
+}

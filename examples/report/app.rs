@@ -365,6 +365,10 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
                 &opts.out.join("variance_split.md"),
                 &crate::env_split::markdown(&splits, &results, grid),
             )?;
+            output::write(
+                &opts.out.join("envmap_by_sampler.md"),
+                &crate::env_split::by_sampler_markdown(&results),
+            )?;
         }
         if let Some(interior) = envs.iter().find(|s| s.name == "envmap:interior") {
             let grid = if opts.quick { 128 } else { 1024 };

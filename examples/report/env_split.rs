@@ -160,8 +160,7 @@ pub fn markdown(splits: &[Split], results: &[SceneResult], grid: usize) -> Strin
         .and_then(|r| r.spps.last().copied())
         .unwrap_or(0);
     let mut out = format!(
-        "# Variance split of the environment-map integrands\n\n\
-         Share of each hierarchical layout's integrand variance that depends on both sample \
+        "Share of each hierarchical layout's integrand variance that depends on both sample \
          axes (`Var_01 / Var`, {grid} x {grid} midpoints per pixel, summed over pixels; see \
          `examples/report/env_split.rs`), and the equal-area / lat-long ratios it predicts: \
          `Var` for random points, `Var_01` for (0,2) points. Measured: MSE ratios at {spp} spp.\n\n\
@@ -226,4 +225,75 @@ mod tests {
             "{v} {v0} {v1} {v01}"
         );
     }
+}
+
+/// `envmap_by_sampler.md`: per sampler, each env-map warp's MSE over `hierarchical_equirect`'s
+/// (the geometric mean over every environment-map scene and class, rotations averaged
+/// within each) at 16 and at the largest sample count, and the warp that is lowest.
+pub fn by_sampler_markdown(results: &[SceneResult]) -> String {
+    use crate::samplers::SAMPLERS;
+    let env: Vec<&SceneResult> = results
+        .iter()
+        .filter(|r| r.scene.starts_with("envmap:"))
+        .collect();
+    let Some(first) = env.first() else {
+        return String::new();
+    };
+    let spps: Vec<usize> = [16, *first.spps.last().unwrap_or(&16)]
+        .into_iter()
+        .filter(|s| first.spps.contains(s))
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
+    let warps = [
+        "marginal_equirect",
+        "hierarchical_equirect",
+        "marginal_equal_area",
+        "hierarchical_equal_area",
+    ];
+    let mut out = format!(
+        "MSE of each warp over `hierarchical_equirect`'s, per sampler: the geometric mean over \
+         the {} environment-map scene classes (built-in, real maps, both pixel classes; each \
+         averaged over the map's rotations). Below 1: that warp beats lat-long + hierarchical.\n\n\
+         | sampler | spp | {} | lowest |\n|---|---:|{}---|\n",
+        env.len(),
+        warps.join(" | "),
+        "---:|".repeat(warps.len())
+    );
+    for sampler in SAMPLERS {
+        for &spp in &spps {
+            let Some(k) = first.spps.iter().position(|&s| s == spp) else {
+                continue;
+            };
+            let ratio = |warp: &str| -> Option<f64> {
+                let mut logs = Vec::new();
+                for r in &env {
+                    let base = r.row(sampler, "hierarchical_equirect")?.stats[k].mse;
+                    let x = r.row(sampler, warp)?.stats[k].mse;
+                    if base > 0.0 && x > 0.0 {
+                        logs.push((x / base).ln());
+                    }
+                }
+                (!logs.is_empty()).then(|| (logs.iter().sum::<f64>() / logs.len() as f64).exp())
+            };
+            let ratios: Vec<Option<f64>> = warps.iter().map(|w| ratio(w)).collect();
+            let lowest = warps
+                .iter()
+                .zip(&ratios)
+                .filter_map(|(w, r)| r.map(|r| (w, r)))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(w, _)| format!("`{}`", crate::output::warp_api(w)))
+                .unwrap_or_default();
+            let cells: Vec<String> = ratios
+                .iter()
+                .map(|r| r.map_or("-".into(), |r| format!("{r:.2}")))
+                .collect();
+            out += &format!(
+                "| `{}` | {spp} | {} | {lowest} |\n",
+                sampler.api_name(),
+                cells.join(" | ")
+            );
+        }
+    }
+    out
 }
