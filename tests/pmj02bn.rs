@@ -257,8 +257,9 @@ fn a_second_dimension_needs_its_own_shuffle() {
          own shuffle at least {worst_shuffled}"
     );
     // Independent pairs: expected empty cells 256 * 0.016 = 4.2 (sd about 2); 236 is about
-    // ten standard deviations below the mean. Correlated pairs: at most a quarter of the grid.
-    assert!(worst_plain <= 64, "same index order hit {worst_plain} of 256 cells");
+    // ten standard deviations below the mean. Correlated pairs (measured: 16 cells when the
+    // seeds pick the same table set, at most 64 otherwise): at most three-eighths of the grid.
+    assert!(worst_plain <= 96, "same index order hit {worst_plain} of 256 cells");
     assert!(worst_shuffled >= 236, "own shuffle hit only {worst_shuffled} of 256 cells");
 
     let mse = |spp: u32, shuffled: bool| {
