@@ -8,6 +8,8 @@
 //!   the paragraph just before it (sizes in `KiB` may appear there as the byte count, and
 //!   `M/s` figures as a bare number, for tables that give the unit in their header). When a
 //!   measurement is redone in its home page, a README figure that was not updated fails here.
+//!   Docs pages that quote another page's throughput (a paragraph linking its `#throughput`
+//!   section) are held to the same rule.
 //! * **The JavaScript module's size** stated in docs/javascript.md is the size of the
 //!   committed `js/warpcore.wasm` file (read now, not a constant), and its table data is the
 //!   size of the table files it embeds.
@@ -175,7 +177,14 @@ fn page_has(page: &str, figure: &str) -> bool {
 fn the_figure_scanner_finds_figures_and_only_figures() {
     assert_eq!(
         figures("slice 1403 M/s, 5.0x `UnitDisc`; 24-29 ns; 0.52-0.69x; (8 KiB), 8,192 bytes."),
-        ["1403 M/s", "5.0x", "24-29 ns", "0.52-0.69x", "8 KiB", "8,192 bytes"]
+        [
+            "1403 M/s",
+            "5.0x",
+            "24-29 ns",
+            "0.52-0.69x",
+            "8 KiB",
+            "8,192 bytes"
+        ]
     );
     assert_eq!(
         figures("a 4 x 4 grid, seed 0x2545_f491, 2^-24, v2, 1e-4, x86-64, 12%"),
@@ -189,26 +198,30 @@ fn the_figure_scanner_finds_figures_and_only_figures() {
     assert_eq!(commas(356), "356");
 }
 
-#[test]
-fn readme_figures_are_quoted_from_the_pages_they_link() {
-    let readme = read("README.md");
-    let bs = blocks(&readme);
+/// Checks the figures of `page` (a path under the root) against the pages linked from each
+/// block or the block before it; with `quotes_only`, only blocks that link a `#throughput`
+/// section (a docs page quoting another page's measurement). Returns (figures checked,
+/// figures not found).
+fn check_quotes(page: &str, quotes_only: bool) -> (usize, Vec<String>) {
+    let text = read(page);
+    let dir = root().join(page).parent().unwrap().to_path_buf();
+    let bs = blocks(&text);
     let mut missing = Vec::new();
     let mut checked = 0;
     for (k, block) in bs.iter().enumerate() {
         let figs = figures(block);
-        if figs.is_empty() {
+        if figs.is_empty() || (quotes_only && !block.contains(".md#throughput)")) {
             continue;
         }
         let mut scope = block.clone();
         if k > 0 {
             scope = format!("{}\n{block}", bs[k - 1]);
         }
-        let homes: Vec<(PathBuf, String)> = md_links(&scope, &root())
+        let homes: Vec<(PathBuf, String)> = md_links(&scope, &dir)
             .into_iter()
             .map(|p| {
                 let text = std::fs::read_to_string(&p)
-                    .unwrap_or_else(|e| panic!("README links {}: {e}", p.display()));
+                    .unwrap_or_else(|e| panic!("{page} links {}: {e}", p.display()));
                 (p, text)
             })
             .collect();
@@ -217,7 +230,7 @@ fn readme_figures_are_quoted_from_the_pages_they_link() {
             if !homes.iter().any(|(_, text)| page_has(text, &fig)) {
                 let first = block.lines().next().unwrap_or("");
                 missing.push(format!(
-                    "{fig:?} (in the block starting {first:?}; linked: {:?})",
+                    "{page}: {fig:?} (in the block starting {first:?}; linked: {:?})",
                     homes
                         .iter()
                         .map(|(p, _)| p.strip_prefix(root()).unwrap_or(p).display().to_string())
@@ -226,6 +239,12 @@ fn readme_figures_are_quoted_from_the_pages_they_link() {
             }
         }
     }
+    (checked, missing)
+}
+
+#[test]
+fn readme_figures_are_quoted_from_the_pages_they_link() {
+    let (checked, missing) = check_quotes("README.md", false);
     assert!(
         checked >= 20,
         "only {checked} figures found: is the scanner broken?"
@@ -236,6 +255,27 @@ fn readme_figures_are_quoted_from_the_pages_they_link() {
          the home):\n{}",
         missing.join("\n")
     );
+}
+
+/// A docs page that quotes another page's throughput (a block linking its `#throughput`
+/// section) quotes it as written there.
+#[test]
+fn docs_quote_throughput_from_its_home() {
+    let mut all = Vec::new();
+    let mut checked = 0;
+    for entry in std::fs::read_dir(root().join("docs")).unwrap() {
+        let name = entry.unwrap().file_name().into_string().unwrap();
+        if name.ends_with(".md") && name != "REPORT.md" {
+            let (n, missing) = check_quotes(&format!("docs/{name}"), true);
+            checked += n;
+            all.extend(missing);
+        }
+    }
+    assert!(
+        checked >= 2,
+        "docs/performance.md quotes env-map throughput"
+    );
+    assert!(all.is_empty(), "stale quotes:\n{}", all.join("\n"));
 }
 
 #[test]
@@ -276,7 +316,10 @@ fn the_wasm_size_is_the_committed_files() {
         commas(pmj),
         commas(sampler)
     );
-    assert!(page.contains(&want), "docs/javascript.md should say {want:?}");
+    assert!(
+        page.contains(&want),
+        "docs/javascript.md should say {want:?}"
+    );
     // No other page states the module's size.
     for other in ["README.md", "docs/capi.md", "docs/performance.md"] {
         let text = squash(&read(other));
@@ -351,7 +394,9 @@ fn generated_size_tables_have_their_markers_and_nothing_outside() {
         ("docs/capi.md", "capi-sizes.sh"),
     ] {
         let text = read(page);
-        let begin = format!("<!-- {script}:begin (generated by `bash tools/{script} --write`; CI checks it) -->");
+        let begin = format!(
+            "<!-- {script}:begin (generated by `bash tools/{script} --write`; CI checks it) -->"
+        );
         let end = format!("<!-- {script}:end -->");
         let (Some(a), Some(b)) = (text.find(&begin), text.find(&end)) else {
             panic!("{page}: the markers of tools/{script} are missing");

@@ -230,10 +230,23 @@ fn shuffled_indices_keep_the_nets() {
 fn a_second_dimension_needs_its_own_shuffle() {
     const N: u32 = 1024;
     let pixels: Vec<(u32, u32, u32)> = (0..32u32)
-        .map(|p| (0x9e37_79b9u32.wrapping_mul(p + 1), 0x85eb_ca6b ^ p.wrapping_mul(0xc2b2_ae35), p ^ 0x5bd1_e995))
+        .map(|p| {
+            (
+                0x9e37_79b9u32.wrapping_mul(p + 1),
+                0x85eb_ca6b ^ p.wrapping_mul(0xc2b2_ae35),
+                p ^ 0x5bd1_e995,
+            )
+        })
         .collect();
     let pair_b = |i: u32, seed_b: u32, dim: u32, shuffled: bool| {
-        pmj02bn::sample(if shuffled { pmj02bn::shuffle(i, dim) } else { i }, seed_b)
+        pmj02bn::sample(
+            if shuffled {
+                pmj02bn::shuffle(i, dim)
+            } else {
+                i
+            },
+            seed_b,
+        )
     };
     let occupancy = |seed_a: u32, seed_b: u32, dim: u32, shuffled: bool| {
         let mut cells = [false; 256];
@@ -259,8 +272,14 @@ fn a_second_dimension_needs_its_own_shuffle() {
     // Independent pairs: expected empty cells 256 * 0.016 = 4.2 (sd about 2); 236 is about
     // ten standard deviations below the mean. Correlated pairs (measured: 16 cells when the
     // seeds pick the same table set, at most 64 otherwise): at most three-eighths of the grid.
-    assert!(worst_plain <= 96, "same index order hit {worst_plain} of 256 cells");
-    assert!(worst_shuffled >= 236, "own shuffle hit only {worst_shuffled} of 256 cells");
+    assert!(
+        worst_plain <= 96,
+        "same index order hit {worst_plain} of 256 cells"
+    );
+    assert!(
+        worst_shuffled >= 236,
+        "own shuffle hit only {worst_shuffled} of 256 cells"
+    );
 
     let mse = |spp: u32, shuffled: bool| {
         let mut sum = 0.0f64;
@@ -287,8 +306,14 @@ fn a_second_dimension_needs_its_own_shuffle() {
     assert!(plain256 > 0.5 * plain16, "same index order converged");
     // ...while independent stratified pairs converge at least like Monte Carlo (16x more
     // samples: 16x lower; 8x leaves room for the noise of 32 pixels).
-    assert!(shuffled256 < shuffled16 / 8.0, "own shuffle did not converge");
-    assert!(shuffled256 < plain256 / 8.0, "own shuffle no better than the trap");
+    assert!(
+        shuffled256 < shuffled16 / 8.0,
+        "own shuffle did not converge"
+    );
+    assert!(
+        shuffled256 < plain256 / 8.0,
+        "own shuffle no better than the trap"
+    );
 }
 
 #[test]

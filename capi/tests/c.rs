@@ -377,11 +377,21 @@ fn readme_envmap_c_quick_start_runs() {
     assert!(code.contains("park.pfm") && code.contains("h - 1 - r"));
     let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capi-c");
     std::fs::create_dir_all(&out_dir).unwrap();
-    let (src, exe) = (out_dir.join("readme_envmap.c"), out_dir.join("readme_envmap"));
+    let (src, exe) = (
+        out_dir.join("readme_envmap.c"),
+        out_dir.join("readme_envmap"),
+    );
     std::fs::write(&src, code).unwrap();
     let cc = compiler("CC", "cc");
     let status = Command::new(&cc)
-        .args(["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"])
+        .args([
+            "-std=c99",
+            "-O2",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-pedantic",
+        ])
         .args(extra_flags())
         .arg("-I")
         .arg(root().join("include"))
