@@ -58,7 +58,8 @@ fn squash(s: &str) -> String {
     s.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
-/// Markdown split into blocks (runs of non-blank lines), fenced code blocks left out.
+/// Markdown split into blocks (runs of non-blank lines; each top-level list item and heading
+/// is a block of its own), fenced code blocks left out.
 fn blocks(markdown: &str) -> Vec<String> {
     let (mut out, mut cur, mut fenced) = (Vec::new(), Vec::new(), false);
     for line in markdown.lines() {
@@ -68,6 +69,16 @@ fn blocks(markdown: &str) -> Vec<String> {
         }
         if fenced {
             continue;
+        }
+        let item = line.starts_with("- ")
+            || line.starts_with("* ")
+            || line.starts_with('#')
+            || line
+                .split_once(". ")
+                .is_some_and(|(n, _)| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()));
+        if item && !cur.is_empty() {
+            out.push(cur.join("\n"));
+            cur.clear();
         }
         if line.trim().is_empty() {
             if !cur.is_empty() {
