@@ -433,3 +433,18 @@ fn generated_size_tables_have_their_markers_and_nothing_outside() {
         );
     }
 }
+
+#[cfg(feature = "blue-noise")]
+#[test]
+fn sampler_table_sizes_are_the_constants() {
+    let page = squash(&read("docs/sampler.md"));
+    let kib = warpcore::sampler::BLUE_TABLE_BYTES / 1024;
+    assert!(
+        page.contains(&format!("`BLUE_TABLE_BYTES` = {kib} KiB for both")),
+        "docs/sampler.md should give BLUE_TABLE_BYTES as {kib} KiB"
+    );
+    assert_eq!(
+        warpcore::sampler::BLUE_TABLE_BYTES as u64,
+        file_len("src/tables/blue_sobol_64.bin") + file_len("src/tables/blue_pmj02bn_64.bin")
+    );
+}
