@@ -2,8 +2,7 @@
 # Size of the C static library per feature set: builds libwarpcore_capi.a (release:
 # opt-level 3, panic = abort, no_std) with only some families, and links a C program that
 # calls the family's functions (cc -O2, -Wl,--gc-sections, stripped). Prints a Markdown table:
-# the .a file as built (it bundles the precompiled `core` whole) and with its debug info stripped,
-# and what the library adds to the linked program's code and data (text + data + bss, from
+# the shared library (libwarpcore_capi.so) and what the static library adds to the linked program's code and data (text + data + bss, from
 # `size`, against the same program without the calls). Run from anywhere.
 #
 # The table's one home is docs/capi.md, between the `capi-sizes.sh:begin` and
@@ -11,8 +10,9 @@
 #   bash tools/capi-sizes.sh           prints the table
 #   bash tools/capi-sizes.sh --check   fails when the page's table differs from this build's (CI)
 #   bash tools/capi-sizes.sh --write   writes this build's table into the page
-# The `.a` as built is not listed: its debug info records the checkout's absolute path, so its
-# size depends on where the repository lies.
+# The `.a` is not listed: it bundles Rust's precompiled `core` whole (the linker keeps only what
+# is called), and even without debug info it records the paths of the dependencies' sources
+# (`$CARGO_HOME/registry/...`), so its size depends on the machine.
 set -euo pipefail
 mode=${1:-print}
 case "$mode" in print|--check|--write) ;; *) echo "usage: $0 [--check|--write]" >&2; exit 2 ;; esac
@@ -65,7 +65,7 @@ sets=(
   "envmap:ENVMAP:\`envmap\` (includes \`sphere\`, \`disk\`)"
   "default:ALL:default (every family, 4096 x 4 tables)"
 )
-table=$'| features | `libwarpcore_capi.a` bytes, debug info stripped | `libwarpcore_capi.so` bytes | added to a linked C program |\n|---|---:|---:|---:|'
+table=$'| features | `libwarpcore_capi.so` bytes | added to a linked C program |\n|---|---:|---:|'
 for entry in "${sets[@]}"; do
   features=${entry%%:*}; rest=${entry#*:}; probe=${rest%%:*}; label=${rest#*:}
   if [ "$features" = default ]; then
@@ -73,13 +73,11 @@ for entry in "${sets[@]}"; do
   else
     cargo build -q --release -p warpcore-capi --lib --no-default-features --features "$features"
   fi
-  strip --strip-debug -o "$out/stripped.a" target/release/libwarpcore_capi.a
-  stripped_bytes=$(stat -c %s "$out/stripped.a")
   so_bytes=$(stat -c %s target/release/libwarpcore_capi.so)
   cc -O2 -Wl,--gc-sections -s -Iinclude "-DPROBE_$probe" -o "$out/probe" "$out/probe.c" \
     target/release/libwarpcore_capi.a
   "$out/probe" > /dev/null
-  table+=$'\n'"| $label | $(commas "$stripped_bytes") | $(commas "$so_bytes") | $(commas "$(( $(footprint "$out/probe") - base ))") |"
+  table+=$'\n'"| $label | $(commas "$so_bytes") | $(commas "$(( $(footprint "$out/probe") - base ))") |"
 done
 # Leave the default build in place for whatever runs next.
 cargo build -q --release -p warpcore-capi --lib
