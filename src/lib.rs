@@ -119,7 +119,8 @@ pub mod triangle;
     feature = "pmj02bn",
     feature = "sequence",
     feature = "blue-noise",
-    feature = "spherical"
+    feature = "spherical",
+    feature = "envmap"
 ))]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;

@@ -5,7 +5,7 @@
 //! |---|---|
 //! | [`raw`] | table point `index` of set `set`, unscrambled, 0.32 fixed point |
 //! | [`sample`], [`sample_x8`], [`sample_x16`], [`sample_slice`] | point `index` of the sequence for `seed`, in `[0, 1)^2` |
-//! | [`shuffle`], [`shuffle_x8`], [`shuffle_x16`] | an optional prefix-preserving permutation of indices |
+//! | [`shuffle`], [`shuffle_x8`], [`shuffle_x16`] | a prefix-preserving permutation of indices, required for every 2D dimension after the first |
 //!
 //! **The tables.** [`SETS`] sets of [`POINTS`] points each, chosen by Cargo features (see the
 //! crate docs), generated offline by `tools/pmjgen` (Christensen, Kensler and Kilpatrick,
@@ -32,12 +32,17 @@
 //! points (a `(k, m + k, 2)`-net) — stratified like the table, not better. Build with a larger
 //! table (`pmj02bn-16384`, `pmj02bn-65536`) when more samples per pixel are common.
 //!
-//! **Several 2D dimensions** of one pixel should use different seeds. Their points are then
-//! scrambled independently, but index `i` of each comes from the same table point whenever
-//! the seeds pick the same set, which correlates their strata; [`shuffle`] the index with
-//! another per-dimension seed to decorrelate them (it keeps every power-of-two prefix as a
-//! set, so the nets survive, but it reorders points inside each one, which costs blue noise
-//! at counts that are not powers of two).
+//! **Several 2D dimensions** of one pixel: every 2D dimension after the first needs its own
+//! seed **and** its own index shuffle, `sample(shuffle(index, dim_seed), seed)`. The shuffle
+//! is not optional: with another seed but the same index order, the scramble relabels strata
+//! identically for every index while point `index` of every table set sits in strata fixed by
+//! `index`'s place in the progressive construction, so the second pair is (nearly) a function
+//! of the first and an estimator coupling the two converges to the wrong value (over 1024
+//! samples, the joint 16 x 16 grid of the two x coordinates gets its points in 16 to 64 of
+//! its 256 cells, 16 when both seeds pick the same table set). [`shuffle`] keeps every power-of-two prefix as a set, so the nets survive, but
+//! it reorders points inside each one, which costs blue noise at counts that are not powers
+//! of two. Simpler: the sampling core (`warpcore::sampler`, feature `sampler`) gives every
+//! `domain(key)` its own scramble and its own index order.
 //!
 //! **Out-of-range arguments.** Every `u32` index and seed is valid (see "past the table"); the
 //! index wraps after `2^32`. [`raw`] reduces `set` modulo [`SETS`] and `index` modulo
@@ -361,8 +366,9 @@ fn sample_lanes<L: Vector<N>, const N: usize>(
     n
 }
 
-/// A permutation of sample indices for decorrelating several 2D dimensions: pass
-/// `sample(shuffle(i, dim_seed), seed)`.
+/// A permutation of sample indices, required for every 2D dimension after the first: pass
+/// `sample(shuffle(i, dim_seed), seed)` with a `dim_seed` and a `seed` of the dimension's own
+/// (another seed alone leaves the dimensions correlated; see the module docs).
 ///
 /// It maps `[0, 2^k)` onto itself for every `k` (so every power-of-two prefix of the
 /// sequence keeps the same points, and stays a net) and every aligned block of `2^k` indices

@@ -2,9 +2,11 @@
 //! lat-long map, the conversions of an area pdf on `[0, 1]^2` to a pdf over directions, and
 //! the resampling of a lat-long image into an equal-area (octahedral) square image.
 //!
-//! Conventions (DESIGN section 3): a **lat-long** (equirectangular) map puts `phi = 2 pi u`,
-//! `theta = pi v`, direction `(sin theta cos phi, sin theta sin phi, cos theta)`, so row 0 is
-//! around `+z`; its Jacobian is `d(omega) = 2 pi^2 sin(theta) du dv`. An **equal-area** map
+//! Conventions (the crate's lat-long convention, shared with [`sphere::equirect`]): a
+//! **lat-long** (equirectangular) map puts `phi = 2 pi u`, `theta = pi v`, direction
+//! `(sin theta cos phi, sin theta sin phi, cos theta)`, so row 0 is around `+z` (the top of the
+//! image: a PFM file, which stores its rows bottom to top, must be flipped on loading); its
+//! Jacobian is `d(omega) = 2 pi^2 sin(theta) du dv`. An **equal-area** map
 //! (Clarberg's octahedral square, `sphere::equal_area`) has the constant Jacobian
 //! `d(omega) = 4 pi du dv`.
 //!

@@ -19,8 +19,8 @@
 //!
 //! Learned from pbrt-v4's `PiecewiseConstant1D/2D` and Mitsuba 3's `DiscreteDistribution2D`
 //! (which use `f32` CDFs, binary searches and a continuous offset); the fixed-point
-//! construction is ours, after the DESIGN note that `f32` CDFs misreport pdfs by more than 1%
-//! at `50,000 : 1`.
+//! construction is ours, because `f32` CDFs misreport pdfs by more than 1% at a dynamic range
+//! of `50,000 : 1` (the sum of the small texels is lost in the rounding of the large).
 
 use super::{
     Compensation, Compensator, Error, HEADER_WORDS, Word, carve, carve_ref, check_lens, check_size,
