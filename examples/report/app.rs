@@ -423,6 +423,13 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         plots::scene_plot(r, &opts.out)?;
     }
     output::write(&opts.out.join("strata.svg"), &strata::disk_triangle_svg())?;
+    let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs");
+    if opts.out.canonicalize().ok() == docs.join("report").canonicalize().ok() {
+        let page = docs.join("REPORT.md");
+        let text = std::fs::read_to_string(&page)?;
+        std::fs::write(&page, output::paste_generated(&text, &docs)?)?;
+        println!("pasted the generated tables into {}", page.display());
+    }
     println!(
         "\nwrote {} (and details.csv, tables.md, one SVG plot per scene, strata pictures) in {:.1} s",
         csv.display(),

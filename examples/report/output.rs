@@ -242,6 +242,34 @@ pub fn write(path: &Path, text: &str) -> io::Result<()> {
     std::fs::write(path, text)
 }
 
+/// `page` with every `<!-- generated: report/X.md -->` ... `<!-- end: report/X.md -->` block
+/// replaced by the file `dir/report/X.md` (what `tests/report.rs` checks): the report's
+/// pages quote its generated tables, never a stale copy. Run when the report writes to
+/// `docs/report`.
+pub fn paste_generated(page: &str, dir: &Path) -> io::Result<String> {
+    let mut out = String::new();
+    let mut rest = page;
+    while let Some(start) = rest.find("<!-- generated: ") {
+        let after = &rest[start + "<!-- generated: ".len()..];
+        let Some(len) = after.find(" -->") else { break };
+        let name = &after[..len];
+        let body_start = start + "<!-- generated: ".len() + len + " -->".len();
+        let end_marker = format!("<!-- end: {name} -->");
+        let Some(end) = rest[body_start..].find(&end_marker) else {
+            break;
+        };
+        let file = std::fs::read_to_string(dir.join(name))?;
+        out.push_str(&rest[..body_start]);
+        out.push('\n');
+        out.push_str(file.trim());
+        out.push('\n');
+        out.push_str(&end_marker);
+        rest = &rest[body_start + end + end_marker.len()..];
+    }
+    out.push_str(rest);
+    Ok(out)
+}
+
 /// The functions a renderer calls for a warp of the report (its CSV name otherwise).
 pub fn warp_api(warp: &str) -> String {
     let map = [
