@@ -589,7 +589,9 @@ fn wc_sphere_uniform_inverse(d: vec3<f32>) -> vec2<f32> {
     let len = sqrt(n);
     let north = 0.0f < z;
     let num = select(len - z, rho2, north);
-    let den = select(1.0f, len + z, north) * len;
+    // Fenced (n >= +0.0 has no sign bit): otherwise lavapipe folds the doubling below into
+    // the product (s * (2 len)), which rounds differently when den is subnormal.
+    let den = wci_fence(select(1.0f, len + z, north) * len, wci_sign_bit(n));
     let u0 = num / (den + den);
     return vec2<f32>(wci_unit_interval(u0), wci_atan2_turns(y, x));
 }
@@ -648,7 +650,10 @@ fn wc_sphere_cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
 // Lat-long: phi = 2 pi u0, theta = pi u1, d = (sin theta cos phi, sin theta sin phi, cos theta).
 fn wc_sphere_equirect(u: vec2<f32>) -> vec3<f32> {
     let p = wci_sin_cos_turns(wci_unit_interval(u.x));
-    let t = wci_sin_cos_turns(wci_unit_interval(u.y) * 0.5f);
+    // u1 / 2 rounded, then times 4 in the kernel: fenced, or the two constants fold into
+    // u1 * 2 (which differs for the smallest subnormals). u1 >= +0.0 has no sign bit.
+    let v1 = wci_unit_interval(u.y);
+    let t = wci_sin_cos_turns(wci_fence(v1 * 0.5f, wci_sign_bit(v1)));
     return vec3<f32>(t.x * p.y, t.x * p.x, t.y);
 }
 

@@ -354,7 +354,14 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
     let mut rng = Rng::new(seed ^ (domain as u64).wrapping_mul(0x9e37_79b9));
     let small = random < 1 << 14;
     let mut v: Vec<u32> = Vec::new();
-    let mut push = |w: &[f32]| v.extend(w.iter().map(|x| x.to_bits()));
+    fn put(v: &mut Vec<u32>, w: &[f32]) {
+        v.extend(w.iter().map(|x| x.to_bits()));
+    }
+    macro_rules! push {
+        ($w:expr) => {
+            put(&mut v, $w)
+        };
+    }
     match domain {
         Domain::Square | Domain::SquareQuadrant | Domain::Extended => {
             let e = square_edges();
@@ -394,7 +401,7 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
                     let q = if q & 1 == 0 { q >> 30 } else { q };
                     v.extend([p[0].to_bits(), p[1].to_bits(), q]);
                 } else {
-                    push(&p);
+                    push!(&p);
                 }
             }
         }
@@ -402,17 +409,17 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
             let e = signed_edges();
             for &a in &e {
                 for &b in &e {
-                    push(&[a, b]);
+                    push!(&[a, b]);
                 }
             }
             for k in 0..random {
-                push(&disk::concentric([rng.unit_any(), rng.unit_any()]));
-                push(&disk::polar([rng.grid24(), rng.grid24()]));
-                push(&[rng.range(-1.2, 1.2), rng.range(-1.2, 1.2)]);
-                push(&[rng.bits(), rng.bits()]);
+                push!(&disk::concentric([rng.unit_any(), rng.unit_any()]));
+                push!(&disk::polar([rng.grid24(), rng.grid24()]));
+                push!(&[rng.range(-1.2, 1.2), rng.range(-1.2, 1.2)]);
+                push!(&[rng.bits(), rng.bits()]);
                 let edge = e[k % e.len()];
                 let r = rng.range(-1.0, 1.0);
-                push(&if k % 2 == 0 { [edge, r] } else { [r, edge] });
+                push!(&if k % 2 == 0 { [edge, r] } else { [r, edge] });
             }
         }
         Domain::Direction | Domain::DensityDirection => {
@@ -443,9 +450,9 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
             for d in dirs {
                 if domain == Domain::DensityDirection {
                     let pdf = [rng.unit_any() * 8.0, rng.bits(), 0.0, -1.0, f32::INFINITY][rng.next_u32() as usize % 5];
-                    push(&[pdf, d[0], d[1], d[2]]);
+                    push!(&[pdf, d[0], d[1], d[2]]);
                 } else {
-                    push(&d);
+                    push!(&d);
                 }
             }
         }
@@ -454,16 +461,16 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
             for &a in &e {
                 for &b in &e {
                     for &c in &[0.0f32, -0.0, 0.5, f32::NAN] {
-                        push(&[a, b, c]);
+                        push!(&[a, b, c]);
                     }
                 }
             }
             for _ in 0..random {
-                push(&triangle::uniform([rng.unit_any(), rng.unit_any()]));
-                push(&triangle::sqrt_map([rng.grid24(), rng.grid24()]));
-                push(&triangle::basu_owen(rng.next_u32(), rng.next_u32()));
-                push(&[rng.bits(), rng.bits(), rng.bits()]);
-                push(&[rng.range(-0.2, 1.2), rng.range(-0.2, 1.2), 0.0]);
+                push!(&triangle::uniform([rng.unit_any(), rng.unit_any()]));
+                push!(&triangle::sqrt_map([rng.grid24(), rng.grid24()]));
+                push!(&triangle::basu_owen(rng.next_u32(), rng.next_u32()));
+                push!(&[rng.bits(), rng.bits(), rng.bits()]);
+                push!(&[rng.range(-0.2, 1.2), rng.range(-0.2, 1.2), 0.0]);
             }
         }
         Domain::IndexSeed => {
@@ -483,10 +490,10 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
         }
         Domain::Density => {
             for x in square_edges().into_iter().chain(signed_edges()) {
-                push(&[x, x * 1e30, x * 3.0]);
+                push!(&[x, x * 1e30, x * 3.0]);
             }
             for _ in 0..random {
-                push(&[rng.bits(), rng.unit_any() * 100.0, rng.range(-1.0, 1.0)]);
+                push!(&[rng.bits(), rng.unit_any() * 100.0, rng.range(-1.0, 1.0)]);
             }
         }
     }
@@ -530,11 +537,12 @@ impl Gpu {
 
     /// The adapter wgpu picks by default (high performance), on any backend compiled in.
     pub fn default_adapter() -> Result<Gpu, String> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::from_env_or_default());
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             force_fallback_adapter: false,
             compatible_surface: None,
+            ..Default::default()
         }))
         .map_err(|e| format!("no adapter: {e}"))?;
         Gpu::open(adapter)
@@ -684,7 +692,7 @@ impl Gpu {
 fn instance() -> wgpu::Instance {
     wgpu::Instance::new(wgpu::InstanceDescriptor {
         backends: wgpu::Backends::VULKAN,
-        ..wgpu::InstanceDescriptor::from_env_or_default()
+        ..wgpu::InstanceDescriptor::new_without_display_handle_from_env()
     })
 }
 

@@ -157,7 +157,7 @@ fn out_dir() -> PathBuf {
 }
 
 /// naga validates the library and translates it (with an entry point that calls every
-/// function) to SPIR-V, GLSL 450, HLSL (SM 5.1) and MSL; spirv-val and glslangValidator
+/// function) to SPIR-V, GLSL 450, HLSL (SM 5.1) and MSL 1.2; spirv-val and glslangValidator
 /// accept the SPIR-V and the GLSL.
 #[test]
 fn naga_translates_to_spirv_glsl_hlsl_msl() {
@@ -208,7 +208,8 @@ fn naga_translates_to_spirv_glsl_hlsl_msl() {
     let (msl, _) = naga::back::msl::write_string(
         &module,
         &info,
-        &Default::default(),
+        // reverseBits needs MSL 1.2 (2016) or later.
+        &naga::back::msl::Options { lang_version: (1, 2), ..Default::default() },
         &naga::back::msl::PipelineOptions { entry_point: Some((naga::ShaderStage::Compute, ep.clone())), ..Default::default() },
     )
     .expect("MSL");
