@@ -135,9 +135,15 @@ impl Cpu {
                 vec!["bitcast<u32>(r.x)", "bitcast<u32>(r.y)"]
             }
             Cpu::V2V3(_) | Cpu::IndexSeed(_) => {
-                vec!["bitcast<u32>(r.x)", "bitcast<u32>(r.y)", "bitcast<u32>(r.z)"]
+                vec![
+                    "bitcast<u32>(r.x)",
+                    "bitcast<u32>(r.y)",
+                    "bitcast<u32>(r.z)",
+                ]
             }
-            Cpu::V2ToQuadrant(_) => vec!["bitcast<u32>(r.u.x)", "bitcast<u32>(r.u.y)", "r.quadrant"],
+            Cpu::V2ToQuadrant(_) => {
+                vec!["bitcast<u32>(r.u.x)", "bitcast<u32>(r.u.y)", "r.quadrant"]
+            }
             Cpu::F(_) | Cpu::FV3(_) => vec!["bitcast<u32>(r)"],
         };
         (call, outs)
@@ -146,15 +152,31 @@ impl Cpu {
 
 /// Every public function of `shaders/warpcore.wgsl` and the crate function it transcribes.
 pub const FUNCTIONS: &[Func] = &[
-    Func { name: "wc_disk_polar", cpu: Cpu::V2V2(disk::polar), domain: Domain::Square },
-    Func { name: "wc_disk_polar_inverse", cpu: Cpu::V2V2(disk::polar_inverse), domain: Domain::Plane },
-    Func { name: "wc_disk_concentric", cpu: Cpu::V2V2(disk::concentric), domain: Domain::Square },
+    Func {
+        name: "wc_disk_polar",
+        cpu: Cpu::V2V2(disk::polar),
+        domain: Domain::Square,
+    },
+    Func {
+        name: "wc_disk_polar_inverse",
+        cpu: Cpu::V2V2(disk::polar_inverse),
+        domain: Domain::Plane,
+    },
+    Func {
+        name: "wc_disk_concentric",
+        cpu: Cpu::V2V2(disk::concentric),
+        domain: Domain::Square,
+    },
     Func {
         name: "wc_disk_concentric_inverse",
         cpu: Cpu::V2V2(disk::concentric_inverse),
         domain: Domain::Plane,
     },
-    Func { name: "wc_disk_polar4", cpu: Cpu::V2QuadrantV2(disk::polar4), domain: Domain::SquareQuadrant },
+    Func {
+        name: "wc_disk_polar4",
+        cpu: Cpu::V2QuadrantV2(disk::polar4),
+        domain: Domain::SquareQuadrant,
+    },
     Func {
         name: "wc_disk_polar4_inverse",
         cpu: Cpu::V2ToQuadrant(disk::polar4_inverse),
@@ -170,25 +192,41 @@ pub const FUNCTIONS: &[Func] = &[
         cpu: Cpu::V2ToQuadrant(disk::concentric4_inverse),
         domain: Domain::Plane,
     },
-    Func { name: "wc_triangle_uniform", cpu: Cpu::V2V3(triangle::uniform), domain: Domain::Square },
+    Func {
+        name: "wc_triangle_uniform",
+        cpu: Cpu::V2V3(triangle::uniform),
+        domain: Domain::Square,
+    },
     Func {
         name: "wc_triangle_uniform_inverse",
         cpu: Cpu::V3V2(triangle::uniform_inverse),
         domain: Domain::Barycentric,
     },
-    Func { name: "wc_triangle_sqrt_map", cpu: Cpu::V2V3(triangle::sqrt_map), domain: Domain::Square },
+    Func {
+        name: "wc_triangle_sqrt_map",
+        cpu: Cpu::V2V3(triangle::sqrt_map),
+        domain: Domain::Square,
+    },
     Func {
         name: "wc_triangle_sqrt_map_inverse",
         cpu: Cpu::V3V2(triangle::sqrt_map_inverse),
         domain: Domain::Barycentric,
     },
-    Func { name: "wc_triangle_basu_owen", cpu: Cpu::IndexSeed(triangle::basu_owen), domain: Domain::IndexSeed },
+    Func {
+        name: "wc_triangle_basu_owen",
+        cpu: Cpu::IndexSeed(triangle::basu_owen),
+        domain: Domain::IndexSeed,
+    },
     Func {
         name: "wc_triangle_basu_owen_permuted",
         cpu: Cpu::IndexSeed(triangle::basu_owen_permuted),
         domain: Domain::IndexSeed,
     },
-    Func { name: "wc_sphere_equal_area", cpu: Cpu::V2V3(sphere::equal_area), domain: Domain::Square },
+    Func {
+        name: "wc_sphere_equal_area",
+        cpu: Cpu::V2V3(sphere::equal_area),
+        domain: Domain::Square,
+    },
     Func {
         name: "wc_sphere_equal_area_inverse",
         cpu: Cpu::V3V2(sphere::equal_area_inverse),
@@ -204,7 +242,11 @@ pub const FUNCTIONS: &[Func] = &[
         cpu: Cpu::V2V2(sphere::equal_area_wrap),
         domain: Domain::Extended,
     },
-    Func { name: "wc_sphere_uniform", cpu: Cpu::V2V3(sphere::uniform), domain: Domain::Square },
+    Func {
+        name: "wc_sphere_uniform",
+        cpu: Cpu::V2V3(sphere::uniform),
+        domain: Domain::Square,
+    },
     Func {
         name: "wc_sphere_uniform_inverse",
         cpu: Cpu::V3V2(sphere::uniform_inverse),
@@ -235,7 +277,11 @@ pub const FUNCTIONS: &[Func] = &[
         cpu: Cpu::F(sphere::cosine_hemisphere_pdf),
         domain: Domain::Density,
     },
-    Func { name: "wc_sphere_equirect", cpu: Cpu::V2V3(sphere::equirect), domain: Domain::Square },
+    Func {
+        name: "wc_sphere_equirect",
+        cpu: Cpu::V2V3(sphere::equirect),
+        domain: Domain::Square,
+    },
     Func {
         name: "wc_sphere_equirect_inverse",
         cpu: Cpu::V3V2(sphere::equirect_inverse),
@@ -339,7 +385,15 @@ pub fn square_edges() -> Vec<f32> {
 /// Edge values of the signed unit interval (coordinates of disk points and directions).
 pub fn signed_edges() -> Vec<f32> {
     let mut e = square_edges();
-    for x in [0.5f32, 0.25, 0.75, 1.0 - 1.0 / 16_777_216.0, 1e-20, 0.707_106_77, 0.577_350_26] {
+    for x in [
+        0.5f32,
+        0.25,
+        0.75,
+        1.0 - 1.0 / 16_777_216.0,
+        1e-20,
+        0.707_106_77,
+        0.577_350_26,
+    ] {
         e.push(-x);
     }
     e.push(0.707_106_77);
@@ -441,7 +495,11 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
                 let s = [0.5f32, 1e-3, 1e-20, 0.999_999_9][k % 4];
                 dirs.push(d.map(|x| x * s));
                 dirs.push([rng.bits(), rng.bits(), rng.bits()]);
-                dirs.push([rng.range(-1.5, 1.5), rng.range(-1.5, 1.5), rng.range(-1.5, 1.5)]);
+                dirs.push([
+                    rng.range(-1.5, 1.5),
+                    rng.range(-1.5, 1.5),
+                    rng.range(-1.5, 1.5),
+                ]);
                 // Near the poles and the equator, with signed zeros.
                 let t = rng.unit_any() * 1e-3;
                 let z = [1.0f32, -1.0, 0.0, -0.0][k % 4];
@@ -449,7 +507,8 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
             }
             for d in dirs {
                 if domain == Domain::DensityDirection {
-                    let pdf = [rng.unit_any() * 8.0, rng.bits(), 0.0, -1.0, f32::INFINITY][rng.next_u32() as usize % 5];
+                    let pdf = [rng.unit_any() * 8.0, rng.bits(), 0.0, -1.0, f32::INFINITY]
+                        [rng.next_u32() as usize % 5];
                     push!(&[pdf, d[0], d[1], d[2]]);
                 } else {
                     push!(&d);
@@ -474,7 +533,20 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
             }
         }
         Domain::IndexSeed => {
-            let edges = [0u32, 1, 2, 3, 4, 0x5555_5555, 0xaaaa_aaaa, 0x8000_0000, 0x7fff_ffff, u32::MAX, 0xffff, 0x1_0000];
+            let edges = [
+                0u32,
+                1,
+                2,
+                3,
+                4,
+                0x5555_5555,
+                0xaaaa_aaaa,
+                0x8000_0000,
+                0x7fff_ffff,
+                u32::MAX,
+                0xffff,
+                0x1_0000,
+            ];
             for &a in &edges {
                 for &b in &edges {
                     v.extend([a, b]);
@@ -500,6 +572,53 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
     v
 }
 
+/// Typical points of `domain` (`n` random ones, in the domain at unit scale: no edge values,
+/// no bit patterns, no tiny vectors): what a renderer passes, for the CPU model's bounds.
+pub fn typical_inputs(domain: Domain, n: usize, seed: u64) -> Vec<u32> {
+    let mut rng = Rng::new(seed ^ 0x7e57);
+    let mut v: Vec<u32> = Vec::new();
+    for k in 0..n {
+        let mut words: Vec<u32> = Vec::new();
+        let mut put = |w: &[f32]| words.extend(w.iter().map(|x| x.to_bits()));
+        let u = if k % 2 == 0 {
+            [rng.grid24(), rng.grid24()]
+        } else {
+            [rng.unit_any(), rng.unit_any()]
+        };
+        match domain {
+            Domain::Square => put(&u),
+            Domain::SquareQuadrant => {
+                let q = f32::from_bits(rng.next_u32());
+                put(&[u[0], u[1], q]);
+            }
+            Domain::Plane => put(&if k % 4 < 2 {
+                disk::concentric(u)
+            } else {
+                disk::polar(u)
+            }),
+            Domain::Direction => put(&if k % 4 < 2 {
+                sphere::equal_area(u)
+            } else {
+                sphere::uniform(u)
+            }),
+            Domain::Barycentric => put(&if k % 4 < 2 {
+                triangle::uniform(u)
+            } else {
+                triangle::sqrt_map(u)
+            }),
+            Domain::Extended => put(&[rng.range(-4.0, 5.0), rng.range(-4.0, 5.0)]),
+            Domain::IndexSeed => put(&[rng.bits(), rng.bits()]),
+            Domain::Density => put(&[u[0] * 100.0]),
+            Domain::DensityDirection => {
+                let d = sphere::equal_area(u);
+                put(&[rng.unit_any() * 100.0, d[0], d[1], d[2]]);
+            }
+        }
+        v.extend(words);
+    }
+    v
+}
+
 // ---------------------------------------------------------------------------------------
 // The GPU side
 
@@ -520,7 +639,14 @@ impl Gpu {
         let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::VULKAN));
         let names: Vec<String> = adapters
             .iter()
-            .map(|a| format!("{} ({:?}, {})", a.get_info().name, a.get_info().device_type, a.get_info().driver))
+            .map(|a| {
+                format!(
+                    "{} ({:?}, {})",
+                    a.get_info().name,
+                    a.get_info().device_type,
+                    a.get_info().driver
+                )
+            })
             .collect();
         let lvp = adapters.into_iter().find(|a| {
             let info = a.get_info();
@@ -537,7 +663,8 @@ impl Gpu {
 
     /// The adapter wgpu picks by default (high performance), on any backend compiled in.
     pub fn default_adapter() -> Result<Gpu, String> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             force_fallback_adapter: false,
@@ -559,7 +686,11 @@ impl Gpu {
             trace: wgpu::Trace::Off,
         }))
         .map_err(|e| format!("request_device on {}: {e}", info.name))?;
-        Ok(Gpu { device, queue, info })
+        Ok(Gpu {
+            device,
+            queue,
+            info,
+        })
     }
 
     /// The compute shader that evaluates `func` on every point of `wc_in`.
@@ -597,18 +728,22 @@ impl Gpu {
     pub fn run_source(&self, func: &Func, source: &str, input: &[u32]) -> Result<Vec<u32>, String> {
         let (inw, outw) = (func.cpu.in_words(), func.cpu.out_words());
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(func.name),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let pipeline = self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(func.name),
-            layout: None,
-            module: &module,
-            entry_point: Some("wc_check_main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let module = self
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(func.name),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+        let pipeline = self
+            .device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(func.name),
+                layout: None,
+                module: &module,
+                entry_point: Some("wc_check_main"),
+                compilation_options: Default::default(),
+                cache: None,
+            });
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(format!("{}: {e}", func.name));
         }
@@ -654,8 +789,14 @@ impl Gpu {
             label: None,
             layout: &pipeline.get_bind_group_layout(0),
             entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: in_buf.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: out_buf.as_entire_binding() },
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: in_buf.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: out_buf.as_entire_binding(),
+                },
             ],
         });
         let mut enc = self.device.create_command_encoder(&Default::default());
@@ -673,12 +814,17 @@ impl Gpu {
             let _ = tx.send(r);
         });
         self.device
-            .poll(wgpu::PollType::Wait { submission_index: None, timeout: None })
+            .poll(wgpu::PollType::Wait {
+                submission_index: None,
+                timeout: None,
+            })
             .map_err(|e| format!("poll: {e}"))?;
         rx.recv()
             .map_err(|e| format!("map: {e}"))?
             .map_err(|e| format!("map: {e}"))?;
-        let view = slice.get_mapped_range().map_err(|e| format!("map range: {e:?}"))?;
+        let view = slice
+            .get_mapped_range()
+            .map_err(|e| format!("map range: {e:?}"))?;
         let out = view
             .chunks_exact(4)
             .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
@@ -715,24 +861,39 @@ pub struct Diff {
     pub mismatches: usize,
     /// Largest absolute difference of an f32 output word (NaN counts as infinite).
     pub max_abs: f64,
-    /// Largest difference in units in the last place of an f32 output word (the distance of
-    /// the two bit patterns on the ordered f32 line).
-    pub max_ulp: u64,
+    /// Largest difference of an f32 output word in units in the last place of the crate's
+    /// value, where values below `1/2` in magnitude count as `1/2` (so that a coordinate near
+    /// 0 is measured in ulps of the unit scale, `2^-24`).
+    pub max_ulp: f64,
     /// The first mismatching point's index.
     pub first: Option<usize>,
+    /// The point with the largest absolute difference.
+    pub worst: Option<usize>,
 }
 
-/// Position of an f32 on the ordered line of all f32 values (so that adjacent floats differ
-/// by 1, and -0.0 and +0.0 by 1).
-fn ordered(bits: u32) -> i64 {
-    if bits >> 31 == 0 { bits as i64 + 1 } else { -((bits & 0x7fff_ffff) as i64) }
+/// `|gpu - crate|` in ulps of `crate` (magnitudes below `1/2` count as `1/2`: ulps of
+/// `2^-24`).
+pub fn ulps(gpu: f32, want: f32) -> f64 {
+    if gpu.is_nan() || want.is_nan() {
+        return f64::INFINITY;
+    }
+    let m = want.abs().max(0.5);
+    let exp = ((m.to_bits() >> 23) as i32 - 127).clamp(-126, 127);
+    ((gpu as f64) - (want as f64)).abs() / 2f64.powi(exp - 23)
 }
 
 /// Compares GPU words with crate words, point by point.
 pub fn compare(func: &Func, gpu: &[u32], cpu: &[u32]) -> Diff {
     let outw = func.cpu.out_words();
-    let mut d = Diff { points: cpu.len() / outw, ..Default::default() };
-    for (p, (g, c)) in gpu.chunks_exact(outw).zip(cpu.chunks_exact(outw)).enumerate() {
+    let mut d = Diff {
+        points: cpu.len() / outw,
+        ..Default::default()
+    };
+    for (p, (g, c)) in gpu
+        .chunks_exact(outw)
+        .zip(cpu.chunks_exact(outw))
+        .enumerate()
+    {
         if g == c {
             continue;
         }
@@ -742,15 +903,23 @@ pub fn compare(func: &Func, gpu: &[u32], cpu: &[u32]) -> Diff {
             if g[k] == c[k] {
                 continue;
             }
-            if func.cpu.is_integer_output(k) {
-                d.max_abs = d.max_abs.max((g[k] as f64 - c[k] as f64).abs());
-                d.max_ulp = d.max_ulp.max(u64::MAX.min(g[k].abs_diff(c[k]) as u64));
-                continue;
+            let (abs, ulp) = if func.cpu.is_integer_output(k) {
+                let a = (g[k] as f64 - c[k] as f64).abs();
+                (a, a)
+            } else {
+                let (gf, cf) = (f32::from_bits(g[k]), f32::from_bits(c[k]));
+                let a = if gf.is_nan() || cf.is_nan() {
+                    f64::INFINITY
+                } else {
+                    (gf as f64 - cf as f64).abs()
+                };
+                (a, ulps(gf, cf))
+            };
+            if abs > d.max_abs {
+                d.max_abs = abs;
+                d.worst = Some(p);
             }
-            let (gf, cf) = (f32::from_bits(g[k]) as f64, f32::from_bits(c[k]) as f64);
-            let abs = if gf.is_nan() || cf.is_nan() { f64::INFINITY } else { (gf - cf).abs() };
-            d.max_abs = d.max_abs.max(abs);
-            d.max_ulp = d.max_ulp.max(ordered(g[k]).abs_diff(ordered(c[k])));
+            d.max_ulp = d.max_ulp.max(ulp);
         }
     }
     if gpu.len() != cpu.len() {
@@ -779,7 +948,12 @@ pub fn all_functions_shader() -> String {
             func.cpu.in_words()
         );
         for (k, e) in outs.iter().enumerate() {
-            let _ = writeln!(s, "        wc_out[i * {}u + {}u] = {e};", base + outs.len(), base + k);
+            let _ = writeln!(
+                s,
+                "        wc_out[i * {}u + {}u] = {e};",
+                base + outs.len(),
+                base + k
+            );
         }
         s.push_str("    }\n");
         base += outs.len();

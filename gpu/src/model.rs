@@ -22,7 +22,9 @@
 //! subnormals to zero (allowed by WGSL; see docs/gpu.md), errors of GPU float-to-int
 //! conversion of out-of-range values (the library converts only in-range values).
 
-use naga::{BinaryOperator as B, Expression as E, Handle, Literal, MathFunction, ScalarKind, Statement as S};
+use naga::{
+    BinaryOperator as B, Expression as E, Handle, Literal, MathFunction, ScalarKind, Statement as S,
+};
 use std::collections::HashMap;
 
 /// A value of the interpreted program.
@@ -53,9 +55,19 @@ pub struct Deviations {
 
 impl Deviations {
     /// IEEE f32 arithmetic, correctly rounded, as the crate computes.
-    pub const NONE: Deviations = Deviations { div_ulps: 0, sqrt_ulps: 0, fuse: false, reassociate: false };
+    pub const NONE: Deviations = Deviations {
+        div_ulps: 0,
+        sqrt_ulps: 0,
+        fuse: false,
+        reassociate: false,
+    };
     /// What the WGSL accuracy rules allow (see the module docs).
-    pub const WGSL: Deviations = Deviations { div_ulps: 2, sqrt_ulps: 4, fuse: true, reassociate: true };
+    pub const WGSL: Deviations = Deviations {
+        div_ulps: 2,
+        sqrt_ulps: 4,
+        fuse: true,
+        reassociate: true,
+    };
 }
 
 /// Walks naga's IR of a module's functions on the CPU.
@@ -92,13 +104,24 @@ fn lit(l: &Literal) -> Val {
 }
 
 /// `x` moved by `k` steps on the ordered line of f32 values (finite results only).
+/// Zero stays zero (`0 / y`, `sqrt(0)`: every GPU returns an exact zero there).
 fn step(x: f32, k: i32) -> f32 {
-    if k == 0 || !x.is_finite() {
+    if k == 0 || !x.is_finite() || x == 0.0 {
         return x;
     }
-    let ord = |b: u32| if b >> 31 == 0 { b as i64 } else { -((b & 0x7fff_ffff) as i64) };
+    let ord = |b: u32| {
+        if b >> 31 == 0 {
+            b as i64
+        } else {
+            -((b & 0x7fff_ffff) as i64)
+        }
+    };
     let o = ord(x.to_bits()) + k as i64;
-    let y = if o >= 0 { f32::from_bits(o as u32) } else { f32::from_bits((-o) as u32 | 0x8000_0000) };
+    let y = if o >= 0 {
+        f32::from_bits(o as u32)
+    } else {
+        f32::from_bits((-o) as u32 | 0x8000_0000)
+    };
     if y.is_finite() { y } else { x }
 }
 
@@ -109,7 +132,12 @@ impl<'m> Interpreter<'m> {
             .iter()
             .filter_map(|(h, f)| f.name.clone().map(|n| (n, h)))
             .collect();
-        Interpreter { module, by_name, dev, rng: seed | 1 }
+        Interpreter {
+            module,
+            by_name,
+            dev,
+            rng: seed | 1,
+        }
     }
 
     fn next(&mut self) -> u64 {
@@ -131,13 +159,20 @@ impl<'m> Interpreter<'m> {
         }
         let r = self.next();
         let m = max as i64;
-        let k = if r & 1 == 0 { if r & 2 == 0 { m } else { -m } } else { ((r >> 8) % (2 * m as u64 + 1)) as i64 - m };
+        let k = if r & 1 == 0 {
+            if r & 2 == 0 { m } else { -m }
+        } else {
+            ((r >> 8) % (2 * m as u64 + 1)) as i64 - m
+        };
         k as i32
     }
 
     /// Calls the function `name` with `args` (values in the WGSL parameter order).
     pub fn call(&mut self, name: &str, args: Vec<Val>) -> Val {
-        let h = *self.by_name.get(name).unwrap_or_else(|| panic!("no function {name}"));
+        let h = *self
+            .by_name
+            .get(name)
+            .unwrap_or_else(|| panic!("no function {name}"));
         self.call_fn(h, args).expect("the function returns a value")
     }
 
@@ -145,7 +180,10 @@ impl<'m> Interpreter<'m> {
     pub fn args_from_words(&self, name: &str, words: &[u32]) -> Vec<Val> {
         let f = &self.module.functions[self.by_name[name]];
         let mut it = words.iter().copied();
-        f.arguments.iter().map(|a| self.from_words(a.ty, &mut it)).collect()
+        f.arguments
+            .iter()
+            .map(|a| self.from_words(a.ty, &mut it))
+            .collect()
     }
 
     fn from_words(&self, ty: Handle<naga::Type>, it: &mut impl Iterator<Item = u32>) -> Val {
@@ -158,9 +196,11 @@ impl<'m> Interpreter<'m> {
         };
         match self.module.types[ty].inner {
             naga::TypeInner::Scalar(s) => scalar(s, it.next().unwrap()),
-            naga::TypeInner::Vector { size, scalar: s } => {
-                Val::C((0..size as usize).map(|_| scalar(s, it.next().unwrap())).collect())
-            }
+            naga::TypeInner::Vector { size, scalar: s } => Val::C(
+                (0..size as usize)
+                    .map(|_| scalar(s, it.next().unwrap()))
+                    .collect(),
+            ),
             ref other => panic!("argument type {other:?}"),
         }
     }
@@ -195,12 +235,20 @@ impl<'m> Interpreter<'m> {
                     Flow::Next
                 }
                 S::Block(b) => self.block(f, fr, b),
-                S::If { condition, accept, reject } => match self.eval(f, fr, *condition) {
+                S::If {
+                    condition,
+                    accept,
+                    reject,
+                } => match self.eval(f, fr, *condition) {
                     Val::B(true) => self.block(f, fr, accept),
                     Val::B(false) => self.block(f, fr, reject),
                     v => panic!("if on {v:?}"),
                 },
-                S::Loop { body, continuing, break_if } => loop {
+                S::Loop {
+                    body,
+                    continuing,
+                    break_if,
+                } => loop {
                     match self.block(f, fr, body) {
                         Flow::Break => break Flow::Next,
                         Flow::Return(v) => break Flow::Return(v),
@@ -228,7 +276,11 @@ impl<'m> Interpreter<'m> {
                     }
                     Flow::Next
                 }
-                S::Call { function, arguments, result } => {
+                S::Call {
+                    function,
+                    arguments,
+                    result,
+                } => {
                     let args = arguments.iter().map(|a| self.eval(f, fr, *a)).collect();
                     let r = self.call_fn(*function, args);
                     if let (Some(h), Some(v)) = (result, r) {
@@ -256,7 +308,9 @@ impl<'m> Interpreter<'m> {
         match &self.module.global_expressions[h] {
             E::Literal(l) => lit(l),
             E::Constant(c) => self.global(self.module.constants[*c].init),
-            E::Compose { components, .. } => Val::C(components.iter().map(|c| self.global(*c)).collect()),
+            E::Compose { components, .. } => {
+                Val::C(components.iter().map(|c| self.global(*c)).collect())
+            }
             other => panic!("global expression {other:?}"),
         }
     }
@@ -278,7 +332,9 @@ impl<'m> Interpreter<'m> {
             E::Literal(l) => lit(l),
             E::Constant(c) => self.global(self.module.constants[*c].init),
             E::ZeroValue(ty) => self.zero(*ty),
-            E::Compose { components, .. } => Val::C(components.iter().map(|c| self.eval(f, fr, *c)).collect()),
+            E::Compose { components, .. } => {
+                Val::C(components.iter().map(|c| self.eval(f, fr, *c)).collect())
+            }
             E::AccessIndex { base, index } => match self.eval(f, fr, *base) {
                 Val::C(v) => v[*index as usize].clone(),
                 other => panic!("access into {other:?}"),
@@ -297,25 +353,41 @@ impl<'m> Interpreter<'m> {
                 (op, v) => panic!("{op:?} {v:?}"),
             },
             E::Binary { op, left, right } => self.binary(f, fr, *op, *left, *right),
-            E::Select { condition, accept, reject } => match self.eval(f, fr, *condition) {
+            E::Select {
+                condition,
+                accept,
+                reject,
+            } => match self.eval(f, fr, *condition) {
                 Val::B(c) => {
                     let (a, r) = (self.eval(f, fr, *accept), self.eval(f, fr, *reject));
                     if c { a } else { r }
                 }
                 v => panic!("select on {v:?}"),
             },
-            E::Math { fun: MathFunction::Sqrt, arg, .. } => match self.eval(f, fr, *arg) {
+            E::Math {
+                fun: MathFunction::Sqrt,
+                arg,
+                ..
+            } => match self.eval(f, fr, *arg) {
                 Val::F(x) => {
                     let k = self.ulps(self.dev.sqrt_ulps);
                     Val::F(step(libm::sqrtf(x), k))
                 }
                 v => panic!("sqrt of {v:?}"),
             },
-            E::Math { fun: MathFunction::ReverseBits, arg, .. } => match self.eval(f, fr, *arg) {
+            E::Math {
+                fun: MathFunction::ReverseBits,
+                arg,
+                ..
+            } => match self.eval(f, fr, *arg) {
                 Val::U(x) => Val::U(x.reverse_bits()),
                 v => panic!("reverseBits of {v:?}"),
             },
-            E::As { expr, kind, convert } => {
+            E::As {
+                expr,
+                kind,
+                convert,
+            } => {
                 let v = self.eval(f, fr, *expr);
                 match (convert, kind, v) {
                     (None, ScalarKind::Float, Val::U(x)) => Val::F(f32::from_bits(x)),
@@ -339,7 +411,13 @@ impl<'m> Interpreter<'m> {
     }
 
     /// The float operands of `h` if it is `a op b` with `op` in `ops`.
-    fn float_pair(&mut self, f: &naga::Function, fr: &mut Frame, h: Handle<E>, ops: &[B]) -> Option<(B, f32, f32)> {
+    fn float_pair(
+        &mut self,
+        f: &naga::Function,
+        fr: &mut Frame,
+        h: Handle<E>,
+        ops: &[B],
+    ) -> Option<(B, f32, f32)> {
         if let E::Binary { op, left, right } = f.expressions[h]
             && ops.contains(&op)
             && let (Val::F(a), Val::F(b)) = (self.eval(f, fr, left), self.eval(f, fr, right))
@@ -349,7 +427,14 @@ impl<'m> Interpreter<'m> {
         None
     }
 
-    fn binary(&mut self, f: &naga::Function, fr: &mut Frame, op: B, left: Handle<E>, right: Handle<E>) -> Val {
+    fn binary(
+        &mut self,
+        f: &naga::Function,
+        fr: &mut Frame,
+        op: B,
+        left: Handle<E>,
+        right: Handle<E>,
+    ) -> Val {
         let (l, r) = (self.eval(f, fr, left), self.eval(f, fr, right));
         match (l, r) {
             (Val::F(a), Val::F(b)) => match op {
@@ -390,7 +475,16 @@ impl<'m> Interpreter<'m> {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn float_op(&mut self, f: &naga::Function, fr: &mut Frame, op: B, left: Handle<E>, right: Handle<E>, a: f32, b: f32) -> f32 {
+    fn float_op(
+        &mut self,
+        f: &naga::Function,
+        fr: &mut Frame,
+        op: B,
+        left: Handle<E>,
+        right: Handle<E>,
+        a: f32,
+        b: f32,
+    ) -> f32 {
         let d = self.dev;
         match op {
             B::Add | B::Subtract => {
@@ -409,7 +503,9 @@ impl<'m> Interpreter<'m> {
                 }
                 if d.reassociate && self.coin() {
                     // (x o y) +- b  ->  x o (y o' b)
-                    if let Some((inner, x, y)) = self.float_pair(f, fr, left, &[B::Add, B::Subtract]) {
+                    if let Some((inner, x, y)) =
+                        self.float_pair(f, fr, left, &[B::Add, B::Subtract])
+                    {
                         return match (inner, sub) {
                             (B::Add, false) => x + (y + b),
                             (B::Add, true) => x + (y - b),
@@ -418,7 +514,9 @@ impl<'m> Interpreter<'m> {
                         };
                     }
                     // a +- (x o y)  ->  (a +- x) o' y
-                    if let Some((inner, x, y)) = self.float_pair(f, fr, right, &[B::Add, B::Subtract]) {
+                    if let Some((inner, x, y)) =
+                        self.float_pair(f, fr, right, &[B::Add, B::Subtract])
+                    {
                         return match (sub, inner) {
                             (false, B::Add) => (a + x) + y,
                             (false, _) => (a + x) - y,
@@ -484,7 +582,10 @@ pub fn deviation(
         let d = crate::compare(func, &got, &want);
         total.points += d.points;
         total.mismatches += d.mismatches;
-        total.max_abs = total.max_abs.max(d.max_abs);
+        if d.max_abs > total.max_abs {
+            total.max_abs = d.max_abs;
+            total.worst = d.worst;
+        }
         total.max_ulp = total.max_ulp.max(d.max_ulp);
         if total.first.is_none() {
             total.first = d.first;

@@ -11,7 +11,10 @@ fn interpreted_wgsl_equals_the_crate() {
     for (k, func) in FUNCTIONS.iter().enumerate() {
         let input = inputs(func.domain, 1 << 10, 0xface + k as u64);
         let d = deviation(&module, func, &input, Deviations::NONE, 1, 1);
-        println!("{:<42} {:>8} points, {} mismatches", func.name, d.points, d.mismatches);
+        println!(
+            "{:<42} {:>8} points, {} mismatches",
+            func.name, d.points, d.mismatches
+        );
         if d.mismatches > 0 {
             failed.push(func.name);
         }
@@ -23,7 +26,10 @@ fn interpreted_wgsl_equals_the_crate() {
 #[test]
 fn the_model_moves_results() {
     let module = naga::front::wgsl::parse_str(WGSL).expect("parses");
-    let func = FUNCTIONS.iter().find(|f| f.name == "wc_disk_concentric").unwrap();
+    let func = FUNCTIONS
+        .iter()
+        .find(|f| f.name == "wc_disk_concentric")
+        .unwrap();
     let input = inputs(func.domain, 1 << 8, 3);
     let d = deviation(&module, func, &input, Deviations::WGSL, 1, 9);
     println!("{d:?}");

@@ -8,14 +8,15 @@
 //! any output differs from the crate. See docs/gpu.md for what a conforming GPU may change.
 //!
 //! `gpu-check --model [--random N] [--trials T]` needs no GPU: it evaluates the WGSL source on
-//! the CPU under the deviations the WGSL accuracy rules allow (`warpcore_gpu::model`) and
-//! prints the largest deviation from the crate per function: the bounds in docs/gpu.md.
+//! the CPU under the deviations the WGSL accuracy rules allow (`warpcore_gpu::model`), over `N`
+//! typical points per function (default 65536), `T` times each (default 4), and prints the
+//! largest deviation from the crate per function: the bounds in docs/gpu.md.
 
-use warpcore_gpu::{FUNCTIONS, Gpu, compare, cpu_outputs, inputs};
+use warpcore_gpu::{FUNCTIONS, Gpu, compare, cpu_outputs, inputs, typical_inputs};
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let mut random = 1usize << 16;
+    let mut random: Option<usize> = None;
     let mut strict = false;
     let mut model = false;
     let mut trials = 4u32;
@@ -23,10 +24,10 @@ fn main() {
     while let Some(a) = it.next() {
         match a.as_str() {
             "--random" => {
-                random = it.next().and_then(|v| v.parse().ok()).unwrap_or_else(|| {
+                random = Some(it.next().and_then(|v| v.parse().ok()).unwrap_or_else(|| {
                     eprintln!("--random needs a number");
                     std::process::exit(2)
-                })
+                }))
             }
             "--strict" => strict = true,
             "--model" => model = true,
@@ -37,13 +38,15 @@ fn main() {
                 })
             }
             _ => {
-                eprintln!("usage: gpu-check [--random N] [--strict] | --model [--random N] [--trials T]");
+                eprintln!(
+                    "usage: gpu-check [--random N] [--strict] | --model [--random N] [--trials T]"
+                );
                 std::process::exit(2)
             }
         }
     }
     if model {
-        run_model(if random == 1 << 16 { 1 << 10 } else { random }, trials);
+        run_model(random.unwrap_or(1 << 16), trials);
         return;
     }
     let gpu = match Gpu::default_adapter() {
@@ -55,7 +58,11 @@ fn main() {
     };
     println!(
         "adapter: {} ({:?}, {:?} backend, driver {} {})",
-        gpu.info.name, gpu.info.device_type, gpu.info.backend, gpu.info.driver, gpu.info.driver_info
+        gpu.info.name,
+        gpu.info.device_type,
+        gpu.info.backend,
+        gpu.info.driver,
+        gpu.info.driver_info
     );
     println!(
         "{:<42} {:>9} {:>10} {:>12} {:>8}",
@@ -63,7 +70,7 @@ fn main() {
     );
     let mut any = false;
     for (k, func) in FUNCTIONS.iter().enumerate() {
-        let input = inputs(func.domain, random, 0x5eed_0000 + k as u64);
+        let input = inputs(func.domain, random.unwrap_or(1 << 16), 0x5eed_0000 + k as u64);
         let want = cpu_outputs(func, &input);
         let got = match gpu.run(func, &input) {
             Ok(g) => g,
@@ -75,7 +82,7 @@ fn main() {
         let d = compare(func, &got, &want);
         any |= d.mismatches > 0;
         println!(
-            "{:<42} {:>9} {:>10} {:>12.3e} {:>8}",
+            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
             func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
         );
     }
@@ -102,10 +109,33 @@ fn run_model(random: usize, trials: u32) {
         "function", "points", "moved", "max abs", "max ulp"
     );
     for (k, func) in FUNCTIONS.iter().enumerate() {
-        let input = inputs(func.domain, random, 0x0de1_0000 + k as u64);
-        let d = deviation(&module, func, &input, Deviations::WGSL, trials, 0x5151 + k as u64);
+        let input = typical_inputs(func.domain, random, 0x0de1_0000 + k as u64);
+        let d = deviation(
+            &module,
+            func,
+            &input,
+            Deviations::WGSL,
+            trials,
+            0x5151 + k as u64,
+        );
+        if std::env::var("WARPCORE_MODEL_WORST").is_ok()
+            && let Some(p) = d.worst
+        {
+            let w = func.cpu.in_words();
+            let pt: Vec<String> = input[p * w..(p + 1) * w]
+                .iter()
+                .map(|x| format!("{:e}", f32::from_bits(*x)))
+                .collect();
+            let mut want = vec![0; func.cpu.out_words()];
+            func.cpu.eval(&input[p * w..(p + 1) * w], &mut want);
+            let want: Vec<String> = want
+                .iter()
+                .map(|x| format!("{:e}", f32::from_bits(*x)))
+                .collect();
+            println!("    worst at {pt:?} -> crate {want:?}");
+        }
         println!(
-            "{:<42} {:>9} {:>10} {:>12.3e} {:>8}",
+            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
             func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
         );
     }
