@@ -182,11 +182,11 @@ impl<'m> Interpreter<'m> {
         let mut it = words.iter().copied();
         f.arguments
             .iter()
-            .map(|a| self.from_words(a.ty, &mut it))
+            .map(|a| self.arg_from_words(a.ty, &mut it))
             .collect()
     }
 
-    fn from_words(&self, ty: Handle<naga::Type>, it: &mut impl Iterator<Item = u32>) -> Val {
+    fn arg_from_words(&self, ty: Handle<naga::Type>, it: &mut impl Iterator<Item = u32>) -> Val {
         let scalar = |s: naga::Scalar, w: u32| match s.kind {
             ScalarKind::Float => Val::F(f32::from_bits(w)),
             ScalarKind::Uint => Val::U(w),

@@ -70,7 +70,11 @@ fn main() {
     );
     let mut any = false;
     for (k, func) in FUNCTIONS.iter().enumerate() {
-        let input = inputs(func.domain, random.unwrap_or(1 << 16), 0x5eed_0000 + k as u64);
+        let input = inputs(
+            func.domain,
+            random.unwrap_or(1 << 16),
+            0x5eed_0000 + k as u64,
+        );
         let want = cpu_outputs(func, &input);
         let got = match gpu.run(func, &input) {
             Ok(g) => g,
