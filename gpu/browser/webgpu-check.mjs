@@ -10,6 +10,10 @@ const FUNCTIONS = [
   ['wc_disk_polar_inverse', 'diskPolarInverse', 'disk', 2],
   ['wc_disk_concentric', 'diskConcentric', 'square', 2],
   ['wc_disk_concentric_inverse', 'diskConcentricInverse', 'disk', 2],
+  ['wc_disk_polar4', 'diskPolar4', 'quadrant', 2],
+  ['wc_disk_polar4_inverse', 'diskPolar4Inverse', 'quadrant-inverse', 3],
+  ['wc_disk_concentric4', 'diskConcentric4', 'quadrant', 2],
+  ['wc_disk_concentric4_inverse', 'diskConcentric4Inverse', 'quadrant-inverse', 3],
   ['wc_triangle_uniform', 'triangleUniform', 'square', 3],
   ['wc_triangle_uniform_inverse', 'triangleUniformInverse', 'barycentric', 2],
   ['wc_triangle_sqrt_map', 'triangleSqrtMap', 'square', 3],
@@ -18,6 +22,7 @@ const FUNCTIONS = [
   ['wc_triangle_basu_owen_permuted', 'triangleBasuOwenPermuted', 'index', 3],
   ['wc_sphere_equal_area', 'sphereEqualArea', 'square', 3],
   ['wc_sphere_equal_area_inverse', 'sphereEqualAreaInverse', 'direction', 2],
+  ['wc_sphere_equal_area_pdf_to_solid_angle', 'sphereEqualAreaPdfToSolidAngle', 'density', 1],
   ['wc_sphere_equal_area_wrap', 'sphereEqualAreaWrap', 'extended', 2],
   ['wc_sphere_uniform', 'sphereUniform', 'square', 3],
   ['wc_sphere_uniform_inverse', 'sphereUniformInverse', 'direction', 2],
@@ -25,8 +30,10 @@ const FUNCTIONS = [
   ['wc_sphere_uniform_hemisphere_inverse', 'sphereUniformHemisphereInverse', 'direction', 2],
   ['wc_sphere_cosine_hemisphere', 'sphereCosineHemisphere', 'square', 3],
   ['wc_sphere_cosine_hemisphere_inverse', 'sphereCosineHemisphereInverse', 'direction', 2],
+  ['wc_sphere_cosine_hemisphere_pdf', 'sphereCosineHemispherePdf', 'density', 1],
   ['wc_sphere_equirect', 'sphereEquirect', 'square', 3],
   ['wc_sphere_equirect_inverse', 'sphereEquirectInverse', 'direction', 2],
+  ['wc_sphere_equirect_pdf_to_solid_angle', 'sphereEquirectPdfToSolidAngle', 'density-direction', 1],
 ];
 
 const SEED = 0x2545f491;
@@ -72,13 +79,22 @@ function inputs(kind, n, wc, next) {
 
 function shader(lib, name, kind, outFloats) {
   const f = (k) => `bitcast<f32>(wc_in[b + ${k}u])`;
-  const [inw, call] =
-    kind === 'index'
-      ? [2, `${name}(wc_in[b], wc_in[b + 1u])`]
-      : kind === 'direction' || kind === 'barycentric'
-        ? [3, `${name}(vec3<f32>(${f(0)}, ${f(1)}, ${f(2)}))`]
-        : [2, `${name}(vec2<f32>(${f(0)}, ${f(1)}))`];
-  const comps = ['x', 'y', 'z'].slice(0, outFloats);
+  const v2 = `vec2<f32>(${f(0)}, ${f(1)})`;
+  const [inw, call] = {
+    index: [2, `${name}(wc_in[b], wc_in[b + 1u])`],
+    direction: [3, `${name}(vec3<f32>(${f(0)}, ${f(1)}, ${f(2)}))`],
+    barycentric: [3, `${name}(vec3<f32>(${f(0)}, ${f(1)}, ${f(2)}))`],
+    quadrant: [3, `${name}(${v2}, wc_in[b + 2u])`],
+    density: [1, `${name}(${f(0)})`],
+    'density-direction': [4, `${name}(${f(0)}, vec3<f32>(${f(1)}, ${f(2)}, ${f(3)}))`],
+  }[kind] ?? [2, `${name}(${v2})`];
+  const comps =
+    kind === 'quadrant-inverse'
+      ? ['u.x', 'u.y', 'quadrant']
+      : outFloats === 1
+        ? ['']
+        : ['x', 'y', 'z'].slice(0, outFloats);
+  const word = (c) => (c === 'quadrant' ? 'r.quadrant' : `bitcast<u32>(r${c ? '.' + c : ''})`);
   return `${lib}
 @group(0) @binding(0) var<storage, read> wc_in: array<u32>;
 @group(0) @binding(1) var<storage, read_write> wc_out: array<u32>;
@@ -88,7 +104,7 @@ fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if (i >= arrayLength(&wc_out) / ${outFloats}u) { return; }
     let b = i * ${inw}u;
     let r = ${call};
-${comps.map((c, k) => `    wc_out[i * ${outFloats}u + ${k}u] = bitcast<u32>(r.${c});`).join('\n')}
+${comps.map((c, k) => `    wc_out[i * ${outFloats}u + ${k}u] = ${word(c)};`).join('\n')}
 }
 `;
 }
@@ -145,10 +161,39 @@ export async function check(n = 1 << 14, edit = null) {
   for (const [k, [name, js, kind, outFloats]] of FUNCTIONS.entries()) {
     const next = rng(0x9e3779b9 ^ (k * 0x85ebca6b));
     let input, want;
+    const words = (a) => new Uint32Array(a.buffer.slice(a.byteOffset, a.byteOffset + a.byteLength));
     if (kind === 'index') {
       input = new Uint32Array(2 * n);
       for (let i = 0; i < n; i++) input.set([i, SEED], 2 * i);
-      want = new Uint32Array(wc[js](0, SEED, n).buffer.slice(0));
+      want = words(wc[js](0, SEED, n));
+    } else if (kind === 'quadrant') {
+      // Sample i: point i / 4 in quadrant i % 4 (the JS form expands four per point).
+      const points = square(n / 4, next);
+      input = new Uint32Array(3 * n);
+      const pw = words(points);
+      for (let i = 0; i < n; i++) input.set([pw[2 * (i >> 2)], pw[2 * (i >> 2) + 1], i & 3], 3 * i);
+      want = words(wc[js](points));
+    } else if (kind === 'quadrant-inverse') {
+      const p = wc.diskConcentric(square(n, next));
+      input = words(p);
+      const { u, quadrant } = wc[js](p);
+      const uw = words(u);
+      want = new Uint32Array(3 * n);
+      for (let i = 0; i < n; i++) want.set([uw[2 * i], uw[2 * i + 1], quadrant[i]], 3 * i);
+    } else if (kind === 'density') {
+      const x = new Float32Array(n);
+      for (let i = 0; i < n; i++) x[i] = ((next() >>> 8) | 0x1000) / 2 ** 17 - 16;
+      input = words(x);
+      want = words(wc[js](x));
+    } else if (kind === 'density-direction') {
+      const d = wc.sphereEqualArea(square(n, next));
+      const pdf = new Float32Array(n);
+      for (let i = 0; i < n; i++) pdf[i] = ((next() >>> 8) | 0x1000) / 2 ** 18;
+      input = new Uint32Array(4 * n);
+      const dw = words(d);
+      const pw = words(pdf);
+      for (let i = 0; i < n; i++) input.set([pw[i], dw[3 * i], dw[3 * i + 1], dw[3 * i + 2]], 4 * i);
+      want = words(wc[js](pdf, d));
     } else {
       const x = inputs(kind, n, wc, next);
       input = new Uint32Array(x.buffer.slice(0));
