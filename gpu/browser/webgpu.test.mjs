@@ -1,0 +1,39 @@
+// shaders/warpcore.wgsl in a browser: headless Chromium's WebGPU on its software adapter
+// (SwiftShader) evaluates all 28 functions of the library on 16384 points each, away from
+// subnormals (SwiftShader flushes them), and every output word must equal the JavaScript
+// module's (the crate compiled to wasm). `node --test gpu/browser/`; Chromium as for
+// js/browser-test (apt-get install chromium, or $CHROMIUM_BIN for the wrapper).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { fileURLToPath } from 'node:url';
+import { serve } from '../../js/tools/serve.mjs';
+import { findChromium, launch, open } from '../../js/tools/chromium.mjs';
+
+const root = fileURLToPath(new URL('../../', import.meta.url));
+const wrapper = fileURLToPath(new URL('./chromium-webgpu.sh', import.meta.url));
+// CI installs Chromium: there, a missing browser is a failure, not a skip.
+const skip = !findChromium() && !process.env.CI && 'Chromium is not installed (apt-get install chromium)';
+
+test('warpcore.wgsl on Chromium WebGPU (SwiftShader) equals the crate', { skip, timeout: 240_000 }, async (t) => {
+  const server = await serve(root);
+  t.after(() => server.close());
+  const browser = await launch(wrapper);
+  t.after(() => browser.close());
+  // A page of the local server: WebGPU needs a secure context (127.0.0.1 is one).
+  const page = await open(browser, `${server.url}gpu/browser/webgpu-check.mjs`);
+  const r = await page.evaluate(`import('${server.url}gpu/browser/webgpu-check.mjs').then((m) => m.check())`);
+  console.log(`adapter: ${r.adapter}`);
+  for (const [name, points, mismatches, first] of r.rows) {
+    console.log(`${name.padEnd(42)} ${String(points).padStart(7)} ${String(mismatches).padStart(8)}${first ? ' ' + JSON.stringify(first) : ''}`);
+  }
+  assert.match(r.adapter, /swiftshader|google/i, 'the software adapter');
+  assert.equal(r.rows.length, 28);
+  assert.deepEqual(r.rows.filter((row) => row[2] > 0).map((row) => row[0]), [], 'functions with mismatches');
+  // The comparison is sharp: the sine kernel's leading constant one ulp off is seen.
+  const edit = ['const WCI_S0: f32 = 0x1.921fb4p-1f;', 'const WCI_S0: f32 = 0x1.921fb6p-1f;'];
+  const w = await page.evaluate(`import('${server.url}gpu/browser/webgpu-check.mjs').then((m) => m.check(4096, ${JSON.stringify(edit)}))`);
+  const concentric = w.rows.find((row) => row[0] === 'wc_disk_concentric');
+  console.log(`S0 + 1 ulp: wc_disk_concentric ${concentric[2]} of ${concentric[1]} points differ`);
+  assert.ok(concentric[2] * 10 > concentric[1], 'a one-ulp change is detected');
+  assert.deepEqual(page.errors.filter((e) => !e.includes('favicon.ico')), []);
+});

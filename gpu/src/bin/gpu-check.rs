@@ -1,0 +1,146 @@
+//! Runs every function of `shaders/warpcore.wgsl` on the default GPU adapter and reports, per
+//! function, how many points differ from the crate and by how much (absolute and in ulps).
+//!
+//! `cargo run -p warpcore-gpu --release --bin gpu-check [-- --random N] [-- --strict]`
+//! (add `--features metal` on macOS, `--features dx12` for Direct3D 12 on Windows; Vulkan is
+//! always compiled in). `WGPU_ADAPTER_NAME=...` picks another adapter by name (wgpu's
+//! environment variable), `WGPU_BACKEND=vulkan` a backend. `--strict` exits with status 1 if
+//! any output differs from the crate. See docs/gpu.md for what a conforming GPU may change.
+//!
+//! `gpu-check --model [--random N] [--trials T]` needs no GPU: it evaluates the WGSL source on
+//! the CPU under the deviations the WGSL accuracy rules allow (`warpcore_gpu::model`), over `N`
+//! typical points per function (default 65536), `T` times each (default 4), and prints the
+//! largest deviation from the crate per function: the bounds in docs/gpu.md.
+
+use warpcore_gpu::{FUNCTIONS, Gpu, compare, cpu_outputs, inputs, typical_inputs};
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut random: Option<usize> = None;
+    let mut strict = false;
+    let mut model = false;
+    let mut trials = 4u32;
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--random" => {
+                random = Some(it.next().and_then(|v| v.parse().ok()).unwrap_or_else(|| {
+                    eprintln!("--random needs a number");
+                    std::process::exit(2)
+                }))
+            }
+            "--strict" => strict = true,
+            "--model" => model = true,
+            "--trials" => {
+                trials = it.next().and_then(|v| v.parse().ok()).unwrap_or_else(|| {
+                    eprintln!("--trials needs a number");
+                    std::process::exit(2)
+                })
+            }
+            _ => {
+                eprintln!(
+                    "usage: gpu-check [--random N] [--strict] | --model [--random N] [--trials T]"
+                );
+                std::process::exit(2)
+            }
+        }
+    }
+    if model {
+        run_model(random.unwrap_or(1 << 16), trials);
+        return;
+    }
+    let gpu = match Gpu::default_adapter() {
+        Ok(g) => g,
+        Err(e) => {
+            eprintln!("gpu-check: {e}");
+            std::process::exit(1)
+        }
+    };
+    println!(
+        "adapter: {} ({:?}, {:?} backend, driver {} {})",
+        gpu.info.name,
+        gpu.info.device_type,
+        gpu.info.backend,
+        gpu.info.driver,
+        gpu.info.driver_info
+    );
+    println!(
+        "{:<42} {:>9} {:>10} {:>12} {:>8}",
+        "function", "points", "mismatches", "max abs", "max ulp"
+    );
+    let mut any = false;
+    for (k, func) in FUNCTIONS.iter().enumerate() {
+        let input = inputs(
+            func.domain,
+            random.unwrap_or(1 << 16),
+            0x5eed_0000 + k as u64,
+        );
+        let want = cpu_outputs(func, &input);
+        let got = match gpu.run(func, &input) {
+            Ok(g) => g,
+            Err(e) => {
+                eprintln!("gpu-check: {e}");
+                std::process::exit(1)
+            }
+        };
+        let d = compare(func, &got, &want);
+        any |= d.mismatches > 0;
+        println!(
+            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
+            func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
+        );
+    }
+    if any {
+        println!("some outputs differ from the crate: compare with the bounds in docs/gpu.md");
+        if strict {
+            std::process::exit(1);
+        }
+    } else {
+        println!("every output word equals the crate's");
+    }
+}
+
+/// The CPU model of the WGSL accuracy rules: the largest deviation from the crate per function.
+fn run_model(random: usize, trials: u32) {
+    use warpcore_gpu::model::{Deviations, deviation};
+    let module = naga::front::wgsl::parse_str(warpcore_gpu::WGSL).expect("warpcore.wgsl parses");
+    println!(
+        "CPU model of the WGSL accuracy rules ({:?}), {trials} trials per point",
+        Deviations::WGSL
+    );
+    println!(
+        "{:<42} {:>9} {:>10} {:>12} {:>8}",
+        "function", "points", "moved", "max abs", "max ulp"
+    );
+    for (k, func) in FUNCTIONS.iter().enumerate() {
+        let input = typical_inputs(func.domain, random, 0x0de1_0000 + k as u64);
+        let d = deviation(
+            &module,
+            func,
+            &input,
+            Deviations::WGSL,
+            trials,
+            0x5151 + k as u64,
+        );
+        if std::env::var("WARPCORE_MODEL_WORST").is_ok()
+            && let Some(p) = d.worst
+        {
+            let w = func.cpu.in_words();
+            let pt: Vec<String> = input[p * w..(p + 1) * w]
+                .iter()
+                .map(|x| format!("{:e}", f32::from_bits(*x)))
+                .collect();
+            let mut want = vec![0; func.cpu.out_words()];
+            func.cpu.eval(&input[p * w..(p + 1) * w], &mut want);
+            let want: Vec<String> = want
+                .iter()
+                .map(|x| format!("{:e}", f32::from_bits(*x)))
+                .collect();
+            println!("    worst at {pt:?} -> crate {want:?}");
+        }
+        println!(
+            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
+            func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
+        );
+    }
+}

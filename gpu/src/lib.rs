@@ -1,0 +1,963 @@
+//! The harness that runs `shaders/warpcore.wgsl` on a GPU and compares it with the crate.
+//!
+//! [`FUNCTIONS`] lists every public WGSL function with its Rust counterpart; [`inputs`] builds
+//! the test points of a function (edge values, grids, random points of the domain, random bit
+//! patterns of every `f32` class); [`Gpu::run`] evaluates the WGSL function on every point in
+//! a compute shader and returns the output words; [`Cpu::eval`] gives the crate's words for
+//! the same point. `tests/lavapipe.rs` requires them to be equal on Mesa's lavapipe, and the
+//! `gpu-check` binary reports the differences on any adapter. See `docs/gpu.md`.
+
+pub mod model;
+
+use std::fmt::Write as _;
+use warpcore::{disk, sphere, triangle};
+
+/// The WGSL library, as shipped.
+pub const WGSL: &str = include_str!("../../shaders/warpcore.wgsl");
+
+/// A WGSL function's signature, with the crate function that defines it.
+#[derive(Clone, Copy)]
+pub enum Cpu {
+    V2V2(fn([f32; 2]) -> [f32; 2]),
+    V2V3(fn([f32; 2]) -> [f32; 3]),
+    V3V2(fn([f32; 3]) -> [f32; 2]),
+    V2QuadrantV2(fn([f32; 2], u32) -> [f32; 2]),
+    V2ToQuadrant(fn([f32; 2]) -> ([f32; 2], u32)),
+    IndexSeed(fn(u32, u32) -> [f32; 3]),
+    F(fn(f32) -> f32),
+    FV3(fn(f32, [f32; 3]) -> f32),
+}
+
+/// What a function's test points look like.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Domain {
+    /// Points of the unit square (and beyond: every f32 class).
+    Square,
+    /// Points of the unit square with a quadrant word.
+    SquareQuadrant,
+    /// Points of the plane around the unit disk.
+    Plane,
+    /// Directions (and any 3-vector).
+    Direction,
+    /// Barycentrics (and any 3-vector).
+    Barycentric,
+    /// The square extended far beyond its edges.
+    Extended,
+    /// (index, seed) pairs.
+    IndexSeed,
+    /// Densities.
+    Density,
+    /// A density and a direction.
+    DensityDirection,
+}
+
+/// One public WGSL function.
+#[derive(Clone, Copy)]
+pub struct Func {
+    /// Its WGSL name (`wc_...`).
+    pub name: &'static str,
+    pub cpu: Cpu,
+    pub domain: Domain,
+}
+
+impl Cpu {
+    /// Input words per point.
+    pub fn in_words(self) -> usize {
+        match self {
+            Cpu::V2V2(_) | Cpu::V2V3(_) | Cpu::V2ToQuadrant(_) | Cpu::IndexSeed(_) => 2,
+            Cpu::V3V2(_) | Cpu::V2QuadrantV2(_) => 3,
+            Cpu::F(_) => 1,
+            Cpu::FV3(_) => 4,
+        }
+    }
+
+    /// Output words per point.
+    pub fn out_words(self) -> usize {
+        match self {
+            Cpu::V2V2(_) | Cpu::V3V2(_) | Cpu::V2QuadrantV2(_) => 2,
+            Cpu::V2V3(_) | Cpu::IndexSeed(_) | Cpu::V2ToQuadrant(_) => 3,
+            Cpu::F(_) | Cpu::FV3(_) => 1,
+        }
+    }
+
+    /// Which output words are `u32` rather than `f32` bit patterns.
+    pub fn is_integer_output(self, word: usize) -> bool {
+        matches!(self, Cpu::V2ToQuadrant(_)) && word == 2
+    }
+
+    /// The crate's output words for one point's input words.
+    pub fn eval(self, i: &[u32], o: &mut [u32]) {
+        let f = f32::from_bits;
+        let put = |o: &mut [u32], v: &[f32]| {
+            for (o, v) in o.iter_mut().zip(v) {
+                *o = v.to_bits();
+            }
+        };
+        match self {
+            Cpu::V2V2(g) => put(o, &g([f(i[0]), f(i[1])])),
+            Cpu::V2V3(g) => put(o, &g([f(i[0]), f(i[1])])),
+            Cpu::V3V2(g) => put(o, &g([f(i[0]), f(i[1]), f(i[2])])),
+            Cpu::V2QuadrantV2(g) => put(o, &g([f(i[0]), f(i[1])], i[2])),
+            Cpu::V2ToQuadrant(g) => {
+                let (u, q) = g([f(i[0]), f(i[1])]);
+                put(o, &u);
+                o[2] = q;
+            }
+            Cpu::IndexSeed(g) => put(o, &g(i[0], i[1])),
+            Cpu::F(g) => put(o, &[g(f(i[0]))]),
+            Cpu::FV3(g) => put(o, &[g(f(i[0]), [f(i[1]), f(i[2]), f(i[3])])]),
+        }
+    }
+
+    /// The WGSL call on the input words `wc_in[b + k]`, and the output words of its result `r`.
+    fn wgsl(self, name: &str) -> (String, Vec<&'static str>) {
+        let fl = |k: usize| format!("bitcast<f32>(wc_in[b + {k}u])");
+        let call = match self {
+            Cpu::V2V2(_) | Cpu::V2V3(_) | Cpu::V2ToQuadrant(_) => {
+                format!("{name}(vec2<f32>({}, {}))", fl(0), fl(1))
+            }
+            Cpu::V3V2(_) => format!("{name}(vec3<f32>({}, {}, {}))", fl(0), fl(1), fl(2)),
+            Cpu::V2QuadrantV2(_) => {
+                format!("{name}(vec2<f32>({}, {}), wc_in[b + 2u])", fl(0), fl(1))
+            }
+            Cpu::IndexSeed(_) => format!("{name}(wc_in[b], wc_in[b + 1u])"),
+            Cpu::F(_) => format!("{name}({})", fl(0)),
+            Cpu::FV3(_) => format!(
+                "{name}({}, vec3<f32>({}, {}, {}))",
+                fl(0),
+                fl(1),
+                fl(2),
+                fl(3)
+            ),
+        };
+        let outs: Vec<&'static str> = match self {
+            Cpu::V2V2(_) | Cpu::V3V2(_) | Cpu::V2QuadrantV2(_) => {
+                vec!["bitcast<u32>(r.x)", "bitcast<u32>(r.y)"]
+            }
+            Cpu::V2V3(_) | Cpu::IndexSeed(_) => {
+                vec![
+                    "bitcast<u32>(r.x)",
+                    "bitcast<u32>(r.y)",
+                    "bitcast<u32>(r.z)",
+                ]
+            }
+            Cpu::V2ToQuadrant(_) => {
+                vec!["bitcast<u32>(r.u.x)", "bitcast<u32>(r.u.y)", "r.quadrant"]
+            }
+            Cpu::F(_) | Cpu::FV3(_) => vec!["bitcast<u32>(r)"],
+        };
+        (call, outs)
+    }
+}
+
+/// Every public function of `shaders/warpcore.wgsl` and the crate function it transcribes.
+pub const FUNCTIONS: &[Func] = &[
+    Func {
+        name: "wc_disk_polar",
+        cpu: Cpu::V2V2(disk::polar),
+        domain: Domain::Square,
+    },
+    Func {
+        name: "wc_disk_polar_inverse",
+        cpu: Cpu::V2V2(disk::polar_inverse),
+        domain: Domain::Plane,
+    },
+    Func {
+        name: "wc_disk_concentric",
+        cpu: Cpu::V2V2(disk::concentric),
+        domain: Domain::Square,
+    },
+    Func {
+        name: "wc_disk_concentric_inverse",
+        cpu: Cpu::V2V2(disk::concentric_inverse),
+        domain: Domain::Plane,
+    },
+    Func {
+        name: "wc_disk_polar4",
+        cpu: Cpu::V2QuadrantV2(disk::polar4),
+        domain: Domain::SquareQuadrant,
+    },
+    Func {
+        name: "wc_disk_polar4_inverse",
+        cpu: Cpu::V2ToQuadrant(disk::polar4_inverse),
+        domain: Domain::Plane,
+    },
+    Func {
+        name: "wc_disk_concentric4",
+        cpu: Cpu::V2QuadrantV2(disk::concentric4),
+        domain: Domain::SquareQuadrant,
+    },
+    Func {
+        name: "wc_disk_concentric4_inverse",
+        cpu: Cpu::V2ToQuadrant(disk::concentric4_inverse),
+        domain: Domain::Plane,
+    },
+    Func {
+        name: "wc_triangle_uniform",
+        cpu: Cpu::V2V3(triangle::uniform),
+        domain: Domain::Square,
+    },
+    Func {
+        name: "wc_triangle_uniform_inverse",
+        cpu: Cpu::V3V2(triangle::uniform_inverse),
+        domain: Domain::Barycentric,
+    },
+    Func {
+        name: "wc_triangle_sqrt_map",
+        cpu: Cpu::V2V3(triangle::sqrt_map),
+        domain: Domain::Square,
+    },
+    Func {
+        name: "wc_triangle_sqrt_map_inverse",
+        cpu: Cpu::V3V2(triangle::sqrt_map_inverse),
+        domain: Domain::Barycentric,
+    },
+    Func {
+        name: "wc_triangle_basu_owen",
+        cpu: Cpu::IndexSeed(triangle::basu_owen),
+        domain: Domain::IndexSeed,
+    },
+    Func {
+        name: "wc_triangle_basu_owen_permuted",
+        cpu: Cpu::IndexSeed(triangle::basu_owen_permuted),
+        domain: Domain::IndexSeed,
+    },
+    Func {
+        name: "wc_sphere_equal_area",
+        cpu: Cpu::V2V3(sphere::equal_area),
+        domain: Domain::Square,
+    },
+    Func {
+        name: "wc_sphere_equal_area_inverse",
+        cpu: Cpu::V3V2(sphere::equal_area_inverse),
+        domain: Domain::Direction,
+    },
+    Func {
+        name: "wc_sphere_equal_area_pdf_to_solid_angle",
+        cpu: Cpu::F(sphere::equal_area_pdf_to_solid_angle),
+        domain: Domain::Density,
+    },
+    Func {
+        name: "wc_sphere_equal_area_wrap",
+        cpu: Cpu::V2V2(sphere::equal_area_wrap),
+        domain: Domain::Extended,
+    },
+    Func {
+        name: "wc_sphere_uniform",
+        cpu: Cpu::V2V3(sphere::uniform),
+        domain: Domain::Square,
+    },
+    Func {
+        name: "wc_sphere_uniform_inverse",
+        cpu: Cpu::V3V2(sphere::uniform_inverse),
+        domain: Domain::Direction,
+    },
+    Func {
+        name: "wc_sphere_uniform_hemisphere",
+        cpu: Cpu::V2V3(sphere::uniform_hemisphere),
+        domain: Domain::Square,
+    },
+    Func {
+        name: "wc_sphere_uniform_hemisphere_inverse",
+        cpu: Cpu::V3V2(sphere::uniform_hemisphere_inverse),
+        domain: Domain::Direction,
+    },
+    Func {
+        name: "wc_sphere_cosine_hemisphere",
+        cpu: Cpu::V2V3(sphere::cosine_hemisphere),
+        domain: Domain::Square,
+    },
+    Func {
+        name: "wc_sphere_cosine_hemisphere_inverse",
+        cpu: Cpu::V3V2(sphere::cosine_hemisphere_inverse),
+        domain: Domain::Direction,
+    },
+    Func {
+        name: "wc_sphere_cosine_hemisphere_pdf",
+        cpu: Cpu::F(sphere::cosine_hemisphere_pdf),
+        domain: Domain::Density,
+    },
+    Func {
+        name: "wc_sphere_equirect",
+        cpu: Cpu::V2V3(sphere::equirect),
+        domain: Domain::Square,
+    },
+    Func {
+        name: "wc_sphere_equirect_inverse",
+        cpu: Cpu::V3V2(sphere::equirect_inverse),
+        domain: Domain::Direction,
+    },
+    Func {
+        name: "wc_sphere_equirect_pdf_to_solid_angle",
+        cpu: Cpu::FV3(sphere::equirect_pdf_to_solid_angle),
+        domain: Domain::DensityDirection,
+    },
+];
+
+// ---------------------------------------------------------------------------------------
+// Test points
+
+/// SplitMix64: a small, well-mixed generator (the test points need no more).
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(seed)
+    }
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+    pub fn next_u32(&mut self) -> u32 {
+        (self.next_u64() >> 32) as u32
+    }
+    /// Uniform on the 2^-24 grid of [0, 1) (what fixed-point samplers produce).
+    pub fn grid24(&mut self) -> f32 {
+        (self.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
+    }
+    /// Any f32 in [0, 1), with full precision near 0 (random mantissa and exponent).
+    pub fn unit_any(&mut self) -> f32 {
+        let x = self.next_u32();
+        let exp = 126 - (x.leading_zeros().min(125)); // geometric exponent, down to 2^-125
+        f32::from_bits((exp << 23) | (self.next_u32() >> 9))
+    }
+    /// A random bit pattern: every f32 class (NaN, infinities, subnormals, negatives, huge).
+    pub fn bits(&mut self) -> f32 {
+        f32::from_bits(self.next_u32())
+    }
+    /// Uniform in [lo, hi).
+    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.grid24()
+    }
+}
+
+/// Edge values of the unit interval and of every f32 class.
+pub fn square_edges() -> Vec<f32> {
+    let ulp_below = |x: f32| f32::from_bits(x.to_bits() - 1);
+    let ulp_above = |x: f32| f32::from_bits(x.to_bits() + 1);
+    vec![
+        0.0,
+        -0.0,
+        f32::from_bits(1),
+        -f32::from_bits(1),
+        f32::from_bits(0x007f_ffff),
+        f32::MIN_POSITIVE,
+        1e-30,
+        -1e-30,
+        1.0 / 16_777_216.0,
+        1.0 / 8_388_608.0,
+        0.25,
+        ulp_below(0.25),
+        ulp_above(0.25),
+        0.5,
+        ulp_below(0.5),
+        ulp_above(0.5),
+        0.75,
+        ulp_below(0.75),
+        ulp_above(0.75),
+        1.0 / 3.0,
+        2.0 / 3.0,
+        0.1,
+        0.9,
+        1.0 - 1.0 / 8_388_608.0,
+        1.0 - 1.0 / 16_777_216.0,
+        1.0,
+        ulp_above(1.0),
+        1.5,
+        2.0,
+        -1.0,
+        -0.5,
+        -2.0,
+        f32::MAX,
+        -f32::MAX,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+        -f32::NAN,
+        f32::from_bits(0x7f80_0001),
+        f32::from_bits(0xffc1_2345),
+    ]
+}
+
+/// Edge values of the signed unit interval (coordinates of disk points and directions).
+pub fn signed_edges() -> Vec<f32> {
+    let mut e = square_edges();
+    for x in [
+        0.5f32,
+        0.25,
+        0.75,
+        1.0 - 1.0 / 16_777_216.0,
+        1e-20,
+        0.707_106_77,
+        0.577_350_26,
+    ] {
+        e.push(-x);
+    }
+    e.push(0.707_106_77);
+    e.push(0.577_350_26);
+    e
+}
+
+/// The test points of `domain`, flattened (`in_words` words each). `random` sets the number
+/// of points of each random class; below `2^14` the grids and the edge products are thinned
+/// too (for the CPU model, which interprets the WGSL).
+pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
+    let mut rng = Rng::new(seed ^ (domain as u64).wrapping_mul(0x9e37_79b9));
+    let small = random < 1 << 14;
+    let mut v: Vec<u32> = Vec::new();
+    fn put(v: &mut Vec<u32>, w: &[f32]) {
+        v.extend(w.iter().map(|x| x.to_bits()));
+    }
+    macro_rules! push {
+        ($w:expr) => {
+            put(&mut v, $w)
+        };
+    }
+    match domain {
+        Domain::Square | Domain::SquareQuadrant | Domain::Extended => {
+            let e = square_edges();
+            let mut pts: Vec<[f32; 2]> = Vec::new();
+            for &a in &e {
+                for &b in &e {
+                    pts.push([a, b]);
+                }
+            }
+            let g = if small { 64 } else { 512 };
+            for i in 0..g {
+                for j in 0..g {
+                    pts.push([i as f32 / g as f32, j as f32 / g as f32]);
+                    pts.push([(i as f32 + 0.5) / g as f32, (j as f32 + 0.37) / g as f32]);
+                }
+            }
+            for k in 0..random {
+                pts.push([rng.grid24(), rng.grid24()]);
+                pts.push([rng.unit_any(), rng.unit_any()]);
+                pts.push([rng.bits(), rng.bits()]);
+                // One coordinate on an edge, the other random.
+                let edge = e[k % e.len()];
+                let r = rng.unit_any();
+                pts.push(if k % 2 == 0 { [edge, r] } else { [r, edge] });
+                if domain == Domain::Extended {
+                    pts.push([rng.range(-4.0, 5.0), rng.range(-4.0, 5.0)]);
+                    let size = 1u32 << (k % 12);
+                    let texel = |r: &mut Rng| {
+                        ((r.next_u32() % (3 * size)) as f32 - size as f32 + 0.5) / size as f32
+                    };
+                    pts.push([texel(&mut rng), texel(&mut rng)]);
+                }
+            }
+            for p in pts {
+                if domain == Domain::SquareQuadrant {
+                    let q = rng.next_u32();
+                    let q = if q & 1 == 0 { q >> 30 } else { q };
+                    v.extend([p[0].to_bits(), p[1].to_bits(), q]);
+                } else {
+                    push!(&p);
+                }
+            }
+        }
+        Domain::Plane => {
+            let e = signed_edges();
+            for &a in &e {
+                for &b in &e {
+                    push!(&[a, b]);
+                }
+            }
+            for k in 0..random {
+                push!(&disk::concentric([rng.unit_any(), rng.unit_any()]));
+                push!(&disk::polar([rng.grid24(), rng.grid24()]));
+                push!(&[rng.range(-1.2, 1.2), rng.range(-1.2, 1.2)]);
+                push!(&[rng.bits(), rng.bits()]);
+                let edge = e[k % e.len()];
+                let r = rng.range(-1.0, 1.0);
+                push!(&if k % 2 == 0 { [edge, r] } else { [r, edge] });
+            }
+        }
+        Domain::Direction | Domain::DensityDirection => {
+            let e = signed_edges();
+            let mut dirs: Vec<[f32; 3]> = Vec::new();
+            for (k, &a) in e.iter().enumerate() {
+                for (j, &b) in e.iter().enumerate() {
+                    for (i, &c) in e.iter().enumerate() {
+                        if !small || (k + j + i) % 13 == 0 {
+                            dirs.push([a, b, c]);
+                        }
+                    }
+                }
+            }
+            for k in 0..random {
+                dirs.push(sphere::equal_area([rng.unit_any(), rng.unit_any()]));
+                dirs.push(sphere::uniform([rng.grid24(), rng.grid24()]));
+                let d = sphere::equal_area([rng.grid24(), rng.grid24()]);
+                let s = [0.5f32, 1e-3, 1e-20, 0.999_999_9][k % 4];
+                dirs.push(d.map(|x| x * s));
+                dirs.push([rng.bits(), rng.bits(), rng.bits()]);
+                dirs.push([
+                    rng.range(-1.5, 1.5),
+                    rng.range(-1.5, 1.5),
+                    rng.range(-1.5, 1.5),
+                ]);
+                // Near the poles and the equator, with signed zeros.
+                let t = rng.unit_any() * 1e-3;
+                let z = [1.0f32, -1.0, 0.0, -0.0][k % 4];
+                dirs.push([t, [0.0f32, -0.0][k / 4 % 2], z]);
+            }
+            for d in dirs {
+                if domain == Domain::DensityDirection {
+                    let pdf = [rng.unit_any() * 8.0, rng.bits(), 0.0, -1.0, f32::INFINITY]
+                        [rng.next_u32() as usize % 5];
+                    push!(&[pdf, d[0], d[1], d[2]]);
+                } else {
+                    push!(&d);
+                }
+            }
+        }
+        Domain::Barycentric => {
+            let e = square_edges();
+            for &a in &e {
+                for &b in &e {
+                    for &c in &[0.0f32, -0.0, 0.5, f32::NAN] {
+                        push!(&[a, b, c]);
+                    }
+                }
+            }
+            for _ in 0..random {
+                push!(&triangle::uniform([rng.unit_any(), rng.unit_any()]));
+                push!(&triangle::sqrt_map([rng.grid24(), rng.grid24()]));
+                push!(&triangle::basu_owen(rng.next_u32(), rng.next_u32()));
+                push!(&[rng.bits(), rng.bits(), rng.bits()]);
+                push!(&[rng.range(-0.2, 1.2), rng.range(-0.2, 1.2), 0.0]);
+            }
+        }
+        Domain::IndexSeed => {
+            let edges = [
+                0u32,
+                1,
+                2,
+                3,
+                4,
+                0x5555_5555,
+                0xaaaa_aaaa,
+                0x8000_0000,
+                0x7fff_ffff,
+                u32::MAX,
+                0xffff,
+                0x1_0000,
+            ];
+            for &a in &edges {
+                for &b in &edges {
+                    v.extend([a, b]);
+                }
+            }
+            for i in 0..(if small { 1u32 << 10 } else { 1u32 << 16 }) {
+                v.extend([i, 0]);
+                v.extend([i, 0x9e37_79b9 ^ (i >> 12)]);
+            }
+            for _ in 0..4 * random {
+                v.extend([rng.next_u32(), rng.next_u32()]);
+            }
+        }
+        Domain::Density => {
+            for x in square_edges().into_iter().chain(signed_edges()) {
+                push!(&[x, x * 1e30, x * 3.0]);
+            }
+            for _ in 0..random {
+                push!(&[rng.bits(), rng.unit_any() * 100.0, rng.range(-1.0, 1.0)]);
+            }
+        }
+    }
+    v
+}
+
+/// Typical points of `domain` (`n` random ones, in the domain at unit scale: no edge values,
+/// no bit patterns, no tiny vectors): what a renderer passes, for the CPU model's bounds.
+pub fn typical_inputs(domain: Domain, n: usize, seed: u64) -> Vec<u32> {
+    let mut rng = Rng::new(seed ^ 0x7e57);
+    let mut v: Vec<u32> = Vec::new();
+    for k in 0..n {
+        let mut words: Vec<u32> = Vec::new();
+        let mut put = |w: &[f32]| words.extend(w.iter().map(|x| x.to_bits()));
+        let u = if k % 2 == 0 {
+            [rng.grid24(), rng.grid24()]
+        } else {
+            [rng.unit_any(), rng.unit_any()]
+        };
+        match domain {
+            Domain::Square => put(&u),
+            Domain::SquareQuadrant => {
+                let q = f32::from_bits(rng.next_u32());
+                put(&[u[0], u[1], q]);
+            }
+            Domain::Plane => put(&if k % 4 < 2 {
+                disk::concentric(u)
+            } else {
+                disk::polar(u)
+            }),
+            Domain::Direction => put(&if k % 4 < 2 {
+                sphere::equal_area(u)
+            } else {
+                sphere::uniform(u)
+            }),
+            Domain::Barycentric => put(&if k % 4 < 2 {
+                triangle::uniform(u)
+            } else {
+                triangle::sqrt_map(u)
+            }),
+            Domain::Extended => put(&[rng.range(-4.0, 5.0), rng.range(-4.0, 5.0)]),
+            Domain::IndexSeed => put(&[rng.bits(), rng.bits()]),
+            Domain::Density => put(&[u[0] * 100.0]),
+            Domain::DensityDirection => {
+                let d = sphere::equal_area(u);
+                put(&[rng.unit_any() * 100.0, d[0], d[1], d[2]]);
+            }
+        }
+        v.extend(words);
+    }
+    v
+}
+
+// ---------------------------------------------------------------------------------------
+// The GPU side
+
+/// A device and queue on one adapter.
+pub struct Gpu {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub info: wgpu::AdapterInfo,
+}
+
+/// Points per dispatch (64 per workgroup, under the 65535-workgroup limit).
+const CHUNK: usize = 1 << 21;
+
+impl Gpu {
+    /// Mesa's lavapipe (llvmpipe on Vulkan), or an error that says what was found instead.
+    pub fn lavapipe() -> Result<Gpu, String> {
+        let instance = instance();
+        let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::VULKAN));
+        let names: Vec<String> = adapters
+            .iter()
+            .map(|a| {
+                format!(
+                    "{} ({:?}, {})",
+                    a.get_info().name,
+                    a.get_info().device_type,
+                    a.get_info().driver
+                )
+            })
+            .collect();
+        let lvp = adapters.into_iter().find(|a| {
+            let info = a.get_info();
+            info.device_type == wgpu::DeviceType::Cpu && info.name.contains("llvmpipe")
+        });
+        match lvp {
+            Some(a) => Gpu::open(a),
+            None => Err(format!(
+                "no lavapipe (llvmpipe) Vulkan adapter; Vulkan adapters found: {names:?}. \
+                 Install Mesa's software Vulkan driver (Debian/Ubuntu: apt-get install mesa-vulkan-drivers)"
+            )),
+        }
+    }
+
+    /// The adapter wgpu picks by default (high performance), on any backend compiled in.
+    pub fn default_adapter() -> Result<Gpu, String> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            ..Default::default()
+        }))
+        .map_err(|e| format!("no adapter: {e}"))?;
+        Gpu::open(adapter)
+    }
+
+    fn open(adapter: wgpu::Adapter) -> Result<Gpu, String> {
+        let info = adapter.get_info();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("warpcore-gpu"),
+            required_features: wgpu::Features::empty(),
+            required_limits: wgpu::Limits::default(),
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| format!("request_device on {}: {e}", info.name))?;
+        Ok(Gpu {
+            device,
+            queue,
+            info,
+        })
+    }
+
+    /// The compute shader that evaluates `func` on every point of `wc_in`.
+    pub fn shader_source(func: &Func) -> String {
+        let (call, outs) = func.cpu.wgsl(func.name);
+        let (inw, outw) = (func.cpu.in_words(), func.cpu.out_words());
+        let mut s = String::from(WGSL);
+        let _ = write!(
+            s,
+            "\n@group(0) @binding(0) var<storage, read> wc_in: array<u32>;\n\
+             @group(0) @binding(1) var<storage, read_write> wc_out: array<u32>;\n\
+             @compute @workgroup_size(64)\n\
+             fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {{\n\
+             \x20   let i = gid.x;\n\
+             \x20   if (i >= arrayLength(&wc_out) / {outw}u) {{ return; }}\n\
+             \x20   let b = i * {inw}u;\n\
+             \x20   let o = i * {outw}u;\n\
+             \x20   let r = {call};\n"
+        );
+        for (k, e) in outs.iter().enumerate() {
+            let _ = writeln!(s, "    wc_out[o + {k}u] = {e};");
+        }
+        s.push_str("}\n");
+        s
+    }
+
+    /// `func` evaluated on the GPU for every point of `input` (`in_words` words each); returns
+    /// the output words.
+    pub fn run(&self, func: &Func, input: &[u32]) -> Result<Vec<u32>, String> {
+        self.run_source(func, &Gpu::shader_source(func), input)
+    }
+
+    /// [`Gpu::run`] with another shader source (entry point `wc_check_main` and the bindings
+    /// of [`Gpu::shader_source`]).
+    pub fn run_source(&self, func: &Func, source: &str, input: &[u32]) -> Result<Vec<u32>, String> {
+        let (inw, outw) = (func.cpu.in_words(), func.cpu.out_words());
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = self
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(func.name),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+        let pipeline = self
+            .device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(func.name),
+                layout: None,
+                module: &module,
+                entry_point: Some("wc_check_main"),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(format!("{}: {e}", func.name));
+        }
+        let n = input.len() / inw;
+        let mut out = Vec::with_capacity(n * outw);
+        for start in (0..n).step_by(CHUNK) {
+            let m = CHUNK.min(n - start);
+            let words = &input[start * inw..(start + m) * inw];
+            out.extend(self.dispatch(&pipeline, words, m, m * outw)?);
+        }
+        Ok(out)
+    }
+
+    fn dispatch(
+        &self,
+        pipeline: &wgpu::ComputePipeline,
+        words: &[u32],
+        points: usize,
+        out_words: usize,
+    ) -> Result<Vec<u32>, String> {
+        let bytes = |w: &[u32]| w.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+        let in_buf = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("wc_in"),
+            size: (words.len() * 4) as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        self.queue.write_buffer(&in_buf, 0, &bytes(words));
+        let size = (out_words * 4) as u64;
+        let out_buf = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("wc_out"),
+            size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let read_buf = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("wc_read"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: in_buf.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: out_buf.as_entire_binding(),
+                },
+            ],
+        });
+        let mut enc = self.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = enc.begin_compute_pass(&Default::default());
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &bind, &[]);
+            pass.dispatch_workgroups(points.div_ceil(64) as u32, 1, 1);
+        }
+        enc.copy_buffer_to_buffer(&out_buf, 0, &read_buf, 0, size);
+        self.queue.submit([enc.finish()]);
+        let slice = read_buf.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        self.device
+            .poll(wgpu::PollType::Wait {
+                submission_index: None,
+                timeout: None,
+            })
+            .map_err(|e| format!("poll: {e}"))?;
+        rx.recv()
+            .map_err(|e| format!("map: {e}"))?
+            .map_err(|e| format!("map: {e}"))?;
+        let view = slice
+            .get_mapped_range()
+            .map_err(|e| format!("map range: {e:?}"))?;
+        let out = view
+            .chunks_exact(4)
+            .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .collect();
+        drop(view);
+        read_buf.unmap();
+        Ok(out)
+    }
+}
+
+fn instance() -> wgpu::Instance {
+    wgpu::Instance::new(wgpu::InstanceDescriptor {
+        backends: wgpu::Backends::VULKAN,
+        ..wgpu::InstanceDescriptor::new_without_display_handle_from_env()
+    })
+}
+
+/// The crate's output words for every point of `input`.
+pub fn cpu_outputs(func: &Func, input: &[u32]) -> Vec<u32> {
+    let (inw, outw) = (func.cpu.in_words(), func.cpu.out_words());
+    let mut out = vec![0u32; input.len() / inw * outw];
+    for (i, o) in input.chunks_exact(inw).zip(out.chunks_exact_mut(outw)) {
+        func.cpu.eval(i, o);
+    }
+    out
+}
+
+/// Differences between GPU and crate outputs of one function.
+#[derive(Default, Debug, Clone, Copy)]
+pub struct Diff {
+    /// Points compared.
+    pub points: usize,
+    /// Points with at least one differing word.
+    pub mismatches: usize,
+    /// Largest absolute difference of an f32 output word (NaN counts as infinite).
+    pub max_abs: f64,
+    /// Largest difference of an f32 output word in units in the last place of the crate's
+    /// value, where values below `1/2` in magnitude count as `1/2` (so that a coordinate near
+    /// 0 is measured in ulps of the unit scale, `2^-24`).
+    pub max_ulp: f64,
+    /// The first mismatching point's index.
+    pub first: Option<usize>,
+    /// The point with the largest absolute difference.
+    pub worst: Option<usize>,
+}
+
+/// `|gpu - crate|` in ulps of `crate` (magnitudes below `1/2` count as `1/2`: ulps of
+/// `2^-24`).
+pub fn ulps(gpu: f32, want: f32) -> f64 {
+    if gpu.is_nan() || want.is_nan() {
+        return f64::INFINITY;
+    }
+    let m = want.abs().max(0.5);
+    let exp = ((m.to_bits() >> 23) as i32 - 127).clamp(-126, 127);
+    ((gpu as f64) - (want as f64)).abs() / 2f64.powi(exp - 23)
+}
+
+/// Compares GPU words with crate words, point by point.
+pub fn compare(func: &Func, gpu: &[u32], cpu: &[u32]) -> Diff {
+    let outw = func.cpu.out_words();
+    let mut d = Diff {
+        points: cpu.len() / outw,
+        ..Default::default()
+    };
+    for (p, (g, c)) in gpu
+        .chunks_exact(outw)
+        .zip(cpu.chunks_exact(outw))
+        .enumerate()
+    {
+        if g == c {
+            continue;
+        }
+        d.mismatches += 1;
+        d.first.get_or_insert(p);
+        for k in 0..outw {
+            if g[k] == c[k] {
+                continue;
+            }
+            let (abs, ulp) = if func.cpu.is_integer_output(k) {
+                let a = (g[k] as f64 - c[k] as f64).abs();
+                (a, a)
+            } else {
+                let (gf, cf) = (f32::from_bits(g[k]), f32::from_bits(c[k]));
+                let a = if gf.is_nan() || cf.is_nan() {
+                    f64::INFINITY
+                } else {
+                    (gf as f64 - cf as f64).abs()
+                };
+                (a, ulps(gf, cf))
+            };
+            if abs > d.max_abs {
+                d.max_abs = abs;
+                d.worst = Some(p);
+            }
+            d.max_ulp = d.max_ulp.max(ulp);
+        }
+    }
+    if gpu.len() != cpu.len() {
+        d.mismatches = d.points;
+    }
+    d
+}
+
+/// One compute shader that calls every public function (entry point `wc_all`), for the
+/// translation checks: naga's GLSL, HLSL and MSL writers and `spirv-val` want an entry point.
+pub fn all_functions_shader() -> String {
+    let mut s = String::from(WGSL);
+    s.push_str(
+        "\n@group(0) @binding(0) var<storage, read> wc_in: array<u32>;\n\
+         @group(0) @binding(1) var<storage, read_write> wc_out: array<u32>;\n\
+         @compute @workgroup_size(64)\n\
+         fn wc_all(@builtin(global_invocation_id) gid: vec3<u32>) {\n\
+         \x20   let i = gid.x;\n",
+    );
+    let mut base = 0usize;
+    for func in FUNCTIONS {
+        let (call, outs) = func.cpu.wgsl(func.name);
+        let _ = writeln!(
+            s,
+            "    {{\n        let b = i * {}u;\n        let r = {call};",
+            func.cpu.in_words()
+        );
+        for (k, e) in outs.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "        wc_out[i * {}u + {}u] = {e};",
+                base + outs.len(),
+                base + k
+            );
+        }
+        s.push_str("    }\n");
+        base += outs.len();
+    }
+    s.push_str("}\n");
+    s
+}

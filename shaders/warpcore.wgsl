@@ -1,0 +1,684 @@
+// warpcore.wgsl: warpcore's disk, triangle and sphere warps for GPUs, one point per call.
+//
+// A library: no bindings, no entry points, no `enable` directives, core WebGPU only.
+// Concatenate it with your own shader (or load it through your engine's include mechanism,
+// see docs/gpu.md). Public names mirror the C ABI (`include/warpcore.h`): `wc_<family>_<warp>`;
+// everything named `wci_*` is internal.
+//
+// Every function is transcribed operation by operation from the Rust bodies in `src/` (the
+// same constants, as hex-float literals of the crate's `f32` values; the same order of
+// operations; no `fma`, no `pow`, no builtin trigonometry: the crate's own polynomial kernels
+// from `src/kernels.rs`), with the same input clamping, so every function is total: NaN,
+// infinities, negatives, values >= 1 and subnormals give the documented results of the
+// crate, never NaN. On a conforming software Vulkan device (Mesa lavapipe) each function
+// returns the same bits as the crate for every input (`cargo test -p warpcore-gpu` checks
+// every output word); on real GPUs WGSL's accuracy rules allow small deviations, bounded in
+// docs/gpu.md.
+//
+// Fences. Shader compilers treat WGSL float operations as inexact and may fold exact error
+// compensation such as `(1 - (1 - big)) - big` to 0 (Mesa lavapipe does). Where the crate
+// relies on such an exact step, the intermediate goes through `wci_fence(x, zero)`, which
+// xors in a zero the compiler cannot prove to be zero (the sign bit of a value that is never
+// negative at run time), so the value is opaque to the optimizer and the step is kept.
+
+// ---------------------------------------------------------------------------------------
+// Constants (the crate's f32 values, bit for bit)
+
+// 1 - 2^-24: the top of every forward warp's input range.
+const WCI_ONE_MINUS_EPSILON: f32 = 0x1.fffffep-1f;
+// 1 - 2^-23: the largest radius fed into r * (cos, sin) (`kernels::MAX_RADIUS`).
+const WCI_MAX_RADIUS: f32 = 0x1.fffffcp-1f;
+const WCI_F32_MAX: f32 = 0x1.fffffep+127f;
+// 1 / pi, 1 / (2 pi), 1 / (4 pi) and 2 pi^2 rounded to f32.
+const WCI_FRAC_1_PI: f32 = 0x1.45f306p-2f;
+const WCI_HEMISPHERE_PDF: f32 = 0x1.45f306p-3f;
+const WCI_UNIFORM_PDF: f32 = 0x1.45f306p-4f;
+const WCI_TWO_PI_SQUARED: f32 = 0x1.3bd3ccp+4f;
+// sin((pi/4) t) = t (S0 + S1 t^2 + S2 t^4 + S3 t^6) on [-1, 1].
+const WCI_S0: f32 = 0x1.921fb4p-1f;
+const WCI_S1: f32 = -0x1.4abbb8p-4f;
+const WCI_S2: f32 = 0x1.465e92p-9f;
+const WCI_S3: f32 = -0x1.2d9302p-15f;
+// cos((pi/4) t) = 1 + C1 t^2 + C2 t^4 + C3 t^6 + C4 t^8 on [-1, 1].
+const WCI_C1: f32 = -0x1.3bd3cep-2f;
+const WCI_C2: f32 = 0x1.03c1dcp-6f;
+const WCI_C3: f32 = -0x1.55c5ep-12f;
+const WCI_C4: f32 = 0x1.d9d57ep-19f;
+// atan(z) / (pi/4) = z (A0 + A1 z^2 + ... + A5 z^10) on |z| <= 1/2.
+const WCI_A0: f32 = 0x1.45f306p+0f;
+const WCI_A1: f32 = -0x1.b298e6p-2f;
+const WCI_A2: f32 = 0x1.04abfep-2f;
+const WCI_A3: f32 = -0x1.7165b4p-3f;
+const WCI_A4: f32 = 0x1.0800dep-3f;
+const WCI_A5: f32 = -0x1.08f39cp-4f;
+
+// ---------------------------------------------------------------------------------------
+// Lane operations (src/lanes.rs)
+
+// `x` with its bits xor-ed with `zero`, a runtime zero: an optimization fence (see the top).
+fn wci_fence(x: f32, zero: u32) -> f32 {
+    return bitcast<f32>(bitcast<u32>(x) ^ zero);
+}
+
+// A zero the compiler cannot prove: the sign bit of `wci_unit_interval(x)`, never set.
+fn wci_zero_of(x: f32) -> u32 {
+    return bitcast<u32>(wci_unit_interval(x)) & 0x80000000u;
+}
+
+// |x| by clearing the sign bit (abs(-0.0) = +0.0, NaN stays NaN).
+fn wci_abs(x: f32) -> f32 {
+    return bitcast<f32>(bitcast<u32>(x) & 0x7fffffffu);
+}
+
+fn wci_sign_bit(x: f32) -> u32 {
+    return bitcast<u32>(x) & 0x80000000u;
+}
+
+fn wci_flip_sign(x: f32, sign: u32) -> f32 {
+    return bitcast<f32>(bitcast<u32>(x) ^ sign);
+}
+
+// NaN test on the bits (a compiler may assume `x == x`).
+fn wci_is_nan(x: f32) -> bool {
+    return (bitcast<u32>(x) & 0x7fffffffu) > 0x7f800000u;
+}
+
+// Any f32 onto [0, 1 - 2^-24]: NaN, -0.0, negatives and -inf to +0.0, >= 1 and +inf to the top.
+fn wci_unit_interval(x: f32) -> f32 {
+    return select(0.0f, select(WCI_ONE_MINUS_EPSILON, x, x < WCI_ONE_MINUS_EPSILON), 0.0f < x);
+}
+
+// Any f32 onto [-1, 1]: NaN to +0.0 (-0.0 stays -0.0), beyond the ends to the ends.
+fn wci_signed_unit(x0: f32) -> f32 {
+    let x = select(x0, 0.0f, wci_is_nan(x0));
+    return select(select(x, 1.0f, 1.0f < x), -1.0f, x < -1.0f);
+}
+
+// x clamped to [0, 1], NaN and -0.0 to +0.0 (triangle inverses).
+fn wci_unit_closed(x: f32) -> f32 {
+    return select(0.0f, select(1.0f, x, x < 1.0f), 0.0f < x);
+}
+
+// A density made safe: NaN, -0.0 and negatives to +0.0, +inf to f32::MAX.
+fn wci_finite_density(p: f32) -> f32 {
+    return select(0.0f, select(WCI_F32_MAX, p, p < WCI_F32_MAX), 0.0f < p);
+}
+
+// `u as i32 as f32` (exact below 2^24) and `x as i32 as u32` (0 <= x < 2^31).
+fn wci_from_uint(u: u32) -> f32 {
+    return f32(bitcast<i32>(u));
+}
+
+fn wci_to_uint(x: f32) -> u32 {
+    return bitcast<u32>(i32(x));
+}
+
+// ---------------------------------------------------------------------------------------
+// Kernels (src/kernels.rs)
+
+// (sin((pi/4) t), cos((pi/4) t)) for t in [-1, 1].
+fn wci_sin_cos_pi4(t: f32) -> vec2<f32> {
+    let s = t * t;
+    let sn = t * (WCI_S0 + s * (WCI_S1 + s * (WCI_S2 + s * WCI_S3)));
+    let cs = 1.0f + s * (WCI_C1 + s * (WCI_C2 + s * (WCI_C3 + s * WCI_C4)));
+    return vec2<f32>(sn, cs);
+}
+
+// (sin, cos) of (pi/2) (f + q) for f in [0, 1] and any q (only q mod 4 matters).
+fn wci_sin_cos_quarter_turns(f: f32, q0: u32) -> vec2<f32> {
+    let h = f + f;
+    let upper = 1.0f <= h;
+    let t = select(h, h - 2.0f, upper);
+    let q = q0 + select(0u, 1u, upper);
+    let sc = wci_sin_cos_pi4(t);
+    let swap = (q & 1u) == 1u;
+    let sn = select(sc.x, sc.y, swap);
+    let cs = select(sc.y, sc.x, swap);
+    let sin_sign = (q & 2u) << 30u;
+    let cos_sign = ((q + 1u) & 2u) << 30u;
+    return vec2<f32>(wci_flip_sign(sn, sin_sign), wci_flip_sign(cs, cos_sign));
+}
+
+// (sin(2 pi v), cos(2 pi v)) for v in [0, 1].
+fn wci_sin_cos_turns(v: f32) -> vec2<f32> {
+    let v4 = v * 4.0f;
+    let q = wci_to_uint(v4);
+    return wci_sin_cos_quarter_turns(v4 - wci_from_uint(q), q);
+}
+
+// atan(num / den) / (pi/4) for 0 <= num <= den; den = 0 gives 0.
+fn wci_atan_ratio_pi4(num: f32, den: f32) -> f32 {
+    let reduce = den <= num + num;
+    let n = select(num, num - den, reduce);
+    let d = select(den, num + den, reduce);
+    let z = n / d;
+    let s = z * z;
+    let p = WCI_A0 + s * (WCI_A1 + s * (WCI_A2 + s * (WCI_A3 + s * (WCI_A4 + s * WCI_A5))));
+    let w = z * p;
+    return select(select(w, 1.0f + w, reduce), 0.0f, den == 0.0f);
+}
+
+// atan2(y, x) / (2 pi) wrapped to [0, 1); y = -0.0 counts as y >= 0; the origin gives 0.
+fn wci_atan2_turns(y: f32, x: f32) -> f32 {
+    let ax = wci_abs(x);
+    let ay = wci_abs(y);
+    let x_major = ay <= ax;
+    let w = wci_atan_ratio_pi4(select(ax, ay, x_major), select(ay, ax, x_major));
+    let a0 = select(2.0f - w, w, x_major);
+    let a1 = select(a0, 4.0f - a0, x < 0.0f);
+    let a2 = select(a1, 8.0f - a1, y < 0.0f);
+    let turns = a2 * 0.125f;
+    return select(WCI_ONE_MINUS_EPSILON, turns, turns < 1.0f);
+}
+
+// ---------------------------------------------------------------------------------------
+// Disk (src/disk.rs)
+
+// The result of the quadrant inverses: the square point and the quadrant in 0..4.
+struct WcQuadrantPoint {
+    u: vec2<f32>,
+    quadrant: u32,
+}
+
+fn wci_clamp_radius(r: f32) -> f32 {
+    return select(r, WCI_MAX_RADIUS, WCI_MAX_RADIUS < r);
+}
+
+// Polar map: r = sqrt(u0), theta = 2 pi u1.
+fn wc_disk_polar(u: vec2<f32>) -> vec2<f32> {
+    let r = wci_clamp_radius(sqrt(wci_unit_interval(u.x)));
+    let sc = wci_sin_cos_turns(wci_unit_interval(u.y));
+    return vec2<f32>(r * sc.y, r * sc.x);
+}
+
+// Inverse of wc_disk_polar: (x^2 + y^2, atan2(y, x) / (2 pi)).
+fn wc_disk_polar_inverse(p: vec2<f32>) -> vec2<f32> {
+    let x = wci_signed_unit(p.x);
+    let y = wci_signed_unit(p.y);
+    return vec2<f32>(wci_unit_interval(x * x + y * y), wci_atan2_turns(y, x));
+}
+
+// The concentric map in polar form: (signed radius r, c, s) with the point (r c, r s).
+fn wci_concentric_parts(u: vec2<f32>) -> vec3<f32> {
+    let a = 2.0f * wci_unit_interval(u.x) - 1.0f;
+    let b = 2.0f * wci_unit_interval(u.y) - 1.0f;
+    let a_major = wci_abs(b) < wci_abs(a);
+    let r0 = select(b, a, a_major);
+    let n = select(a, b, a_major);
+    let t = select(n / r0, 0.0f, r0 == 0.0f);
+    let r = wci_flip_sign(wci_clamp_radius(wci_abs(r0)), wci_sign_bit(r0));
+    let sc = wci_sin_cos_pi4(t);
+    return vec3<f32>(r, select(sc.x, sc.y, a_major), select(sc.y, sc.x, a_major));
+}
+
+// Shirley-Chiu concentric map (textbook wedges, branch-free).
+fn wc_disk_concentric(u: vec2<f32>) -> vec2<f32> {
+    let rcs = wci_concentric_parts(u);
+    return vec2<f32>(rcs.x * rcs.y, rcs.x * rcs.z);
+}
+
+// Inverse of wc_disk_concentric.
+fn wc_disk_concentric_inverse(p: vec2<f32>) -> vec2<f32> {
+    let x = wci_signed_unit(p.x);
+    let y = wci_signed_unit(p.y);
+    let ax = wci_abs(x);
+    let ay = wci_abs(y);
+    let x_major = ay < ax;
+    let r = sqrt(x * x + y * y);
+    let w = wci_atan_ratio_pi4(select(ax, ay, x_major), select(ay, ax, x_major));
+    let rw = r * w;
+    let a = wci_flip_sign(select(rw, r, x_major), wci_sign_bit(x));
+    let b = wci_flip_sign(select(r, rw, x_major), wci_sign_bit(y));
+    return vec2<f32>(
+        wci_unit_interval(a * 0.5f + 0.5f),
+        wci_unit_interval(b * 0.5f + 0.5f),
+    );
+}
+
+// Polar4 (Christensen 2018): r = sqrt(u0), theta = (pi/2) u1 + (pi/2) quadrant (mod 4).
+fn wc_disk_polar4(u: vec2<f32>, quadrant: u32) -> vec2<f32> {
+    let r = wci_clamp_radius(sqrt(wci_unit_interval(u.x)));
+    let sc = wci_sin_cos_quarter_turns(wci_unit_interval(u.y), quadrant);
+    return vec2<f32>(r * sc.y, r * sc.x);
+}
+
+// Inverse of wc_disk_polar4: the point and its quadrant.
+fn wc_disk_polar4_inverse(p: vec2<f32>) -> WcQuadrantPoint {
+    let ut = wc_disk_polar_inverse(p);
+    let v = ut.y * 4.0f;
+    let q = wci_to_uint(v);
+    return WcQuadrantPoint(vec2<f32>(ut.x, v - wci_from_uint(q)), q);
+}
+
+// (x, y) turned by quadrant % 4 quarter turns, exactly.
+fn wci_quarter_turns(x0: f32, y0: f32, quadrant: u32) -> vec2<f32> {
+    let odd = (quadrant & 1u) == 1u;
+    let x = select(x0, y0, odd);
+    let y = select(y0, x0, odd);
+    let neg_x = ((quadrant ^ (quadrant >> 1u)) & 1u) << 31u;
+    let neg_y = ((quadrant >> 1u) & 1u) << 31u;
+    return vec2<f32>(wci_flip_sign(x, neg_x), wci_flip_sign(y, neg_y));
+}
+
+// Concentric4 (Christensen 2018): Shirley-Chiu on the quarter disk, turned by quadrant % 4.
+fn wc_disk_concentric4(u: vec2<f32>, quadrant: u32) -> vec2<f32> {
+    let a = wci_unit_interval(u.x);
+    let b = wci_unit_interval(u.y);
+    let a_major = b < a;
+    let r0 = select(b, a, a_major);
+    let t = select(select(a, b, a_major) / r0, 0.0f, r0 == 0.0f);
+    let r = wci_clamp_radius(r0);
+    let sc = wci_sin_cos_pi4(t);
+    let x = r * select(sc.x, sc.y, a_major);
+    let y = r * select(sc.y, sc.x, a_major);
+    return wci_quarter_turns(x, y, quadrant);
+}
+
+// Inverse of wc_disk_concentric4: the point and its quadrant.
+fn wc_disk_concentric4_inverse(p: vec2<f32>) -> WcQuadrantPoint {
+    let x0 = wci_signed_unit(p.x);
+    let y0 = wci_signed_unit(p.y);
+    let q = select(
+        select(
+            select(0u, 3u, (y0 < 0.0f) & (0.0f <= x0)),
+            2u,
+            (y0 <= 0.0f) & (x0 < 0.0f),
+        ),
+        1u,
+        (0.0f < y0) & (x0 <= 0.0f),
+    );
+    let turned = wci_quarter_turns(x0, y0, q * 3u);
+    let x = wci_abs(turned.x);
+    let y = wci_abs(turned.y);
+    let x_major = y < x;
+    let r = sqrt(x * x + y * y);
+    let w = wci_atan_ratio_pi4(select(x, y, x_major), select(y, x, x_major));
+    let rw = r * w;
+    return WcQuadrantPoint(
+        vec2<f32>(
+            wci_unit_interval(select(rw, r, x_major)),
+            wci_unit_interval(select(r, rw, x_major)),
+        ),
+        q,
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// Triangle (src/triangle.rs, src/triangle/base4.rs); barycentrics (b0, b1, b2)
+
+// Heitz's low-distortion map; b2 = 1 - b0 - b1 rounded once (fenced compensation).
+fn wc_triangle_uniform(u: vec2<f32>) -> vec3<f32> {
+    let u0 = wci_unit_interval(u.x);
+    let u1 = wci_unit_interval(u.y);
+    let zero = wci_sign_bit(u0); // u0 >= +0.0: a zero the compiler cannot see
+    let upper = u0 < u1;
+    let big = select(u0, u1, upper);
+    let small = select(u1, u0, upper);
+    let half = small * 0.5f;
+    let rest = big - half;
+    let e = (big - wci_fence(rest, zero)) - half;
+    let t = 1.0f - big;
+    let c = (1.0f - wci_fence(t, zero)) - big;
+    let b2 = t + (c + e);
+    return vec3<f32>(select(rest, half, upper), select(half, rest, upper), b2);
+}
+
+// Inverse of wc_triangle_uniform (reads b0 and b1).
+fn wc_triangle_uniform_inverse(b: vec3<f32>) -> vec2<f32> {
+    let b0 = wci_unit_closed(b.x);
+    let b1 = wci_unit_closed(b.y);
+    let upper = b0 < b1;
+    let sum = b0 + b1;
+    return vec2<f32>(
+        wci_unit_interval(select(sum, b0 * 2.0f, upper)),
+        wci_unit_interval(select(b1 * 2.0f, sum, upper)),
+    );
+}
+
+// The classic square-root map: b0 = 1 - sqrt(u0), b1 = u1 sqrt(u0).
+fn wc_triangle_sqrt_map(u: vec2<f32>) -> vec3<f32> {
+    let u0 = wci_unit_interval(u.x);
+    let b0 = 1.0f - sqrt(u0);
+    // s = 1 - b0 exactly: fenced, or the compiler may fold it to sqrt(u0).
+    let s = 1.0f - wci_fence(b0, wci_sign_bit(u0));
+    let b1 = wci_unit_interval(u.y) * s;
+    return vec3<f32>(b0, b1, s - b1);
+}
+
+// Inverse of wc_triangle_sqrt_map (reads b0 and b1).
+fn wc_triangle_sqrt_map_inverse(b: vec3<f32>) -> vec2<f32> {
+    let s = 1.0f - wci_unit_closed(b.x);
+    let b1 = wci_unit_closed(b.y);
+    let u1 = select(b1 / s, 0.0f, s == 0.0f);
+    return vec2<f32>(wci_unit_interval(s * s), wci_unit_interval(u1));
+}
+
+fn wci_delta_swap(x: u32, mask: u32, shift: u32) -> u32 {
+    let t = (x ^ (x >> shift)) & mask;
+    return x ^ t ^ (t << shift);
+}
+
+fn wci_unzip(x0: u32) -> u32 {
+    let x1 = wci_delta_swap(x0, 0x22222222u, 1u);
+    let x2 = wci_delta_swap(x1, 0x0c0c0c0cu, 2u);
+    let x3 = wci_delta_swap(x2, 0x00f000f0u, 4u);
+    return wci_delta_swap(x3, 0x0000ff00u, 8u);
+}
+
+fn wci_mix(x0: u32) -> u32 {
+    let x1 = (x0 ^ (x0 >> 16u)) * 0x21f0aaadu;
+    let x2 = (x1 ^ (x1 >> 15u)) * 0xd35a2d97u;
+    return x2 ^ (x2 >> 15u);
+}
+
+fn wci_rotate_digits(x: u32, m: u32) -> u32 {
+    let lo = x & 0x55555555u;
+    let hi = (x >> 1u) & 0x55555555u;
+    let once = hi | ((lo ^ hi) << 1u);
+    let twice = (lo ^ hi) | (lo << 1u);
+    return select(select(x, twice, m == 2u), once, m == 1u);
+}
+
+// Nested (Owen) scramble of the base-4 digits of index; seed 0 is the identity.
+fn wci_nested_scramble(index: u32, seed: u32) -> u32 {
+    let k1 = wci_mix(seed);
+    let k2 = wci_mix(seed ^ 0x5bd1e995u);
+    let k3 = wci_mix(seed ^ 0x2545f491u);
+    let m = ((k3 >> 8u) * 3u) >> 24u;
+    let x0 = wci_rotate_digits(index, m);
+    let x1 = x0 ^ (x0 * 0x9e3779b8u);
+    let x2 = x1 + k1;
+    let x3 = x2 * (k2 | 1u);
+    let x4 = x3 ^ (x3 * 0x6a09e666u);
+    let x5 = x4 ^ (x4 * 0xbb67ae84u);
+    return select(x5, index, seed == 0u);
+}
+
+// The index's 16 digits in the "fields" layout (bit 15 - j: low bit of digit j; 31 - j: high).
+fn wci_fields(index: u32) -> u32 {
+    let x = wci_unzip(reverseBits(index));
+    return (x >> 16u) | (x << 16u);
+}
+
+// The Basu-Owen walk over all 16 digits at once: the centroid on the 2^-24 grid.
+fn wci_walk(fields: u32) -> vec3<f32> {
+    let bits = ~fields;
+    let dy = bits & 0xffffu;
+    let dx = bits >> 16u;
+    let zero = dx & dy;
+    let n0 = zero >> 1u;
+    let n1 = n0 ^ (n0 >> 1u);
+    let n2 = n1 ^ (n1 >> 2u);
+    let n3 = n2 ^ (n2 >> 4u);
+    let neg = n3 ^ (n3 >> 8u);
+    let cx = dx - ((dx & neg) << 1u);
+    let cy = dy - ((dy & neg) << 1u);
+    let odd = (neg ^ zero) & 1u;
+    let centre = 85u - odd * 170u;
+    let qx = (cx << 8u) + centre;
+    let qy = (cy << 8u) + centre;
+    let qz = 16777216u - qx - qy;
+    let scale = 0x1p-24f;
+    return vec3<f32>(wci_from_uint(qx) * scale, wci_from_uint(qy) * scale, wci_from_uint(qz) * scale);
+}
+
+// Basu-Owen point `index`, nested-scrambled by `seed` (0: the plain construction).
+fn wc_triangle_basu_owen(index: u32, seed: u32) -> vec3<f32> {
+    return wci_walk(wci_fields(wci_nested_scramble(index, seed)));
+}
+
+// One digit permutation per level, as masks over the fields layout (LevelKeys).
+struct WciLevelKeys {
+    a: u32,
+    b: u32,
+    k: u32,
+}
+
+fn wci_level_keys(seed: u32) -> WciLevelKeys {
+    let k = wci_mix(seed ^ 0x68e31da4u);
+    let s = wci_mix(seed ^ 0xb5b84f2bu) & 0xffffu;
+    let w0 = wci_mix(seed ^ 0x3c6ef372u);
+    let w1 = wci_mix(seed ^ 0xa54ff53au);
+    var ge1 = 0u;
+    var ge2 = 0u;
+    var power = 1u; // 3^step
+    for (var step = 0u; step < 8u; step++) {
+        let t0 = w0 * power;
+        let bit0 = 1u << (15u - step);
+        ge1 = ge1 | select(bit0, 0u, t0 < 0x55555556u);
+        ge2 = ge2 | select(bit0, 0u, t0 < 0xaaaaaaabu);
+        let t1 = w1 * power;
+        let bit1 = 1u << (7u - step);
+        ge1 = ge1 | select(bit1, 0u, t1 < 0x55555556u);
+        ge2 = ge2 | select(bit1, 0u, t1 < 0xaaaaaaabu);
+        power = power * 3u;
+    }
+    let l00 = ~(ge1 & ~ge2) & 0xffffu;
+    let l01 = ge1;
+    let l10 = ge1;
+    let l11 = ~ge2 & 0xffffu;
+    let n00 = (l00 & ~s) | (l10 & s);
+    let n01 = (l01 & ~s) | (l11 & s);
+    let n10 = (l10 & ~s) | (l00 & s);
+    let n11 = (l11 & ~s) | (l01 & s);
+    let zero = seed == 0u;
+    return WciLevelKeys(
+        select(n00 | (n11 << 16u), 0xffffffffu, zero),
+        select(n01 | (n10 << 16u), 0u, zero),
+        select(k, 0u, zero),
+    );
+}
+
+// Basu-Owen point `index` with one digit permutation per level drawn from `seed`.
+fn wc_triangle_basu_owen_permuted(index: u32, seed: u32) -> vec3<f32> {
+    let keys = wci_level_keys(seed);
+    let f = wci_fields(index);
+    let swapped = (f >> 16u) | (f << 16u);
+    return wci_walk((f & keys.a) ^ (swapped & keys.b) ^ keys.k);
+}
+
+// ---------------------------------------------------------------------------------------
+// Sphere (src/sphere/); directions (x, y, z), the square's centre maps to +z
+
+// Clarberg's equal-area octahedral map.
+fn wc_sphere_equal_area(u: vec2<f32>) -> vec3<f32> {
+    let a = 2.0f * wci_unit_interval(u.x) - 1.0f;
+    let b = 2.0f * wci_unit_interval(u.y) - 1.0f;
+    let ua = wci_abs(a);
+    let ub = wci_abs(b);
+    let lower = 1.0f < ua + ub;
+    let p = select(ua, 1.0f - ub, lower);
+    let q = select(ub, 1.0f - ua, lower);
+    let r = p + q;
+    let q_major = p < q;
+    let m = select(q, p, q_major);
+    let t = select((m + m) / r, 0.0f, r == 0.0f);
+    let sc = wci_sin_cos_pi4(t);
+    let cos_phi = select(sc.y, sc.x, q_major);
+    let sin_phi = select(sc.x, sc.y, q_major);
+    let r2 = r * r;
+    let z = wci_flip_sign(1.0f - r2, select(0u, 0x80000000u, lower));
+    let rho = sqrt(r2 * (2.0f - r2));
+    return vec3<f32>(
+        wci_flip_sign(rho * cos_phi, wci_sign_bit(a)),
+        wci_flip_sign(rho * sin_phi, wci_sign_bit(b)),
+        z,
+    );
+}
+
+// Inverse of wc_sphere_equal_area; only the direction of d matters (zero vector: +z).
+fn wc_sphere_equal_area_inverse(d: vec3<f32>) -> vec2<f32> {
+    let x = wci_signed_unit(d.x);
+    let y = wci_signed_unit(d.y);
+    let z = wci_signed_unit(d.z);
+    let rho2 = x * x + y * y;
+    let n = rho2 + z * z;
+    let ax = wci_abs(x);
+    let ay = wci_abs(y);
+    let az = wci_abs(z);
+    let len = sqrt(n);
+    let den = n + len * az;
+    let r2 = rho2 / select(den, 1.0f, den == 0.0f);
+    let r = sqrt(select(r2, 1.0f, 1.0f < r2));
+    let x_major = ay <= ax;
+    let w = wci_atan_ratio_pi4(select(ax, ay, x_major), select(ay, ax, x_major));
+    let minor = r * w * 0.5f;
+    let major = r - minor;
+    let p = select(minor, major, x_major);
+    let q = select(major, minor, x_major);
+    let lower = wci_sign_bit(z) == 0x80000000u;
+    let ua = select(p, 1.0f - q, lower);
+    let ub = select(q, 1.0f - p, lower);
+    let a = wci_flip_sign(ua, wci_sign_bit(x));
+    let b = wci_flip_sign(ub, wci_sign_bit(y));
+    return vec2<f32>(
+        wci_unit_interval(a * 0.5f + 0.5f),
+        wci_unit_interval(b * 0.5f + 0.5f),
+    );
+}
+
+// A density over the equal-area square as a density over solid angle: pdf / (4 pi).
+fn wc_sphere_equal_area_pdf_to_solid_angle(pdf: f32) -> f32 {
+    return wci_finite_density(wci_finite_density(pdf) * WCI_UNIFORM_PDF);
+}
+
+// floor(x) for |x| <= 2^22 with correctly rounded adds (x + 1.5 * 2^23 - 1.5 * 2^23).
+fn wci_floor_small(x: f32, zero: u32) -> f32 {
+    let k = wci_fence(x + 12582912.0f, zero) - 12582912.0f;
+    return select(k, k - 1.0f, x < k);
+}
+
+// x modulo 2 into [0, 2]; |x| >= 2^23, infinities and NaN become 0.
+fn wci_reduce_mod_2(x0: f32, zero: u32) -> f32 {
+    let x = select(0.0f, x0, wci_abs(x0) < 8388608.0f);
+    let k = wci_floor_small(x * 0.5f, zero);
+    let r = x - (k + k);
+    return select(r, r + 2.0f, r < 0.0f);
+}
+
+// Folds a point outside the equal-area square onto its neighbour on the sphere.
+fn wc_sphere_equal_area_wrap(u: vec2<f32>) -> vec2<f32> {
+    let zero = wci_zero_of(u.x);
+    let f0 = wci_reduce_mod_2(u.x, zero);
+    let f1 = wci_reduce_mod_2(u.y, zero);
+    let hi0 = 1.0f < f0;
+    let hi1 = 1.0f < f1;
+    let both = hi0 & hi1;
+    let w0 = select(select(select(f0, 1.0f - f0, hi1), 2.0f - f0, hi0), f0 - 1.0f, both);
+    let w1 = select(select(select(f1, 1.0f - f1, hi0), 2.0f - f1, hi1), f1 - 1.0f, both);
+    return vec2<f32>(w0, w1);
+}
+
+// Uniform sphere (Archimedes' hat-box): z = 1 - 2 u0, phi = 2 pi u1.
+fn wc_sphere_uniform(u: vec2<f32>) -> vec3<f32> {
+    let u0 = wci_unit_interval(u.x);
+    let z = 1.0f - (u0 + u0);
+    let s = sqrt(u0 * (1.0f - u0));
+    let r = s + s;
+    let sc = wci_sin_cos_turns(wci_unit_interval(u.y));
+    return vec3<f32>(r * sc.y, r * sc.x, z);
+}
+
+// Inverse of wc_sphere_uniform; only the direction of d matters (zero vector: +z).
+fn wc_sphere_uniform_inverse(d: vec3<f32>) -> vec2<f32> {
+    let x = wci_signed_unit(d.x);
+    let y = wci_signed_unit(d.y);
+    let z = wci_signed_unit(d.z);
+    let rho2 = x * x + y * y;
+    let n = rho2 + z * z;
+    let len = sqrt(n);
+    let north = 0.0f < z;
+    let num = select(len - z, rho2, north);
+    // Fenced (n >= +0.0 has no sign bit): otherwise lavapipe folds the doubling below into
+    // the product (s * (2 len)), which rounds differently when den is subnormal.
+    let den = wci_fence(select(1.0f, len + z, north) * len, wci_sign_bit(n));
+    let u0 = num / (den + den);
+    return vec2<f32>(wci_unit_interval(u0), wci_atan2_turns(y, x));
+}
+
+// Uniform hemisphere: the concentric disk lifted by Lambert's equal-area projection.
+fn wc_sphere_uniform_hemisphere(u: vec2<f32>) -> vec3<f32> {
+    let rcs = wci_concentric_parts(u);
+    let r = rcs.x;
+    let r2 = r * r;
+    let z = 1.0f - r2;
+    // 1 + z, not 2 - r2: fenced against constant reassociation (the sign of r2 is never set).
+    let rho = wci_flip_sign(sqrt(r2 * (1.0f + wci_fence(z, wci_sign_bit(r2)))), wci_sign_bit(r));
+    return vec3<f32>(rho * rcs.y, rho * rcs.z, z);
+}
+
+// Cosine-weighted hemisphere (Malley): the concentric disk point lifted to the hemisphere.
+fn wc_sphere_cosine_hemisphere(u: vec2<f32>) -> vec3<f32> {
+    let rcs = wci_concentric_parts(u);
+    let r = rcs.x;
+    let ar = wci_abs(r);
+    return vec3<f32>(r * rcs.y, r * rcs.z, sqrt((1.0f - ar) * (1.0f + ar)));
+}
+
+// (x, y) / sqrt(den) (0 where den = 0) through the concentric inverse.
+fn wci_to_disk(x: f32, y: f32, den: f32) -> vec2<f32> {
+    let degenerate = den == 0.0f;
+    let scale0 = 1.0f / select(sqrt(den), 1.0f, degenerate);
+    let scale = select(scale0, 0.0f, degenerate);
+    return wc_disk_concentric_inverse(vec2<f32>(x * scale, y * scale));
+}
+
+// Inverse of wc_sphere_uniform_hemisphere (below the horizon: the mirror image).
+fn wc_sphere_uniform_hemisphere_inverse(d: vec3<f32>) -> vec2<f32> {
+    let x = wci_signed_unit(d.x);
+    let y = wci_signed_unit(d.y);
+    let z = wci_signed_unit(d.z);
+    let n = (x * x + y * y) + z * z;
+    let den = n + sqrt(n) * wci_abs(z);
+    return wci_to_disk(x, y, den);
+}
+
+// Inverse of wc_sphere_cosine_hemisphere (below the horizon: the mirror image).
+fn wc_sphere_cosine_hemisphere_inverse(d: vec3<f32>) -> vec2<f32> {
+    let x = wci_signed_unit(d.x);
+    let y = wci_signed_unit(d.y);
+    let z = wci_signed_unit(d.z);
+    let n = (x * x + y * y) + z * z;
+    return wci_to_disk(x, y, n);
+}
+
+// The cosine-weighted density cos(theta) / pi (0 below the horizon and for NaN).
+fn wc_sphere_cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
+    return wci_finite_density(cos_theta * WCI_FRAC_1_PI);
+}
+
+// Lat-long: phi = 2 pi u0, theta = pi u1, d = (sin theta cos phi, sin theta sin phi, cos theta).
+fn wc_sphere_equirect(u: vec2<f32>) -> vec3<f32> {
+    let p = wci_sin_cos_turns(wci_unit_interval(u.x));
+    // u1 / 2 rounded, then times 4 in the kernel: fenced, or the two constants fold into
+    // u1 * 2 (which differs for the smallest subnormals). u1 >= +0.0 has no sign bit.
+    let v1 = wci_unit_interval(u.y);
+    let t = wci_sin_cos_turns(wci_fence(v1 * 0.5f, wci_sign_bit(v1)));
+    return vec3<f32>(t.x * p.y, t.x * p.x, t.y);
+}
+
+// Inverse of wc_sphere_equirect; only the direction of d matters.
+fn wc_sphere_equirect_inverse(d: vec3<f32>) -> vec2<f32> {
+    let x = wci_signed_unit(d.x);
+    let y = wci_signed_unit(d.y);
+    let z = wci_signed_unit(d.z);
+    let rho2 = x * x + y * y;
+    let phi = wci_atan2_turns(y, x);
+    let theta = wci_atan2_turns(sqrt(rho2), z);
+    return vec2<f32>(phi, wci_unit_interval(theta + theta));
+}
+
+// A density over the lat-long square as a density over solid angle at direction d:
+// pdf / (2 pi^2 sin theta); 0 on the axis.
+fn wc_sphere_equirect_pdf_to_solid_angle(pdf: f32, d: vec3<f32>) -> f32 {
+    let x = wci_signed_unit(d.x);
+    let y = wci_signed_unit(d.y);
+    let z = wci_signed_unit(d.z);
+    let rho2 = x * x + y * y;
+    let n = rho2 + z * z;
+    let rho = sqrt(rho2);
+    let on_axis = rho == 0.0f;
+    let den = select(rho * WCI_TWO_PI_SQUARED, 1.0f, on_axis);
+    let q = (wci_finite_density(pdf) * sqrt(n)) / den;
+    return wci_finite_density(select(q, 0.0f, on_axis));
+}
