@@ -448,9 +448,14 @@ fn quick_run_writes_a_well_formed_csv() {
     if cfg!(feature = "spherical") {
         for light in ["triangle", "square", "skinny"] {
             let warps = if light == "triangle" {
-                vec!["area", "area_basu_owen_permuted", "solid_angle"]
+                vec![
+                    "area",
+                    "area_basu_owen_permuted",
+                    "solid_angle",
+                    "solid_angle_cos",
+                ]
             } else {
-                vec!["area", "solid_angle"]
+                vec!["area", "solid_angle", "solid_angle_cos"]
             };
             for ratio in ["4", "1", "0.25"] {
                 for class in ["/lit", "/penumbra"] {

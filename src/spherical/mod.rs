@@ -129,6 +129,7 @@ pub fn triangle_x16(v: [[f32x16; 3]; 3], p: [f32x16; 3], u: [f32x16; 2]) -> ([f3
 /// [`triangle`] for one light and one shading point over a batch of samples: writes
 /// `out[i] = [b0, b1, b2, density]` of `triangle(v, p, u[i])` for
 /// `i < min(u.len(), out.len())` and returns that count. Bit-identical to the scalar form.
+/// The light's setup (everything that does not depend on `u`) runs once per call.
 #[inline]
 pub fn triangle_slice(
     v: [[f32; 3]; 3],
@@ -136,8 +137,11 @@ pub fn triangle_slice(
     u: &[[f32; 2]],
     out: &mut [[f32; 4]],
 ) -> usize {
+    // The light's setup once per call (the same operations on the same splatted values as
+    // inside the scalar body, so the same bits).
+    let prep = triangle::prepare::<batch::Widest>(splat33(v), splat3(p));
     batch::map_lanes(u, out, |u: [batch::Widest; 2]| {
-        let (b, d) = triangle::sample_body(splat33(v), splat3(p), u);
+        let (b, d) = triangle::sample_prepared(&prep, u);
         [b[0], b[1], b[2], d]
     })
 }
@@ -174,8 +178,9 @@ pub fn triangle_inverse_slice(
     b: &[[f32; 3]],
     out: &mut [[f32; 2]],
 ) -> usize {
+    let light = triangle::setup::<batch::Widest>(splat33(v), splat3(p));
     batch::map_lanes(b, out, |b: [batch::Widest; 3]| {
-        triangle::inverse_body(splat33(v), splat3(p), b)
+        triangle::inverse_prepared(&light, b)
     })
 }
 
@@ -227,7 +232,8 @@ pub fn rectangle_x16(
 
 /// [`rectangle`] for one light and one shading point over a batch of samples: writes
 /// `out[i] = [s, t, density]` for `i < min(u.len(), out.len())` and returns that count.
-/// Bit-identical to the scalar form.
+/// Bit-identical to the scalar form. The light's setup (everything that does not depend on
+/// `u`: the frame, the solid angle, the strips beside the rectangle) runs once per call.
 #[inline]
 pub fn rectangle_slice(
     corner: [f32; 3],
@@ -237,8 +243,10 @@ pub fn rectangle_slice(
     u: &[[f32; 2]],
     out: &mut [[f32; 3]],
 ) -> usize {
+    let prep =
+        rectangle::prepare::<batch::Widest>(splat3(corner), splat3(ex), splat3(ey), splat3(p));
     batch::map_lanes(u, out, |u: [batch::Widest; 2]| {
-        let (st, d) = rectangle::sample_body(splat3(corner), splat3(ex), splat3(ey), splat3(p), u);
+        let (st, d) = rectangle::sample_prepared(&prep, u);
         [st[0], st[1], d]
     })
 }
@@ -293,8 +301,10 @@ pub fn rectangle_inverse_slice(
     st: &[[f32; 2]],
     out: &mut [[f32; 2]],
 ) -> usize {
+    let light =
+        rectangle::setup::<batch::Widest>(splat3(corner), splat3(ex), splat3(ey), splat3(p));
     batch::map_lanes(st, out, |st: [batch::Widest; 2]| {
-        rectangle::inverse_body(splat3(corner), splat3(ex), splat3(ey), splat3(p), st)
+        rectangle::inverse_prepared(&light, st)
     })
 }
 
