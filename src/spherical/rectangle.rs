@@ -20,6 +20,11 @@ pub(super) struct Rect<L: Lane> {
     pub turns: L,
     /// Finite input, nonzero sides.
     pub ok: L::Mask,
+    /// `corner - p`, `ex` and `ey`'s component orthogonal to `ex`, scaled as the lengths:
+    /// the light's corners for the cosine-aware variant.
+    pub c: V<L>,
+    pub ex: V<L>,
+    pub eyp: V<L>,
 }
 
 #[inline(always)]
@@ -49,6 +54,9 @@ pub(super) fn setup<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Rect<
         z,
         turns: L::select(ok, turns, zero),
         ok,
+        c,
+        ex,
+        eyp,
     }
 }
 
@@ -113,7 +121,7 @@ const NEWTON_STEPS: usize = 2;
 /// per slice call by the slice forms (the same operations as in the per-sample body, so the
 /// same bits).
 pub(super) struct Prepared<L: Lane> {
-    r: Rect<L>,
+    pub r: Rect<L>,
     y1: L,
     z2: L,
     /// The half-infinite strips beyond `x0` and `x1` and `2 db`, in turns of `4 pi`.

@@ -73,7 +73,7 @@ pub(super) fn solid_angle_body<L: Lane>(v: [V<L>; 3], p: V<L>) -> L {
 /// per slice call by the slice forms (the same operations as in the per-sample body, so the
 /// same bits).
 pub(super) struct Prepared<L: Lane> {
-    t: Tri<L>,
+    pub t: Tri<L>,
     /// `|v0 - p|` (scaled as `t.a`).
     la: L,
     /// Chord `c^ - a^`, its squared length and length.
