@@ -20,8 +20,8 @@
 //! 0`) and to the rectangle's `corner`, `+ ex`, `+ ey`, `+ ex + ey`. The receiver's normal
 //! faces the light plane (`n = -z`). Exactly unbiased: the bilinear warp is a bijection of
 //! the open square with a density positive inside it; weights that are all 0 (or not
-//! finite) leave `u` unchanged with density factor 1. Written here in `f32` as a library
-//! would (our own derivation: inverse CDFs of the linear marginal and conditional).
+//! finite) leave `u` unchanged with density factor 1. Measured first here, then kept in the
+//! library (`spherical::triangle_cosine`, `rectangle_cosine`), which the scenes now call.
 //!
 //! **Timings.** `draw` (what the report times) runs the sampler and the warp for the shading
 //! point over the light's centre, through the slice forms; `evaluate` re-runs the solid-angle
@@ -134,31 +134,21 @@ impl SolidAngleScene {
         }
     }
 
-    /// The bilinear weights of the cosine-aware variant for shading point `p`: the receiver's
-    /// clamped cosine towards the light's corners, in the order of the square's corners
-    /// `(0, 0), (1, 0), (0, 1), (1, 1)`.
-    fn corner_weights(&self, l: &[[f32; 3]; 3], p: [f32; 3]) -> [f32; 4] {
-        let c =
-            |x: [f32; 3]| receiver_cos(RECEIVER_NORMAL, [x[0] - p[0], x[1] - p[1], x[2] - p[2]]);
-        match &self.base.shape {
-            Shape::Triangle { .. } => [c(l[1]), c(l[1]), c(l[0]), c(l[2])],
-            _ => {
-                let add = |a: [f32; 3], b: [f32; 3]| [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
-                [
-                    c(l[0]),
-                    c(add(l[0], l[1])),
-                    c(add(l[0], l[2])),
-                    c(add(add(l[0], l[1]), l[2])),
-                ]
-            }
-        }
-    }
-
     /// Solid-angle samples for shading point `p`: plane points and `1 / pdf`.
-    fn solid_angle_point(&self, l: &[[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) -> ([f64; 2], f64) {
+    fn solid_angle_point(
+        &self,
+        l: &[[f32; 3]; 3],
+        p: [f32; 3],
+        u: [f32; 2],
+        cosine: bool,
+    ) -> ([f64; 2], f64) {
         match &self.base.shape {
             Shape::Triangle { v } => {
-                let (b, pdf) = spherical::triangle(*l, p, u);
+                let (b, pdf) = if cosine {
+                    spherical::triangle_cosine(*l, p, RECEIVER_NORMAL, u)
+                } else {
+                    spherical::triangle(*l, p, u)
+                };
                 let (b0, b1, b2) = (b[0] as f64, b[1] as f64, b[2] as f64);
                 (
                     [
@@ -169,7 +159,11 @@ impl SolidAngleScene {
                 )
             }
             _ => {
-                let ([s, t], pdf) = spherical::rectangle(l[0], l[1], l[2], p, u);
+                let ([s, t], pdf) = if cosine {
+                    spherical::rectangle_cosine(l[0], l[1], l[2], p, RECEIVER_NORMAL, u)
+                } else {
+                    spherical::rectangle(l[0], l[1], l[2], p, u)
+                };
                 (
                     [
                         l[0][0] as f64 + s as f64 * l[1][0] as f64,
@@ -253,30 +247,29 @@ impl Scene for SolidAngleScene {
             d @ (Domain::SolidAngle | Domain::SolidAngleCos) => {
                 sampler.fill(seed, pts);
                 // The timed warp: the shading point over the light's centre.
-                let (l, p) = (self.light3(), self.point([0.0, 0.0]));
-                let w = self.corner_weights(&l, p);
-                let mut warped = [[0.0f32; 2]; 64];
-                let mut factor = [0.0f32; 64];
-                for chunk in pts.chunks(64) {
-                    let chunk = if d == Domain::SolidAngleCos {
-                        for ((o, f), &u) in warped.iter_mut().zip(&mut factor).zip(chunk) {
-                            (*o, *f) = bilinear(u, w);
+                let (l, p, n) = (self.light3(), self.point([0.0, 0.0]), RECEIVER_NORMAL);
+                let cos = d == Domain::SolidAngleCos;
+                match &self.base.shape {
+                    Shape::Triangle { .. } => {
+                        let mut out = [[0.0f32; 4]; 64];
+                        for chunk in pts.chunks(64) {
+                            if cos {
+                                spherical::triangle_cosine_slice(l, p, n, chunk, &mut out);
+                            } else {
+                                spherical::triangle_slice(l, p, chunk, &mut out);
+                            }
                         }
-                        std::hint::black_box(&factor);
-                        &warped[..chunk.len()]
-                    } else {
-                        chunk
-                    };
-                    match &self.base.shape {
-                        Shape::Triangle { .. } => {
-                            let mut out = [[0.0f32; 4]; 64];
-                            spherical::triangle_slice(l, p, chunk, &mut out);
-                            std::hint::black_box(&out);
-                        }
-                        _ => {
-                            let mut out = [[0.0f32; 3]; 64];
-                            spherical::rectangle_slice(l[0], l[1], l[2], p, chunk, &mut out);
-                            std::hint::black_box(&out);
+                    }
+                    _ => {
+                        let mut out = [[0.0f32; 3]; 64];
+                        for chunk in pts.chunks(64) {
+                            if cos {
+                                spherical::rectangle_cosine_slice(
+                                    l[0], l[1], l[2], p, n, chunk, &mut out,
+                                );
+                            } else {
+                                spherical::rectangle_slice(l[0], l[1], l[2], p, chunk, &mut out);
+                            }
                         }
                     }
                 }
@@ -290,17 +283,10 @@ impl Scene for SolidAngleScene {
         match self.domains[warp] {
             d @ (Domain::SolidAngle | Domain::SolidAngleCos) => {
                 let (l, p) = (self.light3(), self.point(q));
-                let w = self.corner_weights(&l, p);
                 let sum: f64 = s.points[..spp]
                     .iter()
                     .map(|&u| {
-                        let (u, factor) = if d == Domain::SolidAngleCos {
-                            bilinear(u, w)
-                        } else {
-                            (u, 1.0)
-                        };
-                        let (x, pdf) = self.solid_angle_point(&l, p, u);
-                        let pdf = pdf * factor as f64;
+                        let (x, pdf) = self.solid_angle_point(&l, p, u, d == Domain::SolidAngleCos);
                         if !visible(x) || pdf <= 0.0 {
                             return 0.0;
                         }
@@ -349,51 +335,3 @@ impl Scene for SolidAngleScene {
 
 /// The receiver's normal in the report's scenes: facing the light plane.
 const RECEIVER_NORMAL: [f32; 3] = [0.0, 0.0, -1.0];
-
-/// `max(0, n . d / |d|)`; 0 for a zero or non-finite `d` (NaN compares false).
-fn receiver_cos(n: [f32; 3], d: [f32; 3]) -> f32 {
-    let c = (n[0] * d[0] + n[1] * d[1] + n[2] * d[2])
-        / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-    if c > 0.0 { c.min(1.0) } else { 0.0 }
-}
-
-/// The largest `f32` below 1.
-const ONE_MINUS_EPSILON: f32 = 1.0 - 1.0 / 16_777_216.0;
-
-/// Inverse CDF of the density `2 ((1 - x) a + x b) / (a + b)` on `[0, 1]` (`a, b >= 0`,
-/// `a + b > 0`): the root of `(b - a) x^2 + 2 a x = u (a + b)` written without cancellation,
-/// `x = u (a + b) / (a + sqrt((1 - u) a^2 + u b^2))`. `0 / 0` (`a = 0`, `u = 0`) gives 0.
-pub fn sample_linear(u: f32, a: f32, b: f32) -> f32 {
-    let x = u * (a + b) / (a + ((1.0 - u) * (a * a) + u * (b * b)).sqrt());
-    if x > 0.0 {
-        x.min(ONE_MINUS_EPSILON)
-    } else {
-        0.0
-    }
-}
-
-/// The bilinear density on the unit square with corner values `w = [w00, w10, w01, w11]`
-/// (`w_xy` at `(x, y)`), normalised: `4 lerp / (w00 + w10 + w01 + w11)`.
-pub fn bilinear_pdf(p: [f32; 2], w: [f32; 4]) -> f32 {
-    let [x, y] = p;
-    let v =
-        (1.0 - x) * (1.0 - y) * w[0] + x * (1.0 - y) * w[1] + (1.0 - x) * y * w[2] + x * y * w[3];
-    4.0 * v / (w[0] + w[1] + w[2] + w[3])
-}
-
-/// Warps `u` by the bilinear density of [`bilinear_pdf`] (the marginal in `y`, then the
-/// conditional in `x`, each by [`sample_linear`]); returns the point and its density. Weights
-/// whose sum is not positive and finite (all zero, NaN, inf): `u` unchanged, density 1.
-pub fn bilinear(u: [f32; 2], w: [f32; 4]) -> ([f32; 2], f32) {
-    let sum = w[0] + w[1] + w[2] + w[3];
-    if !(sum > 0.0 && sum < f32::INFINITY) {
-        return (u, 1.0);
-    }
-    let y = sample_linear(u[1], w[0] + w[1], w[2] + w[3]);
-    let x = sample_linear(
-        u[0],
-        (1.0 - y) * w[0] + y * w[2],
-        (1.0 - y) * w[1] + y * w[3],
-    );
-    ([x, y], bilinear_pdf([x, y], w))
-}
