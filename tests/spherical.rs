@@ -929,7 +929,9 @@ fn projected_solid_angle(poly: &[V3], n: V3) -> f64 {
 #[test]
 fn cosine_estimator_is_unbiased() {
     let n_up = [0.3f32, -0.2, 1.0];
-    let tri: [([[f32; 3]; 3], [f32; 3], [f32; 3]); 4] = [
+    type TriCase = ([[f32; 3]; 3], [f32; 3], [f32; 3]);
+    type RectNCase = ([f32; 3], [f32; 3], [f32; 3], [f32; 3], [f32; 3]);
+    let tri: [TriCase; 4] = [
         (
             [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]],
             [0.1, 0.1, 0.0],
@@ -952,7 +954,7 @@ fn cosine_estimator_is_unbiased() {
             [1.0, 0.0, 0.2],
         ),
     ];
-    let rects: [([f32; 3], [f32; 3], [f32; 3], [f32; 3], [f32; 3]); 4] = [
+    let rects: [RectNCase; 4] = [
         (
             [-0.5, -0.5, 1.0],
             [1.0, 0.0, 0.0],

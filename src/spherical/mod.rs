@@ -5,6 +5,7 @@
 //! |---|---|---|
 //! | [`triangle`] | `u` to the barycentrics of a point of triangle `v`, uniform in solid angle at `p` | Arvo 1995, "Stratified Sampling of Spherical Triangles" (SIGGRAPH) |
 //! | [`rectangle`] | `u` to `(s, t)` of the point `corner + s ex + t ey`, uniform in solid angle | Urena, Fajardo and King 2013, "An Area-Preserving Parametrization for Spherical Rectangles" (EGSR) |
+//! | [`triangle_cosine`], [`rectangle_cosine`] | `u` warped by [`bilinear`] (a bilinear fit of the receiver's clamped cosine at the light's corners), then the map above; density `bilinear_pdf(u') / omega` | Hart, Pharr, Mueller, Lopes, McGuire and Shirley 2020, "Practical Product Sampling by Fitting and Composing Warps" (EGSR) |
 //! | [`triangle_solid_angle`], [`rectangle_solid_angle`] | the solid angle `omega` in `[0, 2 pi]` | Van Oosterom and Strackee 1983, "The Solid Angle of a Plane Triangle" (IEEE TBME) |
 //!
 //! Near a light, sampling the solid angle removes the `cos' / r^2` factor from the estimator
