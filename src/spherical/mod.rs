@@ -74,6 +74,17 @@
 //! let v = [[0.0f32, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
 //! let (b, pdf) = spherical::triangle(v, p, [0.5, 0.5]);
 //! assert!(b.iter().all(|&x| (0.0..=1.0).contains(&x)) && pdf > 0.0);
+//!
+//! // Cosine-aware: the receiver's normal `n` tilts the samples towards where it faces; the
+//! // density is the bilinear factor over the solid angle.
+//! let n = [0.5f32, 0.0, 1.0];
+//! let (b, pdf) = spherical::triangle_cosine(v, p, n, [0.5, 0.5]);
+//! let u = spherical::triangle_inverse(v, p, b); // the warped sample
+//! let c = |x: [f32; 3]| (n[0] * x[0] + n[1] * x[1] + n[2] * x[2])
+//!     / (x.iter().map(|a| a * a).sum::<f32>().sqrt() * 1.25f32.sqrt());
+//! let w = [c(v[1]), c(v[1]), c(v[0]), c(v[2])];
+//! let omega = spherical::triangle_solid_angle(v, p);
+//! assert!((pdf * omega - spherical::bilinear_pdf(u, w)).abs() < 1e-3);
 //! ```
 
 mod cosine;
