@@ -777,6 +777,26 @@ float wc_spherical_triangle_solid_angle(const float *light);
 // `light` must be readable for 12 floats.
 float wc_spherical_rectangle_solid_angle(const float *light);
 
+// Cosine-aware `wc_spherical_triangle`: `light` is 15 floats, `v0, v1, v2, p, n` (`n` the
+// receiver's normal, any length); `u` is first warped by the bilinear density of the
+// receiver's clamped cosine towards the vertices, then mapped as by
+// `wc_spherical_triangle`; records `b0, b1, b2, density` (`4n` floats), the density
+// including the bilinear factor (`warpcore::spherical::triangle_cosine`). Returns `n`, or 0
+// as for `wc_spherical_triangle`.
+//
+// # Safety
+// `light` must be readable for 15 floats, `u` for `2n` and `out` writable for `4n`.
+size_t wc_spherical_triangle_cosine(const float *light, const float *u, float *out, size_t n);
+
+// Cosine-aware `wc_spherical_rectangle`: `light` is 15 floats, `corner, ex, ey, p, n`;
+// records `s, t, density` (`3n` floats), the density including the bilinear factor
+// (`warpcore::spherical::rectangle_cosine`). Returns `n`, or 0 as for
+// `wc_spherical_triangle`.
+//
+// # Safety
+// `light` must be readable for 15 floats, `u` for `2n` and `out` writable for `3n`.
+size_t wc_spherical_rectangle_cosine(const float *light, const float *u, float *out, size_t n);
+
 // Low-distortion map (Heitz 2019): `n` points `u` (`2n` floats) to `n` barycentrics (`3n`
 // floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or
 // overlapping arrays.

@@ -100,6 +100,10 @@ export interface Warpcore {
   /** Uniform in solid angle over rectangle `light` (corner, ex, ey, p: 12 floats): `[s, t, density]` per sample. */
   sphericalRectangle(light: Float32Array, u: Float32Array, out?: Float32Array): Float32Array;
   sphericalRectangleInverse(light: Float32Array, st: Float32Array, out?: Float32Array): Float32Array;
+  /** Cosine-aware sphericalTriangle: `light` is 15 floats (v0, v1, v2, p, n; n the receiver's normal); `u` warped by the bilinear fit of max(0, n . w) at the corners first; `[b0, b1, b2, density]` per sample, the density including the bilinear factor. */
+  sphericalTriangleCosine(light: Float32Array, u: Float32Array, out?: Float32Array): Float32Array;
+  /** Cosine-aware sphericalRectangle: `light` is 15 floats (corner, ex, ey, p, n); `[s, t, density]` per sample. */
+  sphericalRectangleCosine(light: Float32Array, u: Float32Array, out?: Float32Array): Float32Array;
   sphericalTriangleSolidAngle(light: Float32Array): number;
   sphericalRectangleSolidAngle(light: Float32Array): number;
   triangleUniform(u: Float32Array, out?: Float32Array): Float32Array;

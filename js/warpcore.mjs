@@ -415,17 +415,17 @@ function create(x) {
 
   // Lights by solid angle: one light and shading point (`light`, 12 floats: v0, v1, v2, p or
   // corner, ex, ey, p), then C `f(light, in, out, n)`.
-  const lightArg = (light) => {
-    if (elements(light, F, 12, 'light') !== 1) {
-      throw rangeError(`light.length must be 12, got ${TA_LENGTH(light)}`);
+  const lightArg = (light, len = 12) => {
+    if (elements(light, F, len, 'light') !== 1) {
+      throw rangeError(`light.length must be ${len}, got ${TA_LENGTH(light)}`);
     }
   };
-  const withLight = (f, I, O, name) => (light, input, out) => {
-    lightArg(light);
+  const withLight = (f, I, O, name, len = 12) => (light, input, out) => {
+    lightArg(light, len);
     const n = elements(input, F, I, name);
     const result = output(out, F, n * O);
     if (n === 0) return result;
-    return scratch([[F, 12, light], [F, n * I, input], [F, n * O]], (pl, pi, po) => {
+    return scratch([[F, len, light], [F, n * I, input], [F, n * O]], (pl, pi, po) => {
       expect(f(pl, pi, po, n), n, name);
       return read(F, po, n * O, result);
     });
@@ -461,6 +461,8 @@ function create(x) {
     sphericalTriangleInverse: withLight(x.wc_spherical_triangle_inverse, 3, 2, 'b'),
     sphericalRectangle: withLight(x.wc_spherical_rectangle, 2, 3, 'u'),
     sphericalRectangleInverse: withLight(x.wc_spherical_rectangle_inverse, 2, 2, 'st'),
+    sphericalTriangleCosine: withLight(x.wc_spherical_triangle_cosine, 2, 4, 'u', 15),
+    sphericalRectangleCosine: withLight(x.wc_spherical_rectangle_cosine, 2, 3, 'u', 15),
     sphericalTriangleSolidAngle: solidAngle(x.wc_spherical_triangle_solid_angle),
     sphericalRectangleSolidAngle: solidAngle(x.wc_spherical_rectangle_solid_angle),
 

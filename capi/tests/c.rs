@@ -517,6 +517,8 @@ const TABLE: &[(&str, &[&str])] = {
         ("wc_spherical_triangle_inverse", MAP_IN_PLACE),
         ("wc_spherical_rectangle", MAP),
         ("wc_spherical_rectangle_inverse", MAP_IN_PLACE),
+        ("wc_spherical_triangle_cosine", MAP),
+        ("wc_spherical_rectangle_cosine", MAP),
         (
             "wc_spherical_triangle_solid_angle",
             &["omega", "0:null", "0:misaligned"],

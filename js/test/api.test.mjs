@@ -19,6 +19,8 @@ const COUNT = { count: true, good: () => 5 };
 const U32 = { u32: true, good: () => 7 };
 // A light and shading point of the solid-angle functions (12 floats).
 const LIGHT = { T: Float32Array, d: 12, good: () => Float32Array.of(0, 0, 1, 1, 0, 1, 0, 1, 1, 0.2, 0.2, 0) };
+// The cosine-aware ones: the receiver's normal after the point (15 floats).
+const LIGHT15 = { T: Float32Array, d: 15, good: () => Float32Array.of(0, 0, 1, 1, 0, 1, 0, 1, 1, 0.2, 0.2, 0, 0, 0, 1) };
 
 const STORAGE = (() => {
   const env = wc.envmapHierarchical(new Float32Array(4).fill(1), 2, 2);
@@ -42,6 +44,8 @@ const SPEC = {
   sphericalRectangleInverse: [LIGHT, vec(Float32Array, 2)],
   sphericalTriangleSolidAngle: [LIGHT],
   sphericalRectangleSolidAngle: [LIGHT],
+  sphericalTriangleCosine: [LIGHT15, vec(Float32Array, 2)],
+  sphericalRectangleCosine: [LIGHT15, vec(Float32Array, 2)],
   triangleUniform: [vec(Float32Array, 2)],
   triangleUniformInverse: [vec(Float32Array, 3)],
   triangleSqrtMap: [vec(Float32Array, 2)],

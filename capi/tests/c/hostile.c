@@ -254,6 +254,14 @@ static size_t sph_rect(const float *in, float *out, size_t n) {
 static size_t sph_rect_inv(const float *in, float *out, size_t n) {
     return wc_spherical_rectangle_inverse(RECT_LIGHT, in, out, n);
 }
+static const float TRI_LIGHT_N[15] = {0, 0, 1, 1, 0, 1, 0, 1, 1, 0.1f, 0.2f, 0, 0.3f, 0, 1};
+static const float RECT_LIGHT_N[15] = {-0.5f, -0.5f, 1, 1, 0, 0, 0, 1, 0, 0.1f, 0.2f, 0, 0, -0.4f, 1};
+static size_t sph_tri_cos(const float *in, float *out, size_t n) {
+    return wc_spherical_triangle_cosine(TRI_LIGHT_N, in, out, n);
+}
+static size_t sph_rect_cos(const float *in, float *out, size_t n) {
+    return wc_spherical_rectangle_cosine(RECT_LIGHT_N, in, out, n);
+}
 
 static const struct map MAPS[] = {
     {"wc_disk_polar", wc_disk_polar, 2, 2, 0},
@@ -285,6 +293,8 @@ static const struct map MAPS[] = {
     {"wc_spherical_triangle_inverse", sph_tri_inv, 3, 2, 0},
     {"wc_spherical_rectangle", sph_rect, 2, 3, 0},
     {"wc_spherical_rectangle_inverse", sph_rect_inv, 2, 2, 0},
+    {"wc_spherical_triangle_cosine", sph_tri_cos, 2, 4, 0},
+    {"wc_spherical_rectangle_cosine", sph_rect_cos, 2, 3, 0},
 };
 #define NMAPS (sizeof MAPS / sizeof MAPS[0])
 
@@ -350,30 +360,34 @@ static void one_map(const struct map *M) {
     reset();
 }
 
-/* The light pointer of the spherical functions: 12 floats flush against a guard page (a read
-   past them faults), null or misaligned (0, nothing written); a valid call's result equals
-   the same call with a copy of the light. */
+/* The light pointer of the spherical functions: 12 floats (15 for the cosine-aware ones)
+   flush against a guard page (a read past them faults), null or misaligned (0, nothing
+   written); a valid call's result equals the same call with a copy of the light. */
 static void one_light(int which) {
-    static const char *names[6] = {"wc_spherical_triangle", "wc_spherical_triangle_inverse",
+    static const char *names[8] = {"wc_spherical_triangle", "wc_spherical_triangle_inverse",
                                    "wc_spherical_rectangle", "wc_spherical_rectangle_inverse",
                                    "wc_spherical_triangle_solid_angle",
-                                   "wc_spherical_rectangle_solid_angle"};
+                                   "wc_spherical_rectangle_solid_angle",
+                                   "wc_spherical_triangle_cosine",
+                                   "wc_spherical_rectangle_cosine"};
+    size_t len = which >= 6 ? 15 : 12;
     int end = rnd() & 1;
-    float *light = place(0, 12 * 4, end, 0);
+    float *light = place(0, len * 4, end, 0);
     uint32_t r = rnd() % 4;
     if (r == 0) light = NULL;
-    if (r == 1) light = place(0, 12 * 4, end, 1 + below(3));
-    if (light && aligned(light)) fill_floats(light, 12);
-    float copy[12] = {0};
-    if (light && aligned(light)) memcpy(copy, light, sizeof copy);
+    if (r == 1) light = place(0, len * 4, end, 1 + below(3));
+    if (light && aligned(light)) fill_floats(light, len);
+    float copy[15] = {0};
+    if (light && aligned(light)) memcpy(copy, light, len * 4);
     size_t n = 1 + below(20);
     float *u = place(1, n * 3 * 4, end, 0), *out = place(3, n * 4 * 4, !end, 0);
     fill_floats(u, n * 3);
     int ok = light && aligned(light);
-    const char *outcome = !light ? "0:null" : !aligned(light) ? "0:misaligned" : which < 4 ? "n" : "omega";
+    int array = which < 4 || which >= 6;
+    const char *outcome = !light ? "0:null" : !aligned(light) ? "0:misaligned" : array ? "n" : "omega";
     static float ref[4 * 20];
     snapshot(0, out, n * 4 * 4 + 64);
-    if (light) snapshot(2, light, 12 * 4);
+    if (light) snapshot(2, light, len * 4);
     size_t got = 0, want = ok ? n : 0;
     float om = 0, want_om = 0;
     switch (which) {
@@ -382,12 +396,14 @@ static void one_light(int which) {
     case 2: if (ok) wc_spherical_rectangle(copy, u, ref, n); got = wc_spherical_rectangle(light, u, out, n); break;
     case 3: if (ok) wc_spherical_rectangle_inverse(copy, u, ref, n); got = wc_spherical_rectangle_inverse(light, u, out, n); break;
     case 4: if (ok) want_om = wc_spherical_triangle_solid_angle(copy); om = wc_spherical_triangle_solid_angle(light); break;
-    default: if (ok) want_om = wc_spherical_rectangle_solid_angle(copy); om = wc_spherical_rectangle_solid_angle(light); break;
+    case 5: if (ok) want_om = wc_spherical_rectangle_solid_angle(copy); om = wc_spherical_rectangle_solid_angle(light); break;
+    case 6: if (ok) wc_spherical_triangle_cosine(copy, u, ref, n); got = wc_spherical_triangle_cosine(light, u, out, n); break;
+    default: if (ok) wc_spherical_rectangle_cosine(copy, u, ref, n); got = wc_spherical_rectangle_cosine(light, u, out, n); break;
     }
     reach(names[which], outcome);
     current = names[which];
-    if (which < 4) {
-        static const size_t O[4] = {4, 2, 3, 2};
+    if (array) {
+        static const size_t O[8] = {4, 2, 3, 2, 0, 0, 4, 3};
         CHECK(got == want);
         if (want) {
             CHECK(memcmp(out, ref, n * O[which] * 4) == 0);
@@ -1304,7 +1320,7 @@ int main(int argc, char **argv) {
         one_sampler_value();
         for (int i = 0; i < 3; i++) one_sampler_draw(i);
         one_sampler_slice();
-        for (int i = 0; i < 6; i++) one_light(i);
+        for (int i = 0; i < 8; i++) one_light(i);
     }
     for (int i = 0; i < nrows; i++) printf("row %s %s %lu\n", rows[i].fn, rows[i].outcome, rows[i].calls);
     printf("%lu hostile calls, %lu passed, %lu failed\n", calls, passed, failed);
