@@ -230,13 +230,16 @@ const SPEC = {
   envmapLatlongPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
   envmapLatlongSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, NUM(3), NUM(2)],
   envmapLatlongToEqualArea: [{ T: Float32Array, d: 18, good: () => new Float32Array(18).fill(0.5) }, NUM(3), NUM(2), NUM(3), NUM(4), NUM(2)],
+  envmapEquirectPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
+  envmapEquirectSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, NUM(3), NUM(2)],
+  envmapEquirectToEqualArea: [{ T: Float32Array, d: 18, good: () => new Float32Array(18).fill(0.5) }, NUM(3), NUM(2), NUM(3), NUM(4), NUM(2)],
   envmapHierarchical: [{ T: Float32Array, d: 6, good: () => new Float32Array([1, 2, 0, 3, 1, 1]) }, NUM(3), NUM(2)],
   envmapMarginalConditional: [{ T: Float32Array, d: 6, good: () => new Float32Array([1, 2, 0, 3, 1, 1]) }, NUM(3), NUM(2)],
   envmapFromStorage: [{ T: Uint32Array, d: 1, good: () => STORAGE.slice() }],
 };
 // Functions whose last argument is an optional `out` of this type and length (for the good
 // arguments).
-const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapFromStorage', 'envmapLatlongSolidAngleWeights', 'envmapLatlongToEqualArea']);
+const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapFromStorage', 'envmapLatlongSolidAngleWeights', 'envmapLatlongToEqualArea', 'envmapEquirectSolidAngleWeights', 'envmapEquirectToEqualArea']);
 const OUT = {};
 for (const [name, specs] of Object.entries(SPEC)) {
   if (NO_OUT.has(name)) continue;
