@@ -444,7 +444,7 @@ fn damaged(b: &mut Bytes, state: &State, kind: Kind) -> Vec<u32> {
             s[at] = b.word();
         }
         1 => {
-            let at = b.byte() as usize % 8;
+            let at = b.byte() as usize % 16; // the 16-word header
             s[at] ^= 1 << (b.byte() % 32);
         }
         2 => s.truncate(b.word() as usize % s.len()),

@@ -46,6 +46,7 @@ fn product(a: usize, b: usize) -> usize {
 }
 
 /// Marginal-conditional storage words, or `usize::MAX` (the documented rule).
+/// (A 16-word header since storage format version 3.)
 fn mc_len(w: usize, h: usize) -> usize {
     if w == 0 || h == 0 {
         return 0;
@@ -54,7 +55,7 @@ fn mc_len(w: usize, h: usize) -> usize {
         return usize::MAX;
     }
     let (w, h) = (w as u128, h as u128);
-    let n = 8 + (h + 1) + (w + 1) * h + (w + 1) + (h + 1);
+    let n = 16 + (h + 1) + (w + 1) * h + (w + 1) + (h + 1);
     if n > u32::MAX as u128 {
         usize::MAX
     } else {

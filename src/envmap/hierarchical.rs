@@ -835,8 +835,8 @@ impl<U: UintLane> Walk<U> {
     }
 }
 
-/// Lengths of the four regions after the header: alignment padding, blocks, column and row
-/// edges.
+/// Lengths of the four regions after the header: padding (empty since format version 3),
+/// blocks, column and row edges.
 fn regions(skip: usize, blocks_len: usize, w: usize, h: usize) -> [usize; 4] {
     [skip, blocks_len, w + 1, h + 1]
 }
