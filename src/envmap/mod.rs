@@ -452,12 +452,14 @@ fn checksum(storage: &[Word]) -> u32 {
     for (s, &w) in lanes.iter_mut().zip(head) {
         *s = step(*s, w);
     }
+    // The whole groups of eight: the eight chains as the lanes of one `u32x8` (the same
+    // integer operations per lane, so the same bits as eight scalar chains).
     let (chunks, rest) = tail.as_chunks::<8>();
+    let mut v = u32x8::new(lanes);
     for chunk in chunks {
-        for (s, &w) in lanes.iter_mut().zip(chunk) {
-            *s = step(*s, w);
-        }
+        v = mix(v ^ from_storage_order(u32x8::new(*chunk)));
     }
+    lanes = v.to_array();
     for (s, &w) in lanes.iter_mut().zip(rest) {
         *s = step(*s, w);
     }
