@@ -533,7 +533,7 @@ impl<'a> Hierarchical<'a> {
     /// then the content checksum over every word ([`Error::Corrupt`] naming
     /// [`CHECKSUM_WORD`](super::CHECKSUM_WORD)), which catches every single-bit flip of the
     /// storage. Time `O(width * height)` (a sixteenth of a word per padded texel is read
-    /// twice, every word once more for the checksum): 96 ms for 4096 x 2048
+    /// twice, every word once more for the checksum): 60 ms for 4096 x 2048
     /// (`benches/envmap.rs`, on a shared 2-core VM).
     pub fn from_storage_verified(storage: &'a [Word]) -> Result<Self, Error> {
         let map = Self::from_storage(storage)?;

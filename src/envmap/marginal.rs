@@ -240,7 +240,7 @@ impl<'a> MarginalConditional<'a> {
     /// texel edges are exactly the ones `new` writes ([`Error::Corrupt`] names the first word
     /// that is not); then the content checksum over every word ([`Error::Corrupt`] naming
     /// [`CHECKSUM_WORD`](super::CHECKSUM_WORD)), which catches every single-bit flip of the
-    /// storage. Time `O(width * height)`: 19 ms for 4096 x 2048 (`benches/envmap.rs`, on a
+    /// storage. Time `O(width * height)`: 11 ms for 4096 x 2048 (`benches/envmap.rs`, on a
     /// shared 2-core VM).
     pub fn from_storage_verified(storage: &'a [Word]) -> Result<Self, Error> {
         let map = Self::from_storage(storage)?;
