@@ -446,7 +446,7 @@ pub fn envmap(data: &[u8]) {
     let fraction = f32::from_bits(get(2).rotate_left(7));
     let compensation = match (get(2) >> 3) % 4 {
         1 => warpcore::envmap::Compensation::Uniform(fraction),
-        2 => warpcore::envmap::Compensation::LatLong(fraction),
+        2 => warpcore::envmap::Compensation::Equirect(fraction),
         _ => warpcore::envmap::Compensation::None,
     };
     let weights: Vec<f32> = (0..width * height)
