@@ -525,6 +525,25 @@ mod tests {
         assert_eq!(at, bytes.len());
     }
 
+    /// `shaders/warpcore_tables.bin`, the buffer for renderers outside Rust, is current
+    /// (`cargo run -p warpcore-gpu --bin gpu-tables` rewrites it).
+    #[test]
+    fn the_committed_buffer_is_current() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../shaders/warpcore_tables.bin"
+        );
+        let file = std::fs::read(path).expect("shaders/warpcore_tables.bin");
+        assert!(
+            file == table_bytes(),
+            "shaders/warpcore_tables.bin is stale: run `cargo run -p warpcore-gpu --bin gpu-tables`"
+        );
+        assert_eq!(
+            file.len(),
+            4 * (PMJ02BN_WORDS + SOBOL_WORDS + 2 * BLUE_WORDS)
+        );
+    }
+
     /// The Sobol' rows against the definition, worked independently: dimension 0 is the bit
     /// reversal (van der Corput); dimension 1 (polynomial x + 1) is the Pascal matrix mod 2,
     /// whose column k holds bit j (from the top, j <= k) = C(k, j) mod 2; XOR of the rows of
