@@ -109,7 +109,7 @@ ${comps.map((c, k) => `    wc_out[i * ${outFloats}u + ${k}u] = ${word(c)};`).joi
 `;
 }
 
-async function runOnGpu(device, code, input, outWords) {
+async function runOnGpu(device, code, input, outWords, tables = null) {
   device.pushErrorScope('validation');
   const module = device.createShaderModule({ code });
   const pipeline = device.createComputePipeline({ layout: 'auto', compute: { module, entryPoint: 'wc_check_main' } });
@@ -122,10 +122,16 @@ async function runOnGpu(device, code, input, outWords) {
   const readBuf = device.createBuffer({ size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
   const bind = device.createBindGroup({
     layout: pipeline.getBindGroupLayout(0),
-    entries: [
-      { binding: 0, resource: { buffer: inBuf } },
-      { binding: 1, resource: { buffer: outBuf } },
-    ],
+    entries: tables
+      ? [
+          { binding: 0, resource: { buffer: tables } },
+          { binding: 1, resource: { buffer: inBuf } },
+          { binding: 2, resource: { buffer: outBuf } },
+        ]
+      : [
+          { binding: 0, resource: { buffer: inBuf } },
+          { binding: 1, resource: { buffer: outBuf } },
+        ],
   });
   const enc = device.createCommandEncoder();
   const pass = enc.beginComputePass();
@@ -213,6 +219,100 @@ export async function check(n = 1 << 14, edit = null) {
       }
     }
     rows.push([name, n, mismatches, first]);
+  }
+  return { adapter: `${info.vendor} ${info.architecture} (fallback ${info.isFallbackAdapter})`, rows };
+}
+
+// shaders/warpcore_tables.wgsl: the compute shader around one check's body (reads wc_in[b + k],
+// writes wc_out[o + k]); the library's wc_tables is binding 0.
+function tablesShader(lib, inw, outw, body) {
+  return `${lib}
+@group(0) @binding(1) var<storage, read> wc_in: array<u32>;
+@group(0) @binding(2) var<storage, read_write> wc_out: array<u32>;
+@compute @workgroup_size(64)
+fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if (i >= arrayLength(&wc_out) / ${outw}u) { return; }
+    let b = i * ${inw}u;
+    let o = i * ${outw}u;
+${body}
+}
+`;
+}
+
+const SAMPLER_BODY = `    var s = wc_sampler_new(wc_in[b], vec2<u32>(wc_in[b + 1u], wc_in[b + 2u]), wc_in[b + 3u], wc_in[b + 4u], wc_in[b + 5u]);
+    s = wc_sampler_domain(s, wc_in[b + 6u]);
+    s = wc_sampler_split(s, wc_in[b + 7u], 4u, 3u);
+    s = wc_sampler_domain(s, wc_in[b + 8u]);
+    let d = wc_sampler_draw4_u32(s);
+    let e = wc_sampler_draw2(s);
+    let r = wc_sampler_rnd4(s);
+    wc_out[o] = d.x; wc_out[o + 1u] = d.y; wc_out[o + 2u] = d.z; wc_out[o + 3u] = d.w;
+    wc_out[o + 4u] = bitcast<u32>(e.x); wc_out[o + 5u] = bitcast<u32>(e.y);
+    wc_out[o + 6u] = bitcast<u32>(r.x); wc_out[o + 7u] = bitcast<u32>(r.y);
+    wc_out[o + 8u] = bitcast<u32>(r.z); wc_out[o + 9u] = bitcast<u32>(r.w);`;
+
+/**
+ * Checks shaders/warpcore_tables.wgsl with shaders/warpcore_tables.bin bound: pmj02bn points
+ * (three runs of `n` consecutive indices) and, per pattern, `n` sampler paths
+ * `domain(k1).split(k2, 4, 3).domain(k3)` (draw4_u32, draw2, rnd4), against the JavaScript
+ * module. Returns `{ adapter, rows }` as `check` does. `corrupt` flips the top bit of every
+ * pmj02bn table word before the upload (the test's check that the comparison sees the tables).
+ */
+export async function checkTables(n = 1 << 12, corrupt = false) {
+  const wc = await load();
+  const lib = await (await fetch(new URL('../../shaders/warpcore_tables.wgsl', import.meta.url))).text();
+  const bin = await (await fetch(new URL('../../shaders/warpcore_tables.bin', import.meta.url))).arrayBuffer();
+  if (corrupt) {
+    const w = new Uint32Array(bin, 0, 2 * wc.pmj02bnSets * wc.pmj02bnPoints);
+    for (let i = 0; i < w.length; i++) w[i] ^= 0x80000000;
+  }
+  const adapter = await navigator.gpu.requestAdapter();
+  if (!adapter) throw new Error('no WebGPU adapter');
+  const device = await adapter.requestDevice();
+  const info = adapter.info ?? {};
+  const tables = device.createBuffer({ size: bin.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
+  device.queue.writeBuffer(tables, 0, bin);
+  const words = (a) => new Uint32Array(a.buffer.slice(a.byteOffset, a.byteOffset + a.byteLength));
+  const rows = [];
+  const compare = (name, got, want, outw) => {
+    let mismatches = 0;
+    let first = null;
+    for (let p = 0; p < got.length / outw; p++) {
+      for (let w = 0; w < outw; w++) {
+        if (got[p * outw + w] !== want[p * outw + w]) {
+          mismatches++;
+          first ??= { point: p, got: Array.from(got.subarray(p * outw, (p + 1) * outw)), want: Array.from(want.subarray(p * outw, (p + 1) * outw)) };
+          break;
+        }
+      }
+    }
+    rows.push([name, got.length / outw, mismatches, first]);
+  };
+  const pmjBody = '    let r = wc_pmj02bn_sample(wc_in[b], wc_in[b + 1u]);\n    wc_out[o] = bitcast<u32>(r.x);\n    wc_out[o + 1u] = bitcast<u32>(r.y);';
+  for (const [start, seed] of [[0, 0], [3 * wc.pmj02bnPoints - 100, 0xdeadbeef], [2 ** 32 - n / 2, 0xffffffff]]) {
+    const input = new Uint32Array(2 * n);
+    for (let i = 0; i < n; i++) input.set([(start + i) >>> 0, seed], 2 * i);
+    const want = words(wc.pmj02bnSample(start, seed, n));
+    const got = await runOnGpu(device, tablesShader(lib, 2, 2, pmjBody), input, 2 * n, tables);
+    compare(`wc_pmj02bn_sample from ${start}`, got, want, 2);
+  }
+  for (const [id, pattern] of ['pmj02bn', 'sobol', 'bluePmj02bn', 'blueSobol'].entries()) {
+    const next = rng(0x2545f491 ^ (id * 0x9e3779b9));
+    const input = new Uint32Array(9 * n);
+    const want = new Uint32Array(10 * n);
+    for (let i = 0; i < n; i++) {
+      const w = [id, next(), next(), next(), i % 2 ? next() : i, i % 3 ? next() : 0, next(), next(), next()];
+      if (i % 4 === 0) [w[1], w[2]] = [w[1] & 63, w[2] & 63];
+      input.set(w, 9 * i);
+      const path = wc.samplerPath().domain(w[6]).split(w[7], 4, 3).domain(w[8]);
+      const args = [pattern, new Uint32Array([w[1], w[2]]), w[3], w[4], w[5], path];
+      want.set(wc.samplerDrawU32(...args, 4), 10 * i);
+      want.set(words(wc.samplerDraw(...args, 2)), 10 * i + 4);
+      want.set(words(wc.samplerRnd(...args, 4)), 10 * i + 6);
+    }
+    const got = await runOnGpu(device, tablesShader(lib, 9, 10, SAMPLER_BODY), input, 10 * n, tables);
+    compare(`wc_sampler_* ${pattern}`, got, want, 10);
   }
   return { adapter: `${info.vendor} ${info.architecture} (fallback ${info.isFallbackAdapter})`, rows };
 }
