@@ -19,7 +19,8 @@
 //   2. the Sobol' generator matrices by bytes of the bit-reversed index: 1024 rows of 4 words;
 //   3. the blue-noise key tiles, 64 x 64 words each, Sobol' then pmj02bn: exactly the bytes of
 //      src/tables/blue_sobol_64.bin and src/tables/blue_pmj02bn_64.bin.
-// `warpcore_gpu::tables::table_bytes()` returns the whole buffer (docs/gpu.md shows how to
+// `shaders/warpcore_tables.bin` is the whole buffer for the default build, and
+// `warpcore_gpu::tables::table_bytes()` builds it from the crate (docs/gpu.md shows how to
 // upload it from Rust, C and JS). wc_pmj02bn_sample reads part 1 only: a renderer that uses
 // nothing else may upload that part alone.
 //
