@@ -24,7 +24,7 @@ fn park() -> (Vec<f32>, usize, usize) {
     let (w, h) = (img.width, img.height);
     let mut l = vec![0.0f32; w * h];
     image::luminance_slice(&img.rgb, &mut l);
-    image::latlong_solid_angle_weights(&mut l, w, h).unwrap();
+    image::equirect_solid_angle_weights(&mut l, w, h).unwrap();
     (l, w, h)
 }
 
@@ -236,6 +236,15 @@ fn build_group(c: &mut Criterion, name: &str, weights: &[f32], w: usize, h: usiz
     });
     g.bench_function("f32-CDF marginal-conditional (textbook, allocates)", |b| {
         b.iter(|| black_box(F32Cdf::new(black_box(weights), w, h).marginal_int))
+    });
+    // Loading a saved storage: the O(n) verifying loader (invariants and content checksum).
+    MarginalConditional::new(weights, w, h, &mut sm).unwrap();
+    Hierarchical::new(weights, w, h, &mut sh).unwrap();
+    g.bench_function("warpcore marginal-conditional from_storage_verified", |b| {
+        b.iter(|| black_box(MarginalConditional::from_storage_verified(black_box(&sm)).is_ok()))
+    });
+    g.bench_function("warpcore hierarchical from_storage_verified", |b| {
+        b.iter(|| black_box(Hierarchical::from_storage_verified(black_box(&sh)).is_ok()))
     });
     g.finish();
 }

@@ -444,7 +444,7 @@ fn damaged(b: &mut Bytes, state: &State, kind: Kind) -> Vec<u32> {
             s[at] = b.word();
         }
         1 => {
-            let at = b.byte() as usize % 8;
+            let at = b.byte() as usize % 16; // the 16-word header
             s[at] ^= 1 << (b.byte() % 32);
         }
         2 => s.truncate(b.word() as usize % s.len()),
@@ -684,7 +684,7 @@ fn latlong_pdf(b: &mut Bytes) {
         "latlong_pdf wrote outside"
     );
     let r: Vec<f32> = (0..n)
-        .map(|i| image::latlong_pdf_to_solid_angle(vals[i], vals[small + i]))
+        .map(|i| image::equirect_pdf_to_solid_angle(vals[i], vals[small + i]))
         .collect();
     assert_eq!(arena.get(o_at, n), &bits(&r)[..]);
 }
@@ -720,7 +720,7 @@ fn solid_angle_weights(b: &mut Bytes) {
         return;
     }
     let mut r = vals.clone();
-    image::latlong_solid_angle_weights(&mut r, w as usize, h as usize).expect("valid");
+    image::equirect_solid_angle_weights(&mut r, w as usize, h as usize).expect("valid");
     assert_eq!(arena.get(0, count), &bits(&r)[..]);
     assert!(arena.unchanged_outside(&before, 0, count));
 }
@@ -793,7 +793,7 @@ fn to_equal_area(b: &mut Bytes) {
     let (w, h, n, s) = (sw as usize, sh as usize, size as usize, ss as usize);
     let mut d = vec![0.0f32; dl];
     fn run<const C: usize>(src: &[f32], w: usize, h: usize, d: &mut [f32], n: usize, s: usize) {
-        image::latlong_to_equal_area(src.as_chunks::<C>().0, w, h, d.as_chunks_mut::<C>().0, n, s)
+        image::equirect_to_equal_area(src.as_chunks::<C>().0, w, h, d.as_chunks_mut::<C>().0, n, s)
             .expect("valid");
     }
     match c {

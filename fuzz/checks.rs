@@ -446,7 +446,7 @@ pub fn envmap(data: &[u8]) {
     let fraction = f32::from_bits(get(2).rotate_left(7));
     let compensation = match (get(2) >> 3) % 4 {
         1 => warpcore::envmap::Compensation::Uniform(fraction),
-        2 => warpcore::envmap::Compensation::LatLong(fraction),
+        2 => warpcore::envmap::Compensation::Equirect(fraction),
         _ => warpcore::envmap::Compensation::None,
     };
     let weights: Vec<f32> = (0..width * height)
@@ -785,6 +785,36 @@ pub fn spherical(data: &[u8]) {
         |st| s::rectangle_inverse_x8(sp(r[0]), sp(r[1]), sp(r[2]), sp(r[3]), st),
         |st, o| s::rectangle_inverse_slice(r[0], r[1], r[2], r[3], st, o),
         in_unit_square,
+    );
+    // The cosine-aware variants, with normals taken from the other light's bytes.
+    let (tn, rn) = (r[0], v[0]);
+    widths(
+        "spherical::triangle_cosine",
+        &p2,
+        |u| {
+            let (b, d) = s::triangle_cosine(v, p, tn, u);
+            [b[0], b[1], b[2], d]
+        },
+        |u| {
+            let (b, d) = s::triangle_cosine_x8(vv, sp(p), sp(tn), u);
+            [b[0], b[1], b[2], d]
+        },
+        |u, o| s::triangle_cosine_slice(v, p, tn, u, o),
+        tri_ok,
+    );
+    widths(
+        "spherical::rectangle_cosine",
+        &p2,
+        |u| {
+            let (st, d) = s::rectangle_cosine(r[0], r[1], r[2], r[3], rn, u);
+            [st[0], st[1], d]
+        },
+        |u| {
+            let (st, d) = s::rectangle_cosine_x8(sp(r[0]), sp(r[1]), sp(r[2]), sp(r[3]), sp(rn), u);
+            [st[0], st[1], d]
+        },
+        |u, o| s::rectangle_cosine_slice(r[0], r[1], r[2], r[3], rn, u, o),
+        rect_ok,
     );
     let om = s::triangle_solid_angle(v, p);
     assert!(

@@ -51,7 +51,8 @@
 // The storage's format version is not the one this library reads.
 #define WC_ERR_UNSUPPORTED_VERSION (-7)
 
-// A header word (or, for `verify`, a table word) holds a value a build never writes.
+// A header word (or, for `verify` / `from_storage_verified`, a table word, or content that
+// does not match the checksum in header word 8) holds a value a build never writes.
 #define WC_ERR_CORRUPT (-8)
 
 // A null or misaligned pointer, arrays that overlap where they must not, or (see each
@@ -61,11 +62,14 @@
 // An error this version of the header has no name for.
 #define WC_ERR_OTHER (-10)
 
-// Words of the header at the start of every storage.
-#define WC_ENVMAP_HEADER_WORDS 8
+// Words of the header at the start of every storage (64 bytes: the tables after it sit on
+// cache lines when the storage is 64-byte aligned, e.g. from `aligned_alloc(64, ...)`).
+#define WC_ENVMAP_HEADER_WORDS 16
 
-// The storage format version this library writes and reads (header word 1).
-#define WC_ENVMAP_FORMAT_VERSION 2
+// The storage format version this library writes and reads (header word 1). Version 3 adds
+// a content checksum (header word 8) and bytes that do not depend on the buffer's address;
+// older storages get `WC_ERR_UNSUPPORTED_VERSION`: rebuild them from the weights.
+#define WC_ENVMAP_FORMAT_VERSION 3
 
 // `compensation` of the `build_compensated` functions: the weights as given.
 #define WC_ENVMAP_COMPENSATION_NONE 0
@@ -74,9 +78,21 @@
 // equal-area maps), clamp at 0.
 #define WC_ENVMAP_COMPENSATION_UNIFORM 1
 
-// `compensation`: lat-long weights (radiance times the row's `sin(theta)`): subtract
-// `fraction` times the radiance's solid-angle average times the row's `sin(theta)`, clamp at 0.
+// `compensation`: equirect (lat-long) weights (radiance times the row's `sin(theta)`, as
+// `wc_envmap_equirect_solid_angle_weights` makes them): subtract `fraction` times the
+// radiance's solid-angle average times the row's `sin(theta)`, clamp at 0.
+#define WC_ENVMAP_COMPENSATION_EQUIRECT 2
+
+// Deprecated name of `WC_ENVMAP_COMPENSATION_EQUIRECT` (the same value).
 #define WC_ENVMAP_COMPENSATION_LATLONG 2
+
+// `layout` of the direction functions: the equirect (lat-long) square of
+// `wc_sphere_equirect` (`phi = 2 pi u`, `theta = pi v`, row 0 around `+z`).
+#define WC_ENVMAP_LAYOUT_EQUIRECT 0
+
+// `layout` of the direction functions: the equal-area octahedral square of
+// `wc_sphere_equal_area` (its centre at `+z`).
+#define WC_ENVMAP_LAYOUT_EQUAL_AREA 1
 
 // Owen-scrambled pmj02bn points: a draw of up to four dimensions is two independent (0,2)
 // pairs (dimensions 0-1 and 2-3).
@@ -100,6 +116,19 @@ typedef struct {
   // `[column, row]` of the texel the point lies in.
   uint32_t texel[2];
 } WcEnvSample;
+
+// One environment-map sample as a direction (the direction functions' output).
+typedef struct {
+  // The unit direction (`wc_sphere_equirect` or `wc_sphere_equal_area` of `uv`).
+  float dir[3];
+  // Density with respect to solid angle at `dir` (per steradian); 0 only for an equirect
+  // sample exactly at the pole.
+  float pdf;
+  // The point on the unit square, in `[0, 1)^2`.
+  float uv[2];
+  // `[column, row]` of the texel.
+  uint32_t texel[2];
+} WcEnvDirection;
 
 // One sample's sampler: a pattern, a pixel, a domain path and a sample index, in 16 bytes.
 // A plain value: copy it, derive children from it, draw from it, from any thread.
@@ -195,8 +224,13 @@ size_t wc_disk_concentric4(const float *points, size_t n_points, float *out, siz
 // writable for `n` values.
 size_t wc_disk_concentric4_inverse(const float *p, float *out, uint32_t *quadrant, size_t n);
 
+// A static, NUL-terminated English description of a `WC_OK` / `WC_ERR_*` code, for messages:
+// never null; codes this header does not name get `"unknown warpcore error code"`. Any
+// argument; reads and writes no memory (the strings live as long as the program).
+const char *wc_error_string(int32_t code);
+
 // Words of storage `wc_envmap_hierarchical_build` needs for a `width x height` map (the hierarchical (MIP-pyramid) distribution: compact 2D strata), the
-// 8-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
+// 16-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
 // tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE` and
 // `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
 size_t wc_envmap_hierarchical_storage_len(uint32_t width,
@@ -234,8 +268,8 @@ int32_t wc_envmap_hierarchical_build(const float *weights,
 // the distribution reports, are those of `max(0, w - fraction * average)`.
 // `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_hierarchical_build`),
 // `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
-// `WC_ENVMAP_COMPENSATION_LATLONG` (lat-long weights made by
-// `wc_envmap_latlong_solid_angle_weights`: the radiance's solid-angle average, times each
+// `WC_ENVMAP_COMPENSATION_EQUIRECT` (equirect weights made by
+// `wc_envmap_equirect_solid_angle_weights`: the radiance's solid-angle average, times each
 // row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
 // zero and negative mean no compensation. When compensation would remove every weight (a
 // constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
@@ -258,9 +292,10 @@ int32_t wc_envmap_hierarchical_build_compensated(const float *weights,
 // Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
 // or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
 // and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
-// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 8 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
-// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT` (a size or length word
-// a build never writes), `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
+// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 16 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
+// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION` (an older format: rebuild),
+// `WC_ERR_CORRUPT` (a size, length or reserved word a build never writes),
+// `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
 // Sampling a storage that passes is safe whatever its table words hold (samples stay in the
 // map); the sample and pdf functions run this check on every call. Reads only.
 //
@@ -269,8 +304,9 @@ int32_t wc_envmap_hierarchical_build_compensated(const float *weights,
 int32_t wc_envmap_hierarchical_validate(const uint32_t *storage, size_t storage_len);
 
 // `wc_envmap_hierarchical_validate` (the same codes, in the same order) plus one pass over every
-// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants: for
-// loaders that want to catch a corrupted file. Time proportional to the storage. Reads only.
+// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants or do
+// not match the content checksum (header word 8): every single-bit flip of a storage is
+// caught. For loaders of files. Time proportional to the storage. Reads only.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words.
@@ -309,8 +345,68 @@ size_t wc_envmap_hierarchical_pdf(const uint32_t *storage,
                                   float *out,
                                   size_t n);
 
+// `wc_envmap_hierarchical_validate` under the Rust and JavaScript name (`from_storage`): the
+// same O(1) header check, the same codes in the same order: `WC_OK`,
+// `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
+// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words.
+int32_t wc_envmap_hierarchical_from_storage(const uint32_t *storage, size_t storage_len);
+
+// `wc_envmap_hierarchical_verify` under the Rust and JavaScript name (`from_storage_verified`):
+// the header check plus one pass over every word (the format's invariants, then the content
+// checksum, which catches every single-bit flip), the same codes in the same order:
+// `WC_OK`, `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
+// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words.
+int32_t wc_envmap_hierarchical_from_storage_verified(const uint32_t *storage, size_t storage_len);
+
+// Draws `n` samples as directions with their density per steradian, in one call: the
+// samples of `wc_envmap_hierarchical_sample`, each `uv` mapped onto the sphere by `layout`
+// (`WC_ENVMAP_LAYOUT_EQUIRECT`: `wc_sphere_equirect`, density
+// `pdf / (2 pi^2 sin(pi v))` with the point's own `v`, 0 exactly at the pole;
+// `WC_ENVMAP_LAYOUT_EQUAL_AREA`: `wc_sphere_equal_area`, density `pdf / (4 pi)`). `u` holds
+// `2n` floats (any values, clamped to `[0, 1)`); `out` receives `n` `WcEnvDirection`s.
+// Returns `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count
+// whose byte size overflows, an `out` that overlaps `u` or the storage, an unknown
+// `layout`, or a storage that fails `wc_envmap_hierarchical_validate`.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
+// writable for `n` directions.
+size_t wc_envmap_hierarchical_sample_direction(const uint32_t *storage,
+                                               size_t storage_len,
+                                               uint32_t layout,
+                                               const float *u,
+                                               WcEnvDirection *out,
+                                               size_t n);
+
+// Densities per steradian of `n` directions `dir` (`3n` floats, any length; the MIS weight
+// of a direction found by BSDF sampling): each direction mapped to the unit square by
+// `layout`'s inverse (`wc_sphere_equirect_inverse` or `wc_sphere_equal_area_inverse`), the
+// density of `wc_envmap_hierarchical_pdf` there converted to solid angle at the direction.
+// For a direction of `wc_envmap_hierarchical_sample_direction` it equals the sample's `pdf` to a
+// few ulp (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) for
+// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
+// overlaps the storage or overlaps `dir` other than exactly in place (`out == dir`: density
+// `i` overwrites float `i` after direction `i / 3` was read), an unknown `layout`, or a
+// storage that fails `wc_envmap_hierarchical_validate`.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `dir` for `3n` floats, and `out`
+// writable for `n` floats.
+size_t wc_envmap_hierarchical_pdf_direction(const uint32_t *storage,
+                                            size_t storage_len,
+                                            uint32_t layout,
+                                            const float *dir,
+                                            float *out,
+                                            size_t n);
+
 // Words of storage `wc_envmap_marginal_conditional_build` needs for a `width x height` map (the marginal-conditional distribution (a row by its total, then a column)), the
-// 8-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
+// 16-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
 // tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE` and
 // `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
 size_t wc_envmap_marginal_conditional_storage_len(uint32_t width,
@@ -348,8 +444,8 @@ int32_t wc_envmap_marginal_conditional_build(const float *weights,
 // the distribution reports, are those of `max(0, w - fraction * average)`.
 // `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_marginal_conditional_build`),
 // `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
-// `WC_ENVMAP_COMPENSATION_LATLONG` (lat-long weights made by
-// `wc_envmap_latlong_solid_angle_weights`: the radiance's solid-angle average, times each
+// `WC_ENVMAP_COMPENSATION_EQUIRECT` (equirect weights made by
+// `wc_envmap_equirect_solid_angle_weights`: the radiance's solid-angle average, times each
 // row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
 // zero and negative mean no compensation. When compensation would remove every weight (a
 // constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
@@ -372,9 +468,10 @@ int32_t wc_envmap_marginal_conditional_build_compensated(const float *weights,
 // Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
 // or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
 // and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
-// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 8 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
-// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT` (a size or length word
-// a build never writes), `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
+// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 16 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
+// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION` (an older format: rebuild),
+// `WC_ERR_CORRUPT` (a size, length or reserved word a build never writes),
+// `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
 // Sampling a storage that passes is safe whatever its table words hold (samples stay in the
 // map); the sample and pdf functions run this check on every call. Reads only.
 //
@@ -383,8 +480,9 @@ int32_t wc_envmap_marginal_conditional_build_compensated(const float *weights,
 int32_t wc_envmap_marginal_conditional_validate(const uint32_t *storage, size_t storage_len);
 
 // `wc_envmap_marginal_conditional_validate` (the same codes, in the same order) plus one pass over every
-// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants: for
-// loaders that want to catch a corrupted file. Time proportional to the storage. Reads only.
+// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants or do
+// not match the content checksum (header word 8): every single-bit flip of a storage is
+// caught. For loaders of files. Time proportional to the storage. Reads only.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words.
@@ -424,6 +522,68 @@ size_t wc_envmap_marginal_conditional_pdf(const uint32_t *storage,
                                           float *out,
                                           size_t n);
 
+// `wc_envmap_marginal_conditional_validate` under the Rust and JavaScript name (`from_storage`): the
+// same O(1) header check, the same codes in the same order: `WC_OK`,
+// `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
+// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words.
+int32_t wc_envmap_marginal_conditional_from_storage(const uint32_t *storage,
+                                                    size_t storage_len);
+
+// `wc_envmap_marginal_conditional_verify` under the Rust and JavaScript name (`from_storage_verified`):
+// the header check plus one pass over every word (the format's invariants, then the content
+// checksum, which catches every single-bit flip), the same codes in the same order:
+// `WC_OK`, `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
+// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words.
+int32_t wc_envmap_marginal_conditional_from_storage_verified(const uint32_t *storage,
+                                                             size_t storage_len);
+
+// Draws `n` samples as directions with their density per steradian, in one call: the
+// samples of `wc_envmap_marginal_conditional_sample`, each `uv` mapped onto the sphere by `layout`
+// (`WC_ENVMAP_LAYOUT_EQUIRECT`: `wc_sphere_equirect`, density
+// `pdf / (2 pi^2 sin(pi v))` with the point's own `v`, 0 exactly at the pole;
+// `WC_ENVMAP_LAYOUT_EQUAL_AREA`: `wc_sphere_equal_area`, density `pdf / (4 pi)`). `u` holds
+// `2n` floats (any values, clamped to `[0, 1)`); `out` receives `n` `WcEnvDirection`s.
+// Returns `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count
+// whose byte size overflows, an `out` that overlaps `u` or the storage, an unknown
+// `layout`, or a storage that fails `wc_envmap_marginal_conditional_validate`.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
+// writable for `n` directions.
+size_t wc_envmap_marginal_conditional_sample_direction(const uint32_t *storage,
+                                                       size_t storage_len,
+                                                       uint32_t layout,
+                                                       const float *u,
+                                                       WcEnvDirection *out,
+                                                       size_t n);
+
+// Densities per steradian of `n` directions `dir` (`3n` floats, any length; the MIS weight
+// of a direction found by BSDF sampling): each direction mapped to the unit square by
+// `layout`'s inverse (`wc_sphere_equirect_inverse` or `wc_sphere_equal_area_inverse`), the
+// density of `wc_envmap_marginal_conditional_pdf` there converted to solid angle at the direction.
+// For a direction of `wc_envmap_marginal_conditional_sample_direction` it equals the sample's `pdf` to a
+// few ulp (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) for
+// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
+// overlaps the storage or overlaps `dir` other than exactly in place (`out == dir`: density
+// `i` overwrites float `i` after direction `i / 3` was read), an unknown `layout`, or a
+// storage that fails `wc_envmap_marginal_conditional_validate`.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `dir` for `3n` floats, and `out`
+// writable for `n` floats.
+size_t wc_envmap_marginal_conditional_pdf_direction(const uint32_t *storage,
+                                                    size_t storage_len,
+                                                    uint32_t layout,
+                                                    const float *dir,
+                                                    float *out,
+                                                    size_t n);
+
 // Rec. 709 luminance of `n` linear RGB texels (`3n` floats) as `n` weights:
 // `0.2126 R + 0.7152 G + 0.0722 B` (in that order, without FMA) where positive, else `+0.0`:
 // NaN (a NaN channel, or infinite channels of opposite signs) and negatives weigh 0, as in
@@ -436,7 +596,7 @@ size_t wc_envmap_marginal_conditional_pdf(const uint32_t *storage,
 // `rgb` must be readable for `3n` floats and `out` writable for `n` floats.
 size_t wc_envmap_luminance(const float *rgb, float *out, size_t n);
 
-// Multiplies row `r` of a lat-long weight map (in place, `width * height` floats) by
+// Multiplies row `r` of an equirect (lat-long) weight map (in place, `width * height` floats) by
 // `sin(pi (r + 1/2) / height)`, its solid-angle factor. Returns `WC_OK` or the first failed
 // check, in this order: `WC_ERR_ZERO_SIZE` (`width` or `height` is 0), `WC_ERR_TOO_LARGE`
 // (`width * height` floats larger than `PTRDIFF_MAX` bytes: no such array exists),
@@ -445,9 +605,9 @@ size_t wc_envmap_luminance(const float *rgb, float *out, size_t n);
 // # Safety
 // `weights` must be readable and writable for `width * height` floats (only when the checks
 // above pass).
-int32_t wc_envmap_latlong_solid_angle_weights(float *weights, uint32_t width, uint32_t height);
+int32_t wc_envmap_equirect_solid_angle_weights(float *weights, uint32_t width, uint32_t height);
 
-// Lat-long density conversion: `n` densities over the square (`pdf`) at rows `v` (`n`
+// Equirect (lat-long) density conversion: `n` densities over the square (`pdf`) at rows `v` (`n`
 // floats) to densities per steradian, `pdf / (2 pi^2 sin(pi v))` (0 at the poles). Returns
 // `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count whose byte
 // size overflows, an `out` overlapping `v`, or an `out` overlapping `pdf` other than
@@ -455,9 +615,12 @@ int32_t wc_envmap_latlong_solid_angle_weights(float *weights, uint32_t width, ui
 //
 // # Safety
 // `pdf` and `v` must be readable for `n` floats and `out` writable for `n` floats.
-size_t wc_envmap_latlong_pdf_to_solid_angle(const float *pdf, const float *v, float *out, size_t n);
+size_t wc_envmap_equirect_pdf_to_solid_angle(const float *pdf,
+                                             const float *v,
+                                             float *out,
+                                             size_t n);
 
-// Resamples a lat-long image (`src_width x src_height` texels of `channels` floats, 1 to 4)
+// Resamples an equirect (lat-long) image (`src_width x src_height` texels of `channels` floats, 1 to 4)
 // onto the `size x size` equal-area octahedral square (`dst`, `size * size * channels`
 // floats), each output texel the average of `supersample^2` stratified point samples of the
 // source (nearest texel; NaN and negative channels count as 0). Returns `WC_OK` or the first
@@ -475,6 +638,32 @@ size_t wc_envmap_latlong_pdf_to_solid_angle(const float *pdf, const float *v, fl
 // # Safety
 // `src` must be readable for `src_width * src_height * channels` floats and `dst` writable
 // for `size * size * channels` floats (only when the checks above pass).
+int32_t wc_envmap_equirect_to_equal_area(const float *src,
+                                         uint32_t src_width,
+                                         uint32_t src_height,
+                                         uint32_t channels,
+                                         float *dst,
+                                         uint32_t size,
+                                         uint32_t supersample);
+
+// Deprecated name of `wc_envmap_equirect_solid_angle_weights` (one name per thing: the
+// layout is `equirect` everywhere): the same function, the same codes.
+//
+// # Safety
+// As `wc_envmap_equirect_solid_angle_weights`.
+int32_t wc_envmap_latlong_solid_angle_weights(float *weights, uint32_t width, uint32_t height);
+
+// Deprecated name of `wc_envmap_equirect_pdf_to_solid_angle`: the same function, the same
+// results and pointer rules.
+//
+// # Safety
+// As `wc_envmap_equirect_pdf_to_solid_angle`.
+size_t wc_envmap_latlong_pdf_to_solid_angle(const float *pdf, const float *v, float *out, size_t n);
+
+// Deprecated name of `wc_envmap_equirect_to_equal_area`: the same function, the same codes.
+//
+// # Safety
+// As `wc_envmap_equirect_to_equal_area`.
 int32_t wc_envmap_latlong_to_equal_area(const float *src,
                                         uint32_t src_width,
                                         uint32_t src_height,
@@ -776,6 +965,26 @@ float wc_spherical_triangle_solid_angle(const float *light);
 // # Safety
 // `light` must be readable for 12 floats.
 float wc_spherical_rectangle_solid_angle(const float *light);
+
+// Cosine-aware `wc_spherical_triangle`: `light` is 15 floats, `v0, v1, v2, p, n` (`n` the
+// receiver's normal, any length); `u` is first warped by the bilinear density of the
+// receiver's clamped cosine towards the vertices, then mapped as by
+// `wc_spherical_triangle`; records `b0, b1, b2, density` (`4n` floats), the density
+// including the bilinear factor (`warpcore::spherical::triangle_cosine`). Returns `n`, or 0
+// as for `wc_spherical_triangle`.
+//
+// # Safety
+// `light` must be readable for 15 floats, `u` for `2n` and `out` writable for `4n`.
+size_t wc_spherical_triangle_cosine(const float *light, const float *u, float *out, size_t n);
+
+// Cosine-aware `wc_spherical_rectangle`: `light` is 15 floats, `corner, ex, ey, p, n`;
+// records `s, t, density` (`3n` floats), the density including the bilinear factor
+// (`warpcore::spherical::rectangle_cosine`). Returns `n`, or 0 as for
+// `wc_spherical_triangle`.
+//
+// # Safety
+// `light` must be readable for 15 floats, `u` for `2n` and `out` writable for `3n`.
+size_t wc_spherical_rectangle_cosine(const float *light, const float *u, float *out, size_t n);
 
 // Low-distortion map (Heitz 2019): `n` points `u` (`2n` floats) to `n` barycentrics (`3n`
 // floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or

@@ -48,6 +48,21 @@ export type EnvMapErrorCode =
   | 'WC_ERR_INVALID_ARGUMENT'
   | 'WC_ERR_OTHER';
 
+/** How an env map's unit square lies on the sphere of directions. */
+export type EnvLayout = 'equirect' | 'equal-area';
+
+/** `n` env-map samples as directions (EnvMap.sampleDirection). */
+export interface EnvDirections {
+  /** `3n` floats: unit directions. */
+  dir: Float32Array;
+  /** `n` densities with respect to solid angle (per steradian). */
+  pdf: Float32Array;
+  /** `2n` floats: the points on the unit square. */
+  uv: Float32Array;
+  /** `2n` values: `[column, row]` of each texel. */
+  texel: Uint32Array;
+}
+
 /**
  * An environment-map distribution whose tables live in the module's memory. Create with
  * `envmapHierarchical`, `envmapMarginalConditional` or `envmapFromStorage`; release with
@@ -65,7 +80,18 @@ export interface EnvMap {
   sample(u: Float32Array): EnvSamples;
   /** Densities at `n` points (`2n` floats), bit-equal to the `pdf` of a sample there. */
   pdf(uv: Float32Array, out?: Float32Array): Float32Array;
-  /** A copy of the storage words: the file format (little-endian bytes on every target). */
+  /**
+   * Samples as directions with their density per steradian, in one call: `layout`
+   * 'equirect' (sphereEquirect; pdf / (2 pi^2 sin(pi v)), 0 exactly at the pole) or
+   * 'equal-area' (sphereEqualArea; pdf / (4 pi)).
+   */
+  sampleDirection(layout: EnvLayout, u: Float32Array): EnvDirections;
+  /** Densities per steradian of `n` directions (`3n` floats, any length) under `layout`. */
+  pdfDirection(layout: EnvLayout, dir: Float32Array, out?: Float32Array): Float32Array;
+  /**
+   * A copy of the storage words: the file format (little-endian bytes on every target; the
+   * same bytes for the same weights from JS, C and Rust).
+   */
   storage(): Uint32Array;
   /** Releases the tables; later calls throw a TypeError. */
   free(): void;
@@ -100,6 +126,10 @@ export interface Warpcore {
   /** Uniform in solid angle over rectangle `light` (corner, ex, ey, p: 12 floats): `[s, t, density]` per sample. */
   sphericalRectangle(light: Float32Array, u: Float32Array, out?: Float32Array): Float32Array;
   sphericalRectangleInverse(light: Float32Array, st: Float32Array, out?: Float32Array): Float32Array;
+  /** Cosine-aware sphericalTriangle: `light` is 15 floats (v0, v1, v2, p, n; n the receiver's normal); `u` warped by the bilinear fit of max(0, n . w) at the corners first; `[b0, b1, b2, density]` per sample, the density including the bilinear factor. */
+  sphericalTriangleCosine(light: Float32Array, u: Float32Array, out?: Float32Array): Float32Array;
+  /** Cosine-aware sphericalRectangle: `light` is 15 floats (corner, ex, ey, p, n); `[s, t, density]` per sample. */
+  sphericalRectangleCosine(light: Float32Array, u: Float32Array, out?: Float32Array): Float32Array;
   sphericalTriangleSolidAngle(light: Float32Array): number;
   sphericalRectangleSolidAngle(light: Float32Array): number;
   triangleUniform(u: Float32Array, out?: Float32Array): Float32Array;
@@ -146,6 +176,8 @@ export interface Warpcore {
   pmj02bnRaw(set: number, start: number, n: number, out?: Uint32Array): Uint32Array;
   /** The prefix-preserving index shuffle: `out[i] = shuffle(index[i], seed)`. */
   pmj02bnShuffle(index: Uint32Array, seed: number, out?: Uint32Array): Uint32Array;
+  /** The prefix-preserving index shuffle of one index (an integer in [0, 2^32)). */
+  pmj02bnShuffle(index: number, seed: number): number;
   /** Points per table set in this build. */
   readonly pmj02bnPoints: number;
   /** Table sets in this build. */
@@ -162,17 +194,21 @@ export interface Warpcore {
   envmapMarginalConditional(weights: Float32Array, width: number, height: number): EnvMap;
   /**
    * MIS-compensated hierarchical distribution: tables (and pdfs) of `max(0, w - fraction * average)`;
-   * 'uniform' for equal-area maps, 'latlong' for weights made by `envmapLatlongSolidAngleWeights`.
+   * 'uniform' for equal-area maps, 'equirect' for weights made by `envmapEquirectSolidAngleWeights`
+   * ('latlong' is its deprecated name).
    * Falls back to the weights as given when nothing would be left.
    */
-  envmapHierarchicalCompensated(weights: Float32Array, width: number, height: number, compensation: 'none' | 'uniform' | 'latlong', fraction: number): EnvMap;
+  envmapHierarchicalCompensated(weights: Float32Array, width: number, height: number, compensation: 'none' | 'uniform' | 'equirect' | 'latlong', fraction: number): EnvMap;
   /** MIS-compensated marginal-conditional distribution (see `envmapHierarchicalCompensated`). */
-  envmapMarginalConditionalCompensated(weights: Float32Array, width: number, height: number, compensation: 'none' | 'uniform' | 'latlong', fraction: number): EnvMap;
+  envmapMarginalConditionalCompensated(weights: Float32Array, width: number, height: number, compensation: 'none' | 'uniform' | 'equirect' | 'latlong', fraction: number): EnvMap;
   /**
-   * An EnvMap from storage words (`EnvMap.storage()` or a file written through the C API).
-   * `options.verify` (default true) is read once, first; a throwing getter becomes a TypeError.
+   * An EnvMap from storage words (`EnvMap.storage()` or a file written through the C API):
+   * a Uint32Array, or the little-endian bytes of any ArrayBufferView (Uint8Array at any offset,
+   * Node's Buffer, DataView) or ArrayBuffer. `options.verify` (default true: every word and the
+   * content checksum, which catches every single-bit flip) is read once, first; a throwing
+   * getter becomes a TypeError.
    */
-  envmapFromStorage(words: Uint32Array, options?: { verify?: boolean }): EnvMap;
+  envmapFromStorage(words: Uint32Array | ArrayBufferView | ArrayBuffer, options?: { verify?: boolean }): EnvMap;
   /** The EnvMap class of this instance, for `instanceof` (its constructor is not public). */
   readonly EnvMap: abstract new (...args: never[]) => EnvMap;
   /**
@@ -180,14 +216,27 @@ export interface Warpcore {
    * 0.0722 B where positive, else +0 (NaN and negatives weigh 0; +Infinity stays).
    */
   envmapLuminance(rgb: Float32Array, out?: Float32Array): Float32Array;
-  /** A copy of the weights with row r multiplied by sin(pi (r + 1/2) / height). */
-  envmapLatlongSolidAngleWeights(weights: Float32Array, width: number, height: number): Float32Array;
-  /** Lat-long densities over the square at rows `v` to per steradian. */
-  envmapLatlongPdfToSolidAngle(pdf: Float32Array, v: Float32Array, out?: Float32Array): Float32Array;
+  /** A copy of equirect (lat-long) weights with row r multiplied by sin(pi (r + 1/2) / height). */
+  envmapEquirectSolidAngleWeights(weights: Float32Array, width: number, height: number): Float32Array;
+  /** Equirect densities over the square at rows `v` to per steradian. */
+  envmapEquirectPdfToSolidAngle(pdf: Float32Array, v: Float32Array, out?: Float32Array): Float32Array;
   /**
-   * Resamples a lat-long image (`srcWidth x srcHeight` texels of `channels` floats) onto the
-   * `size x size` equal-area square, `supersample^2` stratified bilinear samples per texel.
+   * Resamples an equirect image (`srcWidth x srcHeight` texels of `channels` floats) onto the
+   * `size x size` equal-area square, `supersample^2` stratified samples per texel.
    */
+  envmapEquirectToEqualArea(
+    src: Float32Array,
+    srcWidth: number,
+    srcHeight: number,
+    channels: 1 | 2 | 3 | 4,
+    size: number,
+    supersample: number,
+  ): Float32Array;
+  /** @deprecated The same function as `envmapEquirectSolidAngleWeights`. */
+  envmapLatlongSolidAngleWeights(weights: Float32Array, width: number, height: number): Float32Array;
+  /** @deprecated The same function as `envmapEquirectPdfToSolidAngle`. */
+  envmapLatlongPdfToSolidAngle(pdf: Float32Array, v: Float32Array, out?: Float32Array): Float32Array;
+  /** @deprecated The same function as `envmapEquirectToEqualArea`. */
   envmapLatlongToEqualArea(
     src: Float32Array,
     srcWidth: number,

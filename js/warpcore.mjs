@@ -50,6 +50,10 @@ const TA_LENGTH = getter(TypedArray, 'length');
 const TA_BUFFER = getter(TypedArray, 'buffer');
 const TA_BYTE_OFFSET = getter(TypedArray, 'byteOffset');
 const TA_SET = uncurry(TypedArray.set);
+const TA_BYTE_LENGTH = getter(TypedArray, 'byteLength');
+const DV_BUFFER = getter(globalThis.DataView.prototype, 'buffer');
+const DV_BYTE_OFFSET = getter(globalThis.DataView.prototype, 'byteOffset');
+const DV_BYTE_LENGTH = getter(globalThis.DataView.prototype, 'byteLength');
 const MEMORY_BUFFER = getter(WebAssembly_.Memory.prototype, 'buffer');
 const MEMORY_GROW = uncurry(WebAssembly_.Memory.prototype.grow);
 const AB_BYTE_LENGTH = getter(ArrayBuffer_.prototype, 'byteLength');
@@ -68,6 +72,7 @@ for (const [T, name] of [[F32, 'Float32Array'], [U32, 'Uint32Array'], [I32, 'Int
 const F = TYPES.Float32Array;
 const U = TYPES.Uint32Array;
 const I = TYPES.Int32Array;
+const BYTES = { T: U8 }; // views of wasm memory as bytes (storage loaders)
 
 const isNode = typeof process === 'object' && process !== null && typeof process.versions?.node === 'string';
 
@@ -280,8 +285,8 @@ const CODES = {
   '-4': ['WC_ERR_STORAGE_TOO_SMALL', 'storage shorter than its header says'],
   '-5': ['WC_ERR_INFINITE_WEIGHT', 'a +Infinity weight'],
   '-6': ['WC_ERR_WRONG_FORMAT', 'not an environment-map storage (or a byte-swapped one)'],
-  '-7': ['WC_ERR_UNSUPPORTED_VERSION', 'a storage format version this build does not read'],
-  '-8': ['WC_ERR_CORRUPT', 'a header or table word a build never writes'],
+  '-7': ['WC_ERR_UNSUPPORTED_VERSION', 'a storage format version this build does not read (older storages: rebuild the tables from the weights)'],
+  '-8': ['WC_ERR_CORRUPT', 'a header or table word a build never writes, or content that does not match its checksum'],
   '-9': ['WC_ERR_INVALID_ARGUMENT', 'an invalid argument'],
 };
 
@@ -302,8 +307,17 @@ const KINDS = {
   hierarchical: { prefix: 'wc_envmap_hierarchical_', tag: tag('wcHI') },
   'marginal-conditional': { prefix: 'wc_envmap_marginal_conditional_', tag: tag('wcMC') },
 };
-const HEADER_WORDS = 8;
+const HEADER_WORDS = 16;
 const SAMPLE_WORDS = 5; // WcEnvSample: uv[2], pdf, texel[2]
+const DIRECTION_WORDS = 8; // WcEnvDirection: dir[3], pdf, uv[2], texel[2]
+// `layout` of sampleDirection / pdfDirection: the C ABI's WC_ENVMAP_LAYOUT_* values.
+const LAYOUTS = { __proto__: null, equirect: 0, 'equal-area': 1 };
+function layoutOf(layout) {
+  if (typeof layout !== 'string') throw typeError(`layout must be a string, not ${describe(layout)}`);
+  const l = LAYOUTS[layout];
+  if (l === undefined) throw rangeError(`layout must be 'equirect' or 'equal-area', got a string of length ${layout.length}`);
+  return l;
+}
 
 function create(x) {
   const memory = x.memory;
@@ -415,17 +429,17 @@ function create(x) {
 
   // Lights by solid angle: one light and shading point (`light`, 12 floats: v0, v1, v2, p or
   // corner, ex, ey, p), then C `f(light, in, out, n)`.
-  const lightArg = (light) => {
-    if (elements(light, F, 12, 'light') !== 1) {
-      throw rangeError(`light.length must be 12, got ${TA_LENGTH(light)}`);
+  const lightArg = (light, len = 12) => {
+    if (elements(light, F, len, 'light') !== 1) {
+      throw rangeError(`light.length must be ${len}, got ${TA_LENGTH(light)}`);
     }
   };
-  const withLight = (f, I, O, name) => (light, input, out) => {
-    lightArg(light);
+  const withLight = (f, I, O, name, len = 12) => (light, input, out) => {
+    lightArg(light, len);
     const n = elements(input, F, I, name);
     const result = output(out, F, n * O);
     if (n === 0) return result;
-    return scratch([[F, 12, light], [F, n * I, input], [F, n * O]], (pl, pi, po) => {
+    return scratch([[F, len, light], [F, n * I, input], [F, n * O]], (pl, pi, po) => {
       expect(f(pl, pi, po, n), n, name);
       return read(F, po, n * O, result);
     });
@@ -461,6 +475,8 @@ function create(x) {
     sphericalTriangleInverse: withLight(x.wc_spherical_triangle_inverse, 3, 2, 'b'),
     sphericalRectangle: withLight(x.wc_spherical_rectangle, 2, 3, 'u'),
     sphericalRectangleInverse: withLight(x.wc_spherical_rectangle_inverse, 2, 2, 'st'),
+    sphericalTriangleCosine: withLight(x.wc_spherical_triangle_cosine, 2, 4, 'u', 15),
+    sphericalRectangleCosine: withLight(x.wc_spherical_rectangle_cosine, 2, 3, 'u', 15),
     sphericalTriangleSolidAngle: solidAngle(x.wc_spherical_triangle_solid_angle),
     sphericalRectangleSolidAngle: solidAngle(x.wc_spherical_rectangle_solid_angle),
 
@@ -505,6 +521,17 @@ function create(x) {
       });
     },
     pmj02bnShuffle(index, seed, out) {
+      if (typeof index === 'number') {
+        // One index as a plain number: the shuffled index as a number.
+        u32(index, 'index');
+        u32(seed, 'seed');
+        if (out !== undefined) throw typeError('out is only for a Uint32Array of indices');
+        return scratch([[U, 1], [U, 1]], (pi, po) => {
+          view(U, pi, 1)[0] = index;
+          expect(x.wc_pmj02bn_shuffle(pi, seed, po, 1), 1, 'wc_pmj02bn_shuffle');
+          return view(U, po, 1)[0];
+        });
+      }
       const n = elements(index, U, 1, 'index');
       u32(seed, 'seed');
       const result = output(out, U, n);
@@ -523,17 +550,17 @@ function create(x) {
 
     // environment maps: helpers
     envmapLuminance: map(x.wc_envmap_luminance, F, 3, F, 1, 'rgb'),
-    envmapLatlongPdfToSolidAngle: pair(x.wc_envmap_latlong_pdf_to_solid_angle, 1, 'pdf', 'v'),
-    envmapLatlongSolidAngleWeights(weights, width, height) {
+    envmapEquirectPdfToSolidAngle: pair(x.wc_envmap_equirect_pdf_to_solid_angle, 1, 'pdf', 'v'),
+    envmapEquirectSolidAngleWeights(weights, width, height) {
       const n = size(weights, width, height, 1, 'weights');
       const result = new F32(n);
       return scratch([[F, n, weights]], (pw) => {
-        const code = x.wc_envmap_latlong_solid_angle_weights(pw, width, height);
-        if (code !== 0) throw fail(code, 'envmapLatlongSolidAngleWeights');
+        const code = x.wc_envmap_equirect_solid_angle_weights(pw, width, height);
+        if (code !== 0) throw fail(code, 'envmapEquirectSolidAngleWeights');
         return read(F, pw, n, result);
       });
     },
-    envmapLatlongToEqualArea(src, srcWidth, srcHeight, channels, size_, supersample) {
+    envmapEquirectToEqualArea(src, srcWidth, srcHeight, channels, size_, supersample) {
       if (typeof channels !== 'number') throw typeError(`channels must be a number, not ${describe(channels)}`);
       if (!isInteger(channels) || channels < 1 || channels > 4) {
         throw rangeError(`channels must be 1, 2, 3 or 4, got ${channels}`);
@@ -541,18 +568,66 @@ function create(x) {
       const n = size(src, srcWidth, srcHeight, channels, 'src');
       u32(size_, 'size');
       u32(supersample, 'supersample');
-      if (size_ === 0 || supersample === 0) throw fail(-1, 'envmapLatlongToEqualArea');
-      if (size_ > 1 << 24 || supersample > 64) throw fail(-2, 'envmapLatlongToEqualArea');
+      if (size_ === 0 || supersample === 0) throw fail(-1, 'envmapEquirectToEqualArea');
+      if (size_ > 1 << 24 || supersample > 64) throw fail(-2, 'envmapEquirectToEqualArea');
       const m = size_ * size_ * channels;
-      if (m > MAX_COUNT) throw fail(-2, 'envmapLatlongToEqualArea');
+      if (m > MAX_COUNT) throw fail(-2, 'envmapEquirectToEqualArea');
       const result = new F32(m);
       return scratch([[F, n, src], [F, m]], (ps, pd) => {
-        const code = x.wc_envmap_latlong_to_equal_area(ps, srcWidth, srcHeight, channels, pd, size_, supersample);
-        if (code !== 0) throw fail(code, 'envmapLatlongToEqualArea');
+        const code = x.wc_envmap_equirect_to_equal_area(ps, srcWidth, srcHeight, channels, pd, size_, supersample);
+        if (code !== 0) throw fail(code, 'envmapEquirectToEqualArea');
         return read(F, pd, m, result);
       });
     },
   };
+
+  // The words of a storage: a Uint32Array, or the bytes of any other ArrayBufferView (a
+  // Uint8Array at any offset, Node's Buffer, a DataView, ...) or of an ArrayBuffer, read as
+  // little-endian words (the file format). Returns the word count, word 0 (-1 when there is
+  // none) and a function copying the words to wasm memory at `p`. Intrinsics only.
+  function storageWords(words) {
+    if (isView(words) && TA_TAG(words) === 'Uint32Array' && getPrototypeOf(words) === U.proto) {
+      const len = array(words, U, 'words');
+      return { len, first: len > 0 ? words[0] : -1, copy: (p) => TA_SET(view(U, p, len), words) };
+    }
+    let buffer;
+    let offset;
+    let bytes;
+    if (isView(words)) {
+      if (TA_TAG(words) !== undefined) {
+        if (detached(words)) throw typeError('words is a typed array over a detached ArrayBuffer');
+        buffer = TA_BUFFER(words);
+        offset = TA_BYTE_OFFSET(words);
+        bytes = TA_BYTE_LENGTH(words);
+      } else {
+        try {
+          buffer = DV_BUFFER(words);
+          offset = DV_BYTE_OFFSET(words);
+          bytes = DV_BYTE_LENGTH(words);
+        } catch {
+          throw typeError('words is a DataView over a detached ArrayBuffer');
+        }
+      }
+    } else {
+      try {
+        bytes = AB_BYTE_LENGTH(words);
+      } catch {
+        throw typeError(`words must be a Uint32Array, an ArrayBufferView of bytes or an ArrayBuffer, not ${describe(words)}`);
+      }
+      buffer = words;
+      offset = 0;
+    }
+    if (bytes % 4 !== 0) throw rangeError(`words must hold whole 32-bit words, got ${bytes} bytes`);
+    let src;
+    try {
+      src = new U8(buffer, offset, bytes);
+    } catch {
+      throw typeError('words is over a detached or shared buffer');
+    }
+    const len = bytes / 4;
+    const first = len > 0 ? (src[0] | (src[1] << 8) | (src[2] << 16) | (src[3] << 24)) >>> 0 : -1;
+    return { len, first, copy: (p) => TA_SET(view(BYTES, p, bytes), src) };
+  }
 
   // Checks `width x height` texels of `channels` floats in `a`; returns the length.
   function size(a, width, height, channels, name) {
@@ -579,12 +654,16 @@ function create(x) {
     #len;
     #sample;
     #pdf;
+    #sampleDirection;
+    #pdfDirection;
     constructor(key, kind, p, len) {
       if (key !== secret) throw typeError('use envmapHierarchical, envmapMarginalConditional or envmapFromStorage');
       this.#p = p;
       this.#len = len;
       this.#sample = x[KINDS[kind].prefix + 'sample'];
       this.#pdf = x[KINDS[kind].prefix + 'pdf'];
+      this.#sampleDirection = x[KINDS[kind].prefix + 'sample_direction'];
+      this.#pdfDirection = x[KINDS[kind].prefix + 'pdf_direction'];
       const header = view(U, p, HEADER_WORDS);
       /** `'hierarchical'` or `'marginal-conditional'`; texels per row; rows. */
       own(this, 'kind', kind);
@@ -645,6 +724,59 @@ function create(x) {
       });
     }
 
+    /**
+     * Samples as directions with their density per steradian, in one call: `layout`
+     * 'equirect' (sphereEquirect, density pdf / (2 pi^2 sin(pi v)), 0 exactly at the pole) or
+     * 'equal-area' (sphereEqualArea, density pdf / (4 pi)). Returns `dir` (`3n` floats),
+     * `pdf` (`n`, per steradian), `uv` (`2n`) and `texel` (`2n`).
+     */
+    sampleDirection(layout, u) {
+      const l = layoutOf(layout);
+      const p = this.#live();
+      const n = elements(u, F, 2, 'u');
+      const dir = new F32(3 * n);
+      const pdf = new F32(n);
+      const uv = new F32(2 * n);
+      const texel = new U32(2 * n);
+      if (n === 0) return { dir, pdf, uv, texel };
+      const f = this.#sampleDirection;
+      return scratch([[F, 2 * n, u], [U, DIRECTION_WORDS * n]], (pu, po) => {
+        expect(f(p, this.#len, l, pu, po, n), n, 'sampleDirection');
+        const w = view(U, po, DIRECTION_WORDS * n);
+        const dirBits = new U32(TA_BUFFER(dir));
+        const uvBits = new U32(TA_BUFFER(uv));
+        const pdfBits = new U32(TA_BUFFER(pdf));
+        for (let i = 0, k = 0; i < n; i++, k += DIRECTION_WORDS) {
+          dirBits[3 * i] = w[k];
+          dirBits[3 * i + 1] = w[k + 1];
+          dirBits[3 * i + 2] = w[k + 2];
+          pdfBits[i] = w[k + 3];
+          uvBits[2 * i] = w[k + 4];
+          uvBits[2 * i + 1] = w[k + 5];
+          texel[2 * i] = w[k + 6];
+          texel[2 * i + 1] = w[k + 7];
+        }
+        return { dir, pdf, uv, texel };
+      });
+    }
+
+    /**
+     * Densities per steradian of `n` directions `dir` (`3n` floats, any length) under `layout`
+     * (see sampleDirection): the MIS weight of a direction from BSDF sampling.
+     */
+    pdfDirection(layout, dir, out) {
+      const l = layoutOf(layout);
+      const p = this.#live();
+      const n = elements(dir, F, 3, 'dir');
+      const result = output(out, F, n);
+      if (n === 0) return result;
+      const f = this.#pdfDirection;
+      return scratch([[F, 3 * n, dir], [F, n]], (pd, po) => {
+        expect(f(p, this.#len, l, pd, po, n), n, 'pdfDirection');
+        return read(F, po, n, result);
+      });
+    }
+
     /** A copy of the storage words: the file format (little-endian bytes on every target). */
     storage() {
       return read(U, this.#live(), this.#len, new U32(this.#len));
@@ -668,7 +800,7 @@ function create(x) {
   freeze(EnvMap);
 
   // MIS compensation of a build: the C ABI's WC_ENVMAP_COMPENSATION_* values.
-  const COMPENSATIONS = { __proto__: null, none: 0, uniform: 1, latlong: 2 };
+  const COMPENSATIONS = { __proto__: null, none: 0, uniform: 1, equirect: 2, latlong: 2 };
 
   function build(kind, weights, width, height, compensated, compensation, fraction) {
     const k = KINDS[kind];
@@ -676,7 +808,7 @@ function create(x) {
     if (compensated) {
       if (typeof compensation !== 'string') throw typeError(`compensation must be a string, not ${describe(compensation)}`);
       c = COMPENSATIONS[compensation];
-      if (c === undefined) throw rangeError(`compensation must be 'none', 'uniform' or 'latlong', got ${describe(compensation)}`);
+      if (c === undefined) throw rangeError(`compensation must be 'none', 'uniform' or 'equirect' ('latlong' is its old name), got ${describe(compensation)}`);
       if (typeof fraction !== 'number') throw typeError(`fraction must be a number, not ${describe(fraction)}`);
     }
     const n = size(weights, width, height, 1, 'weights');
@@ -735,13 +867,12 @@ function create(x) {
         if (v !== undefined && typeof v !== 'boolean') throw typeError(`options.verify must be a boolean, not ${describe(v)}`);
         if (v === false) verify = false;
       }
-      const len = array(words, U, 'words');
-      const first = len > 0 ? words[0] : -1;
+      const { len, first, copy } = storageWords(words);
       const kind = first === KINDS.hierarchical.tag ? 'hierarchical' : first === KINDS['marginal-conditional'].tag ? 'marginal-conditional' : undefined;
       if (kind === undefined) throw fail(len < HEADER_WORDS ? -4 : -6, 'envmapFromStorage');
       const p = heap.alloc(4 * len);
       try {
-        TA_SET(view(U, p, len), words);
+        copy(p);
         const code = x[KINDS[kind].prefix + (verify ? 'verify' : 'validate')](p, len);
         if (code !== 0) throw fail(code, 'envmapFromStorage');
       } catch (e) {
@@ -750,6 +881,10 @@ function create(x) {
       }
       return new EnvMap(secret, kind, p, len);
     },
+    // The layout is `equirect` everywhere; the `Latlong` names are the same functions.
+    envmapLatlongPdfToSolidAngle: api.envmapEquirectPdfToSolidAngle,
+    envmapLatlongSolidAngleWeights: api.envmapEquirectSolidAngleWeights,
+    envmapLatlongToEqualArea: api.envmapEquirectToEqualArea,
     /** Bytes of wasm memory: total, and reserved by live env maps and calls. */
     memoryStats: () => ({ memory: AB_BYTE_LENGTH(MEMORY_BUFFER(memory)), reserved: heap.used }),
   });

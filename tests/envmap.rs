@@ -485,7 +485,7 @@ impl Pyramid {
 fn luminance_latlong(img: &pfm::Image) -> (Vec<f32>, usize, usize) {
     let mut l = vec![0.0f32; img.width * img.height];
     assert_eq!(image::luminance_slice(&img.rgb, &mut l), l.len());
-    image::latlong_solid_angle_weights(&mut l, img.width, img.height).unwrap();
+    image::equirect_solid_angle_weights(&mut l, img.width, img.height).unwrap();
     (l, img.width, img.height)
 }
 
@@ -688,7 +688,7 @@ fn latlong_solid_angle_estimates_are_unbiased() {
         let mut lum = vec![0.0f32; w * h];
         image::luminance_slice(&img.rgb, &mut lum);
         let mut weights = lum.clone();
-        image::latlong_solid_angle_weights(&mut weights, w, h).unwrap();
+        image::equirect_solid_angle_weights(&mut weights, w, h).unwrap();
         // The exact integral of the piecewise-constant luminance over the sphere.
         let mut exact = 0.0f64;
         for r in 0..h {
@@ -704,7 +704,7 @@ fn latlong_solid_angle_estimates_are_unbiased() {
             let mut acc = 0.0f64;
             for _ in 0..n {
                 let s = d.sample(unit2(&mut r));
-                let pdf = image::latlong_pdf_to_solid_angle(s.pdf, s.uv[1]);
+                let pdf = image::equirect_pdf_to_solid_angle(s.pdf, s.uv[1]);
                 let f = clean(lum[s.texel[1] as usize * w + s.texel[0] as usize]);
                 acc += f / pdf as f64;
             }
@@ -1151,23 +1151,20 @@ fn errors() {
     let mut neg = ok;
     neg[3] = f32::NEG_INFINITY;
     with_both(&neg, 4, 3, |d| assert_eq!(d.pdf([0.9, 0.1]), 0.0));
-    // Sizes: the formulas of the docs (8 header words first).
+    // Sizes: the formulas of the docs (16 header words first, format version 3).
     assert_eq!(
         MarginalConditional::storage_len(4096, 2048),
-        8 + 4097 * 2048 + 2 * 2049 + 4097
+        16 + 4097 * 2048 + 2 * 2049 + 4097
     );
-    // Hierarchical: 16-word blocks for every other level, 15 words of alignment slack, edges.
-    assert_eq!(Hierarchical::storage_len(1, 1), 8 + 15 + 2 + 2);
-    assert_eq!(Hierarchical::storage_len(2, 2), 8 + 16 + 15 + 3 + 3);
-    assert_eq!(Hierarchical::storage_len(4, 2), 8 + 16 + 15 + 5 + 3);
-    assert_eq!(
-        Hierarchical::storage_len(8, 8),
-        8 + 16 * (1 + 4) + 15 + 9 + 9
-    );
+    // Hierarchical: 16-word blocks for every other level, then the edges (no slack).
+    assert_eq!(Hierarchical::storage_len(1, 1), 16 + 2 + 2);
+    assert_eq!(Hierarchical::storage_len(2, 2), 16 + 16 + 3 + 3);
+    assert_eq!(Hierarchical::storage_len(4, 2), 16 + 16 + 5 + 3);
+    assert_eq!(Hierarchical::storage_len(8, 8), 16 + 16 * (1 + 4) + 9 + 9);
     let blocks_4096 = 1 + 8 + 128 + 2048 + 32768 + 524_288;
     assert_eq!(
         Hierarchical::storage_len(4096, 2048),
-        8 + 16 * blocks_4096 + 15 + 4097 + 2049
+        16 + 16 * blocks_4096 + 4097 + 2049
     );
     assert_eq!(MarginalConditional::storage_len(0, 5), 0);
     assert_eq!(Hierarchical::storage_len(7, 0), 0);
@@ -1235,7 +1232,7 @@ fn luminance_helpers() {
 fn latlong_row_factor() {
     let (w, h) = (3, 256);
     let mut m = vec![2.0f32; w * h];
-    image::latlong_solid_angle_weights(&mut m, w, h).unwrap();
+    image::equirect_solid_angle_weights(&mut m, w, h).unwrap();
     let mut worst = 0.0f64;
     for r in 0..h {
         let want = 2.0 * (PI * (r as f64 + 0.5) / h as f64).sin();
@@ -1246,14 +1243,14 @@ fn latlong_row_factor() {
     eprintln!("row factor: max rel error {worst:.2e}");
     assert!(worst < 4e-7);
     assert_eq!(
-        image::latlong_solid_angle_weights(&mut m, 5, 5),
+        image::equirect_solid_angle_weights(&mut m, 5, 5),
         Err(Error::LengthMismatch {
             expected: 25,
             got: 768
         })
     );
     assert_eq!(
-        image::latlong_solid_angle_weights(&mut [], 0, 5),
+        image::equirect_solid_angle_weights(&mut [], 0, 5),
         Err(Error::ZeroSize)
     );
 }
@@ -1264,7 +1261,7 @@ fn solid_angle_conversions() {
     for k in 1..100_000u32 {
         let v = k as f32 / 100_000.0;
         let pdf = 0.5 + k as f32 / 1000.0;
-        let got = image::latlong_pdf_to_solid_angle(pdf, v) as f64;
+        let got = image::equirect_pdf_to_solid_angle(pdf, v) as f64;
         let want = pdf as f64 / (2.0 * PI * PI * (PI * v as f64).sin());
         worst = worst.max((got / want - 1.0).abs());
     }
@@ -1276,7 +1273,7 @@ fn solid_angle_conversions() {
         common::ONE_MINUS_EPS,
         0.999_999,
     ] {
-        let got = image::latlong_pdf_to_solid_angle(1.0, v) as f64;
+        let got = image::equirect_pdf_to_solid_angle(1.0, v) as f64;
         let want = 1.0 / (2.0 * PI * PI * (PI * v as f64).sin());
         worst = worst.max((got / want - 1.0).abs());
     }
@@ -1287,7 +1284,7 @@ fn solid_angle_conversions() {
     let mut diff = 0.0f64;
     for _ in 0..100_000 {
         let u = unit2(&mut r);
-        let a = image::latlong_pdf_to_solid_angle(3.0, u[1]) as f64;
+        let a = image::equirect_pdf_to_solid_angle(3.0, u[1]) as f64;
         let b = warpcore::sphere::equirect_pdf_to_solid_angle(3.0, warpcore::sphere::equirect(u))
             as f64;
         diff = diff.max((a / b - 1.0).abs());
@@ -1298,22 +1295,25 @@ fn solid_angle_conversions() {
     assert!((ea / (3.0 / (4.0 * PI)) - 1.0).abs() < 1.2e-7);
     // Totality.
     // The pole itself: 0, the convention of sphere::equirect_pdf_to_solid_angle.
-    assert_eq!(image::latlong_pdf_to_solid_angle(1.0, 0.0), 0.0);
-    assert_eq!(image::latlong_pdf_to_solid_angle(0.0, 0.0), 0.0);
-    assert_eq!(image::latlong_pdf_to_solid_angle(f32::MAX, 1e-30), f32::MAX);
-    assert_eq!(image::latlong_pdf_to_solid_angle(f32::NAN, 0.5), 0.0);
-    assert_eq!(image::latlong_pdf_to_solid_angle(-1.0, 0.5), 0.0);
+    assert_eq!(image::equirect_pdf_to_solid_angle(1.0, 0.0), 0.0);
+    assert_eq!(image::equirect_pdf_to_solid_angle(0.0, 0.0), 0.0);
     assert_eq!(
-        image::latlong_pdf_to_solid_angle(f32::INFINITY, 0.5),
-        image::latlong_pdf_to_solid_angle(f32::MAX, 0.5)
+        image::equirect_pdf_to_solid_angle(f32::MAX, 1e-30),
+        f32::MAX
+    );
+    assert_eq!(image::equirect_pdf_to_solid_angle(f32::NAN, 0.5), 0.0);
+    assert_eq!(image::equirect_pdf_to_solid_angle(-1.0, 0.5), 0.0);
+    assert_eq!(
+        image::equirect_pdf_to_solid_angle(f32::INFINITY, 0.5),
+        image::equirect_pdf_to_solid_angle(f32::MAX, 0.5)
     );
     assert_eq!(image::equal_area_pdf_to_solid_angle(f32::NAN), 0.0);
 
     for &a in &specials() {
         for &b in &specials() {
-            let x = image::latlong_pdf_to_solid_angle(a, b);
+            let x = image::equirect_pdf_to_solid_angle(a, b);
             assert!(x.is_finite() && x >= 0.0, "{a} {b} -> {x}");
-            let v = image::latlong_pdf_to_solid_angle_x8(f32x8::splat(a), f32x8::splat(b));
+            let v = image::equirect_pdf_to_solid_angle_x8(f32x8::splat(a), f32x8::splat(b));
             assert_eq!(v.to_array()[3].to_bits(), x.to_bits());
             let e = image::equal_area_pdf_to_solid_angle(a);
             assert!(e.is_finite() && e >= 0.0);
@@ -1363,7 +1363,7 @@ fn luminance_equal_area(img: &pfm::Image) -> (Vec<f32>, Vec<f32>) {
     image::luminance_slice(&img.rgb, &mut lum);
     let mut ea = vec![[0.0f32; 1]; EA_SIZE * EA_SIZE];
     let (src, _) = lum.as_chunks::<1>();
-    image::latlong_to_equal_area(src, img.width, img.height, &mut ea, EA_SIZE, EA_SUPERSAMPLE)
+    image::equirect_to_equal_area(src, img.width, img.height, &mut ea, EA_SIZE, EA_SUPERSAMPLE)
         .unwrap();
     (lum, ea.into_iter().map(|[x]| x).collect())
 }
@@ -1467,18 +1467,18 @@ fn equal_area_sampling_estimates_the_latlong_integral() {
 /// (lat-long rows above the equator) lands in the inner rotated square of the octahedral
 /// map; bad values count as 0; errors.
 #[test]
-fn latlong_to_equal_area_contract() {
+fn equirect_to_equal_area_contract() {
     let (w, h, n) = (64, 32, 32);
     let constant = vec![[2.5f32, 1.0]; w * h];
     let mut out = vec![[0.0f32; 2]; n * n];
-    image::latlong_to_equal_area(&constant, w, h, &mut out, n, 3).unwrap();
+    image::equirect_to_equal_area(&constant, w, h, &mut out, n, 3).unwrap();
     assert!(out.iter().all(|&x| x == [2.5, 1.0]));
     // Upper hemisphere only.
     let upper: Vec<[f32; 1]> = (0..w * h)
         .map(|k| [if k / w < h / 2 { 1.0 } else { 0.0 }])
         .collect();
     let mut out = vec![[0.0f32; 1]; n * n];
-    image::latlong_to_equal_area(&upper, w, h, &mut out, n, 4).unwrap();
+    image::equirect_to_equal_area(&upper, w, h, &mut out, n, 4).unwrap();
     for r in 0..n {
         for c in 0..n {
             // Texel corners' L1 distance from the centre: all < 1/2 inside, all > 1/2 outside.
@@ -1502,11 +1502,11 @@ fn latlong_to_equal_area_contract() {
     zeroed[5] = [0.0];
     zeroed[6] = [0.0];
     let (mut a, mut b) = (vec![[0.0f32]; n * n], vec![[0.0f32]; n * n]);
-    image::latlong_to_equal_area(&bad, w, h, &mut a, n, 2).unwrap();
-    image::latlong_to_equal_area(&zeroed, w, h, &mut b, n, 2).unwrap();
+    image::equirect_to_equal_area(&bad, w, h, &mut a, n, 2).unwrap();
+    image::equirect_to_equal_area(&zeroed, w, h, &mut b, n, 2).unwrap();
     assert_eq!(a, b);
     bad[(h / 2) * w + 7] = [f32::INFINITY]; // an equator texel: big enough to be hit
-    image::latlong_to_equal_area(&bad, w, h, &mut a, n, 2).unwrap();
+    image::equirect_to_equal_area(&bad, w, h, &mut a, n, 2).unwrap();
     let flat: Vec<f32> = a.iter().map(|&[x]| x).collect();
     assert!(flat.contains(&f32::INFINITY));
     let mut s = vec![0 as Word; Hierarchical::storage_len(n, n)];
@@ -1518,33 +1518,33 @@ fn latlong_to_equal_area_contract() {
     let mut out = vec![[0.0f32; 1]; n * n];
     let src = vec![[1.0f32]; w * h];
     assert_eq!(
-        image::latlong_to_equal_area(&src, 0, h, &mut out, n, 1),
+        image::equirect_to_equal_area(&src, 0, h, &mut out, n, 1),
         Err(Error::ZeroSize)
     );
     assert_eq!(
-        image::latlong_to_equal_area(&src, w, h, &mut out, n, 0),
+        image::equirect_to_equal_area(&src, w, h, &mut out, n, 0),
         Err(Error::ZeroSize)
     );
     assert_eq!(
-        image::latlong_to_equal_area(&src, w, h, &mut out, 0, 1),
+        image::equirect_to_equal_area(&src, w, h, &mut out, 0, 1),
         Err(Error::ZeroSize)
     );
     assert_eq!(
-        image::latlong_to_equal_area(&src, w, h - 1, &mut out, n, 1),
+        image::equirect_to_equal_area(&src, w, h - 1, &mut out, n, 1),
         Err(Error::LengthMismatch {
             expected: w * (h - 1),
             got: w * h
         })
     );
     assert_eq!(
-        image::latlong_to_equal_area(&src, w, h, &mut out, n + 1, 1),
+        image::equirect_to_equal_area(&src, w, h, &mut out, n + 1, 1),
         Err(Error::LengthMismatch {
             expected: (n + 1) * (n + 1),
             got: n * n
         })
     );
     assert_eq!(
-        image::latlong_to_equal_area(&src, w, h, &mut out, n, image::MAX_SUPERSAMPLE + 1),
+        image::equirect_to_equal_area(&src, w, h, &mut out, n, image::MAX_SUPERSAMPLE + 1),
         Err(Error::TooLarge)
     );
 }

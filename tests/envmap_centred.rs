@@ -296,32 +296,35 @@ fn the_pyramid_is_centred() {
     }
 }
 
-/// A storage written by the previous format (version 1: the pyramid padded in the corner) is
-/// refused with `UnsupportedVersion { found: 1 }` and a message that says to rebuild, by
-/// both loaders of both distributions, rather than sampled with the wrong placement.
+/// Storages written by the previous formats (version 1: the pyramid padded in the corner;
+/// version 2: no content checksum, the buffer's alignment recorded) are refused with
+/// `UnsupportedVersion` and a message that says to rebuild, by both loaders of both
+/// distributions, rather than sampled with the wrong placement or loaded unchecked.
 #[test]
-fn version_one_storage_is_refused() {
-    assert_eq!(FORMAT_VERSION, 2);
+fn older_version_storages_are_refused() {
+    assert_eq!(FORMAT_VERSION, 3);
     let (w, h) = (181usize, 181usize);
     let wts = weights(w, h, 90);
-    let mut hs = build(&wts, w, h);
-    let mut ms = vec![0 as Word; MarginalConditional::storage_len(w, h)];
-    MarginalConditional::new(&wts, w, h, &mut ms).unwrap();
-    for s in [&mut hs, &mut ms] {
-        assert_eq!(u32::from_le(s[1]), 2);
-        s[1] = 1u32.to_le();
+    for version in [1u32, 2] {
+        let mut hs = build(&wts, w, h);
+        let mut ms = vec![0 as Word; MarginalConditional::storage_len(w, h)];
+        MarginalConditional::new(&wts, w, h, &mut ms).unwrap();
+        for s in [&mut hs, &mut ms] {
+            assert_eq!(u32::from_le(s[1]), 3);
+            s[1] = version.to_le();
+        }
+        let old = Error::UnsupportedVersion { found: version };
+        assert_eq!(Hierarchical::from_storage(&hs).err(), Some(old));
+        assert_eq!(Hierarchical::from_storage_verified(&hs).err(), Some(old));
+        assert_eq!(MarginalConditional::from_storage(&ms).err(), Some(old));
+        assert_eq!(
+            MarginalConditional::from_storage_verified(&ms).err(),
+            Some(old)
+        );
+        let msg = old.to_string();
+        assert!(msg.contains("older") && msg.contains("rebuild"), "{msg}");
     }
-    let old = Error::UnsupportedVersion { found: 1 };
-    assert_eq!(Hierarchical::from_storage(&hs).err(), Some(old));
-    assert_eq!(Hierarchical::from_storage_verified(&hs).err(), Some(old));
-    assert_eq!(MarginalConditional::from_storage(&ms).err(), Some(old));
-    assert_eq!(
-        MarginalConditional::from_storage_verified(&ms).err(),
-        Some(old)
-    );
-    let msg = old.to_string();
-    assert!(msg.contains("older") && msg.contains("rebuild"), "{msg}");
-    let newer = Error::UnsupportedVersion { found: 3 }.to_string();
+    let newer = Error::UnsupportedVersion { found: 4 }.to_string();
     assert!(!newer.contains("older"), "{newer}");
 }
 

@@ -35,7 +35,7 @@ fn reference(wts: &[f32], w: usize, h: usize, how: Compensation) -> Vec<f64> {
     let row = |r: usize| (PI * (r as f64 + 0.5) / h as f64).sin();
     let (fraction, latlong) = match how {
         Compensation::Uniform(f) => (f as f64, false),
-        Compensation::LatLong(f) => (f as f64, true),
+        Compensation::Equirect(f) => (f as f64, true),
         _ => (0.0, false),
     };
     let factor = |r: usize| if latlong { row(r) } else { 1.0 };
@@ -101,8 +101,8 @@ fn compensated_pdf_is_the_compensated_share() {
         for how in [
             Compensation::Uniform(1.0),
             Compensation::Uniform(0.5),
-            Compensation::LatLong(1.0),
-            Compensation::LatLong(0.75),
+            Compensation::Equirect(1.0),
+            Compensation::Equirect(0.75),
         ] {
             let want = reference(&wts, w, h, how);
             let mut s = vec![0 as Word; Hierarchical::storage_len(w, h)];
@@ -150,9 +150,9 @@ fn fallbacks_build_the_uncompensated_tables() {
                 Compensation::Uniform(f32::NAN),
                 Compensation::Uniform(0.0),
                 Compensation::Uniform(-1.0),
-                Compensation::LatLong(-0.0),
+                Compensation::Equirect(-0.0),
                 Compensation::Uniform(f32::INFINITY),
-                Compensation::LatLong(f32::INFINITY),
+                Compensation::Equirect(f32::INFINITY),
             ] {
                 assert_eq!(words(map, w, h, how, hier), plain, "{hier} {how:?}");
             }
@@ -177,15 +177,15 @@ fn fallbacks_build_the_uncompensated_tables() {
 }
 
 /// A lat-long map of constant radiance (weights `sin(theta_row)`, as
-/// `latlong_solid_angle_weights` makes them) is removed entirely by `LatLong(1.0)` (the
+/// `equirect_solid_angle_weights` makes them) is removed entirely by `LatLong(1.0)` (the
 /// fallback), while `Uniform(1.0)` would wrongly keep its equator rows only.
 #[test]
 fn latlong_compensation_divides_out_the_row_factor() {
     let (w, h) = (16usize, 64usize);
     let mut wts = vec![1.0f32; w * h];
-    warpcore::envmap::image::latlong_solid_angle_weights(&mut wts, w, h).unwrap();
+    warpcore::envmap::image::equirect_solid_angle_weights(&mut wts, w, h).unwrap();
     let plain = words(&wts, w, h, Compensation::None, true);
-    assert_eq!(words(&wts, w, h, Compensation::LatLong(1.0), true), plain);
+    assert_eq!(words(&wts, w, h, Compensation::Equirect(1.0), true), plain);
     let mut s = vec![0 as Word; Hierarchical::storage_len(w, h)];
     let d = Hierarchical::new_compensated(&wts, w, h, Compensation::Uniform(1.0), &mut s).unwrap();
     assert_eq!(d.pdf([0.5, 0.5 / h as f32]), 0.0, "polar row kept");
@@ -197,7 +197,7 @@ fn compensated_builds_report_errors() {
     let (w, h) = (5usize, 3usize);
     let mut wts = weights(w, h, 3);
     wts[7] = f32::INFINITY;
-    for how in [Compensation::Uniform(1.0), Compensation::LatLong(1.0)] {
+    for how in [Compensation::Uniform(1.0), Compensation::Equirect(1.0)] {
         let mut s = vec![0 as Word; Hierarchical::storage_len(w, h)];
         assert_eq!(
             Hierarchical::new_compensated(&wts, w, h, how, &mut s).err(),

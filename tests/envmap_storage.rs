@@ -9,7 +9,8 @@ mod common;
 use common::{rng, specials, unit, unit2};
 use proptest::prelude::*;
 use warpcore::envmap::{
-    Error, FORMAT_VERSION, HEADER_WORDS, Hierarchical, MAX_SIDE, MarginalConditional, Sample, Word,
+    CHECKSUM_WORD, Error, FORMAT_VERSION, HEADER_WORDS, Hierarchical, MAX_SIDE,
+    MarginalConditional, Sample, Word,
 };
 use warpcore::f32x8;
 
@@ -18,9 +19,20 @@ trait Format {
     const TAG: &'static [u8; 4];
     fn storage_len(w: usize, h: usize) -> usize;
     fn build(weights: &[f32], w: usize, h: usize, storage: &mut [Word]) -> Result<(), Error>;
+    /// Builds, samples `u`, and returns the sample with a copy of `storage()` taken while the
+    /// map is alive.
+    fn build_sample_save(
+        weights: &[f32],
+        w: usize,
+        h: usize,
+        storage: &mut [Word],
+        u: [f32; 2],
+    ) -> Result<(Sample, Vec<Word>), Error>;
     /// `from_storage` (or the verified form), then the samples of `us` (scalar, checked against
     /// x8 and slice) and `pdf(uv)` of each.
     fn load(storage: &[Word], verified: bool) -> Result<Vec<(Sample, f32)>, Error>;
+    /// `from_storage_verified(storage).sample(u)`.
+    fn load_one(storage: &[Word], u: [f32; 2]) -> Sample;
 }
 
 /// The fixed sample inputs: specials, then random points.
@@ -46,6 +58,19 @@ macro_rules! format {
             fn build(weights: &[f32], w: usize, h: usize, s: &mut [Word]) -> Result<(), Error> {
                 $t::new(weights, w, h, s).map(|_| ())
             }
+            fn build_sample_save(
+                weights: &[f32],
+                w: usize,
+                h: usize,
+                s: &mut [Word],
+                u: [f32; 2],
+            ) -> Result<(Sample, Vec<Word>), Error> {
+                let map = $t::new(weights, w, h, s)?;
+                Ok((map.sample(u), map.storage().to_vec()))
+            }
+            fn load_one(storage: &[Word], u: [f32; 2]) -> Sample {
+                $t::from_storage_verified(storage).unwrap().sample(u)
+            }
             fn load(storage: &[Word], verified: bool) -> Result<Vec<(Sample, f32)>, Error> {
                 let d = if verified {
                     $t::from_storage_verified(storage)?
@@ -53,14 +78,7 @@ macro_rules! format {
                     $t::from_storage(storage)?
                 };
                 let us = inputs();
-                let mut slice = vec![
-                    Sample {
-                        uv: [0.0; 2],
-                        pdf: 0.0,
-                        texel: [0; 2]
-                    };
-                    us.len()
-                ];
+                let mut slice = vec![Sample::default(); us.len()];
                 assert_eq!(d.sample_slice(&us, &mut slice), us.len());
                 let mut out = Vec::new();
                 for (g, group) in us.chunks_exact(8).enumerate() {
@@ -200,7 +218,10 @@ fn header_bytes<F: Format>() {
         .map(|k| u32::from_le_bytes(bytes[4 * k..4 * k + 4].try_into().unwrap()) as usize)
         .collect();
     let total = HEADER_WORDS + lens.iter().sum::<usize>();
-    assert!(total <= a.len() && a.len() - total <= 15, "{lens:?}");
+    assert_eq!(total, a.len(), "{lens:?}");
+    // Reserved header words are 0, the checksum is not (a 2^-32 chance for a real one).
+    assert!(a[CHECKSUM_WORD + 1..HEADER_WORDS].iter().all(|&x| x == 0));
+    assert_ne!(a[CHECKSUM_WORD], 0);
     // Same buffer, garbage first: the same words.
     let first = a.clone();
     a.fill(0xdead_beef);
@@ -275,10 +296,11 @@ fn header_errors<F: Format, Other: Format>() {
         Some(Error::Corrupt { word: 2 })
     );
     // Other sizes than the tables were built for: the lengths disagree.
-    assert!(matches!(
-        err(&with(2, 16)),
-        Some(Error::Corrupt { word: 4..=7 })
-    ));
+    assert!(
+        matches!(err(&with(2, 16)), Some(Error::Corrupt { word: 4..=7 })),
+        "{:?}",
+        err(&with(2, 16))
+    );
     assert!(matches!(
         err(&with(3, 4)),
         Some(Error::Corrupt { word: 4..=7 })
@@ -420,22 +442,24 @@ fn verified_hierarchical_names_the_first_corrupt_word() {
         if (k - blocks.start) % 16 == 15 || word(k) != one {
             continue;
         }
-        if verify(&with_in(&s, k, one - 1)).is_some() {
+        if verify(&with_in(&s, k, one - 1)) == Some(Error::Corrupt { word: k }) {
             structural += 1;
         }
     }
     assert!(structural > 10, "{structural} structural fractions");
-    // Unused words must be 0: the slots of children a level does not have, the padding and
-    // the slack after the edges.
+    // Unused words must be 0: the slots of children a level does not have (named by the
+    // invariant pass, before the checksum). Version 3 has no padding and no slack.
     let unused: Vec<usize> = blocks
         .clone()
         .filter(|&k| (k - blocks.start) % 16 < 15 && word(k) == 0)
-        .filter(|&k| verify(&with_in(&s, k, 1)).is_some())
+        .filter(|&k| verify(&with_in(&s, k, 1)) == Some(Error::Corrupt { word: k }))
         .collect();
     assert!(!unused.is_empty());
-    for k in pad.clone().chain(ey.end..s.len()) {
-        assert_eq!(verify(&with_in(&s, k, 1)), Some(Error::Corrupt { word: k }));
-    }
+    assert!(
+        pad.is_empty() && ey.end == s.len(),
+        "{pad:?} {ey:?} {}",
+        s.len()
+    );
     for k in [ex.start, ex.start + 9, ey.start + 1, ey.end - 1] {
         let t = with_in(&s, k, word(k) ^ 1);
         assert_eq!(verify(&t), Some(Error::Corrupt { word: k }));
@@ -462,7 +486,9 @@ fn garbage_tables<F: Format>(w: usize, h: usize, seed: u64, edits: &[(usize, u32
     // The verified load either accepts (then sampling is valid too) or names a table word.
     match F::load(&s, true) {
         Ok(samples) => assert_in_map(&samples, w, h),
-        Err(Error::Corrupt { word }) => assert!(word >= HEADER_WORDS && word < s.len()),
+        Err(Error::Corrupt { word }) => {
+            assert!(word == CHECKSUM_WORD || (word >= HEADER_WORDS && word < s.len()))
+        }
         Err(e) => panic!("unexpected {e:?}"),
     }
 }
@@ -498,5 +524,115 @@ fn sampling_is_total_for_extreme_table_words() {
             garbage_tables::<MarginalConditional>(w, h, 1, &edits, false);
             garbage_tables::<Hierarchical>(w, h, 1, &edits, false);
         }
+    }
+}
+
+/// Every single-bit flip of a stored table — every bit of every word, header included — is
+/// rejected by `from_storage_verified`, for both distributions, on maps with zeros, padding
+/// on both axes (hierarchical 17 x 3 pads to 32 x 4) and unsplit levels. The checksum makes
+/// this hold by construction; the test checks it exhaustively (32 flips per word). It also
+/// checks that the O(1) `from_storage` accepts flips of table words it does not read (so the
+/// verified loader is what catches them) and samples inside the map.
+fn every_bit_flip<F: Format>(w: usize, h: usize) -> (usize, usize) {
+    let mut s = vec![0 as Word; F::storage_len(w, h)];
+    F::build(&weights(w, h, 11), w, h, &mut s).unwrap();
+    F::load(&s, true).unwrap();
+    let (mut flips, mut fast_accepts) = (0, 0);
+    for k in 0..s.len() {
+        for bit in 0..32 {
+            let mut t = s.clone();
+            t[k] ^= (1u32 << bit).to_le();
+            flips += 1;
+            match F::load(&t, true) {
+                Err(
+                    Error::Corrupt { .. }
+                    | Error::WrongFormat { .. }
+                    | Error::UnsupportedVersion { .. }
+                    | Error::StorageTooSmall { .. },
+                ) => {}
+                other => panic!("{w}x{h}: flip of bit {bit} of word {k} not caught: {other:?}"),
+            }
+            if k >= HEADER_WORDS || k == CHECKSUM_WORD {
+                // The O(1) loader does not read the tables nor the checksum.
+                let fast = F::load(&t, false).expect("from_storage reads only the header");
+                assert_in_map(&fast, w, h);
+                fast_accepts += 1;
+            }
+        }
+    }
+    (flips, fast_accepts)
+}
+
+#[test]
+fn verified_loader_catches_every_single_bit_flip() {
+    for (w, h) in [(13, 7), (17, 3), (1, 1), (4, 4)] {
+        let (flips, fast) = every_bit_flip::<MarginalConditional>(w, h);
+        assert_eq!(flips, 32 * MarginalConditional::storage_len(w, h));
+        assert_eq!(fast, flips - 32 * (HEADER_WORDS - 1));
+        let (flips, fast) = every_bit_flip::<Hierarchical>(w, h);
+        assert_eq!(flips, 32 * Hierarchical::storage_len(w, h));
+        assert_eq!(fast, flips - 32 * (HEADER_WORDS - 1));
+    }
+    // The checksum error says what happened.
+    let msg = Error::Corrupt {
+        word: CHECKSUM_WORD,
+    }
+    .to_string();
+    assert!(msg.contains("checksum"), "{msg}");
+}
+
+/// Reserved header words (after the checksum) must be 0: the O(1) loader names them.
+#[test]
+fn reserved_header_words_are_checked_in_constant_time() {
+    let (w, h) = (5usize, 3usize);
+    let mut m = vec![0 as Word; MarginalConditional::storage_len(w, h)];
+    MarginalConditional::new(&weights(w, h, 2), w, h, &mut m).unwrap();
+    let mut hs = vec![0 as Word; Hierarchical::storage_len(w, h)];
+    Hierarchical::new(&weights(w, h, 2), w, h, &mut hs).unwrap();
+    for k in CHECKSUM_WORD + 1..HEADER_WORDS {
+        let e = Some(Error::Corrupt { word: k });
+        assert_eq!(
+            MarginalConditional::from_storage(&with_in(&m, k, 1)).err(),
+            e
+        );
+        assert_eq!(Hierarchical::from_storage(&with_in(&hs, k, 1)).err(), e);
+    }
+}
+
+/// The same map built into buffers at every word offset modulo 64 bytes, and over garbage,
+/// gives the same bytes (version 2 recorded the buffer's alignment in the hierarchical
+/// layout, so C, JS and Rust builds differed); `storage()` is exactly those words.
+fn same_bytes_at_any_address<F: Format>(w: usize, h: usize) {
+    let wts = weights(w, h, 21);
+    let n = F::storage_len(w, h);
+    let mut reference: Option<Vec<Word>> = None;
+    for offset in 0..16 {
+        let mut buf = vec![0x5a5a_5a5a as Word; offset + n + 3];
+        let (sample, saved) =
+            F::build_sample_save(&wts, w, h, &mut buf[offset..], [0.3, 0.6]).unwrap();
+        assert_eq!(saved.len(), n);
+        assert_eq!(
+            saved[..],
+            buf[offset..offset + n],
+            "storage() is the buffer's words"
+        );
+        assert!(buf[offset + n..].iter().all(|&x| x == 0x5a5a_5a5a));
+        match &reference {
+            None => reference = Some(saved.clone()),
+            Some(r) => assert_eq!(&saved, r, "{w}x{h}: bytes differ at offset {offset}"),
+        }
+        // Build, sample, save with one borrow, then reload the saved words verified.
+        let reloaded = F::load(&saved, true).unwrap();
+        let direct = F::load(&buf[offset..], false).unwrap();
+        assert_eq!(reloaded, direct);
+        assert_eq!(F::load_one(&saved, [0.3, 0.6]), sample);
+    }
+}
+
+#[test]
+fn storage_bytes_do_not_depend_on_the_buffer_address() {
+    for (w, h) in [(13, 7), (17, 3), (64, 32), (1, 1)] {
+        same_bytes_at_any_address::<MarginalConditional>(w, h);
+        same_bytes_at_any_address::<Hierarchical>(w, h);
     }
 }

@@ -89,3 +89,80 @@ fn fingerprint_detects_a_one_bit_change() {
     polar(&mut b, true);
     assert_ne!(a.finish(), b.finish());
 }
+
+/// The cosine-aware solid-angle maps (`spherical::triangle_cosine`, `rectangle_cosine`, added
+/// after the main fingerprint was frozen for C and JS) over the same lights, inputs and lane
+/// mixing, with a receiver normal derived from each light's floats (facing, grazing, behind,
+/// and NaN/inf for the non-finite lights), against their own golden value: the same on every
+/// target this test runs on (native, `-C target-cpu=native`, wasm32 with and without
+/// simd128). Regenerate with `WARPCORE_BLESS=1` when a change is meant to alter these bits.
+#[cfg(feature = "spherical")]
+#[test]
+fn cosine_maps_match_their_golden_fingerprint() {
+    use fingerprint::{Hasher, SPHERICAL_RECTANGLES, SPHERICAL_TRIANGLES, lights};
+    use warpcore::spherical as sp;
+    use warpcore::{f32x8, f32x16};
+    let n1 = |l: [[f32; 3]; 4]| {
+        [
+            l[0][1] - l[3][1] + 0.3,
+            0.5 - l[2][0],
+            0.7 - l[1][2] * 0.5,
+        ]
+    };
+    let n8 = |l: [[f32x8; 3]; 4]| {
+        [
+            l[0][1] - l[3][1] + f32x8::splat(0.3),
+            f32x8::splat(0.5) - l[2][0],
+            f32x8::splat(0.7) - l[1][2] * f32x8::splat(0.5),
+        ]
+    };
+    let n16 = |l: [[f32x16; 3]; 4]| {
+        [
+            l[0][1] - l[3][1] + f32x16::splat(0.3),
+            f32x16::splat(0.5) - l[2][0],
+            f32x16::splat(0.7) - l[1][2] * f32x16::splat(0.5),
+        ]
+    };
+    let mut h = Hasher::new();
+    lights(
+        &mut h,
+        &SPHERICAL_TRIANGLES,
+        |l, u| {
+            let (b, d) = sp::triangle_cosine([l[0], l[1], l[2]], l[3], n1(l), u);
+            [b[0], b[1], b[2], d]
+        },
+        |l, u| {
+            let (b, d) = sp::triangle_cosine_x8([l[0], l[1], l[2]], l[3], n8(l), u);
+            [b[0], b[1], b[2], d]
+        },
+        |l, u| {
+            let (b, d) = sp::triangle_cosine_x16([l[0], l[1], l[2]], l[3], n16(l), u);
+            [b[0], b[1], b[2], d]
+        },
+        |l, u, o| sp::triangle_cosine_slice([l[0], l[1], l[2]], l[3], n1(l), u, o),
+    );
+    lights(
+        &mut h,
+        &SPHERICAL_RECTANGLES,
+        |l, u| {
+            let (st, d) = sp::rectangle_cosine(l[0], l[1], l[2], l[3], n1(l), u);
+            [st[0], st[1], d]
+        },
+        |l, u| {
+            let (st, d) = sp::rectangle_cosine_x8(l[0], l[1], l[2], l[3], n8(l), u);
+            [st[0], st[1], d]
+        },
+        |l, u| {
+            let (st, d) = sp::rectangle_cosine_x16(l[0], l[1], l[2], l[3], n16(l), u);
+            [st[0], st[1], d]
+        },
+        |l, u, o| sp::rectangle_cosine_slice(l[0], l[1], l[2], l[3], n1(l), u, o),
+    );
+    let got = format!("{:016x}", h.finish());
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/golden/fingerprint_cosine.txt");
+    if std::env::var_os("WARPCORE_BLESS").is_some() {
+        std::fs::write(path, format!("{got}\n")).unwrap();
+    }
+    let golden = include_str!("golden/fingerprint_cosine.txt").trim();
+    assert_eq!(got, golden, "the cosine-aware maps give other bits on this target");
+}

@@ -8,7 +8,7 @@
 #![cfg(feature = "envmap")]
 
 use proptest::prelude::*;
-use warpcore::envmap::{Error, Hierarchical, MAX_SIDE, MarginalConditional, image};
+use warpcore::envmap::{Error, HEADER_WORDS, Hierarchical, MAX_SIDE, MarginalConditional, image};
 
 /// One library call (every call of a property goes through here, to count them: 8 per case).
 fn call<T>(f: impl FnOnce() -> T) -> T {
@@ -46,6 +46,7 @@ fn product(a: usize, b: usize) -> usize {
 }
 
 /// Marginal-conditional storage words, or `usize::MAX` (the documented rule).
+/// (A 16-word header since storage format version 3.)
 fn mc_len(w: usize, h: usize) -> usize {
     if w == 0 || h == 0 {
         return 0;
@@ -54,7 +55,7 @@ fn mc_len(w: usize, h: usize) -> usize {
         return usize::MAX;
     }
     let (w, h) = (w as u128, h as u128);
-    let n = 8 + (h + 1) + (w + 1) * h + (w + 1) + (h + 1);
+    let n = 16 + (h + 1) + (w + 1) * h + (w + 1) + (h + 1);
     if n > u32::MAX as u128 {
         usize::MAX
     } else {
@@ -94,7 +95,7 @@ fn equal_area_model(
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(3000))]
 
-    /// `latlong_to_equal_area`: the documented error, in the documented order, for any sizes;
+    /// `equirect_to_equal_area`: the documented error, in the documented order, for any sizes;
     /// `dst` unchanged on error.
     #[test]
     fn equal_area_sizes(
@@ -107,7 +108,7 @@ proptest! {
         let ss = if fit && ss > 4 && ss <= MAX_SIDE { 1 + ss % 4 } else { ss };
         let src = vec![[0.5f32, -1.0, f32::NAN]; src_len];
         let mut dst = vec![[7.0f32; 3]; dst_len];
-        let got = call(|| image::latlong_to_equal_area(&src, sw, sh, &mut dst, n, ss));
+        let got = call(|| image::equirect_to_equal_area(&src, sw, sh, &mut dst, n, ss));
         let want = equal_area_model(sw, sh, n, ss, src_len, dst_len);
         prop_assert_eq!(got, want);
         if want.is_err() {
@@ -117,13 +118,13 @@ proptest! {
         }
     }
 
-    /// `latlong_solid_angle_weights`: `ZeroSize`, else `LengthMismatch` with the saturated
+    /// `equirect_solid_angle_weights`: `ZeroSize`, else `LengthMismatch` with the saturated
     /// product, else `Ok`; weights unchanged on error.
     #[test]
     fn solid_angle_sizes(w in size(), h in size(), len in 0usize..70, fit in any::<bool>()) {
         let len = if fit && product(w, h) <= 64 { product(w, h) } else { len };
         let mut weights = vec![2.0f32; len];
-        let got = call(|| image::latlong_solid_angle_weights(&mut weights, w, h));
+        let got = call(|| image::equirect_solid_angle_weights(&mut weights, w, h));
         let want = if w == 0 || h == 0 {
             Err(Error::ZeroSize)
         } else if len != product(w, h) {
@@ -218,14 +219,14 @@ proptest! {
                 None
             };
             let mut storage = match &real {
-                Some(s) => s[..(extra + 8).min(s.len())].to_vec(),
+                Some(s) => s[..(extra + HEADER_WORDS).min(s.len())].to_vec(),
                 None => {
                     header.extend(lens.map(u32::to_le));
-                    header.resize(8 + extra, 0);
+                    header.resize(HEADER_WORDS + extra, 0);
                     header
                 }
             };
-            storage.truncate(8 + extra);
+            storage.truncate(HEADER_WORDS + extra);
             let got = if hierarchical {
                 call(|| Hierarchical::from_storage(&storage).map(|d| d.sample([0.3, 0.7])))
             } else {

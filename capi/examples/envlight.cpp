@@ -112,7 +112,7 @@ Vec3 env_light(const Env &env, Vec3 p, const float *u, size_t n, std::vector<WcE
         v[i] = s[i].uv[1];
     }
     wc_sphere_equirect(uv.data(), dirs.data(), n);
-    wc_envmap_latlong_pdf_to_solid_angle(pdf.data(), v.data(), pdf_sa.data(), n);
+    wc_envmap_equirect_pdf_to_solid_angle(pdf.data(), v.data(), pdf_sa.data(), n);
     Vec3 sum = {0, 0, 0};
     for (size_t i = 0; i < n; i++) {
         Vec3 w = {dirs[3 * i], dirs[3 * i + 1], dirs[3 * i + 2]};
@@ -160,7 +160,7 @@ int main(int argc, char **argv) {
     const uint32_t w = env.map.width, h = env.map.height;
     std::vector<float> weights(size_t(w) * h);
     wc_envmap_luminance(env.map.rgb.data(), weights.data(), weights.size());
-    if (wc_envmap_latlong_solid_angle_weights(weights.data(), w, h) != WC_OK) return 2;
+    if (wc_envmap_equirect_solid_angle_weights(weights.data(), w, h) != WC_OK) return 2;
     std::vector<uint32_t> built(wc_envmap_hierarchical_storage_len(w, h));
     int32_t err = wc_envmap_hierarchical_build(weights.data(), w, h, built.data(), built.size());
     if (err != WC_OK) {

@@ -4,7 +4,8 @@
 
 use crate::ffi::{fits, map, overlap, slice, span};
 use warpcore::envmap::{
-    self, Compensation, Error, Hierarchical, MAX_SIDE, MarginalConditional, Sample, image,
+    self, Compensation, DirectionSample, Error, Hierarchical, Layout, MAX_SIDE,
+    MarginalConditional, Sample, image,
 };
 
 /// Success.
@@ -25,7 +26,8 @@ pub const WC_ERR_INFINITE_WEIGHT: i32 = -5;
 pub const WC_ERR_WRONG_FORMAT: i32 = -6;
 /// The storage's format version is not the one this library reads.
 pub const WC_ERR_UNSUPPORTED_VERSION: i32 = -7;
-/// A header word (or, for `verify`, a table word) holds a value a build never writes.
+/// A header word (or, for `verify` / `from_storage_verified`, a table word, or content that
+/// does not match the checksum in header word 8) holds a value a build never writes.
 pub const WC_ERR_CORRUPT: i32 = -8;
 /// A null or misaligned pointer, arrays that overlap where they must not, or (see each
 /// function) a bad `channels` or a `storage_len` no array can have.
@@ -33,23 +35,37 @@ pub const WC_ERR_INVALID_ARGUMENT: i32 = -9;
 /// An error this version of the header has no name for.
 pub const WC_ERR_OTHER: i32 = -10;
 
-/// Words of the header at the start of every storage.
-pub const WC_ENVMAP_HEADER_WORDS: u32 = 8;
-/// The storage format version this library writes and reads (header word 1).
-pub const WC_ENVMAP_FORMAT_VERSION: u32 = 2;
+/// Words of the header at the start of every storage (64 bytes: the tables after it sit on
+/// cache lines when the storage is 64-byte aligned, e.g. from `aligned_alloc(64, ...)`).
+pub const WC_ENVMAP_HEADER_WORDS: u32 = 16;
+/// The storage format version this library writes and reads (header word 1). Version 3 adds
+/// a content checksum (header word 8) and bytes that do not depend on the buffer's address;
+/// older storages get `WC_ERR_UNSUPPORTED_VERSION`: rebuild them from the weights.
+pub const WC_ENVMAP_FORMAT_VERSION: u32 = 3;
 
 /// `compensation` of the `build_compensated` functions: the weights as given.
 pub const WC_ENVMAP_COMPENSATION_NONE: u32 = 0;
 /// `compensation`: subtract `fraction` times the mean weight (texels of equal solid angle:
 /// equal-area maps), clamp at 0.
 pub const WC_ENVMAP_COMPENSATION_UNIFORM: u32 = 1;
-/// `compensation`: lat-long weights (radiance times the row's `sin(theta)`): subtract
-/// `fraction` times the radiance's solid-angle average times the row's `sin(theta)`, clamp at 0.
+/// `compensation`: equirect (lat-long) weights (radiance times the row's `sin(theta)`, as
+/// `wc_envmap_equirect_solid_angle_weights` makes them): subtract `fraction` times the
+/// radiance's solid-angle average times the row's `sin(theta)`, clamp at 0.
+pub const WC_ENVMAP_COMPENSATION_EQUIRECT: u32 = 2;
+/// Deprecated name of `WC_ENVMAP_COMPENSATION_EQUIRECT` (the same value).
 pub const WC_ENVMAP_COMPENSATION_LATLONG: u32 = 2;
+
+/// `layout` of the direction functions: the equirect (lat-long) square of
+/// `wc_sphere_equirect` (`phi = 2 pi u`, `theta = pi v`, row 0 around `+z`).
+pub const WC_ENVMAP_LAYOUT_EQUIRECT: u32 = 0;
+/// `layout` of the direction functions: the equal-area octahedral square of
+/// `wc_sphere_equal_area` (its centre at `+z`).
+pub const WC_ENVMAP_LAYOUT_EQUAL_AREA: u32 = 1;
 
 // Literals, so that cbindgen can write them; checked against the core crate here.
 const _: () = assert!(WC_ENVMAP_HEADER_WORDS as usize == envmap::HEADER_WORDS);
 const _: () = assert!(WC_ENVMAP_FORMAT_VERSION == envmap::FORMAT_VERSION);
+const _: () = assert!(WC_ENVMAP_COMPENSATION_LATLONG == WC_ENVMAP_COMPENSATION_EQUIRECT);
 
 /// One environment-map sample.
 #[repr(C)]
@@ -61,6 +77,61 @@ pub struct WcEnvSample {
     pub pdf: f32,
     /// `[column, row]` of the texel the point lies in.
     pub texel: [u32; 2],
+}
+
+/// One environment-map sample as a direction (the direction functions' output).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WcEnvDirection {
+    /// The unit direction (`wc_sphere_equirect` or `wc_sphere_equal_area` of `uv`).
+    pub dir: [f32; 3],
+    /// Density with respect to solid angle at `dir` (per steradian); 0 only for an equirect
+    /// sample exactly at the pole.
+    pub pdf: f32,
+    /// The point on the unit square, in `[0, 1)^2`.
+    pub uv: [f32; 2],
+    /// `[column, row]` of the texel.
+    pub texel: [u32; 2],
+}
+
+fn layout_of(layout: u32) -> Option<Layout> {
+    match layout {
+        WC_ENVMAP_LAYOUT_EQUIRECT => Some(Layout::Equirect),
+        WC_ENVMAP_LAYOUT_EQUAL_AREA => Some(Layout::EqualArea),
+        _ => None,
+    }
+}
+
+/// A static, NUL-terminated English description of a `WC_OK` / `WC_ERR_*` code, for messages:
+/// never null; codes this header does not name get `"unknown warpcore error code"`. Any
+/// argument; reads and writes no memory (the strings live as long as the program).
+#[unsafe(no_mangle)]
+pub extern "C" fn wc_error_string(code: i32) -> *const core::ffi::c_char {
+    let s: &'static core::ffi::CStr = match code {
+        WC_OK => c"success",
+        WC_ERR_ZERO_SIZE => c"environment map has zero width or height",
+        WC_ERR_TOO_LARGE => {
+            c"too large: a side above 2^24, tables above 2^32 words, or an array above PTRDIFF_MAX bytes"
+        }
+        WC_ERR_LENGTH_MISMATCH => c"an array length does not match the sizes",
+        WC_ERR_STORAGE_TOO_SMALL => c"storage shorter than needed (or than its header says)",
+        WC_ERR_INFINITE_WEIGHT => c"a weight is +inf",
+        WC_ERR_WRONG_FORMAT => {
+            c"not this distribution's storage (wrong format tag, or a byte-swapped copy)"
+        }
+        WC_ERR_UNSUPPORTED_VERSION => {
+            c"storage format version not supported (older storages: rebuild the tables from the weights)"
+        }
+        WC_ERR_CORRUPT => {
+            c"corrupt storage: a header or table word a build never writes, or content that does not match its checksum"
+        }
+        WC_ERR_INVALID_ARGUMENT => {
+            c"invalid argument: a null or misaligned pointer, overlapping arrays, or a bad option"
+        }
+        WC_ERR_OTHER => c"an error this version of the header has no name for",
+        _ => c"unknown warpcore error code",
+    };
+    s.as_ptr()
 }
 
 fn code(e: Error) -> i32 {
@@ -91,6 +162,13 @@ trait Dist<'a>: Sized {
     fn from_storage_verified(storage: &'a [u32]) -> Result<Self, Error>;
     fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize;
     fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize;
+    fn sample_direction_slice(
+        &self,
+        layout: Layout,
+        u: &[[f32; 2]],
+        out: &mut [DirectionSample],
+    ) -> usize;
+    fn pdf_direction_slice(&self, layout: Layout, dir: &[[f32; 3]], out: &mut [f32]) -> usize;
 }
 
 macro_rules! dist {
@@ -119,6 +197,22 @@ macro_rules! dist {
             }
             fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
                 $t::pdf_slice(self, uv, out)
+            }
+            fn sample_direction_slice(
+                &self,
+                layout: Layout,
+                u: &[[f32; 2]],
+                out: &mut [DirectionSample],
+            ) -> usize {
+                $t::sample_direction_slice(self, layout, u, out)
+            }
+            fn pdf_direction_slice(
+                &self,
+                layout: Layout,
+                dir: &[[f32; 3]],
+                out: &mut [f32],
+            ) -> usize {
+                $t::pdf_direction_slice(self, layout, dir, out)
             }
         }
     };
@@ -191,7 +285,7 @@ fn compensation_of(compensation: u32, fraction: f32) -> Option<Compensation> {
     match compensation {
         WC_ENVMAP_COMPENSATION_NONE => Some(Compensation::None),
         WC_ENVMAP_COMPENSATION_UNIFORM => Some(Compensation::Uniform(fraction)),
-        WC_ENVMAP_COMPENSATION_LATLONG => Some(Compensation::LatLong(fraction)),
+        WC_ENVMAP_COMPENSATION_EQUIRECT => Some(Compensation::Equirect(fraction)),
         _ => None,
     }
 }
@@ -220,10 +314,20 @@ unsafe fn check<'a, D: Dist<'a>>(storage: *const u32, storage_len: usize, verifi
 /// `in_place` (an output no larger than a point), exactly in place. Returns the range of
 /// `out`.
 fn arrays<O>(uv: *const f32, out: *mut O, n: usize, in_place: bool) -> Option<(usize, usize)> {
+    arrays_of::<O, 2>(uv, out, n, in_place)
+}
+
+/// [`arrays`] for points of `I` floats.
+fn arrays_of<O, const I: usize>(
+    uv: *const f32,
+    out: *mut O,
+    n: usize,
+    in_place: bool,
+) -> Option<(usize, usize)> {
     if n == 0 {
         return None;
     }
-    let src = span(uv, n.checked_mul(2)?)?;
+    let src = span(uv, n.checked_mul(I)?)?;
     let dst = span(out.cast_const(), n)?;
     if overlap(src, dst) && !(in_place && src.0 == dst.0) {
         return None;
@@ -256,11 +360,7 @@ unsafe fn sample<'a, D: Dist<'a>>(
     // and `out` again.
     unsafe {
         map::<f32, WcEnvSample, 2, 1>(u, out, n, |u, o| {
-            let mut tmp = [Sample {
-                uv: [0.0; 2],
-                pdf: 0.0,
-                texel: [0; 2],
-            }; crate::ffi::CHUNK];
+            let mut tmp = [Sample::default(); crate::ffi::CHUNK];
             let k = d.sample_slice(u, &mut tmp[..u.len().min(o.len())]);
             for (o, s) in o.iter_mut().zip(&tmp[..k]) {
                 *o = [WcEnvSample {
@@ -297,8 +397,80 @@ unsafe fn pdf<'a, D: Dist<'a>>(
     unsafe { map::<f32, f32, 2, 1>(uv, out, n, |uv, o| d.pdf_slice(uv, o.as_flattened_mut())) }
 }
 
+/// # Safety
+/// As the exported `sample_direction` functions.
+unsafe fn sample_direction<'a, D: Dist<'a>>(
+    storage: *const u32,
+    storage_len: usize,
+    layout: u32,
+    u: *const f32,
+    out: *mut WcEnvDirection,
+    n: usize,
+) -> usize {
+    let Some(writes) = arrays::<WcEnvDirection>(u, out, n, false) else {
+        return 0;
+    };
+    // SAFETY: as in `sample`.
+    let Some(s) = (unsafe { slice(storage, storage_len, Some(writes)) }) else {
+        return 0;
+    };
+    let Some(layout) = layout_of(layout) else {
+        return 0;
+    };
+    let Ok(d) = D::from_storage(s) else {
+        return 0;
+    };
+    // SAFETY: as in `sample`.
+    unsafe {
+        map::<f32, WcEnvDirection, 2, 1>(u, out, n, |u, o| {
+            let mut tmp = [DirectionSample::default(); crate::ffi::CHUNK];
+            let k = d.sample_direction_slice(layout, u, &mut tmp[..u.len().min(o.len())]);
+            for (o, s) in o.iter_mut().zip(&tmp[..k]) {
+                *o = [WcEnvDirection {
+                    dir: s.dir,
+                    pdf: s.pdf,
+                    uv: s.uv,
+                    texel: s.texel,
+                }];
+            }
+            k
+        })
+    }
+}
+
+/// # Safety
+/// As the exported `pdf_direction` functions.
+unsafe fn pdf_direction<'a, D: Dist<'a>>(
+    storage: *const u32,
+    storage_len: usize,
+    layout: u32,
+    dir: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    let Some(writes) = arrays_of::<f32, 3>(dir, out, n, true) else {
+        return 0;
+    };
+    // SAFETY: as in `sample`.
+    let Some(s) = (unsafe { slice(storage, storage_len, Some(writes)) }) else {
+        return 0;
+    };
+    let Some(layout) = layout_of(layout) else {
+        return 0;
+    };
+    let Ok(d) = D::from_storage(s) else {
+        return 0;
+    };
+    // SAFETY: as in `sample`.
+    unsafe {
+        map::<f32, f32, 3, 1>(dir, out, n, |dir, o| {
+            d.pdf_direction_slice(layout, dir, o.as_flattened_mut())
+        })
+    }
+}
+
 /// Words of storage `wc_envmap_hierarchical_build` needs for a `width x height` map (the hierarchical (MIP-pyramid) distribution: compact 2D strata), the
-/// 8-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
+/// 16-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
 /// tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE` and
 /// `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
 #[unsafe(no_mangle)]
@@ -353,8 +525,8 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_build(
 /// the distribution reports, are those of `max(0, w - fraction * average)`.
 /// `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_hierarchical_build`),
 /// `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
-/// `WC_ENVMAP_COMPENSATION_LATLONG` (lat-long weights made by
-/// `wc_envmap_latlong_solid_angle_weights`: the radiance's solid-angle average, times each
+/// `WC_ENVMAP_COMPENSATION_EQUIRECT` (equirect weights made by
+/// `wc_envmap_equirect_solid_angle_weights`: the radiance's solid-angle average, times each
 /// row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
 /// zero and negative mean no compensation. When compensation would remove every weight (a
 /// constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
@@ -386,9 +558,10 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_build_compensated(
 /// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
 /// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
 /// and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
-/// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 8 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
-/// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT` (a size or length word
-/// a build never writes), `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
+/// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 16 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
+/// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION` (an older format: rebuild),
+/// `WC_ERR_CORRUPT` (a size, length or reserved word a build never writes),
+/// `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
 /// Sampling a storage that passes is safe whatever its table words hold (samples stay in the
 /// map); the sample and pdf functions run this check on every call. Reads only.
 ///
@@ -404,8 +577,9 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_validate(
 }
 
 /// `wc_envmap_hierarchical_validate` (the same codes, in the same order) plus one pass over every
-/// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants: for
-/// loaders that want to catch a corrupted file. Time proportional to the storage. Reads only.
+/// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants or do
+/// not match the content checksum (header word 8): every single-bit flip of a storage is
+/// caught. For loaders of files. Time proportional to the storage. Reads only.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words.
@@ -463,8 +637,94 @@ pub unsafe extern "C" fn wc_envmap_hierarchical_pdf(
     unsafe { pdf::<Hierarchical>(storage, storage_len, uv, out, n) }
 }
 
+/// `wc_envmap_hierarchical_validate` under the Rust and JavaScript name (`from_storage`): the
+/// same O(1) header check, the same codes in the same order: `WC_OK`,
+/// `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
+/// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_hierarchical_from_storage(
+    storage: *const u32,
+    storage_len: usize,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { check::<Hierarchical>(storage, storage_len, false) }
+}
+
+/// `wc_envmap_hierarchical_verify` under the Rust and JavaScript name (`from_storage_verified`):
+/// the header check plus one pass over every word (the format's invariants, then the content
+/// checksum, which catches every single-bit flip), the same codes in the same order:
+/// `WC_OK`, `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
+/// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_hierarchical_from_storage_verified(
+    storage: *const u32,
+    storage_len: usize,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { check::<Hierarchical>(storage, storage_len, true) }
+}
+
+/// Draws `n` samples as directions with their density per steradian, in one call: the
+/// samples of `wc_envmap_hierarchical_sample`, each `uv` mapped onto the sphere by `layout`
+/// (`WC_ENVMAP_LAYOUT_EQUIRECT`: `wc_sphere_equirect`, density
+/// `pdf / (2 pi^2 sin(pi v))` with the point's own `v`, 0 exactly at the pole;
+/// `WC_ENVMAP_LAYOUT_EQUAL_AREA`: `wc_sphere_equal_area`, density `pdf / (4 pi)`). `u` holds
+/// `2n` floats (any values, clamped to `[0, 1)`); `out` receives `n` `WcEnvDirection`s.
+/// Returns `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count
+/// whose byte size overflows, an `out` that overlaps `u` or the storage, an unknown
+/// `layout`, or a storage that fails `wc_envmap_hierarchical_validate`.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
+/// writable for `n` directions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_hierarchical_sample_direction(
+    storage: *const u32,
+    storage_len: usize,
+    layout: u32,
+    u: *const f32,
+    out: *mut WcEnvDirection,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    unsafe { sample_direction::<Hierarchical>(storage, storage_len, layout, u, out, n) }
+}
+
+/// Densities per steradian of `n` directions `dir` (`3n` floats, any length; the MIS weight
+/// of a direction found by BSDF sampling): each direction mapped to the unit square by
+/// `layout`'s inverse (`wc_sphere_equirect_inverse` or `wc_sphere_equal_area_inverse`), the
+/// density of `wc_envmap_hierarchical_pdf` there converted to solid angle at the direction.
+/// For a direction of `wc_envmap_hierarchical_sample_direction` it equals the sample's `pdf` to a
+/// few ulp (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) for
+/// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
+/// overlaps the storage or overlaps `dir` other than exactly in place (`out == dir`: density
+/// `i` overwrites float `i` after direction `i / 3` was read), an unknown `layout`, or a
+/// storage that fails `wc_envmap_hierarchical_validate`.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, `dir` for `3n` floats, and `out`
+/// writable for `n` floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_hierarchical_pdf_direction(
+    storage: *const u32,
+    storage_len: usize,
+    layout: u32,
+    dir: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    unsafe { pdf_direction::<Hierarchical>(storage, storage_len, layout, dir, out, n) }
+}
+
 /// Words of storage `wc_envmap_marginal_conditional_build` needs for a `width x height` map (the marginal-conditional distribution (a row by its total, then a column)), the
-/// 8-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
+/// 16-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
 /// tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE` and
 /// `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
 #[unsafe(no_mangle)]
@@ -519,8 +779,8 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_build(
 /// the distribution reports, are those of `max(0, w - fraction * average)`.
 /// `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_marginal_conditional_build`),
 /// `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
-/// `WC_ENVMAP_COMPENSATION_LATLONG` (lat-long weights made by
-/// `wc_envmap_latlong_solid_angle_weights`: the radiance's solid-angle average, times each
+/// `WC_ENVMAP_COMPENSATION_EQUIRECT` (equirect weights made by
+/// `wc_envmap_equirect_solid_angle_weights`: the radiance's solid-angle average, times each
 /// row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
 /// zero and negative mean no compensation. When compensation would remove every weight (a
 /// constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
@@ -552,9 +812,10 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_build_compensated(
 /// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
 /// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
 /// and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
-/// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 8 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
-/// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT` (a size or length word
-/// a build never writes), `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
+/// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 16 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
+/// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION` (an older format: rebuild),
+/// `WC_ERR_CORRUPT` (a size, length or reserved word a build never writes),
+/// `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
 /// Sampling a storage that passes is safe whatever its table words hold (samples stay in the
 /// map); the sample and pdf functions run this check on every call. Reads only.
 ///
@@ -570,8 +831,9 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_validate(
 }
 
 /// `wc_envmap_marginal_conditional_validate` (the same codes, in the same order) plus one pass over every
-/// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants: for
-/// loaders that want to catch a corrupted file. Time proportional to the storage. Reads only.
+/// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants or do
+/// not match the content checksum (header word 8): every single-bit flip of a storage is
+/// caught. For loaders of files. Time proportional to the storage. Reads only.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words.
@@ -629,6 +891,92 @@ pub unsafe extern "C" fn wc_envmap_marginal_conditional_pdf(
     unsafe { pdf::<MarginalConditional>(storage, storage_len, uv, out, n) }
 }
 
+/// `wc_envmap_marginal_conditional_validate` under the Rust and JavaScript name (`from_storage`): the
+/// same O(1) header check, the same codes in the same order: `WC_OK`,
+/// `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
+/// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_marginal_conditional_from_storage(
+    storage: *const u32,
+    storage_len: usize,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { check::<MarginalConditional>(storage, storage_len, false) }
+}
+
+/// `wc_envmap_marginal_conditional_verify` under the Rust and JavaScript name (`from_storage_verified`):
+/// the header check plus one pass over every word (the format's invariants, then the content
+/// checksum, which catches every single-bit flip), the same codes in the same order:
+/// `WC_OK`, `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
+/// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_marginal_conditional_from_storage_verified(
+    storage: *const u32,
+    storage_len: usize,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { check::<MarginalConditional>(storage, storage_len, true) }
+}
+
+/// Draws `n` samples as directions with their density per steradian, in one call: the
+/// samples of `wc_envmap_marginal_conditional_sample`, each `uv` mapped onto the sphere by `layout`
+/// (`WC_ENVMAP_LAYOUT_EQUIRECT`: `wc_sphere_equirect`, density
+/// `pdf / (2 pi^2 sin(pi v))` with the point's own `v`, 0 exactly at the pole;
+/// `WC_ENVMAP_LAYOUT_EQUAL_AREA`: `wc_sphere_equal_area`, density `pdf / (4 pi)`). `u` holds
+/// `2n` floats (any values, clamped to `[0, 1)`); `out` receives `n` `WcEnvDirection`s.
+/// Returns `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count
+/// whose byte size overflows, an `out` that overlaps `u` or the storage, an unknown
+/// `layout`, or a storage that fails `wc_envmap_marginal_conditional_validate`.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
+/// writable for `n` directions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_marginal_conditional_sample_direction(
+    storage: *const u32,
+    storage_len: usize,
+    layout: u32,
+    u: *const f32,
+    out: *mut WcEnvDirection,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    unsafe { sample_direction::<MarginalConditional>(storage, storage_len, layout, u, out, n) }
+}
+
+/// Densities per steradian of `n` directions `dir` (`3n` floats, any length; the MIS weight
+/// of a direction found by BSDF sampling): each direction mapped to the unit square by
+/// `layout`'s inverse (`wc_sphere_equirect_inverse` or `wc_sphere_equal_area_inverse`), the
+/// density of `wc_envmap_marginal_conditional_pdf` there converted to solid angle at the direction.
+/// For a direction of `wc_envmap_marginal_conditional_sample_direction` it equals the sample's `pdf` to a
+/// few ulp (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) for
+/// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
+/// overlaps the storage or overlaps `dir` other than exactly in place (`out == dir`: density
+/// `i` overwrites float `i` after direction `i / 3` was read), an unknown `layout`, or a
+/// storage that fails `wc_envmap_marginal_conditional_validate`.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, `dir` for `3n` floats, and `out`
+/// writable for `n` floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_marginal_conditional_pdf_direction(
+    storage: *const u32,
+    storage_len: usize,
+    layout: u32,
+    dir: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    unsafe { pdf_direction::<MarginalConditional>(storage, storage_len, layout, dir, out, n) }
+}
+
 /// Rec. 709 luminance of `n` linear RGB texels (`3n` floats) as `n` weights:
 /// `0.2126 R + 0.7152 G + 0.0722 B` (in that order, without FMA) where positive, else `+0.0`:
 /// NaN (a NaN channel, or infinite channels of opposite signs) and negatives weigh 0, as in
@@ -649,7 +997,7 @@ pub unsafe extern "C" fn wc_envmap_luminance(rgb: *const f32, out: *mut f32, n: 
     }
 }
 
-/// Multiplies row `r` of a lat-long weight map (in place, `width * height` floats) by
+/// Multiplies row `r` of an equirect (lat-long) weight map (in place, `width * height` floats) by
 /// `sin(pi (r + 1/2) / height)`, its solid-angle factor. Returns `WC_OK` or the first failed
 /// check, in this order: `WC_ERR_ZERO_SIZE` (`width` or `height` is 0), `WC_ERR_TOO_LARGE`
 /// (`width * height` floats larger than `PTRDIFF_MAX` bytes: no such array exists),
@@ -659,7 +1007,7 @@ pub unsafe extern "C" fn wc_envmap_luminance(rgb: *const f32, out: *mut f32, n: 
 /// `weights` must be readable and writable for `width * height` floats (only when the checks
 /// above pass).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_latlong_solid_angle_weights(
+pub unsafe extern "C" fn wc_envmap_equirect_solid_angle_weights(
     weights: *mut f32,
     width: u32,
     height: u32,
@@ -678,13 +1026,13 @@ pub unsafe extern "C" fn wc_envmap_latlong_solid_angle_weights(
     // SAFETY: readable and writable for `count` initialized floats (the caller's contract);
     // non-null, aligned and of valid size (checked by `span`).
     let weights = unsafe { core::slice::from_raw_parts_mut(weights, count) };
-    match image::latlong_solid_angle_weights(weights, w, h) {
+    match image::equirect_solid_angle_weights(weights, w, h) {
         Ok(()) => WC_OK,
         Err(e) => code(e),
     }
 }
 
-/// Lat-long density conversion: `n` densities over the square (`pdf`) at rows `v` (`n`
+/// Equirect (lat-long) density conversion: `n` densities over the square (`pdf`) at rows `v` (`n`
 /// floats) to densities per steradian, `pdf / (2 pi^2 sin(pi v))` (0 at the poles). Returns
 /// `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count whose byte
 /// size overflows, an `out` overlapping `v`, or an `out` overlapping `pdf` other than
@@ -693,7 +1041,7 @@ pub unsafe extern "C" fn wc_envmap_latlong_solid_angle_weights(
 /// # Safety
 /// `pdf` and `v` must be readable for `n` floats and `out` writable for `n` floats.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_latlong_pdf_to_solid_angle(
+pub unsafe extern "C" fn wc_envmap_equirect_pdf_to_solid_angle(
     pdf: *const f32,
     v: *const f32,
     out: *mut f32,
@@ -719,7 +1067,7 @@ pub unsafe extern "C" fn wc_envmap_latlong_pdf_to_solid_angle(
     unsafe {
         map::<f32, f32, 1, 1>(pdf, out, n, |p, o| {
             for (p, o) in p.iter().zip(o.iter_mut()) {
-                *o = [image::latlong_pdf_to_solid_angle(
+                *o = [image::equirect_pdf_to_solid_angle(
                     p[0],
                     v.get(i).copied().unwrap_or(0.0),
                 )];
@@ -730,7 +1078,7 @@ pub unsafe extern "C" fn wc_envmap_latlong_pdf_to_solid_angle(
     }
 }
 
-/// Resamples a lat-long image (`src_width x src_height` texels of `channels` floats, 1 to 4)
+/// Resamples an equirect (lat-long) image (`src_width x src_height` texels of `channels` floats, 1 to 4)
 /// onto the `size x size` equal-area octahedral square (`dst`, `size * size * channels`
 /// floats), each output texel the average of `supersample^2` stratified point samples of the
 /// source (nearest texel; NaN and negative channels count as 0). Returns `WC_OK` or the first
@@ -749,7 +1097,7 @@ pub unsafe extern "C" fn wc_envmap_latlong_pdf_to_solid_angle(
 /// `src` must be readable for `src_width * src_height * channels` floats and `dst` writable
 /// for `size * size * channels` floats (only when the checks above pass).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_latlong_to_equal_area(
+pub unsafe extern "C" fn wc_envmap_equirect_to_equal_area(
     src: *const f32,
     src_width: u32,
     src_height: u32,
@@ -806,7 +1154,7 @@ pub unsafe extern "C" fn wc_envmap_latlong_to_equal_area(
     ) -> i32 {
         let (s, _) = s.as_chunks::<C>();
         let (d, _) = d.as_chunks_mut::<C>();
-        match image::latlong_to_equal_area(s, w, h, d, n, ss) {
+        match image::equirect_to_equal_area(s, w, h, d, n, ss) {
             Ok(()) => WC_OK,
             Err(e) => code(e),
         }
@@ -816,5 +1164,64 @@ pub unsafe extern "C" fn wc_envmap_latlong_to_equal_area(
         2 => run::<2>(src, sw, sh, dst, n, ss),
         3 => run::<3>(src, sw, sh, dst, n, ss),
         _ => run::<4>(src, sw, sh, dst, n, ss),
+    }
+}
+
+/// Deprecated name of `wc_envmap_equirect_solid_angle_weights` (one name per thing: the
+/// layout is `equirect` everywhere): the same function, the same codes.
+///
+/// # Safety
+/// As `wc_envmap_equirect_solid_angle_weights`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_latlong_solid_angle_weights(
+    weights: *mut f32,
+    width: u32,
+    height: u32,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { wc_envmap_equirect_solid_angle_weights(weights, width, height) }
+}
+
+/// Deprecated name of `wc_envmap_equirect_pdf_to_solid_angle`: the same function, the same
+/// results and pointer rules.
+///
+/// # Safety
+/// As `wc_envmap_equirect_pdf_to_solid_angle`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_latlong_pdf_to_solid_angle(
+    pdf: *const f32,
+    v: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    unsafe { wc_envmap_equirect_pdf_to_solid_angle(pdf, v, out, n) }
+}
+
+/// Deprecated name of `wc_envmap_equirect_to_equal_area`: the same function, the same codes.
+///
+/// # Safety
+/// As `wc_envmap_equirect_to_equal_area`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_latlong_to_equal_area(
+    src: *const f32,
+    src_width: u32,
+    src_height: u32,
+    channels: u32,
+    dst: *mut f32,
+    size: u32,
+    supersample: u32,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe {
+        wc_envmap_equirect_to_equal_area(
+            src,
+            src_width,
+            src_height,
+            channels,
+            dst,
+            size,
+            supersample,
+        )
     }
 }

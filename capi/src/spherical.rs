@@ -2,8 +2,9 @@
 //! King 2013). Each call takes one light and one shading point as 12 floats, `light`:
 //! `v0, v1, v2, p` (triangle) or `corner, ex, ey, p` (rectangle, the point
 //! `corner + s ex + t ey`), read before anything is written (so `light` may even overlap
-//! `out`). See `warpcore::spherical` for the maps, their precision and the degenerate cases
-//! (density 0 where the solid angle is 0).
+//! `out`); the cosine-aware variants take 15, the receiver's normal `n` after `p`. See
+//! `warpcore::spherical` for the maps, their precision and the degenerate cases (density 0
+//! where the solid angle is 0).
 
 use warpcore::spherical;
 
@@ -12,10 +13,19 @@ use warpcore::spherical;
 /// # Safety
 /// `light` must be readable for 12 floats.
 unsafe fn read_light(light: *const f32) -> Option<[[f32; 3]; 4]> {
+    // SAFETY: the caller's contract, passed on.
+    unsafe { read_vectors::<4>(light) }
+}
+
+/// The `3 K` floats at `light` as `K` vectors, or `None` for a null or misaligned pointer.
+///
+/// # Safety
+/// `light` must be readable for `3 K` floats.
+unsafe fn read_vectors<const K: usize>(light: *const f32) -> Option<[[f32; 3]; K]> {
     // SAFETY: the caller's contract; `slice` checks null, alignment and size. The slice is
     // copied at once and dropped before anything is written.
-    let s = unsafe { crate::ffi::slice(light, 12, None)? };
-    let mut l = [[0.0f32; 3]; 4];
+    let s = unsafe { crate::ffi::slice(light, 3 * K, None)? };
+    let mut l = [[0.0f32; 3]; K];
     for (k, x) in s.iter().enumerate() {
         l[k / 3][k % 3] = *x;
     }
@@ -149,5 +159,59 @@ pub unsafe extern "C" fn wc_spherical_rectangle_solid_angle(light: *const f32) -
     match unsafe { read_light(light) } {
         Some([c, ex, ey, p]) => spherical::rectangle_solid_angle(c, ex, ey, p),
         None => 0.0,
+    }
+}
+
+/// Cosine-aware `wc_spherical_triangle`: `light` is 15 floats, `v0, v1, v2, p, n` (`n` the
+/// receiver's normal, any length); `u` is first warped by the bilinear density of the
+/// receiver's clamped cosine towards the vertices, then mapped as by
+/// `wc_spherical_triangle`; records `b0, b1, b2, density` (`4n` floats), the density
+/// including the bilinear factor (`warpcore::spherical::triangle_cosine`). Returns `n`, or 0
+/// as for `wc_spherical_triangle`.
+///
+/// # Safety
+/// `light` must be readable for 15 floats, `u` for `2n` and `out` writable for `4n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_spherical_triangle_cosine(
+    light: *const f32,
+    u: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    let Some([v0, v1, v2, p, nrm]) = (unsafe { read_vectors::<5>(light) }) else {
+        return 0;
+    };
+    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    unsafe {
+        crate::ffi::map::<f32, f32, 2, 4>(u, out, n, |u, o| {
+            spherical::triangle_cosine_slice([v0, v1, v2], p, nrm, u, o)
+        })
+    }
+}
+
+/// Cosine-aware `wc_spherical_rectangle`: `light` is 15 floats, `corner, ex, ey, p, n`;
+/// records `s, t, density` (`3n` floats), the density including the bilinear factor
+/// (`warpcore::spherical::rectangle_cosine`). Returns `n`, or 0 as for
+/// `wc_spherical_triangle`.
+///
+/// # Safety
+/// `light` must be readable for 15 floats, `u` for `2n` and `out` writable for `3n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_spherical_rectangle_cosine(
+    light: *const f32,
+    u: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    let Some([c, ex, ey, p, nrm]) = (unsafe { read_vectors::<5>(light) }) else {
+        return 0;
+    };
+    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    unsafe {
+        crate::ffi::map::<f32, f32, 2, 3>(u, out, n, |u, o| {
+            spherical::rectangle_cosine_slice(c, ex, ey, p, nrm, u, o)
+        })
     }
 }

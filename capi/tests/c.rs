@@ -200,7 +200,7 @@ fn c_fingerprint_matches_the_golden_file_and_the_crate() {
         hash(&|h| {
             for i in 0..N {
                 let [p, v]: [f32; 2] = input(i);
-                h.floats(&[image::latlong_pdf_to_solid_angle(p, v)]);
+                h.floats(&[image::equirect_pdf_to_solid_angle(p, v)]);
             }
         }),
     );
@@ -215,11 +215,11 @@ fn c_fingerprint_matches_the_golden_file_and_the_crate() {
         "envmap_image",
         hash(&|h| {
             let mut w = weights;
-            image::latlong_solid_angle_weights(&mut w, 13, 7).unwrap();
+            image::equirect_solid_angle_weights(&mut w, 13, 7).unwrap();
             h.floats(&w);
             let rgb: Vec<[f32; 3]> = (0..91).map(|k| input(200 + k)).collect();
             let mut dst = vec![[0.0f32; 3]; 64];
-            image::latlong_to_equal_area(&rgb, 13, 7, &mut dst, 8, 3).unwrap();
+            image::equirect_to_equal_area(&rgb, 13, 7, &mut dst, 8, 3).unwrap();
             for t in &dst {
                 h.floats(t);
             }
@@ -504,6 +504,27 @@ const TABLE: &[(&str, &[&str])] = {
         "0:unknown-pattern",
     ];
     const SAMPLER: &[&str] = &["sampler", "unknown-pattern"];
+    const SAMPLE_DIRECTION: &[&str] = &[
+        "n",
+        "0:n=0",
+        "0:null",
+        "0:misaligned",
+        "0:size",
+        "0:overlap",
+        "0:unknown-layout",
+        "0:invalid-storage",
+    ];
+    const PDF_DIRECTION: &[&str] = &[
+        "n",
+        "in-place",
+        "0:n=0",
+        "0:null",
+        "0:misaligned",
+        "0:size",
+        "0:overlap",
+        "0:unknown-layout",
+        "0:invalid-storage",
+    ];
     &[
         ("wc_disk_polar", MAP_IN_PLACE),
         ("wc_disk_polar_inverse", MAP_IN_PLACE),
@@ -517,6 +538,8 @@ const TABLE: &[(&str, &[&str])] = {
         ("wc_spherical_triangle_inverse", MAP_IN_PLACE),
         ("wc_spherical_rectangle", MAP),
         ("wc_spherical_rectangle_inverse", MAP_IN_PLACE),
+        ("wc_spherical_triangle_cosine", MAP),
+        ("wc_spherical_rectangle_cosine", MAP),
         (
             "wc_spherical_triangle_solid_angle",
             &["omega", "0:null", "0:misaligned"],
@@ -591,6 +614,10 @@ const TABLE: &[(&str, &[&str])] = {
         ("wc_envmap_hierarchical_verify", CHECK),
         ("wc_envmap_hierarchical_sample", SAMPLE),
         ("wc_envmap_hierarchical_pdf", PDF),
+        ("wc_envmap_hierarchical_from_storage", CHECK),
+        ("wc_envmap_hierarchical_from_storage_verified", CHECK),
+        ("wc_envmap_hierarchical_sample_direction", SAMPLE_DIRECTION),
+        ("wc_envmap_hierarchical_pdf_direction", PDF_DIRECTION),
         ("wc_envmap_marginal_conditional_storage_len", LEN),
         ("wc_envmap_marginal_conditional_build", BUILD),
         ("wc_envmap_marginal_conditional_build_compensated", BUILD),
@@ -598,10 +625,27 @@ const TABLE: &[(&str, &[&str])] = {
         ("wc_envmap_marginal_conditional_verify", CHECK),
         ("wc_envmap_marginal_conditional_sample", SAMPLE),
         ("wc_envmap_marginal_conditional_pdf", PDF),
+        ("wc_envmap_marginal_conditional_from_storage", CHECK),
+        (
+            "wc_envmap_marginal_conditional_from_storage_verified",
+            CHECK,
+        ),
+        (
+            "wc_envmap_marginal_conditional_sample_direction",
+            SAMPLE_DIRECTION,
+        ),
+        (
+            "wc_envmap_marginal_conditional_pdf_direction",
+            PDF_DIRECTION,
+        ),
         ("wc_envmap_luminance", MAP_IN_PLACE),
         ("wc_envmap_latlong_solid_angle_weights", IMAGE),
         ("wc_envmap_latlong_pdf_to_solid_angle", MAP_IN_PLACE),
         ("wc_envmap_latlong_to_equal_area", IMAGE),
+        ("wc_envmap_equirect_solid_angle_weights", IMAGE),
+        ("wc_envmap_equirect_pdf_to_solid_angle", MAP_IN_PLACE),
+        ("wc_envmap_equirect_to_equal_area", IMAGE),
+        ("wc_error_string", &["string"]),
     ]
 };
 
@@ -679,6 +723,9 @@ fn documented_outcomes(
     );
     add("capped", doc.contains("min(n, 4 n_points)"));
     add("0:invalid-storage", doc.contains("fails `wc_"));
+    add("0:unknown-layout", own.contains("an unknown `layout`"));
+    // A static string for any argument (`wc_error_string`).
+    add("string", decl.starts_with("const char *"));
     add("0:size=0", doc.contains("size == 0"));
     let len = name.ends_with("_storage_len");
     add("words", len);

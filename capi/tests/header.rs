@@ -73,8 +73,10 @@ fn header_declares_every_function_with_its_docs() {
                 continue; // linker plumbing of the no_std build, not API
             }
             exported += 1;
+            // ` name(`, or `*name(` after a pointer return type (`const char *wc_error_string(`).
             let at = header
                 .find(&format!(" {name}("))
+                .or_else(|| header.find(&format!("*{name}(")))
                 .unwrap_or_else(|| panic!("{name} is not declared in include/warpcore.h"));
             // The declaration is preceded by its comment.
             let before = &header[..at];

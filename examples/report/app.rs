@@ -65,6 +65,13 @@ impl Options {
             }
             names.push(s.name());
         }
+        #[cfg(feature = "spherical")]
+        for s in crate::solid_angle::SolidAngleScene::all() {
+            if !names.contains(&s.light_name()) {
+                names.push(s.light_name());
+            }
+            names.push(s.name());
+        }
         #[cfg(feature = "envmap")]
         {
             names.push("envmap:sky".into());

@@ -204,29 +204,6 @@ pub fn run(scenes: &[&EnvScene], pixels: usize, grid: usize, threads: usize) -> 
     out
 }
 
-#[cfg(test)]
-mod tests {
-    use super::anova;
-
-    /// An additive table has no both-axes part; a product of two centred factors is all
-    /// both-axes part; the parts add up to the variance.
-    #[test]
-    fn anova_separates_additive_and_interaction_parts() {
-        let n = 16;
-        let f = |a: usize| (a as f64 + 0.5) / n as f64 - 0.5;
-        let add: Vec<f64> = (0..n * n).map(|k| f(k % n) + 2.0 * f(k / n)).collect();
-        let (v, v0, v1, v01) = anova(&add, n);
-        assert!(v01 < 1e-12 * v, "{v01} of {v}");
-        assert!((v1 / v0 - 4.0).abs() < 1e-9, "{v0} {v1}");
-        let prod: Vec<f64> = (0..n * n).map(|k| f(k % n) * f(k / n)).collect();
-        let (v, v0, v1, v01) = anova(&prod, n);
-        assert!(
-            v0 < 1e-12 && v1 < 1e-12 && (v01 - v).abs() < 1e-12 * v,
-            "{v} {v0} {v1} {v01}"
-        );
-    }
-}
-
 /// `envmap_by_sampler.md`: per sampler, each env-map warp's MSE over `hierarchical_equirect`'s
 /// (the geometric mean over every environment-map scene and class, rotations averaged
 /// within each) at 16 and at the largest sample count, and the warp that is lowest.
@@ -296,4 +273,27 @@ pub fn by_sampler_markdown(results: &[SceneResult]) -> String {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::anova;
+
+    /// An additive table has no both-axes part; a product of two centred factors is all
+    /// both-axes part; the parts add up to the variance.
+    #[test]
+    fn anova_separates_additive_and_interaction_parts() {
+        let n = 16;
+        let f = |a: usize| (a as f64 + 0.5) / n as f64 - 0.5;
+        let add: Vec<f64> = (0..n * n).map(|k| f(k % n) + 2.0 * f(k / n)).collect();
+        let (v, v0, v1, v01) = anova(&add, n);
+        assert!(v01 < 1e-12 * v, "{v01} of {v}");
+        assert!((v1 / v0 - 4.0).abs() < 1e-9, "{v0} {v1}");
+        let prod: Vec<f64> = (0..n * n).map(|k| f(k % n) * f(k / n)).collect();
+        let (v, v0, v1, v01) = anova(&prod, n);
+        assert!(
+            v0 < 1e-12 && v1 < 1e-12 && (v01 - v).abs() < 1e-12 * v,
+            "{v} {v0} {v1} {v01}"
+        );
+    }
 }

@@ -17,13 +17,13 @@
 //! (`s x s`, `s = round(sqrt(w h))`). The built-in maps are procedural functions rasterized
 //! into each parameterization (each texel the mean of an 8 x 8 grid of point values); a
 //! `--envmap` PFM file is taken as its lat-long map (luminance, negative and NaN as 0) and
-//! resampled by `warpcore::envmap::image::latlong_to_equal_area` (4 x 4 points per texel).
+//! resampled by `warpcore::envmap::image::equirect_to_equal_area` (4 x 4 points per texel).
 //!
 //! **Warps** (`warp` = distribution + parameterization):
 //!
 //! | warp | distribution over the map's square | weights | direction | density over directions |
 //! |---|---|---|---|---|
-//! | `marginal_equirect` | `MarginalConditional` | luminance x `sin(theta)` of the row (`latlong_solid_angle_weights`) | `sphere::equirect` | `latlong_pdf_to_solid_angle(pdf, v)` |
+//! | `marginal_equirect` | `MarginalConditional` | luminance x `sin(theta)` of the row (`equirect_solid_angle_weights`) | `sphere::equirect` | `equirect_pdf_to_solid_angle(pdf, v)` |
 //! | `hierarchical_equirect` | `Hierarchical` | the same | the same | the same |
 //! | `marginal_equal_area` | `MarginalConditional` | luminance | `sphere::equal_area` | `equal_area_pdf_to_solid_angle(pdf)` |
 //! | `hierarchical_equal_area` | `Hierarchical` | luminance | the same | the same |
@@ -36,7 +36,7 @@
 //! **MIS warps** (`hierarchical_equirect_mis`, `hierarchical_equal_area_mis`; issue 25; for
 //! random points, pmj02bn and Sobol' only, the report's time budget): the hierarchical
 //! distribution built from MIS-compensated
-//! weights (`Compensation::LatLong` / `Compensation::Uniform` with fraction 1: the map minus
+//! weights (`Compensation::Equirect` / `Compensation::Uniform` with fraction 1: the map minus
 //! its solid-angle average, clamped at 0; Karlik et al. 2019, pbrt-v4's
 //! `compensatedDistribution`, Mitsuba 3's `mis_compensation`), combined with cosine-weighted
 //! BSDF sampling by the balance heuristic: each of the `N` sample points gives one map sample
@@ -356,14 +356,14 @@ fn sides(
         *l *= scale;
     }
     let mut ll_weights: Vec<f32> = ll.iter().map(|&l| if l > 0.0 { l } else { 0.0 }).collect();
-    image::latlong_solid_angle_weights(&mut ll_weights, w, h)?;
+    image::equirect_solid_angle_weights(&mut ll_weights, w, h)?;
     let ea_weights: Vec<f32> = ea.iter().map(|&l| if l > 0.0 { l } else { 0.0 }).collect();
     Ok((
         Side::new(
             grids.0.clone(),
             &ll,
             ll_weights,
-            Compensation::LatLong(mis_fraction()),
+            Compensation::Equirect(mis_fraction()),
         )?,
         Side::new(
             grids.1.clone(),
@@ -663,7 +663,7 @@ impl EnvView<'_> {
         if warp < 2 {
             sphere::equirect_slice(uv, dirs);
             for (p, smp) in pdf.iter_mut().zip(samples.iter()) {
-                *p = image::latlong_pdf_to_solid_angle(smp.pdf, smp.uv[1]);
+                *p = image::equirect_pdf_to_solid_angle(smp.pdf, smp.uv[1]);
             }
         } else {
             sphere::equal_area_slice(uv, dirs);
@@ -691,7 +691,7 @@ impl EnvView<'_> {
                 ea.hierarchical_mis.pdf(uv)
             };
             f64::from(if latlong {
-                image::latlong_pdf_to_solid_angle(p, uv[1])
+                image::equirect_pdf_to_solid_angle(p, uv[1])
             } else {
                 image::equal_area_pdf_to_solid_angle(p)
             })

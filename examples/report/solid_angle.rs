@@ -10,6 +10,19 @@
 //! omega` from `spherical::triangle` / `spherical::rectangle` and `cos(theta) = h / r`: the
 //! `cos' / r^2` factor is gone, only the receiver's cosine and the visibility remain.
 //!
+//! **Cosine-aware variant** (`solid_angle_cos`, issue 22 item 3): `u` is first warped by the
+//! bilinear density whose corner values are the receiver's clamped cosine `max(0, n . w)`
+//! towards the light's corners (the idea of Hart, Pharr, Mueller, Lopes, McGuire and Shirley
+//! 2020, "Practical Product Sampling by Fitting and Composing Warps", EGSR, which pbrt-v4's
+//! triangle light uses), then mapped by the spherical map; the density is the solid-angle
+//! density times the bilinear one. The square's corners `(u0, u1) = (0, 0), (1, 0), (0, 1),
+//! (1, 1)` map to the triangle's `v1, v1, v0, v2` (Arvo's apex `v1` is the whole side `u1 =
+//! 0`) and to the rectangle's `corner`, `+ ex`, `+ ey`, `+ ex + ey`. The receiver's normal
+//! faces the light plane (`n = -z`). Exactly unbiased: the bilinear warp is a bijection of
+//! the open square with a density positive inside it; weights that are all 0 (or not
+//! finite) leave `u` unchanged with density factor 1. Measured first here, then kept in the
+//! library (`spherical::triangle_cosine`, `rectangle_cosine`), which the scenes now call.
+//!
 //! **Timings.** `draw` (what the report times) runs the sampler and the warp for the shading
 //! point over the light's centre, through the slice forms; `evaluate` re-runs the solid-angle
 //! map for the pixel's own shading point (the map depends on it), untimed.
@@ -28,6 +41,8 @@ pub enum Domain {
     AreaBasuOwen,
     /// Uniform by solid angle.
     SolidAngle,
+    /// By solid angle after the bilinear cosine warp (see the module docs).
+    SolidAngleCos,
 }
 
 impl Domain {
@@ -36,6 +51,7 @@ impl Domain {
             Domain::Area => "area",
             Domain::AreaBasuOwen => "area_basu_owen_permuted",
             Domain::SolidAngle => "solid_angle",
+            Domain::SolidAngleCos => "solid_angle_cos",
         }
     }
 }
@@ -56,8 +72,15 @@ impl SolidAngleScene {
         let mut out = Vec::new();
         for base in AreaScene::all() {
             let domains = match base.light {
-                "triangle" => vec![Domain::Area, Domain::AreaBasuOwen, Domain::SolidAngle],
-                "square" | "skinny" => vec![Domain::Area, Domain::SolidAngle],
+                "triangle" => vec![
+                    Domain::Area,
+                    Domain::AreaBasuOwen,
+                    Domain::SolidAngle,
+                    Domain::SolidAngleCos,
+                ],
+                "square" | "skinny" => {
+                    vec![Domain::Area, Domain::SolidAngle, Domain::SolidAngleCos]
+                }
                 _ => continue,
             };
             for ratio in RATIOS {
@@ -112,10 +135,20 @@ impl SolidAngleScene {
     }
 
     /// Solid-angle samples for shading point `p`: plane points and `1 / pdf`.
-    fn solid_angle_point(&self, l: &[[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) -> ([f64; 2], f64) {
+    fn solid_angle_point(
+        &self,
+        l: &[[f32; 3]; 3],
+        p: [f32; 3],
+        u: [f32; 2],
+        cosine: bool,
+    ) -> ([f64; 2], f64) {
         match &self.base.shape {
             Shape::Triangle { v } => {
-                let (b, pdf) = spherical::triangle(*l, p, u);
+                let (b, pdf) = if cosine {
+                    spherical::triangle_cosine(*l, p, RECEIVER_NORMAL, u)
+                } else {
+                    spherical::triangle(*l, p, u)
+                };
                 let (b0, b1, b2) = (b[0] as f64, b[1] as f64, b[2] as f64);
                 (
                     [
@@ -126,7 +159,11 @@ impl SolidAngleScene {
                 )
             }
             _ => {
-                let ([s, t], pdf) = spherical::rectangle(l[0], l[1], l[2], p, u);
+                let ([s, t], pdf) = if cosine {
+                    spherical::rectangle_cosine(l[0], l[1], l[2], p, RECEIVER_NORMAL, u)
+                } else {
+                    spherical::rectangle(l[0], l[1], l[2], p, u)
+                };
                 (
                     [
                         l[0][0] as f64 + s as f64 * l[1][0] as f64,
@@ -207,21 +244,32 @@ impl Scene for SolidAngleScene {
                     triangle::uniform_slice(pts, &mut s.out3[..spp]);
                 }
             }
-            Domain::SolidAngle => {
+            d @ (Domain::SolidAngle | Domain::SolidAngleCos) => {
                 sampler.fill(seed, pts);
                 // The timed warp: the shading point over the light's centre.
-                let (l, p) = (self.light3(), self.point([0.0, 0.0]));
+                let (l, p, n) = (self.light3(), self.point([0.0, 0.0]), RECEIVER_NORMAL);
+                let cos = d == Domain::SolidAngleCos;
                 match &self.base.shape {
                     Shape::Triangle { .. } => {
                         let mut out = [[0.0f32; 4]; 64];
                         for chunk in pts.chunks(64) {
-                            spherical::triangle_slice(l, p, chunk, &mut out);
+                            if cos {
+                                spherical::triangle_cosine_slice(l, p, n, chunk, &mut out);
+                            } else {
+                                spherical::triangle_slice(l, p, chunk, &mut out);
+                            }
                         }
                     }
                     _ => {
                         let mut out = [[0.0f32; 3]; 64];
                         for chunk in pts.chunks(64) {
-                            spherical::rectangle_slice(l[0], l[1], l[2], p, chunk, &mut out);
+                            if cos {
+                                spherical::rectangle_cosine_slice(
+                                    l[0], l[1], l[2], p, n, chunk, &mut out,
+                                );
+                            } else {
+                                spherical::rectangle_slice(l[0], l[1], l[2], p, chunk, &mut out);
+                            }
                         }
                     }
                 }
@@ -233,12 +281,12 @@ impl Scene for SolidAngleScene {
         let (q, cut, h) = (pixel.q, pixel.cut, self.height());
         let visible = |x: [f64; 2]| cut.visible(x);
         match self.domains[warp] {
-            Domain::SolidAngle => {
+            d @ (Domain::SolidAngle | Domain::SolidAngleCos) => {
                 let (l, p) = (self.light3(), self.point(q));
                 let sum: f64 = s.points[..spp]
                     .iter()
                     .map(|&u| {
-                        let (x, pdf) = self.solid_angle_point(&l, p, u);
+                        let (x, pdf) = self.solid_angle_point(&l, p, u, d == Domain::SolidAngleCos);
                         if !visible(x) || pdf <= 0.0 {
                             return 0.0;
                         }
@@ -284,3 +332,6 @@ impl Scene for SolidAngleScene {
         }
     }
 }
+
+/// The receiver's normal in the report's scenes: facing the light plane.
+const RECEIVER_NORMAL: [f32; 3] = [0.0, 0.0, -1.0];

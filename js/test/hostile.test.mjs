@@ -230,13 +230,19 @@ const SPEC = {
   envmapLatlongPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
   envmapLatlongSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, NUM(3), NUM(2)],
   envmapLatlongToEqualArea: [{ T: Float32Array, d: 18, good: () => new Float32Array(18).fill(0.5) }, NUM(3), NUM(2), NUM(3), NUM(4), NUM(2)],
+  envmapEquirectPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
+  envmapEquirectSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, NUM(3), NUM(2)],
+  envmapEquirectToEqualArea: [{ T: Float32Array, d: 18, good: () => new Float32Array(18).fill(0.5) }, NUM(3), NUM(2), NUM(3), NUM(4), NUM(2)],
   envmapHierarchical: [{ T: Float32Array, d: 6, good: () => new Float32Array([1, 2, 0, 3, 1, 1]) }, NUM(3), NUM(2)],
   envmapMarginalConditional: [{ T: Float32Array, d: 6, good: () => new Float32Array([1, 2, 0, 3, 1, 1]) }, NUM(3), NUM(2)],
-  envmapFromStorage: [{ T: Uint32Array, d: 1, good: () => STORAGE.slice() }],
+  // Storage words: any ArrayBufferView of bytes is accepted (a subclass or another realm's
+  // Uint32Array as its bytes, read with the intrinsic getters only; a DataView of zeros is a
+  // RangeError: not a storage).
+  envmapFromStorage: [{ T: Uint32Array, d: 1, good: () => STORAGE.slice(), bytes: { subclass: null, 'another realm': null, DataView: RangeError } }],
 };
 // Functions whose last argument is an optional `out` of this type and length (for the good
 // arguments).
-const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapFromStorage', 'envmapLatlongSolidAngleWeights', 'envmapLatlongToEqualArea']);
+const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapFromStorage', 'envmapLatlongSolidAngleWeights', 'envmapLatlongToEqualArea', 'envmapEquirectSolidAngleWeights', 'envmapEquirectToEqualArea']);
 const OUT = {};
 for (const [name, specs] of Object.entries(SPEC)) {
   if (NO_OUT.has(name)) continue;
@@ -357,7 +363,8 @@ test('hostile arguments: exact errors, no user code, no wasm memory view', (t) =
     const positions = specs.map((s, k) => [s, k]);
     if (OUT[name]) positions.push([{ T: OUT[name].T, d: 1, good: () => new OUT[name].T(OUT[name].length), out: true }, OUT[name].at]);
     for (const [spec, k] of positions) {
-      const variants = spec.num ? hostileNumbers() : hostileArrays(spec.T, spec.good());
+      let variants = spec.num ? hostileNumbers() : hostileArrays(spec.T, spec.good());
+      if (spec.bytes) variants = variants.map(([what, value, Want]) => [what, value, what in spec.bytes ? spec.bytes[what] : Want]);
       for (const [what, value, Want] of variants) {
         const args = good();
         args[k] = value;

@@ -80,3 +80,31 @@ test('stiff lights: no NaN, densities finite and >= 0 (0 for degenerate lights)'
   }
   assert.equal(wc.sphericalTriangle(lights[0], u)[3], 0);
 });
+
+test('cosine-aware maps: density is the bilinear cosine fit over the solid angle', () => {
+  // The light facing a tilted receiver; the plain map of the warped sample is recovered by
+  // the inverse, and the density must be bilinear(u') / omega with the weights computed here.
+  const n = [0.3, -0.2, 1];
+  const light = Float32Array.of(...TRI, ...n);
+  const p = at(TRI, 3);
+  const v = [at(TRI, 0), at(TRI, 1), at(TRI, 2)];
+  const omega = vos(sub(v[0], p), sub(v[1], p), sub(v[2], p));
+  const c = (x) => Math.max(0, dot(n, sub(x, p)) / (norm(n) * norm(sub(x, p))));
+  const w = [c(v[1]), c(v[1]), c(v[0]), c(v[2])];
+  const bil = ([x, y]) => (4 * ((1 - x) * (1 - y) * w[0] + x * (1 - y) * w[1] + (1 - x) * y * w[2] + x * y * w[3])) / (w[0] + w[1] + w[2] + w[3]);
+  const out = wc.sphericalTriangleCosine(light, U);
+  assert.equal(out.length, 128);
+  for (let i = 0; i < 32; i++) {
+    const [b0, b1, b2, pdf] = out.subarray(4 * i, 4 * i + 4);
+    assert.ok(b0 >= 0 && b1 >= 0 && b2 >= 0 && Math.abs(b0 + b1 + b2 - 1) < 3e-7);
+    const u = wc.sphericalTriangleInverse(TRI, Float32Array.of(b0, b1, b2));
+    if (u[1] < 0.01) continue; // the apex loses u0
+    assert.ok(Math.abs(pdf * omega - bil(u)) < 1e-3, `${i}: ${pdf * omega} vs ${bil(u)}`);
+  }
+  // A receiver facing away: every weight 0, the plain map bit for bit.
+  const away = Float32Array.of(...TRI, 0, 0, -1);
+  assert.deepEqual(wc.sphericalTriangleCosine(away, U), wc.sphericalTriangle(TRI, U));
+  const rect = Float32Array.of(...RECT, 0, 0, -1);
+  assert.deepEqual(wc.sphericalRectangleCosine(rect, U), wc.sphericalRectangle(RECT, U));
+  assert.throws(() => wc.sphericalRectangleCosine(RECT, U), RangeError);
+});

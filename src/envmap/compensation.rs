@@ -11,7 +11,7 @@
 //! the MIS weights must use (the map is still evaluated as `L`).
 //!
 //! Rules here: weights are cleaned first (NaN, negatives, `-inf` as 0; `+inf` is
-//! [`Error::InfiniteWeight`]); the average is over solid angle ([`Compensation::LatLong`]
+//! [`Error::InfiniteWeight`]); the average is over solid angle ([`Compensation::Equirect`]
 //! divides out the rows' `sin(theta)`); the compensated weight is `max(0, w - fraction *
 //! average * factor)`, computed in `f64`. When that removes everything (a constant map with
 //! `fraction >= 1`, an all-zero map), the build **falls back to the uncompensated weights**
@@ -47,11 +47,21 @@ pub enum Compensation {
     /// Every texel covers the same solid angle (an equal-area map, or any image sampled by
     /// area): `w' = max(0, w - fraction * mean(w))`.
     Uniform(f32),
-    /// A lat-long map whose weights are radiance times the row's `sin(theta)`, as
-    /// [`image::latlong_solid_angle_weights`] makes them: the radiance's solid-angle average
+    /// An equirect (lat-long) map whose weights are radiance times the row's `sin(theta)`, as
+    /// [`image::equirect_solid_angle_weights`] makes them: the radiance's solid-angle average
     /// `a = sum(w) / sum(sin(theta_row))` (over all texels) is subtracted from the radiance,
     /// `w' = max(0, w - fraction * a * sin(theta_row))`, `theta_row = pi (row + 1/2) / height`.
-    LatLong(f32),
+    Equirect(f32),
+}
+
+impl Compensation {
+    /// Deprecated alias of [`Compensation::Equirect`] (one name per thing): constructs it.
+    #[deprecated(since = "0.1.0", note = "renamed to `Compensation::Equirect`")]
+    #[doc(hidden)]
+    #[allow(non_snake_case)]
+    pub const fn LatLong(fraction: f32) -> Self {
+        Compensation::Equirect(fraction)
+    }
 }
 
 /// An active compensation: what to subtract from each cleaned weight.
@@ -75,7 +85,7 @@ impl Compensator {
         let (fraction, latlong) = match how {
             Compensation::None => return Ok(None),
             Compensation::Uniform(f) => (f, false),
-            Compensation::LatLong(f) => (f, true),
+            Compensation::Equirect(f) => (f, true),
         };
         // NaN, zero and negative fractions: no compensation.
         if fraction.is_nan() || fraction <= 0.0 {
@@ -120,7 +130,7 @@ impl Compensator {
     }
 }
 
-/// `sin(theta)` at row `r`'s centre, as [`image::latlong_solid_angle_weights`] computes it.
+/// `sin(theta)` at row `r`'s centre, as [`image::equirect_solid_angle_weights`] computes it.
 fn row_factor(r: usize, height: usize) -> f64 {
     let v = ((r as f64 + 0.5) / height as f64) as f32;
     f64::from(image::row_sine(v))

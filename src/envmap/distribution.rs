@@ -1,7 +1,11 @@
 //! [`Distribution`]: what both environment-map distributions offer, so that a renderer can be
 //! generic over them, and the inherent methods that forward to it.
 
-use super::{Sample, SampleX8, SampleX16, scalar_sample, simd_sample, simd16_sample, slices};
+use super::direction::{CHUNK, direction_of, solid_angle_of, uv_of};
+use super::{
+    DirectionSample, Layout, Sample, SampleX8, SampleX16, scalar_sample, simd_sample,
+    simd16_sample, slices,
+};
 use wide::{f32x8, f32x16};
 
 /// A 2D distribution over an image's texels: [`Hierarchical`](super::Hierarchical) and
@@ -103,6 +107,94 @@ pub trait Distribution: slices::Body {
     fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
         self.slice_pdf(uv, out)
     }
+
+    /// [`sample`](Self::sample) as a direction and its density **per steradian**: the map's
+    /// `uv` laid over the sphere by `layout` ([`sphere::equirect`](crate::sphere::equirect) or
+    /// [`sphere::equal_area`](crate::sphere::equal_area)), the area pdf converted by
+    /// [`image::equirect_pdf_to_solid_angle`](super::image::equirect_pdf_to_solid_angle)`(pdf,
+    /// uv[1])` (the point's own `sin theta`; 0 exactly at the pole, where the sample should be
+    /// discarded) or [`equal_area_pdf_to_solid_angle`](crate::sphere::equal_area_pdf_to_solid_angle)
+    /// (`pdf / (4 pi)`). The weights must be of that layout (for equirect, made by
+    /// [`image::equirect_solid_angle_weights`](super::image::equirect_solid_angle_weights) to
+    /// sample by radiance times solid angle).
+    ///
+    /// ```
+    /// use warpcore::envmap::{Hierarchical, Layout, Word};
+    ///
+    /// let mut storage = vec![0 as Word; Hierarchical::storage_len(4, 4)];
+    /// let map = Hierarchical::new(&[1.0; 16], 4, 4, &mut storage)?; // equal-area, constant
+    /// let s = map.sample_direction(Layout::EqualArea, [0.3, 0.8]);
+    /// assert!((s.pdf - 1.0 / (4.0 * core::f32::consts::PI)).abs() < 1e-7); // uniform on the sphere
+    /// assert_eq!(map.pdf_direction(Layout::EqualArea, s.dir), s.pdf);
+    /// # Ok::<(), warpcore::envmap::Error>(())
+    /// ```
+    #[inline]
+    fn sample_direction(&self, layout: Layout, u: [f32; 2]) -> DirectionSample {
+        direction_of(layout, self.sample(u))
+    }
+
+    /// [`sample_direction`](Self::sample_direction) over a batch: `out[i] =
+    /// sample_direction(layout, u[i])` for `i < min(u.len(), out.len())`; returns that count.
+    /// Bit-identical to the scalar form (the samples come from
+    /// [`sample_slice`](Self::sample_slice), 64 at a time).
+    fn sample_direction_slice(
+        &self,
+        layout: Layout,
+        u: &[[f32; 2]],
+        out: &mut [DirectionSample],
+    ) -> usize {
+        let n = u.len().min(out.len());
+        let (u, out) = (
+            u.get(..n).unwrap_or(&[]),
+            out.get_mut(..n).unwrap_or(&mut []),
+        );
+        let mut buf = [Sample::default(); CHUNK];
+        for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let tmp = buf.get_mut(..u.len()).unwrap_or(&mut []);
+            let k = self.sample_slice(u, tmp);
+            for (o, s) in out.iter_mut().zip(tmp.iter().take(k)) {
+                *o = direction_of(layout, *s);
+            }
+        }
+        n
+    }
+
+    /// Density **per steradian** with which [`sample_direction`](Self::sample_direction)
+    /// returns the direction `dir` (any length; the layout's inverse maps it to `uv`, then
+    /// [`pdf`](Self::pdf)`(uv)` is converted at `dir` by
+    /// [`sphere::equirect_pdf_to_solid_angle`](crate::sphere::equirect_pdf_to_solid_angle) or
+    /// [`sphere::equal_area_pdf_to_solid_angle`](crate::sphere::equal_area_pdf_to_solid_angle)):
+    /// the MIS weight of a direction found by BSDF sampling. For a sampled direction it
+    /// equals the sample's `pdf` up to a few ulp (the conversion's `sin theta` from `dir`
+    /// rather than `v`), except where rounding in the inverse puts `dir` on the neighbouring
+    /// texel (directions within an ulp of a texel edge). Total: NaN directions and
+    /// directions on the equirect axis give 0 or a finite value, never NaN.
+    #[inline]
+    fn pdf_direction(&self, layout: Layout, dir: [f32; 3]) -> f32 {
+        solid_angle_of(layout, self.pdf(uv_of(layout, dir)), dir)
+    }
+
+    /// [`pdf_direction`](Self::pdf_direction) over a batch, with the length rule of
+    /// [`sample_slice`](Self::sample_slice); bit-identical to the scalar form.
+    fn pdf_direction_slice(&self, layout: Layout, dir: &[[f32; 3]], out: &mut [f32]) -> usize {
+        let n = dir.len().min(out.len());
+        let (dir, out) = (
+            dir.get(..n).unwrap_or(&[]),
+            out.get_mut(..n).unwrap_or(&mut []),
+        );
+        let mut uv = [[0.0f32; 2]; CHUNK];
+        for (d, out) in dir.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let uv = uv.get_mut(..d.len()).unwrap_or(&mut []);
+            for (p, &d) in uv.iter_mut().zip(d) {
+                *p = uv_of(layout, d);
+            }
+            let k = self.pdf_slice(uv, out);
+            for (o, &d) in out.iter_mut().zip(d).take(k) {
+                *o = solid_angle_of(layout, *o, d);
+            }
+        }
+        n
+    }
 }
 
 /// The inherent forms of [`Distribution`]'s methods (callable without importing the trait),
@@ -172,6 +264,48 @@ macro_rules! inherent_methods {
         #[inline]
         pub fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
             super::Distribution::pdf_slice(self, uv, out)
+        }
+
+        /// A direction and its density per steradian:
+        /// [`Distribution::sample_direction`](super::Distribution::sample_direction).
+        #[inline]
+        pub fn sample_direction(
+            &self,
+            layout: super::Layout,
+            u: [f32; 2],
+        ) -> super::DirectionSample {
+            super::Distribution::sample_direction(self, layout, u)
+        }
+
+        /// [`Distribution::sample_direction_slice`](super::Distribution::sample_direction_slice):
+        /// a batch, bit-identical to the scalar form; returns the count written.
+        #[inline]
+        pub fn sample_direction_slice(
+            &self,
+            layout: super::Layout,
+            u: &[[f32; 2]],
+            out: &mut [super::DirectionSample],
+        ) -> usize {
+            super::Distribution::sample_direction_slice(self, layout, u, out)
+        }
+
+        /// The density per steradian of a direction:
+        /// [`Distribution::pdf_direction`](super::Distribution::pdf_direction).
+        #[inline]
+        pub fn pdf_direction(&self, layout: super::Layout, dir: [f32; 3]) -> f32 {
+            super::Distribution::pdf_direction(self, layout, dir)
+        }
+
+        /// [`Distribution::pdf_direction_slice`](super::Distribution::pdf_direction_slice):
+        /// a batch.
+        #[inline]
+        pub fn pdf_direction_slice(
+            &self,
+            layout: super::Layout,
+            dir: &[[f32; 3]],
+            out: &mut [f32],
+        ) -> usize {
+            super::Distribution::pdf_direction_slice(self, layout, dir, out)
         }
     };
 }

@@ -58,25 +58,23 @@
 
 use super::{
     Compensation, Compensator, Error, HEADER_WORDS, Sample, Word, carve, carve_ref, check_lens,
-    check_size, checked_len, clean, edges, from_storage_order, load4, read_header, slices, tag,
-    take, to_storage_order, u32_to_f32, write_header,
+    check_size, check_sum, checked_len, clean, edges, from_storage_order, load4, read_header, seal,
+    slices, tag, take, to_storage_order, u32_to_f32, write_header,
 };
 use crate::lanes::{Lane, UintLane, unit_interval};
 use wide::f32x8;
 
 /// Words per block: own fractions (3), four children's fractions (12), the block's sum (1).
 const BLOCK: usize = 16;
-/// Words of slack in the storage for aligning the blocks to 64 bytes.
-const ALIGN_SLACK: usize = 15;
 /// Format tag of a hierarchical storage (header word 0).
 const TAG: u32 = tag(*b"wcHI");
 
 /// Hierarchical (MIP-pyramid) 2D distribution over a `width x height` weight map (see the
 /// [module docs](super) for the guarantees and the bad-input rules).
 ///
-/// Storage: the 8-word header, one 16-word block per node of every other level of the
+/// Storage: the 16-word header, one 16-word block per node of every other level of the
 /// padded pyramid (a sixteenth of the padded texel count at the finest block level, plus a
-/// fifteenth of that above), the texel edges and 15 words of alignment slack: about 4.3 bytes
+/// fifteenth of that above) and the texel edges: about 4.3 bytes
 /// per padded texel, 34.1 MiB for 4096 x 2048. Padding to powers of two costs up to (just
 /// under) 4 times that on unlucky sizes. See the [module docs](super) for the format, which
 /// [`from_storage`](Self::from_storage) loads back.
@@ -88,6 +86,8 @@ const TAG: u32 = tag(*b"wcHI");
 /// the map centred in its pyramid (`docs/envmaps.md` has the measurements).
 #[derive(Clone, Copy, Debug)]
 pub struct Hierarchical<'a> {
+    /// The whole storage (`storage_len` words, header included), for [`Self::storage`].
+    storage: &'a [Word],
     /// The blocks, block level by block level from the root, 64-byte aligned. Block `i`:
     /// `[px, py0, py1]` of its node, then `[px, py0, py1]` of child `c` at `3 + 3c`, then the
     /// node's `f32` sum. Fractions are 0.31 fixed point (`2^31` meaning 1). The children
@@ -322,11 +322,7 @@ impl<'a> Hierarchical<'a> {
                 xbits: bits(w),
                 ybits: bits(h),
             };
-            HEADER_WORDS as u64
-                + BLOCK as u64 * shape.block_count()
-                + ALIGN_SLACK as u64
-                + (w + 1)
-                + (h + 1)
+            HEADER_WORDS as u64 + BLOCK as u64 * shape.block_count() + (w + 1) + (h + 1)
         })
     }
 
@@ -367,29 +363,19 @@ impl<'a> Hierarchical<'a> {
             ybits: bits(h as u64),
         };
         let blocks_len = usize::try_from(BLOCK as u64 * shape.block_count()).unwrap_or(0);
-        // Align the blocks to 64 bytes (the address only picks where in `storage` they
-        // start, recorded in the header; the results do not depend on it).
-        let address = storage.as_ptr() as usize + 4 * HEADER_WORDS;
-        let skip = (64 - address % 64) % 64 / 4;
-        let lens = regions(skip, blocks_len, w, h);
-        let [header, padding, blocks, edges_x, edges_y, slack] = carve(
-            storage,
-            [
-                HEADER_WORDS,
-                lens[0],
-                lens[1],
-                lens[2],
-                lens[3],
-                ALIGN_SLACK - skip,
-            ],
-        )
-        .ok_or(Error::StorageTooSmall {
-            needed,
-            got: needed,
-        })?;
+        // The blocks start right after the 64-byte header, whatever the buffer's address
+        // (format version 3: the bytes are a function of the weights alone; version 2 moved
+        // them to the next 64-byte boundary and recorded the shift, so the same map built at
+        // two addresses gave different bytes). The padding region stays in the format, empty.
+        let lens = regions(0, blocks_len, w, h);
+        let [header, blocks, edges_x, edges_y] =
+            carve(storage, [HEADER_WORDS, lens[1], lens[2], lens[3]]).ok_or(
+                Error::StorageTooSmall {
+                    needed,
+                    got: needed,
+                },
+            )?;
         write_header(header, TAG, w, h, lens);
-        padding.fill(0);
-        slack.fill(0);
 
         let mut total = 0.0f64;
         for (index, &x) in weights.iter().enumerate() {
@@ -496,6 +482,7 @@ impl<'a> Hierarchical<'a> {
         edges::fill(edges_x, w as u32);
         edges::fill(edges_y, h as u32);
         to_storage_order(storage);
+        seal(storage);
         Self::from_storage(storage)
     }
 
@@ -503,13 +490,13 @@ impl<'a> Hierarchical<'a> {
     /// another machine: see the [module docs](super) for the format), without the weights.
     ///
     /// O(1): checks the header — format tag, version, sizes in `1..=MAX_SIDE`, region lengths
-    /// that agree with the sizes (the alignment padding is at most 15 words) — and that
+    /// that agree with the sizes (the padding region is empty), zero reserved words — and that
     /// `storage` holds `storage_len(width, height)` words (more are ignored). Errors:
     /// [`Error::WrongFormat`], [`Error::UnsupportedVersion`], [`Error::Corrupt`],
     /// [`Error::StorageTooSmall`]. The tables are not read: sampling is total whatever they
     /// hold (texels inside the map, `uv` in `[0, 1)^2`, finite pdfs), and bit-identical to the
     /// distribution `new` returned when they are what `new` wrote, at any alignment of
-    /// `storage`.
+    /// `storage` (the blocks are on 64-byte cache lines when `storage` is 64-byte aligned).
     pub fn from_storage(storage: &'a [Word]) -> Result<Self, Error> {
         let (w, h, needed, lens) = read_header(storage, TAG, Self::storage_len)?;
         let shape = Shape {
@@ -517,14 +504,7 @@ impl<'a> Hierarchical<'a> {
             ybits: bits(h as u64),
         };
         let blocks_len = usize::try_from(BLOCK as u64 * shape.block_count()).unwrap_or(0);
-        // The padding is whatever the builder's address needed: any value up to the slack.
-        let skip = lens[0];
-        if skip > ALIGN_SLACK {
-            return Err(Error::Corrupt {
-                word: HEADER_WORDS - 4,
-            });
-        }
-        check_lens(lens, regions(skip, blocks_len, w, h), needed, storage.len())?;
+        check_lens(lens, regions(0, blocks_len, w, h), needed, storage.len())?;
         let tables = storage.get(HEADER_WORDS..).unwrap_or(&[]);
         let [_, blocks, edges_x, edges_y] =
             carve_ref(tables, lens).ok_or(Error::StorageTooSmall {
@@ -532,6 +512,7 @@ impl<'a> Hierarchical<'a> {
                 got: storage.len(),
             })?;
         Ok(Hierarchical {
+            storage: storage.get(..needed).unwrap_or(storage),
             blocks: blocks.as_flattened(),
             edges_x,
             edges_y,
@@ -548,14 +529,15 @@ impl<'a> Hierarchical<'a> {
     /// fraction is at most 1 (`2^31`), exactly 1 where a level does not split an axis or where
     /// the upper part is all padding (so the walk can never reach the padding), the block sums
     /// are finite and nonnegative, words `new` leaves unused are 0, and the texel edges are
-    /// exactly the ones `new` writes. [`Error::Corrupt`] names the first word that is not.
-    /// Time `O(width * height)` (a sixteenth of a word per padded texel is read twice).
+    /// exactly the ones `new` writes ([`Error::Corrupt`] names the first word that is not);
+    /// then the content checksum over every word ([`Error::Corrupt`] naming
+    /// [`CHECKSUM_WORD`](super::CHECKSUM_WORD)), which catches every single-bit flip of the
+    /// storage. Time `O(width * height)` (a sixteenth of a word per padded texel is read
+    /// twice, every word once more for the checksum): 60 ms for 4096 x 2048
+    /// (`benches/envmap.rs`, on a shared 2-core VM).
     pub fn from_storage_verified(storage: &'a [Word]) -> Result<Self, Error> {
         let map = Self::from_storage(storage)?;
-        let skip = storage
-            .get(HEADER_WORDS - 4)
-            .map_or(0, |&x| u32::from_le(x)) as usize;
-        let start = HEADER_WORDS + skip;
+        let start = HEADER_WORDS;
         if let Some(k) = map.first_bad_block_word() {
             return Err(Error::Corrupt { word: start + k });
         }
@@ -569,14 +551,7 @@ impl<'a> Hierarchical<'a> {
                 word: edges_at + w as usize + 1 + k,
             });
         }
-        // The padding before the blocks and the slack after the edges are 0.
-        let after = edges_at + w as usize + h as usize + 2;
-        let unused = (HEADER_WORDS..start).chain(after..after + ALIGN_SLACK - skip);
-        for k in unused {
-            if storage.get(k).is_some_and(|&x| x != 0) {
-                return Err(Error::Corrupt { word: k });
-            }
-        }
+        check_sum(storage, map.storage.len())?;
         Ok(map)
     }
 
@@ -662,6 +637,29 @@ impl<'a> Hierarchical<'a> {
     }
 
     super::inherent_methods!();
+
+    /// The storage words this map reads: exactly `storage_len(width, height)` words, header
+    /// included, little-endian in memory — the bytes to write to a file while the map is in
+    /// use (`bytemuck::cast_slice::<Word, u8>(map.storage())`), which
+    /// [`from_storage_verified`](Self::from_storage_verified) loads back. The same weights
+    /// give the same words, whatever buffer (and address) they were built in.
+    ///
+    /// ```
+    /// use warpcore::envmap::{Hierarchical, Word};
+    ///
+    /// let mut buffer = vec![0 as Word; Hierarchical::storage_len(2, 2) + 5];
+    /// let map = Hierarchical::new(&[1.0, 2.0, 3.0, 4.0], 2, 2, &mut buffer)?;
+    /// let s = map.sample([0.25, 0.75]);
+    /// let file: Vec<u8> = bytemuck::cast_slice(map.storage()).to_vec(); // save while sampling
+    /// let words: Vec<Word> =
+    ///     file.chunks_exact(4).map(|b| Word::from_ne_bytes(b.try_into().unwrap())).collect();
+    /// assert_eq!(Hierarchical::from_storage_verified(&words)?.sample([0.25, 0.75]), s);
+    /// # Ok::<(), warpcore::envmap::Error>(())
+    /// ```
+    #[inline]
+    pub fn storage(&self) -> &'a [Word] {
+        self.storage
+    }
 
     /// Walks the pyramid from the root to a texel, starting with the keys `key` (the pdf
     /// lookup passes zeros). At each split, `left(shift, r, m, axis)` says (per lane) whether
@@ -838,8 +836,8 @@ impl<U: UintLane> Walk<U> {
     }
 }
 
-/// Lengths of the four regions after the header: alignment padding, blocks, column and row
-/// edges.
+/// Lengths of the four regions after the header: padding (empty since format version 3),
+/// blocks, column and row edges.
 fn regions(skip: usize, blocks_len: usize, w: usize, h: usize) -> [usize; 4] {
     [skip, blocks_len, w + 1, h + 1]
 }

@@ -1,24 +1,28 @@
-//! Helpers around the distributions: weights from an RGB image, the solid-angle factor of a
-//! lat-long map, the conversions of an area pdf on `[0, 1]^2` to a pdf over directions, and
+//! Helpers around the distributions: weights from an RGB image, the solid-angle factor of an
+//! equirect (lat-long) map, the conversions of an area pdf on `[0, 1]^2` to a pdf over directions, and
 //! the resampling of a lat-long image into an equal-area (octahedral) square image.
 //!
-//! Conventions (the crate's lat-long convention, shared with [`sphere::equirect`]): a
-//! **lat-long** (equirectangular) map puts `phi = 2 pi u`, `theta = pi v`, direction
-//! `(sin theta cos phi, sin theta sin phi, cos theta)`, so row 0 is around `+z` (the top of the
-//! image: a PFM file, which stores its rows bottom to top, must be flipped on loading); its
-//! Jacobian is `d(omega) = 2 pi^2 sin(theta) du dv`. An **equal-area** map
+//! Conventions (as [`sphere::equirect`]): an **equirect** (equirectangular, lat-long) map puts
+//! `phi = 2 pi u`, `theta = pi v`, direction `(sin theta cos phi, sin theta sin phi, cos theta)`,
+//! so row 0 is around `+z` (the top of the image: a PFM file, which stores its rows bottom to
+//! top, must be flipped on loading); its Jacobian is `d(omega) = 2 pi^2 sin(theta) du dv`. An
+//! **equal-area** map
 //! (Clarberg's octahedral square, `sphere::equal_area`) has the constant Jacobian
 //! `d(omega) = 4 pi du dv`.
 //!
 //! Recipes:
 //!
-//! * **lat-long**: [`luminance_slice`] -> [`latlong_solid_angle_weights`] ->
+//! * **equirect**: [`luminance_slice`] -> [`equirect_solid_angle_weights`] ->
 //!   [`Hierarchical::new`](super::Hierarchical::new) -> `sample` -> direction
-//!   [`sphere::equirect`]`(uv)` -> density [`latlong_pdf_to_solid_angle`]`(pdf, uv[1])`;
+//!   [`sphere::equirect`]`(uv)` -> density [`equirect_pdf_to_solid_angle`]`(pdf, uv[1])` (or
+//!   both at once: `sample_direction(Layout::Equirect, u)`);
 //! * **equal-area** (the better parameterization: no pole distortion, every texel the same
-//!   solid angle, so no row factor): [`latlong_to_equal_area`] (once, from your lat-long
+//!   solid angle, so no row factor): [`equirect_to_equal_area`] (once, from your lat-long
 //!   image) -> [`luminance_slice`] -> `Hierarchical::new` -> `sample` -> direction
-//!   [`sphere::equal_area`]`(uv)` -> density [`equal_area_pdf_to_solid_angle`]`(pdf)`.
+//!   [`sphere::equal_area`]`(uv)` -> density [`equal_area_pdf_to_solid_angle`]`(pdf)` (or both
+//!   at once: `sample_direction(Layout::EqualArea, u)`).
+//!
+//! The `latlong_*` names of earlier versions remain as deprecated aliases.
 
 use super::{Error, MAX_SIDE};
 use crate::kernels::sin_cos_turns;
@@ -75,7 +79,7 @@ fn sin_pi<L: Lane>(v: L) -> L {
     sin_cos_turns(v * L::splat(0.5)).0.abs()
 }
 
-/// `sin(pi v)`, the row factor of [`latlong_solid_angle_weights`] (for MIS compensation).
+/// `sin(pi v)`, the row factor of [`equirect_solid_angle_weights`] (for MIS compensation).
 pub(super) fn row_sine(v: f32) -> f32 {
     sin_pi(v)
 }
@@ -89,7 +93,7 @@ pub(super) fn row_sine(v: f32) -> f32 {
 /// height))`, the centre's sine times a factor common to all rows. Values are multiplied
 /// as they are (bad values keep their meaning for `new`). Errors: [`Error::ZeroSize`],
 /// [`Error::LengthMismatch`].
-pub fn latlong_solid_angle_weights(
+pub fn equirect_solid_angle_weights(
     weights: &mut [f32],
     width: usize,
     height: usize,
@@ -116,7 +120,7 @@ pub fn latlong_solid_angle_weights(
 }
 
 #[inline(always)]
-fn latlong_body<L: Lane>(pdf: L, v: L) -> L {
+fn equirect_body<L: Lane>(pdf: L, v: L) -> L {
     let zero = L::splat(0.0);
     let max = L::splat(f32::MAX);
     let p = L::select(
@@ -146,24 +150,24 @@ fn latlong_body<L: Lane>(pdf: L, v: L) -> L {
 /// the density of a different sampler (uniform in solid angle inside the texel): in the
 /// polar rows it is off by up to a factor of 2 at the row's far edge, and without bound
 /// towards the pole. (The weights do use the row centre, see
-/// [`latlong_solid_angle_weights`]: there it is the texel's exact solid angle.)
+/// [`equirect_solid_angle_weights`]: there it is the texel's exact solid angle.)
 ///
 /// Total: `v` is clamped by the forward rule; a NaN or negative `pdf` gives 0, `+inf` counts
 /// as `f32::MAX`; at the pole itself (`v = 0`) the result is 0 (the sample should be
 /// discarded, as in pbrt and Mitsuba), and an overflowing result is `f32::MAX`. Error: within
 /// 3 ulp of the `f64` formula (the sine's 2 ulp plus two roundings).
 #[inline]
-pub fn latlong_pdf_to_solid_angle(pdf: f32, v: f32) -> f32 {
-    latlong_body(pdf, v)
+pub fn equirect_pdf_to_solid_angle(pdf: f32, v: f32) -> f32 {
+    equirect_body(pdf, v)
 }
 
-/// [`latlong_pdf_to_solid_angle`] on eight lanes; bit-identical to eight scalar calls.
+/// [`equirect_pdf_to_solid_angle`] on eight lanes; bit-identical to eight scalar calls.
 #[inline]
-pub fn latlong_pdf_to_solid_angle_x8(pdf: f32x8, v: f32x8) -> f32x8 {
-    latlong_body(pdf, v)
+pub fn equirect_pdf_to_solid_angle_x8(pdf: f32x8, v: f32x8) -> f32x8 {
+    equirect_body(pdf, v)
 }
 
-/// Largest supersampling factor [`latlong_to_equal_area`] accepts (per axis).
+/// Largest supersampling factor [`equirect_to_equal_area`] accepts (per axis).
 pub const MAX_SUPERSAMPLE: usize = 64;
 
 /// Resamples a lat-long (equirectangular) image into an equal-area octahedral square image
@@ -197,7 +201,7 @@ pub const MAX_SUPERSAMPLE: usize = 64;
 /// (`src.len() != src_width * src_height`, then `dst.len() != size * size`; `expected`
 /// saturates at `usize::MAX` where the product overflows `usize`, as it can on 32-bit
 /// targets). On error `dst` is unchanged.
-pub fn latlong_to_equal_area<const C: usize>(
+pub fn equirect_to_equal_area<const C: usize>(
     src: &[[f32; C]],
     src_width: usize,
     src_height: usize,
@@ -264,4 +268,45 @@ pub fn latlong_to_equal_area<const C: usize>(
         }
     }
     Ok(())
+}
+
+/// Deprecated alias of [`equirect_solid_angle_weights`] (one name per thing: `equirect`).
+#[deprecated(since = "0.1.0", note = "renamed to `equirect_solid_angle_weights`")]
+#[doc(hidden)]
+pub fn latlong_solid_angle_weights(
+    weights: &mut [f32],
+    width: usize,
+    height: usize,
+) -> Result<(), Error> {
+    equirect_solid_angle_weights(weights, width, height)
+}
+
+/// Deprecated alias of [`equirect_pdf_to_solid_angle`].
+#[deprecated(since = "0.1.0", note = "renamed to `equirect_pdf_to_solid_angle`")]
+#[doc(hidden)]
+#[inline]
+pub fn latlong_pdf_to_solid_angle(pdf: f32, v: f32) -> f32 {
+    equirect_pdf_to_solid_angle(pdf, v)
+}
+
+/// Deprecated alias of [`equirect_pdf_to_solid_angle_x8`].
+#[deprecated(since = "0.1.0", note = "renamed to `equirect_pdf_to_solid_angle_x8`")]
+#[doc(hidden)]
+#[inline]
+pub fn latlong_pdf_to_solid_angle_x8(pdf: f32x8, v: f32x8) -> f32x8 {
+    equirect_pdf_to_solid_angle_x8(pdf, v)
+}
+
+/// Deprecated alias of [`equirect_to_equal_area`].
+#[deprecated(since = "0.1.0", note = "renamed to `equirect_to_equal_area`")]
+#[doc(hidden)]
+pub fn latlong_to_equal_area<const C: usize>(
+    src: &[[f32; C]],
+    src_width: usize,
+    src_height: usize,
+    dst: &mut [[f32; C]],
+    size: usize,
+    supersample: usize,
+) -> Result<(), Error> {
+    equirect_to_equal_area(src, src_width, src_height, dst, size, supersample)
 }

@@ -86,13 +86,17 @@
 //!
 //! let weights = [1.0, 2.0, 0.0, 1.0, 4.0, 0.0, 0.5, 0.5];
 //! let mut storage = vec![0 as Word; Hierarchical::storage_len(4, 2)];
-//! let built = Hierarchical::new(&weights, 4, 2, &mut storage)?.sample([0.3, 0.8]);
+//! let map = Hierarchical::new(&weights, 4, 2, &mut storage)?;
+//! let built = map.sample([0.3, 0.8]);
 //!
-//! // The bytes to write: the words' in-memory bytes (little-endian on every target).
-//! let file: Vec<u8> = bytemuck::cast_slice(&storage).to_vec();
-//! // ... later, on any machine: read the bytes back into words and validate the header.
+//! // The bytes to write (while the map is in use): its storage's in-memory bytes,
+//! // little-endian on every target.
+//! let file: Vec<u8> = bytemuck::cast_slice(map.storage()).to_vec();
+//! // ... later, on any machine: read the bytes back into words and validate them.
 //! let words: Vec<Word> = file.chunks_exact(4).map(|b| Word::from_ne_bytes(b.try_into().unwrap())).collect();
-//! let map = Hierarchical::from_storage(&words)?; // O(1)
+//! let map = Hierarchical::from_storage(&words)?; // O(1): the header only
+//! assert_eq!(map.sample([0.3, 0.8]), built);
+//! let map = Hierarchical::from_storage_verified(&words)?; // O(n): every word, checksum
 //! assert_eq!(map.sample([0.3, 0.8]), built);
 //! # Ok::<(), warpcore::envmap::Error>(())
 //! ```
@@ -104,17 +108,22 @@
 //! | 0 | format tag: the bytes `wcMC` ([`MarginalConditional`]) or `wcHI` ([`Hierarchical`]) |
 //! | 1 | format version, [`FORMAT_VERSION`] |
 //! | 2, 3 | width, height |
-//! | 4..8 | the lengths in words of the four regions that follow, in order: marginal-conditional: row CDF (`height + 1`), row CDFs (`(width + 1) height`), column edges (`width + 1`), row edges (`height + 1`); hierarchical: alignment padding (0 to 15), blocks (`16 * blocks`), column edges, row edges (and `15 -` padding words of slack after them) |
-//! | 8.. | the tables |
+//! | 4..8 | the lengths in words of the four regions that follow, in order: marginal-conditional: row CDF (`height + 1`), row CDFs (`(width + 1) height`), column edges (`width + 1`), row edges (`height + 1`); hierarchical: padding (always 0 since version 3), blocks (`16 * blocks`), column edges, row edges |
+//! | 8 | the content checksum ([`CHECKSUM_WORD`]) of every other word of the storage |
+//! | 9..16 | reserved, 0 |
+//! | 16.. | the tables |
 //!
 //! **Byte order.** The storage's bytes in memory are little-endian on every target (big-endian
 //! targets byte-swap the words once after building and on every read), so the memory image
 //! — `bytemuck::cast_slice::<Word, u8>` in Rust, `fwrite` of the `uint32_t` array in C — is
 //! the file format, and a file written on one machine loads on any other. Words `new` does not
-//! need (padding, slack, unused slots) are written as 0, so the bytes are a function of the
-//! weights and, for [`Hierarchical`], of where its 64-byte-aligned blocks start (the storage's
-//! address modulo 64, recorded in word 4; a storage loaded at another alignment samples the
-//! same bits, with blocks that may straddle cache lines).
+//! need (reserved and unused slots) are written as 0, so **the bytes are a function of the
+//! weights alone**: the same map built from Rust, C or JavaScript, into buffers at any
+//! address, gives the same bytes (a cache can key them by hash). The tables start at byte 64,
+//! so [`Hierarchical`]'s 64-byte blocks sit on cache lines exactly when the storage is 64-byte
+//! aligned (C: `aligned_alloc(64, ...)`); at any other alignment sampling gives the same bits,
+//! with blocks that may straddle two lines (format version 2 aligned them itself, recording
+//! the buffer's address in the bytes).
 //!
 //! **Validation.** `from_storage` is O(1): it checks the tag, the version, the sizes and that
 //! the lengths agree with them and with `storage.len()`, and reports [`Error::WrongFormat`],
@@ -125,9 +134,15 @@
 //! but valid samples). `from_storage_verified` adds one pass over every table word and
 //! rejects tables that break the format's invariants (CDFs that are not monotone from 0 to
 //! `2^31`, split fractions above 1, reachable padding, nonzero unused words, wrong texel
-//! edges), for loaders that want to catch a corrupted file.
+//! edges), then compares the **content checksum** in header word [`CHECKSUM_WORD`] with one
+//! computed over every other word. The checksum (eight interleaved chains of a bijective
+//! 32-bit mixer, see `from_storage_verified`) changes whenever any single word changes, so
+//! **every single-bit flip is caught, by construction** (tested exhaustively on small maps);
+//! other corruptions slip through with probability about `2^-32`. Use it for files; the
+//! O(1) `from_storage` is for tables already in memory.
 
 mod compensation;
+mod direction;
 mod distribution;
 mod edges;
 mod hierarchical;
@@ -137,6 +152,7 @@ mod slices;
 
 pub use compensation::Compensation;
 use compensation::Compensator;
+pub use direction::{DirectionSample, Layout};
 pub use distribution::Distribution;
 use distribution::inherent_methods;
 pub use hierarchical::Hierarchical;
@@ -153,16 +169,24 @@ pub type Word = u32;
 /// Largest accepted width or height: `2^24`, so texel indices and edges are exact in `f32`.
 pub const MAX_SIDE: usize = 1 << 24;
 
-/// Words of the header at the start of every storage (included in `storage_len`).
-pub const HEADER_WORDS: usize = 8;
+/// Words of the header at the start of every storage (included in `storage_len`): 64 bytes,
+/// so that the tables after it start on a cache line whenever the storage does.
+pub const HEADER_WORDS: usize = 16;
 
-/// The storage format version this build writes (word 1 of the header) and reads: 2 since
-/// hierarchical pyramids centre a non-power-of-two map (version 1 padded it in the corner;
-/// such storages are refused with [`Error::UnsupportedVersion`], never misread).
-pub const FORMAT_VERSION: u32 = 2;
+/// The header word holding the content checksum (see the [module docs](self)):
+/// [`Error::Corrupt`] names this word when the content does not match it.
+pub const CHECKSUM_WORD: usize = 8;
 
-/// One sample of an environment-map distribution.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The storage format version this build writes (word 1 of the header) and reads: 3 since
+/// the header holds a content checksum and the layout no longer depends on the buffer's
+/// address. Older storages are refused with [`Error::UnsupportedVersion`], never misread
+/// (version 2 had no checksum and recorded the buffer's alignment; version 1 also padded
+/// hierarchical pyramids in the corner): rebuild them from the weights.
+pub const FORMAT_VERSION: u32 = 3;
+
+/// One sample of an environment-map distribution. `Sample::default()` (all zeros) fills the
+/// output slices of the `_slice` forms: `vec![Sample::default(); n]`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Sample {
     /// The point, in `[0, 1)^2`, inside `texel`.
     pub uv: [f32; 2],
@@ -254,9 +278,10 @@ pub enum Error {
         found: u32,
     },
     /// `from_storage`: storage word `word` holds a value `new` never writes there — a size of
-    /// zero or above [`MAX_SIDE`], a length that disagrees with the sizes, or (only
-    /// `from_storage_verified` reads the tables) a table word that breaks the format's
-    /// invariants. A storage too short for its header's sizes is
+    /// zero or above [`MAX_SIDE`], a length that disagrees with the sizes, a nonzero reserved
+    /// header word, or (only `from_storage_verified` reads the tables) a table word that
+    /// breaks the format's invariants, or content that does not match the checksum (then
+    /// `word` is [`CHECKSUM_WORD`]). A storage too short for its header's sizes is
     /// [`Error::StorageTooSmall`] instead.
     Corrupt {
         /// Index of the first offending word in the storage.
@@ -285,8 +310,8 @@ impl fmt::Display for Error {
             Error::UnsupportedVersion { found } if found < FORMAT_VERSION => write!(
                 f,
                 "storage format version {found} was written by an older warpcore (version 1: \
-                 hierarchical pyramids padded in the corner); this build reads version \
-                 {FORMAT_VERSION}: rebuild the tables from the weights"
+                 hierarchical pyramids padded in the corner; version 2: no content checksum); \
+                 this build reads version {FORMAT_VERSION}: rebuild the tables from the weights"
             ),
             Error::UnsupportedVersion { found } => {
                 write!(
@@ -294,6 +319,13 @@ impl fmt::Display for Error {
                     "storage format version {found} (this build reads {FORMAT_VERSION})"
                 )
             }
+            Error::Corrupt {
+                word: CHECKSUM_WORD,
+            } => write!(
+                f,
+                "storage content does not match its checksum (header word {CHECKSUM_WORD}): \
+                 the file was altered after it was built"
+            ),
             Error::Corrupt { word } => write!(f, "storage word {word} is corrupt"),
         }
     }
@@ -384,10 +416,12 @@ const fn tag(bytes: [u8; 4]) -> u32 {
     u32::from_le_bytes(bytes)
 }
 
-/// Writes the header: tag, version, sizes and the four region lengths (native words; the
-/// builder's final [`to_storage_order`] pass makes them little-endian).
+/// Writes the header: tag, version, sizes and the four region lengths, then zeros (the
+/// checksum's place and the reserved words). Native words: the builder's final
+/// [`to_storage_order`] pass makes them little-endian, and [`seal`] writes the checksum.
 fn write_header(header: &mut [Word], tag: u32, width: usize, height: usize, lens: [usize; 4]) {
     let sizes = [tag, FORMAT_VERSION, width as u32, height as u32];
+    header.fill(0);
     for (h, v) in header
         .iter_mut()
         .zip(sizes.into_iter().chain(lens.map(|n| n as u32)))
@@ -396,8 +430,69 @@ fn write_header(header: &mut [Word], tag: u32, width: usize, height: usize, lens
     }
 }
 
-/// Reads and checks the header (O(1)): the tag, the version, and sizes in `1..=MAX_SIDE`
-/// whose `storage_len` (from `len`) fits the 32-bit indices. Returns the sizes, the needed
+/// The content checksum of a storage of exactly `storage_len` words (storage byte order):
+/// every word but [`CHECKSUM_WORD`] itself, header included.
+///
+/// Eight interleaved chains `s = mix(s ^ word)` (word `i` of the sequence feeds chain
+/// `i % 8`), folded at the end by `h = mix(h ^ s)`, where `mix` is Chris Wellons'
+/// `lowbias32` (`hash::mix`), a bijection of `u32`. Because each step is a bijection of the
+/// chain's state for a fixed word *and* of the word for a fixed state, a change confined to
+/// one word — in particular **every single-bit flip** — always changes the result (a proof,
+/// not a probability); other changes go unnoticed with probability about `2^-32`. A CRC-32
+/// would give the same single-word guarantee (plus bursts), but costs a 1 KiB table or eight
+/// dependent steps per byte; the eight independent chains keep the multiplier busy and need
+/// no table (`benches/envmap.rs` measures `from_storage_verified`, checksum included).
+fn checksum(storage: &[Word]) -> u32 {
+    use crate::hash::mix;
+    use core::num::Wrapping as W;
+    let step = |s: u32, w: Word| mix(W(s ^ u32::from_le(w))).0;
+    let mut lanes: [u32; 8] = core::array::from_fn(|j| (j as u32 + 1).wrapping_mul(0x9e37_79b9));
+    let (head, tail) = storage.split_at(CHECKSUM_WORD.min(storage.len()));
+    let tail = tail.get(1..).unwrap_or(&[]);
+    for (s, &w) in lanes.iter_mut().zip(head) {
+        *s = step(*s, w);
+    }
+    // The whole groups of eight: the eight chains as the lanes of one `u32x8` (the same
+    // integer operations per lane, so the same bits as eight scalar chains).
+    let (chunks, rest) = tail.as_chunks::<8>();
+    let mut v = u32x8::new(lanes);
+    for chunk in chunks {
+        v = mix(v ^ from_storage_order(u32x8::new(*chunk)));
+    }
+    lanes = v.to_array();
+    for (s, &w) in lanes.iter_mut().zip(rest) {
+        *s = step(*s, w);
+    }
+    lanes
+        .iter()
+        .fold(storage.len() as u32, |h, &s| mix(W(h ^ s)).0)
+}
+
+/// Writes the checksum of a freshly built storage (already in storage byte order).
+fn seal(storage: &mut [Word]) {
+    let sum = checksum(storage);
+    if let Some(w) = storage.get_mut(CHECKSUM_WORD) {
+        *w = sum.to_le();
+    }
+}
+
+/// [`Error::Corrupt`] naming [`CHECKSUM_WORD`] unless the first `needed` words match their
+/// checksum (what `from_storage_verified` checks last, after the tables' invariants).
+fn check_sum(storage: &[Word], needed: usize) -> Result<(), Error> {
+    let s = storage.get(..needed).unwrap_or(storage);
+    let stored = s.get(CHECKSUM_WORD).map_or(0, |&w| u32::from_le(w));
+    if checksum(s) == stored {
+        Ok(())
+    } else {
+        Err(Error::Corrupt {
+            word: CHECKSUM_WORD,
+        })
+    }
+}
+
+/// Reads and checks the header (O(1)): the tag, the version, sizes in `1..=MAX_SIDE`
+/// whose `storage_len` (from `len`) fits the 32-bit indices, and zero reserved words (not the
+/// checksum: that is `from_storage_verified`'s O(n) pass). Returns the sizes, the needed
 /// length and the four region lengths as recorded (the caller compares them with the ones the
 /// sizes imply).
 fn read_header(
@@ -430,6 +525,10 @@ fn read_header(
     if needed == usize::MAX {
         return Err(Error::Corrupt { word: 2 });
     }
+    // The reserved words after the checksum are 0 in every storage this version writes.
+    if let Some(k) = (CHECKSUM_WORD + 1..HEADER_WORDS).find(|&k| word(k) != 0) {
+        return Err(Error::Corrupt { word: k });
+    }
     let lens = [4, 5, 6, 7].map(|k| word(k) as usize);
     Ok((width, height, needed, lens))
 }
@@ -444,9 +543,8 @@ fn check_lens(
 ) -> Result<(), Error> {
     for (k, (r, i)) in recorded.iter().zip(&implied).enumerate() {
         if r != i {
-            return Err(Error::Corrupt {
-                word: HEADER_WORDS - 4 + k,
-            });
+            // The lengths are header words 4..8.
+            return Err(Error::Corrupt { word: 4 + k });
         }
     }
     if got < needed {

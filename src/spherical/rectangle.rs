@@ -20,6 +20,11 @@ pub(super) struct Rect<L: Lane> {
     pub turns: L,
     /// Finite input, nonzero sides.
     pub ok: L::Mask,
+    /// `corner - p`, `ex` and `ey`'s component orthogonal to `ex`, scaled as the lengths:
+    /// the light's corners for the cosine-aware variant.
+    pub c: V<L>,
+    pub ex: V<L>,
+    pub eyp: V<L>,
 }
 
 #[inline(always)]
@@ -49,6 +54,9 @@ pub(super) fn setup<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Rect<
         z,
         turns: L::select(ok, turns, zero),
         ok,
+        c,
+        ex,
+        eyp,
     }
 }
 
@@ -109,17 +117,28 @@ pub(super) fn solid_angle_body<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L
 /// Newton steps on `quad_turns(x0, dx, ..) = target` after the closed-form start.
 const NEWTON_STEPS: usize = 2;
 
+/// Everything [`sample_body`] computes from the light and the shading point alone: built once
+/// per slice call by the slice forms (the same operations as in the per-sample body, so the
+/// same bits).
+pub(super) struct Prepared<L: Lane> {
+    pub r: Rect<L>,
+    y1: L,
+    z2: L,
+    /// The half-infinite strips beyond `x0` and `x1` and `2 db`, in turns of `4 pi`.
+    left: L,
+    right: L,
+    both: L,
+    /// `cos beta0 cos beta1`.
+    b01: L,
+    /// Urena's map applies (else area sampling).
+    exact: L::Mask,
+    /// The area fallback's density is defined (else 0).
+    area_ok: L::Mask,
+}
+
 #[inline(always)]
-pub(super) fn sample_body<L: Lane>(
-    corner: V<L>,
-    ex: V<L>,
-    ey: V<L>,
-    p: V<L>,
-    u: [L; 2],
-) -> ([L; 2], L) {
+pub(super) fn prepare<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Prepared<L> {
     let zero = L::splat(0.0);
-    let one = L::splat(1.0);
-    let (u0, u1) = (unit_interval(u[0]), unit_interval(u[1]));
     let r = setup(corner, ex, ey, p);
     let (x0, w, y0, h, z) = (r.x0, r.w, r.y0, r.h, r.z);
     let y1 = y0 + h;
@@ -144,9 +163,45 @@ pub(super) fn sample_body<L: Lane>(
     let left = atan2_turns(zh, r00 * r01 + (x0 * x0 + yy) - x0 * (r00 + r01));
     let right = atan2_turns(zh, r10 * r11 + (x1 * x1 + yy) + x1 * (r10 + r11));
     let both = atan2_turns(zh, yy); // 2 db in turns of 4 pi
+    let b01 = z2 / ((y0 * y0 + z2).sqrt() * (y1 * y1 + z2).sqrt());
+    let area_ok = r.ok & zero.simd_lt(z);
+    let exact = area_ok & L::splat(FALLBACK_TURNS).simd_le(r.turns);
+    Prepared {
+        r,
+        y1,
+        z2,
+        left,
+        right,
+        both,
+        b01,
+        exact,
+        area_ok,
+    }
+}
+
+#[inline(always)]
+pub(super) fn sample_body<L: Lane>(
+    corner: V<L>,
+    ex: V<L>,
+    ey: V<L>,
+    p: V<L>,
+    u: [L; 2],
+) -> ([L; 2], L) {
+    sample_prepared(&prepare(corner, ex, ey, p), u)
+}
+
+#[inline(always)]
+pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 2], L) {
+    let zero = L::splat(0.0);
+    let one = L::splat(1.0);
+    let (u0, u1) = (unit_interval(u[0]), unit_interval(u[1]));
+    let r = &pr.r;
+    let (x0, w, y0, h, z) = (r.x0, r.w, r.y0, r.h, r.z);
+    let (y1, z2, both, b01) = (pr.y1, pr.z2, pr.both, pr.b01);
+    let x1 = x0 + w;
     let target = u0 * r.turns;
-    let tl = left + target;
-    let tr = right + (r.turns - target);
+    let tl = pr.left + target;
+    let tr = pr.right + (r.turns - target);
     let tl2 = L::select(zero.simd_lt(x0), both - tr, tl);
     let tr = L::select(x1.simd_lt(zero), both - tl, tr);
     let tl = tl2;
@@ -154,7 +209,6 @@ pub(super) fn sample_body<L: Lane>(
     let (sb, cb) = sin_cos_turns(clamp0(tr, L::splat(0.5)));
     let sg = sa * cb - ca * sb;
     let k = (sa + sa) * sb;
-    let b01 = z2 / ((y0 * y0 + z2).sqrt() * (y1 * y1 + z2).sqrt());
     let xu = z * sg / (k * (k + b01 + b01)).sqrt();
     let mut dx = clamp0(xu - x0, w);
     for _ in 0..NEWTON_STEPS {
@@ -185,14 +239,14 @@ pub(super) fn sample_body<L: Lane>(
     let dy = d2.sqrt() * dh * (one + c0 * cv + h0 * hv) / ((c0 + cv) * cv * c0);
     let s = clamp0(dx / w, one);
     let t = clamp0(dy / h, one);
-    let exact = r.ok & zero.simd_lt(z) & L::splat(FALLBACK_TURNS).simd_le(r.turns);
+    let exact = pr.exact;
     // Area sampling: density |q|^3 / (z w h).
     let qx = x0 + u0 * w;
     let qy = y0 + u1 * h;
     let ql = (qx * qx + qy * qy + z2).sqrt();
     let area_pdf = ql * ql * ql / (z * w * h);
     let area_pdf = L::select(
-        r.ok & zero.simd_lt(z),
+        pr.area_ok,
         L::select(
             area_pdf.simd_lt(L::splat(f32::MAX)),
             area_pdf,
@@ -212,10 +266,15 @@ pub(super) fn inverse_body<L: Lane>(
     p: V<L>,
     st: [L; 2],
 ) -> [L; 2] {
+    inverse_prepared(&setup(corner, ex, ey, p), st)
+}
+
+/// [`inverse_body`] with the light's setup done (once per slice call by the slice form).
+#[inline(always)]
+pub(super) fn inverse_prepared<L: Lane>(r: &Rect<L>, st: [L; 2]) -> [L; 2] {
     let one = L::splat(1.0);
     let zero = L::splat(0.0);
     let (s, t) = (clamp0(st[0], one), clamp0(st[1], one));
-    let r = setup(corner, ex, ey, p);
     let dx = s * r.w;
     let u0 = quad_turns(r.x0, dx, r.y0, r.h, r.z) / r.turns;
     let x = r.x0 + dx;

@@ -69,12 +69,41 @@ pub(super) fn solid_angle_body<L: Lane>(v: [V<L>; 3], p: V<L>) -> L {
     setup(v, p).turns * L::splat(FOUR_PI)
 }
 
+/// Everything [`sample_body`] computes from the light and the shading point alone: built once
+/// per slice call by the slice forms (the same operations as in the per-sample body, so the
+/// same bits).
+pub(super) struct Prepared<L: Lane> {
+    pub t: Tri<L>,
+    /// `|v0 - p|` (scaled as `t.a`).
+    la: L,
+    /// Chord `c^ - a^`, its squared length and length.
+    d: V<L>,
+    d2: L,
+    dl: L,
+    /// Chord `b^ - a^`.
+    dab: V<L>,
+    /// `1 + a.b`, `(a + b) . (c - a)`, `|a . (b x c)|`.
+    one_ab: L,
+    s: L,
+    tt: L,
+    /// `b^`.
+    b: V<L>,
+    /// `e1 x e2`, `e2 x a`, `a x e1`, `det / |v0 - p|`.
+    n: V<L>,
+    c1: V<L>,
+    c2: V<L>,
+    det_la: L,
+    /// Arvo's map applies (else area sampling).
+    arvo: L::Mask,
+    /// The area fallback's density is defined (else 0).
+    area_ok: L::Mask,
+}
+
 #[inline(always)]
-pub(super) fn sample_body<L: Lane>(v: [V<L>; 3], p: V<L>, u: [L; 2]) -> ([L; 3], L) {
+pub(super) fn prepare<L: Lane>(v: [V<L>; 3], p: V<L>) -> Prepared<L> {
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
     let half = L::splat(0.5);
-    let (u0, u1) = (unit_interval(u[0]), unit_interval(u[1]));
     let t = setup(v, p);
     let [la, lb, lc] = t.len;
     let [va, vb, vc] = t.a;
@@ -85,15 +114,55 @@ pub(super) fn sample_body<L: Lane>(v: [V<L>; 3], p: V<L>, u: [L; 2]) -> ([L; 3],
     let one_ab = L::splat(2.0) - dot(dab, dab) * half; // 1 + a.b
     let s = dot(dab, d) - d2; // (a + b) . (c - a)
     let tt = t.det.abs() / (la * lb * lc); // |a . (b x c)|
+    let dl = d2.sqrt();
+    let b = add(scale(va, one / la), dab); // b^, only in terms of second order below
+    let n = cross(t.e1, t.e2);
+    let c1 = cross(t.e2, va);
+    let c2 = cross(va, t.e1);
+    let det_la = t.det / la;
+    let area_ok = t.ok & zero.simd_lt(t.det.abs());
+    let arvo = area_ok & L::splat(FALLBACK_TURNS).simd_le(t.turns);
+    Prepared {
+        t,
+        la,
+        d,
+        d2,
+        dl,
+        dab,
+        one_ab,
+        s,
+        tt,
+        b,
+        n,
+        c1,
+        c2,
+        det_la,
+        arvo,
+        area_ok,
+    }
+}
+
+#[inline(always)]
+pub(super) fn sample_body<L: Lane>(v: [V<L>; 3], p: V<L>, u: [L; 2]) -> ([L; 3], L) {
+    sample_prepared(&prepare(v, p), u)
+}
+
+#[inline(always)]
+pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 3], L) {
+    let zero = L::splat(0.0);
+    let one = L::splat(1.0);
+    let half = L::splat(0.5);
+    let (u0, u1) = (unit_interval(u[0]), unit_interval(u[1]));
+    let t = &pr.t;
+    let (la, va, d, d2, dl, dab) = (pr.la, t.a[0], pr.d, pr.d2, pr.dl, pr.dab);
     // Step 1: the point x = a + tau (c^ - a^) on the chord with area(a, b, x^) = u0 omega.
     // With h = u0 omega / 2, Van Oosterom-Strackee for (a, b, x^) reads
     //   tau tt cos h = sin h ((1 + a.b)(|x| + 1) + tau s),  |x|^2 = 1 - tau (1 - tau) d2,
     // whose nonzero root is tau = q (2 pp - q d2) / ((pp - q d)(pp + q d)) with
     // pp = tt cos h - s sin h and q = (1 + a.b) sin h: no acos, no 1 - cos.
     let (sh, ch) = sin_cos_turns(u0 * t.turns);
-    let pp = tt * ch - s * sh;
-    let q = one_ab * sh;
-    let dl = d2.sqrt();
+    let pp = pr.tt * ch - pr.s * sh;
+    let q = pr.one_ab * sh;
     let tau = clamp0(
         q * (pp + pp - q * d2) / ((pp - q * dl) * (pp + q * dl)),
         one,
@@ -109,7 +178,7 @@ pub(super) fn sample_body<L: Lane>(v: [V<L>; 3], p: V<L>, u: [L; 2]) -> ([L; 3],
     // chord from b^ is sqrt(u1) times the chord g = x^ - b^.
     let g = sub(ox, dab);
     let g2 = dot(g, g);
-    let b = add(scale(va, one / la), dab); // b^, only in terms of second order below
+    let b = pr.b;
     let wv = add(g, scale(b, g2 * half));
     let wl = norm(wv);
     let w = scale(wv, L::select(zero.simd_lt(wl), one / wl, zero));
@@ -120,10 +189,9 @@ pub(super) fn sample_body<L: Lane>(v: [V<L>; 3], p: V<L>, u: [L; 2]) -> ([L; 3],
     let op = add(dab, add(scale(b, -(l2 * half)), scale(w, sin_l)));
     // Barycentrics of the ray's hit: lambda_i = det with the direction in slot i, from a^
     // and the edges only (det(a^, b, c) = det / |v0 - p| and so on).
-    let n = cross(t.e1, t.e2);
-    let l1 = dot(op, cross(t.e2, va));
-    let l2b = dot(op, cross(va, t.e1));
-    let sum = t.det / la + dot(op, n);
+    let l1 = dot(op, pr.c1);
+    let l2b = dot(op, pr.c2);
+    let sum = pr.det_la + dot(op, pr.n);
     let l0 = sum - l1 - l2b;
     let sign = sum.sign_bit();
     let pos = |x: L| {
@@ -132,10 +200,7 @@ pub(super) fn sample_body<L: Lane>(v: [V<L>; 3], p: V<L>, u: [L; 2]) -> ([L; 3],
     };
     let (l0, l1, l2b) = (pos(l0), pos(l1), pos(l2b));
     let tot = l0 + l1 + l2b;
-    let arvo = t.ok
-        & zero.simd_lt(t.det.abs())
-        & L::splat(FALLBACK_TURNS).simd_le(t.turns)
-        & positive_finite(tot);
+    let arvo = pr.arvo & positive_finite(tot);
     let inv = one / tot;
     let bary = [
         clamp0(l0 * inv, one),
@@ -148,7 +213,7 @@ pub(super) fn sample_body<L: Lane>(v: [V<L>; 3], p: V<L>, u: [L; 2]) -> ([L; 3],
     let ql = norm(qv);
     let area_pdf = (ql * ql * ql + ql * ql * ql) / t.det.abs();
     let area_pdf = L::select(
-        t.ok & zero.simd_lt(t.det.abs()),
+        pr.area_ok,
         L::select(
             area_pdf.simd_lt(L::splat(f32::MAX)),
             area_pdf,
@@ -169,6 +234,12 @@ pub(super) fn sample_body<L: Lane>(v: [V<L>; 3], p: V<L>, u: [L; 2]) -> ([L; 3],
 
 #[inline(always)]
 pub(super) fn inverse_body<L: Lane>(v: [V<L>; 3], p: V<L>, bary: [L; 3]) -> [L; 2] {
+    inverse_prepared(&setup(v, p), bary)
+}
+
+/// [`inverse_body`] with the light's setup done (once per slice call by the slice form).
+#[inline(always)]
+pub(super) fn inverse_prepared<L: Lane>(t: &Tri<L>, bary: [L; 3]) -> [L; 2] {
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
     let third = L::splat(1.0 / 3.0);
@@ -185,7 +256,6 @@ pub(super) fn inverse_body<L: Lane>(v: [V<L>; 3], p: V<L>, bary: [L; 3]) -> [L; 
         L::select(has, b[1] * inv, third),
         L::select(has, b[2] * inv, third),
     ];
-    let t = setup(v, p);
     let [la, lb, _] = t.len;
     let [va, vb, _] = t.a;
     // The great circle through b^ and the point meets the arc a^c^ where the plane's line

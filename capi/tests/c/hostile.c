@@ -254,6 +254,14 @@ static size_t sph_rect(const float *in, float *out, size_t n) {
 static size_t sph_rect_inv(const float *in, float *out, size_t n) {
     return wc_spherical_rectangle_inverse(RECT_LIGHT, in, out, n);
 }
+static const float TRI_LIGHT_N[15] = {0, 0, 1, 1, 0, 1, 0, 1, 1, 0.1f, 0.2f, 0, 0.3f, 0, 1};
+static const float RECT_LIGHT_N[15] = {-0.5f, -0.5f, 1, 1, 0, 0, 0, 1, 0, 0.1f, 0.2f, 0, 0, -0.4f, 1};
+static size_t sph_tri_cos(const float *in, float *out, size_t n) {
+    return wc_spherical_triangle_cosine(TRI_LIGHT_N, in, out, n);
+}
+static size_t sph_rect_cos(const float *in, float *out, size_t n) {
+    return wc_spherical_rectangle_cosine(RECT_LIGHT_N, in, out, n);
+}
 
 static const struct map MAPS[] = {
     {"wc_disk_polar", wc_disk_polar, 2, 2, 0},
@@ -285,6 +293,8 @@ static const struct map MAPS[] = {
     {"wc_spherical_triangle_inverse", sph_tri_inv, 3, 2, 0},
     {"wc_spherical_rectangle", sph_rect, 2, 3, 0},
     {"wc_spherical_rectangle_inverse", sph_rect_inv, 2, 2, 0},
+    {"wc_spherical_triangle_cosine", sph_tri_cos, 2, 4, 0},
+    {"wc_spherical_rectangle_cosine", sph_rect_cos, 2, 3, 0},
 };
 #define NMAPS (sizeof MAPS / sizeof MAPS[0])
 
@@ -350,30 +360,34 @@ static void one_map(const struct map *M) {
     reset();
 }
 
-/* The light pointer of the spherical functions: 12 floats flush against a guard page (a read
-   past them faults), null or misaligned (0, nothing written); a valid call's result equals
-   the same call with a copy of the light. */
+/* The light pointer of the spherical functions: 12 floats (15 for the cosine-aware ones)
+   flush against a guard page (a read past them faults), null or misaligned (0, nothing
+   written); a valid call's result equals the same call with a copy of the light. */
 static void one_light(int which) {
-    static const char *names[6] = {"wc_spherical_triangle", "wc_spherical_triangle_inverse",
+    static const char *names[8] = {"wc_spherical_triangle", "wc_spherical_triangle_inverse",
                                    "wc_spherical_rectangle", "wc_spherical_rectangle_inverse",
                                    "wc_spherical_triangle_solid_angle",
-                                   "wc_spherical_rectangle_solid_angle"};
+                                   "wc_spherical_rectangle_solid_angle",
+                                   "wc_spherical_triangle_cosine",
+                                   "wc_spherical_rectangle_cosine"};
+    size_t len = which >= 6 ? 15 : 12;
     int end = rnd() & 1;
-    float *light = place(0, 12 * 4, end, 0);
+    float *light = place(0, len * 4, end, 0);
     uint32_t r = rnd() % 4;
     if (r == 0) light = NULL;
-    if (r == 1) light = place(0, 12 * 4, end, 1 + below(3));
-    if (light && aligned(light)) fill_floats(light, 12);
-    float copy[12] = {0};
-    if (light && aligned(light)) memcpy(copy, light, sizeof copy);
+    if (r == 1) light = place(0, len * 4, end, 1 + below(3));
+    if (light && aligned(light)) fill_floats(light, len);
+    float copy[15] = {0};
+    if (light && aligned(light)) memcpy(copy, light, len * 4);
     size_t n = 1 + below(20);
     float *u = place(1, n * 3 * 4, end, 0), *out = place(3, n * 4 * 4, !end, 0);
     fill_floats(u, n * 3);
     int ok = light && aligned(light);
-    const char *outcome = !light ? "0:null" : !aligned(light) ? "0:misaligned" : which < 4 ? "n" : "omega";
+    int array = which < 4 || which >= 6;
+    const char *outcome = !light ? "0:null" : !aligned(light) ? "0:misaligned" : array ? "n" : "omega";
     static float ref[4 * 20];
     snapshot(0, out, n * 4 * 4 + 64);
-    if (light) snapshot(2, light, 12 * 4);
+    if (light) snapshot(2, light, len * 4);
     size_t got = 0, want = ok ? n : 0;
     float om = 0, want_om = 0;
     switch (which) {
@@ -382,12 +396,14 @@ static void one_light(int which) {
     case 2: if (ok) wc_spherical_rectangle(copy, u, ref, n); got = wc_spherical_rectangle(light, u, out, n); break;
     case 3: if (ok) wc_spherical_rectangle_inverse(copy, u, ref, n); got = wc_spherical_rectangle_inverse(light, u, out, n); break;
     case 4: if (ok) want_om = wc_spherical_triangle_solid_angle(copy); om = wc_spherical_triangle_solid_angle(light); break;
-    default: if (ok) want_om = wc_spherical_rectangle_solid_angle(copy); om = wc_spherical_rectangle_solid_angle(light); break;
+    case 5: if (ok) want_om = wc_spherical_rectangle_solid_angle(copy); om = wc_spherical_rectangle_solid_angle(light); break;
+    case 6: if (ok) wc_spherical_triangle_cosine(copy, u, ref, n); got = wc_spherical_triangle_cosine(light, u, out, n); break;
+    default: if (ok) wc_spherical_rectangle_cosine(copy, u, ref, n); got = wc_spherical_rectangle_cosine(light, u, out, n); break;
     }
     reach(names[which], outcome);
     current = names[which];
-    if (which < 4) {
-        static const size_t O[4] = {4, 2, 3, 2};
+    if (array) {
+        static const size_t O[8] = {4, 2, 3, 2, 0, 0, 4, 3};
         CHECK(got == want);
         if (want) {
             CHECK(memcmp(out, ref, n * O[which] * 4) == 0);
@@ -465,6 +481,7 @@ struct pair {
 static const struct pair PAIRS[] = {
     {"wc_sphere_equirect_pdf_to_solid_angle", wc_sphere_equirect_pdf_to_solid_angle, 3},
     {"wc_envmap_latlong_pdf_to_solid_angle", wc_envmap_latlong_pdf_to_solid_angle, 1},
+    {"wc_envmap_equirect_pdf_to_solid_angle", wc_envmap_equirect_pdf_to_solid_angle, 1},
 };
 
 static void one_pair(const struct pair *P) {
@@ -642,6 +659,8 @@ typedef int32_t (*build_c_fn)(const float *, uint32_t, uint32_t, uint32_t, float
 typedef int32_t (*check_fn)(const uint32_t *, size_t);
 typedef size_t (*sample_fn)(const uint32_t *, size_t, const float *, WcEnvSample *, size_t);
 typedef size_t (*pdf_fn)(const uint32_t *, size_t, const float *, float *, size_t);
+typedef size_t (*dir_fn)(const uint32_t *, size_t, uint32_t, const float *, WcEnvDirection *, size_t);
+typedef size_t (*pdf_dir_fn)(const uint32_t *, size_t, uint32_t, const float *, float *, size_t);
 struct dist {
     const char *len_name, *build_name, *validate_name, *verify_name, *sample_name, *pdf_name;
     len_fn len;
@@ -652,6 +671,11 @@ struct dist {
     uint32_t tag;
     const char *build_c_name;
     build_c_fn build_c;
+    /* The `from_storage` names of validate and verify; the direction functions. */
+    const char *from_name, *from_verified_name, *dir_name, *pdf_dir_name;
+    check_fn from, from_verified;
+    dir_fn dir;
+    pdf_dir_fn pdf_dir;
 };
 static const struct dist DISTS[2] = {
     {"wc_envmap_hierarchical_storage_len", "wc_envmap_hierarchical_build",
@@ -660,7 +684,11 @@ static const struct dist DISTS[2] = {
      wc_envmap_hierarchical_storage_len, wc_envmap_hierarchical_build,
      wc_envmap_hierarchical_validate, wc_envmap_hierarchical_verify,
      wc_envmap_hierarchical_sample, wc_envmap_hierarchical_pdf, 0x49486377u,
-     "wc_envmap_hierarchical_build_compensated", wc_envmap_hierarchical_build_compensated},
+     "wc_envmap_hierarchical_build_compensated", wc_envmap_hierarchical_build_compensated,
+     "wc_envmap_hierarchical_from_storage", "wc_envmap_hierarchical_from_storage_verified",
+     "wc_envmap_hierarchical_sample_direction", "wc_envmap_hierarchical_pdf_direction",
+     wc_envmap_hierarchical_from_storage, wc_envmap_hierarchical_from_storage_verified,
+     wc_envmap_hierarchical_sample_direction, wc_envmap_hierarchical_pdf_direction},
     {"wc_envmap_marginal_conditional_storage_len", "wc_envmap_marginal_conditional_build",
      "wc_envmap_marginal_conditional_validate", "wc_envmap_marginal_conditional_verify",
      "wc_envmap_marginal_conditional_sample", "wc_envmap_marginal_conditional_pdf",
@@ -668,7 +696,15 @@ static const struct dist DISTS[2] = {
      wc_envmap_marginal_conditional_validate, wc_envmap_marginal_conditional_verify,
      wc_envmap_marginal_conditional_sample, wc_envmap_marginal_conditional_pdf, 0x434d6377u,
      "wc_envmap_marginal_conditional_build_compensated",
-     wc_envmap_marginal_conditional_build_compensated},
+     wc_envmap_marginal_conditional_build_compensated,
+     "wc_envmap_marginal_conditional_from_storage",
+     "wc_envmap_marginal_conditional_from_storage_verified",
+     "wc_envmap_marginal_conditional_sample_direction",
+     "wc_envmap_marginal_conditional_pdf_direction",
+     wc_envmap_marginal_conditional_from_storage,
+     wc_envmap_marginal_conditional_from_storage_verified,
+     wc_envmap_marginal_conditional_sample_direction,
+     wc_envmap_marginal_conditional_pdf_direction},
 };
 
 #define MAX_SIDE ((uint32_t)1 << 24)
@@ -818,13 +854,13 @@ static void one_check(const struct dist *D, const struct dist *other, int verify
     case 3: len = (size_t)PTRDIFF_MAX / 4 + 1 + below(3); want = WC_ERR_INVALID_ARGUMENT; break;
     case 4: len = SIZE_MAX; want = WC_ERR_INVALID_ARGUMENT; break;
     case 5: /* shorter than the header, flush against the guard */
-        len = below(8);
+        len = below(WC_ENVMAP_HEADER_WORDS);
         s = place(0, len * 4, 1, 0);
         memcpy(s, built[k], len * 4);
         want = WC_ERR_STORAGE_TOO_SMALL;
         break;
     case 6: /* shorter than the header says */
-        len = 8 + below(need - 8);
+        len = WC_ENVMAP_HEADER_WORDS + below(need - WC_ENVMAP_HEADER_WORDS);
         s = place(0, len * 4, 1, 0);
         memcpy(s, built[k], len * 4);
         want = WC_ERR_STORAGE_TOO_SMALL;
@@ -838,10 +874,9 @@ static void one_check(const struct dist *D, const struct dist *other, int verify
         break;
     }
     case 10: s[2 + rnd() % 2] = rnd() % 2 ? 0 : MAX_SIDE + 1 + rnd() % 1000; want = WC_ERR_CORRUPT; break;
-    case 11: { /* a region length; word 4 of the hierarchical storage is a padding of 0 to 15
-                  words (any of them valid): moved past 15 */
-        uint32_t k = 4 + rnd() % 4;
-        s[k] += (k == 4 ? 16 : 1) + rnd() % 1000;
+    case 11: { /* a region length, or a reserved header word (words 9..15, always 0) */
+        uint32_t k = rnd() % 3 ? 4 + rnd() % 4 : 9 + rnd() % 7;
+        s[k] += 1 + rnd() % 1000;
         want = WC_ERR_CORRUPT;
         break;
     }
@@ -851,14 +886,19 @@ static void one_check(const struct dist *D, const struct dist *other, int verify
         memcpy(s, built[k], need * 4);
         want = WC_OK;
         break;
-    default: /* a table word: the O(1) check cannot see it; verify may */
-        s[8 + below(need - 8)] ^= 1u << (rnd() % 32);
-        want = verify ? 1 : WC_OK; /* 1: either WC_OK or WC_ERR_CORRUPT */
+    default: /* one bit of a table word or of the checksum (header word 8): the O(1) check
+                cannot see it; verify always does (the content checksum) */
+        s[rnd() % 4 ? WC_ENVMAP_HEADER_WORDS + below(need - WC_ENVMAP_HEADER_WORDS) : 8] ^=
+            1u << (rnd() % 32);
+        want = verify ? WC_ERR_CORRUPT : WC_OK;
         break;
     }
     snapshot(0, s, len < need + 64 ? len * 4 : need * 4);
-    int32_t got = (verify ? D->verify : D->validate)(s, len);
-    const char *name = verify ? D->verify_name : D->validate_name;
+    int alias = rnd() & 1; /* the `from_storage` names: the same functions */
+    int32_t got = alias ? (verify ? D->from_verified : D->from)(s, len)
+                        : (verify ? D->verify : D->validate)(s, len);
+    const char *name = alias ? (verify ? D->from_verified_name : D->from_name)
+                             : (verify ? D->verify_name : D->validate_name);
     const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "WC_ERR_LENGTH_MISMATCH",
                            "WC_ERR_STORAGE_TOO_SMALL", "WC_ERR_INFINITE_WEIGHT", "WC_ERR_WRONG_FORMAT",
                            "WC_ERR_UNSUPPORTED_VERSION", "WC_ERR_CORRUPT", "WC_ERR_INVALID_ARGUMENT"};
@@ -877,72 +917,106 @@ static void one_check(const struct dist *D, const struct dist *other, int verify
 }
 
 static WcEnvSample ref_samples[4096];
+static WcEnvDirection ref_dirs[4096];
 
-static void one_sample(const struct dist *D, int pdf) {
+/* mode 0: sample, 1: pdf, 2: sample_direction, 3: pdf_direction. */
+static void one_sample(const struct dist *D, int mode) {
     int k = (int)(D - DISTS);
     size_t need = built_len[k];
-    size_t elem = pdf ? 4 : sizeof(WcEnvSample);
-    size_t n = hostile_count(elem > 8 ? elem : 8, 300);
+    int pdf = mode == 1 || mode == 3, direction = mode >= 2;
+    size_t in_floats = mode == 3 ? 3 : 2, in_elem = in_floats * 4;
+    size_t elem = pdf ? 4 : mode == 2 ? sizeof(WcEnvDirection) : sizeof(WcEnvSample);
+    uint32_t layout = rnd() % 8 == 0 ? 2 + rnd() % 1000 : rnd() % 2;
+    size_t n = hostile_count(elem > in_elem ? elem : in_elem, 300);
     size_t small = n <= 4096 ? n : 0;
     int end = rnd() & 1;
     uint32_t *s = place(0, need * 4, end, 0);
     memcpy(s, built[k], need * 4);
     size_t len = need;
-    float *u = place(1, small * 8, !end, 0);
+    float *u = place(1, small * in_elem, !end, 0);
     void *out = place(3, small * elem, end, 0);
-    float *base = place(2, small * (8 + elem) + need * 4 + 64, 1, 0);
+    float *base = place(2, small * (in_elem + elem) + need * 4 + 64, 1, 0);
     switch (rnd() % 14) {
     case 0: s = NULL; break;
     case 1: u = NULL; break;
     case 2: out = NULL; break;
     case 3: s = place(0, need * 4, end, 1 + below(3)); break;
-    case 4: u = place(1, small * 8, !end, 1 + below(3)); break;
+    case 4: u = place(1, small * in_elem, !end, 1 + below(3)); break;
     case 5: out = place(3, small * elem, end, 1 + below(3)); break;
     case 6: out = u; break; /* in place: pdf only */
-    case 7: u = base; out = base + below(2 * small + 2); break;
+    case 7: u = base; out = base + below(in_floats * small + 2); break;
     case 8: /* out over the storage */
         s = (uint32_t *)(void *)base;
         memcpy(s, built[k], need * 4);
         out = base + below(need + 1);
         break;
     case 9: len = below(need); break;                         /* truncated */
-    case 10: s[below(8)] ^= 1u << (rnd() % 32); break;         /* bad header (usually) */
-    case 11: s[8 + below(need - 8)] = rnd(); break;            /* garbage table word */
+    case 10: s[below(WC_ENVMAP_HEADER_WORDS)] ^= 1u << (rnd() % 32); break; /* bad header (usually) */
+    case 11: s[8 + below(need - 8)] = rnd(); break; /* garbage checksum, reserved or table word */
     default: break;
     }
-    if (u && aligned(u) && small) fill_floats(u, small * 2);
+    if (u && aligned(u) && small) fill_floats(u, small * in_floats);
     int storage_ok = s && aligned(s) && D->validate(s, len) == WC_OK;
     const char *outcome;
     size_t want = 0;
     if (n == 0) outcome = "0:n=0";
     else if (!s || !u || !out) outcome = "0:null";
     else if (!aligned(s) || !aligned(u) || !aligned(out)) outcome = "0:misaligned";
-    else if (!fits(n, 8) || !fits(n, elem)) outcome = "0:size";
-    else if ((overlaps(u, n * 8, out, n * elem) && !(pdf && (void *)u == out)) ||
+    else if (!fits(n, in_elem) || !fits(n, elem)) outcome = "0:size";
+    else if ((overlaps(u, n * in_elem, out, n * elem) && !(pdf && (void *)u == out)) ||
              overlaps(s, len * 4, out, n * elem))
         outcome = "0:overlap";
+    else if (direction && layout > WC_ENVMAP_LAYOUT_EQUAL_AREA) outcome = "0:unknown-layout";
     else if (!storage_ok) outcome = "0:invalid-storage";
     else {
         outcome = (void *)u == out ? "in-place" : "n";
         want = n;
-        static float ru[8192];
+        static float ru[3 * 4096];
         static uint32_t rs[8192];
-        memcpy(ru, u, n * 8);
+        memcpy(ru, u, n * in_elem);
         memcpy(rs, s, len * 4);
-        if (pdf) D->pdf(rs, len, ru, ref_out, n);
-        else D->sample(rs, len, ru, ref_samples, n);
+        switch (mode) {
+        case 0: D->sample(rs, len, ru, ref_samples, n); break;
+        case 1: D->pdf(rs, len, ru, ref_out, n); break;
+        case 2: D->dir(rs, len, layout, ru, ref_dirs, n); break;
+        default: D->pdf_dir(rs, len, layout, ru, ref_out, n); break;
+        }
     }
     if (!want) snapshot(0, out, small * elem);
-    if (!want || (void *)u != out) snapshot(1, u, small * 8);
+    if (!want || (void *)u != out) snapshot(1, u, small * in_elem);
     snapshot(2, s, len < need ? len * 4 : need * 4);
-    size_t got = pdf ? D->pdf(s, len, u, out, n) : D->sample(s, len, u, out, n);
-    const char *name = pdf ? D->pdf_name : D->sample_name;
+    size_t got;
+    const char *name;
+    switch (mode) {
+    case 0: got = D->sample(s, len, u, out, n); name = D->sample_name; break;
+    case 1: got = D->pdf(s, len, u, out, n); name = D->pdf_name; break;
+    case 2: got = D->dir(s, len, layout, u, out, n); name = D->dir_name; break;
+    default: got = D->pdf_dir(s, len, layout, u, out, n); name = D->pdf_dir_name; break;
+    }
     reach(name, outcome);
     current = name;
     CHECK(got == want);
     if (want) {
-        CHECK(memcmp(out, pdf ? (const void *)ref_out : (const void *)ref_samples, n * elem) == 0);
-        if (!pdf) {
+        const void *ref = pdf ? (const void *)ref_out
+                              : mode == 2 ? (const void *)ref_dirs : (const void *)ref_samples;
+        CHECK(memcmp(out, ref, n * elem) == 0);
+        if (pdf) {
+            const float *o = out;
+            int ok = 1;
+            for (size_t i = 0; i < n; i++) ok &= o[i] >= 0.0f && o[i] <= 3.4e38f;
+            CHECK(ok);
+        } else if (mode == 2) {
+            const WcEnvDirection *o = out;
+            int inside = 1;
+            for (size_t i = 0; i < n; i++) {
+                float r2 = o[i].dir[0] * o[i].dir[0] + o[i].dir[1] * o[i].dir[1] +
+                           o[i].dir[2] * o[i].dir[2];
+                inside &= o[i].texel[0] < BW && o[i].texel[1] < BH && o[i].uv[0] >= 0.0f &&
+                          o[i].uv[0] < 1.0f && o[i].uv[1] >= 0.0f && o[i].uv[1] < 1.0f &&
+                          o[i].pdf >= 0.0f && o[i].pdf <= 3.4e38f && r2 > 0.999f && r2 < 1.001f;
+            }
+            CHECK(inside);
+        } else {
             const WcEnvSample *o = out;
             int inside = 1;
             for (size_t i = 0; i < n; i++)
@@ -980,12 +1054,15 @@ static void one_weights(void) {
     if (access) {
         fill_floats(p, (size_t)texels);
         memcpy(copy, p, (size_t)texels * 4);
-        wc_envmap_latlong_solid_angle_weights(copy, w, h);
+        wc_envmap_equirect_solid_angle_weights(copy, w, h);
     }
-    int32_t got = wc_envmap_latlong_solid_angle_weights(p, w, h);
+    int old = rnd() & 1; /* the deprecated name: the same function */
+    const char *fname = old ? "wc_envmap_latlong_solid_angle_weights" : "wc_envmap_equirect_solid_angle_weights";
+    int32_t got = old ? wc_envmap_latlong_solid_angle_weights(p, w, h)
+                      : wc_envmap_equirect_solid_angle_weights(p, w, h);
     const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "", "", "", "", "", "", "WC_ERR_INVALID_ARGUMENT"};
-    reach("wc_envmap_latlong_solid_angle_weights", names[-want]);
-    current = "wc_envmap_latlong_solid_angle_weights";
+    reach(fname, names[-want]);
+    current = fname;
     CHECK(got == want);
     if (access) CHECK(memcmp(p, copy, (size_t)texels * 4) == 0);
     else CHECK(untouched_all());
@@ -1034,18 +1111,33 @@ static void one_equal_area(void) {
     if (src && aligned(src) && small) fill_floats(src, (size_t)src_n);
     if (access) {
         memcpy(rs, src, (size_t)src_n * 4);
-        wc_envmap_latlong_to_equal_area(rs, sw, sh, c, rd, size, ss);
+        wc_envmap_equirect_to_equal_area(rs, sw, sh, c, rd, size, ss);
     }
     if (!access) snapshot(0, dst, dst_bytes);
     snapshot(1, src, small ? (size_t)src_n * 4 : 64);
-    int32_t got = wc_envmap_latlong_to_equal_area(src, sw, sh, c, dst, size, ss);
+    int old = rnd() & 1; /* the deprecated name: the same function */
+    const char *fname = old ? "wc_envmap_latlong_to_equal_area" : "wc_envmap_equirect_to_equal_area";
+    int32_t got = old ? wc_envmap_latlong_to_equal_area(src, sw, sh, c, dst, size, ss)
+                      : wc_envmap_equirect_to_equal_area(src, sw, sh, c, dst, size, ss);
     const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "", "", "", "", "", "", "WC_ERR_INVALID_ARGUMENT"};
-    reach("wc_envmap_latlong_to_equal_area", names[-want]);
-    current = "wc_envmap_latlong_to_equal_area";
+    reach(fname, names[-want]);
+    current = fname;
     CHECK(got == want);
     if (access) CHECK(memcmp(dst, rd, (size_t)dst_n * 4) == 0);
     CHECK(unchanged());
     reset();
+}
+
+/* wc_error_string: a static, non-empty string for any code; the named codes get their own. */
+static void one_error_string(void) {
+    int32_t code = rnd() % 2 ? -(int32_t)(rnd() % 12) : (int32_t)rnd();
+    const char *a = wc_error_string(code), *b = wc_error_string(code);
+    const char *unknown = wc_error_string(INT32_MIN);
+    reach("wc_error_string", "string");
+    current = "wc_error_string";
+    CHECK(a != NULL && a[0] != 0 && a == b);
+    if (code <= 0 && code >= WC_ERR_OTHER) CHECK(strcmp(a, unknown) != 0);
+    else CHECK(strcmp(a, unknown) == 0);
 }
 
 /* ---- the sampler: WcSampler values, draws of n (1 to 4) dimensions, slices ---- */
@@ -1290,21 +1382,22 @@ int main(int argc, char **argv) {
         for (size_t i = 0; i < NGENS; i++) one_gen(&GENS[i]);
         for (int i = 0; i < 2; i++) {
             one_pair(&PAIRS[i]);
+            if (i == 1) one_pair(&PAIRS[2]);
             one_four(i);
             one_quad(i);
             one_storage_len(&DISTS[i]);
             one_build(&DISTS[i]);
             one_check(&DISTS[i], &DISTS[1 - i], 0);
             one_check(&DISTS[i], &DISTS[1 - i], 1);
-            one_sample(&DISTS[i], 0);
-            one_sample(&DISTS[i], 1);
+            for (int mode = 0; mode < 4; mode++) one_sample(&DISTS[i], mode);
         }
         one_weights();
         one_equal_area();
+        one_error_string();
         one_sampler_value();
         for (int i = 0; i < 3; i++) one_sampler_draw(i);
         one_sampler_slice();
-        for (int i = 0; i < 6; i++) one_light(i);
+        for (int i = 0; i < 8; i++) one_light(i);
     }
     for (int i = 0; i < nrows; i++) printf("row %s %s %lu\n", rows[i].fn, rows[i].outcome, rows[i].calls);
     printf("%lu hostile calls, %lu passed, %lu failed\n", calls, passed, failed);

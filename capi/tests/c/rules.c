@@ -262,6 +262,8 @@ typedef int32_t (*build_fn)(const float *, uint32_t, uint32_t, uint32_t *, size_
 typedef int32_t (*check_fn)(const uint32_t *, size_t);
 typedef size_t (*sample_fn)(const uint32_t *, size_t, const float *, WcEnvSample *, size_t);
 typedef size_t (*pdf_fn)(const uint32_t *, size_t, const float *, float *, size_t);
+typedef size_t (*dir_fn)(const uint32_t *, size_t, uint32_t, const float *, WcEnvDirection *, size_t);
+typedef size_t (*pdf_dir_fn)(const uint32_t *, size_t, uint32_t, const float *, float *, size_t);
 struct dist {
     const char *tag;
     len_fn len;
@@ -269,6 +271,9 @@ struct dist {
     check_fn validate, verify;
     sample_fn sample;
     pdf_fn pdf;
+    check_fn from_storage, from_storage_verified;
+    dir_fn dir;
+    pdf_dir_fn pdf_dir;
 };
 
 #define W 37
@@ -378,7 +383,7 @@ static void envmap(struct dist D, struct dist O) {
     /* A corrupt table word: the O(1) check passes, the one-pass check does not, and sampling
        stays in the map. */
     memcpy(loaded, storage, need * 4);
-    loaded[need - 10] ^= 0x40000000u; /* an edge or the slack */
+    loaded[need - 10] ^= 0x40000000u; /* an edge */
     CHECK(D.validate(loaded, need) == WC_OK && D.verify(loaded, need) == WC_ERR_CORRUPT);
     CHECK(D.sample(loaded, need, us, got, BIG) == BIG && in_map(got, BIG));
     /* Garbage tables behind a valid header: samples stay in the map. */
@@ -396,6 +401,58 @@ static void envmap(struct dist D, struct dist O) {
         int finite = 1;
         for (int i = 0; i < 16; i++) finite &= p[i] >= 0.0f && p[i] <= 3.4e38f;
         CHECK(finite);
+    }
+
+    /* The same map built at another address: the same bytes (format version 3). */
+    memset(loaded, SENTINEL, sizeof loaded);
+    CHECK(D.build(weights, W, H, loaded + 3, need) == WC_OK);
+    CHECK(memcmp(loaded + 3, storage, need * 4) == 0);
+    /* The `from_storage` names are the same checks. */
+    CHECK(D.from_storage(storage, need) == WC_OK && D.from_storage_verified(storage, need) == WC_OK);
+    CHECK(D.from_storage(storage, 3) == WC_ERR_STORAGE_TOO_SMALL);
+    /* Every single-bit flip of the header and of the first 200 table words is caught by the
+       verifying loader (the content checksum). */
+    {
+        int caught = 1;
+        for (size_t i = 0; i < WC_ENVMAP_HEADER_WORDS + 200 && i < need; i++) {
+            for (int b = 0; b < 32; b++) {
+                memcpy(loaded, storage, need * 4);
+                loaded[i] ^= 1u << b;
+                caught &= D.verify(loaded, need) != WC_OK;
+                caught &= D.from_storage_verified(loaded, need) != WC_OK;
+            }
+        }
+        CHECK(caught);
+    }
+    /* Directions and densities per steradian in one call, both layouts. */
+    for (uint32_t layout = 0; layout < 2; layout++) {
+        static WcEnvDirection d[BIG];
+        static float dirs[BIG * 3], p[BIG * 3];
+        CHECK(D.dir(storage, need, layout, us, d, BIG) == BIG);
+        size_t close = 0;
+        for (size_t i = 0; i < BIG; i++) {
+            CHECK(memcmp(d[i].uv, ref[i].uv, 8) == 0 && d[i].texel[0] == ref[i].texel[0] &&
+                  d[i].texel[1] == ref[i].texel[1]);
+            for (int c = 0; c < 3; c++) dirs[3 * i + c] = d[i].dir[c];
+        }
+        CHECK(D.pdf_dir(storage, need, layout, dirs, p, BIG) == BIG);
+        for (size_t i = 0; i < BIG; i++) close += fabsf(p[i] - d[i].pdf) <= 1e-4f * d[i].pdf;
+        CHECK(close * 1000 >= BIG * 999);
+        /* In place: density i overwrites float i after direction i / 3 was read. */
+        memcpy(p, dirs, sizeof dirs);
+        CHECK(D.pdf_dir(storage, need, layout, p, p, BIG) == BIG);
+        {
+            float q[BIG];
+            CHECK(D.pdf_dir(storage, need, layout, dirs, q, BIG) == BIG);
+            CHECK(memcmp(p, q, sizeof q) == 0);
+        }
+        /* The rules: unknown layout, null, overlap, n = 0. */
+        memset(got, SENTINEL, sizeof got);
+        CHECK(D.dir(storage, need, 2, us, (WcEnvDirection *)(void *)got, 4) == 0);
+        CHECK(D.dir(storage, need, layout, NULL, (WcEnvDirection *)(void *)got, 4) == 0);
+        CHECK(D.dir(storage, need, layout, us, (WcEnvDirection *)(void *)got, 0) == 0);
+        CHECK(D.pdf_dir(storage, need, 7, dirs, (float *)(void *)got, 4) == 0);
+        CHECK(untouched(got, sizeof got));
     }
 
     /* Written to a file and read back at every word alignment: the same samples. */
@@ -420,7 +477,36 @@ static void envmap(struct dist D, struct dist O) {
     }
 }
 
+static void error_strings(void) {
+    const char *unknown = wc_error_string(12345);
+    CHECK(unknown != NULL && unknown[0] != 0 && wc_error_string(INT32_MIN) == unknown);
+    for (int32_t c = WC_OK; c >= WC_ERR_OTHER; c--) {
+        const char *e = wc_error_string(c);
+        CHECK(e != NULL && e[0] != 0 && e != unknown && e == wc_error_string(c));
+        for (int32_t d = c + 1; d <= WC_OK; d++) CHECK(strcmp(e, wc_error_string(d)) != 0);
+    }
+    CHECK(strstr(wc_error_string(WC_ERR_CORRUPT), "checksum") != NULL);
+    CHECK(strstr(wc_error_string(WC_ERR_UNSUPPORTED_VERSION), "rebuild") != NULL);
+}
+
 static void images(void) {
+    /* The equirect names and their deprecated latlong aliases give the same bits. */
+    {
+        float a[6] = {1, 2, 3, 4, 5, 6}, b[6] = {1, 2, 3, 4, 5, 6};
+        CHECK(wc_envmap_equirect_solid_angle_weights(a, 3, 2) == WC_OK);
+        CHECK(wc_envmap_latlong_solid_angle_weights(b, 3, 2) == WC_OK);
+        CHECK(memcmp(a, b, sizeof a) == 0);
+        float pdf[2] = {1.0f, 2.0f}, v[2] = {0.25f, 0.5f}, x[2], y[2];
+        CHECK(wc_envmap_equirect_pdf_to_solid_angle(pdf, v, x, 2) == 2);
+        CHECK(wc_envmap_latlong_pdf_to_solid_angle(pdf, v, y, 2) == 2);
+        CHECK(memcmp(x, y, sizeof x) == 0);
+        float src[8 * 3], e[16 * 3], l[16 * 3];
+        for (int i = 0; i < 24; i++) src[i] = (float)i;
+        CHECK(wc_envmap_equirect_to_equal_area(src, 4, 2, 3, e, 4, 2) == WC_OK);
+        CHECK(wc_envmap_latlong_to_equal_area(src, 4, 2, 3, l, 4, 2) == WC_OK);
+        CHECK(memcmp(e, l, sizeof e) == 0);
+        CHECK(WC_ENVMAP_COMPENSATION_EQUIRECT == WC_ENVMAP_COMPENSATION_LATLONG);
+    }
     float w[6] = {1, 1, 1, 1, 1, 1};
     CHECK(wc_envmap_latlong_solid_angle_weights(w, 3, 2) == WC_OK && w[0] > 0.0f && w[0] < 1.0f);
     CHECK(wc_envmap_latlong_solid_angle_weights(w, 0, 2) == WC_ERR_ZERO_SIZE);
@@ -450,15 +536,24 @@ int main(void) {
     disk_extras();
     struct dist hier = {"wcHI", wc_envmap_hierarchical_storage_len, wc_envmap_hierarchical_build,
                         wc_envmap_hierarchical_validate, wc_envmap_hierarchical_verify,
-                        wc_envmap_hierarchical_sample, wc_envmap_hierarchical_pdf};
+                        wc_envmap_hierarchical_sample, wc_envmap_hierarchical_pdf,
+                        wc_envmap_hierarchical_from_storage,
+                        wc_envmap_hierarchical_from_storage_verified,
+                        wc_envmap_hierarchical_sample_direction,
+                        wc_envmap_hierarchical_pdf_direction};
     struct dist marg = {"wcMC", wc_envmap_marginal_conditional_storage_len,
                         wc_envmap_marginal_conditional_build,
                         wc_envmap_marginal_conditional_validate,
                         wc_envmap_marginal_conditional_verify,
-                        wc_envmap_marginal_conditional_sample, wc_envmap_marginal_conditional_pdf};
+                        wc_envmap_marginal_conditional_sample, wc_envmap_marginal_conditional_pdf,
+                        wc_envmap_marginal_conditional_from_storage,
+                        wc_envmap_marginal_conditional_from_storage_verified,
+                        wc_envmap_marginal_conditional_sample_direction,
+                        wc_envmap_marginal_conditional_pdf_direction};
     envmap(hier, marg);
     envmap(marg, hier);
     images();
+    error_strings();
     printf("%d passed, %d failed\n", passed, failed);
     return failed == 0 ? 0 : 1;
 }

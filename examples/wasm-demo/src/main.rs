@@ -117,7 +117,7 @@ mod extras {
                 hash(|h| {
                     for i in 0..N {
                         let [p, v]: [f32; 2] = input(i);
-                        h.floats(&[image::latlong_pdf_to_solid_angle(p, v)]);
+                        h.floats(&[image::equirect_pdf_to_solid_angle(p, v)]);
                     }
                 }),
             ),
@@ -125,11 +125,11 @@ mod extras {
                 "envmap_image",
                 hash(|h| {
                     let mut w = weights();
-                    image::latlong_solid_angle_weights(&mut w, 13, 7).unwrap();
+                    image::equirect_solid_angle_weights(&mut w, 13, 7).unwrap();
                     h.floats(&w);
                     let rgb: Vec<[f32; 3]> = (0..91).map(|k| input(200 + k)).collect();
                     let mut dst = vec![[0.0f32; 3]; 64];
-                    image::latlong_to_equal_area(&rgb, 13, 7, &mut dst, 8, 3).unwrap();
+                    image::equirect_to_equal_area(&rgb, 13, 7, &mut dst, 8, 3).unwrap();
                     for t in &dst {
                         h.floats(t);
                     }
@@ -152,7 +152,7 @@ mod extras {
             let (w, ht, rgb) = read_pfm(path);
             let mut weights = vec![0.0f32; w * ht];
             image::luminance_slice(&rgb, &mut weights);
-            image::latlong_solid_angle_weights(&mut weights, w, ht).unwrap();
+            image::equirect_solid_angle_weights(&mut weights, w, ht).unwrap();
             let u: Vec<[f32; 2]> = (0..4096).map(|i| warpcore::pmj02bn::sample(i, 7)).collect();
             let run = |h: &mut Hasher,
                        sample: &dyn Fn([f32; 2]) -> Sample,

@@ -13,9 +13,14 @@ const texel: Uint32Array = s.texel;
 const kind: 'hierarchical' | 'marginal-conditional' = env.kind;
 const ok: boolean = env instanceof wc.EnvMap;
 const again = wc.envmapFromStorage(env.storage(), { verify: false });
+const d = env.sampleDirection('equal-area', u);
+const solidAnglePdf: Float32Array = env.pdfDirection('equirect', d.dir);
+const fromBytes = wc.envmapFromStorage(new Uint8Array(env.storage().buffer));
+fromBytes.free();
+const shuffled: number = wc.pmj02bnShuffle(5, 7) + solidAnglePdf.length + d.texel.length;
 env.free();
 again[Symbol.dispose]();
-const n: number = MAX_COUNT + wc.pmj02bnPoints + back.length + quadrant.length + texel.length + dirs.length;
+const n: number = shuffled + MAX_COUNT + wc.pmj02bnPoints + back.length + quadrant.length + texel.length + dirs.length;
 await load(new URL('file:///x.wasm'));
 await load(new Uint8Array(8));
 
@@ -24,7 +29,9 @@ wc.diskConcentric([0.5, 0.5]);
 // @ts-expect-error: a count is required
 wc.pmj02bnSample(0, 1);
 // @ts-expect-error: channels are 1 to 4
-wc.envmapLatlongToEqualArea(new Float32Array(3), 1, 1, 5, 1, 1);
+wc.envmapEquirectToEqualArea(new Float32Array(3), 1, 1, 5, 1, 1);
+// @ts-expect-error: layouts are 'equirect' and 'equal-area'
+env.sampleDirection('latlong', u);
 // @ts-expect-error: read-only
 env.width = 3;
 // @ts-expect-error: the constructor is not public

@@ -106,7 +106,7 @@ fn park() -> (Vec<f32>, usize, usize) {
     let (w, h) = (img.width, img.height);
     let mut l = vec![0.0f32; w * h];
     image::luminance_slice(&img.rgb, &mut l);
-    image::latlong_solid_angle_weights(&mut l, w, h).unwrap();
+    image::equirect_solid_angle_weights(&mut l, w, h).unwrap();
     (l, w, h)
 }
 
