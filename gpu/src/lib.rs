@@ -7,6 +7,7 @@
 //! the same point. `tests/lavapipe.rs` requires them to be equal on Mesa's lavapipe, and the
 //! `gpu-check` binary reports the differences on any adapter. See `docs/gpu.md`.
 
+pub mod envmaps;
 pub mod model;
 pub mod tables;
 
@@ -745,6 +746,25 @@ impl Gpu {
         outw: usize,
         tables: Option<&[u32]>,
     ) -> Result<Vec<u32>, String> {
+        match tables {
+            Some(t) => self.run_bound(label, source, input, inw, outw, &[(0, t)], [1, 2]),
+            None => self.run_bound(label, source, input, inw, outw, &[], [0, 1]),
+        }
+    }
+
+    /// [`Gpu::run_words`] with any read-only buffers `bound` (binding, words) and the
+    /// bindings `[in, out]` of `wc_in` and `wc_out` (all in group 0).
+    #[allow(clippy::too_many_arguments)]
+    pub fn run_bound(
+        &self,
+        label: &str,
+        source: &str,
+        input: &[u32],
+        inw: usize,
+        outw: usize,
+        bound: &[(u32, &[u32])],
+        [in_binding, out_binding]: [u32; 2],
+    ) -> Result<Vec<u32>, String> {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = self
             .device
@@ -770,10 +790,8 @@ impl Gpu {
         for start in (0..n).step_by(CHUNK) {
             let m = CHUNK.min(n - start);
             let words = &input[start * inw..(start + m) * inw];
-            let (reads, out_binding): (Vec<(u32, &[u32])>, u32) = match tables {
-                Some(t) => (vec![(0, t), (1, words)], 2),
-                None => (vec![(0, words)], 1),
-            };
+            let mut reads: Vec<(u32, &[u32])> = bound.to_vec();
+            reads.push((in_binding, words));
             out.extend(self.dispatch(&pipeline, &reads, out_binding, m, m * outw)?);
         }
         Ok(out)

@@ -1,5 +1,5 @@
-//! Runs every function of `shaders/warpcore.wgsl` and `shaders/warpcore_tables.wgsl` (with its
-//! tables buffer bound) on the default GPU adapter and reports, per function, how many points
+//! Runs every function of `shaders/warpcore.wgsl`, `shaders/warpcore_tables.wgsl` (with its
+//! tables buffer bound) and `shaders/warpcore_envmap.wgsl` (with test maps bound) on the default GPU adapter and reports, per function, how many points
 //! differ from the crate and by how much (absolute and in ulps; the table file's outputs are
 //! integer-derived, so only their mismatch counts are printed).
 //!
@@ -15,7 +15,7 @@
 //! largest deviation from the crate per function: the bounds in docs/gpu.md.
 
 use warpcore_gpu::{
-    FUNCTIONS, Gpu, compare, compare_words, cpu_outputs, inputs, tables, typical_inputs,
+    FUNCTIONS, Gpu, compare, compare_words, cpu_outputs, envmaps, inputs, tables, typical_inputs,
 };
 
 fn main() {
@@ -116,6 +116,24 @@ fn main() {
         println!(
             "{:<42} {:>9} {:>10} {:>12} {:>8}",
             func.name, d.points, d.mismatches, "-", "-"
+        );
+    }
+    // shaders/warpcore_envmap.wgsl over the test maps.
+    for (k, func) in envmaps::ENV_FUNCTIONS.iter().enumerate() {
+        let input = envmaps::env_inputs(func, random.unwrap_or(1 << 16) / 16, 0xe0 + k as u64);
+        let want = envmaps::cpu_outputs(func, &input);
+        let got = match envmaps::run(&gpu, func, &envmaps::shader_source(func), &input) {
+            Ok(g) => g,
+            Err(e) => {
+                eprintln!("gpu-check: {e}");
+                std::process::exit(1)
+            }
+        };
+        let d = compare_words(func.out_words(), |w| func.is_integer_output(w), &got, &want);
+        any |= d.mismatches > 0;
+        println!(
+            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
+            func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
         );
     }
     if any {
