@@ -61,3 +61,19 @@ test('warpcore_tables.wgsl (pmj02bn, the sampler) on Chromium WebGPU equals the 
   assert.ok(moved['wc_sampler_* sobol'] === 0 && moved['wc_sampler_* blueSobol'] === 0, 'Sobol reads its own part');
   assert.deepEqual(page.errors.filter((e) => !e.includes('favicon.ico')), []);
 });
+
+test('warpcore_envmap.wgsl (maps from the JS module) on Chromium WebGPU equals the crate', { skip, timeout: 240_000 }, async (t) => {
+  const server = await serve(root);
+  t.after(() => server.close());
+  const browser = await launch(wrapper);
+  t.after(() => browser.close());
+  const page = await open(browser, `${server.url}gpu/browser/webgpu-check.mjs`);
+  const r = await page.evaluate(`import('${server.url}gpu/browser/webgpu-check.mjs').then((m) => m.checkEnvmap())`);
+  console.log(`adapter: ${r.adapter}`);
+  for (const [name, points, mismatches, first, texels, uv, pdf] of r.rows) {
+    console.log(`${name.padEnd(42)} ${String(points).padStart(7)} ${String(mismatches).padStart(8)} texels ${texels} uv ${uv} pdf ${pdf}${first ? ' ' + JSON.stringify(first) : ''}`);
+  }
+  assert.equal(r.rows.length, 4);
+  assert.deepEqual(r.rows.filter((row) => row[2] > 0).map((row) => row[0]), [], 'functions with mismatches');
+  assert.deepEqual(page.errors.filter((e) => !e.includes('favicon.ico')), []);
+});
