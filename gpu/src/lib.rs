@@ -6,6 +6,11 @@
 //! a compute shader and returns the output words; [`Cpu::eval`] gives the crate's words for
 //! the same point. `tests/lavapipe.rs` requires them to be equal on Mesa's lavapipe, and the
 //! `gpu-check` binary reports the differences on any adapter. See `docs/gpu.md`.
+//!
+//! [`tables`] does the same for `shaders/warpcore_tables.wgsl` (pmj02bn and the sampling core,
+//! with the buffer of tables it builds; `tests/lavapipe_tables.rs`), and [`envmaps`] for
+//! `shaders/warpcore_envmap.wgsl` (environment maps from their storage words;
+//! `tests/lavapipe_envmap.rs`).
 
 pub mod envmaps;
 pub mod model;
