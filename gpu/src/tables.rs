@@ -133,7 +133,7 @@ const SAMPLER_FUNCTIONS: &[&str] = &[
     "wc_sampler_rnd4",
 ];
 
-/// Words per sampler path (see [`sampler_wgsl`]).
+/// Words per sampler path (see the `wc_sampler_*` checks of [`TABLE_FUNCTIONS`]).
 pub const SAMPLER_OUT: usize = 40;
 
 /// Every check of `shaders/warpcore_tables.wgsl`.
