@@ -227,3 +227,83 @@ fn naga_translates_the_envmap_file() {
         ),
     }
 }
+
+/// Directions from the three files together: `wc_sphere_equal_area(s.uv)` and
+/// `wc_sphere_equal_area_pdf_to_solid_angle(s.pdf)` (warpcore.wgsl) after a hierarchical sample
+/// are exactly the crate's `sample_direction(Layout::EqualArea, u)`; `wc_sphere_equirect(s.uv)`
+/// is exactly its `Layout::Equirect` direction, and `wc_sphere_equirect_pdf_to_solid_angle(
+/// s.pdf, dir)` is exactly the crate's `sphere::equirect_pdf_to_solid_angle` (the form
+/// `pdf_direction` uses, a function of the direction), within a stated bound of the density
+/// `sample_direction` returns (a function of `v`).
+#[test]
+fn directions_compose_with_warpcore_wgsl() {
+    use warpcore::envmap::{Hierarchical, Layout};
+    let Some(gpu) = lavapipe() else { return };
+    let func = ENV_FUNCTIONS[0];
+    let input = env_inputs(&func, 1 << 10, 9);
+    let (buffer, _) = env_buffer();
+    let mut source = format!("{}\n{}", warpcore_gpu::WGSL, ENVMAP_WGSL);
+    source.push_str(
+        "\n@group(0) @binding(2) var<storage, read> wc_in: array<u32>;\n\
+         @group(0) @binding(3) var<storage, read_write> wc_out: array<u32>;\n\
+         @compute @workgroup_size(64)\n\
+         fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {\n\
+         \x20   let i = gid.x;\n\
+         \x20   if (i >= arrayLength(&wc_out) / 8u) { return; }\n\
+         \x20   let b = i * 3u;\n\
+         \x20   let s = wc_envmap_hierarchical_sample(wc_in[b], vec2<f32>(bitcast<f32>(wc_in[b + 1u]), bitcast<f32>(wc_in[b + 2u])));\n\
+         \x20   let a = wc_sphere_equal_area(s.uv);\n\
+         \x20   let e = wc_sphere_equirect(s.uv);\n\
+         \x20   let r = array<f32, 8>(a.x, a.y, a.z, wc_sphere_equal_area_pdf_to_solid_angle(s.pdf),\n\
+         \x20       e.x, e.y, e.z, wc_sphere_equirect_pdf_to_solid_angle(s.pdf, e));\n\
+         \x20   for (var k = 0u; k < 8u; k++) { wc_out[i * 8u + k] = bitcast<u32>(r[k]); }\n\
+         }\n",
+    );
+    let got = gpu
+        .run_bound("directions", &source, &input, 3, 8, &[(1, buffer)], [2, 3])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut want = Vec::with_capacity(got.len());
+    let mut by_dir = Vec::new();
+    for i in input.chunks_exact(3) {
+        let m = Hierarchical::from_storage(&buffer[i[0] as usize..]).unwrap();
+        let u = [f32::from_bits(i[1]), f32::from_bits(i[2])];
+        for layout in [Layout::EqualArea, Layout::Equirect] {
+            let d = m.sample_direction(layout, u);
+            want.extend(d.dir.map(f32::to_bits));
+            want.push(d.pdf.to_bits());
+        }
+        // The direction form of the equirect density, as the GPU composes it.
+        let s = m.sample(u);
+        let dir = warpcore::sphere::equirect(s.uv);
+        by_dir.push(warpcore::sphere::equirect_pdf_to_solid_angle(s.pdf, dir).to_bits());
+    }
+    let dirs = |k: usize| k % 4 != 3;
+    let (mut equal_area, mut equirect_dir, mut equirect_pdf, mut worst) = (0, 0, 0, 0f64);
+    for (g, w) in got.chunks_exact(8).zip(want.chunks_exact(8)) {
+        equal_area += usize::from(g[..4] != w[..4]);
+        equirect_dir += usize::from((4..7).any(|k| dirs(k) && g[k] != w[k]));
+        if g[7] != w[7] {
+            equirect_pdf += 1;
+            let (a, b) = (f32::from_bits(g[7]) as f64, f32::from_bits(w[7]) as f64);
+            worst = worst.max(if b == 0.0 { a.abs() } else { (a - b).abs() / b });
+        }
+    }
+    let n = got.len() / 8;
+    println!(
+        "{n} samples: equal-area {equal_area} differ; equirect directions {equirect_dir} differ, \
+         densities {equirect_pdf} differ (largest relative difference {worst:.2e})"
+    );
+    assert_eq!(equal_area, 0);
+    assert_eq!(equirect_dir, 0);
+    assert!(worst < 1e-5, "{worst}");
+    // The composed equirect density is the crate's direction form, bit for bit.
+    let exact = got
+        .chunks_exact(8)
+        .zip(&by_dir)
+        .filter(|(g, w)| g[7] == **w)
+        .count();
+    assert_eq!(
+        exact, n,
+        "equirect densities equal to sphere::equirect_pdf_to_solid_angle"
+    );
+}
