@@ -3,7 +3,8 @@
 // A library: no bindings, no entry points, no `enable` directives, core WebGPU only.
 // Concatenate it with your own shader (or load it through your engine's include mechanism,
 // see docs/gpu.md). Public names mirror the C ABI (`include/warpcore.h`): `wc_<family>_<warp>`;
-// everything named `wci_*` is internal.
+// everything named `wci_*` is internal. pmj02bn and the sampling core need tables: they are in
+// warpcore_tables.wgsl, which declares their one storage binding (see docs/gpu.md).
 //
 // Every function is transcribed operation by operation from the Rust bodies in `src/` (the
 // same constants, as hex-float literals of the crate's `f32` values; the same order of

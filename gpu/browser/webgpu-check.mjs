@@ -109,7 +109,7 @@ ${comps.map((c, k) => `    wc_out[i * ${outFloats}u + ${k}u] = ${word(c)};`).joi
 `;
 }
 
-async function runOnGpu(device, code, input, outWords) {
+async function runOnGpu(device, code, input, outWords, tables = null) {
   device.pushErrorScope('validation');
   const module = device.createShaderModule({ code });
   const pipeline = device.createComputePipeline({ layout: 'auto', compute: { module, entryPoint: 'wc_check_main' } });
@@ -122,10 +122,16 @@ async function runOnGpu(device, code, input, outWords) {
   const readBuf = device.createBuffer({ size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
   const bind = device.createBindGroup({
     layout: pipeline.getBindGroupLayout(0),
-    entries: [
-      { binding: 0, resource: { buffer: inBuf } },
-      { binding: 1, resource: { buffer: outBuf } },
-    ],
+    entries: tables
+      ? [
+          { binding: 0, resource: { buffer: tables } },
+          { binding: 1, resource: { buffer: inBuf } },
+          { binding: 2, resource: { buffer: outBuf } },
+        ]
+      : [
+          { binding: 0, resource: { buffer: inBuf } },
+          { binding: 1, resource: { buffer: outBuf } },
+        ],
   });
   const enc = device.createCommandEncoder();
   const pass = enc.beginComputePass();
@@ -215,4 +221,236 @@ export async function check(n = 1 << 14, edit = null) {
     rows.push([name, n, mismatches, first]);
   }
   return { adapter: `${info.vendor} ${info.architecture} (fallback ${info.isFallbackAdapter})`, rows };
+}
+
+// shaders/warpcore_tables.wgsl: the compute shader around one check's body (reads wc_in[b + k],
+// writes wc_out[o + k]); the library's wc_tables is binding 0.
+function tablesShader(lib, inw, outw, body) {
+  return `${lib}
+@group(0) @binding(1) var<storage, read> wc_in: array<u32>;
+@group(0) @binding(2) var<storage, read_write> wc_out: array<u32>;
+@compute @workgroup_size(64)
+fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if (i >= arrayLength(&wc_out) / ${outw}u) { return; }
+    let b = i * ${inw}u;
+    let o = i * ${outw}u;
+${body}
+}
+`;
+}
+
+const SAMPLER_BODY = `    var s = wc_sampler_new(wc_in[b], vec2<u32>(wc_in[b + 1u], wc_in[b + 2u]), wc_in[b + 3u], wc_in[b + 4u], wc_in[b + 5u]);
+    s = wc_sampler_domain(s, wc_in[b + 6u]);
+    s = wc_sampler_split(s, wc_in[b + 7u], 4u, 3u);
+    s = wc_sampler_domain(s, wc_in[b + 8u]);
+    let d = wc_sampler_draw4_u32(s);
+    let e = wc_sampler_draw2(s);
+    let r = wc_sampler_rnd4(s);
+    wc_out[o] = d.x; wc_out[o + 1u] = d.y; wc_out[o + 2u] = d.z; wc_out[o + 3u] = d.w;
+    wc_out[o + 4u] = bitcast<u32>(e.x); wc_out[o + 5u] = bitcast<u32>(e.y);
+    wc_out[o + 6u] = bitcast<u32>(r.x); wc_out[o + 7u] = bitcast<u32>(r.y);
+    wc_out[o + 8u] = bitcast<u32>(r.z); wc_out[o + 9u] = bitcast<u32>(r.w);`;
+
+/**
+ * Checks shaders/warpcore_tables.wgsl with shaders/warpcore_tables.bin bound: pmj02bn points
+ * (three runs of `n` consecutive indices) and, per pattern, `n` sampler paths
+ * `domain(k1).split(k2, 4, 3).domain(k3)` (draw4_u32, draw2, rnd4), against the JavaScript
+ * module. Returns `{ adapter, rows }` as `check` does. `corrupt` flips the top bit of every
+ * pmj02bn table word before the upload (the test's check that the comparison sees the tables).
+ */
+export async function checkTables(n = 1 << 12, corrupt = false) {
+  const wc = await load();
+  const lib = await (await fetch(new URL('../../shaders/warpcore_tables.wgsl', import.meta.url))).text();
+  const bin = await (await fetch(new URL('../../shaders/warpcore_tables.bin', import.meta.url))).arrayBuffer();
+  if (corrupt) {
+    const w = new Uint32Array(bin, 0, 2 * wc.pmj02bnSets * wc.pmj02bnPoints);
+    for (let i = 0; i < w.length; i++) w[i] ^= 0x80000000;
+  }
+  const adapter = await navigator.gpu.requestAdapter();
+  if (!adapter) throw new Error('no WebGPU adapter');
+  const device = await adapter.requestDevice();
+  const info = adapter.info ?? {};
+  const tables = device.createBuffer({ size: bin.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
+  device.queue.writeBuffer(tables, 0, bin);
+  const words = (a) => new Uint32Array(a.buffer.slice(a.byteOffset, a.byteOffset + a.byteLength));
+  const rows = [];
+  const compare = (name, got, want, outw) => {
+    let mismatches = 0;
+    let first = null;
+    for (let p = 0; p < got.length / outw; p++) {
+      for (let w = 0; w < outw; w++) {
+        if (got[p * outw + w] !== want[p * outw + w]) {
+          mismatches++;
+          first ??= { point: p, got: Array.from(got.subarray(p * outw, (p + 1) * outw)), want: Array.from(want.subarray(p * outw, (p + 1) * outw)) };
+          break;
+        }
+      }
+    }
+    rows.push([name, got.length / outw, mismatches, first]);
+  };
+  const pmjBody = '    let r = wc_pmj02bn_sample(wc_in[b], wc_in[b + 1u]);\n    wc_out[o] = bitcast<u32>(r.x);\n    wc_out[o + 1u] = bitcast<u32>(r.y);';
+  for (const [start, seed] of [[0, 0], [3 * wc.pmj02bnPoints - 100, 0xdeadbeef], [2 ** 32 - n / 2, 0xffffffff]]) {
+    const input = new Uint32Array(2 * n);
+    for (let i = 0; i < n; i++) input.set([(start + i) >>> 0, seed], 2 * i);
+    const want = words(wc.pmj02bnSample(start, seed, n));
+    const got = await runOnGpu(device, tablesShader(lib, 2, 2, pmjBody), input, 2 * n, tables);
+    compare(`wc_pmj02bn_sample from ${start}`, got, want, 2);
+  }
+  for (const [id, pattern] of ['pmj02bn', 'sobol', 'bluePmj02bn', 'blueSobol'].entries()) {
+    const next = rng(0x2545f491 ^ (id * 0x9e3779b9));
+    const input = new Uint32Array(9 * n);
+    const want = new Uint32Array(10 * n);
+    for (let i = 0; i < n; i++) {
+      const w = [id, next(), next(), next(), i % 2 ? next() : i, i % 3 ? next() : 0, next(), next(), next()];
+      if (i % 4 === 0) [w[1], w[2]] = [w[1] & 63, w[2] & 63];
+      input.set(w, 9 * i);
+      const path = wc.samplerPath().domain(w[6]).split(w[7], 4, 3).domain(w[8]);
+      const args = [pattern, new Uint32Array([w[1], w[2]]), w[3], w[4], w[5], path];
+      want.set(wc.samplerDrawU32(...args, 4), 10 * i);
+      want.set(words(wc.samplerDraw(...args, 2)), 10 * i + 4);
+      want.set(words(wc.samplerRnd(...args, 4)), 10 * i + 6);
+    }
+    const got = await runOnGpu(device, tablesShader(lib, 9, 10, SAMPLER_BODY), input, 10 * n, tables);
+    compare(`wc_sampler_* ${pattern}`, got, want, 10);
+  }
+  return { adapter: `${info.vendor} ${info.architecture} (fallback ${info.isFallbackAdapter})`, rows };
+}
+
+/**
+ * Checks shaders/warpcore_envmap.wgsl: maps built by the JavaScript module (hierarchical and
+ * marginal-conditional, their `storage()` words bound at binding 1), `n` random points each,
+ * `sample` (uv, pdf, texel) and `pdf`, against the module. Returns `{ adapter, rows }` as
+ * `check` does, with the largest difference of a `uv` coordinate and of a pdf (relative).
+ */
+export async function checkEnvmap(n = 1 << 12) {
+  const wc = await load();
+  const lib = await (await fetch(new URL('../../shaders/warpcore_envmap.wgsl', import.meta.url))).text();
+  const adapter = await navigator.gpu.requestAdapter();
+  if (!adapter) throw new Error('no WebGPU adapter');
+  const device = await adapter.requestDevice();
+  const info = adapter.info ?? {};
+  const next = rng(0x51ed);
+  const maps = [];
+  for (const [w, h] of [[4, 2], [13, 7], [64, 32], [300, 7]]) {
+    const weights = new Float32Array(w * h);
+    for (let i = 0; i < weights.length; i++) weights[i] = i % 5 === 0 ? 0 : (next() >>> 8) / 2 ** 24 * 2 ** ((next() % 20) - 10);
+    maps.push(['hierarchical', wc.envmapHierarchical(weights, w, h)]);
+    maps.push(['marginal_conditional', wc.envmapMarginalConditional(weights, w, h)]);
+  }
+  const storages = maps.map(([, m]) => m.storage());
+  if (storages[0][1] !== 3) throw new Error(`the JS module writes storage version ${storages[0][1]}, the shader reads 3: rebuild js/warpcore.wasm (js/build.sh)`);
+  const total = storages.reduce((s, a) => s + a.length, 0);
+  const words = new Uint32Array(total);
+  const bases = [];
+  let at = 0;
+  for (const s of storages) {
+    bases.push(at);
+    words.set(s, at);
+    at += s.length;
+  }
+  const envBuf = device.createBuffer({ size: words.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
+  device.queue.writeBuffer(envBuf, 0, words);
+  const rows = [];
+  for (const [kind, sample] of [['hierarchical', true], ['hierarchical', false], ['marginal_conditional', true], ['marginal_conditional', false]]) {
+    const name = `wc_envmap_${kind}_${sample ? 'sample' : 'pdf'}`;
+    const outw = sample ? 5 : 1;
+    const chunks = [];
+    const wants = [];
+    for (const [k, [mk, map]] of maps.entries()) {
+      if (mk !== kind) continue;
+      const u = square(n, next);
+      const input = new Uint32Array(3 * n);
+      const uw = new Uint32Array(u.buffer);
+      for (let i = 0; i < n; i++) input.set([bases[k], uw[2 * i], uw[2 * i + 1]], 3 * i);
+      chunks.push(input);
+      const want = new Uint32Array(outw * n);
+      if (sample) {
+        const s = map.sample(u);
+        const uvw = new Uint32Array(s.uv.buffer);
+        const pw = new Uint32Array(s.pdf.buffer);
+        for (let i = 0; i < n; i++) want.set([uvw[2 * i], uvw[2 * i + 1], pw[i], s.texel[2 * i], s.texel[2 * i + 1]], 5 * i);
+      } else {
+        want.set(new Uint32Array(map.pdf(u).buffer));
+      }
+      wants.push(want);
+    }
+    const input = new Uint32Array(chunks.reduce((s, c) => s + c.length, 0));
+    const want = new Uint32Array(wants.reduce((s, c) => s + c.length, 0));
+    chunks.reduce((o, c) => (input.set(c, o), o + c.length), 0);
+    wants.reduce((o, c) => (want.set(c, o), o + c.length), 0);
+    const code = `${lib}
+@group(0) @binding(2) var<storage, read> wc_in: array<u32>;
+@group(0) @binding(3) var<storage, read_write> wc_out: array<u32>;
+@compute @workgroup_size(64)
+fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if (i >= arrayLength(&wc_out) / ${outw}u) { return; }
+    let b = i * 3u;
+    let o = i * ${outw}u;
+    let r = ${name}(wc_in[b], vec2<f32>(bitcast<f32>(wc_in[b + 1u]), bitcast<f32>(wc_in[b + 2u])));
+${sample ? '    wc_out[o] = bitcast<u32>(r.uv.x);\n    wc_out[o + 1u] = bitcast<u32>(r.uv.y);\n    wc_out[o + 2u] = bitcast<u32>(r.pdf);\n    wc_out[o + 3u] = r.texel.x;\n    wc_out[o + 4u] = r.texel.y;' : '    wc_out[o] = bitcast<u32>(r);'}
+}
+`;
+    const got = await runOnGpuBound(device, code, [[1, envBuf]], input, want.length);
+    const f = (x) => new Float32Array(new Uint32Array([x]).buffer)[0];
+    let mismatches = 0;
+    let first = null;
+    let texelMismatches = 0;
+    let maxUv = 0;
+    let maxPdf = 0;
+    const points = want.length / outw;
+    for (let p = 0; p < points; p++) {
+      const g = got.subarray(p * outw, (p + 1) * outw);
+      const e = want.subarray(p * outw, (p + 1) * outw);
+      if (g.some((x, k) => x !== e[k])) {
+        mismatches++;
+        first ??= { point: p, got: Array.from(g), want: Array.from(e) };
+      }
+      if (sample) {
+        if (g[3] !== e[3] || g[4] !== e[4]) texelMismatches++;
+        maxUv = Math.max(maxUv, Math.abs(f(g[0]) - f(e[0])), Math.abs(f(g[1]) - f(e[1])));
+      }
+      const pg = f(g[sample ? 2 : 0]);
+      const pe = f(e[sample ? 2 : 0]);
+      maxPdf = Math.max(maxPdf, pe === 0 ? (pg === 0 ? 0 : Infinity) : Math.abs(pg - pe) / pe);
+    }
+    rows.push([name, points, mismatches, first, texelMismatches, maxUv, maxPdf]);
+  }
+  for (const [, m] of maps) m.free();
+  return { adapter: `${info.vendor} ${info.architecture} (fallback ${info.isFallbackAdapter})`, rows };
+}
+
+/** `runOnGpu` with buffers already on the device at the given bindings, `wc_in` at 2, `wc_out` at 3. */
+async function runOnGpuBound(device, code, bound, input, outWords) {
+  device.pushErrorScope('validation');
+  const module = device.createShaderModule({ code });
+  const pipeline = device.createComputePipeline({ layout: 'auto', compute: { module, entryPoint: 'wc_check_main' } });
+  const error = await device.popErrorScope();
+  if (error) throw new Error(error.message);
+  const inBuf = device.createBuffer({ size: input.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
+  device.queue.writeBuffer(inBuf, 0, input);
+  const size = outWords * 4;
+  const outBuf = device.createBuffer({ size, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
+  const readBuf = device.createBuffer({ size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
+  const bind = device.createBindGroup({
+    layout: pipeline.getBindGroupLayout(0),
+    entries: [
+      ...bound.map(([binding, buffer]) => ({ binding, resource: { buffer } })),
+      { binding: 2, resource: { buffer: inBuf } },
+      { binding: 3, resource: { buffer: outBuf } },
+    ],
+  });
+  const enc = device.createCommandEncoder();
+  const pass = enc.beginComputePass();
+  pass.setPipeline(pipeline);
+  pass.setBindGroup(0, bind);
+  pass.dispatchWorkgroups(Math.ceil(outWords / 64));
+  pass.end();
+  enc.copyBufferToBuffer(outBuf, 0, readBuf, 0, size);
+  device.queue.submit([enc.finish()]);
+  await readBuf.mapAsync(GPUMapMode.READ);
+  const out = new Uint32Array(readBuf.getMappedRange().slice(0));
+  readBuf.unmap();
+  return out;
 }

@@ -1,7 +1,8 @@
 // shaders/warpcore.wgsl in a browser: headless Chromium's WebGPU on its software adapter
 // (SwiftShader) evaluates all 28 functions of the library on 16384 points each, away from
 // subnormals (SwiftShader flushes them), and every output word must equal the JavaScript
-// module's (the crate compiled to wasm). `node --test gpu/browser/`; Chromium as for
+// module's (the crate compiled to wasm). The second test does the same for
+// shaders/warpcore_tables.wgsl with shaders/warpcore_tables.bin bound. `node --test gpu/browser/`; Chromium as for
 // js/browser-test (apt-get install chromium, or $CHROMIUM_BIN for the wrapper).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -35,5 +36,44 @@ test('warpcore.wgsl on Chromium WebGPU (SwiftShader) equals the crate', { skip, 
   const concentric = w.rows.find((row) => row[0] === 'wc_disk_concentric');
   console.log(`S0 + 1 ulp: wc_disk_concentric ${concentric[2]} of ${concentric[1]} points differ`);
   assert.ok(concentric[2] * 10 > concentric[1], 'a one-ulp change is detected');
+  assert.deepEqual(page.errors.filter((e) => !e.includes('favicon.ico')), []);
+});
+
+test('warpcore_tables.wgsl (pmj02bn, the sampler) on Chromium WebGPU equals the crate', { skip, timeout: 240_000 }, async (t) => {
+  const server = await serve(root);
+  t.after(() => server.close());
+  const browser = await launch(wrapper);
+  t.after(() => browser.close());
+  const page = await open(browser, `${server.url}gpu/browser/webgpu-check.mjs`);
+  const r = await page.evaluate(`import('${server.url}gpu/browser/webgpu-check.mjs').then((m) => m.checkTables())`);
+  console.log(`adapter: ${r.adapter}`);
+  for (const [name, points, mismatches, first] of r.rows) {
+    console.log(`${name.padEnd(42)} ${String(points).padStart(7)} ${String(mismatches).padStart(8)}${first ? ' ' + JSON.stringify(first) : ''}`);
+  }
+  assert.equal(r.rows.length, 7);
+  assert.deepEqual(r.rows.filter((row) => row[2] > 0).map((row) => row[0]), [], 'checks with mismatches');
+  // The comparison sees the tables: with the top bit of every pmj02bn word flipped, every
+  // pmj02bn point differs and the Sobol' paths (which do not read that part) do not.
+  const c = await page.evaluate(`import('${server.url}gpu/browser/webgpu-check.mjs').then((m) => m.checkTables(1024, true))`);
+  const moved = Object.fromEntries(c.rows.map((row) => [row[0], row[2] / row[1]]));
+  console.log(`corrupted pmj02bn tables: ${JSON.stringify(moved)}`);
+  assert.ok(moved['wc_pmj02bn_sample from 0'] === 1 && moved['wc_sampler_* pmj02bn'] === 1, 'pmj02bn sees the tables');
+  assert.ok(moved['wc_sampler_* sobol'] === 0 && moved['wc_sampler_* blueSobol'] === 0, 'Sobol reads its own part');
+  assert.deepEqual(page.errors.filter((e) => !e.includes('favicon.ico')), []);
+});
+
+test('warpcore_envmap.wgsl (maps from the JS module) on Chromium WebGPU equals the crate', { skip, timeout: 240_000 }, async (t) => {
+  const server = await serve(root);
+  t.after(() => server.close());
+  const browser = await launch(wrapper);
+  t.after(() => browser.close());
+  const page = await open(browser, `${server.url}gpu/browser/webgpu-check.mjs`);
+  const r = await page.evaluate(`import('${server.url}gpu/browser/webgpu-check.mjs').then((m) => m.checkEnvmap())`);
+  console.log(`adapter: ${r.adapter}`);
+  for (const [name, points, mismatches, first, texels, uv, pdf] of r.rows) {
+    console.log(`${name.padEnd(42)} ${String(points).padStart(7)} ${String(mismatches).padStart(8)} texels ${texels} uv ${uv} pdf ${pdf}${first ? ' ' + JSON.stringify(first) : ''}`);
+  }
+  assert.equal(r.rows.length, 4);
+  assert.deepEqual(r.rows.filter((row) => row[2] > 0).map((row) => row[0]), [], 'functions with mismatches');
   assert.deepEqual(page.errors.filter((e) => !e.includes('favicon.ico')), []);
 });

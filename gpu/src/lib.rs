@@ -6,8 +6,15 @@
 //! a compute shader and returns the output words; [`Cpu::eval`] gives the crate's words for
 //! the same point. `tests/lavapipe.rs` requires them to be equal on Mesa's lavapipe, and the
 //! `gpu-check` binary reports the differences on any adapter. See `docs/gpu.md`.
+//!
+//! [`tables`] does the same for `shaders/warpcore_tables.wgsl` (pmj02bn and the sampling core,
+//! with the buffer of tables it builds; `tests/lavapipe_tables.rs`), and [`envmaps`] for
+//! `shaders/warpcore_envmap.wgsl` (environment maps from their storage words;
+//! `tests/lavapipe_envmap.rs`).
 
+pub mod envmaps;
 pub mod model;
+pub mod tables;
 
 use std::fmt::Write as _;
 use warpcore::{disk, sphere, triangle};
@@ -727,17 +734,53 @@ impl Gpu {
     /// of [`Gpu::shader_source`]).
     pub fn run_source(&self, func: &Func, source: &str, input: &[u32]) -> Result<Vec<u32>, String> {
         let (inw, outw) = (func.cpu.in_words(), func.cpu.out_words());
+        self.run_words(func.name, source, input, inw, outw, None)
+    }
+
+    /// Runs the compute shader `source` (entry point `wc_check_main`) on `input` (`inw` words
+    /// per point) and returns `outw` words per point. Without `tables` the shader reads
+    /// `wc_in` at binding 0 and writes `wc_out` at binding 1 (group 0); with `tables`, the
+    /// tables buffer is binding 0 (`shaders/warpcore_tables.wgsl`'s `wc_tables`), `wc_in`
+    /// binding 1 and `wc_out` binding 2.
+    pub fn run_words(
+        &self,
+        label: &str,
+        source: &str,
+        input: &[u32],
+        inw: usize,
+        outw: usize,
+        tables: Option<&[u32]>,
+    ) -> Result<Vec<u32>, String> {
+        match tables {
+            Some(t) => self.run_bound(label, source, input, inw, outw, &[(0, t)], [1, 2]),
+            None => self.run_bound(label, source, input, inw, outw, &[], [0, 1]),
+        }
+    }
+
+    /// [`Gpu::run_words`] with any read-only buffers `bound` (binding, words) and the
+    /// bindings `[in, out]` of `wc_in` and `wc_out` (all in group 0).
+    #[allow(clippy::too_many_arguments)]
+    pub fn run_bound(
+        &self,
+        label: &str,
+        source: &str,
+        input: &[u32],
+        inw: usize,
+        outw: usize,
+        bound: &[(u32, &[u32])],
+        [in_binding, out_binding]: [u32; 2],
+    ) -> Result<Vec<u32>, String> {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = self
             .device
             .create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(func.name),
+                label: Some(label),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             });
         let pipeline = self
             .device
             .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(func.name),
+                label: Some(label),
                 layout: None,
                 module: &module,
                 entry_point: Some("wc_check_main"),
@@ -745,14 +788,16 @@ impl Gpu {
                 cache: None,
             });
         if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(format!("{}: {e}", func.name));
+            return Err(format!("{label}: {e}"));
         }
         let n = input.len() / inw;
         let mut out = Vec::with_capacity(n * outw);
         for start in (0..n).step_by(CHUNK) {
             let m = CHUNK.min(n - start);
             let words = &input[start * inw..(start + m) * inw];
-            out.extend(self.dispatch(&pipeline, words, m, m * outw)?);
+            let mut reads: Vec<(u32, &[u32])> = bound.to_vec();
+            reads.push((in_binding, words));
+            out.extend(self.dispatch(&pipeline, &reads, out_binding, m, m * outw)?);
         }
         Ok(out)
     }
@@ -760,18 +805,25 @@ impl Gpu {
     fn dispatch(
         &self,
         pipeline: &wgpu::ComputePipeline,
-        words: &[u32],
+        reads: &[(u32, &[u32])],
+        out_binding: u32,
         points: usize,
         out_words: usize,
     ) -> Result<Vec<u32>, String> {
         let bytes = |w: &[u32]| w.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
-        let in_buf = self.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("wc_in"),
-            size: (words.len() * 4) as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        self.queue.write_buffer(&in_buf, 0, &bytes(words));
+        let in_bufs: Vec<(u32, wgpu::Buffer)> = reads
+            .iter()
+            .map(|&(binding, words)| {
+                let buf = self.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("wc_in"),
+                    size: (words.len().max(1) * 4) as u64,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                self.queue.write_buffer(&buf, 0, &bytes(words));
+                (binding, buf)
+            })
+            .collect();
         let size = (out_words * 4) as u64;
         let out_buf = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("wc_out"),
@@ -788,16 +840,17 @@ impl Gpu {
         let bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &pipeline.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: in_buf.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
+            entries: &in_bufs
+                .iter()
+                .map(|(binding, buf)| wgpu::BindGroupEntry {
+                    binding: *binding,
+                    resource: buf.as_entire_binding(),
+                })
+                .chain([wgpu::BindGroupEntry {
+                    binding: out_binding,
                     resource: out_buf.as_entire_binding(),
-                },
-            ],
+                }])
+                .collect::<Vec<_>>(),
         });
         let mut enc = self.device.create_command_encoder(&Default::default());
         {
@@ -884,7 +937,21 @@ pub fn ulps(gpu: f32, want: f32) -> f64 {
 
 /// Compares GPU words with crate words, point by point.
 pub fn compare(func: &Func, gpu: &[u32], cpu: &[u32]) -> Diff {
-    let outw = func.cpu.out_words();
+    compare_words(
+        func.cpu.out_words(),
+        |k| func.cpu.is_integer_output(k),
+        gpu,
+        cpu,
+    )
+}
+
+/// [`compare`] for `outw` words per point, `is_integer(k)` telling which words are `u32`.
+pub fn compare_words(
+    outw: usize,
+    is_integer: impl Fn(usize) -> bool,
+    gpu: &[u32],
+    cpu: &[u32],
+) -> Diff {
     let mut d = Diff {
         points: cpu.len() / outw,
         ..Default::default()
@@ -903,7 +970,7 @@ pub fn compare(func: &Func, gpu: &[u32], cpu: &[u32]) -> Diff {
             if g[k] == c[k] {
                 continue;
             }
-            let (abs, ulp) = if func.cpu.is_integer_output(k) {
+            let (abs, ulp) = if is_integer(k) {
                 let a = (g[k] as f64 - c[k] as f64).abs();
                 (a, a)
             } else {

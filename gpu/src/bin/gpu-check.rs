@@ -1,5 +1,7 @@
-//! Runs every function of `shaders/warpcore.wgsl` on the default GPU adapter and reports, per
-//! function, how many points differ from the crate and by how much (absolute and in ulps).
+//! Runs every function of `shaders/warpcore.wgsl`, `shaders/warpcore_tables.wgsl` (with its
+//! tables buffer bound) and `shaders/warpcore_envmap.wgsl` (with test maps bound) on the default GPU adapter and reports, per function, how many points
+//! differ from the crate and by how much (absolute and in ulps; the table file's outputs are
+//! integer-derived, so only their mismatch counts are printed).
 //!
 //! `cargo run -p warpcore-gpu --release --bin gpu-check [-- --random N] [-- --strict]`
 //! (add `--features metal` on macOS, `--features dx12` for Direct3D 12 on Windows; Vulkan is
@@ -12,7 +14,9 @@
 //! typical points per function (default 65536), `T` times each (default 4), and prints the
 //! largest deviation from the crate per function: the bounds in docs/gpu.md.
 
-use warpcore_gpu::{FUNCTIONS, Gpu, compare, cpu_outputs, inputs, typical_inputs};
+use warpcore_gpu::{
+    FUNCTIONS, Gpu, compare, compare_words, cpu_outputs, envmaps, inputs, tables, typical_inputs,
+};
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -84,6 +88,48 @@ fn main() {
             }
         };
         let d = compare(func, &got, &want);
+        any |= d.mismatches > 0;
+        println!(
+            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
+            func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
+        );
+    }
+    // shaders/warpcore_tables.wgsl: integer arithmetic and an exact conversion only, so any
+    // conforming device should give the crate's bits; mismatches are counted per check.
+    let table_words = tables::table_words();
+    for (k, func) in tables::TABLE_FUNCTIONS.iter().enumerate() {
+        let input = tables::table_inputs(
+            func.domain,
+            random.unwrap_or(1 << 16),
+            0x7ab1_0000 + k as u64,
+        );
+        let want = tables::cpu_outputs(func, &input);
+        let got = match tables::run(&gpu, func, &input, &table_words) {
+            Ok(g) => g,
+            Err(e) => {
+                eprintln!("gpu-check: {e}");
+                std::process::exit(1)
+            }
+        };
+        let d = compare_words(func.out_words, |_| true, &got, &want);
+        any |= d.mismatches > 0;
+        println!(
+            "{:<42} {:>9} {:>10} {:>12} {:>8}",
+            func.name, d.points, d.mismatches, "-", "-"
+        );
+    }
+    // shaders/warpcore_envmap.wgsl over the test maps.
+    for (k, func) in envmaps::ENV_FUNCTIONS.iter().enumerate() {
+        let input = envmaps::env_inputs(func, random.unwrap_or(1 << 16) / 16, 0xe0 + k as u64);
+        let want = envmaps::cpu_outputs(func, &input);
+        let got = match envmaps::run(&gpu, func, &envmaps::shader_source(func), &input) {
+            Ok(g) => g,
+            Err(e) => {
+                eprintln!("gpu-check: {e}");
+                std::process::exit(1)
+            }
+        };
+        let d = compare_words(func.out_words(), |w| func.is_integer_output(w), &got, &want);
         any |= d.mismatches > 0;
         println!(
             "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",

@@ -1,0 +1,320 @@
+//! `shaders/warpcore_tables.wgsl` (pmj02bn and the sampling core) against the crate, word for
+//! word, on Mesa's software Vulkan driver (lavapipe), and naga's translations of it to SPIR-V,
+//! GLSL, HLSL and MSL. The same environment variables as `tests/lavapipe.rs`
+//! (`WARPCORE_GPU_SKIP`, `WARPCORE_GPU_REQUIRE_TOOLS`, `WARPCORE_GPU_RANDOM`).
+
+use std::process::Command;
+use warpcore_gpu::tables::{
+    TABLE_FUNCTIONS, TABLES_WGSL, TableFunc, cpu_outputs, run, run_source, shader_source,
+    shader_source_with, table_inputs, table_words,
+};
+use warpcore_gpu::{Gpu, compare_words};
+
+fn lavapipe() -> Option<Gpu> {
+    match Gpu::lavapipe() {
+        Ok(gpu) => Some(gpu),
+        Err(e) if std::env::var("WARPCORE_GPU_SKIP").is_ok_and(|v| v == "1") => {
+            eprintln!("SKIPPED (WARPCORE_GPU_SKIP=1): {e}");
+            None
+        }
+        Err(e) => panic!("{e} (set WARPCORE_GPU_SKIP=1 to skip this test)"),
+    }
+}
+
+fn random_points() -> usize {
+    std::env::var("WARPCORE_GPU_RANDOM")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1 << 16)
+}
+
+/// Every output word (states, fixed-point draws, float draws, roulette values) equals the
+/// crate's, for every pattern, over whole table blocks, edge values of every argument
+/// (index 0 and 2^32 - 1, seed 0, split sizes 0 to 2^32 - 1, pixels past 2^16) and random
+/// words.
+#[test]
+fn every_table_function_is_bit_identical_on_lavapipe() {
+    let Some(gpu) = lavapipe() else { return };
+    println!(
+        "adapter: {} ({:?}, {} {})",
+        gpu.info.name, gpu.info.device_type, gpu.info.driver, gpu.info.driver_info
+    );
+    let tables = table_words();
+    let mut failed = Vec::new();
+    let mut total = 0;
+    for (k, func) in TABLE_FUNCTIONS.iter().enumerate() {
+        let input = table_inputs(func.domain, random_points(), 0x7ab1_0000 + k as u64);
+        let want = cpu_outputs(func, &input);
+        let got = run(&gpu, func, &input, &tables).unwrap_or_else(|e| panic!("{e}"));
+        let d = compare_words(func.out_words, |_| true, &got, &want);
+        total += d.points;
+        println!(
+            "{:<32} {:>9} points {:>8} mismatches",
+            func.name, d.points, d.mismatches
+        );
+        if let Some(p) = d.first {
+            println!(
+                "    first mismatch: in {:08x?}\n      gpu {:08x?}\n    crate {:08x?}",
+                &input[p * func.in_words..(p + 1) * func.in_words],
+                &got[p * func.out_words..(p + 1) * func.out_words],
+                &want[p * func.out_words..(p + 1) * func.out_words]
+            );
+            failed.push(func.name);
+        }
+    }
+    println!("{} checks, {total} points", TABLE_FUNCTIONS.len());
+    assert!(failed.is_empty(), "mismatches in {failed:?}");
+}
+
+fn mismatches(gpu: &Gpu, func: &TableFunc, source: &str, tables: &[u32], n: usize) -> usize {
+    let input = table_inputs(func.domain, n, 11);
+    let want = cpu_outputs(func, &input);
+    let got = run_source(gpu, func, source, &input, tables).unwrap_or_else(|e| panic!("{e}"));
+    compare_words(func.out_words, |_| true, &got, &want).mismatches
+}
+
+/// The comparison is sharp: a table of another build (one set instead of four), one flipped
+/// word of the Sobol' rows, and a wrong blue-noise tile size are each caught.
+#[test]
+fn a_wrong_table_or_layout_is_detected() {
+    let Some(gpu) = lavapipe() else { return };
+    let tables = table_words();
+    let find = |name: &str| *TABLE_FUNCTIONS.iter().find(|f| f.name == name).unwrap();
+    let pmj = find("wc_pmj02bn_sample");
+    let sobol = find("wc_sampler_* Sobol");
+    let blue = find("wc_sampler_* Blue<Pmj02bn>");
+    assert_eq!(
+        mismatches(&gpu, &pmj, &shader_source(&pmj), &tables, 1 << 12),
+        0
+    );
+
+    let one_set = TABLES_WGSL.replace(
+        "const WC_PMJ02BN_SETS: u32 = 4u;",
+        "const WC_PMJ02BN_SETS: u32 = 1u;",
+    );
+    assert_ne!(one_set, TABLES_WGSL);
+    let n = mismatches(
+        &gpu,
+        &pmj,
+        &shader_source_with(&pmj, &one_set),
+        &tables,
+        1 << 12,
+    );
+    println!("one set: {n} mismatches");
+    assert!(n > 1000, "{n}");
+
+    let mut flipped = tables.clone();
+    let row = warpcore_gpu::tables::PMJ02BN_WORDS + 4 * (256 * 3 + 0x80) + 2;
+    flipped[row] ^= 1;
+    let n = mismatches(&gpu, &sobol, &shader_source(&sobol), &flipped, 1 << 12);
+    println!("one Sobol' bit flipped: {n} mismatches");
+    assert!(n > 10, "{n}");
+
+    let small_tile = TABLES_WGSL.replace(
+        "const WC_BLUE_TILE: u32 = 64u;",
+        "const WC_BLUE_TILE: u32 = 32u;",
+    );
+    assert_ne!(small_tile, TABLES_WGSL);
+    let n = mismatches(
+        &gpu,
+        &blue,
+        &shader_source_with(&blue, &small_tile),
+        &tables,
+        1 << 12,
+    );
+    println!("32 x 32 tile: {n} mismatches");
+    assert!(n > 1000, "{n}");
+}
+
+/// The library rules: one binding (the tables), no entry points, no `enable`, no floating-
+/// point arithmetic besides the exact conversion; every public function is checked.
+#[test]
+fn the_tables_file_is_a_library_with_one_binding() {
+    let code: String = TABLES_WGSL
+        .lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_eq!(code.matches("@group").count(), 1);
+    assert_eq!(code.matches("@binding").count(), 1);
+    assert!(code.contains("@group(0) @binding(0) var<storage, read> wc_tables: array<u32>;"));
+    for banned in [
+        "@compute",
+        "@vertex",
+        "@fragment",
+        "enable ",
+        "fma(",
+        "pow(",
+    ] {
+        assert!(
+            !code.contains(banned),
+            "warpcore_tables.wgsl uses {banned:?}"
+        );
+    }
+    for sig in [
+        "fn wc_pmj02bn_sample(index: u32, seed: u32) -> vec2<f32>",
+        "fn wc_sampler_new(pattern: u32, pixel: vec2<u32>, frame: u32, index: u32, seed: u32) -> WcSampler",
+        "fn wc_sampler_domain(s: WcSampler, key: u32) -> WcSampler",
+        "fn wc_sampler_split(s: WcSampler, key: u32, size: u32, sub: u32) -> WcSampler",
+        "fn wc_sampler_draw2(s: WcSampler) -> vec2<f32>",
+        "fn wc_sampler_draw4(s: WcSampler) -> vec4<f32>",
+    ] {
+        assert!(code.contains(sig), "missing signature {sig}");
+    }
+    let module = naga::front::wgsl::parse_str(TABLES_WGSL).expect("warpcore_tables.wgsl parses");
+    let public: Vec<&str> = module
+        .functions
+        .iter()
+        .filter_map(|(_, f)| f.name.as_deref())
+        .filter(|n| n.starts_with("wc_"))
+        .collect();
+    for name in &public {
+        assert!(
+            TABLE_FUNCTIONS.iter().any(|f| f.covers.contains(name)),
+            "{name} is not checked by TABLE_FUNCTIONS"
+        );
+    }
+    assert_eq!(public.len(), 9, "{public:?}");
+    assert!(module.entry_points.is_empty());
+    assert_eq!(module.global_variables.len(), 1);
+    // The two files together: no name is shared.
+    let both = format!("{}\n{}", warpcore_gpu::WGSL, TABLES_WGSL);
+    naga::front::wgsl::parse_str(&both).expect("warpcore.wgsl + warpcore_tables.wgsl parse");
+}
+
+fn tool(name: &str) -> bool {
+    let found = Command::new(name).arg("--version").output().is_ok();
+    if !found {
+        assert!(
+            !std::env::var("WARPCORE_GPU_REQUIRE_TOOLS").is_ok_and(|v| v == "1"),
+            "{name} not found on PATH (WARPCORE_GPU_REQUIRE_TOOLS=1)"
+        );
+        println!("SKIPPED the {name} validation: not on PATH");
+    }
+    found
+}
+
+/// naga validates the file and translates a shader that calls every check's body to SPIR-V,
+/// GLSL 450, HLSL and MSL 1.2; spirv-val and glslangValidator accept the SPIR-V and the GLSL.
+#[test]
+fn naga_translates_the_tables_file() {
+    use naga::valid::{Capabilities, ValidationFlags, Validator};
+    let mut source = String::from(TABLES_WGSL);
+    source.push_str(
+        "\n@group(0) @binding(1) var<storage, read> wc_in: array<u32>;\n\
+         @group(0) @binding(2) var<storage, read_write> wc_out: array<u32>;\n\
+         @compute @workgroup_size(64)\n\
+         fn wc_all(@builtin(global_invocation_id) gid: vec3<u32>) {\n\
+         \x20   let i = gid.x;\n",
+    );
+    for f in TABLE_FUNCTIONS.iter().take(3) {
+        source.push_str(&format!(
+            "    {{\n    let b = i * {}u;\n    let o = i * {}u;\n{}    }}\n",
+            f.in_words,
+            f.out_words,
+            (f.wgsl)()
+        ));
+    }
+    source.push_str("}\n");
+    let module = naga::front::wgsl::parse_str(&source)
+        .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
+    let info = Validator::new(ValidationFlags::all(), Capabilities::empty())
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("naga validation: {e:?}"));
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("warpcore-wgsl");
+    std::fs::create_dir_all(&dir).unwrap();
+    let ep = "wc_all".to_string();
+    let spv = naga::back::spv::write_vec(
+        &module,
+        &info,
+        &Default::default(),
+        Some(&naga::back::spv::PipelineOptions {
+            shader_stage: naga::ShaderStage::Compute,
+            entry_point: ep.clone(),
+        }),
+    )
+    .expect("SPIR-V");
+    let spv_path = dir.join("warpcore_tables.spv");
+    std::fs::write(
+        &spv_path,
+        spv.iter()
+            .flat_map(|w| w.to_le_bytes())
+            .collect::<Vec<u8>>(),
+    )
+    .unwrap();
+    let mut glsl = String::new();
+    naga::back::glsl::Writer::new(
+        &mut glsl,
+        &module,
+        &info,
+        &naga::back::glsl::Options {
+            version: naga::back::glsl::Version::Desktop(450),
+            ..Default::default()
+        },
+        &naga::back::glsl::PipelineOptions {
+            shader_stage: naga::ShaderStage::Compute,
+            entry_point: ep.clone(),
+            multiview: None,
+        },
+        Default::default(),
+    )
+    .expect("GLSL writer")
+    .write()
+    .expect("GLSL");
+    let glsl_path = dir.join("warpcore_tables.comp");
+    std::fs::write(&glsl_path, &glsl).unwrap();
+    let mut hlsl = String::new();
+    naga::back::hlsl::Writer::new(
+        &mut hlsl,
+        &Default::default(),
+        &naga::back::hlsl::PipelineOptions {
+            entry_point: Some((naga::ShaderStage::Compute, ep.clone())),
+        },
+    )
+    .write(&module, &info, None)
+    .expect("HLSL");
+    let (msl, _) = naga::back::msl::write_string(
+        &module,
+        &info,
+        &naga::back::msl::Options {
+            lang_version: (1, 2),
+            ..Default::default()
+        },
+        &naga::back::msl::PipelineOptions {
+            entry_point: Some((naga::ShaderStage::Compute, ep.clone())),
+            ..Default::default()
+        },
+    )
+    .expect("MSL");
+    for (lang, text) in [("GLSL", &glsl), ("HLSL", &hlsl), ("MSL", &msl)] {
+        for name in ["wc_pmj02bn_sample", "wc_sampler_draw4", "wc_sampler_split"] {
+            assert!(text.contains(name), "{lang} lacks {name}");
+        }
+        println!("{lang}: {} bytes", text.len());
+    }
+    if tool("spirv-val") {
+        let out = Command::new("spirv-val")
+            .args(["--target-env", "vulkan1.0"])
+            .arg(&spv_path)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "spirv-val: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        println!("spirv-val: ok");
+    }
+    if tool("glslangValidator") {
+        let out = Command::new("glslangValidator")
+            .arg(&glsl_path)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "glslangValidator: {}",
+            String::from_utf8_lossy(&out.stdout)
+        );
+        println!("glslangValidator: ok");
+    }
+}
