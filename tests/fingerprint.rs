@@ -102,13 +102,7 @@ fn cosine_maps_match_their_golden_fingerprint() {
     use fingerprint::{Hasher, SPHERICAL_RECTANGLES, SPHERICAL_TRIANGLES, lights};
     use warpcore::spherical as sp;
     use warpcore::{f32x8, f32x16};
-    let n1 = |l: [[f32; 3]; 4]| {
-        [
-            l[0][1] - l[3][1] + 0.3,
-            0.5 - l[2][0],
-            0.7 - l[1][2] * 0.5,
-        ]
-    };
+    let n1 = |l: [[f32; 3]; 4]| [l[0][1] - l[3][1] + 0.3, 0.5 - l[2][0], 0.7 - l[1][2] * 0.5];
     let n8 = |l: [[f32x8; 3]; 4]| {
         [
             l[0][1] - l[3][1] + f32x8::splat(0.3),
@@ -159,10 +153,16 @@ fn cosine_maps_match_their_golden_fingerprint() {
         |l, u, o| sp::rectangle_cosine_slice(l[0], l[1], l[2], l[3], n1(l), u, o),
     );
     let got = format!("{:016x}", h.finish());
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/golden/fingerprint_cosine.txt");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/golden/fingerprint_cosine.txt"
+    );
     if std::env::var_os("WARPCORE_BLESS").is_some() {
         std::fs::write(path, format!("{got}\n")).unwrap();
     }
     let golden = include_str!("golden/fingerprint_cosine.txt").trim();
-    assert_eq!(got, golden, "the cosine-aware maps give other bits on this target");
+    assert_eq!(
+        got, golden,
+        "the cosine-aware maps give other bits on this target"
+    );
 }

@@ -309,6 +309,10 @@ pub fn warp_api(warp: &str) -> String {
             "triangle::basu_owen_permuted (by area)",
         ),
         ("solid_angle", "spherical::triangle / spherical::rectangle"),
+        (
+            "solid_angle_cos",
+            "spherical::triangle_cosine / spherical::rectangle_cosine",
+        ),
     ];
     match map.iter().find(|(w, _)| *w == warp) {
         Some((_, api)) => api.to_string(),
