@@ -8,13 +8,31 @@
 // each cell of a fine grid of the square maps to the rectangle between its corners' images when
 // both land in one texel (both distributions are affine inside a texel), else it is split.
 //
-// State for tests: `window.demo` ({ frame, drawn, expected, positions, error, ready }).
+// "Computed on the GPU" (the checkbox, enabled where WebGPU gives an adapter): the same
+// points of the square go through the warp's WGSL function (./gpu.mjs, shaders/warpcore.wgsl
+// or shaders/warpcore_envmap.wgsl) in a WebGPU compute shader; the page draws the GPU's points
+// and says how many have the same bits, every output word, as the wasm module's.
+//
+// State for tests: `window.demo` ({ frame, drawn, expected, positions, error, ready, gpu }),
+// `gpu` = { available, reason, adapter, on, identical, points }; `demo.gpuEdit = [from, to]`
+// edits the WGSL library before the next GPU frame (the browser test's sharpness check).
 import { load } from '../warpcore.mjs';
+import { identicalPoints, openGpu, runWarp, unsupported, WGSL } from './gpu.mjs';
 
 const $ = (id) => document.getElementById(id);
 const canvas = $('canvas');
 const ctx = canvas.getContext('2d', { willReadFrequently: true });
-const demo = (window.demo = { frame: 0, drawn: 0, expected: 0, positions: new Float32Array(0), error: null, ready: null });
+const demo = (window.demo = {
+  frame: 0,
+  drawn: 0,
+  expected: 0,
+  positions: new Float32Array(0),
+  error: null,
+  ready: null,
+  gpu: { available: false, reason: 'checking WebGPU', adapter: null, on: false, identical: null, points: null },
+  gpuEdit: null,
+});
+let gpu = null; // { device, adapter } once WebGPU is open
 
 // ---- the report's palette (examples/report/strata.rs): golden-angle hues ----
 
@@ -40,16 +58,20 @@ function readState() {
   n = Math.min(4096, Math.max(4, n));
   let seed = Math.round(Number($('seed').value));
   if (!Number.isFinite(seed) || seed < 0 || seed > 0xffffffff) seed = 7;
-  return { sampler: $('sampler').value, warp: $('warp').value, map: $('map').value, n, k, l, seed };
+  const warp = $('warp').value;
+  const onGpu = $('gpu').checked && gpu !== null && !unsupported(warp);
+  return { sampler: $('sampler').value, warp, map: $('map').value, n, k, l, seed, gpu: onGpu };
 }
 function applyQuery() {
   const q = new URLSearchParams(location.search);
   for (const id of controls) if (q.has(id)) $(id).value = q.get(id);
+  $('gpu').checked = q.get('gpu') === '1';
   $('count-range').value = Math.log2(Number($('count').value) || 256);
 }
 function writeQuery(s) {
   const q = new URLSearchParams({ sampler: s.sampler, warp: s.warp, count: s.n, grid: `${s.k}x${s.l}`, seed: s.seed });
   if (s.warp.startsWith('envmap')) q.set('map', s.map);
+  if ($('gpu').checked) q.set('gpu', '1');
   history.replaceState(null, '', `?${q}`);
 }
 
@@ -353,26 +375,43 @@ async function draw(wc, s) {
     if (!strataCache.has(key)) strataCache.set(key, f());
     return strataCache.get(key);
   };
+  // The CPU (wasm) results, as output words in the GPU's layout (`words` per point), and the
+  // input words of the warp's WGSL entry point (./gpu.mjs).
+  let cpu;
+  let gpuInput;
+  let env = null;
+  let dim;
+  let toPixel;
   if (family === 'disk') {
     view = diskView(640, 640, 320, 320, 300);
     strata = cached(() => diskStrata(wc, name, view, s.k, s.l));
     const four = name === 'polar4' || name === 'concentric4';
     const u = squarePoints(wc, s.sampler, four ? Math.ceil(s.n / 4) : s.n, s.seed);
-    const p = four ? (name === 'polar4' ? wc.diskPolar4(u, s.n) : wc.diskConcentric4(u, s.n)) : name === 'polar' ? wc.diskPolar(u) : wc.diskConcentric(u);
-    positions = mapPairs(p, 2, (x, y) => view.toPixel(x, y));
+    cpu = four ? (name === 'polar4' ? wc.diskPolar4(u, s.n) : wc.diskConcentric4(u, s.n)) : name === 'polar' ? wc.diskPolar(u) : wc.diskConcentric(u);
+    if (four) {
+      // Sample i: point i / 4 of the square in quadrant i % 4 (the JS form's order).
+      const uw = words(u);
+      gpuInput = new Uint32Array(3 * s.n);
+      for (let i = 0; i < s.n; i++) gpuInput.set([uw[2 * (i >> 2)], uw[2 * (i >> 2) + 1], i & 3], 3 * i);
+    } else {
+      gpuInput = words(u);
+    }
+    [dim, toPixel] = [2, (x, y) => view.toPixel(x, y)];
     if (four) note = `${Math.ceil(s.n / 4)} points of the square, four disk samples each (one per quadrant)`;
   } else if (family === 'triangle') {
     view = { W: 640, H: 640 };
     strata = cached(() => triangleStrata(wc, name, s.k, s.l, s.seed));
-    let b;
     if (name === 'uniform' || name === 'sqrt') {
       const u = squarePoints(wc, s.sampler, s.n, s.seed);
-      b = name === 'uniform' ? wc.triangleUniform(u) : wc.triangleSqrtMap(u);
+      cpu = name === 'uniform' ? wc.triangleUniform(u) : wc.triangleSqrtMap(u);
+      gpuInput = words(u);
     } else {
-      b = (name === 'basu_owen' ? wc.triangleBasuOwen : wc.triangleBasuOwenPermuted)(0, s.seed, s.n);
+      cpu = (name === 'basu_owen' ? wc.triangleBasuOwen : wc.triangleBasuOwenPermuted)(0, s.seed, s.n);
+      gpuInput = new Uint32Array(2 * s.n);
+      for (let i = 0; i < s.n; i++) gpuInput.set([i, s.seed], 2 * i);
       note = `index-driven (the sampler does not apply); strata: the ${s.k * s.l > 16 ? 256 : 16} level-${s.k * s.l > 16 ? 4 : 2} sub-triangles, coloured by the first index in each`;
     }
-    positions = mapPairs(b, 3, (b0, b1, b2) => triPixel(b0, b1, b2));
+    [dim, toPixel] = [3, (b0, b1, b2) => triPixel(b0, b1, b2)];
   } else if (family === 'sphere') {
     view = name.endsWith('hemisphere') ? HEMI : SPHERE;
     strata = cached(() => sphereStrata(wc, name, view, s.k, s.l));
@@ -384,18 +423,35 @@ async function draw(wc, s) {
       uniform_hemisphere: wc.sphereUniformHemisphere,
       cosine_hemisphere: wc.sphereCosineHemisphere,
     }[name];
-    positions = mapPairs(f(u), 3, (x, y, z) => directionToPixel(view, x, y, z));
+    cpu = f(u);
+    gpuInput = words(u);
+    [dim, toPixel] = [3, (x, y, z) => directionToPixel(view, x, y, z)];
     note = view === SPHERE ? 'left: z >= 0 seen from +z; right: z < 0 seen from -z (Lambert equal-area projections)' : 'the upper hemisphere seen from +z (Lambert equal-area projection)';
   } else {
     const [param] = rest;
     const entry = await envmapFor(wc, s.map, param, name === 'hierarchical' ? 'hierarchical' : 'marginal-conditional');
+    env = entry.env;
     view = param === 'latlong' ? { W: 800, H: 400 } : { W: 640, H: 640 };
     strata = cached(() => envStrata(entry, view, s.k, s.l));
     const u = squarePoints(wc, s.sampler, s.n, s.seed);
     const smp = entry.env.sample(u);
-    positions = mapPairs(smp.uv, 2, (x, y) => [x * view.W, y * view.H]);
+    // uv, pdf and texel per point (the WGSL WcEnvSample's words); the picture uses uv.
+    const [uvw, pw] = [words(smp.uv), words(smp.pdf)];
+    cpu = new Uint32Array(5 * s.n);
+    for (let i = 0; i < s.n; i++) cpu.set([uvw[2 * i], uvw[2 * i + 1], pw[i], smp.texel[2 * i], smp.texel[2 * i + 1]], 5 * i);
+    gpuInput = words(u);
+    [dim, toPixel] = [5, (x, y) => [x * view.W, y * view.H]];
     note = param === 'latlong' ? `${s.map}.pfm, lat-long (u across, v down from +z), weights: luminance x solid angle` : `${s.map}.pfm resampled to the equal-area square (+z at the centre), weights: luminance`;
   }
+  let values = new Float32Array(cpu.buffer, cpu.byteOffset, cpu.length);
+  let gpuState = { on: false, identical: null, points: null };
+  if (s.gpu) {
+    const out = await runWarp(gpu.device, s.warp, gpuInput, s.n, { env, edit: demo.gpuEdit });
+    const identical = identicalPoints(out, words(cpu), WGSL[s.warp][2]);
+    gpuState = { on: true, identical, points: s.n };
+    values = new Float32Array(out.buffer, out.byteOffset, out.length);
+  }
+  positions = mapPairs(values, dim, toPixel);
   if (canvas.width !== view.W || canvas.height !== view.H) {
     canvas.width = view.W;
     canvas.height = view.H;
@@ -422,9 +478,22 @@ async function draw(wc, s) {
   const ms = performance.now() - t0;
   const grid = `${s.k} x ${s.l}`;
   $('caption').textContent = `${s.warp.replace(/:/g, ' / ')} — ${s.n} samples (${family === 'triangle' && name.startsWith('basu') ? 'index-driven' : s.sampler}), seed ${s.seed}, strata of the ${grid} grid${note ? ` — ${note}` : ''}`;
-  $('status').textContent = `drew ${drawn} points in ${ms.toFixed(1)} ms`;
+  $('status').textContent = `drew ${drawn} points in ${ms.toFixed(1)} ms${s.gpu ? ', computed on the GPU' : ''}`;
+  const result = $('gpu-result');
+  if (gpuState.on) {
+    const all = gpuState.identical === gpuState.points;
+    result.textContent = `${gpuState.identical} of ${gpuState.points} points identical to the wasm module's (the CPU path), bit for bit — computed on ${gpu.adapter}`;
+    result.className = all ? 'same' : 'differ';
+  } else {
+    result.textContent = '';
+    result.className = '';
+  }
+  Object.assign(demo.gpu, gpuState);
   Object.assign(demo, { drawn, expected: s.n, positions, state: s, frame: demo.frame + 1 });
 }
+
+/** The words of a float array (a view, no copy). */
+const words = (a) => new Uint32Array(a.buffer, a.byteOffset, a.length);
 
 function mapPairs(values, dim, f) {
   const n = values.length / dim;
@@ -439,9 +508,34 @@ function mapPairs(values, dim, f) {
 
 // ---- wiring: redraw live on every change, one frame at a time ----
 
+// The GPU checkbox: enabled where WebGPU gave a device and the warp has a WGSL version,
+// otherwise disabled with the reason next to it.
+function gpuControl(warp) {
+  const box = $('gpu');
+  const why = gpu === null ? demo.gpu.reason : unsupported(warp);
+  box.disabled = why !== null;
+  $('gpu-note').textContent = why === null ? `(${gpu.adapter})` : `(unavailable: ${why})`;
+}
+
 async function main() {
   applyQuery();
+  const opening = openGpu().catch((e) => ({ reason: String(e?.message ?? e) }));
   const wc = await load();
+  const g = await opening;
+  if (g.device) {
+    gpu = g;
+    Object.assign(demo.gpu, { available: true, reason: null, adapter: g.adapter });
+    g.device.lost.then((info) => {
+      if (gpu !== g) return;
+      gpu = null;
+      Object.assign(demo.gpu, { available: false, reason: `the GPU device was lost: ${info.message || info.reason}` });
+      gpuControl($('warp').value);
+    });
+  } else {
+    $('gpu').checked = false;
+    Object.assign(demo.gpu, { available: false, reason: g.reason });
+  }
+  gpuControl($('warp').value);
   let pending = false;
   let running = Promise.resolve();
   const schedule = () => {
@@ -452,6 +546,7 @@ async function main() {
       const s = readState();
       writeQuery(s);
       document.querySelectorAll('.envonly').forEach((e) => e.classList.toggle('hidden', !s.warp.startsWith('envmap')));
+      gpuControl(s.warp);
       running = running.then(() => draw(wc, s)).catch(showError);
     });
   };
@@ -464,7 +559,8 @@ async function main() {
     if (n >= 4 && n <= 4096) $('count-range').value = Math.log2(n);
     schedule();
   });
-  for (const id of ['sampler', 'warp', 'map', 'grid', 'seed']) $(id).addEventListener('input', schedule);
+  for (const id of ['sampler', 'warp', 'map', 'grid', 'seed', 'gpu']) $(id).addEventListener('input', schedule);
+  $('gpu').addEventListener('change', schedule);
   schedule();
 }
 
