@@ -4,7 +4,12 @@
 // test checks that the canvas holds the expected number of points (a black dot at each point's
 // pixel), that the strata carry the report's colours (those of docs/report/strata.svg, drawn
 // by the Rust report), and that the page logged no error. Saves a screenshot to
-// target/demo.png (docs/demo.png is a copy for the README).
+// target/demo.png (docs/demo.png is a copy for the README). That browser runs with
+// --disable-gpu, so the page must offer its "computed on the GPU" mode disabled, with the
+// reason. The second test launches Chromium with WebGPU on SwiftShader (the wrapper of
+// gpu/browser/) and turns the mode on for every warp: every point must have the wasm bits and
+// the page must say "N of N points identical" (a one-ulp edit of the WGSL library must lower
+// the count); screenshot target/demo-gpu.png.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
@@ -85,6 +90,7 @@ test('the demo page draws every warp with the expected points and strata', { ski
   assert.equal(gpuControl.checked, false, '?gpu=1 without an adapter leaves the mode off');
   assert.match(gpuControl.note, /unavailable: \S/, 'with a reason');
   assert.equal(gpuControl.gpu.on, false);
+  t.diagnostic(`GPU toggle: disabled, ${gpuControl.note}`);
 
   const warps = await page.evaluate(`[...document.querySelectorAll('#warp option')].map((o) => o.value)`);
   assert.equal(warps.length, 17, 'four disk, four triangle, five sphere warps and four env-map ones');
