@@ -135,7 +135,8 @@ test('the demo page draws every warp with the expected points and strata', { ski
 });
 
 // The "computed on the GPU" mode on Chromium's WebGPU software adapter (SwiftShader, which
-// flushes subnormals: the demo's inputs are on the 2^-24 grid or indices, away from them).
+// flushes subnormals: the demo's inputs are the samplers' points of the square, whose nonzero
+// coordinates lie far above them, or indices).
 // Every warp of the page, GPU on: all points have the wasm module's bits and the page says
 // so. Where the browser gives no adapter (outside CI), the toggle must be disabled instead.
 test('the demo page computes every warp on the GPU (WebGPU, SwiftShader) with the wasm bits', { skip, timeout: 300_000 }, async (t) => {
@@ -195,6 +196,18 @@ test('the demo page computes every warp on the GPU (WebGPU, SwiftShader) with th
   assert.ok(edited.gpu.identical < 0.9 * 4096, `a one-ulp change is seen: ${edited.readout}`);
   assert.match(edited.readout, new RegExp(`^${edited.gpu.identical} of 4096 points identical`));
   assert.equal(edited.readoutClass, 'differ');
+  // A shader that does not compile: the page says so and draws the CPU's points.
+  const errorsBefore = page.errors.length;
+  await page.evaluate(`window.demo.gpuEdit = ['fn wc_disk_polar(', 'fn wc_disk_polar_gone(']`);
+  const broken = await drive({ warp: 'disk:polar', count: 100 });
+  assert.equal(broken.error, null, 'the page goes on');
+  assert.equal(broken.gpu.on, false);
+  assert.match(broken.gpu.failed ?? '', /\S/);
+  assert.match(broken.readout, /^the GPU run failed \(.+\): these are the CPU's points$/s);
+  assert.equal(broken.readoutClass, 'differ');
+  assert.equal(broken.black, 100);
+  assert.ok(page.errors.length > errorsBefore, 'the failure is logged');
+  page.errors.length = errorsBefore;
   await page.evaluate('window.demo.gpuEdit = null');
   // Off again: the CPU path, no readout.
   const off = await drive({ gpu: false });

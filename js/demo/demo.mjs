@@ -14,7 +14,7 @@
 // and says how many have the same bits, every output word, as the wasm module's.
 //
 // State for tests: `window.demo` ({ frame, drawn, expected, positions, error, ready, gpu }),
-// `gpu` = { available, reason, adapter, on, identical, points }; `demo.gpuEdit = [from, to]`
+// `gpu` = { available, reason, adapter, on, identical, points, failed }; `demo.gpuEdit = [from, to]`
 // edits the WGSL library before the next GPU frame (the browser test's sharpness check).
 import { load } from '../warpcore.mjs';
 import { identicalPoints, openGpu, runWarp, unsupported, WGSL } from './gpu.mjs';
@@ -29,7 +29,7 @@ const demo = (window.demo = {
   positions: new Float32Array(0),
   error: null,
   ready: null,
-  gpu: { available: false, reason: 'checking WebGPU', adapter: null, on: false, identical: null, points: null },
+  gpu: { available: false, reason: 'checking WebGPU', adapter: null, on: false, identical: null, points: null, failed: null },
   gpuEdit: null,
 });
 let gpu = null; // { device, adapter } once WebGPU is open
@@ -444,12 +444,18 @@ async function draw(wc, s) {
     note = param === 'latlong' ? `${s.map}.pfm, lat-long (u across, v down from +z), weights: luminance x solid angle` : `${s.map}.pfm resampled to the equal-area square (+z at the centre), weights: luminance`;
   }
   let values = new Float32Array(cpu.buffer, cpu.byteOffset, cpu.length);
-  let gpuState = { on: false, identical: null, points: null };
+  let gpuState = { on: false, identical: null, points: null, failed: null };
   if (s.gpu) {
-    const out = await runWarp(gpu.device, s.warp, gpuInput, s.n, { env, edit: demo.gpuEdit });
-    const identical = identicalPoints(out, words(cpu), WGSL[s.warp][2]);
-    gpuState = { on: true, identical, points: s.n };
-    values = new Float32Array(out.buffer, out.byteOffset, out.length);
+    try {
+      const out = await runWarp(gpu.device, s.warp, gpuInput, s.n, { env, edit: demo.gpuEdit });
+      const identical = identicalPoints(out, words(cpu), WGSL[s.warp][2]);
+      gpuState = { on: true, identical, points: s.n, failed: null };
+      values = new Float32Array(out.buffer, out.byteOffset, out.length);
+    } catch (e) {
+      // The page stays usable: the CPU's points, and the reason in the readout.
+      gpuState.failed = String(e?.message ?? e);
+      console.error(e);
+    }
   }
   positions = mapPairs(values, dim, toPixel);
   if (canvas.width !== view.W || canvas.height !== view.H) {
@@ -478,12 +484,15 @@ async function draw(wc, s) {
   const ms = performance.now() - t0;
   const grid = `${s.k} x ${s.l}`;
   $('caption').textContent = `${s.warp.replace(/:/g, ' / ')} — ${s.n} samples (${family === 'triangle' && name.startsWith('basu') ? 'index-driven' : s.sampler}), seed ${s.seed}, strata of the ${grid} grid${note ? ` — ${note}` : ''}`;
-  $('status').textContent = `drew ${drawn} points in ${ms.toFixed(1)} ms${s.gpu ? ', computed on the GPU' : ''}`;
+  $('status').textContent = `drew ${drawn} points in ${ms.toFixed(1)} ms${gpuState.on ? ', computed on the GPU' : ''}`;
   const result = $('gpu-result');
   if (gpuState.on) {
     const all = gpuState.identical === gpuState.points;
     result.textContent = `${gpuState.identical} of ${gpuState.points} points identical to the wasm module's (the CPU path), bit for bit — computed on ${gpu.adapter}`;
     result.className = all ? 'same' : 'differ';
+  } else if (gpuState.failed) {
+    result.textContent = `the GPU run failed (${gpuState.failed}): these are the CPU's points`;
+    result.className = 'differ';
   } else {
     result.textContent = '';
     result.className = '';
