@@ -895,7 +895,8 @@ fn wci_tri_sample(pr: WciTriPrepared, u: vec2<f32>) -> vec4<f32> {
     // Area sampling: density 2 |q|^3 / |det|.
     let fb = wc_triangle_uniform(vec2<f32>(u0, u1));
     let qv = va + (t.e1 * fb.y + t.e2 * fb.z);
-    // Fenced: a compiler may fold sqrt(x) * sqrt(x) to x.
+    // Fenced: lavapipe changes the cube of a square root here (apparently folding
+    // sqrt(x) * sqrt(x) to x).
     let ql = wci_opaque(wci_norm3(qv));
     let area0 = (ql * ql * ql + ql * ql * ql) / wci_abs(t.det);
     let area_pdf = select(0.0f, select(WCI_F32_MAX, area0, area0 < WCI_F32_MAX), pr.area_ok);
@@ -1154,15 +1155,14 @@ fn wc_spherical_rectangle_inverse(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32
 
 // Inverse CDF of the density 2 ((1 - x) a + x b) / (a + b) on [0, 1], clamped to [0, 1 - 2^-24].
 fn wci_sample_linear(u: f32, a: f32, b: f32) -> f32 {
-    // 1 - u fenced: a compiler may turn (1 - u) A + u B into a lerp of another rounding.
-    let x = u * (a + b) / (a + sqrt(wci_opaque(1.0f - u) * (a * a) + u * (b * b)));
+    let x = u * (a + b) / (a + sqrt((1.0f - u) * (a * a) + u * (b * b)));
     return select(0.0f, select(WCI_ONE_MINUS_EPSILON, x, x < WCI_ONE_MINUS_EPSILON), 0.0f < x);
 }
 
 // 4 ((1-x)(1-y) w00 + x(1-y) w10 + (1-x) y w01 + x y w11) for weights summing to 1.
 fn wci_lerp_pdf(x: f32, y: f32, w: vec4<f32>) -> f32 {
-    let x1 = wci_opaque(1.0f - x); // fenced as in wci_sample_linear
-    let y1 = wci_opaque(1.0f - y);
+    let x1 = 1.0f - x;
+    let y1 = 1.0f - y;
     return 4.0f * (x1 * y1 * w.x + x * y1 * w.y + x1 * y * w.z + x * y * w.w);
 }
 
@@ -1175,11 +1175,12 @@ fn wci_bilinear(u: vec2<f32>, w0: vec4<f32>) -> vec3<f32> {
     let sum = wp.x + wp.y + wp.z + wp.w;
     let ok = wci_positive_finite(sum);
     let inv = select(0.0f, 1.0f / sum, ok);
-    // A second, fenced copy of inv: a compiler may factor w0 inv + w1 inv into (w0 + w1) inv.
+    // A second, fenced copy of inv: a compiler may factor w0 inv + w1 inv into (w0 + w1) inv
+    // (lavapipe does).
     let inv2 = wci_opaque(inv);
     let w = vec4<f32>(wp.x * inv, wp.y * inv2, wp.z * inv, wp.w * inv2);
     let y = wci_sample_linear(u1, w.x + w.y, w.z + w.w);
-    let y1 = wci_opaque(1.0f - y); // fenced as in wci_sample_linear
+    let y1 = 1.0f - y;
     let x = wci_sample_linear(u0, y1 * w.x + y * w.z, y1 * w.y + y * w.w);
     let pdf = wci_lerp_pdf(x, y, w);
     return vec3<f32>(select(u0, x, ok), select(u1, y, ok), select(1.0f, pdf, ok));
@@ -1207,8 +1208,7 @@ fn wc_spherical_triangle_cosine(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, p: 
     let c0 = wci_clamped_cosine(ns, ok, pr.t.a0);
     let c1 = wci_clamped_cosine(ns, ok, pr.t.a1);
     let c2 = wci_clamped_cosine(ns, ok, pr.t.a2);
-    // The second c1 fenced: a compiler may factor y1 c1 + y c1 into (y1 + y) c1.
-    let warped = wci_bilinear(u, vec4<f32>(c1, wci_opaque(c1), c0, c2));
+    let warped = wci_bilinear(u, vec4<f32>(c1, c1, c0, c2));
     let r = wci_tri_sample(pr, warped.xy);
     return vec4<f32>(r.xyz, wci_product(r.w, warped.z));
 }
