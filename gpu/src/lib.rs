@@ -24,6 +24,11 @@ use warpcore::spherical as sp;
 use warpcore::{disk, sphere, triangle};
 
 type V3 = [f32; 3];
+/// The signatures of the crate's `spherical` functions.
+type SphTriFn = fn([V3; 3], V3, [f32; 2]) -> (V3, f32);
+type SphTriCosineFn = fn([V3; 3], V3, V3, [f32; 2]) -> (V3, f32);
+type SphRectFn = fn(V3, V3, V3, V3, [f32; 2]) -> ([f32; 2], f32);
+type SphRectCosineFn = fn(V3, V3, V3, V3, V3, [f32; 2]) -> ([f32; 2], f32);
 
 /// The WGSL library, as shipped.
 pub const WGSL: &str = include_str!("../../shaders/warpcore.wgsl");
@@ -40,21 +45,21 @@ pub enum Cpu {
     F(fn(f32) -> f32),
     FV3(fn(f32, [f32; 3]) -> f32),
     /// A triangle light `v0, v1, v2, p` (12 words) and a sample `u`: `(b, density)`.
-    SphTri(fn([V3; 3], V3, [f32; 2]) -> (V3, f32)),
+    SphTri(SphTriFn),
     /// A triangle light and barycentrics: `u`.
     SphTriInverse(fn([V3; 3], V3, V3) -> [f32; 2]),
     /// A triangle light: its solid angle.
     SphTriSolidAngle(fn([V3; 3], V3) -> f32),
     /// A triangle light, a normal `n` and `u`: `(b, density)`.
-    SphTriCosine(fn([V3; 3], V3, V3, [f32; 2]) -> (V3, f32)),
+    SphTriCosine(SphTriCosineFn),
     /// A rectangle light `corner, ex, ey, p` (12 words) and `u`: `((s, t), density)`.
-    SphRect(fn(V3, V3, V3, V3, [f32; 2]) -> ([f32; 2], f32)),
+    SphRect(SphRectFn),
     /// A rectangle light and `(s, t)`: `u`.
     SphRectInverse(fn(V3, V3, V3, V3, [f32; 2]) -> [f32; 2]),
     /// A rectangle light: its solid angle.
     SphRectSolidAngle(fn(V3, V3, V3, V3) -> f32),
     /// A rectangle light, a normal `n` and `u`: `((s, t), density)`.
-    SphRectCosine(fn(V3, V3, V3, V3, V3, [f32; 2]) -> ([f32; 2], f32)),
+    SphRectCosine(SphRectCosineFn),
 }
 
 /// What a function's test points look like.

@@ -190,8 +190,8 @@ pub fn random_light(rect: bool, k: usize, rng: &mut Rng) -> [f32; 12] {
     }
     if kind == 2 {
         // Move p, not the light: the light stays at unit scale, the vectors to it are long.
-        for c in 0..3 {
-            l[9 + c] = rng.range(-0.5, 0.5) * dist;
+        for x in &mut l[9..12] {
+            *x = rng.range(-0.5, 0.5) * dist;
         }
     }
     if kind == 6 {
@@ -259,8 +259,8 @@ pub fn inputs(layout: Layout, random: usize, rng: &mut Rng) -> Vec<u32> {
             for _ in 0..15 {
                 let mut m = *l;
                 let s = [1e-6f32, 1e-3, 0.1, 1.0, 10.0][rng.next_u32() as usize % 5];
-                for c in 9..12 {
-                    m[c] += s * rng.range(-1.0, 1.0);
+                for x in &mut m[9..12] {
+                    *x += s * rng.range(-1.0, 1.0);
                 }
                 push(&m, &[]);
             }
