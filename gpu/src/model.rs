@@ -700,6 +700,25 @@ pub fn to_words(v: &Val, out: &mut Vec<u32>) {
     }
 }
 
+/// The interpreted WGSL's output words for `func` on every point of `input` (one trial of the
+/// deviations `dev`, random choices from `seed`).
+pub fn outputs(
+    module: &naga::Module,
+    func: &crate::Func,
+    input: &[u32],
+    dev: Deviations,
+    seed: u64,
+) -> Vec<u32> {
+    let mut interp = Interpreter::new(module, dev, seed);
+    let mut got = Vec::with_capacity(input.len() / func.cpu.in_words() * func.cpu.out_words());
+    for p in input.chunks_exact(func.cpu.in_words()) {
+        let args = interp.args_from_words(func.name, p);
+        let v = interp.call(func.name, args);
+        to_words(&v, &mut got);
+    }
+    got
+}
+
 /// The largest deviation of the interpreted WGSL from the crate for `func` over `input`
 /// (`trials` evaluations per point with fresh random choices).
 pub fn deviation(
