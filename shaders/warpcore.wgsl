@@ -1,4 +1,5 @@
-// warpcore.wgsl: warpcore's disk, triangle and sphere warps for GPUs, one point per call.
+// warpcore.wgsl: warpcore's disk, triangle and sphere warps and its solid-angle lights for GPUs,
+// one point per call.
 //
 // A library: no bindings, no entry points, no `enable` directives, core WebGPU only.
 // Concatenate it with your own shader (or load it through your engine's include mechanism,
