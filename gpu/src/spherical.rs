@@ -385,3 +385,56 @@ pub fn typical(layout: Layout, u: [f32; 2], rng: &mut Rng) -> Vec<f32> {
     }
     w
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rows of the `[f32; 12]` array named `name` in the fingerprint source (`I` and `NAN`
+    /// spelled as there).
+    fn rows(src: &str, name: &str) -> Vec<Vec<f32>> {
+        let start = src
+            .find(&format!("pub const {name}"))
+            .expect("the array is there");
+        src[start..]
+            .lines()
+            .skip_while(|l| !l.trim_start().starts_with("let "))
+            .skip(1)
+            .take_while(|l| l.trim_start().starts_with('['))
+            .map(|l| {
+                l.trim()
+                    .trim_start_matches('[')
+                    .trim_end_matches(',')
+                    .trim_end_matches(']')
+                    .split(',')
+                    .map(|x| match x.trim() {
+                        "I" => I,
+                        "-I" => -I,
+                        "NAN" => NAN,
+                        x => x.replace('_', "").parse::<f32>().expect("a number"),
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// The copies equal the golden fingerprint's lights (bit for bit, NaN as NaN).
+    #[test]
+    fn the_lights_are_the_fingerprints() {
+        let src = include_str!("../../examples/wasm-demo/src/fingerprint.rs");
+        for (name, ours) in [
+            ("SPHERICAL_TRIANGLES", &FINGERPRINT_TRIANGLES),
+            ("SPHERICAL_RECTANGLES", &FINGERPRINT_RECTANGLES),
+        ] {
+            let theirs = rows(src, name);
+            assert_eq!(theirs.len(), ours.len(), "{name}");
+            for (a, b) in theirs.iter().zip(ours.iter()) {
+                let same = a.len() == 12
+                    && a.iter()
+                        .zip(b)
+                        .all(|(x, y)| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()));
+                assert!(same, "{name}: {a:?} != {b:?}");
+            }
+        }
+    }
+}
