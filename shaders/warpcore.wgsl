@@ -1,4 +1,5 @@
-// warpcore.wgsl: warpcore's disk, triangle and sphere warps for GPUs, one point per call.
+// warpcore.wgsl: warpcore's disk, triangle and sphere warps and its solid-angle lights for GPUs,
+// one point per call.
 //
 // A library: no bindings, no entry points, no `enable` directives, core WebGPU only.
 // Concatenate it with your own shader (or load it through your engine's include mechanism,
@@ -682,4 +683,552 @@ fn wc_sphere_equirect_pdf_to_solid_angle(pdf: f32, d: vec3<f32>) -> f32 {
     let den = select(rho * WCI_TWO_PI_SQUARED, 1.0f, on_axis);
     let q = (wci_finite_density(pdf) * sqrt(n)) / den;
     return wci_finite_density(select(q, 0.0f, on_axis));
+}
+
+// ---------------------------------------------------------------------------------------
+// Solid-angle lights (src/spherical/): Arvo's spherical triangle (1995), Urena, Fajardo and
+// King's spherical rectangle (2013), Van Oosterom-Strackee solid angles, and the
+// cosine-aware variants (Hart et al. 2020). Densities are with respect to solid angle at `p`;
+// below 1e-8 sr the maps sample by area (see the crate's `spherical` module docs).
+
+// 1 / (4 pi), 4 pi, and 1e-8 sr in turns of 4 pi (`AREA_FALLBACK_SR`), rounded to f32.
+const WCI_INV_4PI: f32 = 0x1.45f306p-4f;
+const WCI_FOUR_PI: f32 = 0x1.921fb6p+3f;
+const WCI_FALLBACK_TURNS: f32 = 0x1.b57b56p-31f;
+
+fn wci_dot3(a: vec3<f32>, b: vec3<f32>) -> f32 {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+fn wci_cross3(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+
+fn wci_norm3(a: vec3<f32>) -> f32 {
+    return sqrt(wci_dot3(a, a));
+}
+
+// x clamped to [0, hi]; NaN and -0.0 to +0.0.
+fn wci_clamp0(x: f32, hi: f32) -> f32 {
+    return select(0.0f, select(hi, x, x < hi), 0.0f < x);
+}
+
+// 0 < x < +inf (false for NaN).
+fn wci_positive_finite(x: f32) -> bool {
+    return 0.0f < x && x <= WCI_F32_MAX;
+}
+
+// Every component finite, on the bits (the crate's `x * 0 == 0` test, which a compiler may fold).
+fn wci_finite3(a: vec3<f32>) -> bool {
+    let e = vec3<u32>(0x7f800000u);
+    return all((bitcast<vec3<u32>>(a) & e) != e);
+}
+
+fn wci_max_abs3(m: f32, a: vec3<f32>) -> f32 {
+    let x = wci_abs(a.x);
+    let m0 = select(m, x, m < x);
+    let y = wci_abs(a.y);
+    let m1 = select(m0, y, m0 < y);
+    let z = wci_abs(a.z);
+    return select(m1, z, m1 < z);
+}
+
+// The power of two 2^k with 2^k max|x| in [1, 2), or 0 where max|x| is 0, subnormal,
+// >= 2^127 or NaN-only (`vec::pow2_scale`).
+fn wci_pow2_scale_of(m: f32) -> f32 {
+    let e = bitcast<u32>(m) >> 23u;
+    let ok = 0u < e && e < 254u;
+    return bitcast<f32>(select(0u, (254u - e) << 23u, ok));
+}
+
+// `x` made opaque to the optimizer (a fence with a zero derived from x itself).
+fn wci_opaque(x: f32) -> f32 {
+    return wci_fence(x, wci_zero_of(x));
+}
+
+// The chord y^ - x^ from the edge e = y - x (`vec::chord`).
+fn wci_chord(x: vec3<f32>, y: vec3<f32>, e: vec3<f32>, lx: f32, ly: f32) -> vec3<f32> {
+    let k = wci_dot3(e, x + y) / ((lx + ly) * lx);
+    return (e - x * k) * (1.0f / ly);
+}
+
+// Van Oosterom-Strackee: the solid angle of (a0, a1, a2) in turns of 4 pi.
+fn wci_half_angle_turns(a0: vec3<f32>, a1: vec3<f32>, a2: vec3<f32>, len: vec3<f32>, abs_det: f32) -> f32 {
+    // Fenced: a compiler may factor `l0 l1 l2 + (a0.a1) l2` into `(l0 l1 + a0.a1) l2`.
+    let lll = wci_fence(len.x * len.y * len.z, wci_zero_of(len.x));
+    let den = lll + wci_dot3(a0, a1) * len.z + wci_dot3(a0, a2) * len.y + wci_dot3(a1, a2) * len.x;
+    return wci_atan2_turns(abs_det, den);
+}
+
+// The triangle seen from p, scaled by an exact power of two (`spherical::triangle::Tri`).
+struct WciTri {
+    a0: vec3<f32>,
+    a1: vec3<f32>,
+    a2: vec3<f32>,
+    e1: vec3<f32>,
+    e2: vec3<f32>,
+    f2: vec3<f32>,
+    len: vec3<f32>,
+    det: f32,
+    turns: f32,
+    ok: bool,
+}
+
+fn wci_tri_setup(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, p: vec3<f32>) -> WciTri {
+    let ar0 = v0 - p;
+    let ar1 = v1 - p;
+    let ar2 = v2 - p;
+    let er1 = v1 - v0;
+    let er2 = v2 - v0;
+    let fr2 = v2 - v1;
+    let finite = wci_finite3(ar0) && wci_finite3(ar1) && wci_finite3(ar2) && wci_finite3(er1)
+        && wci_finite3(er2) && wci_finite3(fr2);
+    let k = wci_pow2_scale_of(wci_max_abs3(wci_max_abs3(wci_max_abs3(0.0f, ar0), ar1), ar2));
+    let scaled = bitcast<u32>(k) != 0u;
+    var t: WciTri;
+    t.a0 = ar0 * k;
+    t.a1 = ar1 * k;
+    t.a2 = ar2 * k;
+    t.e1 = er1 * k;
+    t.e2 = er2 * k;
+    t.f2 = fr2 * k;
+    t.len = vec3<f32>(wci_norm3(t.a0), wci_norm3(t.a1), wci_norm3(t.a2));
+    t.ok = finite && scaled && 0.0f < t.len.x && 0.0f < t.len.y && 0.0f < t.len.z;
+    t.det = wci_dot3(t.a0, wci_cross3(t.e1, t.e2));
+    let turns = wci_half_angle_turns(t.a0, t.a1, t.a2, t.len, wci_abs(t.det));
+    t.turns = select(0.0f, turns, t.ok);
+    return t;
+}
+
+// The solid angle of triangle (v0, v1, v2) at p, in [0, 2 pi].
+fn wc_spherical_triangle_solid_angle(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, p: vec3<f32>) -> f32 {
+    return wci_tri_setup(v0, v1, v2, p).turns * WCI_FOUR_PI;
+}
+
+// Everything Arvo's map computes from the light and p alone (`triangle::Prepared`).
+struct WciTriPrepared {
+    t: WciTri,
+    d: vec3<f32>,
+    d2: f32,
+    dl: f32,
+    dab: vec3<f32>,
+    one_ab: f32,
+    s: f32,
+    tt: f32,
+    b: vec3<f32>,
+    n: vec3<f32>,
+    c1: vec3<f32>,
+    c2: vec3<f32>,
+    det_la: f32,
+    arvo: bool,
+    area_ok: bool,
+}
+
+fn wci_tri_prepare(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, p: vec3<f32>) -> WciTriPrepared {
+    var r: WciTriPrepared;
+    let t = wci_tri_setup(v0, v1, v2, p);
+    r.t = t;
+    let la = t.len.x;
+    let lb = t.len.y;
+    let lc = t.len.z;
+    r.d = wci_chord(t.a0, t.a2, t.e2, la, lc);
+    r.dab = wci_chord(t.a0, t.a1, t.e1, la, lb);
+    r.d2 = wci_dot3(r.d, r.d);
+    r.one_ab = 2.0f - wci_dot3(r.dab, r.dab) * 0.5f;
+    r.s = wci_dot3(r.dab, r.d) - r.d2;
+    r.tt = wci_abs(t.det) / (la * lb * lc);
+    r.dl = sqrt(r.d2);
+    r.b = t.a0 * (1.0f / la) + r.dab;
+    r.n = wci_cross3(t.e1, t.e2);
+    r.c1 = wci_cross3(t.e2, t.a0);
+    r.c2 = wci_cross3(t.a0, t.e1);
+    r.det_la = t.det / la;
+    r.area_ok = t.ok && 0.0f < wci_abs(t.det);
+    r.arvo = r.area_ok && WCI_FALLBACK_TURNS <= t.turns;
+    return r;
+}
+
+// max(0, x) after flipping x's sign by `sign` (the barycentric numerators).
+fn wci_pos_signed(x0: f32, sign: u32) -> f32 {
+    let x = wci_flip_sign(x0, sign);
+    return select(0.0f, x, 0.0f < x);
+}
+
+fn wci_tri_sample(pr: WciTriPrepared, u: vec2<f32>) -> vec4<f32> {
+    let u0 = wci_unit_interval(u.x);
+    let u1 = wci_unit_interval(u.y);
+    let t = pr.t;
+    let la = t.len.x;
+    let va = t.a0;
+    // Step 1: the point on the chord a^ c^ with area(a, b, x^) = u0 omega (closed form).
+    let sc = wci_sin_cos_turns(u0 * t.turns);
+    let pp = pr.tt * sc.y - pr.s * sc.x;
+    let q = pr.one_ab * sc.x;
+    let tau = wci_clamp0(q * (pp + pp - q * pr.d2) / ((pp - q * pr.dl) * (pp + q * pr.dl)), 1.0f);
+    let e = pr.d * (tau * la);
+    let xv = va + e;
+    let lx = wci_norm3(xv);
+    let ox = wci_chord(va, xv, e, la, lx);
+    // Step 2: along the arc from b^ to x^, by chord lengths.
+    let g = ox - pr.dab;
+    let g2 = wci_dot3(g, g);
+    let b = pr.b;
+    let wv = g + b * (g2 * 0.5f);
+    let wl = wci_norm3(wv);
+    let w = wv * select(0.0f, 1.0f / wl, 0.0f < wl);
+    let l2 = u1 * g2;
+    let l = sqrt(l2);
+    let sin_l = l * sqrt(wci_clamp0(1.0f - l2 * 0.25f, 1.0f));
+    let op = pr.dab + (b * (-(l2 * 0.5f)) + w * sin_l);
+    // Barycentrics of the ray's hit, from a^ and the edges.
+    let lam1 = wci_dot3(op, pr.c1);
+    let lam2 = wci_dot3(op, pr.c2);
+    let sum = pr.det_la + wci_dot3(op, pr.n);
+    let lam0 = sum - lam1 - lam2;
+    let sign = wci_sign_bit(sum);
+    let p0 = wci_pos_signed(lam0, sign);
+    let p1 = wci_pos_signed(lam1, sign);
+    let p2 = wci_pos_signed(lam2, sign);
+    let tot = p0 + p1 + p2;
+    let arvo = pr.arvo && wci_positive_finite(tot);
+    let inv = 1.0f / tot;
+    let bary = vec3<f32>(wci_clamp0(p0 * inv, 1.0f), wci_clamp0(p1 * inv, 1.0f), wci_clamp0(p2 * inv, 1.0f));
+    // Area sampling: density 2 |q|^3 / |det|.
+    let fb = wc_triangle_uniform(vec2<f32>(u0, u1));
+    let qv = va + (t.e1 * fb.y + t.e2 * fb.z);
+    // Fenced: lavapipe changes the cube of a square root here (apparently folding
+    // sqrt(x) * sqrt(x) to x).
+    let ql = wci_opaque(wci_norm3(qv));
+    let area0 = (ql * ql * ql + ql * ql * ql) / wci_abs(t.det);
+    let area_pdf = select(0.0f, select(WCI_F32_MAX, area0, area0 < WCI_F32_MAX), pr.area_ok);
+    let pdf = select(area_pdf, WCI_INV_4PI / t.turns, arvo);
+    return vec4<f32>(select(fb, bary, arvo), pdf);
+}
+
+// Uniform in solid angle over the spherical triangle that (v0, v1, v2) subtends at p:
+// (b0, b1, b2, density w.r.t. solid angle).
+fn wc_spherical_triangle(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, p: vec3<f32>, u: vec2<f32>) -> vec4<f32> {
+    return wci_tri_sample(wci_tri_prepare(v0, v1, v2, p), u);
+}
+
+// Inverse of wc_spherical_triangle: the u that maps to barycentrics b.
+fn wc_spherical_triangle_inverse(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, p: vec3<f32>, bary: vec3<f32>) -> vec2<f32> {
+    let t = wci_tri_setup(v0, v1, v2, p);
+    let bc = vec3<f32>(wci_clamp0(bary.x, 1.0f), wci_clamp0(bary.y, 1.0f), wci_clamp0(bary.z, 1.0f));
+    let sb = bc.x + bc.y + bc.z;
+    let has = 0.0f < sb;
+    let inv = 1.0f / sb;
+    let third = 0x1.555556p-2f;
+    let b = vec3<f32>(select(third, bc.x * inv, has), select(third, bc.y * inv, has), select(third, bc.z * inv, has));
+    let la = t.len.x;
+    let lb = t.len.y;
+    let va = t.a0;
+    let vb = t.a1;
+    let s02 = b.x + b.z;
+    let mu = select(0.0f, b.z / s02, 0.0f < s02);
+    let cm = va + t.e2 * mu;
+    let lcm = wci_norm3(cm);
+    let sub_turns = wci_half_angle_turns(va, vb, cm, vec3<f32>(la, lb, lcm), mu * wci_abs(t.det));
+    let u0 = sub_turns / t.turns;
+    let ep = t.f2 * b.z - t.e1 * b.x;
+    let pv = vb + ep;
+    let lp = wci_norm3(pv);
+    let cp = wci_chord(vb, pv, ep, lb, lp);
+    let cc = wci_chord(vb, cm, t.e2 * mu - t.e1, lb, lcm);
+    let cc2 = wci_dot3(cc, cc);
+    let u1 = select(0.0f, wci_dot3(cp, cp) / cc2, 0.0f < cc2);
+    let arvo = t.ok && 0.0f < wci_abs(t.det) && WCI_FALLBACK_TURNS <= t.turns;
+    let fb = wc_triangle_uniform_inverse(b);
+    return select(fb, vec2<f32>(wci_unit_interval(u0), wci_unit_interval(u1)), arvo);
+}
+
+// The rectangle in its own frame seen from p (`spherical::rectangle::Rect`).
+struct WciRect {
+    x0: f32,
+    w: f32,
+    y0: f32,
+    h: f32,
+    z: f32,
+    turns: f32,
+    ok: bool,
+    c: vec3<f32>,
+    ex: vec3<f32>,
+    eyp: vec3<f32>,
+}
+
+// Solid angle (turns of 4 pi) of [x0, x0 + dx] x [y0, y0 + dy] at height z.
+fn wci_quad_turns(x0: f32, dx: f32, y0: f32, dy: f32, z: f32) -> f32 {
+    let x1 = x0 + dx;
+    let y1 = y0 + dy;
+    let z2 = z * z;
+    let r00 = sqrt(x0 * x0 + y0 * y0 + z2);
+    let r10 = sqrt(x1 * x1 + y0 * y0 + z2);
+    let r11 = sqrt(x1 * x1 + y1 * y1 + z2);
+    let r01 = sqrt(x0 * x0 + y1 * y1 + z2);
+    let d00_10 = x0 * x1 + y0 * y0 + z2;
+    let d00_11 = x0 * x1 + y0 * y1 + z2;
+    let d10_11 = x1 * x1 + y0 * y1 + z2;
+    let d00_01 = x0 * x0 + y0 * y1 + z2;
+    let d11_01 = x1 * x0 + y1 * y1 + z2;
+    // Fenced against factoring out r11 and r01 (see wci_half_angle_turns).
+    let zero = wci_zero_of(r00);
+    let den1 = wci_fence(r00 * r10 * r11, zero) + d00_10 * r11 + d00_11 * r10 + d10_11 * r00;
+    let den2 = wci_fence(r00 * r11 * r01, zero) + d00_11 * r01 + d00_01 * r11 + d11_01 * r00;
+    let n = z * dx * dy;
+    let y = n * (den1 + den2);
+    return wci_atan2_turns(select(0.0f, y, 0.0f < y), den1 * den2 - n * n);
+}
+
+fn wci_rect_setup(corner: vec3<f32>, ex0: vec3<f32>, ey0: vec3<f32>, p: vec3<f32>) -> WciRect {
+    let c0 = corner - p;
+    let finite = wci_finite3(c0) && wci_finite3(ex0) && wci_finite3(ey0);
+    let k = wci_pow2_scale_of(wci_max_abs3(wci_max_abs3(wci_max_abs3(0.0f, c0), ex0), ey0));
+    let scaled = bitcast<u32>(k) != 0u;
+    var r: WciRect;
+    r.c = c0 * k;
+    r.ex = ex0 * k;
+    let ey = ey0 * k;
+    r.w = wci_norm3(r.ex);
+    let xh = r.ex * (1.0f / r.w);
+    r.eyp = ey - xh * wci_dot3(ey, xh);
+    r.h = wci_norm3(r.eyp);
+    let yh = r.eyp * (1.0f / r.h);
+    let nh = wci_cross3(xh, yh);
+    r.x0 = wci_dot3(r.c, xh);
+    r.y0 = wci_dot3(r.c, yh);
+    r.z = wci_abs(wci_dot3(r.c, nh));
+    r.ok = finite && scaled && 0.0f < r.w && 0.0f < r.h;
+    let turns = wci_quad_turns(r.x0, r.w, r.y0, r.h, r.z);
+    r.turns = select(0.0f, turns, r.ok);
+    return r;
+}
+
+// The solid angle of the rectangle corner + s ex + t ey at p, in [0, 2 pi].
+fn wc_spherical_rectangle_solid_angle(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>, p: vec3<f32>) -> f32 {
+    return wci_rect_setup(corner, ex, ey, p).turns * WCI_FOUR_PI;
+}
+
+// b / sqrt(d2 + b^2) - a / sqrt(d2 + a^2) with b = a + ba, without cancellation.
+fn wci_h_diff(a: f32, ba: f32, d2: f32) -> f32 {
+    let b = a + ba;
+    let ra = sqrt(d2 + a * a);
+    let rb = sqrt(d2 + b * b);
+    let same = 0.0f < a * b;
+    let num = select(b * ra - a * rb, d2 * ba * (b + a) / (b * ra + a * rb), same);
+    return num / (ra * rb);
+}
+
+// (1 - y / r, 1 + y / r) with r = sqrt(d2 + y^2), each without cancellation.
+fn wci_one_mp(y: f32, d2: f32) -> vec2<f32> {
+    let r = sqrt(d2 + y * y);
+    let small = d2 / (r * (r + wci_abs(y)));
+    let big = (r + wci_abs(y)) / r;
+    let pos = 0.0f < y;
+    return vec2<f32>(select(big, small, pos), select(small, big, pos));
+}
+
+// Everything Urena's map computes from the light and p alone (`rectangle::Prepared`).
+struct WciRectPrepared {
+    r: WciRect,
+    y1: f32,
+    z2: f32,
+    left: f32,
+    right: f32,
+    both: f32,
+    b01: f32,
+    exact: bool,
+    area_ok: bool,
+}
+
+fn wci_rect_prepare(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>, p: vec3<f32>) -> WciRectPrepared {
+    var pr: WciRectPrepared;
+    let r = wci_rect_setup(corner, ex, ey, p);
+    pr.r = r;
+    let x0 = r.x0;
+    let y0 = r.y0;
+    let z = r.z;
+    let y1 = y0 + r.h;
+    let z2 = z * z;
+    pr.y1 = y1;
+    pr.z2 = z2;
+    let r00 = sqrt(x0 * x0 + y0 * y0 + z2);
+    let r01 = sqrt(x0 * x0 + y1 * y1 + z2);
+    let x1 = x0 + r.w;
+    let r10 = sqrt(x1 * x1 + y0 * y0 + z2);
+    let r11 = sqrt(x1 * x1 + y1 * y1 + z2);
+    let zh = z * r.h;
+    let yy = y0 * y1 + z2;
+    pr.left = wci_atan2_turns(zh, r00 * r01 + (x0 * x0 + yy) - x0 * (r00 + r01));
+    pr.right = wci_atan2_turns(zh, r10 * r11 + (x1 * x1 + yy) + x1 * (r10 + r11));
+    pr.both = wci_atan2_turns(zh, yy);
+    pr.b01 = z2 / (sqrt(y0 * y0 + z2) * sqrt(y1 * y1 + z2));
+    pr.area_ok = r.ok && 0.0f < z;
+    pr.exact = pr.area_ok && WCI_FALLBACK_TURNS <= r.turns;
+    return pr;
+}
+
+// One Newton step on quad_turns(x0, dx, ..) = goal.
+fn wci_rect_newton(r: WciRect, z2: f32, goal: f32, dx: f32) -> f32 {
+    let res = wci_quad_turns(r.x0, dx, r.y0, r.h, r.z) - goal;
+    let x = r.x0 + dx;
+    let d2 = x * x + z2;
+    let slope = r.z * wci_h_diff(r.y0, r.h, d2) / (d2 * WCI_FOUR_PI);
+    let step = select(0.0f, res / slope, wci_positive_finite(slope));
+    return wci_clamp0(dx - step, r.w);
+}
+
+fn wci_rect_sample(pr: WciRectPrepared, u: vec2<f32>) -> vec3<f32> {
+    let u0 = wci_unit_interval(u.x);
+    let u1 = wci_unit_interval(u.y);
+    let r = pr.r;
+    let x0 = r.x0;
+    let w = r.w;
+    let y0 = r.y0;
+    let h = r.h;
+    let z = r.z;
+    let y1 = pr.y1;
+    let z2 = pr.z2;
+    let x1 = x0 + w;
+    let goal = u0 * r.turns;
+    let tl0 = pr.left + goal;
+    let tr0 = pr.right + (r.turns - goal);
+    let tl = select(tl0, pr.both - tr0, 0.0f < x0);
+    let tr = select(tr0, pr.both - tl0, x1 < 0.0f);
+    let a = wci_sin_cos_turns(wci_clamp0(tl, 0.5f));
+    let bb = wci_sin_cos_turns(wci_clamp0(tr, 0.5f));
+    let sg = a.x * bb.y - a.y * bb.x;
+    let k = (a.x + a.x) * bb.x;
+    let xu = z * sg / sqrt(k * (k + pr.b01 + pr.b01));
+    let dx0 = wci_clamp0(xu - x0, w);
+    let dx1 = wci_rect_newton(r, z2, goal, dx0);
+    let dx = wci_rect_newton(r, z2, goal, dx1);
+    // The height: uniform in y / sqrt(d^2 + y^2) between its values at y0 and y1.
+    let x = x0 + dx;
+    let d2 = x * x + z2;
+    let mp0 = wci_one_mp(y0, d2);
+    let mp1 = wci_one_mp(y1, d2);
+    let v1 = 1.0f - u1;
+    let r0 = sqrt(d2 + y0 * y0);
+    let h0 = y0 / r0;
+    let dh = u1 * wci_h_diff(y0, h, d2);
+    let hv = h0 + dh;
+    let om = v1 * mp0.x + u1 * mp1.x;
+    let op = v1 * mp0.y + u1 * mp1.y;
+    let c0 = sqrt(d2) / r0;
+    let cv = sqrt(om * op);
+    let dy = sqrt(d2) * dh * (1.0f + c0 * cv + h0 * hv) / ((c0 + cv) * cv * c0);
+    let s = wci_clamp0(dx / w, 1.0f);
+    let t = wci_clamp0(dy / h, 1.0f);
+    // Area sampling: density |q|^3 / (z w h).
+    let qx = x0 + u0 * w;
+    let qy = y0 + u1 * h;
+    let ql = wci_opaque(sqrt(qx * qx + qy * qy + z2)); // fenced as in wci_tri_sample
+    let area0 = ql * ql * ql / (z * w * h);
+    let area_pdf = select(0.0f, select(WCI_F32_MAX, area0, area0 < WCI_F32_MAX), pr.area_ok);
+    let pdf = select(area_pdf, WCI_INV_4PI / r.turns, pr.exact);
+    return vec3<f32>(select(u0, s, pr.exact), select(u1, t, pr.exact), pdf);
+}
+
+// Uniform in solid angle over the spherical rectangle that corner + s ex + t ey (ex
+// orthogonal to ey) subtends at p: (s, t, density w.r.t. solid angle).
+fn wc_spherical_rectangle(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>, p: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+    return wci_rect_sample(wci_rect_prepare(corner, ex, ey, p), u);
+}
+
+// Inverse of wc_spherical_rectangle: the u that maps to (s, t).
+fn wc_spherical_rectangle_inverse(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>, p: vec3<f32>, st: vec2<f32>) -> vec2<f32> {
+    let r = wci_rect_setup(corner, ex, ey, p);
+    let s = wci_clamp0(st.x, 1.0f);
+    let t = wci_clamp0(st.y, 1.0f);
+    let dx = s * r.w;
+    let u0 = wci_quad_turns(r.x0, dx, r.y0, r.h, r.z) / r.turns;
+    let x = r.x0 + dx;
+    let d2 = x * x + r.z * r.z;
+    let full = wci_h_diff(r.y0, r.h, d2);
+    let part = wci_h_diff(r.y0, t * r.h, d2);
+    let u1 = select(0.0f, part / full, 0.0f < full);
+    let exact = r.ok && 0.0f < r.z && WCI_FALLBACK_TURNS <= r.turns;
+    return vec2<f32>(
+        select(wci_unit_interval(s), wci_unit_interval(u0), exact),
+        select(wci_unit_interval(t), wci_unit_interval(u1), exact),
+    );
+}
+
+// Inverse CDF of the density 2 ((1 - x) a + x b) / (a + b) on [0, 1], clamped to [0, 1 - 2^-24].
+fn wci_sample_linear(u: f32, a: f32, b: f32) -> f32 {
+    let x = u * (a + b) / (a + sqrt((1.0f - u) * (a * a) + u * (b * b)));
+    return select(0.0f, select(WCI_ONE_MINUS_EPSILON, x, x < WCI_ONE_MINUS_EPSILON), 0.0f < x);
+}
+
+// 4 ((1-x)(1-y) w00 + x(1-y) w10 + (1-x) y w01 + x y w11) for weights summing to 1.
+fn wci_lerp_pdf(x: f32, y: f32, w: vec4<f32>) -> f32 {
+    let x1 = 1.0f - x;
+    let y1 = 1.0f - y;
+    return 4.0f * (x1 * y1 * w.x + x * y1 * w.y + x1 * y * w.z + x * y * w.w);
+}
+
+// The bilinear warp of Hart et al. 2020 (`spherical::bilinear`): (x, y, density).
+fn wci_bilinear(u: vec2<f32>, w0: vec4<f32>) -> vec3<f32> {
+    let u0 = wci_unit_interval(u.x);
+    let u1 = wci_unit_interval(u.y);
+    let wp = vec4<f32>(select(0.0f, w0.x, 0.0f < w0.x), select(0.0f, w0.y, 0.0f < w0.y),
+        select(0.0f, w0.z, 0.0f < w0.z), select(0.0f, w0.w, 0.0f < w0.w));
+    let sum = wp.x + wp.y + wp.z + wp.w;
+    let ok = wci_positive_finite(sum);
+    let inv = select(0.0f, 1.0f / sum, ok);
+    // A second, fenced copy of inv: a compiler may factor w0 inv + w1 inv into (w0 + w1) inv
+    // (lavapipe does).
+    let inv2 = wci_opaque(inv);
+    let w = vec4<f32>(wp.x * inv, wp.y * inv2, wp.z * inv, wp.w * inv2);
+    let y = wci_sample_linear(u1, w.x + w.y, w.z + w.w);
+    let y1 = 1.0f - y;
+    let x = wci_sample_linear(u0, y1 * w.x + y * w.z, y1 * w.y + y * w.w);
+    let pdf = wci_lerp_pdf(x, y, w);
+    return vec3<f32>(select(u0, x, ok), select(u1, y, ok), select(1.0f, pdf, ok));
+}
+
+// max(0, n . d / |d|) with n scaled by a power of two; 0 for zero or non-finite n or d.
+fn wci_clamped_cosine(n: vec3<f32>, ok: bool, d: vec3<f32>) -> f32 {
+    let c = wci_dot3(n, d) / wci_norm3(d);
+    return select(0.0f, c, ok && 0.0f < c);
+}
+
+// The solid-angle density times the bilinear factor, kept finite.
+fn wci_product(pdf: f32, factor: f32) -> f32 {
+    let d = pdf * factor;
+    return select(WCI_F32_MAX, d, d < WCI_F32_MAX);
+}
+
+// Cosine-aware wc_spherical_triangle: u warped by the bilinear fit of the receiver's
+// clamped cosine (normal n) at v1, v1, v0, v2, then Arvo's map; (b0, b1, b2, density).
+fn wc_spherical_triangle_cosine(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, p: vec3<f32>, n: vec3<f32>, u: vec2<f32>) -> vec4<f32> {
+    let pr = wci_tri_prepare(v0, v1, v2, p);
+    let k = wci_pow2_scale_of(wci_max_abs3(0.0f, n));
+    let ok = bitcast<u32>(k) != 0u;
+    let ns = n * k;
+    let c0 = wci_clamped_cosine(ns, ok, pr.t.a0);
+    let c1 = wci_clamped_cosine(ns, ok, pr.t.a1);
+    let c2 = wci_clamped_cosine(ns, ok, pr.t.a2);
+    let warped = wci_bilinear(u, vec4<f32>(c1, c1, c0, c2));
+    let r = wci_tri_sample(pr, warped.xy);
+    return vec4<f32>(r.xyz, wci_product(r.w, warped.z));
+}
+
+// Cosine-aware wc_spherical_rectangle: weights at corner, + ex, + ey, + ex + ey; (s, t, density).
+fn wc_spherical_rectangle_cosine(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>, p: vec3<f32>, n: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+    let pr = wci_rect_prepare(corner, ex, ey, p);
+    let k = wci_pow2_scale_of(wci_max_abs3(0.0f, n));
+    let ok = bitcast<u32>(k) != 0u;
+    let ns = n * k;
+    let c = pr.r.c;
+    let c10 = c + pr.r.ex;
+    let w = vec4<f32>(
+        wci_clamped_cosine(ns, ok, c),
+        wci_clamped_cosine(ns, ok, c10),
+        wci_clamped_cosine(ns, ok, c + pr.r.eyp),
+        wci_clamped_cosine(ns, ok, c10 + pr.r.eyp),
+    );
+    let warped = wci_bilinear(u, w);
+    let r = wci_rect_sample(pr, warped.xy);
+    return vec3<f32>(r.xy, wci_product(r.z, warped.z));
 }

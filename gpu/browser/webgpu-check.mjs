@@ -223,6 +223,171 @@ export async function check(n = 1 << 14, edit = null) {
   return { adapter: `${info.vendor} ${info.architecture} (fallback ${info.isFallbackAdapter})`, rows };
 }
 
+// The solid-angle lights: [WGSL function, JS method, shape, what follows the light, output
+// floats per point]. 'solid' points are lights alone; 'nu' points carry a normal, then u.
+const LIGHT_FUNCTIONS = [
+  ['wc_spherical_triangle', 'sphericalTriangle', 'triangle', 'u', 4],
+  ['wc_spherical_triangle_inverse', 'sphericalTriangleInverse', 'triangle', 'b', 2],
+  ['wc_spherical_triangle_solid_angle', 'sphericalTriangleSolidAngle', 'triangle', 'solid', 1],
+  ['wc_spherical_rectangle', 'sphericalRectangle', 'rectangle', 'u', 3],
+  ['wc_spherical_rectangle_inverse', 'sphericalRectangleInverse', 'rectangle', 'st', 2],
+  ['wc_spherical_rectangle_solid_angle', 'sphericalRectangleSolidAngle', 'rectangle', 'solid', 1],
+  ['wc_spherical_triangle_cosine', 'sphericalTriangleCosine', 'triangle', 'nu', 4],
+  ['wc_spherical_rectangle_cosine', 'sphericalRectangleCosine', 'rectangle', 'nu', 3],
+];
+
+// Lights (`v0, v1, v2, p` or `corner, ex, ey, p`) away from subnormals: some of the golden
+// fingerprint's (ordinary, nearly 2 pi, the other winding, a sliver, p on the plane inside and
+// outside, grazing, p at a vertex or corner) and random ordinary ones.
+const LIGHTS = {
+  triangle: [
+    [0, 0, 1, 1, 0, 1, 0, 1, 1, 0.1, 0.2, 0],
+    [-1, -1, 0.05, 2, -1, 0.05, -1, 2, 0.05, 0, 0, 0],
+    [0.3, -2, 0.5, -0.7, 0.4, 1.9, 1.5, 0.8, -0.3, -0.2, 0.1, 0.05],
+    [0, 0, 1, 1, 0, 1, 1, 1e-5, 1, 0.3, 0.4, 0],
+    [0, 0, 1, 1, 0, 1, 0, 1, 1, 0.2, 0.2, 1],
+    [0, 0, 1, 1, 0, 1, 0, 1, 1, 5, -3, 1],
+    [0, 0, 1, 1, 0, 1, 0, 1, 1, 0.2, 0.2, 0.999999],
+    [0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 0, 1],
+  ],
+  rectangle: [
+    [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 0.1, 0.2, 0],
+    [0.3, -0.2, 0.7, 0.6, 0.8, 0, 0, 0, 1.5, 0, 0, 0],
+    [-50, -50, 0.01, 100, 0, 0, 0, 100, 0, 0, 0, 0],
+    [-0.5, -0.5, 1, 1, 0, 0, 0, 1e-6, 0, 0, 0, 0],
+    [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 0, 0, 1],
+    [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 3, 0.5, 1],
+    [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 0.1, 0.1, 0.999999],
+    [-0.5, -0.5, 1, 1, 0, 0, 0.3, 1, 0, 0.2, -0.1, 2.5],
+    [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, -0.5, -0.5, 1],
+  ],
+};
+
+/** A random ordinary light of `shape` (size and distance about 1). */
+function randomLight(shape, next) {
+  const r = (lo, hi) => lo + ((hi - lo) * (next() >>> 8)) / 16777216;
+  const p = [r(-0.3, 0.3), r(-0.3, 0.3), r(-0.3, 0.3)];
+  if (shape === 'triangle') {
+    return [r(-1, 1), r(-1, 1), r(0.5, 1.5), r(-1, 1), r(-1, 1), r(0.5, 1.5), r(-1, 1), r(-1, 1), r(0.5, 1.5), ...p];
+  }
+  // ex and ey orthogonal: a rotation about z of the axes, scaled.
+  const a = r(0, 6.283185307179586);
+  const [c, s] = [Math.cos(a), Math.sin(a)];
+  const [w, h] = [r(0.2, 2), r(0.2, 2)];
+  return [r(-1, 0), r(-1, 0), r(0.3, 2), w * c, w * s, 0, -h * s, h * c, 0, ...p];
+}
+
+/**
+ * The solid-angle lights of shaders/warpcore.wgsl against the module's `spherical*` methods:
+ * `n` points per function (lights times samples on the 2^-24 grid away from 0, the inverses
+ * on the module's own samples). Returns `{ adapter, rows }` as `check`.
+ */
+export async function checkSpherical(n = 1 << 14, edit = null) {
+  const wc = await load();
+  let lib = await (await fetch(new URL('../../shaders/warpcore.wgsl', import.meta.url))).text();
+  if (edit) {
+    if (!lib.includes(edit[0])) throw new Error(`not in the library: ${edit[0]}`);
+    lib = lib.replace(edit[0], edit[1]);
+  }
+  const adapter = await navigator.gpu.requestAdapter();
+  if (!adapter) throw new Error('no WebGPU adapter');
+  const device = await adapter.requestDevice();
+  const info = adapter.info ?? {};
+  const rows = [];
+  const words = (a) => new Uint32Array(a.buffer.slice(a.byteOffset, a.byteOffset + a.byteLength));
+  for (const [k, [name, js, shape, kind, outFloats]] of LIGHT_FUNCTIONS.entries()) {
+    const next = rng(0x51fe ^ (k * 0x85ebca6b));
+    const lights = LIGHTS[shape].map((l) => Float32Array.from(l));
+    while (lights.length < 32) lights.push(Float32Array.from(randomLight(shape, next)));
+    const extra = { u: 2, b: 3, st: 2, nu: 5, solid: 0 }[kind];
+    const inw = 12 + extra;
+    const input = new Uint32Array(n * inw);
+    const want = new Uint32Array(n * outFloats);
+    if (kind === 'solid') {
+      // Each point a light seen from a moved shading point.
+      for (let i = 0; i < n; i++) {
+        const l = Float32Array.from(lights[i % lights.length]);
+        if (i >= lights.length) for (let c = 9; c < 12; c++) l[c] = Math.fround(l[c] + (((next() >>> 8) / 16777216) - 0.5) * 0.5);
+        input.set(words(l), i * inw);
+        want[i] = words(Float32Array.of(wc[js](l)))[0];
+      }
+    } else {
+      const per = n / lights.length;
+      for (const [j, light] of lights.entries()) {
+        const u = square(per, next);
+        let arg = u;
+        let jsLight = light;
+        if (kind === 'b' || kind === 'st') {
+          // The module's own samples: barycentrics or (s, t).
+          const fwd = wc[shape === 'triangle' ? 'sphericalTriangle' : 'sphericalRectangle'](light, u);
+          const m = kind === 'b' ? 3 : 2;
+          const step = kind === 'b' ? 4 : 3;
+          arg = new Float32Array(per * m);
+          for (let i = 0; i < per; i++) for (let c = 0; c < m; c++) arg[i * m + c] = fwd[i * step + c];
+        }
+        let normal = null;
+        if (kind === 'nu') {
+          const r = (lo, hi) => lo + ((hi - lo) * (next() >>> 8)) / 16777216;
+          normal = Float32Array.of(r(-0.5, 0.5), r(-0.5, 0.5), r(0.2, 1));
+          jsLight = Float32Array.of(...light, ...normal);
+        }
+        const out = wc[js](jsLight, arg);
+        const m = arg.length / per;
+        for (let i = 0; i < per; i++) {
+          const p = j * per + i;
+          input.set(words(light), p * inw);
+          if (normal) input.set(words(normal), p * inw + 12);
+          input.set(words(arg.subarray(i * m, (i + 1) * m)), p * inw + inw - m);
+          want.set(words(out.subarray(i * outFloats, (i + 1) * outFloats)), p * outFloats);
+        }
+      }
+    }
+    const f = (k) => `bitcast<f32>(wc_in[b + ${k}u])`;
+    const v3 = (k) => `vec3<f32>(${f(k)}, ${f(k + 1)}, ${f(k + 2)})`;
+    const v2 = (k) => `vec2<f32>(${f(k)}, ${f(k + 1)})`;
+    const light = `${v3(0)}, ${v3(3)}, ${v3(6)}, ${v3(9)}`;
+    const call = {
+      solid: `${name}(${light})`,
+      u: `${name}(${light}, ${v2(12)})`,
+      st: `${name}(${light}, ${v2(12)})`,
+      b: `${name}(${light}, ${v3(12)})`,
+      nu: `${name}(${light}, ${v3(12)}, ${v2(15)})`,
+    }[kind];
+    const comps = outFloats === 1 ? [''] : ['.x', '.y', '.z', '.w'].slice(0, outFloats);
+    const code = `${lib}
+@group(0) @binding(0) var<storage, read> wc_in: array<u32>;
+@group(0) @binding(1) var<storage, read_write> wc_out: array<u32>;
+@compute @workgroup_size(64)
+fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if (i >= arrayLength(&wc_out) / ${outFloats}u) { return; }
+    let b = i * ${inw}u;
+    let r = ${call};
+${comps.map((c, k) => `    wc_out[i * ${outFloats}u + ${k}u] = bitcast<u32>(r${c});`).join('\n')}
+}
+`;
+    const got = await runOnGpu(device, code, input, n * outFloats);
+    let mismatches = 0;
+    let first = null;
+    for (let p = 0; p < n; p++) {
+      for (let w = 0; w < outFloats; w++) {
+        if (got[p * outFloats + w] !== want[p * outFloats + w]) {
+          mismatches++;
+          first ??= {
+            point: p,
+            input: Array.from(new Float32Array(input.buffer.slice(p * inw * 4, (p + 1) * inw * 4))),
+            got: Array.from(new Float32Array(got.buffer.slice(p * outFloats * 4, (p + 1) * outFloats * 4))),
+            want: Array.from(new Float32Array(want.buffer.slice(p * outFloats * 4, (p + 1) * outFloats * 4))),
+          };
+          break;
+        }
+      }
+    }
+    rows.push([name, n, mismatches, first]);
+  }
+  return { adapter: `${info.vendor} ${info.architecture} (fallback ${info.isFallbackAdapter})`, rows };
+}
+
 // shaders/warpcore_tables.wgsl: the compute shader around one check's body (reads wc_in[b + k],
 // writes wc_out[o + k]); the library's wc_tables is binding 0.
 function tablesShader(lib, inw, outw, body) {

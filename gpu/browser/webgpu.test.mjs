@@ -1,7 +1,8 @@
 // shaders/warpcore.wgsl in a browser: headless Chromium's WebGPU on its software adapter
-// (SwiftShader) evaluates all 28 functions of the library on 16384 points each, away from
+// (SwiftShader) evaluates the 28 warps of the library on 16384 points each, away from
 // subnormals (SwiftShader flushes them), and every output word must equal the JavaScript
-// module's (the crate compiled to wasm). The second test does the same for
+// module's (the crate compiled to wasm). The second test does the same for the 8 solid-angle
+// light functions (ordinary lights and some of the fingerprint's extreme ones). The third for
 // shaders/warpcore_tables.wgsl with shaders/warpcore_tables.bin bound. `node --test gpu/browser/`; Chromium as for
 // js/browser-test (apt-get install chromium, or $CHROMIUM_BIN for the wrapper).
 import { test } from 'node:test';
@@ -36,6 +37,28 @@ test('warpcore.wgsl on Chromium WebGPU (SwiftShader) equals the crate', { skip, 
   const concentric = w.rows.find((row) => row[0] === 'wc_disk_concentric');
   console.log(`S0 + 1 ulp: wc_disk_concentric ${concentric[2]} of ${concentric[1]} points differ`);
   assert.ok(concentric[2] * 10 > concentric[1], 'a one-ulp change is detected');
+  assert.deepEqual(page.errors.filter((e) => !e.includes('favicon.ico')), []);
+});
+
+test('the solid-angle lights of warpcore.wgsl on Chromium WebGPU equal the crate', { skip, timeout: 240_000 }, async (t) => {
+  const server = await serve(root);
+  t.after(() => server.close());
+  const browser = await launch(wrapper);
+  t.after(() => browser.close());
+  const page = await open(browser, `${server.url}gpu/browser/webgpu-check.mjs`);
+  const r = await page.evaluate(`import('${server.url}gpu/browser/webgpu-check.mjs').then((m) => m.checkSpherical())`);
+  console.log(`adapter: ${r.adapter}`);
+  for (const [name, points, mismatches, first] of r.rows) {
+    console.log(`${name.padEnd(42)} ${String(points).padStart(7)} ${String(mismatches).padStart(8)}${first ? ' ' + JSON.stringify(first) : ''}`);
+  }
+  assert.equal(r.rows.length, 8);
+  assert.deepEqual(r.rows.filter((row) => row[2] > 0).map((row) => row[0]), [], 'functions with mismatches');
+  // The comparison is sharp: 1 / (4 pi) one ulp higher moves the densities.
+  const edit = ['const WCI_INV_4PI: f32 = 0x1.45f306p-4f;', 'const WCI_INV_4PI: f32 = 0x1.45f308p-4f;'];
+  const w = await page.evaluate(`import('${server.url}gpu/browser/webgpu-check.mjs').then((m) => m.checkSpherical(4096, ${JSON.stringify(edit)}))`);
+  const tri = w.rows.find((row) => row[0] === 'wc_spherical_triangle');
+  console.log(`1 / (4 pi) + 1 ulp: wc_spherical_triangle ${tri[2]} of ${tri[1]} points differ`);
+  assert.ok(tri[2] * 2 > tri[1], 'a one-ulp change is detected');
   assert.deepEqual(page.errors.filter((e) => !e.includes('favicon.ico')), []);
 });
 

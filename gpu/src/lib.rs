@@ -10,14 +10,25 @@
 //! [`tables`] does the same for `shaders/warpcore_tables.wgsl` (pmj02bn and the sampling core,
 //! with the buffer of tables it builds; `tests/lavapipe_tables.rs`), and [`envmaps`] for
 //! `shaders/warpcore_envmap.wgsl` (environment maps from their storage words;
-//! `tests/lavapipe_envmap.rs`).
+//! `tests/lavapipe_envmap.rs`). The solid-angle lights of `warpcore.wgsl` are listed apart,
+//! in [`SPHERICAL_FUNCTIONS`], with their lights and samples in [`spherical`]
+//! (`tests/lavapipe_spherical.rs`).
 
 pub mod envmaps;
 pub mod model;
+pub mod spherical;
 pub mod tables;
 
 use std::fmt::Write as _;
+use warpcore::spherical as sp;
 use warpcore::{disk, sphere, triangle};
+
+type V3 = [f32; 3];
+/// The signatures of the crate's `spherical` functions.
+type SphTriFn = fn([V3; 3], V3, [f32; 2]) -> (V3, f32);
+type SphTriCosineFn = fn([V3; 3], V3, V3, [f32; 2]) -> (V3, f32);
+type SphRectFn = fn(V3, V3, V3, V3, [f32; 2]) -> ([f32; 2], f32);
+type SphRectCosineFn = fn(V3, V3, V3, V3, V3, [f32; 2]) -> ([f32; 2], f32);
 
 /// The WGSL library, as shipped.
 pub const WGSL: &str = include_str!("../../shaders/warpcore.wgsl");
@@ -33,6 +44,22 @@ pub enum Cpu {
     IndexSeed(fn(u32, u32) -> [f32; 3]),
     F(fn(f32) -> f32),
     FV3(fn(f32, [f32; 3]) -> f32),
+    /// A triangle light `v0, v1, v2, p` (12 words) and a sample `u`: `(b, density)`.
+    SphTri(SphTriFn),
+    /// A triangle light and barycentrics: `u`.
+    SphTriInverse(fn([V3; 3], V3, V3) -> [f32; 2]),
+    /// A triangle light: its solid angle.
+    SphTriSolidAngle(fn([V3; 3], V3) -> f32),
+    /// A triangle light, a normal `n` and `u`: `(b, density)`.
+    SphTriCosine(SphTriCosineFn),
+    /// A rectangle light `corner, ex, ey, p` (12 words) and `u`: `((s, t), density)`.
+    SphRect(SphRectFn),
+    /// A rectangle light and `(s, t)`: `u`.
+    SphRectInverse(fn(V3, V3, V3, V3, [f32; 2]) -> [f32; 2]),
+    /// A rectangle light: its solid angle.
+    SphRectSolidAngle(fn(V3, V3, V3, V3) -> f32),
+    /// A rectangle light, a normal `n` and `u`: `((s, t), density)`.
+    SphRectCosine(SphRectCosineFn),
 }
 
 /// What a function's test points look like.
@@ -56,6 +83,9 @@ pub enum Domain {
     Density,
     /// A density and a direction.
     DensityDirection,
+    /// Solid-angle lights ([`spherical::inputs`]): a light (12 words), then what the
+    /// function takes after it.
+    Light(spherical::Layout),
 }
 
 /// One public WGSL function.
@@ -75,6 +105,10 @@ impl Cpu {
             Cpu::V3V2(_) | Cpu::V2QuadrantV2(_) => 3,
             Cpu::F(_) => 1,
             Cpu::FV3(_) => 4,
+            Cpu::SphTriSolidAngle(_) | Cpu::SphRectSolidAngle(_) => 12,
+            Cpu::SphTri(_) | Cpu::SphRect(_) | Cpu::SphRectInverse(_) => 14,
+            Cpu::SphTriInverse(_) => 15,
+            Cpu::SphTriCosine(_) | Cpu::SphRectCosine(_) => 17,
         }
     }
 
@@ -84,6 +118,10 @@ impl Cpu {
             Cpu::V2V2(_) | Cpu::V3V2(_) | Cpu::V2QuadrantV2(_) => 2,
             Cpu::V2V3(_) | Cpu::IndexSeed(_) | Cpu::V2ToQuadrant(_) => 3,
             Cpu::F(_) | Cpu::FV3(_) => 1,
+            Cpu::SphTri(_) | Cpu::SphTriCosine(_) => 4,
+            Cpu::SphRect(_) | Cpu::SphRectCosine(_) => 3,
+            Cpu::SphTriInverse(_) | Cpu::SphRectInverse(_) => 2,
+            Cpu::SphTriSolidAngle(_) | Cpu::SphRectSolidAngle(_) => 1,
         }
     }
 
@@ -113,6 +151,34 @@ impl Cpu {
             Cpu::IndexSeed(g) => put(o, &g(i[0], i[1])),
             Cpu::F(g) => put(o, &[g(f(i[0]))]),
             Cpu::FV3(g) => put(o, &[g(f(i[0]), [f(i[1]), f(i[2]), f(i[3])])]),
+            _ => {
+                let v = |k: usize| [f(i[3 * k]), f(i[3 * k + 1]), f(i[3 * k + 2])];
+                let u = |k: usize| [f(i[k]), f(i[k + 1])];
+                let (a, b, c, p) = (v(0), v(1), v(2), v(3));
+                match self {
+                    Cpu::SphTri(g) => {
+                        let (b, d) = g([a, b, c], p, u(12));
+                        put(o, &[b[0], b[1], b[2], d]);
+                    }
+                    Cpu::SphTriInverse(g) => put(o, &g([a, b, c], p, v(4))),
+                    Cpu::SphTriSolidAngle(g) => put(o, &[g([a, b, c], p)]),
+                    Cpu::SphTriCosine(g) => {
+                        let (b, d) = g([a, b, c], p, v(4), u(15));
+                        put(o, &[b[0], b[1], b[2], d]);
+                    }
+                    Cpu::SphRect(g) => {
+                        let (st, d) = g(a, b, c, p, u(12));
+                        put(o, &[st[0], st[1], d]);
+                    }
+                    Cpu::SphRectInverse(g) => put(o, &g(a, b, c, p, u(12))),
+                    Cpu::SphRectSolidAngle(g) => put(o, &[g(a, b, c, p)]),
+                    Cpu::SphRectCosine(g) => {
+                        let (st, d) = g(a, b, c, p, v(4), u(15));
+                        put(o, &[st[0], st[1], d]);
+                    }
+                    _ => unreachable!(),
+                }
+            }
         }
     }
 
@@ -136,6 +202,21 @@ impl Cpu {
                 fl(2),
                 fl(3)
             ),
+            _ => {
+                let v3 = |k: usize| format!("vec3<f32>({}, {}, {})", fl(k), fl(k + 1), fl(k + 2));
+                let v2 = |k: usize| format!("vec2<f32>({}, {})", fl(k), fl(k + 1));
+                let light = format!("{}, {}, {}, {}", v3(0), v3(3), v3(6), v3(9));
+                match self {
+                    Cpu::SphTriSolidAngle(_) | Cpu::SphRectSolidAngle(_) => {
+                        format!("{name}({light})")
+                    }
+                    Cpu::SphTri(_) | Cpu::SphRect(_) | Cpu::SphRectInverse(_) => {
+                        format!("{name}({light}, {})", v2(12))
+                    }
+                    Cpu::SphTriInverse(_) => format!("{name}({light}, {})", v3(12)),
+                    _ => format!("{name}({light}, {}, {})", v3(12), v2(15)),
+                }
+            }
         };
         let outs: Vec<&'static str> = match self {
             Cpu::V2V2(_) | Cpu::V3V2(_) | Cpu::V2QuadrantV2(_) => {
@@ -152,6 +233,21 @@ impl Cpu {
                 vec!["bitcast<u32>(r.u.x)", "bitcast<u32>(r.u.y)", "r.quadrant"]
             }
             Cpu::F(_) | Cpu::FV3(_) => vec!["bitcast<u32>(r)"],
+            Cpu::SphTri(_) | Cpu::SphTriCosine(_) => vec![
+                "bitcast<u32>(r.x)",
+                "bitcast<u32>(r.y)",
+                "bitcast<u32>(r.z)",
+                "bitcast<u32>(r.w)",
+            ],
+            Cpu::SphRect(_) | Cpu::SphRectCosine(_) => vec![
+                "bitcast<u32>(r.x)",
+                "bitcast<u32>(r.y)",
+                "bitcast<u32>(r.z)",
+            ],
+            Cpu::SphTriInverse(_) | Cpu::SphRectInverse(_) => {
+                vec!["bitcast<u32>(r.x)", "bitcast<u32>(r.y)"]
+            }
+            Cpu::SphTriSolidAngle(_) | Cpu::SphRectSolidAngle(_) => vec!["bitcast<u32>(r)"],
         };
         (call, outs)
     }
@@ -301,6 +397,58 @@ pub const FUNCTIONS: &[Func] = &[
     },
 ];
 
+/// The solid-angle lights of `shaders/warpcore.wgsl` (`spherical::*`), listed apart from
+/// [`FUNCTIONS`]: their points are lights times samples ([`spherical::inputs`]), and the CPU
+/// model's bounds of `FUNCTIONS` do not cover them.
+pub const SPHERICAL_FUNCTIONS: &[Func] = &[
+    Func {
+        name: "wc_spherical_triangle",
+        cpu: Cpu::SphTri(sp::triangle),
+        domain: Domain::Light(spherical::Layout::TriangleU),
+    },
+    Func {
+        name: "wc_spherical_triangle_inverse",
+        cpu: Cpu::SphTriInverse(sp::triangle_inverse),
+        domain: Domain::Light(spherical::Layout::TriangleB),
+    },
+    Func {
+        name: "wc_spherical_triangle_solid_angle",
+        cpu: Cpu::SphTriSolidAngle(sp::triangle_solid_angle),
+        domain: Domain::Light(spherical::Layout::Triangle),
+    },
+    Func {
+        name: "wc_spherical_rectangle",
+        cpu: Cpu::SphRect(sp::rectangle),
+        domain: Domain::Light(spherical::Layout::RectangleU),
+    },
+    Func {
+        name: "wc_spherical_rectangle_inverse",
+        cpu: Cpu::SphRectInverse(sp::rectangle_inverse),
+        domain: Domain::Light(spherical::Layout::RectangleSt),
+    },
+    Func {
+        name: "wc_spherical_rectangle_solid_angle",
+        cpu: Cpu::SphRectSolidAngle(sp::rectangle_solid_angle),
+        domain: Domain::Light(spherical::Layout::Rectangle),
+    },
+    Func {
+        name: "wc_spherical_triangle_cosine",
+        cpu: Cpu::SphTriCosine(sp::triangle_cosine),
+        domain: Domain::Light(spherical::Layout::TriangleNU),
+    },
+    Func {
+        name: "wc_spherical_rectangle_cosine",
+        cpu: Cpu::SphRectCosine(sp::rectangle_cosine),
+        domain: Domain::Light(spherical::Layout::RectangleNU),
+    },
+];
+
+/// Every public function of `shaders/warpcore.wgsl`: [`FUNCTIONS`], then
+/// [`SPHERICAL_FUNCTIONS`].
+pub fn all_functions() -> impl Iterator<Item = &'static Func> {
+    FUNCTIONS.iter().chain(SPHERICAL_FUNCTIONS)
+}
+
 // ---------------------------------------------------------------------------------------
 // Test points
 
@@ -412,7 +560,19 @@ pub fn signed_edges() -> Vec<f32> {
 /// of points of each random class; below `2^14` the grids and the edge products are thinned
 /// too (for the CPU model, which interprets the WGSL).
 pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
-    let mut rng = Rng::new(seed ^ (domain as u64).wrapping_mul(0x9e37_79b9));
+    let tag = match domain {
+        Domain::Square => 0,
+        Domain::SquareQuadrant => 1,
+        Domain::Plane => 2,
+        Domain::Direction => 3,
+        Domain::Barycentric => 4,
+        Domain::Extended => 5,
+        Domain::IndexSeed => 6,
+        Domain::Density => 7,
+        Domain::DensityDirection => 8,
+        Domain::Light(l) => 100 + l as u64,
+    };
+    let mut rng = Rng::new(seed ^ tag.wrapping_mul(0x9e37_79b9));
     let small = random < 1 << 14;
     let mut v: Vec<u32> = Vec::new();
     fn put(v: &mut Vec<u32>, w: &[f32]) {
@@ -567,6 +727,7 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
                 v.extend([rng.next_u32(), rng.next_u32()]);
             }
         }
+        Domain::Light(layout) => return spherical::inputs(layout, random, &mut rng),
         Domain::Density => {
             for x in square_edges().into_iter().chain(signed_edges()) {
                 push!(&[x, x * 1e30, x * 3.0]);
@@ -620,6 +781,7 @@ pub fn typical_inputs(domain: Domain, n: usize, seed: u64) -> Vec<u32> {
                 let d = sphere::equal_area(u);
                 put(&[rng.unit_any() * 100.0, d[0], d[1], d[2]]);
             }
+            Domain::Light(layout) => put(&spherical::typical(layout, u, &mut rng)),
         }
         v.extend(words);
     }
@@ -1007,7 +1169,7 @@ pub fn all_functions_shader() -> String {
          \x20   let i = gid.x;\n",
     );
     let mut base = 0usize;
-    for func in FUNCTIONS {
+    for func in all_functions() {
         let (call, outs) = func.cpu.wgsl(func.name);
         let _ = writeln!(
             s,

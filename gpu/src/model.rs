@@ -38,6 +38,26 @@ pub enum Val {
     C(Vec<Val>),
     /// A pointer to a local variable.
     P(usize),
+    /// A pointer to a member (a path of indices) of a local variable.
+    Q(usize, Vec<usize>),
+}
+
+/// Component `i` of a vector (a scalar is its own component: WGSL's scalar-vector operands).
+fn lane(v: &Val, i: usize) -> Val {
+    match v {
+        Val::C(c) => c[i].clone(),
+        s => s.clone(),
+    }
+}
+
+fn at_path<'a>(mut v: &'a mut Val, path: &[usize]) -> &'a mut Val {
+    for &i in path {
+        v = match v {
+            Val::C(c) => &mut c[i],
+            other => panic!("member of {other:?}"),
+        };
+    }
+    v
 }
 
 /// Which deviations the interpreter applies.
@@ -213,10 +233,11 @@ impl<'m> Interpreter<'m> {
             args,
         };
         for (lh, lv) in f.local_variables.iter() {
-            if let Some(init) = lv.init {
-                let v = self.eval(f, &mut fr, init);
-                fr.locals[lh.index()] = v;
-            }
+            let v = match lv.init {
+                Some(init) => self.eval(f, &mut fr, init),
+                None => self.zero(lv.ty),
+            };
+            fr.locals[lh.index()] = v;
         }
         match self.block(f, &mut fr, &f.body) {
             Flow::Return(v) => v,
@@ -272,6 +293,7 @@ impl<'m> Interpreter<'m> {
                     let v = self.eval(f, fr, *value);
                     match self.eval(f, fr, *pointer) {
                         Val::P(l) => fr.locals[l] = v,
+                        Val::Q(l, path) => *at_path(&mut fr.locals[l], &path) = v,
                         p => panic!("store to {p:?}"),
                     }
                     Flow::Next
@@ -315,15 +337,31 @@ impl<'m> Interpreter<'m> {
         }
     }
 
+    fn zero_scalar(&self, s: naga::Scalar) -> Val {
+        match s.kind {
+            ScalarKind::Float => Val::F(0.0),
+            ScalarKind::Uint => Val::U(0),
+            ScalarKind::Sint => Val::I(0),
+            _ => Val::B(false),
+        }
+    }
+
     fn zero(&self, ty: Handle<naga::Type>) -> Val {
-        match &self.module.types[ty].inner {
+        match self.module.types[ty].inner {
             naga::TypeInner::Scalar(s) => match s.kind {
                 ScalarKind::Float => Val::F(0.0),
                 ScalarKind::Uint => Val::U(0),
                 ScalarKind::Sint => Val::I(0),
                 _ => Val::B(false),
             },
-            other => panic!("zero of {other:?}"),
+            naga::TypeInner::Vector { size, scalar } => {
+                let z = self.zero_scalar(scalar);
+                Val::C(vec![z; size as usize])
+            }
+            naga::TypeInner::Struct { ref members, .. } => {
+                Val::C(members.iter().map(|m| self.zero(m.ty)).collect())
+            }
+            ref other => panic!("zero of {other:?}"),
         }
     }
 
@@ -332,20 +370,74 @@ impl<'m> Interpreter<'m> {
             E::Literal(l) => lit(l),
             E::Constant(c) => self.global(self.module.constants[*c].init),
             E::ZeroValue(ty) => self.zero(*ty),
-            E::Compose { components, .. } => {
-                Val::C(components.iter().map(|c| self.eval(f, fr, *c)).collect())
+            E::Compose { ty, components } => {
+                let parts: Vec<Val> = components.iter().map(|c| self.eval(f, fr, *c)).collect();
+                if matches!(self.module.types[*ty].inner, naga::TypeInner::Vector { .. }) {
+                    // vec4(v3, w) and the like: vector components are spread.
+                    Val::C(
+                        parts
+                            .into_iter()
+                            .flat_map(|p| match p {
+                                Val::C(c) => c,
+                                s => vec![s],
+                            })
+                            .collect(),
+                    )
+                } else {
+                    Val::C(parts)
+                }
             }
             E::AccessIndex { base, index } => match self.eval(f, fr, *base) {
                 Val::C(v) => v[*index as usize].clone(),
+                Val::P(l) => Val::Q(l, vec![*index as usize]),
+                Val::Q(l, mut path) => {
+                    path.push(*index as usize);
+                    Val::Q(l, path)
+                }
                 other => panic!("access into {other:?}"),
+            },
+            E::Splat { size, value } => {
+                let v = self.eval(f, fr, *value);
+                Val::C(vec![v; *size as usize])
+            }
+            E::Swizzle {
+                size,
+                vector,
+                pattern,
+            } => {
+                let v = self.eval(f, fr, *vector);
+                Val::C(
+                    pattern[..*size as usize]
+                        .iter()
+                        .map(|c| lane(&v, *c as usize))
+                        .collect(),
+                )
+            }
+            E::Relational { fun, argument } => match (fun, self.eval(f, fr, *argument)) {
+                (naga::RelationalFunction::All, Val::C(c)) => {
+                    Val::B(c.iter().all(|b| matches!(b, Val::B(true))))
+                }
+                (naga::RelationalFunction::Any, Val::C(c)) => {
+                    Val::B(c.iter().any(|b| matches!(b, Val::B(true))))
+                }
+                (fun, v) => panic!("{fun:?} of {v:?}"),
             },
             E::FunctionArgument(i) => fr.args[*i as usize].clone(),
             E::LocalVariable(l) => Val::P(l.index()),
             E::Load { pointer } => match self.eval(f, fr, *pointer) {
                 Val::P(l) => fr.locals[l].clone(),
+                Val::Q(l, path) => at_path(&mut fr.locals[l], &path).clone(),
                 other => panic!("load from {other:?}"),
             },
             E::Unary { op, expr } => match (op, self.eval(f, fr, *expr)) {
+                (naga::UnaryOperator::Negate, Val::C(c)) => Val::C(
+                    c.into_iter()
+                        .map(|v| match v {
+                            Val::F(x) => Val::F(-x),
+                            v => panic!("negate {v:?}"),
+                        })
+                        .collect(),
+                ),
                 (naga::UnaryOperator::Negate, Val::F(x)) => Val::F(-x),
                 (naga::UnaryOperator::Negate, Val::I(x)) => Val::I(x.wrapping_neg()),
                 (naga::UnaryOperator::BitwiseNot, Val::U(x)) => Val::U(!x),
@@ -389,6 +481,23 @@ impl<'m> Interpreter<'m> {
                 convert,
             } => {
                 let v = self.eval(f, fr, *expr);
+                Self::convert(*convert, *kind, v)
+            }
+            E::CallResult(_) => panic!("call result read before the call"),
+            other => panic!("expression {other:?} is not used by the library"),
+        }
+    }
+
+    fn convert(convert: Option<u8>, kind: ScalarKind, v: Val) -> Val {
+        {
+            {
+                if let Val::C(c) = v {
+                    return Val::C(
+                        c.into_iter()
+                            .map(|x| Self::convert(convert, kind, x))
+                            .collect(),
+                    );
+                }
                 match (convert, kind, v) {
                     (None, ScalarKind::Float, Val::U(x)) => Val::F(f32::from_bits(x)),
                     (None, ScalarKind::Float, Val::I(x)) => Val::F(f32::from_bits(x as u32)),
@@ -405,8 +514,6 @@ impl<'m> Interpreter<'m> {
                     (c, k, v) => panic!("as {c:?} {k:?} {v:?}"),
                 }
             }
-            E::CallResult(_) => panic!("call result read before the call"),
-            other => panic!("expression {other:?} is not used by the library"),
         }
     }
 
@@ -417,12 +524,19 @@ impl<'m> Interpreter<'m> {
         fr: &mut Frame,
         h: Handle<E>,
         ops: &[B],
+        at: Option<usize>,
     ) -> Option<(B, f32, f32)> {
         if let E::Binary { op, left, right } = f.expressions[h]
             && ops.contains(&op)
-            && let (Val::F(a), Val::F(b)) = (self.eval(f, fr, left), self.eval(f, fr, right))
         {
-            return Some((op, a, b));
+            let (l, r) = (self.eval(f, fr, left), self.eval(f, fr, right));
+            let (l, r) = match at {
+                Some(i) => (lane(&l, i), lane(&r, i)),
+                None => (l, r),
+            };
+            if let (Val::F(a), Val::F(b)) = (l, r) {
+                return Some((op, a, b));
+            }
         }
         None
     }
@@ -436,6 +550,32 @@ impl<'m> Interpreter<'m> {
         right: Handle<E>,
     ) -> Val {
         let (l, r) = (self.eval(f, fr, left), self.eval(f, fr, right));
+        let n = match (&l, &r) {
+            (Val::C(c), _) | (_, Val::C(c)) => c.len(),
+            _ => return self.binary_vals(f, fr, op, left, right, l, r, None),
+        };
+        // Vectors (and scalar-vector operands) lane by lane, with the deviations per lane.
+        Val::C(
+            (0..n)
+                .map(|i| {
+                    self.binary_vals(f, fr, op, left, right, lane(&l, i), lane(&r, i), Some(i))
+                })
+                .collect(),
+        )
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn binary_vals(
+        &mut self,
+        f: &naga::Function,
+        fr: &mut Frame,
+        op: B,
+        left: Handle<E>,
+        right: Handle<E>,
+        l: Val,
+        r: Val,
+        at: Option<usize>,
+    ) -> Val {
         match (l, r) {
             (Val::F(a), Val::F(b)) => match op {
                 B::Equal => Val::B(a == b),
@@ -444,7 +584,7 @@ impl<'m> Interpreter<'m> {
                 B::LessEqual => Val::B(a <= b),
                 B::Greater => Val::B(a > b),
                 B::GreaterEqual => Val::B(a >= b),
-                _ => Val::F(self.float_op(f, fr, op, left, right, a, b)),
+                _ => Val::F(self.float_op(f, fr, op, left, right, a, b, at)),
             },
             (Val::U(a), Val::U(b)) => match op {
                 B::Add => Val::U(a.wrapping_add(b)),
@@ -484,6 +624,7 @@ impl<'m> Interpreter<'m> {
         right: Handle<E>,
         a: f32,
         b: f32,
+        at: Option<usize>,
     ) -> f32 {
         let d = self.dev;
         match op {
@@ -492,11 +633,11 @@ impl<'m> Interpreter<'m> {
                 let plain = if sub { a - b } else { a + b };
                 // Fusion: a product operand rounded together with the sum.
                 if d.fuse && self.coin() {
-                    if let Some((_, x, y)) = self.float_pair(f, fr, left, &[B::Multiply]) {
+                    if let Some((_, x, y)) = self.float_pair(f, fr, left, &[B::Multiply], at) {
                         let c = if sub { -(b as f64) } else { b as f64 };
                         return ((x as f64) * (y as f64) + c) as f32;
                     }
-                    if let Some((_, x, y)) = self.float_pair(f, fr, right, &[B::Multiply]) {
+                    if let Some((_, x, y)) = self.float_pair(f, fr, right, &[B::Multiply], at) {
                         let p = (x as f64) * (y as f64);
                         return (a as f64 + if sub { -p } else { p }) as f32;
                     }
@@ -504,7 +645,7 @@ impl<'m> Interpreter<'m> {
                 if d.reassociate && self.coin() {
                     // (x o y) +- b  ->  x o (y o' b)
                     if let Some((inner, x, y)) =
-                        self.float_pair(f, fr, left, &[B::Add, B::Subtract])
+                        self.float_pair(f, fr, left, &[B::Add, B::Subtract], at)
                     {
                         return match (inner, sub) {
                             (B::Add, false) => x + (y + b),
@@ -515,7 +656,7 @@ impl<'m> Interpreter<'m> {
                     }
                     // a +- (x o y)  ->  (a +- x) o' y
                     if let Some((inner, x, y)) =
-                        self.float_pair(f, fr, right, &[B::Add, B::Subtract])
+                        self.float_pair(f, fr, right, &[B::Add, B::Subtract], at)
                     {
                         return match (sub, inner) {
                             (false, B::Add) => (a + x) + y,
@@ -529,10 +670,10 @@ impl<'m> Interpreter<'m> {
             }
             B::Multiply => {
                 if d.reassociate && self.coin() {
-                    if let Some((_, x, y)) = self.float_pair(f, fr, left, &[B::Multiply]) {
+                    if let Some((_, x, y)) = self.float_pair(f, fr, left, &[B::Multiply], at) {
                         return x * (y * b);
                     }
-                    if let Some((_, x, y)) = self.float_pair(f, fr, right, &[B::Multiply]) {
+                    if let Some((_, x, y)) = self.float_pair(f, fr, right, &[B::Multiply], at) {
                         return (a * x) * y;
                     }
                 }
@@ -555,8 +696,27 @@ pub fn to_words(v: &Val, out: &mut Vec<u32>) {
         Val::I(x) => out.push(*x as u32),
         Val::B(x) => out.push(u32::from(*x)),
         Val::C(c) => c.iter().for_each(|v| to_words(v, out)),
-        Val::P(_) => panic!("pointer result"),
+        Val::P(_) | Val::Q(..) => panic!("pointer result"),
     }
+}
+
+/// The interpreted WGSL's output words for `func` on every point of `input` (one trial of the
+/// deviations `dev`, random choices from `seed`).
+pub fn outputs(
+    module: &naga::Module,
+    func: &crate::Func,
+    input: &[u32],
+    dev: Deviations,
+    seed: u64,
+) -> Vec<u32> {
+    let mut interp = Interpreter::new(module, dev, seed);
+    let mut got = Vec::with_capacity(input.len() / func.cpu.in_words() * func.cpu.out_words());
+    for p in input.chunks_exact(func.cpu.in_words()) {
+        let args = interp.args_from_words(func.name, p);
+        let v = interp.call(func.name, args);
+        to_words(&v, &mut got);
+    }
+    got
 }
 
 /// The largest deviation of the interpreted WGSL from the crate for `func` over `input`

@@ -1,4 +1,5 @@
-//! Runs every function of `shaders/warpcore.wgsl`, `shaders/warpcore_tables.wgsl` (with its
+//! Runs every function of `shaders/warpcore.wgsl` (the solid-angle lights included),
+//! `shaders/warpcore_tables.wgsl` (with its
 //! tables buffer bound) and `shaders/warpcore_envmap.wgsl` (with test maps bound) on the default GPU adapter and reports, per function, how many points
 //! differ from the crate and by how much (absolute and in ulps; the table file's outputs are
 //! integer-derived, so only their mismatch counts are printed).
@@ -12,10 +13,12 @@
 //! `gpu-check --model [--random N] [--trials T]` needs no GPU: it evaluates the WGSL source on
 //! the CPU under the deviations the WGSL accuracy rules allow (`warpcore_gpu::model`), over `N`
 //! typical points per function (default 65536), `T` times each (default 4), and prints the
-//! largest deviation from the crate per function: the bounds in docs/gpu.md.
+//! largest deviation from the crate per function: the bounds in docs/gpu.md (for the
+//! solid-angle lights on `N / 16` points: coordinates absolute, densities relative).
 
 use warpcore_gpu::{
-    FUNCTIONS, Gpu, compare, compare_words, cpu_outputs, envmaps, inputs, tables, typical_inputs,
+    FUNCTIONS, Gpu, SPHERICAL_FUNCTIONS, compare, compare_words, cpu_outputs, envmaps, inputs,
+    tables, typical_inputs,
 };
 
 fn main() {
@@ -78,6 +81,28 @@ fn main() {
             func.domain,
             random.unwrap_or(1 << 16),
             0x5eed_0000 + k as u64,
+        );
+        let want = cpu_outputs(func, &input);
+        let got = match gpu.run(func, &input) {
+            Ok(g) => g,
+            Err(e) => {
+                eprintln!("gpu-check: {e}");
+                std::process::exit(1)
+            }
+        };
+        let d = compare(func, &got, &want);
+        any |= d.mismatches > 0;
+        println!(
+            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
+            func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
+        );
+    }
+    // The solid-angle lights of shaders/warpcore.wgsl (the points of tests/lavapipe_spherical.rs).
+    for (k, func) in SPHERICAL_FUNCTIONS.iter().enumerate() {
+        let input = inputs(
+            func.domain,
+            random.unwrap_or(1 << 16),
+            0x5fe0_0000 + k as u64,
         );
         let want = cpu_outputs(func, &input);
         let got = match gpu.run(func, &input) {
@@ -187,6 +212,63 @@ fn run_model(random: usize, trials: u32) {
         println!(
             "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
             func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
+        );
+    }
+    // The solid-angle lights (ordinary random lights, typical samples; random / 16 points, the
+    // interpreter is slow on them): the largest absolute move of a coordinate (barycentric,
+    // (s, t) or u) and the largest relative move of the density or solid angle (last word).
+    println!(
+        "{:<42} {:>9} {:>10} {:>12} {:>12}",
+        "function", "points", "moved", "coord abs", "density rel"
+    );
+    for (k, func) in warpcore_gpu::SPHERICAL_FUNCTIONS.iter().enumerate() {
+        let input = typical_inputs(func.domain, (random / 16).max(1), 0x0de1_0000 + k as u64);
+        let want = cpu_outputs(func, &input);
+        let outw = func.cpu.out_words();
+        let scalar = matches!(
+            func.cpu,
+            warpcore_gpu::Cpu::SphTriSolidAngle(_) | warpcore_gpu::Cpu::SphRectSolidAngle(_)
+        );
+        let has_density = scalar || outw >= 3;
+        let (mut moved, mut coord, mut rel) = (0usize, 0f64, 0f64);
+        for t in 0..trials {
+            let got = warpcore_gpu::model::outputs(
+                &module,
+                func,
+                &input,
+                Deviations::WGSL,
+                0x5151 + k as u64 + 1000 * t as u64,
+            );
+            for (g, w) in got.chunks_exact(outw).zip(want.chunks_exact(outw)) {
+                moved += usize::from(g != w);
+                for j in 0..outw {
+                    let (a, b) = (f32::from_bits(g[j]) as f64, f32::from_bits(w[j]) as f64);
+                    let d = if a.is_nan() {
+                        f64::INFINITY
+                    } else {
+                        (a - b).abs()
+                    };
+                    if has_density && j == outw - 1 {
+                        if b != 0.0 {
+                            rel = rel.max(d / b.abs());
+                        } else if d != 0.0 {
+                            rel = f64::INFINITY;
+                        }
+                    } else {
+                        coord = coord.max(d);
+                    }
+                }
+            }
+        }
+        let points = want.len() / outw;
+        let show = |x: f64, has: bool| if has { format!("{x:.2e}") } else { "-".into() };
+        println!(
+            "{:<42} {:>9} {:>9.0}% {:>12} {:>12}",
+            func.name,
+            points,
+            100.0 * moved as f64 / (points as f64 * trials as f64),
+            show(coord, !scalar),
+            show(rel, has_density)
         );
     }
 }

@@ -1,0 +1,119 @@
+//! The solid-angle lights of `shaders/warpcore.wgsl` (`wc_spherical_*`) against the crate's
+//! `spherical` functions, bit for bit, on Mesa's lavapipe: the lights of the golden
+//! fingerprint and random lights of every kind, times grids, random points and edge values
+//! (`warpcore_gpu::spherical`). Same environment variables as `tests/lavapipe.rs`.
+
+use warpcore_gpu::{Func, Gpu, SPHERICAL_FUNCTIONS, WGSL, compare, cpu_outputs, inputs};
+
+fn lavapipe() -> Option<Gpu> {
+    match Gpu::lavapipe() {
+        Ok(gpu) => Some(gpu),
+        Err(e) if std::env::var("WARPCORE_GPU_SKIP").is_ok_and(|v| v == "1") => {
+            eprintln!("SKIPPED (WARPCORE_GPU_SKIP=1): {e}");
+            None
+        }
+        Err(e) => panic!("{e} (set WARPCORE_GPU_SKIP=1 to skip this test)"),
+    }
+}
+
+fn random_points() -> usize {
+    std::env::var("WARPCORE_GPU_RANDOM")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1 << 16)
+}
+
+fn show(w: &[u32]) -> String {
+    w.iter()
+        .map(|x| format!("{:#010x} ({:e})", x, f32::from_bits(*x)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Every output word of every solid-angle function equals the crate's.
+#[test]
+fn every_solid_angle_function_is_bit_identical_on_lavapipe() {
+    let Some(gpu) = lavapipe() else { return };
+    println!(
+        "adapter: {} ({:?}, {} {})",
+        gpu.info.name, gpu.info.device_type, gpu.info.driver, gpu.info.driver_info
+    );
+    println!(
+        "{:<42} {:>9} {:>10} {:>12} {:>8}",
+        "function", "points", "mismatches", "max abs", "max ulp"
+    );
+    let mut failed = Vec::new();
+    let mut total = 0;
+    for (k, func) in SPHERICAL_FUNCTIONS.iter().enumerate() {
+        let input = inputs(func.domain, random_points(), 0x5fe0_0000 + k as u64);
+        let want = cpu_outputs(func, &input);
+        let got = gpu.run(func, &input).unwrap_or_else(|e| panic!("{e}"));
+        let d = compare(func, &got, &want);
+        total += d.points;
+        println!(
+            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
+            func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
+        );
+        if let Some(p) = d.first {
+            let (inw, outw) = (func.cpu.in_words(), func.cpu.out_words());
+            println!(
+                "    first mismatch: in [{}]\n      gpu [{}]\n    crate [{}]",
+                show(&input[p * inw..(p + 1) * inw]),
+                show(&got[p * outw..(p + 1) * outw]),
+                show(&want[p * outw..(p + 1) * outw])
+            );
+            failed.push(func.name);
+        }
+        // The domain rule, checked on the crate's words: never NaN.
+        assert!(
+            want.iter().all(|w| !f32::from_bits(*w).is_nan()),
+            "{}: the crate returned NaN",
+            func.name
+        );
+    }
+    println!("{} functions, {total} points", SPHERICAL_FUNCTIONS.len());
+    assert!(failed.is_empty(), "mismatches in {failed:?}");
+}
+
+fn find(name: &str) -> Func {
+    *SPHERICAL_FUNCTIONS.iter().find(|f| f.name == name).unwrap()
+}
+
+fn mismatches(gpu: &Gpu, func: &Func, wgsl: &str, input: &[u32]) -> (usize, usize) {
+    let source = Gpu::shader_source(func).replacen(WGSL, wgsl, 1);
+    let got = gpu
+        .run_source(func, &source, input)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let d = compare(func, &got, &cpu_outputs(func, input));
+    (d.mismatches, d.points)
+}
+
+/// The comparison is sharp on these functions too: a one-ulp change of `1 / (4 pi)` moves
+/// the density of every sample that Arvo's map takes (about half of the test points: the
+/// others are degenerate, non-finite or area-sampled lights), and one Newton step fewer moves
+/// the rectangle's points.
+#[test]
+fn small_changes_are_detected() {
+    let Some(gpu) = lavapipe() else { return };
+    let tri = find("wc_spherical_triangle");
+    let input = inputs(tri.domain, 1 << 10, 7);
+    let wrong = WGSL.replace(
+        "const WCI_INV_4PI: f32 = 0x1.45f306p-4f;",
+        "const WCI_INV_4PI: f32 = 0x1.45f308p-4f;",
+    );
+    assert_ne!(wrong, WGSL, "the constant is where the test expects it");
+    let (m, n) = mismatches(&gpu, &tri, &wrong, &input);
+    println!("1 / (4 pi) + 1 ulp: {m} of {n} triangle samples differ");
+    assert!(m * 3 > n, "{m} of {n}");
+
+    let rect = find("wc_spherical_rectangle");
+    let input = inputs(rect.domain, 1 << 10, 7);
+    let wrong = WGSL.replace(
+        "    let dx = wci_rect_newton(r, z2, goal, dx1);",
+        "    let dx = dx1;",
+    );
+    assert_ne!(wrong, WGSL, "the Newton step is where the test expects it");
+    let (m, n) = mismatches(&gpu, &rect, &wrong, &input);
+    println!("one Newton step fewer: {m} of {n} rectangle samples differ");
+    assert!(m * 10 > n, "{m} of {n}");
+}
