@@ -18,6 +18,7 @@ pub mod envmaps;
 pub mod model;
 pub mod spherical;
 pub mod tables;
+pub mod testing;
 
 use std::fmt::Write as _;
 use warpcore::spherical as sp;

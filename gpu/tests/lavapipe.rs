@@ -9,25 +9,8 @@
 
 use std::path::PathBuf;
 use std::process::Command;
+use warpcore_gpu::testing::{lavapipe, random_points, tool};
 use warpcore_gpu::{FUNCTIONS, Func, Gpu, WGSL, compare, cpu_outputs, inputs};
-
-fn lavapipe() -> Option<Gpu> {
-    match Gpu::lavapipe() {
-        Ok(gpu) => Some(gpu),
-        Err(e) if std::env::var("WARPCORE_GPU_SKIP").is_ok_and(|v| v == "1") => {
-            eprintln!("SKIPPED (WARPCORE_GPU_SKIP=1): {e}");
-            None
-        }
-        Err(e) => panic!("{e} (set WARPCORE_GPU_SKIP=1 to skip this test)"),
-    }
-}
-
-fn random_points() -> usize {
-    std::env::var("WARPCORE_GPU_RANDOM")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(1 << 16)
-}
 
 /// Every output word of every function equals the crate's, over edge values, grids, random
 /// points of each domain and random bit patterns (every f32 class).
@@ -179,18 +162,6 @@ fn the_file_is_a_library_with_the_contract_signatures() {
     }
     assert_eq!(public.len(), warpcore_gpu::all_functions().count());
     assert!(module.entry_points.is_empty() && module.global_variables.is_empty());
-}
-
-fn tool(name: &str) -> bool {
-    let found = Command::new(name).arg("--version").output().is_ok();
-    if !found {
-        assert!(
-            !std::env::var("WARPCORE_GPU_REQUIRE_TOOLS").is_ok_and(|v| v == "1"),
-            "{name} not found on PATH (WARPCORE_GPU_REQUIRE_TOOLS=1)"
-        );
-        println!("SKIPPED the {name} validation: not on PATH");
-    }
-    found
 }
 
 fn out_dir() -> PathBuf {

@@ -2,28 +2,11 @@
 //! against the crate, word for word, on Mesa's lavapipe; and naga's translations. The same
 //! environment variables as `tests/lavapipe.rs`.
 
+use warpcore_gpu::compare_words;
 use warpcore_gpu::envmaps::{
     ENV_FUNCTIONS, ENVMAP_WGSL, cpu_outputs, env_buffer, env_inputs, run, shader_source,
 };
-use warpcore_gpu::{Gpu, compare_words};
-
-fn lavapipe() -> Option<Gpu> {
-    match Gpu::lavapipe() {
-        Ok(gpu) => Some(gpu),
-        Err(e) if std::env::var("WARPCORE_GPU_SKIP").is_ok_and(|v| v == "1") => {
-            eprintln!("SKIPPED (WARPCORE_GPU_SKIP=1): {e}");
-            None
-        }
-        Err(e) => panic!("{e} (set WARPCORE_GPU_SKIP=1 to skip this test)"),
-    }
-}
-
-fn random_points() -> usize {
-    std::env::var("WARPCORE_GPU_RANDOM")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .map_or(1 << 12, |n: usize| n / 16)
-}
+use warpcore_gpu::testing::{lavapipe, random_points};
 
 /// Every output word (uv, pdf, texel; pdf lookups) equals the crate's on every test map.
 #[test]

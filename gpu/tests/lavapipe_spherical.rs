@@ -3,25 +3,8 @@
 //! fingerprint and random lights of every kind, times grids, random points and edge values
 //! (`warpcore_gpu::spherical`). Same environment variables as `tests/lavapipe.rs`.
 
+use warpcore_gpu::testing::{lavapipe, random_points};
 use warpcore_gpu::{Func, Gpu, SPHERICAL_FUNCTIONS, WGSL, compare, cpu_outputs, inputs};
-
-fn lavapipe() -> Option<Gpu> {
-    match Gpu::lavapipe() {
-        Ok(gpu) => Some(gpu),
-        Err(e) if std::env::var("WARPCORE_GPU_SKIP").is_ok_and(|v| v == "1") => {
-            eprintln!("SKIPPED (WARPCORE_GPU_SKIP=1): {e}");
-            None
-        }
-        Err(e) => panic!("{e} (set WARPCORE_GPU_SKIP=1 to skip this test)"),
-    }
-}
-
-fn random_points() -> usize {
-    std::env::var("WARPCORE_GPU_RANDOM")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(1 << 16)
-}
 
 fn show(w: &[u32]) -> String {
     w.iter()

@@ -8,25 +8,8 @@ use warpcore_gpu::tables::{
     TABLE_FUNCTIONS, TABLES_WGSL, TableFunc, cpu_outputs, run, run_source, shader_source,
     shader_source_with, table_inputs, table_words,
 };
+use warpcore_gpu::testing::{lavapipe, random_points, tool};
 use warpcore_gpu::{Gpu, compare_words};
-
-fn lavapipe() -> Option<Gpu> {
-    match Gpu::lavapipe() {
-        Ok(gpu) => Some(gpu),
-        Err(e) if std::env::var("WARPCORE_GPU_SKIP").is_ok_and(|v| v == "1") => {
-            eprintln!("SKIPPED (WARPCORE_GPU_SKIP=1): {e}");
-            None
-        }
-        Err(e) => panic!("{e} (set WARPCORE_GPU_SKIP=1 to skip this test)"),
-    }
-}
-
-fn random_points() -> usize {
-    std::env::var("WARPCORE_GPU_RANDOM")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(1 << 16)
-}
 
 /// Every output word (states, fixed-point draws, float draws, roulette values) equals the
 /// crate's, for every pattern, over whole table blocks, edge values of every argument
@@ -180,18 +163,6 @@ fn the_tables_file_is_a_library_with_one_binding() {
     // The two files together: no name is shared.
     let both = format!("{}\n{}", warpcore_gpu::WGSL, TABLES_WGSL);
     naga::front::wgsl::parse_str(&both).expect("warpcore.wgsl + warpcore_tables.wgsl parse");
-}
-
-fn tool(name: &str) -> bool {
-    let found = Command::new(name).arg("--version").output().is_ok();
-    if !found {
-        assert!(
-            !std::env::var("WARPCORE_GPU_REQUIRE_TOOLS").is_ok_and(|v| v == "1"),
-            "{name} not found on PATH (WARPCORE_GPU_REQUIRE_TOOLS=1)"
-        );
-        println!("SKIPPED the {name} validation: not on PATH");
-    }
-    found
 }
 
 /// naga validates the file and translates a shader that calls every check's body to SPIR-V,
