@@ -124,7 +124,7 @@ impl Options {
             let name = format!("envmap:{}", stem.unwrap_or_default());
             self.scenes
                 .iter()
-                .any(|s| name.starts_with(s.as_str()) && s.len() > 7)
+                .any(|s| name.starts_with(s.as_str()) && s.len() > "envmap:".len())
         };
         real_envmaps()
             .into_iter()
