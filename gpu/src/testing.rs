@@ -37,3 +37,108 @@ pub fn tool(name: &str) -> bool {
     }
     found
 }
+
+/// naga's translations of one compute shader, as written to disk and validated.
+pub struct Translations {
+    /// SPIR-V words.
+    pub spv_words: usize,
+    pub glsl: String,
+    pub hlsl: String,
+    pub msl: String,
+}
+
+/// Parses and validates `source` with naga (panicking with naga's message), translates its
+/// compute entry point `entry` to SPIR-V, GLSL 450, HLSL and MSL 1.2 (`reverseBits` needs
+/// 1.2), writes them as `dir/stem.{spv,comp,hlsl,metal}`, and has `spirv-val` (Vulkan 1.0)
+/// and `glslangValidator` accept the SPIR-V and the GLSL when they are on PATH ([`tool`]).
+pub fn translate(source: &str, entry: &str, dir: &std::path::Path, stem: &str) -> Translations {
+    use naga::valid::{Capabilities, ValidationFlags, Validator};
+    let module = naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
+    let info = Validator::new(ValidationFlags::all(), Capabilities::empty())
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("naga validation: {e:?}"));
+    let ep = entry.to_string();
+    std::fs::create_dir_all(dir).unwrap();
+    let spv = naga::back::spv::write_vec(
+        &module,
+        &info,
+        &Default::default(),
+        Some(&naga::back::spv::PipelineOptions {
+            shader_stage: naga::ShaderStage::Compute,
+            entry_point: ep.clone(),
+        }),
+    )
+    .expect("SPIR-V");
+    let spv_path = dir.join(format!("{stem}.spv"));
+    let bytes: Vec<u8> = spv.iter().flat_map(|w| w.to_le_bytes()).collect();
+    std::fs::write(&spv_path, bytes).unwrap();
+    let mut glsl = String::new();
+    naga::back::glsl::Writer::new(
+        &mut glsl,
+        &module,
+        &info,
+        &naga::back::glsl::Options {
+            version: naga::back::glsl::Version::Desktop(450),
+            ..Default::default()
+        },
+        &naga::back::glsl::PipelineOptions {
+            shader_stage: naga::ShaderStage::Compute,
+            entry_point: ep.clone(),
+            multiview: None,
+        },
+        Default::default(),
+    )
+    .expect("GLSL writer")
+    .write()
+    .expect("GLSL");
+    let glsl_path = dir.join(format!("{stem}.comp"));
+    std::fs::write(&glsl_path, &glsl).unwrap();
+    let mut hlsl = String::new();
+    naga::back::hlsl::Writer::new(
+        &mut hlsl,
+        &Default::default(),
+        &naga::back::hlsl::PipelineOptions {
+            entry_point: Some((naga::ShaderStage::Compute, ep.clone())),
+        },
+    )
+    .write(&module, &info, None)
+    .expect("HLSL");
+    std::fs::write(dir.join(format!("{stem}.hlsl")), &hlsl).unwrap();
+    let (msl, _) = naga::back::msl::write_string(
+        &module,
+        &info,
+        &naga::back::msl::Options {
+            lang_version: (1, 2),
+            ..Default::default()
+        },
+        &naga::back::msl::PipelineOptions {
+            entry_point: Some((naga::ShaderStage::Compute, ep)),
+            ..Default::default()
+        },
+    )
+    .expect("MSL");
+    std::fs::write(dir.join(format!("{stem}.metal")), &msl).unwrap();
+    for (name, args, path) in [
+        ("spirv-val", &["--target-env", "vulkan1.0"][..], &spv_path),
+        ("glslangValidator", &[][..], &glsl_path),
+    ] {
+        if tool(name) {
+            let out = Command::new(name).args(args).arg(path).output().unwrap();
+            assert!(
+                out.status.success(),
+                "{name} on {}: {}{}",
+                path.display(),
+                String::from_utf8_lossy(&out.stdout),
+                String::from_utf8_lossy(&out.stderr)
+            );
+            println!("{name}: {stem} ok");
+        }
+    }
+    Translations {
+        spv_words: spv.len(),
+        glsl,
+        hlsl,
+        msl,
+    }
+}

@@ -8,8 +8,7 @@
 //! `WARPCORE_GPU_RANDOM` sets the number of points of each random class (default 65536).
 
 use std::path::PathBuf;
-use std::process::Command;
-use warpcore_gpu::testing::{lavapipe, random_points, tool};
+use warpcore_gpu::testing::{lavapipe, random_points, translate};
 use warpcore_gpu::{FUNCTIONS, Func, Gpu, WGSL, compare, cpu_outputs, inputs};
 
 /// Every output word of every function equals the crate's, over edge values, grids, random
@@ -189,115 +188,18 @@ fn naga_translates_to_spirv_glsl_hlsl_msl() {
     assert!(spv.len() > 1000);
 
     let source = warpcore_gpu::all_functions_shader();
-    let module = naga::front::wgsl::parse_str(&source)
-        .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
-    let info = validate(&module);
     let dir = out_dir();
-    let ep = "wc_all".to_string();
-
-    let spv = naga::back::spv::write_vec(
-        &module,
-        &info,
-        &Default::default(),
-        Some(&naga::back::spv::PipelineOptions {
-            shader_stage: naga::ShaderStage::Compute,
-            entry_point: ep.clone(),
-        }),
-    )
-    .expect("SPIR-V");
-    let spv_path = dir.join("warpcore.spv");
-    std::fs::write(
-        &spv_path,
-        spv.iter()
-            .flat_map(|w| w.to_le_bytes())
-            .collect::<Vec<u8>>(),
-    )
-    .unwrap();
-
-    let mut glsl = String::new();
-    let options = naga::back::glsl::Options {
-        version: naga::back::glsl::Version::Desktop(450),
-        ..Default::default()
-    };
-    let pipeline = naga::back::glsl::PipelineOptions {
-        shader_stage: naga::ShaderStage::Compute,
-        entry_point: ep.clone(),
-        multiview: None,
-    };
-    naga::back::glsl::Writer::new(
-        &mut glsl,
-        &module,
-        &info,
-        &options,
-        &pipeline,
-        Default::default(),
-    )
-    .expect("GLSL writer")
-    .write()
-    .expect("GLSL");
-    let glsl_path = dir.join("warpcore.comp");
-    std::fs::write(&glsl_path, &glsl).unwrap();
-
-    let mut hlsl = String::new();
-    let hlsl_options = naga::back::hlsl::Options::default();
-    let hlsl_pipeline = naga::back::hlsl::PipelineOptions {
-        entry_point: Some((naga::ShaderStage::Compute, ep.clone())),
-    };
-    naga::back::hlsl::Writer::new(&mut hlsl, &hlsl_options, &hlsl_pipeline)
-        .write(&module, &info, None)
-        .expect("HLSL");
-    std::fs::write(dir.join("warpcore.hlsl"), &hlsl).unwrap();
-
-    let (msl, _) = naga::back::msl::write_string(
-        &module,
-        &info,
-        // reverseBits needs MSL 1.2 (2016) or later.
-        &naga::back::msl::Options {
-            lang_version: (1, 2),
-            ..Default::default()
-        },
-        &naga::back::msl::PipelineOptions {
-            entry_point: Some((naga::ShaderStage::Compute, ep.clone())),
-            ..Default::default()
-        },
-    )
-    .expect("MSL");
-    std::fs::write(dir.join("warpcore.metal"), &msl).unwrap();
-
-    for (lang, text) in [("GLSL", &glsl), ("HLSL", &hlsl), ("MSL", &msl)] {
+    let t = translate(&source, "wc_all", &dir, "warpcore");
+    let (glsl, hlsl, msl) = (&t.glsl, &t.hlsl, &t.msl);
+    for (lang, text) in [("GLSL", glsl), ("HLSL", hlsl), ("MSL", msl)] {
         for f in warpcore_gpu::all_functions() {
             assert!(text.contains(f.name), "{lang} lacks {}", f.name);
         }
         println!("{lang}: {} bytes", text.len());
     }
-    println!("SPIR-V: {} words; written to {}", spv.len(), dir.display());
-
-    if tool("spirv-val") {
-        let out = Command::new("spirv-val")
-            .arg("--target-env")
-            .arg("vulkan1.0")
-            .arg(&spv_path)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "spirv-val: {}{}",
-            String::from_utf8_lossy(&out.stdout),
-            String::from_utf8_lossy(&out.stderr)
-        );
-        println!("spirv-val: ok");
-    }
-    if tool("glslangValidator") {
-        let out = Command::new("glslangValidator")
-            .arg(&glsl_path)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "glslangValidator: {}{}",
-            String::from_utf8_lossy(&out.stdout),
-            String::from_utf8_lossy(&out.stderr)
-        );
-        println!("glslangValidator: ok");
-    }
+    println!(
+        "SPIR-V: {} words; written to {}",
+        t.spv_words,
+        dir.display()
+    );
 }

@@ -6,7 +6,7 @@ use warpcore_gpu::compare_words;
 use warpcore_gpu::envmaps::{
     ENV_FUNCTIONS, ENVMAP_WGSL, cpu_outputs, env_buffer, env_inputs, run, shader_source,
 };
-use warpcore_gpu::testing::{lavapipe, random_points};
+use warpcore_gpu::testing::{lavapipe, random_points, translate};
 
 /// Every output word (uv, pdf, texel; pdf lookups) equals the crate's on every test map.
 #[test]
@@ -109,7 +109,6 @@ fn a_subtle_change_is_detected() {
 /// by spirv-val when installed), GLSL 450, HLSL and MSL 1.2.
 #[test]
 fn naga_translates_the_envmap_file() {
-    use naga::valid::{Capabilities, ValidationFlags, Validator};
     let mut source = String::from(ENVMAP_WGSL);
     source.push_str(
         "\n@group(0) @binding(2) var<storage, read_write> wc_out: array<f32>;\n\
@@ -122,92 +121,11 @@ fn naga_translates_the_envmap_file() {
          \x20       + wc_envmap_hierarchical_pdf(gid.y, u) + wc_envmap_marginal_conditional_pdf(gid.y, u);\n\
          }\n",
     );
-    let module = naga::front::wgsl::parse_str(&source)
-        .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
-    let info = Validator::new(ValidationFlags::all(), Capabilities::empty())
-        .validate(&module)
-        .unwrap_or_else(|e| panic!("naga validation: {e:?}"));
-    let ep = "wc_all".to_string();
-    let spv = naga::back::spv::write_vec(
-        &module,
-        &info,
-        &Default::default(),
-        Some(&naga::back::spv::PipelineOptions {
-            shader_stage: naga::ShaderStage::Compute,
-            entry_point: ep.clone(),
-        }),
-    )
-    .expect("SPIR-V");
     let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("warpcore-wgsl");
-    std::fs::create_dir_all(&dir).unwrap();
-    let spv_path = dir.join("warpcore_envmap.spv");
-    std::fs::write(
-        &spv_path,
-        spv.iter()
-            .flat_map(|w| w.to_le_bytes())
-            .collect::<Vec<u8>>(),
-    )
-    .unwrap();
-    let mut glsl = String::new();
-    naga::back::glsl::Writer::new(
-        &mut glsl,
-        &module,
-        &info,
-        &naga::back::glsl::Options {
-            version: naga::back::glsl::Version::Desktop(450),
-            ..Default::default()
-        },
-        &naga::back::glsl::PipelineOptions {
-            shader_stage: naga::ShaderStage::Compute,
-            entry_point: ep.clone(),
-            multiview: None,
-        },
-        Default::default(),
-    )
-    .expect("GLSL writer")
-    .write()
-    .expect("GLSL");
-    let mut hlsl = String::new();
-    naga::back::hlsl::Writer::new(
-        &mut hlsl,
-        &Default::default(),
-        &naga::back::hlsl::PipelineOptions {
-            entry_point: Some((naga::ShaderStage::Compute, ep.clone())),
-        },
-    )
-    .write(&module, &info, None)
-    .expect("HLSL");
-    let (msl, _) = naga::back::msl::write_string(
-        &module,
-        &info,
-        &naga::back::msl::Options {
-            lang_version: (1, 2),
-            ..Default::default()
-        },
-        &naga::back::msl::PipelineOptions {
-            entry_point: Some((naga::ShaderStage::Compute, ep)),
-            ..Default::default()
-        },
-    )
-    .expect("MSL");
-    for (lang, text) in [("GLSL", &glsl), ("HLSL", &hlsl), ("MSL", &msl)] {
+    let t = translate(&source, "wc_all", &dir, "warpcore_envmap");
+    for (lang, text) in [("GLSL", &t.glsl), ("HLSL", &t.hlsl), ("MSL", &t.msl)] {
         assert!(text.contains("wc_envmap_hierarchical_sample"), "{lang}");
         println!("{lang}: {} bytes", text.len());
-    }
-    let val = std::process::Command::new("spirv-val")
-        .args(["--target-env", "vulkan1.0"])
-        .arg(&spv_path)
-        .output();
-    match val {
-        Ok(out) => assert!(
-            out.status.success(),
-            "spirv-val: {}",
-            String::from_utf8_lossy(&out.stderr)
-        ),
-        Err(_) => assert!(
-            !std::env::var("WARPCORE_GPU_REQUIRE_TOOLS").is_ok_and(|v| v == "1"),
-            "spirv-val not found (WARPCORE_GPU_REQUIRE_TOOLS=1)"
-        ),
     }
 }
 
