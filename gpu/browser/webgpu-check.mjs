@@ -109,42 +109,12 @@ ${comps.map((c, k) => `    wc_out[i * ${outFloats}u + ${k}u] = ${word(c)};`).joi
 `;
 }
 
+/** Runs `code`'s `wc_check_main` over `input` (`wc_in`, binding 0) into `outWords` words
+ * (`wc_out`, binding 1); with `tables`, the table buffer is binding 0 and the two move up. */
 async function runOnGpu(device, code, input, outWords, tables = null) {
-  device.pushErrorScope('validation');
-  const module = device.createShaderModule({ code });
-  const pipeline = device.createComputePipeline({ layout: 'auto', compute: { module, entryPoint: 'wc_check_main' } });
-  const error = await device.popErrorScope();
-  if (error) throw new Error(error.message);
-  const inBuf = device.createBuffer({ size: input.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
-  device.queue.writeBuffer(inBuf, 0, input);
-  const size = outWords * 4;
-  const outBuf = device.createBuffer({ size, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
-  const readBuf = device.createBuffer({ size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
-  const bind = device.createBindGroup({
-    layout: pipeline.getBindGroupLayout(0),
-    entries: tables
-      ? [
-          { binding: 0, resource: { buffer: tables } },
-          { binding: 1, resource: { buffer: inBuf } },
-          { binding: 2, resource: { buffer: outBuf } },
-        ]
-      : [
-          { binding: 0, resource: { buffer: inBuf } },
-          { binding: 1, resource: { buffer: outBuf } },
-        ],
-  });
-  const enc = device.createCommandEncoder();
-  const pass = enc.beginComputePass();
-  pass.setPipeline(pipeline);
-  pass.setBindGroup(0, bind);
-  pass.dispatchWorkgroups(Math.ceil(outWords / 64));
-  pass.end();
-  enc.copyBufferToBuffer(outBuf, 0, readBuf, 0, size);
-  device.queue.submit([enc.finish()]);
-  await readBuf.mapAsync(GPUMapMode.READ);
-  const out = new Uint32Array(readBuf.getMappedRange().slice(0));
-  readBuf.unmap();
-  return out;
+  return tables
+    ? runOnGpuBound(device, code, [[0, tables]], input, outWords, 1)
+    : runOnGpuBound(device, code, [], input, outWords, 0);
 }
 
 /**
@@ -586,8 +556,9 @@ ${sample ? '    wc_out[o] = bitcast<u32>(r.uv.x);\n    wc_out[o + 1u] = bitcast<
   return { adapter: `${info.vendor} ${info.architecture} (fallback ${info.isFallbackAdapter})`, rows };
 }
 
-/** `runOnGpu` with buffers already on the device at the given bindings, `wc_in` at 2, `wc_out` at 3. */
-async function runOnGpuBound(device, code, bound, input, outWords) {
+/** `runOnGpu` with buffers already on the device at the given bindings (`[binding, buffer]`),
+ * `wc_in` at `inBinding` and `wc_out` after it. */
+async function runOnGpuBound(device, code, bound, input, outWords, inBinding = 2) {
   device.pushErrorScope('validation');
   const module = device.createShaderModule({ code });
   const pipeline = device.createComputePipeline({ layout: 'auto', compute: { module, entryPoint: 'wc_check_main' } });
@@ -602,8 +573,8 @@ async function runOnGpuBound(device, code, bound, input, outWords) {
     layout: pipeline.getBindGroupLayout(0),
     entries: [
       ...bound.map(([binding, buffer]) => ({ binding, resource: { buffer } })),
-      { binding: 2, resource: { buffer: inBuf } },
-      { binding: 3, resource: { buffer: outBuf } },
+      { binding: inBinding, resource: { buffer: inBuf } },
+      { binding: inBinding + 1, resource: { buffer: outBuf } },
     ],
   });
   const enc = device.createCommandEncoder();
