@@ -142,3 +142,58 @@ pub fn translate(source: &str, entry: &str, dir: &std::path::Path, stem: &str) -
         msl,
     }
 }
+
+/// The bit-identity proof over `funcs`: edge values, grids, random points of each domain and
+/// random bit patterns ([`crate::inputs`], [`random_points`] of them, seeds from `seed`) run
+/// on `gpu` and compared word for word with the crate. Prints a table (points, mismatches,
+/// largest absolute and ulp difference) and the first mismatch of each function; panics when
+/// any word differs, or when the crate itself returned NaN (the domain rule).
+pub fn assert_bit_identical(gpu: &Gpu, funcs: &[crate::Func], seed: u64) {
+    println!(
+        "adapter: {} ({:?}, {} {})",
+        gpu.info.name, gpu.info.device_type, gpu.info.driver, gpu.info.driver_info
+    );
+    println!(
+        "{:<42} {:>9} {:>10} {:>12} {:>8}",
+        "function", "points", "mismatches", "max abs", "max ulp"
+    );
+    let show = |w: &[u32]| {
+        w.iter()
+            .map(|x| format!("{:#010x} ({:e})", x, f32::from_bits(*x)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut failed = Vec::new();
+    let mut total = 0;
+    for (k, func) in funcs.iter().enumerate() {
+        let input = crate::inputs(func.domain, random_points(), seed + k as u64);
+        let want = crate::cpu_outputs(func, &input);
+        let got = gpu.run(func, &input).unwrap_or_else(|e| panic!("{e}"));
+        let d = crate::compare(func, &got, &want);
+        total += d.points;
+        println!(
+            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
+            func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
+        );
+        let (inw, outw) = (func.cpu.in_words(), func.cpu.out_words());
+        if let Some(p) = d.first {
+            println!(
+                "    first mismatch: in [{}]\n      gpu [{}]\n    crate [{}]",
+                show(&input[p * inw..(p + 1) * inw]),
+                show(&got[p * outw..(p + 1) * outw]),
+                show(&want[p * outw..(p + 1) * outw])
+            );
+            failed.push(func.name);
+        }
+        // A sanity check of the comparison itself: the outputs are never NaN (the domain rule).
+        assert!(
+            (0..d.points)
+                .all(|p| (0..outw).all(|w| func.cpu.is_integer_output(w)
+                    || !f32::from_bits(want[p * outw + w]).is_nan())),
+            "{}: the crate returned NaN",
+            func.name
+        );
+    }
+    println!("{} functions, {total} points", funcs.len());
+    assert!(failed.is_empty(), "mismatches in {failed:?}");
+}

@@ -8,7 +8,7 @@
 //! `WARPCORE_GPU_RANDOM` sets the number of points of each random class (default 65536).
 
 use std::path::PathBuf;
-use warpcore_gpu::testing::{lavapipe, random_points, translate};
+use warpcore_gpu::testing::{assert_bit_identical, lavapipe, translate};
 use warpcore_gpu::{FUNCTIONS, Func, Gpu, WGSL, compare, cpu_outputs, inputs};
 
 /// Every output word of every function equals the crate's, over edge values, grids, random
@@ -16,55 +16,7 @@ use warpcore_gpu::{FUNCTIONS, Func, Gpu, WGSL, compare, cpu_outputs, inputs};
 #[test]
 fn every_function_is_bit_identical_on_lavapipe() {
     let Some(gpu) = lavapipe() else { return };
-    println!(
-        "adapter: {} ({:?}, {} {})",
-        gpu.info.name, gpu.info.device_type, gpu.info.driver, gpu.info.driver_info
-    );
-    println!(
-        "{:<42} {:>9} {:>10} {:>12} {:>8}",
-        "function", "points", "mismatches", "max abs", "max ulp"
-    );
-    let mut failed = Vec::new();
-    let mut total = 0;
-    for (k, func) in FUNCTIONS.iter().enumerate() {
-        let input = inputs(func.domain, random_points(), 0x5eed_0000 + k as u64);
-        let want = cpu_outputs(func, &input);
-        let got = gpu.run(func, &input).unwrap_or_else(|e| panic!("{e}"));
-        let d = compare(func, &got, &want);
-        total += d.points;
-        println!(
-            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
-            func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
-        );
-        if let Some(p) = d.first {
-            let inw = func.cpu.in_words();
-            let outw = func.cpu.out_words();
-            let show = |w: &[u32]| {
-                w.iter()
-                    .map(|x| format!("{:#010x} ({:e})", x, f32::from_bits(*x)))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            };
-            println!(
-                "    first mismatch: in [{}]\n      gpu [{}]\n    crate [{}]",
-                show(&input[p * inw..(p + 1) * inw]),
-                show(&got[p * outw..(p + 1) * outw]),
-                show(&want[p * outw..(p + 1) * outw])
-            );
-            failed.push(func.name);
-        }
-        // A sanity check of the comparison itself: the outputs are never NaN (the domain rule).
-        assert!(
-            (0..d.points).all(
-                |p| (0..func.cpu.out_words()).all(|w| func.cpu.is_integer_output(w)
-                    || !f32::from_bits(want[p * func.cpu.out_words() + w]).is_nan())
-            ),
-            "{}: the crate returned NaN",
-            func.name
-        );
-    }
-    println!("{} functions, {total} points", FUNCTIONS.len());
-    assert!(failed.is_empty(), "mismatches in {failed:?}");
+    assert_bit_identical(&gpu, FUNCTIONS, 0x5eed_0000);
 }
 
 /// The comparison is sharp: the sine kernel's leading constant moved by one ulp changes the

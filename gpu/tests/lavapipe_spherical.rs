@@ -3,59 +3,14 @@
 //! fingerprint and random lights of every kind, times grids, random points and edge values
 //! (`warpcore_gpu::spherical`). Same environment variables as `tests/lavapipe.rs`.
 
-use warpcore_gpu::testing::{lavapipe, random_points};
+use warpcore_gpu::testing::{assert_bit_identical, lavapipe};
 use warpcore_gpu::{Func, Gpu, SPHERICAL_FUNCTIONS, WGSL, compare, cpu_outputs, inputs};
-
-fn show(w: &[u32]) -> String {
-    w.iter()
-        .map(|x| format!("{:#010x} ({:e})", x, f32::from_bits(*x)))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
 
 /// Every output word of every solid-angle function equals the crate's.
 #[test]
 fn every_solid_angle_function_is_bit_identical_on_lavapipe() {
     let Some(gpu) = lavapipe() else { return };
-    println!(
-        "adapter: {} ({:?}, {} {})",
-        gpu.info.name, gpu.info.device_type, gpu.info.driver, gpu.info.driver_info
-    );
-    println!(
-        "{:<42} {:>9} {:>10} {:>12} {:>8}",
-        "function", "points", "mismatches", "max abs", "max ulp"
-    );
-    let mut failed = Vec::new();
-    let mut total = 0;
-    for (k, func) in SPHERICAL_FUNCTIONS.iter().enumerate() {
-        let input = inputs(func.domain, random_points(), 0x5fe0_0000 + k as u64);
-        let want = cpu_outputs(func, &input);
-        let got = gpu.run(func, &input).unwrap_or_else(|e| panic!("{e}"));
-        let d = compare(func, &got, &want);
-        total += d.points;
-        println!(
-            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
-            func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
-        );
-        if let Some(p) = d.first {
-            let (inw, outw) = (func.cpu.in_words(), func.cpu.out_words());
-            println!(
-                "    first mismatch: in [{}]\n      gpu [{}]\n    crate [{}]",
-                show(&input[p * inw..(p + 1) * inw]),
-                show(&got[p * outw..(p + 1) * outw]),
-                show(&want[p * outw..(p + 1) * outw])
-            );
-            failed.push(func.name);
-        }
-        // The domain rule, checked on the crate's words: never NaN.
-        assert!(
-            want.iter().all(|w| !f32::from_bits(*w).is_nan()),
-            "{}: the crate returned NaN",
-            func.name
-        );
-    }
-    println!("{} functions, {total} points", SPHERICAL_FUNCTIONS.len());
-    assert!(failed.is_empty(), "mismatches in {failed:?}");
+    assert_bit_identical(&gpu, SPHERICAL_FUNCTIONS, 0x5fe0_0000);
 }
 
 fn find(name: &str) -> Func {
