@@ -85,6 +85,30 @@ fn main() {
             black_box(&mut out);
         })
     });
+    // The same with every call's index and seed through `black_box` (nothing to hoist or
+    // strength-reduce across calls), the peer likewise.
+    g.bench_function("warpcore sample_x8, per call", |b| {
+        let lane = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
+        b.iter(|| {
+            for (k, o) in out8.iter_mut().enumerate() {
+                let index = u32x8::splat(black_box(8 * k as u32)) + lane;
+                *o = pmj02bn::sample_x8(index, u32x8::splat(black_box(SEED)));
+            }
+            black_box(&mut out8);
+        })
+    });
+    g.bench_function("sobol_burley::sample (2 dims), per call", |b| {
+        b.iter(|| {
+            for (i, o) in out.iter_mut().enumerate() {
+                let (i, seed) = (black_box(i as u32), black_box(SEED));
+                *o = [
+                    sobol_burley::sample(i, 0, seed),
+                    sobol_burley::sample(i, 1, seed),
+                ];
+            }
+            black_box(&mut out);
+        })
+    });
     g.bench_function("sobol_burley::sample (2 dims)", |b| {
         b.iter(|| {
             let seed = black_box(SEED);

@@ -12,6 +12,12 @@
 //! compiler may hoist what does not depend on the index (as in a loop over a pixel's
 //! samples). The slice form fills the same `BATCH` points of one domain in one call.
 //!
+//! The "sampler, per call" group is the renderer's inner loop with nothing to hoist: every
+//! call gets its own pixel (from a pre-generated list of 4096 random pixels) and index, both
+//! through `black_box`, one sampler built per index, `domain(1).draw::<4>()`; openqmc-rs's
+//! `SobolSampler` and `PmjSampler` (`new(x, y, frame, i).new_domain(1)
+//! .draw_sample_f32::<4>()`) in the same group.
+//!
 //! Run: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench sampler`
 
 mod common;
@@ -138,8 +144,64 @@ macro_rules! openqmc {
     }};
 }
 
+/// 4096 random pixels of a 1920 x 1080 image (splitmix64 from a fixed seed).
+fn random_pixels() -> Vec<[u32; 2]> {
+    common::uniform_points::<2>(BATCH, 7)
+        .into_iter()
+        .map(|[x, y]| [(x * 1920.0) as u32, (y * 1080.0) as u32])
+        .collect()
+}
+
+/// One 4D draw per call with the pixel and the index varied per call and black-boxed: what
+/// a renderer's inner loop pays per sample when nothing can be hoisted.
+fn per_call(c: &mut criterion::Criterion) {
+    let pixels = random_pixels();
+    let mut out = vec![[0.0f32; 4]; BATCH];
+    let mut g = c.benchmark_group("sampler, per call");
+    g.throughput(Throughput::Elements(BATCH as u64));
+    fn ours<P: Pattern>(
+        g: &mut BenchmarkGroup<'_, WallTime>,
+        name: &str,
+        pixels: &[[u32; 2]],
+        out: &mut [[f32; 4]],
+    ) {
+        g.bench_function(format!("warpcore Sampler<{name}>"), |b| {
+            b.iter(|| {
+                for (i, (o, px)) in out.iter_mut().zip(pixels).enumerate() {
+                    let s = Sampler::<P>::new(black_box(*px), FRAME, black_box(i as u32), SEED);
+                    *o = s.domain(1).draw::<4>();
+                }
+                black_box(&mut *out);
+            })
+        });
+    }
+    ours::<Sobol>(&mut g, "Sobol", &pixels, &mut out);
+    ours::<Pmj02bn>(&mut g, "Pmj02bn", &pixels, &mut out);
+    macro_rules! peer {
+        ($x:ident) => {{
+            $x::warm_cache();
+            g.bench_function(concat!("openqmc-rs ", stringify!($x)), |b| {
+                b.iter(|| {
+                    for (i, (o, px)) in out.iter_mut().zip(&pixels).enumerate() {
+                        let [x, y] = black_box(*px).map(|c| c as i32);
+                        let i = black_box(i as i32);
+                        *o = $x::new(x, y, FRAME as i32, i)
+                            .new_domain(1)
+                            .draw_sample_f32::<4>();
+                    }
+                    black_box(&mut out);
+                })
+            });
+        }};
+    }
+    peer!(SobolSampler);
+    peer!(PmjSampler);
+    g.finish();
+}
+
 fn main() {
     let mut c = common::criterion();
+    per_call(&mut c);
     let mut g = c.benchmark_group("sampler");
     g.throughput(Throughput::Elements(BATCH as u64));
     ours::<Sobol>(&mut g, "Sobol", true);

@@ -6,6 +6,13 @@
 //! The cosine-aware slices (`triangle_cosine_slice`, `rectangle_cosine_slice`: the bilinear
 //! warp plus the same map) sit beside the plain ones.
 //!
+//! The "a light per call" groups are what a renderer pays when the light or the shading
+//! point changes from one sample to the next: every call takes the next of 4096 pre-generated
+//! random lights, shading points and `u` (index through `black_box`, so no set-up can be
+//! hoisted out of the loop), with the textbook transcriptions in the same group. In the
+//! one-light groups the scalar rows pass the light and the point through `black_box` per
+//! call too (a fixed light would let the compiler hoist the whole set-up out of the loop).
+//!
 //! Run: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench spherical`
 
 mod common;
@@ -121,8 +128,93 @@ fn urena_textbook(corner: V, ex: V, ey: V, p: V, u: [f32; 2]) -> ([f32; 2], f32)
     ([(xu - x0) / w, (yv - y0) / h], 1.0 / s)
 }
 
+/// A triangle light, a shading point and `u`.
+type TriCall = ([V; 3], V, [f32; 2]);
+/// A rectangle light (corner, ex, ey), a shading point and `u`.
+type RectCall = (V, V, V, V, [f32; 2]);
+
+/// `BATCH` random triangles and rectangles of about 0.01 to 1 sr (centres in a 2 x 2 box two
+/// units above the shading points' 0.6 x 0.6 box, edges up to 1 long, rectangles rotated
+/// about the normal), each with its own shading point and `u`.
+fn random_lights() -> (Vec<TriCall>, Vec<RectCall>) {
+    let r = uniform_points::<16>(BATCH, 3);
+    let at = |x: &[f32], lo: f32, hi: f32| [0, 1, 2].map(|k| lo + (hi - lo) * x[k]);
+    let tris = r
+        .iter()
+        .map(|x| {
+            let c = at(&x[0..], -1.0, 1.0);
+            let c = [c[0], c[1], c[2] + 2.0];
+            let v = [3, 6, 9].map(|k| add(c, at(&x[k..], -0.5, 0.5)));
+            (v, at(&x[12..], -0.3, 0.3), [x[15], x[14]])
+        })
+        .collect();
+    let rects = r
+        .iter()
+        .map(|x| {
+            let c = at(&x[0..], -1.0, 1.0);
+            let corner = [c[0], c[1], c[2] + 2.0];
+            let a = x[3] * core::f32::consts::TAU;
+            let (w, h) = (0.2 + 0.8 * x[4], 0.2 + 0.8 * x[5]);
+            let ex = [w * libm::cosf(a), w * libm::sinf(a), 0.0];
+            let ey = [-h * libm::sinf(a), h * libm::cosf(a), 0.0];
+            (corner, ex, ey, at(&x[6..], -0.3, 0.3), [x[9], x[10]])
+        })
+        .collect();
+    (tris, rects)
+}
+
+/// A new light, shading point and `u` per call.
+fn per_call(c: &mut criterion::Criterion) {
+    let (tris, rects) = random_lights();
+    let mut g = c.benchmark_group("spherical triangle, a light per call");
+    g.throughput(Throughput::Elements(BATCH as u64));
+    let mut out = vec![([0.0f32; 3], 0.0f32); BATCH];
+    g.bench_function("warpcore scalar", |b| {
+        b.iter(|| {
+            for (i, o) in out.iter_mut().enumerate() {
+                let (v, p, u) = tris[black_box(i)];
+                *o = spherical::triangle(v, p, u);
+            }
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("Arvo textbook f32 scalar", |b| {
+        b.iter(|| {
+            for (i, o) in out.iter_mut().enumerate() {
+                let (v, p, u) = tris[black_box(i)];
+                *o = arvo_textbook(v, p, u);
+            }
+            black_box(&mut out);
+        })
+    });
+    g.finish();
+    let mut g = c.benchmark_group("spherical rectangle, a light per call");
+    g.throughput(Throughput::Elements(BATCH as u64));
+    let mut out = vec![([0.0f32; 2], 0.0f32); BATCH];
+    g.bench_function("warpcore scalar", |b| {
+        b.iter(|| {
+            for (i, o) in out.iter_mut().enumerate() {
+                let (corner, ex, ey, p, u) = rects[black_box(i)];
+                *o = spherical::rectangle(corner, ex, ey, p, u);
+            }
+            black_box(&mut out);
+        })
+    });
+    g.bench_function("Urena textbook f32 scalar", |b| {
+        b.iter(|| {
+            for (i, o) in out.iter_mut().enumerate() {
+                let (corner, ex, ey, p, u) = rects[black_box(i)];
+                *o = urena_textbook(corner, ex, ey, p, u);
+            }
+            black_box(&mut out);
+        })
+    });
+    g.finish();
+}
+
 fn main() {
     let mut c = common::criterion();
+    per_call(&mut c);
     let input = uniform_points::<2>(BATCH, 1);
     // A triangle and a square of about 0.5 sr seen obliquely.
     let tri = [[0.0f32, 0.0, 1.0], [1.0, 0.0, 1.2], [0.0, 1.0, 0.9]];
@@ -137,10 +229,10 @@ fn main() {
         let mut g = c.benchmark_group("spherical triangle");
         g.throughput(Throughput::Elements(BATCH as u64));
         let mut out = vec![([0.0f32; 3], 0.0f32); BATCH];
-        g.bench_function("warpcore scalar loop", |b| {
+        g.bench_function("warpcore scalar, light black-boxed per call", |b| {
             b.iter(|| {
                 for (o, u) in out.iter_mut().zip(black_box(&input)) {
-                    *o = spherical::triangle(tri, tp, *u);
+                    *o = spherical::triangle(black_box(tri), black_box(tp), *u);
                 }
                 black_box(&mut out);
             })
@@ -162,7 +254,7 @@ fn main() {
         g.bench_function("Arvo textbook f32 scalar", |b| {
             b.iter(|| {
                 for (o, u) in out.iter_mut().zip(black_box(&input)) {
-                    *o = arvo_textbook(tri, tp, *u);
+                    *o = arvo_textbook(black_box(tri), black_box(tp), *u);
                 }
                 black_box(&mut out);
             })
@@ -173,10 +265,11 @@ fn main() {
         let mut g = c.benchmark_group("spherical rectangle");
         g.throughput(Throughput::Elements(BATCH as u64));
         let mut out = vec![([0.0f32; 2], 0.0f32); BATCH];
-        g.bench_function("warpcore scalar loop", |b| {
+        g.bench_function("warpcore scalar, light black-boxed per call", |b| {
             b.iter(|| {
                 for (o, u) in out.iter_mut().zip(black_box(&input)) {
-                    *o = spherical::rectangle(corner, ex, ey, rp, *u);
+                    let [c, x, y, p] = black_box([corner, ex, ey, rp]);
+                    *o = spherical::rectangle(c, x, y, p, *u);
                 }
                 black_box(&mut out);
             })
@@ -206,7 +299,8 @@ fn main() {
         g.bench_function("Urena textbook f32 scalar", |b| {
             b.iter(|| {
                 for (o, u) in out.iter_mut().zip(black_box(&input)) {
-                    *o = urena_textbook(corner, ex, ey, rp, *u);
+                    let [c, x, y, p] = black_box([corner, ex, ey, rp]);
+                    *o = urena_textbook(c, x, y, p, *u);
                 }
                 black_box(&mut out);
             })

@@ -18,7 +18,8 @@
 //! NaN reach an output: inputs are sanitized first, and the few `0/0` intermediates are
 //! replaced with a select before they are used.
 //!
-//! The square root is correctly rounded on every path: `libm::sqrtf` for scalars, and for
+//! The square root is correctly rounded on every path: the hardware instruction for scalars
+//! on x86 (through `wide`, see [`Lane::sqrt`] for `f32`), `libm::sqrtf` elsewhere, and for
 //! `f32x8` and `f32x16` the hardware instruction where `wide` has one (SSE/AVX/AVX-512, wasm
 //! `simd128`, aarch64 NEON; `f32x16` without AVX-512 is two `f32x8` square roots) and
 //! `libm::sqrtf` per lane elsewhere (never `wide`'s no-std software fallback).
@@ -254,7 +255,19 @@ impl Lane for f32 {
     }
     #[inline(always)]
     fn sqrt(self) -> Self {
-        libm::sqrtf(self)
+        // x86: the hardware square root through `wide` (an intrinsic LLVM sees, encoded like
+        // the code around it), not `libm::sqrtf`, whose x86 version is an inline-asm legacy
+        // `sqrtss`: opaque to the optimiser, and in VEX/EVEX code (`target-cpu` with AVX or
+        // AVX-512) a legacy-SSE instruction, which pays SSE/AVX transition or merge penalties
+        // on CPUs that have them. Both are IEEE 754 correctly rounded: the same bits.
+        #[cfg(all(any(target_arch = "x86", target_arch = "x86_64"), target_feature = "sse"))]
+        {
+            f32x4::splat(self).sqrt().to_array()[0]
+        }
+        #[cfg(not(all(any(target_arch = "x86", target_arch = "x86_64"), target_feature = "sse")))]
+        {
+            libm::sqrtf(self)
+        }
     }
     #[inline(always)]
     fn simd_lt(self, rhs: Self) -> bool {
