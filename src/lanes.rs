@@ -556,6 +556,31 @@ mod tests {
         ]
     }
 
+    /// The scalar square root (the hardware instruction through `wide` on x86) is
+    /// `libm::sqrtf` bit for bit: on every non-negative `f32` at a stride through the whole
+    /// range, subnormals, powers of two and their neighbours, and the specials (negative
+    /// inputs and NaN give a NaN either way).
+    #[test]
+    fn scalar_sqrt_is_libm_sqrtf() {
+        let check = |x: f32| {
+            let (a, b) = (<f32 as Lane>::sqrt(x), libm::sqrtf(x));
+            if b.is_nan() {
+                assert!(a.is_nan(), "sqrt({x:e}) = {a:e}, libm NaN");
+            } else {
+                assert_eq!(a.to_bits(), b.to_bits(), "sqrt({x:e})");
+            }
+        };
+        for bits in (0..0x7f80_0000u32).step_by(997) {
+            check(f32::from_bits(bits));
+        }
+        for e in 0..256u32 {
+            for m in [0u32, 1, 2, 0x7f_fffe, 0x7f_ffff] {
+                check(f32::from_bits((e << 23) | m));
+            }
+        }
+        specials().into_iter().for_each(check);
+    }
+
     #[test]
     fn unit_interval_rule() {
         for x in specials() {
