@@ -364,7 +364,11 @@ fn c_blocks(markdown: &str) -> Vec<CBlock> {
             code.push('\n');
             i += 1;
         }
-        assert!(i < lines.len(), "an unclosed ```c block at line {}", start + 1);
+        assert!(
+            i < lines.len(),
+            "an unclosed ```c block at line {}",
+            start + 1
+        );
         blocks.push(CBlock {
             line: start + 1,
             command,
@@ -415,11 +419,22 @@ fn docs_c_blocks_compile_with_their_printed_build_line_and_run() {
                 .lines()
                 .filter(|l| !l.trim().starts_with(DOCS_MARKER))
                 .any(|l| l.contains(&command));
-            assert!(printed, "{at}: the build line `{command}` is not printed on the page");
+            assert!(
+                printed,
+                "{at}: the build line `{command}` is not printed on the page"
+            );
             let words: Vec<&str> = command.split_whitespace().collect();
             assert_eq!(words[0], "cc", "{at}: a build line that is not `cc ...`");
-            for needed in ["app.c", "-Iinclude", "target/release/libwarpcore_capi.a", "app"] {
-                assert!(words.contains(&needed), "{at}: `{command}` lacks `{needed}`");
+            for needed in [
+                "app.c",
+                "-Iinclude",
+                "target/release/libwarpcore_capi.a",
+                "app",
+            ] {
+                assert!(
+                    words.contains(&needed),
+                    "{at}: `{command}` lacks `{needed}`"
+                );
             }
             let stem = format!("{}_{}", name.replace(['/', '.'], "_"), block.line);
             let (src, exe) = (out_dir.join(format!("{stem}.c")), out_dir.join(&stem));
