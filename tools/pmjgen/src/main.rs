@@ -18,7 +18,7 @@
 //! Defaults: `--out src/tables --seed 20180702 --sets 4 --candidates 64` (run from the
 //! repository root).
 
-mod pmj;
+use pmjgen as pmj;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
