@@ -33,13 +33,10 @@
     feature = "spherical"
 ))]
 
-#[path = "../../examples/wasm-demo/src/fingerprint.rs"]
-mod fingerprint;
-
-use fingerprint::{Hasher, N, input, unit};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use warpcore_registry::fingerprint::{self, Hasher, N, input, unit};
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")

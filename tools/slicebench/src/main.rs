@@ -3,8 +3,8 @@
 //! for before/after comparisons of two checkouts under the same load (run the two binaries
 //! alternately). Only API that every version since v1 has, so an older checkout builds it too.
 //!
-//!   cargo run --release --manifest-path tools/slicebench/Cargo.toml [-- FILTER]
-//!   cargo run --release --manifest-path tools/slicebench/Cargo.toml --target wasm32-wasip1
+//!   cargo run --release -p slicebench [-- FILTER]
+//!   cargo run --release -p slicebench --target wasm32-wasip1
 //!   RUSTFLAGS="-C target-feature=+simd128" cargo run ... --target wasm32-wasip1
 //!
 //! (run from the repository root, where `.cargo/config.toml` names the Node runner). Each

@@ -1,9 +1,9 @@
 //! Progressive multi-jittered (0,2) sequences, with and without the blue-noise step, in
 //! 0.32 fixed point.
 //!
-//! This file is the whole algorithm. It has no dependencies so that warpcore's tests can
-//! include it with `#[path]` (to regenerate tables and to build the plain pmj02 reference of
-//! the blue-noise comparison) while `main.rs` wraps it in a command-line tool.
+//! This library is the whole algorithm, with no dependencies: warpcore's tests use it (to
+//! regenerate tables and to build the plain pmj02 reference of the blue-noise comparison)
+//! and `main.rs` wraps it in a command-line tool.
 //!
 //! # The sequence
 //!

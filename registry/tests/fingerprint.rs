@@ -1,11 +1,11 @@
 //! Determinism across targets: the hash of every warp's output bits over a fixed input set
-//! (`examples/wasm-demo/src/fingerprint.rs`) must equal the committed golden value. CI runs this
+//! (`registry/src/fingerprint.rs`) must equal the committed golden value. CI runs this
 //! test natively, under wasm32-wasip1 with and without simd128, and the same code runs in the
 //! native `fingerprint` binary built with `-C target-cpu=native` and in the wasm32-unknown-unknown
 //! cdylib (`tools/wasm-demo.mjs`) — one golden file for all of them.
 //!
 //! The golden value covers the default feature set; when a change is *meant* to alter output
-//! bits, regenerate it with `cargo run --release --manifest-path examples/wasm-demo/Cargo.toml
+//! bits, regenerate it with `cargo run --release -p warpcore-demo
 //! --bin fingerprint > tests/golden/fingerprint.txt` and say why in the commit.
 #![cfg(all(
     feature = "disk",
@@ -17,12 +17,11 @@
     feature = "spherical"
 ))]
 
-#[path = "../examples/wasm-demo/src/fingerprint.rs"]
-mod fingerprint;
+use warpcore_registry::fingerprint;
 
 #[test]
 fn output_bits_match_the_golden_fingerprint() {
-    let golden = include_str!("golden/fingerprint.txt").trim();
+    let golden = include_str!("../../tests/golden/fingerprint.txt").trim();
     let got = format!("{:016x}", fingerprint::fingerprint());
     assert_eq!(
         got, golden,
@@ -34,7 +33,7 @@ fn output_bits_match_the_golden_fingerprint() {
 /// without 16-lane vectors `wide` emulates them, and they must still agree bit for bit.
 #[test]
 fn x16_forms_match_the_golden_fingerprint() {
-    let golden = include_str!("golden/fingerprint.txt").trim();
+    let golden = include_str!("../../tests/golden/fingerprint.txt").trim();
     let got = format!("{:016x}", fingerprint::fingerprint_x16());
     assert_eq!(got, golden, "the _x16 forms give other bits on this target");
 }
@@ -155,12 +154,12 @@ fn cosine_maps_match_their_golden_fingerprint() {
     let got = format!("{:016x}", h.finish());
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/tests/golden/fingerprint_cosine.txt"
+        "/../tests/golden/fingerprint_cosine.txt"
     );
     if std::env::var_os("WARPCORE_BLESS").is_some() {
         std::fs::write(path, format!("{got}\n")).unwrap();
     }
-    let golden = include_str!("golden/fingerprint_cosine.txt").trim();
+    let golden = include_str!("../../tests/golden/fingerprint_cosine.txt").trim();
     assert_eq!(
         got, golden,
         "the cosine-aware maps give other bits on this target"

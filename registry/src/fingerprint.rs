@@ -2,7 +2,7 @@
 //! `_x8` and slice forms — over a fixed set of inputs (special values and 1024 pseudo-random
 //! points from a counter hash; for the `spherical` lights, those inputs on each of a fixed
 //! set of lights, ordinary and extreme). Identical on every target and instruction set, or the
-//! determinism promise is broken. `no_std`, no allocation; shared by `tests/fingerprint.rs`,
+//! determinism promise is broken. `no_std`, no allocation; shared by `registry/tests/fingerprint.rs`, the C and GPU tests,
 //! the native `fingerprint` binary and the wasm cdylib.
 //!
 //! [`fingerprint_x16`] hashes the same bits with every `_x8` call replaced by the `_x16` form
