@@ -463,15 +463,15 @@ fn docs_c_blocks_compile_with_their_printed_build_line_and_run() {
             compiled += 1;
         }
     }
-    // README: the quick start and the environment-map quick start (which reads park.pfm and
-    // flips its rows); docs/capi.md: the storage round trip and the path tracer.
+    // docs/quickstart.md: the quick start and the environment-map quick start (which reads
+    // park.pfm and flips its rows); docs/capi.md: the storage round trip and the path tracer.
     assert!(compiled >= 4, "{compiled} C blocks");
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let envmap = readme
+    let quickstart = std::fs::read_to_string(root().join("docs/quickstart.md")).unwrap();
+    let envmap = quickstart
         .split("## Environment maps: a quick start")
         .nth(1)
         .and_then(|section| section.split("```c\n").nth(1))
-        .expect("a ```c block in the README's environment-map quick start");
+        .expect("a ```c block in docs/quickstart.md's environment-map quick start");
     assert!(envmap.contains("park.pfm") && envmap.contains("h - 1 - r"));
 }
 
