@@ -13,6 +13,8 @@ mod env_split;
 #[cfg(feature = "envmap")]
 mod envscene;
 mod math;
+#[cfg(feature = "envmap")]
+mod orientation;
 mod output;
 mod path;
 #[cfg(feature = "envmap")]
@@ -99,6 +101,12 @@ fn command() -> Command {
                 .help("run only scenes whose name starts with PREFIX (repeatable; see the valid names in an error message)"),
         )
         .arg(
+            Arg::new("orientation-only")
+                .long("orientation-only")
+                .action(ArgAction::SetTrue)
+                .help("run only the environment-map orientation study (envmap_orientation.csv/.md: each map as authored and rotated; --scene and --env-pixels apply)"),
+        )
+        .arg(
             Arg::new("reference")
                 .long("reference")
                 .action(ArgAction::SetTrue)
@@ -164,6 +172,7 @@ where
         opts.threads = n;
     }
     opts.reference = m.get_flag("reference");
+    opts.orientation_only = m.get_flag("orientation-only");
     opts.scenes = m
         .get_many::<String>("scene")
         .map(|v| v.cloned().collect())
