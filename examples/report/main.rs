@@ -4,7 +4,8 @@
 //!
 //! `cargo run --release --example report` (add `-- --help` for the options). Writes
 //! `target/report/results.csv`, `details.csv`, `tables.md`, one SVG plot per scene and the
-//! strata pictures; see `docs/REPORT.md` for a reading of the results.
+//! strata pictures (and, for the environment maps, the variance split and the orientation
+//! study, `envmap_orientation.*`); see `docs/REPORT.md` for a reading of the results.
 
 mod app;
 mod area;
@@ -221,6 +222,7 @@ mod cli_tests {
             &["--scene", "square", "--max-spp", "64", "--pixels", "16"],
             &["--scene", "envmap:sky"],
             &["--threads", "1", "--reference", "--scene", "corn"],
+            &["--orientation-only", "--scene", "envmap:park"],
         ] {
             assert!(
                 parse(std::iter::once("report").chain(args.iter().copied())).is_ok(),

@@ -282,7 +282,7 @@ pub fn split_csv(splits: &[ClassSplit]) -> String {
 /// The geometric mean of ratios with its relative standard error (`sqrt(sum se^2) / K` on
 /// the log scale).
 pub fn geo_mean(ratios: &[Ratio]) -> Option<Ratio> {
-    if ratios.is_empty() || ratios.iter().any(|r| !(r.ratio > 0.0)) {
+    if ratios.is_empty() || ratios.iter().any(|r| r.ratio.is_nan() || r.ratio <= 0.0) {
         return None;
     }
     let k = ratios.len() as f64;
