@@ -25,6 +25,9 @@ mod env_split;
 mod envscene;
 #[path = "../examples/report/math.rs"]
 mod math;
+#[cfg(feature = "envmap")]
+#[path = "../examples/report/orientation.rs"]
+mod orientation;
 #[path = "../examples/report/output.rs"]
 mod output;
 #[path = "../examples/report/path/mod.rs"]
@@ -576,6 +579,19 @@ fn quick_run_writes_a_well_formed_csv() {
         assert!(out.join(plots::file_name(scene)).exists(), "{scene} plot");
     }
     assert!(out.join("strata.svg").exists());
+    if cfg!(feature = "envmap") {
+        // The orientation study: both orientations of every env-map class.
+        let o = std::fs::read_to_string(out.join("envmap_orientation.csv")).unwrap();
+        for map in ["envmap:sky", "envmap:interior", "envmap:sky_200x100"] {
+            for orient in ["authored", "rotated"] {
+                let prefix = format!("{map},{orient},stratified,hierarchical_equal_area,16,");
+                assert!(o.lines().any(|l| l.starts_with(&prefix)), "{prefix}");
+            }
+        }
+        let md = std::fs::read_to_string(out.join("envmap_orientation.md")).unwrap();
+        assert!(md.contains("| `stratified` | 16 |"), "{md}");
+        assert!(out.join("envmap_orientation_split.csv").exists());
+    }
     // The mix is the class-weighted sum: between the lit and penumbra MSE of every row.
     for light in ["square", "skinny", "disk", "triangle"] {
         let get = |name: String| results.iter().find(|r| r.scene == name).unwrap();
@@ -908,6 +924,136 @@ mod env {
         assert!(
             rots[1..].iter().all(|r| (r[0][0] - 1.0).abs() > 1e-3),
             "rotations must differ from the identity"
+        );
+    }
+
+    /// The orientation study (`orientation.rs`) measures what it says: its authored run is
+    /// the report's estimator on a scene built without rotations (the same MSE), its rotated
+    /// run the report's own rotated scene (`run::errors` on the same pixels), the two runs
+    /// agree sample for sample on the pixels that see rotation 0 and differ on the others,
+    /// and the CSV's and the table's ratios are the ratios of the MSEs.
+    #[test]
+    fn orientation_study_is_consistent() {
+        use orientation::{ORIENTATIONS, SPPS, WARPS};
+        let (w, h, rots, pixels) = (64, 32, 4, 64);
+        let rotated = envscene::EnvScene::procedural("sky", envscene::sky, w, h, rots).unwrap();
+        let authored = envscene::EnvScene::procedural("sky", envscene::sky, w, h, 1).unwrap();
+        let mut classes = Vec::new();
+        for lit in [false, true] {
+            let view = rotated.view(lit);
+            let c = orientation::measure(&view, "procedural", pixels, 2);
+            let (mut same, mut differ, mut others) = (0, 0, 0);
+            for i in 0..pixels {
+                for s in SAMPLERS {
+                    for k in 0..SPPS.len() {
+                        for wp in 0..WARPS.len() {
+                            let (a, r) = (c.error(i, 0, s, k, wp), c.error(i, 1, s, k, wp));
+                            assert!(a.is_finite() && r.is_finite());
+                            if i % rots == 0 {
+                                same += (a.to_bits() == r.to_bits()) as usize;
+                            } else {
+                                others += 1;
+                                differ += (a != r) as usize;
+                            }
+                        }
+                    }
+                }
+            }
+            let per = SAMPLERS.len() * SPPS.len() * WARPS.len();
+            assert_eq!(same, pixels / rots * per, "rotation-0 pixels must agree");
+            assert!(differ * 10 > others * 9, "{differ} of {others} differ");
+            let cfg = run::Config {
+                pixels,
+                spps: SPPS.to_vec(),
+                threads: 1,
+                timing_samples: 1,
+                timing_reps: 1,
+            };
+            let bar = indicatif::ProgressBar::hidden();
+            for (o, scene) in [(0, &authored), (1, &rotated)] {
+                let res = run::errors(&scene.view(lit), &cfg, &bar);
+                for s in SAMPLERS {
+                    for (wp, warp) in WARPS.iter().enumerate() {
+                        for k in 0..SPPS.len() {
+                            let want = res.row(s, warp).unwrap().stats[k].mse;
+                            let got = c.mse(o, s, k, wp).mse;
+                            assert!(
+                                (got / want - 1.0).abs() < 1e-9,
+                                "{} {} {} {warp} {}: {got} vs {want}",
+                                ORIENTATIONS[o],
+                                view.name(),
+                                s.name(),
+                                SPPS[k]
+                            );
+                        }
+                    }
+                }
+            }
+            classes.push(c);
+        }
+        // The CSV's ratio column is the ratio of its MSE column.
+        let csv = orientation::csv(&classes);
+        let rows: Vec<Vec<&str>> = csv
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').collect())
+            .collect();
+        assert_eq!(
+            rows.len(),
+            classes.len() * 2 * SAMPLERS.len() * WARPS.len() * SPPS.len()
+        );
+        let mse = |r: &[&str]| r[7].parse::<f64>().unwrap();
+        let find = |scene: &str, o: &str, s: &str, warp: &str, spp: &str| {
+            rows.iter()
+                .find(|r| r[0] == scene && r[1] == o && r[2] == s && r[3] == warp && r[4] == spp)
+                .unwrap()
+                .clone()
+        };
+        let mut ratios = std::collections::HashMap::new();
+        for r in rows.iter().filter(|r| r[3].ends_with("equal_area")) {
+            let ll = find(
+                r[0],
+                r[1],
+                r[2],
+                &r[3].replace("equal_area", "equirect"),
+                r[4],
+            );
+            let (want, got) = (mse(r) / mse(&ll), r[9].parse::<f64>().unwrap());
+            assert!((got / want - 1.0).abs() < 1e-3, "{r:?}: {got} vs {want}");
+            ratios
+                .entry((r[1], r[2], r[3], r[4]))
+                .or_insert_with(Vec::new)
+                .push(want);
+        }
+        // The table's summary cells are the geometric means of the CSV's ratios.
+        let md = orientation::markdown(&classes, &[], 32);
+        let mut checked = 0;
+        for line in md.lines().filter(|l| l.starts_with("| `")) {
+            let f: Vec<&str> = line.split('|').map(str::trim).collect();
+            let (sampler, spp) = (f[1].trim_matches('`'), f[2]);
+            assert_eq!(f.len(), 2 + 2 + 4, "{line}"); // one group: 4 ratio cells
+            for (j, (dist, orient)) in [
+                ("hierarchical_equal_area", "authored"),
+                ("hierarchical_equal_area", "rotated"),
+                ("marginal_equal_area", "authored"),
+                ("marginal_equal_area", "rotated"),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                let v = &ratios[&(orient, sampler, dist, spp)];
+                let geo = (v.iter().map(|x| x.ln()).sum::<f64>() / v.len() as f64).exp();
+                let shown: f64 = f[3 + j].split(' ').next().unwrap().parse().unwrap();
+                assert!(
+                    (shown - geo).abs() < 0.0051,
+                    "{line}: {dist} {orient} {geo}"
+                );
+                checked += 1;
+            }
+        }
+        assert_eq!(
+            checked,
+            4 * orientation::SUMMARY_SAMPLERS.len() * SPPS.len()
         );
     }
 

@@ -31,6 +31,8 @@ pub struct Options {
     pub scenes: Vec<String>,
     /// Re-render the path scenes' cached references.
     pub reference: bool,
+    /// Run only the environment-map orientation study (`envmap_orientation.*`).
+    pub orientation_only: bool,
 }
 
 impl Default for Options {
@@ -45,6 +47,7 @@ impl Default for Options {
             threads: std::thread::available_parallelism().map_or(2, |n| n.get()),
             scenes: Vec::new(),
             reference: false,
+            orientation_only: false,
         }
     }
 }
@@ -113,6 +116,20 @@ impl Options {
     #[cfg(feature = "envmap")]
     pub fn rotations(&self) -> usize {
         if self.quick { 2 } else { 8 }
+    }
+
+    /// Pixels per class of the orientation study (`orientation.rs`): the built-in sky and
+    /// interior `env_pixels / 4` (1536), the other maps `env_pixels / 6` (1024, as their
+    /// scenes); quick: 32.
+    #[cfg(feature = "envmap")]
+    pub fn orientation_pixels(&self, builtin: bool) -> usize {
+        if self.quick && self.env_pixels.is_none() {
+            return 32;
+        }
+        let p = self
+            .env_pixels
+            .unwrap_or(if self.quick { 192 } else { 6144 });
+        (if builtin { p / 4 } else { p / 6 }).max(2)
     }
 
     /// The PFM maps to run as scenes: the real maps of `tests/data/envmaps/` (in a quick
@@ -284,6 +301,17 @@ pub fn build_features() -> String {
 pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error>> {
     let start = Instant::now();
     std::fs::create_dir_all(&opts.out)?;
+    if opts.orientation_only {
+        #[cfg(feature = "envmap")]
+        orientation_study(opts, &env_scenes(opts)?)?;
+        paste_into_page(opts)?;
+        println!(
+            "wrote the orientation study to {} in {:.1} s",
+            opts.out.display(),
+            start.elapsed().as_secs_f64()
+        );
+        return Ok(Vec::new());
+    }
     println!(
         "warpcore report: MSE against exact references at {:?} samples per pixel; timings: {} (set RUSTFLAGS=\"-C target-cpu=native\" for this CPU's vector units), {} threads for the error runs",
         opts.spps(),
@@ -324,17 +352,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         let env_pixels = opts
             .env_pixels
             .unwrap_or(if opts.quick { 192 } else { 6144 });
-        let rotations = opts.rotations();
-        let mut envs = Vec::new();
-        if opts.wants("envmap:sky") || opts.wants("envmap:interior") {
-            envs = EnvScene::builtin(rotations);
-        }
-        if opts.wants("envmap:sky_200x100") {
-            envs.extend(EnvScene::sky_200x100(rotations));
-        }
-        for path in opts.envmap_files() {
-            envs.push(load_envmap(&path, rotations)?);
-        }
+        let envs = env_scenes(opts)?;
         for scene in &envs {
             if opts.wants(&scene.name) {
                 // The real maps and the 200 x 100 sky: a sixth of the pixels each (the
@@ -376,6 +394,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
                 &opts.out.join("envmap_by_sampler.md"),
                 &crate::env_split::by_sampler_markdown(&results),
             )?;
+            orientation_study(opts, &envs)?;
         }
         if let Some(interior) = envs.iter().find(|s| s.name == "envmap:interior") {
             let grid = if opts.quick { 128 } else { 1024 };
@@ -430,6 +449,18 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         plots::scene_plot(r, &opts.out)?;
     }
     output::write(&opts.out.join("strata.svg"), &strata::disk_triangle_svg())?;
+    paste_into_page(opts)?;
+    println!(
+        "\nwrote {} (and details.csv, tables.md, one SVG plot per scene, strata pictures) in {:.1} s",
+        csv.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(results)
+}
+
+/// When the output is `docs/report`, pastes the generated files into `docs/REPORT.md`'s
+/// marked blocks.
+fn paste_into_page(opts: &Options) -> Result<(), Box<dyn std::error::Error>> {
     let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs");
     if opts.out.canonicalize().ok() == docs.join("report").canonicalize().ok() {
         let page = docs.join("REPORT.md");
@@ -437,12 +468,79 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         std::fs::write(&page, output::paste_generated(&text, &docs)?)?;
         println!("pasted the generated tables into {}", page.display());
     }
-    println!(
-        "\nwrote {} (and details.csv, tables.md, one SVG plot per scene, strata pictures) in {:.1} s",
-        csv.display(),
-        start.elapsed().as_secs_f64()
-    );
-    Ok(results)
+    Ok(())
+}
+
+/// The environment-map scenes `opts` selects (built-in, real maps, `--envmap` files), each
+/// over `opts.rotations()` rotations.
+#[cfg(feature = "envmap")]
+pub fn env_scenes(opts: &Options) -> Result<Vec<EnvScene>, Box<dyn std::error::Error>> {
+    let rotations = opts.rotations();
+    let mut envs = Vec::new();
+    if opts.wants("envmap:sky") || opts.wants("envmap:interior") {
+        envs = EnvScene::builtin(rotations);
+    }
+    if opts.wants("envmap:sky_200x100") {
+        envs.extend(EnvScene::sky_200x100(rotations));
+    }
+    for path in opts.envmap_files() {
+        envs.push(load_envmap(&path, rotations)?);
+    }
+    Ok(envs)
+}
+
+/// The orientation study (`orientation.rs`) of the selected environment-map scenes, both
+/// pixel classes: `envmap_orientation.csv`, `envmap_orientation_split.csv` and
+/// `envmap_orientation.md` in `opts.out`.
+#[cfg(feature = "envmap")]
+pub fn orientation_study(
+    opts: &Options,
+    envs: &[EnvScene],
+) -> Result<(), Box<dyn std::error::Error>> {
+    use crate::orientation;
+    let (split_pixels, grid) = if opts.quick { (16, 32) } else { (256, 128) };
+    let mut classes = Vec::new();
+    let mut splits = Vec::new();
+    for scene in envs.iter().filter(|s| opts.wants(&s.name)) {
+        let builtin =
+            ["envmap:sky", "envmap:interior", "envmap:sky_200x100"].contains(&scene.name.as_str());
+        let group = if builtin { "procedural" } else { "PFM" };
+        let pixels =
+            opts.orientation_pixels(scene.name == "envmap:sky" || scene.name == "envmap:interior");
+        for lit in [false, true] {
+            let view = scene.view(lit);
+            let t = Instant::now();
+            classes.push(orientation::measure(&view, group, pixels, opts.threads));
+            splits.push(orientation::split(
+                &view,
+                group,
+                split_pixels,
+                grid,
+                opts.threads,
+            ));
+            eprintln!(
+                "{}: orientation study, {pixels} pixels in {:.1} s",
+                view.name(),
+                t.elapsed().as_secs_f64()
+            );
+        }
+    }
+    if classes.is_empty() {
+        return Ok(());
+    }
+    output::write(
+        &opts.out.join("envmap_orientation.csv"),
+        &orientation::csv(&classes),
+    )?;
+    output::write(
+        &opts.out.join("envmap_orientation_split.csv"),
+        &orientation::split_csv(&splits),
+    )?;
+    output::write(
+        &opts.out.join("envmap_orientation.md"),
+        &orientation::markdown(&classes, &splits, grid),
+    )?;
+    Ok(())
 }
 
 #[cfg(feature = "envmap")]

@@ -40,6 +40,11 @@ pub struct Split {
     pub var_u0: f64,
     pub var_u1: f64,
     pub var_both: f64,
+    /// `N Var` of a jittered `k x k` grid (`N = k^2` points, one per cell): the mean over the
+    /// cells of the variance of `g` within the cell, for `k = 4` (16 spp) and `k = 16` (256
+    /// spp). Random points have `N Var = var`; the ratio is the grid's gain.
+    pub var_strat16: f64,
+    pub var_strat256: f64,
 }
 
 impl Split {
@@ -70,22 +75,55 @@ pub fn anova(g: &[f64], n: usize) -> (f64, f64, f64, f64) {
     (var, var0, var1, (var - var0 - var1).max(0.0))
 }
 
-/// The splits of both hierarchical layouts of `view` over its first `pixels` pixels.
+/// The mean over the `k x k` cells of an `n x n` table `g` (`n` a multiple of `k`) of the
+/// variance of `g` within the cell: `N Var` of a jittered grid of `N = k^2` points (the
+/// stratified estimator's variance is `(1 / N^2) sum_c Var_c`).
+pub fn within_cells(g: &[f64], n: usize, k: usize) -> f64 {
+    let c = n / k;
+    if c == 0 {
+        return 0.0;
+    }
+    let mut acc = 0.0;
+    for cy in 0..k {
+        for cx in 0..k {
+            let vals = (0..c).flat_map(|b| (0..c).map(move |a| (cy * c + b) * n + cx * c + a));
+            let mean = vals.clone().map(|i| g[i]).sum::<f64>() / (c * c) as f64;
+            acc += vals.map(|i| (g[i] - mean) * (g[i] - mean)).sum::<f64>() / (c * c) as f64;
+        }
+    }
+    acc / (k * k) as f64
+}
+
+/// The splits of both hierarchical layouts of `view` over its first `pixels` pixels, each
+/// pixel seeing its own rotation of the map (`index % rotation_count`, the report's pixels).
 pub fn split(view: &EnvView, pixels: usize, grid: usize, threads: usize) -> [Split; 2] {
-    let sums = std::sync::Mutex::new([[0.0f64; 4]; 2]);
+    split_at(view, pixels, grid, threads, None)
+}
+
+/// [`split`] with every pixel seeing rotation `rotation` (`Some(0)`: the map as authored),
+/// or its own (`None`).
+pub fn split_at(
+    view: &EnvView,
+    pixels: usize,
+    grid: usize,
+    threads: usize,
+    rotation: Option<usize>,
+) -> [Split; 2] {
+    let sums = std::sync::Mutex::new([[0.0f64; 6]; 2]);
     let next = std::sync::atomic::AtomicUsize::new(0);
     std::thread::scope(|sc| {
         for _ in 0..threads.max(1) {
             sc.spawn(|| {
                 let mut s = Scratch::default();
-                let mut local = [[0.0f64; 4]; 2];
+                let mut local = [[0.0f64; 6]; 2];
                 let mut g = vec![0.0; grid * grid];
                 loop {
                     let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                     if i >= pixels {
                         break;
                     }
-                    let px = view.pixel(i as u64);
+                    let own = i % view.rotation_count();
+                    let px = view.pixel_at(i as u64, rotation.unwrap_or(own), false);
                     for (l, &(warp, _)) in WARPS.iter().enumerate() {
                         s.reserve(grid * grid);
                         for b in 0..grid {
@@ -101,7 +139,8 @@ pub fn split(view: &EnvView, pixels: usize, grid: usize, threads: usize) -> [Spl
                             *v = view.value(&px, warp, k, &s);
                         }
                         let (v, v0, v1, v01) = anova(&g, grid);
-                        for (acc, x) in local[l].iter_mut().zip([v, v0, v1, v01]) {
+                        let (s16, s256) = (within_cells(&g, grid, 4), within_cells(&g, grid, 16));
+                        for (acc, x) in local[l].iter_mut().zip([v, v0, v1, v01, s16, s256]) {
                             *acc += x;
                         }
                     }
@@ -122,6 +161,8 @@ pub fn split(view: &EnvView, pixels: usize, grid: usize, threads: usize) -> [Spl
         var_u0: sums[l][1],
         var_u1: sums[l][2],
         var_both: sums[l][3],
+        var_strat16: sums[l][4],
+        var_strat256: sums[l][5],
     })
 }
 

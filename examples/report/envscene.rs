@@ -567,22 +567,8 @@ impl Scene for EnvView<'_> {
     }
 
     fn pixel(&self, index: u64) -> EnvPixel {
-        let (n, m) = self.geometry(index);
-        // Without the occluder: the half-space m . w >= 0 with m = n hides only directions
-        // the lobe already gives weight 0, so the references and the estimator are the
-        // unoccluded ones.
-        let m = if self.lit { n } else { m };
         let rotation = (index % self.rotation_count() as u64) as usize;
-        let (ll, ea) = self.side(rotation);
-        EnvPixel {
-            n,
-            m,
-            rotation,
-            reference: [
-                ll.grid.integral(&ll.radiance, n, m),
-                ea.grid.integral(&ea.radiance, n, m),
-            ],
-        }
+        self.pixel_at(index, rotation, true)
     }
 
     fn reference(&self, pixel: &EnvPixel, warp: usize) -> f64 {
@@ -622,6 +608,33 @@ impl Scene for EnvView<'_> {
 }
 
 impl EnvView<'_> {
+    /// Pixel `index`'s geometry seeing rotation `rotation` of the map (the report's pixels
+    /// see `index % rotation_count()`; the orientation study also shows every pixel the map
+    /// as authored, rotation 0), with its references when `references` (else NaN: the
+    /// variance split needs none).
+    pub fn pixel_at(&self, index: u64, rotation: usize, references: bool) -> EnvPixel {
+        let (n, m) = self.geometry(index);
+        // Without the occluder: the half-space m . w >= 0 with m = n hides only directions
+        // the lobe already gives weight 0, so the references and the estimator are the
+        // unoccluded ones.
+        let m = if self.lit { n } else { m };
+        let rotation = rotation.min(self.rotation_count() - 1);
+        let (ll, ea) = self.side(rotation);
+        EnvPixel {
+            n,
+            m,
+            rotation,
+            reference: if references {
+                [
+                    ll.grid.integral(&ll.radiance, n, m),
+                    ea.grid.integral(&ea.radiance, n, m),
+                ]
+            } else {
+                [f64::NAN; 2]
+            },
+        }
+    }
+
     /// One sample's term `L_t max(0, n . w) [m . w >= 0] / p(w)` of the plain estimator
     /// (`warp < 4`), for sample `k` of those `warp_points` left in `s`.
     pub fn value(&self, pixel: &EnvPixel, warp: usize, k: usize, s: &Scratch) -> f64 {

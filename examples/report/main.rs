@@ -4,7 +4,8 @@
 //!
 //! `cargo run --release --example report` (add `-- --help` for the options). Writes
 //! `target/report/results.csv`, `details.csv`, `tables.md`, one SVG plot per scene and the
-//! strata pictures; see `docs/REPORT.md` for a reading of the results.
+//! strata pictures (and, for the environment maps, the variance split and the orientation
+//! study, `envmap_orientation.*`); see `docs/REPORT.md` for a reading of the results.
 
 mod app;
 mod area;
@@ -13,6 +14,8 @@ mod env_split;
 #[cfg(feature = "envmap")]
 mod envscene;
 mod math;
+#[cfg(feature = "envmap")]
+mod orientation;
 mod output;
 mod path;
 #[cfg(feature = "envmap")]
@@ -99,6 +102,12 @@ fn command() -> Command {
                 .help("run only scenes whose name starts with PREFIX (repeatable; see the valid names in an error message)"),
         )
         .arg(
+            Arg::new("orientation-only")
+                .long("orientation-only")
+                .action(ArgAction::SetTrue)
+                .help("run only the environment-map orientation study (envmap_orientation.csv/.md: each map as authored and rotated; --scene and --env-pixels apply)"),
+        )
+        .arg(
             Arg::new("reference")
                 .long("reference")
                 .action(ArgAction::SetTrue)
@@ -164,6 +173,7 @@ where
         opts.threads = n;
     }
     opts.reference = m.get_flag("reference");
+    opts.orientation_only = m.get_flag("orientation-only");
     opts.scenes = m
         .get_many::<String>("scene")
         .map(|v| v.cloned().collect())
@@ -212,6 +222,7 @@ mod cli_tests {
             &["--scene", "square", "--max-spp", "64", "--pixels", "16"],
             &["--scene", "envmap:sky"],
             &["--threads", "1", "--reference", "--scene", "corn"],
+            &["--orientation-only", "--scene", "envmap:park"],
         ] {
             assert!(
                 parse(std::iter::once("report").chain(args.iter().copied())).is_ok(),
