@@ -14,9 +14,6 @@
 //! 512 x 256 and upsampled bilinearly to 4096 x 2048, as `benches/envmap.rs` does, with the
 //! slice and `_x8` forms (filter `envmap`).
 
-#[path = "../../../tests/common/pfm.rs"]
-mod pfm;
-
 use std::hint::black_box;
 use std::time::Instant;
 use warpcore::envmap::{Hierarchical, MarginalConditional, Sample, Word, image};

@@ -203,7 +203,7 @@ pub fn markdown(splits: &[Split], results: &[SceneResult], grid: usize) -> Strin
     let mut out = format!(
         "Share of each hierarchical layout's integrand variance that depends on both sample \
          axes (`Var_01 / Var`, {grid} x {grid} midpoints per pixel, summed over pixels; see \
-         `examples/report/env_split.rs`), and the equal-area / lat-long ratios it predicts: \
+         `report/src/env_split.rs`), and the equal-area / lat-long ratios it predicts: \
          `Var` for random points, `Var_01` for (0,2) points. Measured: MSE ratios at {spp} spp.\n\n\
          | scene | pixels | both-axes share, lat-long | both-axes share, equal-area | \
          predicted EA/LL, random (`Var`) | measured, random | predicted EA/LL, (0,2) (`Var_01`) | \

@@ -1,4 +1,4 @@
-//! The report example (`examples/report`), tested through its own modules: the references
+//! The report (`report/`, the `warpcore-report` crate), tested through its library: the references
 //! are right (closed forms, limit cases, an independent quadrature, Monte Carlo), the
 //! estimators are unbiased, and the `--quick` run works end to end.
 // The report is a native desktop tool (threads, files): not run under wasm.
@@ -9,49 +9,24 @@
     feature = "sequence",
     not(target_family = "wasm")
 ))]
-#![allow(dead_code)]
 // Component-wise loops index several arrays with one counter.
 #![allow(clippy::needless_range_loop)]
 
-#[path = "../examples/report/app.rs"]
-mod app;
-#[path = "../examples/report/area.rs"]
-mod area;
+use warpcore_report::app;
+use warpcore_report::area;
 #[cfg(feature = "envmap")]
-#[path = "../examples/report/env_split.rs"]
-mod env_split;
+use warpcore_report::envscene;
+use warpcore_report::math;
 #[cfg(feature = "envmap")]
-#[path = "../examples/report/envscene.rs"]
-mod envscene;
-#[path = "../examples/report/math.rs"]
-mod math;
-#[cfg(feature = "envmap")]
-#[path = "../examples/report/orientation.rs"]
-mod orientation;
-#[path = "../examples/report/output.rs"]
-mod output;
-#[path = "../examples/report/path/mod.rs"]
-mod path;
-#[cfg(feature = "envmap")]
-#[path = "common/pfm.rs"]
-mod pfm;
-#[path = "../examples/report/plots.rs"]
-mod plots;
-#[path = "../examples/report/run.rs"]
-mod run;
-#[path = "../examples/report/samplers.rs"]
-mod samplers;
+use warpcore_report::orientation;
+use warpcore_report::path;
+use warpcore_report::plots;
+use warpcore_report::run;
+use warpcore_report::samplers;
 #[cfg(feature = "spherical")]
-#[path = "../examples/report/solid_angle.rs"]
-mod solid_angle;
+use warpcore_report::solid_angle;
 #[cfg(feature = "envmap")]
-#[path = "../examples/report/sphere_ref.rs"]
-mod sphere_ref;
-#[path = "../examples/report/strata.rs"]
-mod strata;
-#[cfg(feature = "envmap")]
-#[path = "../examples/report/strata_env.rs"]
-mod strata_env;
+use warpcore_report::sphere_ref;
 
 use area::{AreaScene, Cut, Shape};
 use math::{Rng, dot3, gauss_legendre, integrate};
@@ -1093,7 +1068,7 @@ mod env {
 /// recommendations, the comparison with the source and the variance split that way.
 #[test]
 fn report_page_quotes_the_generated_files_verbatim() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
     let page = std::fs::read_to_string(root.join("docs/REPORT.md")).unwrap();
     let mut quoted = Vec::new();
     let mut rest = page.as_str();

@@ -2,38 +2,15 @@
 //! error of a renderer's estimate against an exact reference at 4 to 1024 samples per pixel,
 //! the fitted convergence rate, and the time to draw and warp the samples.
 //!
-//! `cargo run --release --example report` (add `-- --help` for the options). Writes
+//! `cargo report` (an alias of `cargo run --release -p warpcore-report --`; add `--help` for
+//! the options). Writes
 //! `target/report/results.csv`, `details.csv`, `tables.md`, one SVG plot per scene and the
 //! strata pictures (and, for the environment maps, the variance split and the orientation
 //! study, `envmap_orientation.*`); see `docs/REPORT.md` for a reading of the results.
 
-mod app;
-mod area;
-#[cfg(feature = "envmap")]
-mod env_split;
-#[cfg(feature = "envmap")]
-mod envscene;
-mod math;
-#[cfg(feature = "envmap")]
-mod orientation;
-mod output;
-mod path;
-#[cfg(feature = "envmap")]
-#[path = "../../tests/common/pfm.rs"]
-mod pfm;
-mod plots;
-mod run;
-mod samplers;
-#[cfg(feature = "spherical")]
-mod solid_angle;
-#[cfg(feature = "envmap")]
-mod sphere_ref;
-mod strata;
-#[cfg(feature = "envmap")]
-mod strata_env;
-
 use clap::{Arg, ArgAction, Command, value_parser};
 use std::path::PathBuf;
+use warpcore_report::*;
 
 /// The command line.
 fn command() -> Command {

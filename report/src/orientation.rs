@@ -367,7 +367,7 @@ pub fn markdown(classes: &[ClassErrors], splits: &[ClassSplit], grid: usize) -> 
          photographer or the sky model put them) and **rotated** (pixel `i` sees rotation \
          `i mod {rotations}`, the report's scenes). Geometric mean over the classes of each \
          group ({}), ± its standard error (paired per class, classes independent). Below 1: \
-         equal-area wins. See `examples/report/orientation.rs`.\n\n",
+         equal-area wins. See `report/src/orientation.rs`.\n\n",
         describe.join("; ")
     );
     let mut header = String::from("| sampler | spp |");

@@ -39,7 +39,7 @@ impl Default for Options {
     fn default() -> Self {
         Options {
             quick: false,
-            out: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/report"),
+            out: PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join("target/report"),
             pixels: None,
             env_pixels: None,
             envmaps: Vec::new(),
@@ -461,7 +461,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
 /// When the output is `docs/report`, pastes the generated files into `docs/REPORT.md`'s
 /// marked blocks.
 fn paste_into_page(opts: &Options) -> Result<(), Box<dyn std::error::Error>> {
-    let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs");
+    let docs = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join("docs");
     if opts.out.canonicalize().ok() == docs.join("report").canonicalize().ok() {
         let page = docs.join("REPORT.md");
         let text = std::fs::read_to_string(&page)?;
@@ -547,7 +547,7 @@ pub fn orientation_study(
 /// The real environment maps shipped with the tests (CC0, `tests/data/envmaps/README.md`),
 /// scenes `envmap:<stem>`.
 pub fn real_envmaps() -> Vec<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/envmaps");
+    let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join("tests/data/envmaps");
     ["apartment", "venice", "night", "forest", "park", "sunset"]
         .iter()
         .map(|n| dir.join(format!("{n}.pfm")))

@@ -1,9 +1,7 @@
-//! A small PFM (portable float map) reader for the tests, benchmarks and examples — not part
-//! of the `no_std` library. Reads colour (`PF`) and grey (`Pf`) files of either byte order and
+//! A small PFM (portable float map) reader for the tests, benchmarks, the report and the
+//! tools — not part of the `no_std` library. Reads colour (`PF`) and grey (`Pf`) files of either byte order and
 //! returns the rows top to bottom (PFM stores them bottom to top), so row 0 of the result is
 //! `v` in `[0, 1/height)` of a lat-long map (around `+z`).
-#![allow(dead_code)]
-
 use std::path::{Path, PathBuf};
 
 /// An RGB float image, rows top to bottom.
@@ -89,7 +87,7 @@ pub const ENVMAPS: [&str; 6] = ["apartment", "forest", "night", "park", "sunset"
 /// Path of one of [`ENVMAPS`].
 pub fn envmap_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/envmaps")
+        .join("../../tests/data/envmaps")
         .join(format!("{name}.pfm"))
 }
 

@@ -1,7 +1,7 @@
 //! Screen-space blue noise, measured: the RMS of the error image after a Gaussian blur.
 //!
 //! ```text
-//! cargo run --release --example bluenoise
+//! cargo run --release -p warpcore-report --bin bluenoise
 //! ```
 //!
 //! The image is 64 x 64 pixels; pixel `(x, y)` integrates its own half-plane edge over the
@@ -19,7 +19,7 @@
 //! ratio, and OpenQMC's base and blue-noise samplers through `openqmc-rs` for reference) and
 //! writes `target/bluenoise.png`: for each pattern (rows Sobol', pmj02bn) the 1-spp error
 //! image of frame 0 under `P` and `Blue<P>`, then both after the blur (4x contrast).
-//! `tests/blue_noise.rs` asserts the ratios with this code.
+//! `report/tests/blue_noise.rs` asserts the ratios with this code.
 
 use std::path::Path;
 use warpcore::sampler::{Blue, Pattern, Pmj02bn, Sampler, Sobol};
@@ -197,50 +197,9 @@ pub fn patterns() -> [(&'static str, Draw, Draw, Draw, Draw); 2] {
     ]
 }
 
-fn main() {
-    println!(
-        "RMS of the error after a Gaussian blur (sigma {SIGMA} px), half-plane edges varying \
-         across a {SIZE}x{SIZE} image, {FRAMES} frames"
-    );
-    for (name, base, blue, oq_base, oq_bn) in patterns() {
-        let [b, bl, ob, obn] = [base, blue, oq_base, oq_bn].map(|d| rms_after_blur(d, 0..FRAMES));
-        println!();
-        println!(
-            "{:>4} | {:>10} | {:>16} | {:>6} | {:>12} | {:>12} | {:>8}",
-            "spp",
-            name,
-            format!("Blue<{name}>"),
-            "ratio",
-            "openqmc base",
-            "openqmc BN",
-            "BN ratio"
-        );
-        println!(
-            "{:-<5}|{:-<12}|{:-<18}|{:-<8}|{:-<14}|{:-<14}|{:-<9}",
-            "", "", "", "", "", "", ""
-        );
-        for (k, spp) in SPP.iter().enumerate() {
-            println!(
-                "{spp:>4} | {:>10.5} | {:>16.5} | {:>6.3} | {:>12.5} | {:>12.5} | {:>8.3}",
-                b[k],
-                bl[k],
-                bl[k] / b[k],
-                ob[k],
-                obn[k],
-                obn[k] / ob[k]
-            );
-        }
-    }
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/bluenoise.png");
-    match picture(&path) {
-        Ok(()) => println!("\nwrote {}", path.display()),
-        Err(e) => eprintln!("bluenoise: {}: {e}", path.display()),
-    }
-}
-
 /// Rows Sobol' and pmj02bn; columns: `P` and `Blue<P>` error at 1 spp (frame 0), then both
 /// blurred (4x contrast). Grey 128 is zero error.
-fn picture(path: &Path) -> std::io::Result<()> {
+pub fn picture(path: &Path) -> std::io::Result<()> {
     const SCALE: usize = 3;
     const GAP: usize = 6;
     let cell = SIZE * SCALE;

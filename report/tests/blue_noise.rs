@@ -1,7 +1,7 @@
 //! Screen-space blue noise, asserted: `Blue<P>`'s error after a Gaussian blur is at most 0.75x
 //! `P`'s at 1, 2 and 4 samples per pixel, for both base patterns (issue 20, item 2).
 //!
-//! The measurement is `examples/bluenoise.rs` itself (included below): a 64 x 64 image whose
+//! The measurement is `warpcore_report::bluenoise` itself: a 64 x 64 image whose
 //! pixels each integrate their own half-plane edge (angle and offset varying slowly across
 //! the image) with `draw::<2>()` of domain 0, the error image blurred with a Gaussian of sigma
 //! 1.5 px, RMS over all pixels. Here over frames 1000..1032 (32 frames, 131,072 pixel
@@ -21,12 +21,8 @@
 
 #![cfg(feature = "blue-noise")]
 
-#[path = "../examples/bluenoise.rs"]
-#[allow(dead_code)]
-mod bluenoise;
-
-use bluenoise::{Draw, SPP, ours, rms_after_blur};
 use warpcore::sampler::{Blue, Pmj02bn, Sobol};
+use warpcore_report::bluenoise::{Draw, SPP, ours, rms_after_blur};
 
 const FRAMES: std::ops::Range<u32> = 1000..1032;
 

@@ -69,7 +69,8 @@ impl PathConfig {
             threads,
             quick,
             rebuild_reference: rebuild,
-            reference_dir: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/report"),
+            reference_dir: PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+                .join("docs/report"),
             reference_spp_per_half: REFERENCE_SPP_PER_HALF,
             size: if quick { SIZE / 2 } else { SIZE },
         }
