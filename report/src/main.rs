@@ -2,7 +2,7 @@
 //! error of a renderer's estimate against an exact reference at 4 to 1024 samples per pixel,
 //! the fitted convergence rate, and the time to draw and warp the samples.
 //!
-//! `cargo report` (an alias of `cargo run --release -p warpcore-report --`; add `--help` for
+//! `cargo run-report` (an alias of `cargo run --release -p warpcore-report --`; add `--help` for
 //! the options). Writes
 //! `target/report/results.csv`, `details.csv`, `tables.md`, one SVG plot per scene and the
 //! strata pictures (and, for the environment maps, the variance split and the orientation
