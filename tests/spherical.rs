@@ -1501,3 +1501,124 @@ fn rectangle_sliver_area_density() {
         );
     }
 }
+
+/// A hostile coordinate: a random magnitude from `1e-20 .. 1e20` (an 1e18-range light has
+/// coordinates spread over 18 decades), a subnormal, or 0, with a random sign.
+fn hostile_coord(r: &mut Xoshiro256PlusPlus) -> f32 {
+    let m = match r.random_range(0..8u32) {
+        0 => f32::from_bits(r.random_range(1..0x0080_0000u32)), // subnormal
+        1 => 0.0,
+        2 => 1e-40,
+        _ => 10f64.powf(-20.0 + 40.0 * r.random::<f64>()) as f32,
+    };
+    if r.random::<bool>() { -m } else { m }
+}
+
+/// Hostile lights: `p` a hair (2^-149 .. 2^-100) above or below an axis-aligned light's
+/// plane (inside or outside it), vertex components with subnormal lifts, and 1e18 dynamic
+/// ranges inside one light; each map in the closed simplex / square, the sum within 3e-7,
+/// the density finite, >= 0 and below FLT_MAX, also for the cosine-aware maps.
+#[test]
+fn total_on_hostile_lights() {
+    let mut r = rng(36);
+    let perm = |v: [f32; 3], k: usize| [v[k % 3], v[(k + 1) % 3], v[(k + 2) % 3]];
+    for i in 0..40_000 {
+        let axis = r.random_range(0..3usize);
+        let (v, p, c, ex, ey, rp): (
+            [[f32; 3]; 3],
+            [f32; 3],
+            [f32; 3],
+            [f32; 3],
+            [f32; 3],
+            [f32; 3],
+        ) = match i % 3 {
+            0 => {
+                // A hair above the plane z = z0 (exactly representable heights).
+                let z0 = [0.0f32, 1.0, -3.0][r.random_range(0..3usize)];
+                let h = 2f32.powi(-r.random_range(100..=149i32));
+                let h = if r.random::<bool>() { h } else { -h };
+                let s = 10f32.powi(r.random_range(-3..=3i32));
+                let xy = |r: &mut Xoshiro256PlusPlus| {
+                    [
+                        s * (2.0 * r.random::<f32>() - 1.0),
+                        s * (2.0 * r.random::<f32>() - 1.0),
+                    ]
+                };
+                let v: [[f32; 3]; 3] = std::array::from_fn(|_| {
+                    let [x, y] = xy(&mut r);
+                    perm([x, y, z0], axis)
+                });
+                let [x, y] = xy(&mut r);
+                let p = perm([x, y, z0 + h], axis);
+                let [cx, cy] = xy(&mut r);
+                let c = perm([cx, cy, z0], axis);
+                let ex = perm([s * r.random::<f32>(), 0.0, 0.0], axis);
+                let ey = perm([0.0, s * r.random::<f32>(), 0.0], axis);
+                (v, p, c, ex, ey, p)
+            }
+            1 => {
+                // Subnormal lifts: a unit light with one or two subnormal components.
+                let mut v = [[0.0f32, -1.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
+                let mut p = [0.0f32; 3];
+                if r.random::<bool>() {
+                    v = v.map(|q| [q[0], q[1], 0.0]);
+                }
+                for _ in 0..r.random_range(1..=2) {
+                    let k = r.random_range(0..12usize);
+                    let x = f32::from_bits(r.random_range(1..0x0080_0000u32));
+                    if k < 9 {
+                        v[k / 3][k % 3] = x
+                    } else {
+                        p[k - 9] = x
+                    }
+                }
+                let mut rc = [
+                    [-0.5f32, -0.5, 0.0],
+                    [1.0, 0.0, 0.0],
+                    [0.0, 1.0, 0.0],
+                    [0.0; 3],
+                ];
+                let k = r.random_range(0..12usize);
+                rc[k / 3][k % 3] = f32::from_bits(r.random_range(1..0x0080_0000u32));
+                (v, p, rc[0], rc[1], rc[2], rc[3])
+            }
+            _ => {
+                // 1e18 (and wider) dynamic range inside one light.
+                let v: [[f32; 3]; 3] =
+                    std::array::from_fn(|_| std::array::from_fn(|_| hostile_coord(&mut r)));
+                let c: [f32; 3] = std::array::from_fn(|_| hostile_coord(&mut r));
+                let (a, b) = (hostile_coord(&mut r), hostile_coord(&mut r));
+                (
+                    v,
+                    [0.0; 3],
+                    c,
+                    perm([a, 0.0, 0.0], axis),
+                    perm([0.0, b, 0.0], axis),
+                    [0.0; 3],
+                )
+            }
+        };
+        let n = [hostile_coord(&mut r), hostile_coord(&mut r), 1.0];
+        for _ in 0..4 {
+            let u = unit2(&mut r);
+            assert_total_tri(v, p, u);
+            assert_total_rect(c, ex, ey, rp, u);
+            let (b, pdf) = spherical::triangle_cosine(v, p, n, u);
+            let s = b[0] as f64 + b[1] as f64 + b[2] as f64;
+            assert!(
+                b.iter().all(|x| (0.0..=1.0).contains(x)) && (s - 1.0).abs() <= 3e-7,
+                "{v:?} {p:?} {n:?} {u:?}: {b:?}"
+            );
+            assert!(
+                pdf.is_finite() && pdf >= 0.0 && pdf < f32::MAX,
+                "{v:?} {p:?} {n:?}: {pdf}"
+            );
+            let (st, pdf) = spherical::rectangle_cosine(c, ex, ey, rp, n, u);
+            assert!(st.iter().all(|x| (0.0..=1.0).contains(x)), "{st:?}");
+            assert!(
+                pdf.is_finite() && pdf >= 0.0 && pdf < f32::MAX,
+                "{c:?} {ex:?} {ey:?} {rp:?} {n:?}: {pdf}"
+            );
+        }
+    }
+}

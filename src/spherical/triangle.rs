@@ -247,7 +247,10 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 3], 
         ),
         zero,
     );
-    let pdf = L::select(arvo, L::splat(INV_4PI) / t.turns, area_pdf);
+    // The density is the light's (Arvo's map or area sampling), not the sample's: where a
+    // direction's numerators are all <= 0 (it left the spherical triangle by rounding), the
+    // point is the area map's but the density stays 1 / omega.
+    let pdf = L::select(pr.arvo, L::splat(INV_4PI) / t.turns, area_pdf);
     (
         [
             L::select(arvo, bary[0], fb[0]),
