@@ -778,7 +778,10 @@ pub fn spherical(data: &[u8]) {
                 "spherical::bilinear: {wts:?} {u:?} -> {x:?} {d}"
             );
             let dp = s::bilinear_pdf(x, wts);
-            assert!(dp.is_finite() && dp >= 0.0 && dp < f32::MAX, "bilinear_pdf {dp}");
+            assert!(
+                dp.is_finite() && dp >= 0.0 && dp < f32::MAX,
+                "bilinear_pdf {dp}"
+            );
         }
     }
     widths(
