@@ -388,8 +388,8 @@ pub fn rectangle_solid_angle_x16(
 }
 
 /// The bilinear density on the unit square with corner weights `w = [w00, w10, w01, w11]`
-/// (`w_xy` the weight at `(x, y)`), normalised: `4 ((1-x)(1-y) w00 + x(1-y) w10 + (1-x) y w01
-/// + x y w11) / (w00 + w10 + w01 + w11)`. The density of [`bilinear`]'s points. `p` is
+/// (`w_xy` the weight at `(x, y)`), normalised: `4 ((1-x)(1-y) w00 + x(1-y) w10 +
+/// (1-x) y w01 + x y w11) / (w00 + w10 + w01 + w11)`. The density of [`bilinear`]'s points. `p` is
 /// clamped to `[0, 1]^2` (NaN to 0); negative and NaN weights count as 0; weights whose sum is
 /// below `2^-126` (the smallest normal `f32`, where `1 / sum` would overflow and a GPU that
 /// flushes subnormals sees 0) or not finite give 1, the uniform density [`bilinear`] falls
