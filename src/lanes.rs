@@ -260,11 +260,17 @@ impl Lane for f32 {
         // `sqrtss`: opaque to the optimiser, and in VEX/EVEX code (`target-cpu` with AVX or
         // AVX-512) a legacy-SSE instruction, which pays SSE/AVX transition or merge penalties
         // on CPUs that have them. Both are IEEE 754 correctly rounded: the same bits.
-        #[cfg(all(any(target_arch = "x86", target_arch = "x86_64"), target_feature = "sse"))]
+        #[cfg(all(
+            any(target_arch = "x86", target_arch = "x86_64"),
+            target_feature = "sse"
+        ))]
         {
             f32x4::splat(self).sqrt().to_array()[0]
         }
-        #[cfg(not(all(any(target_arch = "x86", target_arch = "x86_64"), target_feature = "sse")))]
+        #[cfg(not(all(
+            any(target_arch = "x86", target_arch = "x86_64"),
+            target_feature = "sse"
+        )))]
         {
             libm::sqrtf(self)
         }
