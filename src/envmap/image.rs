@@ -23,9 +23,9 @@
 //!   at once: `sample_direction(Layout::EqualArea, u)`).
 
 use super::{Error, MAX_SIDE};
-use crate::kernels::sin_cos_turns;
 use crate::lanes::{Lane, unit_interval};
 use crate::sphere;
+use crate::trig::sin_cos_turns;
 use core::f64::consts::PI;
 use wide::f32x8;
 
@@ -66,7 +66,7 @@ pub fn luminance(rgb: [f32; 3]) -> f32 {
 #[inline]
 pub fn luminance_slice(rgb: &[[f32; 3]], out: &mut [f32]) -> usize {
     let (out, _) = out.as_chunks_mut::<1>();
-    crate::batch::map(rgb, out, luminance_body)
+    crate::slices::map(rgb, out, luminance_body)
 }
 
 /// `sin(pi v)` for `v` in `[0, 1]`, from the crate's polynomial kernels: `pi v` is the half
