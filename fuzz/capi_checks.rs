@@ -673,7 +673,7 @@ fn latlong_pdf(b: &mut Bytes) {
     let before = arena.v.clone();
     counted();
     // SAFETY: refused before touching memory, or every array holds `n` floats in the arena.
-    let got = unsafe { wc_envmap_latlong_pdf_to_solid_angle(pptr, vptr, optr, n) };
+    let got = unsafe { wc_envmap_equirect_pdf_to_solid_angle(pptr, vptr, optr, n) };
     assert_eq!(got, want, "latlong_pdf n {n} {pp:?} {vp:?} {op:?}");
     if want == 0 {
         assert!(arena.v == before, "a refused latlong_pdf wrote");
@@ -713,7 +713,7 @@ fn solid_angle_weights(b: &mut Bytes) {
     let before = arena.v.clone();
     counted();
     // SAFETY: refused before touching memory, or `w h` floats in the arena.
-    let got = unsafe { wc_envmap_latlong_solid_angle_weights(p, w, h) };
+    let got = unsafe { wc_envmap_equirect_solid_angle_weights(p, w, h) };
     assert_eq!(got, want, "solid_angle_weights {w}x{h} {plan:?}");
     if want != WC_OK {
         assert!(arena.v == before, "a refused solid_angle_weights wrote");
@@ -780,7 +780,7 @@ fn to_equal_area(b: &mut Bytes) {
     let before = arena.v.clone();
     counted();
     // SAFETY: refused before touching memory, or both arrays of their sizes in the arena.
-    let got = unsafe { wc_envmap_latlong_to_equal_area(sp, sw, sh, c, dp, size, ss) };
+    let got = unsafe { wc_envmap_equirect_to_equal_area(sp, sw, sh, c, dp, size, ss) };
     assert_eq!(
         got, want,
         "to_equal_area {sw}x{sh}x{c} -> {size} ss {ss} {srcp:?} {dstp:?}"

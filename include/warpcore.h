@@ -83,9 +83,6 @@
 // radiance's solid-angle average times the row's `sin(theta)`, clamp at 0.
 #define WC_ENVMAP_COMPENSATION_EQUIRECT 2
 
-// Deprecated name of `WC_ENVMAP_COMPENSATION_EQUIRECT` (the same value).
-#define WC_ENVMAP_COMPENSATION_LATLONG 2
-
 // `layout` of the direction functions: the equirect (lat-long) square of
 // `wc_sphere_equirect` (`phi = 2 pi u`, `theta = pi v`, row 0 around `+z`).
 #define WC_ENVMAP_LAYOUT_EQUIRECT 0
@@ -645,32 +642,6 @@ int32_t wc_envmap_equirect_to_equal_area(const float *src,
                                          float *dst,
                                          uint32_t size,
                                          uint32_t supersample);
-
-// Deprecated name of `wc_envmap_equirect_solid_angle_weights` (one name per thing: the
-// layout is `equirect` everywhere): the same function, the same codes.
-//
-// # Safety
-// As `wc_envmap_equirect_solid_angle_weights`.
-int32_t wc_envmap_latlong_solid_angle_weights(float *weights, uint32_t width, uint32_t height);
-
-// Deprecated name of `wc_envmap_equirect_pdf_to_solid_angle`: the same function, the same
-// results and pointer rules.
-//
-// # Safety
-// As `wc_envmap_equirect_pdf_to_solid_angle`.
-size_t wc_envmap_latlong_pdf_to_solid_angle(const float *pdf, const float *v, float *out, size_t n);
-
-// Deprecated name of `wc_envmap_equirect_to_equal_area`: the same function, the same codes.
-//
-// # Safety
-// As `wc_envmap_equirect_to_equal_area`.
-int32_t wc_envmap_latlong_to_equal_area(const float *src,
-                                        uint32_t src_width,
-                                        uint32_t src_height,
-                                        uint32_t channels,
-                                        float *dst,
-                                        uint32_t size,
-                                        uint32_t supersample);
 
 // Points `start, start + 1, ..., start + n - 1` (indices wrap after `UINT32_MAX`) of
 // `seed`'s Owen-scrambled pmj02bn sequence, in `[0, 1)^2`: `2n` floats. Every power-of-two

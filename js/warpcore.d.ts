@@ -194,13 +194,12 @@ export interface Warpcore {
   envmapMarginalConditional(weights: Float32Array, width: number, height: number): EnvMap;
   /**
    * MIS-compensated hierarchical distribution: tables (and pdfs) of `max(0, w - fraction * average)`;
-   * 'uniform' for equal-area maps, 'equirect' for weights made by `envmapEquirectSolidAngleWeights`
-   * ('latlong' is its deprecated name).
+   * 'uniform' for equal-area maps, 'equirect' for weights made by `envmapEquirectSolidAngleWeights`.
    * Falls back to the weights as given when nothing would be left.
    */
-  envmapHierarchicalCompensated(weights: Float32Array, width: number, height: number, compensation: 'none' | 'uniform' | 'equirect' | 'latlong', fraction: number): EnvMap;
+  envmapHierarchicalCompensated(weights: Float32Array, width: number, height: number, compensation: 'none' | 'uniform' | 'equirect', fraction: number): EnvMap;
   /** MIS-compensated marginal-conditional distribution (see `envmapHierarchicalCompensated`). */
-  envmapMarginalConditionalCompensated(weights: Float32Array, width: number, height: number, compensation: 'none' | 'uniform' | 'equirect' | 'latlong', fraction: number): EnvMap;
+  envmapMarginalConditionalCompensated(weights: Float32Array, width: number, height: number, compensation: 'none' | 'uniform' | 'equirect', fraction: number): EnvMap;
   /**
    * An EnvMap from storage words (`EnvMap.storage()` or a file written through the C API):
    * a Uint32Array, or the little-endian bytes of any ArrayBufferView (Uint8Array at any offset,
@@ -225,19 +224,6 @@ export interface Warpcore {
    * `size x size` equal-area square, `supersample^2` stratified samples per texel.
    */
   envmapEquirectToEqualArea(
-    src: Float32Array,
-    srcWidth: number,
-    srcHeight: number,
-    channels: 1 | 2 | 3 | 4,
-    size: number,
-    supersample: number,
-  ): Float32Array;
-  /** @deprecated The same function as `envmapEquirectSolidAngleWeights`. */
-  envmapLatlongSolidAngleWeights(weights: Float32Array, width: number, height: number): Float32Array;
-  /** @deprecated The same function as `envmapEquirectPdfToSolidAngle`. */
-  envmapLatlongPdfToSolidAngle(pdf: Float32Array, v: Float32Array, out?: Float32Array): Float32Array;
-  /** @deprecated The same function as `envmapEquirectToEqualArea`. */
-  envmapLatlongToEqualArea(
     src: Float32Array,
     srcWidth: number,
     srcHeight: number,

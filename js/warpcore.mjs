@@ -801,7 +801,7 @@ function create(x) {
   freeze(EnvMap);
 
   // MIS compensation of a build: the C ABI's WC_ENVMAP_COMPENSATION_* values.
-  const COMPENSATIONS = { __proto__: null, none: 0, uniform: 1, equirect: 2, latlong: 2 };
+  const COMPENSATIONS = { __proto__: null, none: 0, uniform: 1, equirect: 2 };
 
   function build(kind, weights, width, height, compensated, compensation, fraction) {
     const k = KINDS[kind];
@@ -809,7 +809,7 @@ function create(x) {
     if (compensated) {
       if (typeof compensation !== 'string') throw typeError(`compensation must be a string, not ${describe(compensation)}`);
       c = COMPENSATIONS[compensation];
-      if (c === undefined) throw rangeError(`compensation must be 'none', 'uniform' or 'equirect' ('latlong' is its old name), got ${describe(compensation)}`);
+      if (c === undefined) throw rangeError(`compensation must be 'none', 'uniform' or 'equirect', got ${describe(compensation)}`);
       if (typeof fraction !== 'number') throw typeError(`fraction must be a number, not ${describe(fraction)}`);
     }
     const n = size(weights, width, height, 1, 'weights');
@@ -838,9 +838,9 @@ function create(x) {
     envmapMarginalConditional: (weights, width, height) => build('marginal-conditional', weights, width, height),
     /**
      * The hierarchical distribution of MIS-compensated weights: `max(0, w - fraction * average)`
-     * (`compensation` 'uniform': the mean weight, for equal-area maps; 'latlong': the radiance's
+     * (`compensation` 'uniform': the mean weight, for equal-area maps; 'equirect': the radiance's
      * solid-angle average times each row's sin(theta), for weights made by
-     * `envmapLatlongSolidAngleWeights`; 'none': the weights as given). Falls back to the weights as
+     * `envmapEquirectSolidAngleWeights`; 'none': the weights as given). Falls back to the weights as
      * given when nothing would be left; NaN, zero and negative fractions mean no compensation.
      */
     envmapHierarchicalCompensated: (weights, width, height, compensation, fraction) =>
@@ -884,10 +884,6 @@ function create(x) {
       }
       return new EnvMap(secret, kind, p, len);
     },
-    // The layout is `equirect` everywhere; the `Latlong` names are the same functions.
-    envmapLatlongPdfToSolidAngle: api.envmapEquirectPdfToSolidAngle,
-    envmapLatlongSolidAngleWeights: api.envmapEquirectSolidAngleWeights,
-    envmapLatlongToEqualArea: api.envmapEquirectToEqualArea,
     /** Bytes of wasm memory: total, and reserved by live env maps and calls. */
     memoryStats: () => ({ memory: AB_BYTE_LENGTH(MEMORY_BUFFER(memory)), reserved: heap.used() }),
   });

@@ -10,7 +10,7 @@
 // Every function is transcribed operation by operation from the Rust bodies in `src/` (the
 // same constants, as hex-float literals of the crate's `f32` values; the same order of
 // operations; no `fma`, no `pow`, no builtin trigonometry: the crate's own polynomial kernels
-// from `src/kernels.rs`), with the same input clamping, so every function is total: NaN,
+// from `src/trig.rs`), with the same input clamping, so every function is total: NaN,
 // infinities, negatives, values >= 1 and subnormals give the documented results of the
 // crate, never NaN. On a conforming software Vulkan device (Mesa lavapipe) each function
 // returns the same bits as the crate for every input (`cargo test -p warpcore-gpu` checks
@@ -28,7 +28,7 @@
 
 // 1 - 2^-24: the top of every forward warp's input range.
 const WCI_ONE_MINUS_EPSILON: f32 = 0x1.fffffep-1f;
-// 1 - 2^-23: the largest radius fed into r * (cos, sin) (`kernels::MAX_RADIUS`).
+// 1 - 2^-23: the largest radius fed into r * (cos, sin) (`trig::MAX_RADIUS`).
 const WCI_MAX_RADIUS: f32 = 0x1.fffffcp-1f;
 const WCI_F32_MAX: f32 = 0x1.fffffep+127f;
 // 1 / pi, 1 / (2 pi), 1 / (4 pi) and 2 pi^2 rounded to f32.
@@ -116,7 +116,7 @@ fn wci_to_uint(x: f32) -> u32 {
 }
 
 // ---------------------------------------------------------------------------------------
-// Kernels (src/kernels.rs)
+// Kernels (src/trig.rs)
 
 // (sin((pi/4) t), cos((pi/4) t)) for t in [-1, 1].
 fn wci_sin_cos_pi4(t: f32) -> vec2<f32> {

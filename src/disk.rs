@@ -21,7 +21,7 @@
 //! **Domain guarantee**: every output lies in the closed unit disk in exact arithmetic
 //! (`x^2 + y^2 <= 1` holds for the returned `f32` values, however the caller evaluates it). To
 //! make that provable despite rounding in sin/cos, radii are clamped to `1 - 2^-23`
-//! (only the outermost 1.2e-7 of the radius is affected; see `kernels::MAX_RADIUS`).
+//! (only the outermost 1.2e-7 of the radius is affected; see `trig::MAX_RADIUS`).
 //!
 //! **Precision** (tests in `tests/disk.rs`, against the same formulas in `f64` over 2^22
 //! random points and dense edge sweeps): forward maps are within 1.5e-7 of the `f64` result
@@ -29,11 +29,11 @@
 //! `inverse(warp(u))` is within 5e-7 of `u`, the rim included, except on the singular sets
 //! named on each inverse.
 
-use crate::batch::{self, Vector};
-use crate::kernels::{
+use crate::lanes::{Lane, UintLane, signed_unit, unit_interval};
+use crate::slices::{self, Vector};
+use crate::trig::{
     MAX_RADIUS, atan_ratio_pi4, atan2_turns, sin_cos_pi4, sin_cos_quarter_turns, sin_cos_turns,
 };
-use crate::lanes::{Lane, UintLane, signed_unit, unit_interval};
 use core::num::Wrapping;
 use wide::{f32x8, f32x16, u32x8, u32x16};
 
@@ -90,7 +90,7 @@ pub fn polar_x16(u: [f32x16; 2]) -> [f32x16; 2] {
 /// the rest of the longer slice is untouched). Bit-identical to the scalar form.
 #[inline]
 pub fn polar_slice(u: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    batch::map_lanes(u, out, polar_body::<batch::Widest>)
+    slices::map_lanes(u, out, polar_body::<slices::Widest>)
 }
 
 /// Inverse of [`polar`]: `u0 = x^2 + y^2`, `u1 = atan2(y, x) / (2 pi)` in `[0, 1)`.
@@ -119,7 +119,7 @@ pub fn polar_inverse_x16(p: [f32x16; 2]) -> [f32x16; 2] {
 /// [`polar_inverse`] over a batch, with the length rule of [`polar_slice`].
 #[inline]
 pub fn polar_inverse_slice(p: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    batch::map_lanes(p, out, polar_inverse_body::<batch::Widest>)
+    slices::map_lanes(p, out, polar_inverse_body::<slices::Widest>)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -206,7 +206,7 @@ pub fn concentric_x16(u: [f32x16; 2]) -> [f32x16; 2] {
 /// the scalar form.
 #[inline]
 pub fn concentric_slice(u: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    batch::map_lanes(u, out, concentric_body::<batch::Widest>)
+    slices::map_lanes(u, out, concentric_body::<slices::Widest>)
 }
 
 /// Inverse of [`concentric`]: the wedge is chosen by `|x|` vs `|y|`, the radius is
@@ -235,7 +235,7 @@ pub fn concentric_inverse_x16(p: [f32x16; 2]) -> [f32x16; 2] {
 /// [`concentric_inverse`] over a batch, with the length rule of [`polar_slice`].
 #[inline]
 pub fn concentric_inverse_slice(p: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    batch::map_lanes(p, out, concentric_inverse_body::<batch::Widest>)
+    slices::map_lanes(p, out, concentric_inverse_body::<slices::Widest>)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -311,7 +311,7 @@ pub fn polar4_indexed_x16(
 /// count. Bit-identical to the scalar form.
 #[inline]
 pub fn polar4_slice(points: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    four_per_point(points, out, |u: [batch::Widest; 2]| {
+    four_per_point(points, out, |u: [slices::Widest; 2]| {
         polar4_body(u, UintLane::splat(0))
     })
 }
@@ -337,7 +337,7 @@ fn four_per_point<L: Vector<N>, const N: usize>(
     let (out_main, out_rest) = out.split_at_mut(whole * 4 * N);
     let (out_rows, _) = out_main.as_chunks_mut::<N>();
     for (src, dst) in groups.iter().zip(out_rows.chunks_exact_mut(4)) {
-        for (d, r) in dst.iter_mut().zip(four_turns(warp(batch::load(src)))) {
+        for (d, r) in dst.iter_mut().zip(four_turns(warp(slices::load(src)))) {
             *d = r;
         }
     }
@@ -347,7 +347,7 @@ fn four_per_point<L: Vector<N>, const N: usize>(
         for (p, s) in pad.iter_mut().zip(points.get(whole * N..).unwrap_or(&[])) {
             *p = *s;
         }
-        let res = four_turns(warp(batch::load(&pad)));
+        let res = four_turns(warp(slices::load(&pad)));
         for (d, r) in out_rest.iter_mut().zip(res.as_flattened()) {
             *d = *r;
         }
@@ -376,7 +376,7 @@ fn four_turns<L: Vector<N>, const N: usize>(p: [L; 2]) -> [[[f32; 2]; N]; 4] {
     let src = p.map(L::to_bits);
     let mut rows = [[0u32; N]; 8];
     for (r, (row, signs)) in rows.iter_mut().zip(signs).enumerate() {
-        let turned = batch::permute::<L, N, 2, 8, { batch::FOUR_TURNS }>(&src, r);
+        let turned = slices::permute::<L, N, 2, 8, { slices::FOUR_TURNS }>(&src, r);
         *row = L::to_words(turned ^ L::words(*signs));
     }
     bytemuck::cast(rows)
@@ -545,7 +545,7 @@ pub fn concentric4_indexed_x16(
 /// count. Bit-identical to the scalar form.
 #[inline]
 pub fn concentric4_slice(points: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    four_per_point(points, out, |u: [batch::Widest; 2]| {
+    four_per_point(points, out, |u: [slices::Widest; 2]| {
         concentric4_body(u, UintLane::splat(0))
     })
 }
@@ -583,7 +583,7 @@ mod tests {
     use super::*;
     use std::vec;
 
-    /// The quadrant slices' machinery at both widths (whatever `batch::Widest` this build
+    /// The quadrant slices' machinery at both widths (whatever `slices::Widest` this build
     /// has): each point warped once and turned by exact quarter turns equals the scalar
     /// quadrant warp bit for bit, for every point count up to 40 (so every tail), output
     /// lengths cut anywhere, and special inputs (signed zeros, NaN, infinities, subnormals).

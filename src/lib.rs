@@ -86,11 +86,11 @@
 pub use wide::{f32x8, f32x16, u32x8, u32x16};
 
 // Shared internals: lanes, kernels, slice machinery, hashes.
-mod batch;
 #[cfg(any(feature = "pmj02bn", feature = "sequence", feature = "envmap"))]
 mod hash;
-mod kernels;
 mod lanes;
+mod slices;
+mod trig;
 
 #[cfg(feature = "disk")]
 pub mod disk;

@@ -49,9 +49,9 @@
 //! index wraps after `2^32`. [`raw`] reduces `set` modulo [`SETS`] and `index` modulo
 //! [`POINTS`].
 
-use crate::batch::{self, Vector};
 use crate::hash::{mix, owen_scramble, prefix_shuffle, to_unit};
 use crate::lanes::{Lane, UintLane};
+use crate::slices::{self, Vector};
 use core::num::Wrapping;
 use wide::{f32x8, f32x16, u32x8, u32x16};
 
@@ -315,7 +315,7 @@ pub fn sample_x16(index: u32x16, seed: u32x16) -> [f32x16; 2] {
 /// `out.len()`. Bit-identical to the scalar form.
 #[inline]
 pub fn sample_slice(start: u32, seed: u32, out: &mut [[f32; 2]]) -> usize {
-    sample_lanes::<batch::Widest, _>(start, seed, out)
+    sample_lanes::<slices::Widest, _>(start, seed, out)
 }
 
 /// [`sample_slice`] on `N`-lane vectors.
@@ -352,15 +352,15 @@ fn sample_lanes<L: Vector<N>, const N: usize>(
             let r = r0 + N * g;
             *dst = match consecutive_points::<L, N>(set, r, keys_xy) {
                 Some(points) => points,
-                None => batch::store(point::<L>(
-                    (L::U::splat(r as u32) + batch::lane_numbers::<L, N>()) & mask,
+                None => slices::store(point::<L>(
+                    (L::U::splat(r as u32) + slices::lane_numbers::<L, N>()) & mask,
                     k,
                 )),
             };
         }
         let tail_start = index.wrapping_add(whole as u32);
         let tail_out = run.get_mut(whole..).unwrap_or(&mut []);
-        batch::fill_indexed::<L, N, 2>(tail_start, tail_out, |i| point::<L>(i & mask, k));
+        slices::fill_indexed::<L, N, 2>(tail_start, tail_out, |i| point::<L>(i & mask, k));
         index = index.wrapping_add(run.len() as u32);
         rest = tail;
     }

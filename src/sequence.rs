@@ -10,9 +10,9 @@
 //! Outputs are in `[0, 1 - 2^-24]^2` (truncating conversion of 0.32 fixed point, never 1.0).
 //! Every `u32` argument is valid.
 
-use crate::batch;
 use crate::hash::{mix, to_unit};
 use crate::lanes::{Lane, ONE_MINUS_EPSILON, UintLane};
+use crate::slices;
 use core::num::Wrapping;
 use wide::{f32x8, f32x16, u32x8, u32x16};
 
@@ -57,7 +57,7 @@ pub fn random_x16(index: u32x16, seed: u32x16) -> [f32x16; 2] {
 #[inline]
 pub fn random_slice(start: u32, seed: u32, out: &mut [[f32; 2]]) -> usize {
     let seed = UintLane::splat(seed);
-    batch::fill_indexed(start, out, |i| random_body::<batch::Widest>(i, seed))
+    slices::fill_indexed(start, out, |i| random_body::<slices::Widest>(i, seed))
 }
 
 /// Side of the stratified grid for `count` points: `floor(sqrt(min(count, 2^24)))`, at most
@@ -126,7 +126,7 @@ pub fn stratified_x16(index: u32x16, count: u32, seed: u32x16) -> [f32x16; 2] {
 #[inline]
 pub fn stratified_slice(start: u32, count: u32, seed: u32, out: &mut [[f32; 2]]) -> usize {
     let (side, seed) = (stratified_side(count), UintLane::splat(seed));
-    batch::fill_indexed(start, out, |i| {
-        stratified_body::<batch::Widest>(i, side, seed)
+    slices::fill_indexed(start, out, |i| {
+        stratified_body::<slices::Widest>(i, side, seed)
     })
 }

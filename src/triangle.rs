@@ -70,8 +70,8 @@
 
 mod base4;
 
-use crate::batch;
 use crate::lanes::{Lane, UintLane, unit_interval};
+use crate::slices;
 use core::num::Wrapping;
 use wide::{f32x8, f32x16, u32x8, u32x16};
 
@@ -162,7 +162,7 @@ pub fn uniform_x16(u: [f32x16; 2]) -> [f32x16; 3] {
 /// the rest of the longer slice is untouched). Bit-identical to the scalar form.
 #[inline]
 pub fn uniform_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map_lanes(u, out, uniform_body::<batch::Widest>)
+    slices::map_lanes(u, out, uniform_body::<slices::Widest>)
 }
 
 /// Inverse of [`uniform`]: if `b0 < b1` then `u = (2 b0, b0 + b1)`, else
@@ -191,7 +191,7 @@ pub fn uniform_inverse_x16(b: [f32x16; 3]) -> [f32x16; 2] {
 /// [`uniform_inverse`] over a batch, with the length rule of [`uniform_slice`].
 #[inline]
 pub fn uniform_inverse_slice(b: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map_lanes(b, out, uniform_inverse_body::<batch::Widest>)
+    slices::map_lanes(b, out, uniform_inverse_body::<slices::Widest>)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -252,7 +252,7 @@ pub fn sqrt_map_x16(u: [f32x16; 2]) -> [f32x16; 3] {
 /// [`sqrt_map`] over a batch, with the length rule of [`uniform_slice`].
 #[inline]
 pub fn sqrt_map_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map_lanes(u, out, sqrt_map_body::<batch::Widest>)
+    slices::map_lanes(u, out, sqrt_map_body::<slices::Widest>)
 }
 
 /// Inverse of [`sqrt_map`]: `u0 = (1 - b0)^2`, `u1 = b1 / (1 - b0)`.
@@ -280,7 +280,7 @@ pub fn sqrt_map_inverse_x16(b: [f32x16; 3]) -> [f32x16; 2] {
 /// [`sqrt_map_inverse`] over a batch, with the length rule of [`uniform_slice`].
 #[inline]
 pub fn sqrt_map_inverse_slice(b: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map_lanes(b, out, sqrt_map_inverse_body::<batch::Widest>)
+    slices::map_lanes(b, out, sqrt_map_inverse_body::<slices::Widest>)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -399,8 +399,8 @@ pub fn basu_owen_x16(index: u32x16, seed: u32x16) -> [f32x16; 3] {
 #[inline]
 pub fn basu_owen_slice(start: u32, seed: u32, out: &mut [[f32; 3]]) -> usize {
     let seed = UintLane::splat(seed);
-    batch::fill_indexed(start, out, |index| {
-        basu_owen_body::<batch::Widest>(index, seed)
+    slices::fill_indexed(start, out, |index| {
+        basu_owen_body::<slices::Widest>(index, seed)
     })
 }
 
@@ -465,7 +465,7 @@ pub fn basu_owen_permuted_x16(index: u32x16, seed: u32x16) -> [f32x16; 3] {
 #[inline]
 pub fn basu_owen_permuted_slice(start: u32, seed: u32, out: &mut [[f32; 3]]) -> usize {
     let keys = base4::LevelKeys::splat(base4::LevelKeys::new(Wrapping(seed)));
-    batch::fill_indexed(start, out, |index| {
-        basu_owen_permuted_body::<batch::Widest>(base4::fields(index), keys)
+    slices::fill_indexed(start, out, |index| {
+        basu_owen_permuted_body::<slices::Widest>(base4::fields(index), keys)
     })
 }

@@ -4,7 +4,7 @@
 //! scalar / x8 / slice, and measured blue noise.
 #![cfg(all(feature = "pmj02bn", feature = "sequence"))]
 
-mod common;
+use warpcore_testkit as common;
 
 // The generator's algorithm, for the plain pmj02 reference of the blue-noise comparison.
 use pmjgen as pmj;

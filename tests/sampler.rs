@@ -5,7 +5,7 @@
 
 #![allow(clippy::needless_range_loop)]
 
-mod common;
+use warpcore_testkit as common;
 
 use common::chi2;
 use rand::RngExt;

@@ -6,7 +6,7 @@
 // Lane-by-lane comparisons index several arrays with one counter.
 #![allow(clippy::needless_range_loop)]
 
-mod common;
+use warpcore_testkit as common;
 
 use common::{ONE_MINUS_EPS, chi2, lane, rng, same_bits, soa, specials, unit, unit2};
 use proptest::prelude::*;

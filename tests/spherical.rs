@@ -4,7 +4,7 @@
 #![cfg(feature = "spherical")]
 #![allow(clippy::needless_range_loop)]
 
-mod common;
+use warpcore_testkit as common;
 
 use common::{chi2, rng, specials, unit2};
 use rand::RngExt;

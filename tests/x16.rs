@@ -13,7 +13,7 @@
     feature = "sequence"
 ))]
 
-mod common;
+use warpcore_testkit as common;
 
 use common::{rng, specials};
 use proptest::prelude::*;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Minimax coefficients for warpcore's polynomial kernels (src/kernels.rs).
+"""Minimax coefficients for warpcore's polynomial kernels (src/trig.rs).
 
 Each kernel is f(t) = g(t) * P(t^2) with P a polynomial in s = t^2 (on [0, 1] for sin and cos); we run a
 plain Remez exchange in s with mpmath at 60 digits, minimizing the *relative* error
@@ -10,7 +10,7 @@ plain Remez exchange in s with mpmath at 60 digits, minimizing the *relative* er
   atan_q(z) = (4/pi) atan(z)       g = z, F(s) = (4/pi) atan(sqrt s) / sqrt s, on s <= 1/4
 
 Then the coefficients are rounded to f32. The f32 evaluation error (Horner, no FMA) is what
-matters and is measured exhaustively in the kernels.rs unit tests, not here.
+matters and is measured exhaustively in the trig.rs unit tests, not here.
 
 Usage: python3 tools/fit_kernels.py  (needs `pip install mpmath`)
 """

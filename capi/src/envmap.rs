@@ -52,8 +52,6 @@ pub const WC_ENVMAP_COMPENSATION_UNIFORM: u32 = 1;
 /// `wc_envmap_equirect_solid_angle_weights` makes them): subtract `fraction` times the
 /// radiance's solid-angle average times the row's `sin(theta)`, clamp at 0.
 pub const WC_ENVMAP_COMPENSATION_EQUIRECT: u32 = 2;
-/// Deprecated name of `WC_ENVMAP_COMPENSATION_EQUIRECT` (the same value).
-pub const WC_ENVMAP_COMPENSATION_LATLONG: u32 = 2;
 
 /// `layout` of the direction functions: the equirect (lat-long) square of
 /// `wc_sphere_equirect` (`phi = 2 pi u`, `theta = pi v`, row 0 around `+z`).
@@ -65,7 +63,6 @@ pub const WC_ENVMAP_LAYOUT_EQUAL_AREA: u32 = 1;
 // Literals, so that cbindgen can write them; checked against the core crate here.
 const _: () = assert!(WC_ENVMAP_HEADER_WORDS as usize == envmap::HEADER_WORDS);
 const _: () = assert!(WC_ENVMAP_FORMAT_VERSION == envmap::FORMAT_VERSION);
-const _: () = assert!(WC_ENVMAP_COMPENSATION_LATLONG == WC_ENVMAP_COMPENSATION_EQUIRECT);
 
 /// One environment-map sample.
 #[repr(C)]
@@ -1164,64 +1161,5 @@ pub unsafe extern "C" fn wc_envmap_equirect_to_equal_area(
         2 => run::<2>(src, sw, sh, dst, n, ss),
         3 => run::<3>(src, sw, sh, dst, n, ss),
         _ => run::<4>(src, sw, sh, dst, n, ss),
-    }
-}
-
-/// Deprecated name of `wc_envmap_equirect_solid_angle_weights` (one name per thing: the
-/// layout is `equirect` everywhere): the same function, the same codes.
-///
-/// # Safety
-/// As `wc_envmap_equirect_solid_angle_weights`.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_latlong_solid_angle_weights(
-    weights: *mut f32,
-    width: u32,
-    height: u32,
-) -> i32 {
-    // SAFETY: the caller's contract above.
-    unsafe { wc_envmap_equirect_solid_angle_weights(weights, width, height) }
-}
-
-/// Deprecated name of `wc_envmap_equirect_pdf_to_solid_angle`: the same function, the same
-/// results and pointer rules.
-///
-/// # Safety
-/// As `wc_envmap_equirect_pdf_to_solid_angle`.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_latlong_pdf_to_solid_angle(
-    pdf: *const f32,
-    v: *const f32,
-    out: *mut f32,
-    n: usize,
-) -> usize {
-    // SAFETY: the caller's contract above.
-    unsafe { wc_envmap_equirect_pdf_to_solid_angle(pdf, v, out, n) }
-}
-
-/// Deprecated name of `wc_envmap_equirect_to_equal_area`: the same function, the same codes.
-///
-/// # Safety
-/// As `wc_envmap_equirect_to_equal_area`.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_latlong_to_equal_area(
-    src: *const f32,
-    src_width: u32,
-    src_height: u32,
-    channels: u32,
-    dst: *mut f32,
-    size: u32,
-    supersample: u32,
-) -> i32 {
-    // SAFETY: the caller's contract above.
-    unsafe {
-        wc_envmap_equirect_to_equal_area(
-            src,
-            src_width,
-            src_height,
-            channels,
-            dst,
-            size,
-            supersample,
-        )
     }
 }

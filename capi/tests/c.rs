@@ -196,7 +196,7 @@ fn c_fingerprint_matches_the_golden_file_and_the_crate() {
         }),
     );
     want.insert(
-        "envmap_latlong_pdf_to_solid_angle",
+        "envmap_equirect_pdf_to_solid_angle",
         hash(&|h| {
             for i in 0..N {
                 let [p, v]: [f32; 2] = input(i);
@@ -701,9 +701,6 @@ const TABLE: &[(&str, &[&str])] = {
             PDF_DIRECTION,
         ),
         ("wc_envmap_luminance", MAP_IN_PLACE),
-        ("wc_envmap_latlong_solid_angle_weights", IMAGE),
-        ("wc_envmap_latlong_pdf_to_solid_angle", MAP_IN_PLACE),
-        ("wc_envmap_latlong_to_equal_area", IMAGE),
         ("wc_envmap_equirect_solid_angle_weights", IMAGE),
         ("wc_envmap_equirect_pdf_to_solid_angle", MAP_IN_PLACE),
         ("wc_envmap_equirect_to_equal_area", IMAGE),

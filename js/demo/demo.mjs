@@ -274,10 +274,10 @@ async function envmapFor(wc, name, param, kind) {
   let lum;
   if (param === 'latlong') {
     lum = wc.envmapLuminance(rgb);
-    weights = wc.envmapLatlongSolidAngleWeights(lum, w, h);
+    weights = wc.envmapEquirectSolidAngleWeights(lum, w, h);
   } else {
     w = h = 256;
-    lum = wc.envmapLuminance(wc.envmapLatlongToEqualArea(rgb, width, height, 3, w, 2));
+    lum = wc.envmapLuminance(wc.envmapEquirectToEqualArea(rgb, width, height, 3, w, 2));
     weights = lum; // equal-area texels all cover the same solid angle
   }
   const env = kind === 'hierarchical' ? wc.envmapHierarchical(weights, w, h) : wc.envmapMarginalConditional(weights, w, h);

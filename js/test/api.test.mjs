@@ -73,19 +73,9 @@ const SPEC = {
   sequenceRandom: [U32, U32, COUNT],
   sequenceStratified: [U32, U32, U32, COUNT],
   envmapLuminance: [vec(Float32Array, 3)],
-  envmapLatlongPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
   envmapEquirectPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
   envmapEquirectSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, { u32: true, good: () => 3 }, { u32: true, good: () => 2 }],
   envmapEquirectToEqualArea: [
-    { T: Float32Array, d: 18, good: () => new Float32Array(18).fill(1) },
-    { u32: true, good: () => 3 },
-    { u32: true, good: () => 2 },
-    { u32: true, good: () => 3 },
-    { u32: true, good: () => 4 },
-    { u32: true, good: () => 2 },
-  ],
-  envmapLatlongSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, { u32: true, good: () => 3 }, { u32: true, good: () => 2 }],
-  envmapLatlongToEqualArea: [
     { T: Float32Array, d: 18, good: () => new Float32Array(18).fill(1) },
     { u32: true, good: () => 3 },
     { u32: true, good: () => 2 },
@@ -223,9 +213,9 @@ test('counts: zero gives empty arrays, too large throws RangeError before touchi
   assert.equal(wc.diskPolar4(new Float32Array(4)).length, 16);
   // paired arrays of different counts
   assert.equal(thrown(() => wc.sphereEquirectPdfToSolidAngle(f32(1, 2), f32(0, 0, 1)), 'pair').constructor, RangeError);
-  assert.equal(thrown(() => wc.envmapLatlongPdfToSolidAngle(f32(1, 2), f32(0.5)), 'pair').constructor, RangeError);
+  assert.equal(thrown(() => wc.envmapEquirectPdfToSolidAngle(f32(1, 2), f32(0.5)), 'pair').constructor, RangeError);
   assert.equal(thrown(() => wc.sphereEqualAreaWrapTexel(new Int32Array(2), 0), 'size 0').constructor, RangeError);
-  assert.equal(thrown(() => wc.envmapLatlongToEqualArea(new Float32Array(18), 3, 2, 5, 4, 2), 'channels').constructor, RangeError);
+  assert.equal(thrown(() => wc.envmapEquirectToEqualArea(new Float32Array(18), 3, 2, 5, 4, 2), 'channels').constructor, RangeError);
 });
 
 test('large batches grow the memory, and match the same points computed in pieces', () => {
@@ -400,7 +390,7 @@ test('MIS-compensated env maps: pdf of max(0, w - average), fallback, none = pla
     tenth.free();
     // 'none', NaN and negative fractions, and a constant map (everything removed: the fallback)
     // give the plain tables word for word.
-    for (const [map, how, f] of [[w, 'none', 1], [w, 'uniform', NaN], [w, 'latlong', -1], [f32(3, 3, 3, 3), 'uniform', 1]]) {
+    for (const [map, how, f] of [[w, 'none', 1], [w, 'uniform', NaN], [w, 'equirect', -1], [f32(3, 3, 3, 3), 'uniform', 1]]) {
       const a = plain(map, 2, 2);
       const b = compensated(map, 2, 2, how, f);
       const [sa, sb] = [a.storage(), b.storage()];
@@ -410,7 +400,7 @@ test('MIS-compensated env maps: pdf of max(0, w - average), fallback, none = pla
       b.free();
     }
     const inf = f32(1, Infinity, 1, 1);
-    assert.equal(thrown(() => compensated(inf, 2, 2, 'latlong', 1), 'inf').code, 'WC_ERR_INFINITE_WEIGHT');
+    assert.equal(thrown(() => compensated(inf, 2, 2, 'equirect', 1), 'inf').code, 'WC_ERR_INFINITE_WEIGHT');
   }
 });
 
@@ -505,16 +495,12 @@ test('envmapFromStorage takes the file bytes: Buffer, Uint8Array at any offset, 
   env.free();
 });
 
-test('one name per thing: equirect names, latlong aliases; pmj02bnShuffle takes numbers', () => {
-  assert.equal(wc.envmapLatlongPdfToSolidAngle, wc.envmapEquirectPdfToSolidAngle);
-  assert.equal(wc.envmapLatlongSolidAngleWeights, wc.envmapEquirectSolidAngleWeights);
-  assert.equal(wc.envmapLatlongToEqualArea, wc.envmapEquirectToEqualArea);
+test('one name per thing: only the equirect names; pmj02bnShuffle takes numbers', () => {
+  for (const name of ['envmapLatlongPdfToSolidAngle', 'envmapLatlongSolidAngleWeights', 'envmapLatlongToEqualArea']) {
+    assert.equal(wc[name], undefined, name);
+  }
   const w = f32(1, 2, 3, 4);
-  const a = wc.envmapHierarchicalCompensated(w, 2, 2, 'equirect', 1);
-  const b = wc.envmapHierarchicalCompensated(w, 2, 2, 'latlong', 1);
-  assert.deepEqual(a.storage(), b.storage());
-  a.free();
-  b.free();
+  assert.equal(thrown(() => wc.envmapHierarchicalCompensated(w, 2, 2, 'latlong', 1), 'old name').constructor, RangeError);
   const idx = Uint32Array.of(0, 5, 77, 0xffffffff);
   const typed = wc.pmj02bnShuffle(idx, 7);
   for (let i = 0; i < idx.length; i++) assert.equal(wc.pmj02bnShuffle(idx[i], 7), typed[i]);

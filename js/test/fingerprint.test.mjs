@@ -389,15 +389,15 @@ function jsExtras() {
     h.word(wc.pmj02bnSets);
   });
   hash('envmap_luminance', (h) => h.floats(wc.envmapLuminance(inputs(0, N, 3))));
-  hash('envmap_latlong_pdf_to_solid_angle', (h) => {
+  hash('envmap_equirect_pdf_to_solid_angle', (h) => {
     const pv = inputs(0, N, 2);
     const pdf = pv.filter((_, k) => k % 2 === 0);
     const v = pv.filter((_, k) => k % 2 === 1);
-    h.floats(wc.envmapLatlongPdfToSolidAngle(pdf, v));
+    h.floats(wc.envmapEquirectPdfToSolidAngle(pdf, v));
   });
   hash('envmap_image', (h) => {
-    h.floats(wc.envmapLatlongSolidAngleWeights(envmapWeights(), 13, 7));
-    h.floats(wc.envmapLatlongToEqualArea(inputs(200, 91, 3), 13, 7, 3, 8, 3));
+    h.floats(wc.envmapEquirectSolidAngleWeights(envmapWeights(), 13, 7));
+    h.floats(wc.envmapEquirectToEqualArea(inputs(200, 91, 3), 13, 7, 3, 8, 3));
   });
   hash('envmap_storage', (h) => {
     const env = wc.envmapMarginalConditional(envmapWeights(), 13, 7);
@@ -405,7 +405,7 @@ function jsExtras() {
     env.free();
   });
   const { width, height, rgb } = readPfm(readFileSync(root + ENVMAP));
-  const weights = wc.envmapLatlongSolidAngleWeights(wc.envmapLuminance(rgb), width, height);
+  const weights = wc.envmapEquirectSolidAngleWeights(wc.envmapLuminance(rgb), width, height);
   const u = wc.pmj02bnSample(0, 7, 4096);
   for (const [name, build] of [
     ['envmap_file_hierarchical', wc.envmapHierarchical],

@@ -272,9 +272,6 @@ const SPEC = {
   sequenceRandom: [NUM(0), NUM(9), NUM(4)],
   sequenceStratified: [NUM(0), NUM(16), NUM(9), NUM(4)],
   envmapLuminance: [vec(Float32Array, 3)],
-  envmapLatlongPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
-  envmapLatlongSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, NUM(3), NUM(2)],
-  envmapLatlongToEqualArea: [{ T: Float32Array, d: 18, good: () => new Float32Array(18).fill(0.5) }, NUM(3), NUM(2), NUM(3), NUM(4), NUM(2)],
   envmapEquirectPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
   envmapEquirectSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, NUM(3), NUM(2)],
   envmapEquirectToEqualArea: [{ T: Float32Array, d: 18, good: () => new Float32Array(18).fill(0.5) }, NUM(3), NUM(2), NUM(3), NUM(4), NUM(2)],
@@ -303,7 +300,7 @@ const SPEC = {
 };
 // Functions whose last argument is an optional `out` of this type and length (for the good
 // arguments).
-const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapHierarchicalCompensated', 'envmapMarginalConditionalCompensated', 'envmapFromStorage', 'envmapLatlongSolidAngleWeights', 'envmapLatlongToEqualArea', 'envmapEquirectSolidAngleWeights', 'envmapEquirectToEqualArea', 'sphericalTriangleSolidAngle', 'sphericalRectangleSolidAngle', 'samplerPath', 'memoryStats']);
+const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapHierarchicalCompensated', 'envmapMarginalConditionalCompensated', 'envmapFromStorage', 'envmapEquirectSolidAngleWeights', 'envmapEquirectToEqualArea', 'sphericalTriangleSolidAngle', 'sphericalRectangleSolidAngle', 'samplerPath', 'memoryStats']);
 const OUT = {};
 for (const [name, specs] of Object.entries(SPEC)) {
   if (NO_OUT.has(name)) continue;
@@ -695,9 +692,9 @@ test('aliasing: out is an input, or overlaps one through another view', (t) => {
   const d2out = d2.subarray(4, 8);
   expectSame(() => wc.sphereEquirectPdfToSolidAngle(pdf, d2, d2out), want, 'pair out inside d');
   const v = new Float32Array([0.1, 0.5, 0.9, 0.3]);
-  const wantV = wc.envmapLatlongPdfToSolidAngle(pdf, v);
+  const wantV = wc.envmapEquirectPdfToSolidAngle(pdf, v);
   const v2 = v.slice();
-  expectSame(() => wc.envmapLatlongPdfToSolidAngle(pdf, v2, v2), wantV, 'latlong out = v');
+  expectSame(() => wc.envmapEquirectPdfToSolidAngle(pdf, v2, v2), wantV, 'equirect out = v');
   cases += 3;
   // EnvMap.pdf into its own input.
   const env = wc.envmapMarginalConditional(new Float32Array([1, 2, 3, 4]), 2, 2);

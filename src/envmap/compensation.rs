@@ -54,16 +54,6 @@ pub enum Compensation {
     Equirect(f32),
 }
 
-impl Compensation {
-    /// Deprecated alias of [`Compensation::Equirect`] (one name per thing): constructs it.
-    #[deprecated(since = "0.1.0", note = "renamed to `Compensation::Equirect`")]
-    #[doc(hidden)]
-    #[allow(non_snake_case)]
-    pub const fn LatLong(fraction: f32) -> Self {
-        Compensation::Equirect(fraction)
-    }
-}
-
 /// An active compensation: what to subtract from each cleaned weight.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Compensator {

@@ -21,13 +21,11 @@
 //!   image) -> [`luminance_slice`] -> `Hierarchical::new` -> `sample` -> direction
 //!   [`sphere::equal_area`]`(uv)` -> density [`equal_area_pdf_to_solid_angle`]`(pdf)` (or both
 //!   at once: `sample_direction(Layout::EqualArea, u)`).
-//!
-//! The `latlong_*` names of earlier versions remain as deprecated aliases.
 
 use super::{Error, MAX_SIDE};
-use crate::kernels::sin_cos_turns;
 use crate::lanes::{Lane, unit_interval};
 use crate::sphere;
+use crate::trig::sin_cos_turns;
 use core::f64::consts::PI;
 use wide::f32x8;
 
@@ -68,7 +66,7 @@ pub fn luminance(rgb: [f32; 3]) -> f32 {
 #[inline]
 pub fn luminance_slice(rgb: &[[f32; 3]], out: &mut [f32]) -> usize {
     let (out, _) = out.as_chunks_mut::<1>();
-    crate::batch::map(rgb, out, luminance_body)
+    crate::slices::map(rgb, out, luminance_body)
 }
 
 /// `sin(pi v)` for `v` in `[0, 1]`, from the crate's polynomial kernels: `pi v` is the half
@@ -268,45 +266,4 @@ pub fn equirect_to_equal_area<const C: usize>(
         }
     }
     Ok(())
-}
-
-/// Deprecated alias of [`equirect_solid_angle_weights`] (one name per thing: `equirect`).
-#[deprecated(since = "0.1.0", note = "renamed to `equirect_solid_angle_weights`")]
-#[doc(hidden)]
-pub fn latlong_solid_angle_weights(
-    weights: &mut [f32],
-    width: usize,
-    height: usize,
-) -> Result<(), Error> {
-    equirect_solid_angle_weights(weights, width, height)
-}
-
-/// Deprecated alias of [`equirect_pdf_to_solid_angle`].
-#[deprecated(since = "0.1.0", note = "renamed to `equirect_pdf_to_solid_angle`")]
-#[doc(hidden)]
-#[inline]
-pub fn latlong_pdf_to_solid_angle(pdf: f32, v: f32) -> f32 {
-    equirect_pdf_to_solid_angle(pdf, v)
-}
-
-/// Deprecated alias of [`equirect_pdf_to_solid_angle_x8`].
-#[deprecated(since = "0.1.0", note = "renamed to `equirect_pdf_to_solid_angle_x8`")]
-#[doc(hidden)]
-#[inline]
-pub fn latlong_pdf_to_solid_angle_x8(pdf: f32x8, v: f32x8) -> f32x8 {
-    equirect_pdf_to_solid_angle_x8(pdf, v)
-}
-
-/// Deprecated alias of [`equirect_to_equal_area`].
-#[deprecated(since = "0.1.0", note = "renamed to `equirect_to_equal_area`")]
-#[doc(hidden)]
-pub fn latlong_to_equal_area<const C: usize>(
-    src: &[[f32; C]],
-    src_width: usize,
-    src_height: usize,
-    dst: &mut [[f32; C]],
-    size: usize,
-    supersample: usize,
-) -> Result<(), Error> {
-    equirect_to_equal_area(src, src_width, src_height, dst, size, supersample)
 }

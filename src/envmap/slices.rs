@@ -18,8 +18,8 @@
 //! exactly the bits of the scalar form.
 
 use super::{Sample, samples_of};
-use crate::batch::{self, Vector};
 use crate::lanes::{Interleaved, Lane, UintLane};
+use crate::slices::{self, Vector};
 
 /// Groups of eight lanes a hierarchical slice step interleaves: six (48 walks in flight)
 /// with AVX2 or AVX-512, two elsewhere (SSE2 and wasm `simd128`, where an eight-lane vector
@@ -68,7 +68,7 @@ fn load<L: Vector<N>, const N: usize, const G: usize>(
 ) -> [Interleaved<L, G>; 2] {
     let mut parts = [[L::splat(0.0); 2]; G];
     for (p, g) in parts.iter_mut().zip(groups) {
-        *p = batch::load(g);
+        *p = slices::load(g);
     }
     [0, 1].map(|k| Interleaved(core::array::from_fn(|g| parts[g][k])))
 }
@@ -142,7 +142,7 @@ pub(super) fn sample<D: Body, L: Vector<N>, const N: usize, const G: usize>(
             let r = d.sample_lanes::<Interleaved<L, G>>(load(src));
             core::array::from_fn(|g| samples(part(r, g)))
         },
-        |src| samples(d.sample_lanes::<L>(batch::load(src))),
+        |src| samples(d.sample_lanes::<L>(slices::load(src))),
     )
 }
 
@@ -158,6 +158,6 @@ pub(super) fn pdf<D: Body, L: Vector<N>, const N: usize, const G: usize>(
         uv,
         out,
         |src| d.pdf_lanes::<Interleaved<L, G>>(load(src)).0.map(words),
-        |src| words(d.pdf_lanes::<L>(batch::load(src))),
+        |src| words(d.pdf_lanes::<L>(slices::load(src))),
     )
 }

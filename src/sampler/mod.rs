@@ -526,7 +526,7 @@ impl<P: Pattern> Sampler<P> {
     /// sixteen at a time. Bit-identical to the scalar form.
     #[inline]
     pub fn draw_slice<const N: usize>(self, out: &mut [[f32; N]]) -> usize {
-        simd::draw_slice::<P, crate::batch::Widest, _, N>(self.state, out)
+        simd::draw_slice::<P, crate::slices::Widest, _, N>(self.state, out)
     }
 }
 

@@ -2,8 +2,8 @@
 //! side) and the slice form: the same generic body as [`Sampler`], so the same bits.
 
 use super::{Pattern, Sampler, State, unit};
-use crate::batch::{self, Vector};
 use crate::lanes::UintLane;
+use crate::slices::{self, Vector};
 use core::marker::PhantomData;
 use core::num::Wrapping;
 use wide::{f32x8, f32x16, u32x8, u32x16, u64x4, u64x8};
@@ -174,7 +174,7 @@ impl Rows<16> for f32x16 {
 
 /// `LN` points of `N` components, one vector per component, stored as an array of points:
 /// two interleaves per pair of components (4 components: the pairs `(x, y)`, `(z, w)`, then
-/// their pairs of lanes), or [`batch::store`]'s permutes for 3.
+/// their pairs of lanes), or [`slices::store`]'s permutes for 3.
 #[inline(always)]
 pub(super) fn store_rows<L: Rows<LN>, const LN: usize, const N: usize>(
     v: [L; N],
@@ -204,7 +204,7 @@ pub(super) fn store_rows<L: Rows<LN>, const LN: usize, const N: usize>(
             put(2, r2);
             put(3, r3);
         }
-        _ => *dst = batch::store(v),
+        _ => *dst = slices::store(v),
     }
 }
 
@@ -228,7 +228,7 @@ pub(super) fn draw_slice<P: Pattern, L: Rows<LN>, const LN: usize, const N: usiz
         index: L::U::splat(0),
     };
     let lanes = |start: u32, part: &mut [[f32; N]]| {
-        batch::fill_indexed::<L, LN, N>(start, part, |index| {
+        slices::fill_indexed::<L, LN, N>(start, part, |index| {
             State { index, ..wide }.bits::<N>(P::ID).map(unit::<L>)
         })
     };
@@ -255,7 +255,7 @@ mod tests {
     use crate::sampler::{Pmj02bn, Sobol};
     use std::vec;
 
-    /// The slice form at both widths (whatever `batch::Widest` this build has) against the
+    /// The slice form at both widths (whatever `slices::Widest` this build has) against the
     /// scalar form: starts on both sides of the aligned groups and the wrap, lengths up to
     /// three groups of 16 and a run across a pmj02bn table block.
     fn slices_agree<P: Pattern, L: Rows<LN>, const LN: usize, const N: usize>() {

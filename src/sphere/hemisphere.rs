@@ -8,9 +8,9 @@
 //! (`z = sqrt(1 - r^2)` would turn an absolute error of 1e-7 in `r^2` into a visible error in
 //! `z` there).
 
-use crate::batch;
 use crate::disk::{concentric_inverse_body, concentric_parts};
 use crate::lanes::Lane;
+use crate::slices;
 use wide::{f32x8, f32x16};
 
 use super::{clamped_direction, finite_density};
@@ -109,7 +109,7 @@ pub fn uniform_hemisphere_x16(u: [f32x16; 2]) -> [f32x16; 3] {
 /// `i < min(u.len(), out.len())` and returns that count. Bit-identical to the scalar form.
 #[inline]
 pub fn uniform_hemisphere_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map_lanes(u, out, uniform_hemisphere_body::<batch::Widest>)
+    slices::map_lanes(u, out, uniform_hemisphere_body::<slices::Widest>)
 }
 
 /// Inverse of [`uniform_hemisphere`]: the disk point `(x, y) / sqrt(1 + z)` (scale-free:
@@ -142,7 +142,7 @@ pub fn uniform_hemisphere_inverse_x16(d: [f32x16; 3]) -> [f32x16; 2] {
 /// [`uniform_hemisphere_slice`].
 #[inline]
 pub fn uniform_hemisphere_inverse_slice(d: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map_lanes(d, out, uniform_hemisphere_inverse_body::<batch::Widest>)
+    slices::map_lanes(d, out, uniform_hemisphere_inverse_body::<slices::Widest>)
 }
 
 /// Cosine-weighted hemisphere (Malley's method): the concentric disk point `p`
@@ -179,7 +179,7 @@ pub fn cosine_hemisphere_x16(u: [f32x16; 2]) -> [f32x16; 3] {
 /// `i < min(u.len(), out.len())` and returns that count. Bit-identical to the scalar form.
 #[inline]
 pub fn cosine_hemisphere_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map_lanes(u, out, cosine_hemisphere_body::<batch::Widest>)
+    slices::map_lanes(u, out, cosine_hemisphere_body::<slices::Widest>)
 }
 
 /// Inverse of [`cosine_hemisphere`]: the disk point `(x, y) / |d|`, then
@@ -212,7 +212,7 @@ pub fn cosine_hemisphere_inverse_x16(d: [f32x16; 3]) -> [f32x16; 2] {
 /// [`cosine_hemisphere_slice`].
 #[inline]
 pub fn cosine_hemisphere_inverse_slice(d: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map_lanes(d, out, cosine_hemisphere_inverse_body::<batch::Widest>)
+    slices::map_lanes(d, out, cosine_hemisphere_inverse_body::<slices::Widest>)
 }
 
 /// Density of [`cosine_hemisphere`] with respect to solid angle: `cos theta / pi` (pass the

@@ -47,11 +47,22 @@
 //! **Precision** (tests in `tests/sphere.rs`, against the same formulas in `f64`): see each
 //! function and the table in `docs/precision.md`.
 
+mod equal_area;
+mod equirect;
 mod hemisphere;
-mod latlong;
-mod octahedral;
 mod uniform;
 
+pub use equal_area::{
+    equal_area, equal_area_inverse, equal_area_inverse_slice, equal_area_inverse_x8,
+    equal_area_inverse_x16, equal_area_pdf_to_solid_angle, equal_area_pdf_to_solid_angle_x8,
+    equal_area_pdf_to_solid_angle_x16, equal_area_slice, equal_area_wrap, equal_area_wrap_slice,
+    equal_area_wrap_texel, equal_area_wrap_x8, equal_area_wrap_x16, equal_area_x8, equal_area_x16,
+};
+pub use equirect::{
+    equirect, equirect_inverse, equirect_inverse_slice, equirect_inverse_x8, equirect_inverse_x16,
+    equirect_pdf_to_solid_angle, equirect_pdf_to_solid_angle_x8, equirect_pdf_to_solid_angle_x16,
+    equirect_slice, equirect_x8, equirect_x16,
+};
 pub use hemisphere::{
     HEMISPHERE_PDF, cosine_hemisphere, cosine_hemisphere_inverse, cosine_hemisphere_inverse_slice,
     cosine_hemisphere_inverse_x8, cosine_hemisphere_inverse_x16, cosine_hemisphere_pdf,
@@ -60,17 +71,6 @@ pub use hemisphere::{
     uniform_hemisphere_inverse_slice, uniform_hemisphere_inverse_x8,
     uniform_hemisphere_inverse_x16, uniform_hemisphere_slice, uniform_hemisphere_x8,
     uniform_hemisphere_x16,
-};
-pub use latlong::{
-    equirect, equirect_inverse, equirect_inverse_slice, equirect_inverse_x8, equirect_inverse_x16,
-    equirect_pdf_to_solid_angle, equirect_pdf_to_solid_angle_x8, equirect_pdf_to_solid_angle_x16,
-    equirect_slice, equirect_x8, equirect_x16,
-};
-pub use octahedral::{
-    equal_area, equal_area_inverse, equal_area_inverse_slice, equal_area_inverse_x8,
-    equal_area_inverse_x16, equal_area_pdf_to_solid_angle, equal_area_pdf_to_solid_angle_x8,
-    equal_area_pdf_to_solid_angle_x16, equal_area_slice, equal_area_wrap, equal_area_wrap_slice,
-    equal_area_wrap_texel, equal_area_wrap_x8, equal_area_wrap_x16, equal_area_x8, equal_area_x16,
 };
 pub use uniform::{
     UNIFORM_PDF, uniform, uniform_inverse, uniform_inverse_slice, uniform_inverse_x8,

@@ -1,9 +1,9 @@
 //! The uniform sphere by Archimedes' hat-box theorem: the height `z` of a uniform direction is
 //! uniform on `[-1, 1]`, and the azimuth is independent of it.
 
-use crate::batch;
-use crate::kernels::{atan2_turns, sin_cos_turns};
 use crate::lanes::{Lane, unit_interval};
+use crate::slices;
+use crate::trig::{atan2_turns, sin_cos_turns};
 use wide::{f32x8, f32x16};
 
 use super::clamped_direction;
@@ -72,7 +72,7 @@ pub fn uniform_x16(u: [f32x16; 2]) -> [f32x16; 3] {
 /// `i < min(u.len(), out.len())` and returns that count. Bit-identical to the scalar form.
 #[inline]
 pub fn uniform_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map_lanes(u, out, uniform_body::<batch::Widest>)
+    slices::map_lanes(u, out, uniform_body::<slices::Widest>)
 }
 
 /// Inverse of [`uniform`]: `u0 = (1 - z) / 2`, `u1 = atan2(y, x) / (2 pi)` in `[0, 1)`.
@@ -104,5 +104,5 @@ pub fn uniform_inverse_x16(d: [f32x16; 3]) -> [f32x16; 2] {
 /// [`uniform_inverse`] over a batch, with the length rule of [`uniform_slice`].
 #[inline]
 pub fn uniform_inverse_slice(d: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map_lanes(d, out, uniform_inverse_body::<batch::Widest>)
+    slices::map_lanes(d, out, uniform_inverse_body::<slices::Widest>)
 }

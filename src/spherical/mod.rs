@@ -105,8 +105,8 @@ mod rectangle;
 mod triangle;
 mod vec;
 
-use crate::batch;
 use crate::lanes::Lane;
+use crate::slices;
 use wide::{f32x8, f32x16};
 
 /// Below this solid angle (steradians) [`triangle`] and [`rectangle`] sample by area (with
@@ -165,8 +165,8 @@ pub fn triangle_slice(
 ) -> usize {
     // The light's setup once per call (the same operations on the same splatted values as
     // inside the scalar body, so the same bits).
-    let prep = triangle::prepare::<batch::Widest>(splat33(v), splat3(p));
-    batch::map_lanes(u, out, |u: [batch::Widest; 2]| {
+    let prep = triangle::prepare::<slices::Widest>(splat33(v), splat3(p));
+    slices::map_lanes(u, out, |u: [slices::Widest; 2]| {
         let (b, d) = triangle::sample_prepared(&prep, u);
         [b[0], b[1], b[2], d]
     })
@@ -204,8 +204,8 @@ pub fn triangle_inverse_slice(
     b: &[[f32; 3]],
     out: &mut [[f32; 2]],
 ) -> usize {
-    let light = triangle::setup::<batch::Widest>(splat33(v), splat3(p));
-    batch::map_lanes(b, out, |b: [batch::Widest; 3]| {
+    let light = triangle::setup::<slices::Widest>(splat33(v), splat3(p));
+    slices::map_lanes(b, out, |b: [slices::Widest; 3]| {
         triangle::inverse_prepared(&light, b)
     })
 }
@@ -270,8 +270,8 @@ pub fn rectangle_slice(
     out: &mut [[f32; 3]],
 ) -> usize {
     let prep =
-        rectangle::prepare::<batch::Widest>(splat3(corner), splat3(ex), splat3(ey), splat3(p));
-    batch::map_lanes(u, out, |u: [batch::Widest; 2]| {
+        rectangle::prepare::<slices::Widest>(splat3(corner), splat3(ex), splat3(ey), splat3(p));
+    slices::map_lanes(u, out, |u: [slices::Widest; 2]| {
         let (st, d) = rectangle::sample_prepared(&prep, u);
         [st[0], st[1], d]
     })
@@ -328,8 +328,8 @@ pub fn rectangle_inverse_slice(
     out: &mut [[f32; 2]],
 ) -> usize {
     let light =
-        rectangle::setup::<batch::Widest>(splat3(corner), splat3(ex), splat3(ey), splat3(p));
-    batch::map_lanes(st, out, |st: [batch::Widest; 2]| {
+        rectangle::setup::<slices::Widest>(splat3(corner), splat3(ex), splat3(ey), splat3(p));
+    slices::map_lanes(st, out, |st: [slices::Widest; 2]| {
         rectangle::inverse_prepared(&light, st)
     })
 }
@@ -463,9 +463,9 @@ pub fn triangle_cosine_slice(
     u: &[[f32; 2]],
     out: &mut [[f32; 4]],
 ) -> usize {
-    let prep = triangle::prepare::<batch::Widest>(splat33(v), splat3(p));
+    let prep = triangle::prepare::<slices::Widest>(splat33(v), splat3(p));
     let w = cosine::triangle_weights(&prep.t, splat3(n));
-    batch::map_lanes(u, out, |u: [batch::Widest; 2]| {
+    slices::map_lanes(u, out, |u: [slices::Widest; 2]| {
         let (b, d) = cosine::triangle_prepared(&prep, w, u);
         [b[0], b[1], b[2], d]
     })
@@ -527,9 +527,9 @@ pub fn rectangle_cosine_slice(
     out: &mut [[f32; 3]],
 ) -> usize {
     let prep =
-        rectangle::prepare::<batch::Widest>(splat3(corner), splat3(ex), splat3(ey), splat3(p));
+        rectangle::prepare::<slices::Widest>(splat3(corner), splat3(ex), splat3(ey), splat3(p));
     let w = cosine::rectangle_weights(&prep.r, splat3(n));
-    batch::map_lanes(u, out, |u: [batch::Widest; 2]| {
+    slices::map_lanes(u, out, |u: [slices::Widest; 2]| {
         let (st, d) = cosine::rectangle_prepared(&prep, w, u);
         [st[0], st[1], d]
     })

@@ -4,8 +4,8 @@
 
 use super::triangle::{FALLBACK_TURNS, SMALL_Q};
 use super::vec::*;
-use crate::kernels::{atan2_turns, sin_cos_turns};
 use crate::lanes::{Lane, unit_interval};
+use crate::trig::{atan2_turns, sin_cos_turns};
 
 /// The rectangle in its own frame seen from `p` (all lengths scaled by one exact power of
 /// two): `x` along `ex` from `x0` to `x0 + w`, `y` along `ey`'s component orthogonal to `ex`

@@ -482,21 +482,21 @@ static void extras(void) {
             pdf[i] = input(i, 2, 0);
             v[i] = input(i, 2, 1);
         }
-        EXPECT(wc_envmap_latlong_pdf_to_solid_angle(pdf, v, out, N) == N);
+        EXPECT(wc_envmap_equirect_pdf_to_solid_angle(pdf, v, out, N) == N);
         floats(out, N);
     }
-    line("envmap_latlong_pdf_to_solid_angle");
+    line("envmap_equirect_pdf_to_solid_angle");
 
     h = UINT64_C(0xcbf29ce484222325);
     {
         float w[91];
         envmap_weights(w);
-        EXPECT(wc_envmap_latlong_solid_angle_weights(w, 13, 7) == WC_OK);
+        EXPECT(wc_envmap_equirect_solid_angle_weights(w, 13, 7) == WC_OK);
         floats(w, 91);
         /* A 13 x 7 RGB image resampled to 8 x 8 equal-area texels, 3 x 3 supersampling. */
         float rgb[91 * 3], dst[64 * 3];
         inputs(rgb, 200, 91, 3);
-        EXPECT(wc_envmap_latlong_to_equal_area(rgb, 13, 7, 3, dst, 8, 3) == WC_OK);
+        EXPECT(wc_envmap_equirect_to_equal_area(rgb, 13, 7, 3, dst, 8, 3) == WC_OK);
         floats(dst, 64 * 3);
     }
     line("envmap_image");

@@ -480,7 +480,6 @@ struct pair {
 };
 static const struct pair PAIRS[] = {
     {"wc_sphere_equirect_pdf_to_solid_angle", wc_sphere_equirect_pdf_to_solid_angle, 3},
-    {"wc_envmap_latlong_pdf_to_solid_angle", wc_envmap_latlong_pdf_to_solid_angle, 1},
     {"wc_envmap_equirect_pdf_to_solid_angle", wc_envmap_equirect_pdf_to_solid_angle, 1},
 };
 
@@ -792,7 +791,7 @@ static void one_build(const struct dist *D) {
        any fraction. */
     int compensated = rnd() & 1;
     uint32_t kinds[] = {WC_ENVMAP_COMPENSATION_NONE, WC_ENVMAP_COMPENSATION_UNIFORM,
-                        WC_ENVMAP_COMPENSATION_LATLONG, 3, UINT32_MAX};
+                        WC_ENVMAP_COMPENSATION_EQUIRECT, 3, UINT32_MAX};
     uint32_t kind = kinds[rnd() % 5];
     float fraction;
     fill_floats(&fraction, 1);
@@ -800,7 +799,7 @@ static void one_build(const struct dist *D) {
     /* The model, in the documented order. */
     int32_t want;
     int access = 0;
-    if (compensated && kind > WC_ENVMAP_COMPENSATION_LATLONG) want = WC_ERR_INVALID_ARGUMENT;
+    if (compensated && kind > WC_ENVMAP_COMPENSATION_EQUIRECT) want = WC_ERR_INVALID_ARGUMENT;
     else if (w == 0 || h == 0) want = WC_ERR_ZERO_SIZE;
     else if (need == SIZE_MAX || !fits64(texels, 4) || !fits(need, 4))
         want = WC_ERR_TOO_LARGE;
@@ -1056,10 +1055,8 @@ static void one_weights(void) {
         memcpy(copy, p, (size_t)texels * 4);
         wc_envmap_equirect_solid_angle_weights(copy, w, h);
     }
-    int old = rnd() & 1; /* the deprecated name: the same function */
-    const char *fname = old ? "wc_envmap_latlong_solid_angle_weights" : "wc_envmap_equirect_solid_angle_weights";
-    int32_t got = old ? wc_envmap_latlong_solid_angle_weights(p, w, h)
-                      : wc_envmap_equirect_solid_angle_weights(p, w, h);
+    const char *fname = "wc_envmap_equirect_solid_angle_weights";
+    int32_t got = wc_envmap_equirect_solid_angle_weights(p, w, h);
     const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "", "", "", "", "", "", "WC_ERR_INVALID_ARGUMENT"};
     reach(fname, names[-want]);
     current = fname;
@@ -1115,10 +1112,8 @@ static void one_equal_area(void) {
     }
     if (!access) snapshot(0, dst, dst_bytes);
     snapshot(1, src, small ? (size_t)src_n * 4 : 64);
-    int old = rnd() & 1; /* the deprecated name: the same function */
-    const char *fname = old ? "wc_envmap_latlong_to_equal_area" : "wc_envmap_equirect_to_equal_area";
-    int32_t got = old ? wc_envmap_latlong_to_equal_area(src, sw, sh, c, dst, size, ss)
-                      : wc_envmap_equirect_to_equal_area(src, sw, sh, c, dst, size, ss);
+    const char *fname = "wc_envmap_equirect_to_equal_area";
+    int32_t got = wc_envmap_equirect_to_equal_area(src, sw, sh, c, dst, size, ss);
     const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "", "", "", "", "", "", "WC_ERR_INVALID_ARGUMENT"};
     reach(fname, names[-want]);
     current = fname;
@@ -1382,7 +1377,6 @@ int main(int argc, char **argv) {
         for (size_t i = 0; i < NGENS; i++) one_gen(&GENS[i]);
         for (int i = 0; i < 2; i++) {
             one_pair(&PAIRS[i]);
-            if (i == 1) one_pair(&PAIRS[2]);
             one_four(i);
             one_quad(i);
             one_storage_len(&DISTS[i]);

@@ -250,9 +250,9 @@ static void disk_extras(void) {
     CHECK(wc_sphere_equirect_pdf_to_solid_angle(pdf, d, o, 2) == 2 && o[0] > 0 && o[1] == 0);
     CHECK(wc_sphere_equirect_pdf_to_solid_angle(pdf, d, d, 2) == 0);
     CHECK(wc_sphere_equirect_pdf_to_solid_angle(pdf, NULL, o, 2) == 0);
-    CHECK(wc_envmap_latlong_pdf_to_solid_angle(pdf, v, o, 2) == 2 && o[0] > 0 && o[1] == 0);
-    CHECK(wc_envmap_latlong_pdf_to_solid_angle(pdf, v, v, 2) == 0);
-    CHECK(wc_envmap_latlong_pdf_to_solid_angle(pdf, v, o, 0) == 0);
+    CHECK(wc_envmap_equirect_pdf_to_solid_angle(pdf, v, o, 2) == 2 && o[0] > 0 && o[1] == 0);
+    CHECK(wc_envmap_equirect_pdf_to_solid_angle(pdf, v, v, 2) == 0);
+    CHECK(wc_envmap_equirect_pdf_to_solid_angle(pdf, v, o, 0) == 0);
 }
 
 /* ---- environment maps ---- */
@@ -490,35 +490,18 @@ static void error_strings(void) {
 }
 
 static void images(void) {
-    /* The equirect names and their deprecated latlong aliases give the same bits. */
-    {
-        float a[6] = {1, 2, 3, 4, 5, 6}, b[6] = {1, 2, 3, 4, 5, 6};
-        CHECK(wc_envmap_equirect_solid_angle_weights(a, 3, 2) == WC_OK);
-        CHECK(wc_envmap_latlong_solid_angle_weights(b, 3, 2) == WC_OK);
-        CHECK(memcmp(a, b, sizeof a) == 0);
-        float pdf[2] = {1.0f, 2.0f}, v[2] = {0.25f, 0.5f}, x[2], y[2];
-        CHECK(wc_envmap_equirect_pdf_to_solid_angle(pdf, v, x, 2) == 2);
-        CHECK(wc_envmap_latlong_pdf_to_solid_angle(pdf, v, y, 2) == 2);
-        CHECK(memcmp(x, y, sizeof x) == 0);
-        float src[8 * 3], e[16 * 3], l[16 * 3];
-        for (int i = 0; i < 24; i++) src[i] = (float)i;
-        CHECK(wc_envmap_equirect_to_equal_area(src, 4, 2, 3, e, 4, 2) == WC_OK);
-        CHECK(wc_envmap_latlong_to_equal_area(src, 4, 2, 3, l, 4, 2) == WC_OK);
-        CHECK(memcmp(e, l, sizeof e) == 0);
-        CHECK(WC_ENVMAP_COMPENSATION_EQUIRECT == WC_ENVMAP_COMPENSATION_LATLONG);
-    }
     float w[6] = {1, 1, 1, 1, 1, 1};
-    CHECK(wc_envmap_latlong_solid_angle_weights(w, 3, 2) == WC_OK && w[0] > 0.0f && w[0] < 1.0f);
-    CHECK(wc_envmap_latlong_solid_angle_weights(w, 0, 2) == WC_ERR_ZERO_SIZE);
-    CHECK(wc_envmap_latlong_solid_angle_weights(NULL, 3, 2) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_equirect_solid_angle_weights(w, 3, 2) == WC_OK && w[0] > 0.0f && w[0] < 1.0f);
+    CHECK(wc_envmap_equirect_solid_angle_weights(w, 0, 2) == WC_ERR_ZERO_SIZE);
+    CHECK(wc_envmap_equirect_solid_angle_weights(NULL, 3, 2) == WC_ERR_INVALID_ARGUMENT);
     float src[4 * 2 * 3], dst[4 * 4 * 3];
     for (int i = 0; i < 24; i++) src[i] = 1.0f;
-    CHECK(wc_envmap_latlong_to_equal_area(src, 4, 2, 3, dst, 4, 2) == WC_OK);
+    CHECK(wc_envmap_equirect_to_equal_area(src, 4, 2, 3, dst, 4, 2) == WC_OK);
     CHECK(dst[0] > 0.99f && dst[0] < 1.01f);
-    CHECK(wc_envmap_latlong_to_equal_area(src, 4, 2, 5, dst, 4, 2) == WC_ERR_INVALID_ARGUMENT);
-    CHECK(wc_envmap_latlong_to_equal_area(src, 4, 2, 3, dst, 0, 2) == WC_ERR_ZERO_SIZE);
-    CHECK(wc_envmap_latlong_to_equal_area(src, 4, 2, 3, src, 2, 1) == WC_ERR_INVALID_ARGUMENT);
-    CHECK(wc_envmap_latlong_to_equal_area(NULL, 4, 2, 3, dst, 4, 2) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_equirect_to_equal_area(src, 4, 2, 5, dst, 4, 2) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_equirect_to_equal_area(src, 4, 2, 3, dst, 0, 2) == WC_ERR_ZERO_SIZE);
+    CHECK(wc_envmap_equirect_to_equal_area(src, 4, 2, 3, src, 2, 1) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_equirect_to_equal_area(NULL, 4, 2, 3, dst, 4, 2) == WC_ERR_INVALID_ARGUMENT);
 }
 
 int main(void) {

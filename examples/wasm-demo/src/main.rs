@@ -113,7 +113,7 @@ mod extras {
                 }),
             ),
             (
-                "envmap_latlong_pdf_to_solid_angle",
+                "envmap_equirect_pdf_to_solid_angle",
                 hash(|h| {
                     for i in 0..N {
                         let [p, v]: [f32; 2] = input(i);

@@ -1,7 +1,5 @@
-//! Helpers shared by the integration tests: the chi-square module, a seeded generator,
+//! Helpers shared by warpcore's integration tests: the chi-square module, a seeded generator,
 //! the special `f32` inputs every warp must survive, and bit-identity checks.
-#![allow(dead_code)]
-
 pub mod chi2;
 
 use rand::{RngExt, SeedableRng};
@@ -62,13 +60,13 @@ pub fn same_bits<const N: usize>(a: [f32; N], b: [f32; N]) -> bool {
 }
 
 /// Lane `j` of a SIMD result as a plain array.
-pub fn lane<const N: usize>(v: [warpcore::f32x8; N], j: usize) -> [f32; N] {
+pub fn lane<const N: usize>(v: [wide::f32x8; N], j: usize) -> [f32; N] {
     std::array::from_fn(|k| v[k].to_array()[j])
 }
 
 /// Eight points as SIMD lanes (structure of arrays).
-pub fn soa<const N: usize>(points: &[[f32; N]; 8]) -> [warpcore::f32x8; N] {
-    std::array::from_fn(|k| warpcore::f32x8::new(std::array::from_fn(|j| points[j][k])))
+pub fn soa<const N: usize>(points: &[[f32; N]; 8]) -> [wide::f32x8; N] {
+    std::array::from_fn(|k| wide::f32x8::new(std::array::from_fn(|j| points[j][k])))
 }
 
 /// Scalar == x8 == slice, bit for bit, on eight points: the `_x8` form on all eight lanes,
@@ -77,7 +75,7 @@ pub fn check_widths<const I: usize, const O: usize>(
     name: &str,
     pts: &[[f32; I]; 8],
     scalar: impl Fn([f32; I]) -> [f32; O],
-    x8: impl Fn([warpcore::f32x8; I]) -> [warpcore::f32x8; O],
+    x8: impl Fn([wide::f32x8; I]) -> [wide::f32x8; O],
     slice: impl Fn(&[[f32; I]], &mut [[f32; O]]) -> usize,
 ) {
     let v = x8(soa(pts));

@@ -1,10 +1,18 @@
-//! Environment-map distributions: invariants on any input, bit identity across widths,
-//! agreement with the weights (an `f64` reference), chi-square and per-texel frequency tests
-//! on the real CC0 maps, stiff and bad input, errors, and the solid-angle helpers.
+//! The environment-map family, one test target: this file (invariants on any input, bit
+//! identity across widths, agreement with the weights against an `f64` reference, chi-square
+//! and per-texel frequency tests on the real CC0 maps, stiff and bad input, errors, the
+//! solid-angle helpers) and its modules: [`centred`] (non-power-of-two maps centred in their
+//! pyramid), [`compensation`] (MIS-compensated builds), [`direction`] (directions and
+//! densities per steradian), [`storage`] (caller-owned storage, its format and checksum).
 #![cfg(feature = "envmap")]
 #![allow(clippy::needless_range_loop)]
 
-mod common;
+mod centred;
+mod compensation;
+mod direction;
+mod storage;
+
+use warpcore_testkit as common;
 
 use common::{chi2, lane, rng, same_bits, soa, specials, unit2};
 use proptest::prelude::*;

@@ -4,7 +4,7 @@
 //! the map whatever the table words hold.
 #![cfg(feature = "envmap")]
 
-mod common;
+use warpcore_testkit as common;
 
 use common::{rng, specials, unit, unit2};
 use proptest::prelude::*;

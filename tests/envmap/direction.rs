@@ -5,7 +5,7 @@
 //! the scalar ones.
 #![cfg(feature = "envmap")]
 
-mod common;
+use warpcore_testkit as common;
 
 use common::{rng, specials, unit, unit2};
 use std::f64::consts::PI;

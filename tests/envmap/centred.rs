@@ -7,7 +7,7 @@
 #![cfg(feature = "envmap")]
 #![allow(clippy::needless_range_loop)]
 
-mod common;
+use warpcore_testkit as common;
 
 use common::{rng, specials, unit2};
 use rand::RngExt;

@@ -8,9 +8,9 @@
 //! takes `theta` from `atan2(sqrt(x^2 + y^2), z)` rather than `acos(z)`, which loses its
 //! precision at the poles.
 
-use crate::batch;
-use crate::kernels::{atan2_turns, sin_cos_turns};
 use crate::lanes::{Lane, unit_interval};
+use crate::slices;
+use crate::trig::{atan2_turns, sin_cos_turns};
 use wide::{f32x8, f32x16};
 
 use super::{clamped_direction, finite_density};
@@ -66,7 +66,7 @@ pub fn equirect_x16(u: [f32x16; 2]) -> [f32x16; 3] {
 /// `i < min(u.len(), out.len())` and returns that count. Bit-identical to the scalar form.
 #[inline]
 pub fn equirect_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map_lanes(u, out, equirect_body::<batch::Widest>)
+    slices::map_lanes(u, out, equirect_body::<slices::Widest>)
 }
 
 /// Inverse of [`equirect`]: `u0 = atan2(y, x) / (2 pi)` in `[0, 1)`,
@@ -99,7 +99,7 @@ pub fn equirect_inverse_x16(d: [f32x16; 3]) -> [f32x16; 2] {
 /// [`equirect_inverse`] over a batch, with the length rule of [`equirect_slice`].
 #[inline]
 pub fn equirect_inverse_slice(d: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map_lanes(d, out, equirect_inverse_body::<batch::Widest>)
+    slices::map_lanes(d, out, equirect_inverse_body::<slices::Widest>)
 }
 
 #[inline(always)]

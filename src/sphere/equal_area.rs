@@ -28,9 +28,9 @@
 //! * Sign bits, not comparisons, carry `a` and `b` into `x` and `y` and back, so `-0.0` on a
 //!   seam maps to its own side (see [`equal_area_inverse`]).
 
-use crate::batch;
-use crate::kernels::{atan_ratio_pi4, sin_cos_pi4};
 use crate::lanes::{Lane, UintLane, unit_interval};
+use crate::slices;
+use crate::trig::{atan_ratio_pi4, sin_cos_pi4};
 use wide::{f32x8, f32x16};
 
 use super::{clamped_direction, finite_density};
@@ -119,7 +119,7 @@ pub fn equal_area_x16(u: [f32x16; 2]) -> [f32x16; 3] {
 /// rest of the longer slice is untouched). Bit-identical to the scalar form.
 #[inline]
 pub fn equal_area_slice(u: &[[f32; 2]], out: &mut [[f32; 3]]) -> usize {
-    batch::map_lanes(u, out, equal_area_body::<batch::Widest>)
+    slices::map_lanes(u, out, equal_area_body::<slices::Widest>)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -198,7 +198,7 @@ pub fn equal_area_inverse_x16(d: [f32x16; 3]) -> [f32x16; 2] {
 /// [`equal_area_inverse`] over a batch, with the length rule of [`equal_area_slice`].
 #[inline]
 pub fn equal_area_inverse_slice(d: &[[f32; 3]], out: &mut [[f32; 2]]) -> usize {
-    batch::map_lanes(d, out, equal_area_inverse_body::<batch::Widest>)
+    slices::map_lanes(d, out, equal_area_inverse_body::<slices::Widest>)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -319,7 +319,7 @@ pub fn equal_area_wrap_x16(u: [f32x16; 2]) -> [f32x16; 2] {
 /// [`equal_area_wrap`] over a batch, with the length rule of [`equal_area_slice`].
 #[inline]
 pub fn equal_area_wrap_slice(u: &[[f32; 2]], out: &mut [[f32; 2]]) -> usize {
-    batch::map_lanes(u, out, equal_area_wrap_body::<batch::Widest>)
+    slices::map_lanes(u, out, equal_area_wrap_body::<slices::Widest>)
 }
 
 /// [`equal_area_wrap`] for the texels of a `size x size` octahedral image: texel `[i, j]`

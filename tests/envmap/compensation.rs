@@ -6,7 +6,7 @@
 //! removed texel; the fallbacks build the uncompensated tables word for word.
 #![cfg(feature = "envmap")]
 
-mod common;
+use warpcore_testkit as common;
 
 use common::{rng, unit2};
 use rand::RngExt;
