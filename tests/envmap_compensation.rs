@@ -227,7 +227,7 @@ fn compensated_subnormal_only_weight_is_sampled() {
     wts[3] = f32::from_bits(0xff5b_ffff); // -2.9e38
     wts[4] = f32::from_bits(1); // 1e-45, texel [0, 2]
     let how = Compensation::Uniform(f32::from_bits(0x6e84_5368u32.rotate_left(7)));
-    assert_eq!(how, Compensation::Uniform(42.425991));
+    assert_eq!(how, Compensation::Uniform(42.42599));
     let mut hs = vec![0 as Word; Hierarchical::storage_len(w, h)];
     let hier = Hierarchical::new_compensated(&wts, w, h, how, &mut hs).unwrap();
     let mut ms = vec![0 as Word; MarginalConditional::storage_len(w, h)];
@@ -293,7 +293,7 @@ fn subnormal_maps_agree_between_distributions() {
                 _ => 0.0,
             })
             .collect();
-        if wts.iter().all(|x| !(*x > 0.0)) {
+        if !wts.iter().any(|x| *x > 0.0) {
             wts[g.random::<u32>() as usize % (w * h)] = f32::from_bits(1 + g.random::<u32>() % top);
         }
         let fraction = [
