@@ -7,8 +7,6 @@
 //! Run: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench envmap`
 
 mod common;
-#[path = "../tests/common/pfm.rs"]
-mod pfm;
 
 use common::{BATCH, to_soa, to_soa16, uniform_points};
 use criterion::{BenchmarkGroup, Criterion, Throughput, measurement::WallTime};

@@ -738,6 +738,7 @@ pub fn spherical(data: &[u8]) {
             && ((o[0] as f64 + o[1] as f64 + o[2] as f64) - 1.0).abs() <= 3e-7
             && o[3].is_finite()
             && o[3] >= 0.0
+            && o[3] < f32::MAX
     };
     widths(
         "spherical::triangle",
@@ -762,8 +763,24 @@ pub fn spherical(data: &[u8]) {
         in_unit_square,
     );
     let rect_ok = |o: [f32; 3]| {
-        o[..2].iter().all(|c| (0.0..=1.0).contains(c)) && o[2].is_finite() && o[2] >= 0.0
+        o[..2].iter().all(|c| (0.0..=1.0).contains(c))
+            && o[2].is_finite()
+            && o[2] >= 0.0
+            && o[2] < f32::MAX
     };
+    // The bilinear warp with the rectangle's 12 words as three weight sets (any bits).
+    for k in 0..3 {
+        let wts = [r[k][0], r[k][1], r[k][2], r[(k + 1) % 4][0]];
+        for u in &p2 {
+            let (x, d) = s::bilinear(*u, wts);
+            assert!(
+                in_unit_square(x) && (0.0..f32::MAX).contains(&d),
+                "spherical::bilinear: {wts:?} {u:?} -> {x:?} {d}"
+            );
+            let dp = s::bilinear_pdf(x, wts);
+            assert!((0.0..f32::MAX).contains(&dp), "bilinear_pdf {dp}");
+        }
+    }
     widths(
         "spherical::rectangle",
         &p2,

@@ -65,14 +65,16 @@ const DISPOSE = Symbol_.dispose ?? Symbol_.for('Symbol.dispose');
 
 // The typed-array types the API takes: constructor, exact prototype, name (the intrinsic
 // [Symbol.toStringTag]) and element size.
-const TYPES = { __proto__: null };
-for (const [T, name] of [[F32, 'Float32Array'], [U32, 'Uint32Array'], [I32, 'Int32Array']]) {
-  TYPES[name] = { T, proto: T.prototype, name, bytes: 4 };
-}
+const TYPES = {
+  __proto__: null,
+  Float32Array: { __proto__: null, T: F32, proto: F32.prototype, name: 'Float32Array', bytes: 4 },
+  Uint32Array: { __proto__: null, T: U32, proto: U32.prototype, name: 'Uint32Array', bytes: 4 },
+  Int32Array: { __proto__: null, T: I32, proto: I32.prototype, name: 'Int32Array', bytes: 4 },
+};
 const F = TYPES.Float32Array;
 const U = TYPES.Uint32Array;
 const I = TYPES.Int32Array;
-const BYTES = { T: U8 }; // views of wasm memory as bytes (storage loaders)
+const BYTES = { __proto__: null, T: U8, bytes: 1 }; // views of wasm memory as bytes (storage loaders)
 
 const isNode = typeof process === 'object' && process !== null && typeof process.versions?.node === 'string';
 
@@ -210,23 +212,21 @@ const PAGE = 65536;
 const ADDRESS_SPACE = 2 ** 32;
 const alignUp = (x, a) => ceil(x / a) * a;
 
-class Heap {
-  constructor(memory, base) {
-    this.memory = memory;
-    this.base = alignUp(base, BLOCK_ALIGN);
-    // Live blocks [start, end), sorted by start: two parallel arrays of numbers, edited by
-    // index (no Array.prototype method runs).
-    this.starts = [];
-    this.ends = [];
-  }
+// Live blocks [start, end), sorted by start, in two null-prototype objects indexed 0 ..
+// count - 1: no index read or write can reach a getter or setter a caller planted on
+// Array.prototype or Object.prototype, and no Array.prototype method runs.
+function makeHeap(memory, base_) {
+  const base = alignUp(base_, BLOCK_ALIGN);
+  const starts = { __proto__: null };
+  const ends = { __proto__: null };
+  let count = 0;
 
   /** Reserves `bytes` (first fit), growing the memory when needed; RangeError when it cannot. */
-  alloc(bytes) {
+  function alloc(bytes) {
     const size = alignUp(bytes > 1 ? bytes : 1, BLOCK_ALIGN);
-    const { starts, ends } = this;
-    let at = this.base;
+    let at = base;
     let i = 0;
-    for (; i < starts.length; i++) {
+    for (; i < count; i++) {
       if (starts[i] - at >= size) break;
       at = ends[i];
     }
@@ -234,44 +234,47 @@ class Heap {
     if (end > ADDRESS_SPACE) {
       throw rangeError(`${bytes} bytes do not fit in the 4 GiB of wasm32 memory`);
     }
-    const have = AB_BYTE_LENGTH(MEMORY_BUFFER(this.memory));
+    const have = AB_BYTE_LENGTH(MEMORY_BUFFER(memory));
     if (end > have) {
       try {
-        MEMORY_GROW(this.memory, ceil((end - have) / PAGE));
+        MEMORY_GROW(memory, ceil((end - have) / PAGE));
       } catch {
         throw rangeError(`cannot grow the wasm memory to ${end} bytes`);
       }
     }
-    for (let k = starts.length; k > i; k--) {
+    for (let k = count; k > i; k--) {
       starts[k] = starts[k - 1];
       ends[k] = ends[k - 1];
     }
     starts[i] = at;
     ends[i] = end;
+    count++;
     return at;
   }
 
-  free(start) {
-    const { starts, ends } = this;
-    for (let i = 0; i < starts.length; i++) {
+  function free(start) {
+    for (let i = 0; i < count; i++) {
       if (starts[i] === start) {
-        for (let k = i; k + 1 < starts.length; k++) {
+        for (let k = i; k + 1 < count; k++) {
           starts[k] = starts[k + 1];
           ends[k] = ends[k + 1];
         }
-        starts.length -= 1;
-        ends.length -= 1;
+        count--;
+        delete starts[count];
+        delete ends[count];
         return;
       }
     }
   }
 
   /** Bytes reserved by live blocks. */
-  get used() {
+  function used() {
     let sum = 0;
-    for (let i = 0; i < this.starts.length; i++) sum += this.ends[i] - this.starts[i];
+    for (let i = 0; i < count; i++) sum += ends[i] - starts[i];
     return sum;
   }
+
+  return { __proto__: null, alloc, free, used };
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -304,8 +307,8 @@ function fail(code, what) {
 const tag = (s) => s.charCodeAt(0) | (s.charCodeAt(1) << 8) | (s.charCodeAt(2) << 16) | ((s.charCodeAt(3) << 24) >>> 0);
 const KINDS = {
   __proto__: null,
-  hierarchical: { prefix: 'wc_envmap_hierarchical_', tag: tag('wcHI') },
-  'marginal-conditional': { prefix: 'wc_envmap_marginal_conditional_', tag: tag('wcMC') },
+  hierarchical: { __proto__: null, prefix: 'wc_envmap_hierarchical_', tag: tag('wcHI') },
+  'marginal-conditional': { __proto__: null, prefix: 'wc_envmap_marginal_conditional_', tag: tag('wcMC') },
 };
 const HEADER_WORDS = 16;
 const SAMPLE_WORDS = 5; // WcEnvSample: uv[2], pdf, texel[2]
@@ -321,38 +324,36 @@ function layoutOf(layout) {
 
 function create(x) {
   const memory = x.memory;
-  const heap = new Heap(memory, x.__heap_base.value);
+  const heap = makeHeap(memory, x.__heap_base.value);
   /** A view of the module's memory: only ever passed to the intrinsics, never returned. */
   const view = (type, p, length) => new type.T(MEMORY_BUFFER(memory), p, length);
 
-  // Runs `body(p0, p1, p2)` with one block holding up to three regions, each
-  // `[type, length, source]` (64-byte aligned; `source`, a checked typed array of `length`
-  // or more elements, copied in); the block is released afterwards.
-  function scratch(regions, body) {
-    const offsets = [0, 0, 0];
-    let total = 0;
-    for (let k = 0; k < regions.length; k++) {
-      offsets[k] = total;
-      total += alignUp(regions[k][1] * regions[k][0].bytes, BLOCK_ALIGN);
-    }
-    const base = heap.alloc(total);
+  // Runs `body(p0, p1, p2)` with one block holding up to three regions of `n0`, `n1`, `n2`
+  // elements of the types `T0`, `T1`, `T2` (64-byte aligned; `T` null: no region; `s`, a
+  // checked typed array of `n` or more elements, copied in, or undefined); the block is
+  // released afterwards. Plain parameters, no array: nothing is read from or written to an
+  // object whose prototype a caller can reach.
+  function scratch(T0, n0, s0, T1, n1, s1, T2, n2, s2, body) {
+    const b0 = T0 === null ? 0 : alignUp(n0 * T0.bytes, BLOCK_ALIGN);
+    const b1 = T1 === null ? 0 : alignUp(n1 * T1.bytes, BLOCK_ALIGN);
+    const b2 = T2 === null ? 0 : alignUp(n2 * T2.bytes, BLOCK_ALIGN);
+    const base = heap.alloc(b0 + b1 + b2);
     try {
-      const p = [0, 0, 0];
-      for (let k = 0; k < regions.length; k++) {
-        const type = regions[k][0];
-        const length = regions[k][1];
-        const source = regions[k][2];
-        p[k] = base + offsets[k];
-        if (source !== undefined) {
-          const from = TA_LENGTH(source) === length ? source : prefix(source, type, length);
-          TA_SET(view(type, p[k], length), from);
-        }
-      }
-      return body(p[0], p[1], p[2]);
+      copyIn(T0, base, n0, s0);
+      copyIn(T1, base + b0, n1, s1);
+      copyIn(T2, base + b0 + b1, n2, s2);
+      return body(base, base + b0, base + b0 + b1);
     } finally {
       heap.free(base);
     }
   }
+  const copyIn = (type, p, length, source) => {
+    if (source === undefined) return;
+    TA_SET(view(type, p, length), TA_LENGTH(source) === length ? source : prefix(source, type, length));
+  };
+  const scratch1 = (T0, n0, s0, body) => scratch(T0, n0, s0, null, 0, undefined, null, 0, undefined, body);
+  const scratch2 = (T0, n0, s0, T1, n1, s1, body) => scratch(T0, n0, s0, T1, n1, s1, null, 0, undefined, body);
+  const scratch3 = scratch;
 
   /** Copies `length` elements at `p` into `out` and returns it. */
   const read = (type, p, length, out) => {
@@ -368,7 +369,7 @@ function create(x) {
     const n = elements(input, In, I, name);
     const result = output(out, Out, n * O);
     if (n === 0) return result;
-    return scratch([[In, n * I, input], [Out, n * O]], (pi, po) => {
+    return scratch2(In, n * I, input, Out, n * O, undefined, (pi, po) => {
       expect(f(pi, po, n), n, name);
       return read(Out, po, n * O, result);
     });
@@ -380,7 +381,7 @@ function create(x) {
     count(n);
     const result = output(out, F, n * O);
     if (n === 0) return result;
-    return scratch([[F, n * O]], (po) => {
+    return scratch1(F, n * O, undefined, (po) => {
       expect(c === undefined ? f(a, b, po, n) : f(a, b, c, po, n), n, 'generator');
       return read(F, po, n * O, result);
     });
@@ -394,7 +395,7 @@ function create(x) {
     const result = output(out, F, 2 * n);
     if (n === 0) return result;
     const used = ceil(n / 4);
-    return scratch([[F, 2 * used, points], [F, 2 * n]], (pp, po) => {
+    return scratch2(F, 2 * used, points, F, 2 * n, undefined, (pp, po) => {
       expect(f(pp, used, po, n), n, 'four per point');
       return read(F, po, 2 * n, result);
     });
@@ -406,7 +407,7 @@ function create(x) {
     const u = new F32(2 * n);
     const quadrant = new U32(n);
     if (n === 0) return { u, quadrant };
-    return scratch([[F, 2 * n, p], [F, 2 * n], [U, n]], (pp, pu, pq) => {
+    return scratch3(F, 2 * n, p, F, 2 * n, undefined, U, n, undefined, (pp, pu, pq) => {
       expect(f(pp, pu, pq, n), n, 'inverse');
       return { u: read(F, pu, 2 * n, u), quadrant: read(U, pq, n, quadrant) };
     });
@@ -421,7 +422,7 @@ function create(x) {
     }
     const result = output(out, F, n);
     if (n === 0) return result;
-    return scratch([[F, n, a], [F, D * n, b], [F, n]], (pa, pb, po) => {
+    return scratch3(F, n, a, F, D * n, b, F, n, undefined, (pa, pb, po) => {
       expect(f(pa, pb, po, n), n, nameA);
       return read(F, po, n, result);
     });
@@ -439,14 +440,14 @@ function create(x) {
     const n = elements(input, F, I, name);
     const result = output(out, F, n * O);
     if (n === 0) return result;
-    return scratch([[F, len, light], [F, n * I, input], [F, n * O]], (pl, pi, po) => {
+    return scratch3(F, len, light, F, n * I, input, F, n * O, undefined, (pl, pi, po) => {
       expect(f(pl, pi, po, n), n, name);
       return read(F, po, n * O, result);
     });
   };
   const solidAngle = (f) => (light) => {
     lightArg(light);
-    return scratch([[F, 12, light]], (pl) => f(pl));
+    return scratch1(F, 12, light, (pl) => f(pl));
   };
 
   const api = {
@@ -500,7 +501,7 @@ function create(x) {
       if (u32(size, 'size') === 0) throw rangeError('size must be at least 1');
       const result = output(out, U, 2 * n);
       if (n === 0) return result;
-      return scratch([[I, 2 * n, texels], [U, 2 * n]], (pt, po) => {
+      return scratch2(I, 2 * n, texels, U, 2 * n, undefined, (pt, po) => {
         expect(x.wc_sphere_equal_area_wrap_texel(pt, size, po, n), n, 'wc_sphere_equal_area_wrap_texel');
         return read(U, po, 2 * n, result);
       });
@@ -515,7 +516,7 @@ function create(x) {
       count(n);
       const result = output(out, U, 2 * n);
       if (n === 0) return result;
-      return scratch([[U, 2 * n]], (po) => {
+      return scratch1(U, 2 * n, undefined, (po) => {
         expect(x.wc_pmj02bn_raw(set, start, po, n), n, 'wc_pmj02bn_raw');
         return read(U, po, 2 * n, result);
       });
@@ -526,7 +527,7 @@ function create(x) {
         u32(index, 'index');
         u32(seed, 'seed');
         if (out !== undefined) throw typeError('out is only for a Uint32Array of indices');
-        return scratch([[U, 1], [U, 1]], (pi, po) => {
+        return scratch2(U, 1, undefined, U, 1, undefined, (pi, po) => {
           view(U, pi, 1)[0] = index;
           expect(x.wc_pmj02bn_shuffle(pi, seed, po, 1), 1, 'wc_pmj02bn_shuffle');
           return view(U, po, 1)[0];
@@ -536,7 +537,7 @@ function create(x) {
       u32(seed, 'seed');
       const result = output(out, U, n);
       if (n === 0) return result;
-      return scratch([[U, n, index], [U, n]], (pi, po) => {
+      return scratch2(U, n, index, U, n, undefined, (pi, po) => {
         expect(x.wc_pmj02bn_shuffle(pi, seed, po, n), n, 'wc_pmj02bn_shuffle');
         return read(U, po, n, result);
       });
@@ -554,7 +555,7 @@ function create(x) {
     envmapEquirectSolidAngleWeights(weights, width, height) {
       const n = size(weights, width, height, 1, 'weights');
       const result = new F32(n);
-      return scratch([[F, n, weights]], (pw) => {
+      return scratch1(F, n, weights, (pw) => {
         const code = x.wc_envmap_equirect_solid_angle_weights(pw, width, height);
         if (code !== 0) throw fail(code, 'envmapEquirectSolidAngleWeights');
         return read(F, pw, n, result);
@@ -573,7 +574,7 @@ function create(x) {
       const m = size_ * size_ * channels;
       if (m > MAX_COUNT) throw fail(-2, 'envmapEquirectToEqualArea');
       const result = new F32(m);
-      return scratch([[F, n, src], [F, m]], (ps, pd) => {
+      return scratch2(F, n, src, F, m, undefined, (ps, pd) => {
         const code = x.wc_envmap_equirect_to_equal_area(ps, srcWidth, srcHeight, channels, pd, size_, supersample);
         if (code !== 0) throw fail(code, 'envmapEquirectToEqualArea');
         return read(F, pd, m, result);
@@ -588,7 +589,7 @@ function create(x) {
   function storageWords(words) {
     if (isView(words) && TA_TAG(words) === 'Uint32Array' && getPrototypeOf(words) === U.proto) {
       const len = array(words, U, 'words');
-      return { len, first: len > 0 ? words[0] : -1, copy: (p) => TA_SET(view(U, p, len), words) };
+      return { __proto__: null, len, first: len > 0 ? words[0] : -1, copy: (p) => TA_SET(view(U, p, len), words) };
     }
     let buffer;
     let offset;
@@ -626,7 +627,7 @@ function create(x) {
     }
     const len = bytes / 4;
     const first = len > 0 ? (src[0] | (src[1] << 8) | (src[2] << 16) | (src[3] << 24)) >>> 0 : -1;
-    return { len, first, copy: (p) => TA_SET(view(BYTES, p, bytes), src) };
+    return { __proto__: null, len, first, copy: (p) => TA_SET(view(BYTES, p, bytes), src) };
   }
 
   // Checks `width x height` texels of `channels` floats in `a`; returns the length.
@@ -695,7 +696,7 @@ function create(x) {
       const texel = new U32(2 * n);
       if (n === 0) return { uv, pdf, texel };
       const f = this.#sample;
-      return scratch([[F, 2 * n, u], [U, SAMPLE_WORDS * n]], (pu, po) => {
+      return scratch2(F, 2 * n, u, U, SAMPLE_WORDS * n, undefined, (pu, po) => {
         expect(f(p, this.#len, pu, po, n), n, 'sample');
         const w = view(U, po, SAMPLE_WORDS * n);
         const uvBits = new U32(TA_BUFFER(uv));
@@ -718,7 +719,7 @@ function create(x) {
       const result = output(out, F, n);
       if (n === 0) return result;
       const f = this.#pdf;
-      return scratch([[F, 2 * n, uv], [F, n]], (pu, po) => {
+      return scratch2(F, 2 * n, uv, F, n, undefined, (pu, po) => {
         expect(f(p, this.#len, pu, po, n), n, 'pdf');
         return read(F, po, n, result);
       });
@@ -740,7 +741,7 @@ function create(x) {
       const texel = new U32(2 * n);
       if (n === 0) return { dir, pdf, uv, texel };
       const f = this.#sampleDirection;
-      return scratch([[F, 2 * n, u], [U, DIRECTION_WORDS * n]], (pu, po) => {
+      return scratch2(F, 2 * n, u, U, DIRECTION_WORDS * n, undefined, (pu, po) => {
         expect(f(p, this.#len, l, pu, po, n), n, 'sampleDirection');
         const w = view(U, po, DIRECTION_WORDS * n);
         const dirBits = new U32(TA_BUFFER(dir));
@@ -771,7 +772,7 @@ function create(x) {
       const result = output(out, F, n);
       if (n === 0) return result;
       const f = this.#pdfDirection;
-      return scratch([[F, 3 * n, dir], [F, n]], (pd, po) => {
+      return scratch2(F, 3 * n, dir, F, n, undefined, (pd, po) => {
         expect(f(p, this.#len, l, pd, po, n), n, 'pdfDirection');
         return read(F, po, n, result);
       });
@@ -816,7 +817,7 @@ function create(x) {
     if (len === 0xffff_ffff) throw fail(-2, `envmap ${kind}`);
     const p = heap.alloc(4 * len);
     try {
-      scratch([[F, n, weights]], (pw) => {
+      scratch1(F, n, weights, (pw) => {
         const code = compensated
           ? x[k.prefix + 'build_compensated'](pw, width, height, c, fraction, p, len)
           : x[k.prefix + 'build'](pw, width, height, p, len);
@@ -867,12 +868,14 @@ function create(x) {
         if (v !== undefined && typeof v !== 'boolean') throw typeError(`options.verify must be a boolean, not ${describe(v)}`);
         if (v === false) verify = false;
       }
-      const { len, first, copy } = storageWords(words);
+      const stored = storageWords(words);
+      const len = stored.len;
+      const first = stored.first;
       const kind = first === KINDS.hierarchical.tag ? 'hierarchical' : first === KINDS['marginal-conditional'].tag ? 'marginal-conditional' : undefined;
       if (kind === undefined) throw fail(len < HEADER_WORDS ? -4 : -6, 'envmapFromStorage');
       const p = heap.alloc(4 * len);
       try {
-        copy(p);
+        stored.copy(p);
         const code = x[KINDS[kind].prefix + (verify ? 'verify' : 'validate')](p, len);
         if (code !== 0) throw fail(code, 'envmapFromStorage');
       } catch (e) {
@@ -886,9 +889,9 @@ function create(x) {
     envmapLatlongSolidAngleWeights: api.envmapEquirectSolidAngleWeights,
     envmapLatlongToEqualArea: api.envmapEquirectToEqualArea,
     /** Bytes of wasm memory: total, and reserved by live env maps and calls. */
-    memoryStats: () => ({ memory: AB_BYTE_LENGTH(MEMORY_BUFFER(memory)), reserved: heap.used }),
+    memoryStats: () => ({ memory: AB_BYTE_LENGTH(MEMORY_BUFFER(memory)), reserved: heap.used() }),
   });
-  Object.assign(api, samplerApi(x, memory, heap));
+  Object_.assign(api, samplerApi(x, memory, heap));
   return freeze(api);
 }
 
@@ -921,9 +924,13 @@ const DOMAIN = 0;
 const SPLIT = 1;
 const PATH_SECRET = Symbol('SamplerPath');
 
+/** The steps of a SamplerPath (never handed out: the module only reads them), else null. */
+let pathSteps;
+
 /**
  * A domain path with splits: `samplerPath().domain(a).split(key, size, sub).domain(b)`, the
- * steps of Rust's `sampler.domain(a).split(key, size, sub).domain(b)`. Immutable.
+ * steps of Rust's `sampler.domain(a).split(key, size, sub).domain(b)`. Immutable: the steps
+ * are private and never returned, and the class, its prototype and every path are frozen.
  */
 class SamplerPath {
   #steps;
@@ -933,27 +940,33 @@ class SamplerPath {
     freeze(this);
   }
 
-  static steps(p) {
-    return typeof p === 'object' && p !== null && #steps in p ? p.#steps : null;
+  static {
+    // `#steps in p` runs no Proxy trap; the function is module-private (not a static method
+    // a caller could reach through `path.constructor` and replace or call).
+    pathSteps = (p) => (typeof p === 'object' && p !== null && #steps in p ? p.#steps : null);
   }
 
-  #then(what, step) {
+  #then(what, kind, key, size, sub) {
     if (!(#steps in this)) throw samplerError(TypeError_, what, 'this must be a SamplerPath');
-    const steps = new U32(TA_LENGTH(this.#steps) + 4);
+    const n = TA_LENGTH(this.#steps);
+    const steps = new U32(n + 4);
     TA_SET(steps, this.#steps);
-    TA_SET(steps, step, TA_LENGTH(this.#steps));
+    steps[n] = kind;
+    steps[n + 1] = key;
+    steps[n + 2] = size;
+    steps[n + 3] = sub;
     return new SamplerPath(PATH_SECRET, steps);
   }
 
   /** The path to the child domain for `key`. */
   domain(key) {
-    return this.#then('SamplerPath.domain', [DOMAIN, samplerU32(key, 'key', 'SamplerPath.domain'), 0, 0]);
+    return this.#then('SamplerPath.domain', DOMAIN, samplerU32(key, 'key', 'SamplerPath.domain'), 0, 0);
   }
 
   /** The path to sub-sample `sub` of `size` per sample, in the child domain for `key`. */
   split(key, size, sub) {
     const what = 'SamplerPath.split';
-    return this.#then(what, [SPLIT, samplerU32(key, 'key', what), samplerU32(size, 'size', what), samplerU32(sub, 'sub', what)]);
+    return this.#then(what, SPLIT, samplerU32(key, 'key', what), samplerU32(size, 'size', what), samplerU32(sub, 'sub', what));
   }
 
   /** Steps (domains and splits). */
@@ -963,6 +976,7 @@ class SamplerPath {
   }
 }
 freeze(SamplerPath.prototype);
+freeze(SamplerPath);
 const ROOT_PATH = new SamplerPath(PATH_SECRET, new U32(0));
 
 function samplerApi(x, memory, heap) {
@@ -970,7 +984,7 @@ function samplerApi(x, memory, heap) {
   if (typeof x.wc_sampler_new !== 'function') return {};
   // The standard wasm32 C ABI (rustc 1.89 and later): a `WcSampler` argument is passed as a
   // pointer to a copy, a returned one through a pointer first argument.
-  const arity = { wc_sampler_new: 7, wc_sampler_domain: 3, wc_sampler_split: 5, wc_sampler_draw: 3, wc_sampler_draw_u32: 3, wc_sampler_rnd: 3, wc_sampler_draw_slice: 4 };
+  const arity = { __proto__: null, wc_sampler_new: 7, wc_sampler_domain: 3, wc_sampler_split: 5, wc_sampler_draw: 3, wc_sampler_draw_u32: 3, wc_sampler_rnd: 3, wc_sampler_draw_slice: 4 };
   for (const name in arity) {
     if (x[name].length !== arity[name]) throw new Error_(`warpcore: ${name} has an unexpected signature: rebuild warpcore.wasm (js/build.sh)`);
   }
@@ -1003,7 +1017,7 @@ function samplerApi(x, memory, heap) {
 
   // The steps of a domain path: a SamplerPath's, or a Uint32Array of keys (copied by index).
   function path(p, what) {
-    const steps = SamplerPath.steps(p);
+    const steps = pathSteps(p);
     if (steps !== null) return steps;
     if (!isView(p) || TA_TAG(p) !== 'Uint32Array') {
       throw samplerError(TypeError_, what, 'domainPath must be a Uint32Array of keys or a SamplerPath');
@@ -1016,9 +1030,10 @@ function samplerApi(x, memory, heap) {
     return out;
   }
 
+  // The pixel, checked; its two values are read by index (integer-indexed elements of an
+  // exact Uint32Array: no getter).
   function pixel(p, what) {
     if (typed(p, U, 'pixel', what) !== 2) throw samplerError(RangeError_, what, 'pixel must hold 2 values [x, y]');
-    return [p[0], p[1]];
   }
 
   function output(out, Type, length, what) {
@@ -1029,7 +1044,8 @@ function samplerApi(x, memory, heap) {
 
   // Runs `draw(sampler pointer, out pointer)` on the sampler of the arguments: one block of
   // wasm memory for two samplers (a result may not alias its argument) and `bytes` of output.
-  function withSampler(id, [px, py], frame, index, seed, steps, bytes, draw) {
+  // No destructuring, no iterator: plain parameters and a swap through a local.
+  function withSampler(id, px, py, frame, index, seed, steps, bytes, draw) {
     const base = heap.alloc(32 + bytes);
     try {
       let s = base;
@@ -1038,7 +1054,9 @@ function samplerApi(x, memory, heap) {
       for (let k = 0; k < TA_LENGTH(steps); k += 4) {
         if (steps[k] === SPLIT) x.wc_sampler_split(t, s, steps[k + 1], steps[k + 2], steps[k + 3]);
         else x.wc_sampler_domain(t, s, steps[k + 1]);
-        [s, t] = [t, s];
+        const next = t;
+        t = s;
+        s = next;
       }
       return draw(s, base + 32);
     } finally {
@@ -1049,14 +1067,16 @@ function samplerApi(x, memory, heap) {
   // One draw of `n` values of `Type` through C `f(s, n, out)`.
   const one = (f, Type, what) => (p, pix, frame, index, seed, domainPath, n, out) => {
     const id = pattern(p, what);
-    const xy = pixel(pix, what);
+    pixel(pix, what);
+    const px = pix[0];
+    const py = pix[1];
     u32(frame, 'frame', what);
     u32(index, 'index', what);
     u32(seed, 'seed', what);
     const steps = path(domainPath, what);
     integer(n, 'n', 1, 4, what);
     const result = output(out, Type, n, what);
-    return withSampler(id, xy, frame, index, seed, steps, 16, (s, po) => {
+    return withSampler(id, px, py, frame, index, seed, steps, 16, (s, po) => {
       if (f(s, n, po) >>> 0 !== n) throw new Error_(`warpcore: internal error in ${what}`);
       TA_SET(result, new Type.T(MEMORY_BUFFER(memory), po, n));
       return result;
@@ -1071,7 +1091,9 @@ function samplerApi(x, memory, heap) {
     samplerDrawSlice(p, pix, frame, start, count, seed, domainPath, n, out) {
       const what = 'samplerDrawSlice';
       const id = pattern(p, what);
-      const xy = pixel(pix, what);
+      pixel(pix, what);
+      const px = pix[0];
+      const py = pix[1];
       u32(frame, 'frame', what);
       u32(start, 'start', what);
       integer(count, 'count', 0, MAX_COUNT, what);
@@ -1083,7 +1105,7 @@ function samplerApi(x, memory, heap) {
       const length = count * n;
       const result = output(out, F, length, what);
       if (count === 0) return result;
-      return withSampler(id, xy, frame, start, seed, steps, 4 * length, (s, po) => {
+      return withSampler(id, px, py, frame, start, seed, steps, 4 * length, (s, po) => {
         if (x.wc_sampler_draw_slice(s, n, po, count) >>> 0 !== count) throw new Error_(`warpcore: internal error in ${what}`);
         TA_SET(result, new F32(MEMORY_BUFFER(memory), po, length));
         return result;

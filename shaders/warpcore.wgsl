@@ -741,6 +741,23 @@ fn wci_pow2_scale_of(m: f32) -> f32 {
     return bitcast<f32>(select(0u, (254u - e) << 23u, ok));
 }
 
+// Components below 2^-126 (the smallest normal) in magnitude made 0 (`vec::flush_subnormal`).
+fn wci_flush3(a: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(
+        select(a.x, 0.0f, wci_abs(a.x) < 0x1p-126f),
+        select(a.y, 0.0f, wci_abs(a.y) < 0x1p-126f),
+        select(a.z, 0.0f, wci_abs(a.z) < 0x1p-126f),
+    );
+}
+
+// The power of two lifting the largest of |a|, |b|, |c| into [1, 2) where it is a normal
+// number below 1, else 1 (`vec::pow2_lift`).
+fn wci_pow2_lift(a: f32, b: f32, c: f32) -> f32 {
+    let m = wci_max_abs3(0.0f, vec3<f32>(a, b, c));
+    let e = bitcast<u32>(m) >> 23u;
+    return select(1.0f, bitcast<f32>((254u - e) << 23u), 0u < e && e < 127u);
+}
+
 // `x` made opaque to the optimizer (a fence with a zero derived from x itself).
 fn wci_opaque(x: f32) -> f32 {
     return wci_fence(x, wci_zero_of(x));
@@ -775,12 +792,12 @@ struct WciTri {
 }
 
 fn wci_tri_setup(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, p: vec3<f32>) -> WciTri {
-    let ar0 = v0 - p;
-    let ar1 = v1 - p;
-    let ar2 = v2 - p;
-    let er1 = v1 - v0;
-    let er2 = v2 - v0;
-    let fr2 = v2 - v1;
+    let ar0 = wci_flush3(v0 - p);
+    let ar1 = wci_flush3(v1 - p);
+    let ar2 = wci_flush3(v2 - p);
+    let er1 = wci_flush3(v1 - v0);
+    let er2 = wci_flush3(v2 - v0);
+    let fr2 = wci_flush3(v2 - v1);
     let finite = wci_finite3(ar0) && wci_finite3(ar1) && wci_finite3(ar2) && wci_finite3(er1)
         && wci_finite3(er2) && wci_finite3(fr2);
     let k = wci_pow2_scale_of(wci_max_abs3(wci_max_abs3(wci_max_abs3(0.0f, ar0), ar1), ar2));
@@ -794,9 +811,12 @@ fn wci_tri_setup(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, p: vec3<f32>) -> W
     t.f2 = fr2 * k;
     t.len = vec3<f32>(wci_norm3(t.a0), wci_norm3(t.a1), wci_norm3(t.a2));
     t.ok = finite && scaled && 0.0f < t.len.x && 0.0f < t.len.y && 0.0f < t.len.z;
-    t.det = wci_dot3(t.a0, wci_cross3(t.e1, t.e2));
-    let turns = wci_half_angle_turns(t.a0, t.a1, t.a2, t.len, wci_abs(t.det));
-    t.turns = select(0.0f, turns, t.ok);
+    let det = wci_dot3(t.a0, wci_cross3(t.e1, t.e2));
+    let turns = wci_half_angle_turns(t.a0, t.a1, t.a2, t.len, wci_abs(det));
+    // Edge-on below the area-sampling threshold: solid angle and density 0 (`FLAT_DET`).
+    let flat = turns < WCI_FALLBACK_TURNS && wci_abs(det) < 0x1p-120f;
+    t.det = select(det, 0.0f, flat);
+    t.turns = select(0.0f, turns, t.ok && !flat);
     return t;
 }
 
@@ -889,19 +909,25 @@ fn wci_tri_sample(pr: WciTriPrepared, u: vec2<f32>) -> vec4<f32> {
     let p0 = wci_pos_signed(lam0, sign);
     let p1 = wci_pos_signed(lam1, sign);
     let p2 = wci_pos_signed(lam2, sign);
-    let tot = p0 + p1 + p2;
+    // Numerators summing below 2^-64 lifted by an exact 2^64 (a no-op elsewhere).
+    let tot0 = p0 + p1 + p2;
+    let lift = select(1.0f, 0x1p64f, tot0 < 0x1p-64f);
+    let tot = tot0 * lift;
     let arvo = pr.arvo && wci_positive_finite(tot);
     let inv = 1.0f / tot;
-    let bary = vec3<f32>(wci_clamp0(p0 * inv, 1.0f), wci_clamp0(p1 * inv, 1.0f), wci_clamp0(p2 * inv, 1.0f));
+    let bary = vec3<f32>(wci_clamp0((p0 * lift) * inv, 1.0f), wci_clamp0((p1 * lift) * inv, 1.0f),
+        wci_clamp0((p2 * lift) * inv, 1.0f));
     // Area sampling: density 2 |q|^3 / |det|.
     let fb = wc_triangle_uniform(vec2<f32>(u0, u1));
     let qv = va + (t.e1 * fb.y + t.e2 * fb.z);
     // Fenced: lavapipe changes the cube of a square root here (apparently folding
     // sqrt(x) * sqrt(x) to x).
     let ql = wci_opaque(wci_norm3(qv));
-    let area0 = (ql * ql * ql + ql * ql * ql) / wci_abs(t.det);
+    let adet = wci_abs(t.det);
+    // Below 2^-40, |q|^3 would lose bits to underflow: the same quotient in another order.
+    let area0 = select((ql * ql * ql + ql * ql * ql) / adet, ql * ((ql + ql) * (ql / adet)), ql < 0x1p-40f);
     let area_pdf = select(0.0f, select(WCI_F32_MAX, area0, area0 < WCI_F32_MAX), pr.area_ok);
-    let pdf = select(area_pdf, WCI_INV_4PI / t.turns, arvo);
+    let pdf = select(area_pdf, WCI_INV_4PI / t.turns, pr.arvo);
     return vec4<f32>(select(fb, bary, arvo), pdf);
 }
 
@@ -974,20 +1000,27 @@ fn wci_quad_turns(x0: f32, dx: f32, y0: f32, dy: f32, z: f32) -> f32 {
     let zero = wci_zero_of(r00);
     let den1 = wci_fence(r00 * r10 * r11, zero) + d00_10 * r11 + d00_11 * r10 + d10_11 * r00;
     let den2 = wci_fence(r00 * r11 * r01, zero) + d00_11 * r01 + d00_01 * r11 + d11_01 * r00;
-    let n = z * dx * dy;
-    let y = n * (den1 + den2);
-    return wci_atan2_turns(select(0.0f, y, 0.0f < y), den1 * den2 - n * n);
+    let n0 = z * dx * dy;
+    // Both factors of the degree-6 product lifted by one exact power of two (`quad_turns`).
+    let s = wci_pow2_lift(den1, den2, n0);
+    let d1 = den1 * s;
+    let d2 = den2 * s;
+    let n = n0 * s;
+    let y = n * (d1 + d2);
+    return wci_atan2_turns(select(0.0f, y, 0.0f < y), d1 * d2 - n * n);
 }
 
 fn wci_rect_setup(corner: vec3<f32>, ex0: vec3<f32>, ey0: vec3<f32>, p: vec3<f32>) -> WciRect {
-    let c0 = corner - p;
-    let finite = wci_finite3(c0) && wci_finite3(ex0) && wci_finite3(ey0);
-    let k = wci_pow2_scale_of(wci_max_abs3(wci_max_abs3(wci_max_abs3(0.0f, c0), ex0), ey0));
+    let c0 = wci_flush3(corner - p);
+    let ex1 = wci_flush3(ex0);
+    let ey1 = wci_flush3(ey0);
+    let finite = wci_finite3(c0) && wci_finite3(ex1) && wci_finite3(ey1);
+    let k = wci_pow2_scale_of(wci_max_abs3(wci_max_abs3(wci_max_abs3(0.0f, c0), ex1), ey1));
     let scaled = bitcast<u32>(k) != 0u;
     var r: WciRect;
     r.c = c0 * k;
-    r.ex = ex0 * k;
-    let ey = ey0 * k;
+    r.ex = ex1 * k;
+    let ey = ey1 * k;
     r.w = wci_norm3(r.ex);
     let xh = r.ex * (1.0f / r.w);
     r.eyp = ey - xh * wci_dot3(ey, xh);
@@ -996,10 +1029,13 @@ fn wci_rect_setup(corner: vec3<f32>, ex0: vec3<f32>, ey0: vec3<f32>, p: vec3<f32
     let nh = wci_cross3(xh, yh);
     r.x0 = wci_dot3(r.c, xh);
     r.y0 = wci_dot3(r.c, yh);
-    r.z = wci_abs(wci_dot3(r.c, nh));
+    let z = wci_abs(wci_dot3(r.c, nh));
     r.ok = finite && scaled && 0.0f < r.w && 0.0f < r.h;
-    let turns = wci_quad_turns(r.x0, r.w, r.y0, r.h, r.z);
-    r.turns = select(0.0f, turns, r.ok);
+    let turns = wci_quad_turns(r.x0, r.w, r.y0, r.h, z);
+    // Edge-on below the area-sampling threshold: solid angle and density 0 (`FLAT_ZWH`).
+    let flat = turns < WCI_FALLBACK_TURNS && z * r.w * r.h < 0x1p-116f;
+    r.z = select(z, 0.0f, flat);
+    r.turns = select(0.0f, turns, r.ok && !flat);
     return r;
 }
 
@@ -1123,7 +1159,8 @@ fn wci_rect_sample(pr: WciRectPrepared, u: vec2<f32>) -> vec3<f32> {
     let qx = x0 + u0 * w;
     let qy = y0 + u1 * h;
     let ql = wci_opaque(sqrt(qx * qx + qy * qy + z2)); // fenced as in wci_tri_sample
-    let area0 = ql * ql * ql / (z * w * h);
+    let zwh = z * w * h;
+    let area0 = select(ql * ql * ql / zwh, ql * (ql * (ql / zwh)), ql < 0x1p-40f);
     let area_pdf = select(0.0f, select(WCI_F32_MAX, area0, area0 < WCI_F32_MAX), pr.area_ok);
     let pdf = select(area_pdf, WCI_INV_4PI / r.turns, pr.exact);
     return vec3<f32>(select(u0, s, pr.exact), select(u1, t, pr.exact), pdf);
@@ -1174,7 +1211,8 @@ fn wci_bilinear(u: vec2<f32>, w0: vec4<f32>) -> vec3<f32> {
     let wp = vec4<f32>(select(0.0f, w0.x, 0.0f < w0.x), select(0.0f, w0.y, 0.0f < w0.y),
         select(0.0f, w0.z, 0.0f < w0.z), select(0.0f, w0.w, 0.0f < w0.w));
     let sum = wp.x + wp.y + wp.z + wp.w;
-    let ok = wci_positive_finite(sum);
+    // A sum below the smallest normal counts as zero (flush-proof: `cosine::normalise`).
+    let ok = 0x1p-126f <= sum && sum <= WCI_F32_MAX;
     let inv = select(0.0f, 1.0f / sum, ok);
     // A second, fenced copy of inv: a compiler may factor w0 inv + w1 inv into (w0 + w1) inv
     // (lavapipe does).

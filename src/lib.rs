@@ -125,6 +125,20 @@ pub mod triangle;
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
 
+#[cfg(all(
+    doctest,
+    feature = "disk",
+    feature = "triangle",
+    feature = "sphere",
+    feature = "pmj02bn",
+    feature = "sequence",
+    feature = "blue-noise",
+    feature = "spherical",
+    feature = "envmap"
+))]
+#[doc = include_str!("../docs/quickstart.md")]
+struct QuickstartDoctests;
+
 #[cfg(all(doctest, feature = "pmj02bn", feature = "sequence"))]
 #[doc = include_str!("../docs/pmj02bn.md")]
 struct Pmj02bnDocDoctests;

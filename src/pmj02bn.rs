@@ -37,9 +37,10 @@
 //! is not optional: with another seed but the same index order, the scramble relabels strata
 //! identically for every index while point `index` of every table set sits in strata fixed by
 //! `index`'s place in the progressive construction, so the second pair is (nearly) a function
-//! of the first and an estimator coupling the two converges to the wrong value (over 1024
+//! of the first: in an estimator coupling the two, each pixel converges to its own wrong value
+//! (the mean over pixels stays unbiased; separable estimators are unaffected). Over 1024
 //! samples, the joint 16 x 16 grid of the two x coordinates gets its points in 16 to 64 of
-//! its 256 cells, 16 when both seeds pick the same table set). [`shuffle`] keeps every power-of-two prefix as a set, so the nets survive, but
+//! its 256 cells, 16 when both seeds pick the same table set. [`shuffle`] keeps every power-of-two prefix as a set, so the nets survive, but
 //! it reorders points inside each one, which costs blue noise at counts that are not powers
 //! of two. Simpler: the sampling core (`warpcore::sampler`, feature `sampler`) gives every
 //! `domain(key)` its own scramble and its own index order.

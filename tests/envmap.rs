@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{chi2, lane, pfm, rng, same_bits, soa, specials, unit2};
+use common::{chi2, lane, rng, same_bits, soa, specials, unit2};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 use warpcore::envmap::{

@@ -7,9 +7,7 @@
 mod common;
 
 // The generator's algorithm, for the plain pmj02 reference of the blue-noise comparison.
-#[allow(dead_code)]
-#[path = "../tools/pmjgen/src/pmj.rs"]
-mod pmj;
+use pmjgen as pmj;
 
 use common::{lane, same_bits};
 use proptest::prelude::*;

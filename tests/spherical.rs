@@ -153,7 +153,7 @@ fn assert_total_tri(v: [[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) {
     let s = b[0] as f64 + b[1] as f64 + b[2] as f64;
     assert!((s - 1.0).abs() <= 3e-7, "{v:?} {p:?} {u:?}: sum {s}");
     assert!(
-        pdf.is_finite() && pdf >= 0.0,
+        (0.0..f32::MAX).contains(&pdf),
         "{v:?} {p:?} {u:?}: pdf {pdf}"
     );
     let w = spherical::triangle_inverse(v, p, b);
@@ -169,7 +169,7 @@ fn assert_total_rect(c: [f32; 3], ex: [f32; 3], ey: [f32; 3], p: [f32; 3], u: [f
         "{c:?} {ex:?} {ey:?} {p:?} {u:?}: {st:?}"
     );
     assert!(
-        pdf.is_finite() && pdf >= 0.0,
+        (0.0..f32::MAX).contains(&pdf),
         "{c:?} {ex:?} {ey:?} {p:?} {u:?}: pdf {pdf}"
     );
     let w = spherical::rectangle_inverse(c, ex, ey, p, st);
@@ -1276,5 +1276,333 @@ fn cosine_widths_agree_bit_for_bit() {
             assert_eq!(bits([st[0], st[1], d]), bits(out3[k]));
         }
         assert_eq!(out4[len], [0.0; 4]);
+    }
+}
+
+// Hostile lights found from outside: a shading point a hair above the light, subnormal
+// vertex components, 1e18 dynamic range inside one light, subnormal cosine weights, very long
+// and very far rectangles. Each was a wrong result before the fix it names.
+
+/// The triangle's density when `p` lies on the light's plane by the documented rule (the
+/// scaled triple product below 2^-116): 0, with an area-sampled point.
+fn assert_flat_tri(v: [[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) {
+    assert_total_tri(v, p, u);
+    let (b, pdf) = spherical::triangle(v, p, u);
+    assert_eq!(pdf, 0.0, "{v:?} {p:?} {u:?}: {b:?}");
+    assert_eq!(b, warpcore::triangle::uniform(u));
+    let o = spherical::triangle_solid_angle(v, p);
+    assert!(o == 0.0 || o == std::f32::consts::TAU, "omega {o}");
+}
+
+/// `p` 2^-149 .. 2^-100 above a unit-sized triangle (self-intersection leaves shading points
+/// there): barycentrics in the closed simplex (not [1, 1, 0] or [1, 1, 1]), density 0 where
+/// the height counts as zero, else 1 / omega.
+#[test]
+fn triangle_p_a_hair_above_the_light() {
+    let v = [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.3, 0.8, 0.0]];
+    let mut r = rng(30);
+    for e in 100..=149 {
+        let p = [0.3f32, 0.3, 2f32.powi(-e)];
+        for k in 0..2000 {
+            let u = if k == 0 { [1.0, 0.999] } else { unit2(&mut r) };
+            assert_total_tri(v, p, u);
+            let (_, pdf) = spherical::triangle(v, p, u);
+            // A height below 2^-126 counts as zero: p on the plane (density 0).
+            if e > 126 {
+                assert_eq!(pdf, 0.0, "h = 2^-{e}");
+            } else {
+                assert!(
+                    (pdf * std::f32::consts::TAU - 1.0).abs() < 1e-5,
+                    "h = 2^-{e}: {pdf}"
+                );
+            }
+        }
+    }
+    assert_flat_tri(v, [0.3, 0.3, 1e-45], [1.0, 0.999]);
+}
+
+/// A vertex with a subnormal component: `p` is on the light's plane by the rule.
+#[test]
+fn triangle_subnormal_vertex_component() {
+    let v = [[0.0f32, -1.0, 1e-40], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    for u in [[0.3f32, 0.6], [0.0, 0.0], [0.999, 0.5], [0.5, 0.999]] {
+        assert_flat_tri(v, [0.0; 3], u);
+    }
+}
+
+/// About 1e18 dynamic range inside one normal-range light (`p` on an edge, the plane
+/// through `p` within 1e-31): the scaled triple product is subnormal; barycentrics in the
+/// closed simplex, density finite.
+#[test]
+fn triangle_dynamic_range_1e18() {
+    let v = [
+        [0.0f32, -4096.0, 1e-31],
+        [262144.0, 0.0, 0.0],
+        [0.0, 1.0 / 32.0, 0.0],
+    ];
+    let mut r = rng(31);
+    for _ in 0..1000 {
+        assert_total_tri(v, [0.0; 3], unit2(&mut r));
+    }
+}
+
+/// Weights whose sum is subnormal: the identity with density 1 (1 / sum overflows), here and
+/// on a device that flushes subnormals alike.
+#[test]
+fn bilinear_subnormal_weight_sum() {
+    for w in [
+        [0.0f32, 0.0, 1e-40, 0.0],
+        [1e-45, 1e-45, 1e-45, 1e-45],
+        [f32::MIN_POSITIVE / 8.0, 0.0, f32::MIN_POSITIVE / 2.0, 0.0],
+    ] {
+        for u in [[0.0f32, 0.0], [0.3, 0.7], [0.999, 0.5]] {
+            let (x, pdf) = spherical::bilinear(u, w);
+            assert_eq!((x, pdf), (u, 1.0), "{w:?} {u:?}");
+            assert_eq!(spherical::bilinear_pdf(u, w), 1.0, "{w:?} {u:?}");
+        }
+    }
+    // The smallest normal sum is used as given.
+    let w = [f32::MIN_POSITIVE, 0.0, 0.0, 0.0];
+    let (_, pdf) = spherical::bilinear([0.25, 0.25], w);
+    assert!(pdf.is_finite() && pdf > 1.0, "{pdf}");
+}
+
+/// Through the cosine-aware maps: lights whose only corner above the receiver's horizon is
+/// there by a subnormal cosine. The density is the plain map's (finite, never FLT_MAX).
+#[test]
+fn cosine_maps_with_subnormal_weights() {
+    let n = [0.0f32, 0.0, 1.0];
+    let v = [[1e8f32, 0.0, 1e-31], [0.0, 1.0, -1.0], [0.0, -1.0, -1.0]];
+    let mut r = rng(32);
+    for _ in 0..200 {
+        let u = unit2(&mut r);
+        let (b, pdf) = spherical::triangle_cosine(v, [0.0; 3], n, u);
+        let (b0, pdf0) = spherical::triangle(v, [0.0; 3], u);
+        assert_eq!((b, pdf), (b0, pdf0), "{u:?}");
+        assert!(pdf.is_finite() && pdf > 0.0 && pdf < 1.0, "{pdf}");
+        // A rectangle whose near edge is 1e-31 above the horizon at 1e8.
+        let (c, ex, ey) = (
+            [1e8f32, 0.0, 1e-31],
+            [0.0f32, 1.0, 0.0],
+            [-1e8f32, 0.0, -1.0],
+        );
+        let (st, pdf) = spherical::rectangle_cosine(c, ex, ey, [0.0; 3], n, u);
+        let (st0, pdf0) = spherical::rectangle(c, ex, ey, [0.0; 3], u);
+        assert_eq!((st, pdf), (st0, pdf0), "{u:?}");
+        assert!((0.0..f32::MAX).contains(&pdf), "{pdf}");
+    }
+}
+
+/// The solid angle of `[0, 1] x [0, b]` at height 1 above its corner, f64.
+fn corner_rect_omega(b: f64) -> f64 {
+    (b / (2.0 + b * b).sqrt()).atan()
+}
+
+/// Very long rectangles: the strip form must not lose the half-infinite part (it underflowed
+/// to 0 at 2^51 and was 18% low at 2^50), and the density is 1 / omega.
+#[test]
+fn rectangle_very_long() {
+    for e in [20, 40, 50, 51, 60, 63] {
+        let b = 2f32.powi(e);
+        let (c, ex, ey, p) = (
+            [0.0f32, 0.0, 1.0],
+            [1.0f32, 0.0, 0.0],
+            [0.0, b, 0.0],
+            [0.0f32; 3],
+        );
+        let want = corner_rect_omega(b as f64);
+        let o = spherical::rectangle_solid_angle(c, ex, ey, p) as f64;
+        assert!((o / want - 1.0).abs() < 1e-5, "2^{e}: {o} {want}");
+        for u in [[0.3f32, 0.6], [0.0, 0.0], [0.999, 0.999]] {
+            assert_total_rect(c, ex, ey, p, u);
+            let (_, pdf) = spherical::rectangle(c, ex, ey, p, u);
+            assert!((pdf as f64 * want - 1.0).abs() < 1e-5, "2^{e} {u:?}: {pdf}");
+        }
+    }
+}
+
+/// Beyond the documented aspect (squares of the shortest length underflow in the scaled
+/// frame), the rule still holds: solid angle 0 exactly where the density is 0.
+#[test]
+fn rectangle_too_long_is_consistent() {
+    for e in [80, 100, 126] {
+        let (c, ex, ey, p) = (
+            [0.0f32, 0.0, 1.0],
+            [1.0f32, 0.0, 0.0],
+            [0.0, 2f32.powi(e), 0.0],
+            [0.0f32; 3],
+        );
+        let o = spherical::rectangle_solid_angle(c, ex, ey, p);
+        let (_, pdf) = spherical::rectangle(c, ex, ey, p, [0.3, 0.6]);
+        assert_total_rect(c, ex, ey, p, [0.3, 0.6]);
+        assert_eq!(o == 0.0, pdf == 0.0, "2^{e}: {o} {pdf}");
+    }
+}
+
+/// Lights so far that the triple product of the scaled frame is below 2^-116: solid angle 0
+/// and density 0 (it was FLT_MAX); just inside the rule, both positive and finite.
+#[test]
+fn rectangle_and_triangle_very_far() {
+    let (ex, ey) = ([1.0f32, 0.0, 0.0], [0.0f32, 1.0, 0.0]);
+    for e in [40, 60, 100, 120, 126] {
+        let d = 2f32.powi(e);
+        let c = [0.0f32, 0.0, d];
+        let o = spherical::rectangle_solid_angle(c, ex, ey, [0.0; 3]);
+        let v = [c, [1.0, 0.0, d], [0.0, 1.0, d]];
+        let ot = spherical::triangle_solid_angle(v, [0.0; 3]);
+        for u in [[0.3f32, 0.6], [0.0, 0.0], [0.999, 0.999]] {
+            assert_total_rect(c, ex, ey, [0.0; 3], u);
+            assert_total_tri(v, [0.0; 3], u);
+            let (_, pdf) = spherical::rectangle(c, ex, ey, [0.0; 3], u);
+            let (_, pdft) = spherical::triangle(v, [0.0; 3], u);
+            // z w h and the triple product relative to the largest coordinate d: 2^-2e,
+            // flat below 2^-116 (rectangle) and 2^-120 (triangle).
+            let want = 1.0 / (d as f64 * d as f64);
+            if 2 * e > 116 {
+                assert_eq!((o, pdf), (0.0, 0.0), "2^{e}");
+            } else {
+                assert!((o as f64 / want - 1.0).abs() < 1e-5, "2^{e}: {o}");
+                assert!((pdf as f64 * want - 1.0).abs() < 1e-4, "2^{e}: {pdf}");
+            }
+            if 2 * e > 120 {
+                assert_eq!((ot, pdft), (0.0, 0.0), "2^{e}");
+            } else {
+                assert!((ot as f64 / want * 2.0 - 1.0).abs() < 1e-5, "2^{e}: {ot}");
+                assert!(
+                    (pdft as f64 * want / 2.0 - 1.0).abs() < 1e-4,
+                    "2^{e}: {pdft}"
+                );
+            }
+        }
+    }
+}
+
+/// A far sliver sampled by area next to `p`: the area density `|q|^3 / (z w h)` must not
+/// underflow in `|q|^3` (it returned 0 at `u0 = 0`, where the solid angle is positive).
+#[test]
+fn rectangle_sliver_area_density() {
+    // p at height 2^-44 above the near end of a strip 1 long and 2^-71 wide (7.5e-9 sr).
+    let (c, ex, ey, p) = (
+        [0.0f32, 0.0, 2f32.powi(-44)],
+        [1.0f32, 0.0, 0.0],
+        [0.0f32, 2f32.powi(-71), 0.0],
+        [0.0f32; 3],
+    );
+    let o = spherical::rectangle_solid_angle(c, ex, ey, p);
+    assert!(o > 0.0 && o < spherical::AREA_FALLBACK_SR, "{o}");
+    for u in [[0.0f32, 0.0], [0.0, 0.5], [1e-6, 0.5], [0.5, 0.5]] {
+        assert_total_rect(c, ex, ey, p, u);
+        let (st, pdf) = spherical::rectangle(c, ex, ey, p, u);
+        let q = [st[0] as f64, st[1] as f64 * 2f64.powi(-71), 2f64.powi(-44)];
+        let want = norm(q).powi(3) / (2f64.powi(-44) * 2f64.powi(-71));
+        assert!(
+            (pdf as f64 / want - 1.0).abs() < 2e-6,
+            "{u:?}: {pdf} {want}"
+        );
+    }
+}
+
+/// A hostile coordinate: a random magnitude from `1e-20 .. 1e20` (an 1e18-range light has
+/// coordinates spread over 18 decades), a subnormal, or 0, with a random sign.
+fn hostile_coord(r: &mut Xoshiro256PlusPlus) -> f32 {
+    let m = match r.random_range(0..8u32) {
+        0 => f32::from_bits(r.random_range(1..0x0080_0000u32)), // subnormal
+        1 => 0.0,
+        2 => 1e-40,
+        _ => 10f64.powf(-20.0 + 40.0 * r.random::<f64>()) as f32,
+    };
+    if r.random::<bool>() { -m } else { m }
+}
+
+/// Hostile lights: `p` a hair (2^-149 .. 2^-100) above or below an axis-aligned light's
+/// plane (inside or outside it), vertex components with subnormal lifts, and 1e18 dynamic
+/// ranges inside one light; each map in the closed simplex / square, the sum within 3e-7,
+/// the density finite, >= 0 and below FLT_MAX, also for the cosine-aware maps.
+#[test]
+fn total_on_hostile_lights() {
+    let mut r = rng(36);
+    let perm = |v: [f32; 3], k: usize| [v[k % 3], v[(k + 1) % 3], v[(k + 2) % 3]];
+    for i in 0..40_000 {
+        let axis = r.random_range(0..3usize);
+        let (v, p, (c, ex, ey, rp)): ([[f32; 3]; 3], [f32; 3], RectCase) = match i % 3 {
+            0 => {
+                // A hair above the plane z = z0 (exactly representable heights).
+                let z0 = [0.0f32, 1.0, -3.0][r.random_range(0..3usize)];
+                let h = 2f32.powi(-r.random_range(100..=149i32));
+                let h = if r.random::<bool>() { h } else { -h };
+                let s = 10f32.powi(r.random_range(-3..=3i32));
+                let xy = |r: &mut Xoshiro256PlusPlus| {
+                    [
+                        s * (2.0 * r.random::<f32>() - 1.0),
+                        s * (2.0 * r.random::<f32>() - 1.0),
+                    ]
+                };
+                let v: [[f32; 3]; 3] = std::array::from_fn(|_| {
+                    let [x, y] = xy(&mut r);
+                    perm([x, y, z0], axis)
+                });
+                let [x, y] = xy(&mut r);
+                let p = perm([x, y, z0 + h], axis);
+                let [cx, cy] = xy(&mut r);
+                let c = perm([cx, cy, z0], axis);
+                let ex = perm([s * r.random::<f32>(), 0.0, 0.0], axis);
+                let ey = perm([0.0, s * r.random::<f32>(), 0.0], axis);
+                (v, p, (c, ex, ey, p))
+            }
+            1 => {
+                // Subnormal lifts: a unit light with one or two subnormal components.
+                let mut v = [[0.0f32, -1.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
+                let mut p = [0.0f32; 3];
+                if r.random::<bool>() {
+                    v = v.map(|q| [q[0], q[1], 0.0]);
+                }
+                for _ in 0..r.random_range(1..=2) {
+                    let k = r.random_range(0..12usize);
+                    let x = f32::from_bits(r.random_range(1..0x0080_0000u32));
+                    if k < 9 {
+                        v[k / 3][k % 3] = x
+                    } else {
+                        p[k - 9] = x
+                    }
+                }
+                let mut rc = [
+                    [-0.5f32, -0.5, 0.0],
+                    [1.0, 0.0, 0.0],
+                    [0.0, 1.0, 0.0],
+                    [0.0; 3],
+                ];
+                let k = r.random_range(0..12usize);
+                rc[k / 3][k % 3] = f32::from_bits(r.random_range(1..0x0080_0000u32));
+                (v, p, (rc[0], rc[1], rc[2], rc[3]))
+            }
+            _ => {
+                // 1e18 (and wider) dynamic range inside one light.
+                let v: [[f32; 3]; 3] =
+                    std::array::from_fn(|_| std::array::from_fn(|_| hostile_coord(&mut r)));
+                let c: [f32; 3] = std::array::from_fn(|_| hostile_coord(&mut r));
+                let (a, b) = (hostile_coord(&mut r), hostile_coord(&mut r));
+                let (ex, ey) = (perm([a, 0.0, 0.0], axis), perm([0.0, b, 0.0], axis));
+                (v, [0.0; 3], (c, ex, ey, [0.0; 3]))
+            }
+        };
+        let n = [hostile_coord(&mut r), hostile_coord(&mut r), 1.0];
+        for _ in 0..4 {
+            let u = unit2(&mut r);
+            assert_total_tri(v, p, u);
+            assert_total_rect(c, ex, ey, rp, u);
+            let (b, pdf) = spherical::triangle_cosine(v, p, n, u);
+            let s = b[0] as f64 + b[1] as f64 + b[2] as f64;
+            assert!(
+                b.iter().all(|x| (0.0..=1.0).contains(x)) && (s - 1.0).abs() <= 3e-7,
+                "{v:?} {p:?} {n:?} {u:?}: {b:?}"
+            );
+            assert!((0.0..f32::MAX).contains(&pdf), "{v:?} {p:?} {n:?}: {pdf}");
+            let (st, pdf) = spherical::rectangle_cosine(c, ex, ey, rp, n, u);
+            assert!(st.iter().all(|x| (0.0..=1.0).contains(x)), "{st:?}");
+            assert!(
+                (0.0..f32::MAX).contains(&pdf),
+                "{c:?} {ex:?} {ey:?} {rp:?} {n:?}: {pdf}"
+            );
+        }
     }
 }

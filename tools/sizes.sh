@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Code + data size of warpcore per feature set: builds examples/wasm-demo as a
+# Code + data size of warpcore per feature set: builds examples/wasm-demo (`--profile wasm`) as a
 # wasm32-unknown-unknown cdylib (opt-level 3, LTO, panic=abort, stripped) exporting exactly one
 # warp (a "probe" feature), and prints a Markdown table of the .wasm sizes in bytes.
 #
@@ -12,7 +12,7 @@ set -euo pipefail
 mode=${1:-print}
 case "$mode" in print|--check|--write) ;; *) echo "usage: $0 [--check|--write]" >&2; exit 2 ;; esac
 page="$(cd "$(dirname "$0")/.." && pwd)/docs/determinism.md"
-cd "$(dirname "$0")/../examples/wasm-demo"
+cd "$(dirname "$0")/.."
 # 1234567 -> 1,234,567
 commas() { sed ':a;s/\B[0-9]\{3\}\>/,&/;ta' <<< "$1"; }
 # feature:label:table data in the module
@@ -36,10 +36,10 @@ probes=(
 table=$'| build | .wasm bytes | of which table data |\n|---|---|---|'
 for entry in "${probes[@]}"; do
   feature=${entry%%:*}; rest=${entry#*:}; label=${rest%:*}; data=${rest##*:}
-  cargo build -q --release --lib --target wasm32-unknown-unknown --no-default-features --features "$feature"
-  bytes=$(stat -c %s target/wasm32-unknown-unknown/release/warpcore_demo.wasm)
+  cargo build -q --profile wasm -p warpcore-demo --lib --target wasm32-unknown-unknown --no-default-features --features "$feature"
+  bytes=$(stat -c %s target/wasm32-unknown-unknown/wasm/warpcore_demo.wasm)
   table+=$'\n'"| $label | $(commas "$bytes") | $data |"
-  cp target/wasm32-unknown-unknown/release/warpcore_demo.wasm "target/$feature.wasm"
+  cp target/wasm32-unknown-unknown/wasm/warpcore_demo.wasm "target/wasm32-unknown-unknown/wasm/$feature.wasm"
 done
 printf '%s\n' "$table"
 

@@ -13,6 +13,9 @@
 //!   function's documented outcomes, and the test fails on a function or outcome without its
 //!   row.
 //! * The header also compiles as C++ (`c++ -std=c++11 -pedantic`), warnings as errors.
+//! * Every ```c block of README.md and docs/*.md compiles with exactly the build line its page
+//!   prints (named by a `<!-- docs-test: cc ... -->` marker before the block), warnings as
+//!   errors, and runs.
 //!
 //! Environment: `WARPCORE_CFLAGS` adds compiler flags to every C and C++ compile and link
 //! (CI: `-fsanitize=address,undefined -fno-sanitize-recover=all`, and `-m32`);
@@ -30,13 +33,10 @@
     feature = "spherical"
 ))]
 
-#[path = "../../examples/wasm-demo/src/fingerprint.rs"]
-mod fingerprint;
-
-use fingerprint::{Hasher, N, input, unit};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use warpcore_registry::fingerprint::{self, Hasher, N, input, unit};
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
@@ -327,90 +327,152 @@ fn cpp_example_renders_and_checks_itself() {
     assert_eq!(bytes.len(), 14 + 32 * 32 * 3 * 4);
 }
 
-/// The README's C example compiles (strict C99) and runs.
-#[test]
-fn readme_c_example_runs() {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let code = readme
-        .split("```c\n")
-        .nth(1)
-        .and_then(|rest| rest.split("```").next())
-        .expect("a ```c block in the README");
-    let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capi-c");
-    std::fs::create_dir_all(&out_dir).unwrap();
-    let (src, exe) = (out_dir.join("readme.c"), out_dir.join("readme"));
-    std::fs::write(&src, code).unwrap();
-    let cc = compiler("CC", "cc");
-    let status = Command::new(&cc)
-        .args(["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"])
-        .args(extra_flags())
-        .arg("-I")
-        .arg(root().join("include"))
-        .arg(&src)
-        .arg(staticlib())
-        .args(["-lpthread", "-ldl", "-lm", "-lrt", "-lutil"])
-        .arg("-o")
-        .arg(&exe)
-        .status()
-        .unwrap();
-    assert!(status.success(), "the README's C example does not compile");
-    let run = Command::new(&exe).output().unwrap();
-    let stdout = String::from_utf8_lossy(&run.stdout);
-    assert!(run.status.success(), "{run:?}");
-    assert!(stdout.starts_with("64 samples, first ("), "{stdout}");
+/// The marker that precedes every ```c block of the documentation: the build line the page
+/// prints for it, e.g. `<!-- docs-test: cc -std=c99 -Iinclude app.c
+/// target/release/libwarpcore_capi.a -o app -->`.
+const DOCS_MARKER: &str = "<!-- docs-test: ";
+
+/// A ```c block of a Markdown page: its line, its build line (from the marker) and its code.
+struct CBlock {
+    line: usize,
+    command: Option<String>,
+    code: String,
 }
 
-/// The README's environment-map quick start in C compiles (strict C99), loads
-/// `tests/data/envmaps/park.pfm` (run from the repository root, as the README's paths
-/// assume) and passes its own checks: its estimate of the map's integral within 2% of the sum
-/// over the texels of positive weight in every channel, most samples in the upper hemisphere.
-/// Without the row flip or with an unclamped reference it exits with 1.
+fn c_blocks(markdown: &str) -> Vec<CBlock> {
+    let lines: Vec<&str> = markdown.lines().collect();
+    let mut blocks = Vec::new();
+    let mut i = 0;
+    while i < lines.len() {
+        if lines[i].trim_end() != "```c" {
+            i += 1;
+            continue;
+        }
+        let command = i
+            .checked_sub(1)
+            .and_then(|j| lines[j].trim().strip_prefix(DOCS_MARKER))
+            .and_then(|rest| rest.strip_suffix("-->"))
+            .map(|c| c.trim().to_string());
+        let start = i;
+        let mut code = String::new();
+        i += 1;
+        while i < lines.len() && lines[i].trim_end() != "```" {
+            code.push_str(lines[i]);
+            code.push('\n');
+            i += 1;
+        }
+        assert!(
+            i < lines.len(),
+            "an unclosed ```c block at line {}",
+            start + 1
+        );
+        blocks.push(CBlock {
+            line: start + 1,
+            command,
+            code,
+        });
+        i += 1;
+    }
+    blocks
+}
+
+/// Every ```c block of README.md and docs/*.md is a whole program, compiled with exactly the
+/// build line its page prints (named by the marker before the block, and printed verbatim
+/// elsewhere on the page), plus `-Wall -Wextra -pedantic -Werror`, then run from the
+/// repository root: it must exit with 0. In the printed line `app.c` becomes the block,
+/// `-Iinclude` this checkout's `include/`, `target/release/libwarpcore_capi.a` the static
+/// library of this test run (a debug one also gets the `std` libraries the page documents
+/// for debug builds) and `app` the executable; `cc` is `$CC` when set. (`-std=c99` with C11's
+/// `aligned_alloc` was an implicit declaration and a crash at run time: the flags the page
+/// prints are the ones that must work.)
 #[test]
-fn readme_envmap_c_quick_start_runs() {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let code = readme
+fn docs_c_blocks_compile_with_their_printed_build_line_and_run() {
+    let mut pages = vec![root().join("README.md")];
+    let mut docs: Vec<PathBuf> = std::fs::read_dir(root().join("docs"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    docs.sort();
+    pages.extend(docs);
+    let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capi-docs");
+    std::fs::create_dir_all(&out_dir).unwrap();
+    let lib = staticlib();
+    let release = lib
+        .parent()
+        .and_then(Path::file_name)
+        .is_some_and(|n| n == "release");
+    let mut compiled = 0;
+    for page in &pages {
+        let markdown = std::fs::read_to_string(page).unwrap();
+        let name = page.strip_prefix(root()).unwrap().display().to_string();
+        for block in c_blocks(&markdown) {
+            let at = format!("{name}:{}", block.line);
+            let command = block.command.unwrap_or_else(|| {
+                panic!("{at}: a ```c block without its build line (`{DOCS_MARKER}cc ... -->` on the line before)")
+            });
+            // The page prints this line (outside the marker).
+            let printed = markdown
+                .lines()
+                .filter(|l| !l.trim().starts_with(DOCS_MARKER))
+                .any(|l| l.contains(&command));
+            assert!(
+                printed,
+                "{at}: the build line `{command}` is not printed on the page"
+            );
+            let words: Vec<&str> = command.split_whitespace().collect();
+            assert_eq!(words[0], "cc", "{at}: a build line that is not `cc ...`");
+            for needed in [
+                "app.c",
+                "-Iinclude",
+                "target/release/libwarpcore_capi.a",
+                "app",
+            ] {
+                assert!(
+                    words.contains(&needed),
+                    "{at}: `{command}` lacks `{needed}`"
+                );
+            }
+            let stem = format!("{}_{}", name.replace(['/', '.'], "_"), block.line);
+            let (src, exe) = (out_dir.join(format!("{stem}.c")), out_dir.join(&stem));
+            std::fs::write(&src, &block.code).unwrap();
+            let cc = compiler("CC", "cc");
+            let mut cmd = Command::new(&cc);
+            for word in &words[1..] {
+                match *word {
+                    "app.c" => cmd.arg(&src),
+                    "-Iinclude" => cmd.arg(format!("-I{}", root().join("include").display())),
+                    "target/release/libwarpcore_capi.a" => cmd.arg(&lib),
+                    "app" => cmd.arg(&exe),
+                    other => cmd.arg(other),
+                };
+            }
+            cmd.args(["-Wall", "-Wextra", "-pedantic", "-Werror"]);
+            cmd.args(extra_flags());
+            if !release {
+                cmd.args(["-lpthread", "-ldl", "-lm", "-lrt", "-lutil"]);
+            }
+            let status = cmd
+                .status()
+                .unwrap_or_else(|e| panic!("cannot run the C compiler `{cc}`: {e}"));
+            assert!(status.success(), "{at}: `{command}` fails on the block");
+            let run = Command::new(&exe).current_dir(root()).output().unwrap();
+            let stdout = String::from_utf8_lossy(&run.stdout);
+            eprintln!("{at}: {stdout}{}", String::from_utf8_lossy(&run.stderr));
+            assert!(run.status.success(), "{at}: the program failed: {run:?}");
+            compiled += 1;
+        }
+    }
+    // docs/quickstart.md: the quick start and the environment-map quick start (which reads
+    // park.pfm and flips its rows); docs/capi.md: the storage round trip and the path tracer.
+    assert!(compiled >= 4, "{compiled} C blocks");
+    let quickstart = std::fs::read_to_string(root().join("docs/quickstart.md")).unwrap();
+    let envmap = quickstart
         .split("## Environment maps: a quick start")
         .nth(1)
         .and_then(|section| section.split("```c\n").nth(1))
-        .and_then(|rest| rest.split("```").next())
-        .expect("a ```c block in the README's environment-map quick start");
-    assert!(code.contains("park.pfm") && code.contains("h - 1 - r"));
-    let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capi-c");
-    std::fs::create_dir_all(&out_dir).unwrap();
-    let (src, exe) = (
-        out_dir.join("readme_envmap.c"),
-        out_dir.join("readme_envmap"),
-    );
-    std::fs::write(&src, code).unwrap();
-    let cc = compiler("CC", "cc");
-    let status = Command::new(&cc)
-        .args([
-            "-std=c99",
-            "-O2",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-pedantic",
-        ])
-        .args(extra_flags())
-        .arg("-I")
-        .arg(root().join("include"))
-        .arg(&src)
-        .arg(staticlib())
-        .args(["-lpthread", "-ldl", "-lm", "-lrt", "-lutil"])
-        .arg("-o")
-        .arg(&exe)
-        .status()
-        .unwrap();
-    assert!(
-        status.success(),
-        "the README's environment-map C quick start does not compile"
-    );
-    let run = Command::new(&exe).current_dir(root()).output().unwrap();
-    let stdout = String::from_utf8_lossy(&run.stdout);
-    eprintln!("{stdout}");
-    assert!(run.status.success(), "{run:?}");
-    assert!(stdout.starts_with("estimate "), "{stdout}");
+        .expect("a ```c block in docs/quickstart.md's environment-map quick start");
+    assert!(envmap.contains("park.pfm") && envmap.contains("h - 1 - r"));
 }
 
 /// Every C function x every documented outcome: the rows `hostile.c` must reach. Outcomes of

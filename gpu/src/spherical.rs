@@ -1,5 +1,5 @@
 //! Test points of the solid-angle lights of `shaders/warpcore.wgsl` (`wc_spherical_*`): the
-//! lights of the golden fingerprint (`examples/wasm-demo/src/fingerprint.rs`, ordinary and
+//! lights of the golden fingerprint (`warpcore_registry::fingerprint`, ordinary and
 //! extreme) and random lights of every kind (ordinary, tiny and far, below the area fallback,
 //! grazing, nearly `2 pi`, degenerate, huge and tiny coordinates, random bit patterns), times
 //! grids, random points and edge values of the sample square (or of barycentrics, `(s, t)`
@@ -41,55 +41,11 @@ impl Layout {
 const I: f32 = f32::INFINITY;
 const NAN: f32 = f32::NAN;
 
-/// `SPHERICAL_TRIANGLES` of `examples/wasm-demo/src/fingerprint.rs` (`v0, v1, v2, p`),
-/// copied: ordinary, nearly `2 pi`, the other winding, a sliver, collinear, below
-/// `AREA_FALLBACK_SR`, `p` on the plane (inside, outside), grazing, far away, large and far,
-/// `p` at a vertex, coordinates near `1e30` and `1e-30`, NaN, inf, differences past `2^127`.
-#[rustfmt::skip]
-pub const FINGERPRINT_TRIANGLES: [[f32; 12]; 17] = [
-    [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.1, 0.2, 0.0],
-    [-1.0, -1.0, 0.05, 2.0, -1.0, 0.05, -1.0, 2.0, 0.05, 0.0, 0.0, 0.0],
-    [0.3, -2.0, 0.5, -0.7, 0.4, 1.9, 1.5, 0.8, -0.3, -0.2, 0.1, 0.05],
-    [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0, 1e-5, 1.0, 0.3, 0.4, 0.0],
-    [0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 3.0, 3.0, 1.0, 0.0, 0.0, 0.0],
-    [0.0, 0.0, 1.0, 1e-4, 0.0, 1.0, 0.0, 1e-4, 1.0, 0.0, 0.0, 0.0],
-    [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.2, 0.2, 1.0],
-    [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 5.0, -3.0, 1.0],
-    [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.2, 0.2, 0.999_999],
-    [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 3e5, -2e5, 1e6],
-    [-1e5, 0.0, 1e6, 1e5, -1e5, 1e6, 0.0, 1e5, 1e6, 0.0, 0.0, 0.0],
-    [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 1.0, 0.0, 1.0],
-    [0.0, 0.0, 1e30, 1e30, 0.0, 1e30, 0.0, 1e30, 1e30, 1e29, 2e29, 0.0],
-    [0.0, 0.0, 1e-30, 1e-30, 0.0, 1e-30, 0.0, 1e-30, 1e-30, 1e-31, 2e-31, 0.0],
-    [NAN, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0],
-    [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, I, 0.0],
-    [-3e38, 0.0, 1.0, 3e38, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0],
-];
-
-/// `SPHERICAL_RECTANGLES` of `examples/wasm-demo/src/fingerprint.rs` (`corner, ex, ey, p`),
-/// copied: ordinary, tilted, nearly `2 pi`, a sliver, `ey = 0`, below `AREA_FALLBACK_SR`,
-/// `p` on the plane (inside, outside), grazing, far away, large and far, `ey` not orthogonal
-/// to `ex` with `p` behind, `p` at the corner, coordinates near `1e30` and `1e-30`, NaN, -inf.
-#[rustfmt::skip]
-pub const FINGERPRINT_RECTANGLES: [[f32; 12]; 17] = [
-    [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.1, 0.2, 0.0],
-    [0.3, -0.2, 0.7, 0.6, 0.8, 0.0, 0.0, 0.0, 1.5, 0.0, 0.0, 0.0],
-    [-50.0, -50.0, 0.01, 100.0, 0.0, 0.0, 0.0, 100.0, 0.0, 0.0, 0.0, 0.0],
-    [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1e-6, 0.0, 0.0, 0.0, 0.0],
-    [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [0.0, 0.0, 1.0, 5e-5, 0.0, 0.0, 0.0, 5e-5, 0.0, 0.0, 0.0, 0.0],
-    [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
-    [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3.0, 0.5, 1.0],
-    [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.1, 0.1, 0.999_999],
-    [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 2e5, -1e5, -1e6],
-    [-1e5, -1e5, 1e6, 2e5, 0.0, 0.0, 0.0, 2e5, 0.0, 0.0, 0.0, 0.0],
-    [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.3, 1.0, 0.0, 0.2, -0.1, 2.5],
-    [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, -0.5, -0.5, 1.0],
-    [-5e29, -5e29, 1e30, 1e30, 0.0, 0.0, 0.0, 1e30, 0.0, 1e29, 0.0, 0.0],
-    [-5e-31, -5e-31, 1e-30, 1e-30, 0.0, 0.0, 0.0, 1e-30, 0.0, 0.0, 0.0, 0.0],
-    [-0.5, -0.5, 1.0, 1.0, NAN, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
-    [-I, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
-];
+/// The lights of the golden fingerprint (`warpcore_registry::fingerprint`): triangles
+/// `v0, v1, v2, p` and rectangles `corner, ex, ey, p`, ordinary and extreme.
+pub use warpcore_registry::fingerprint::{
+    SPHERICAL_RECTANGLES as FINGERPRINT_RECTANGLES, SPHERICAL_TRIANGLES as FINGERPRINT_TRIANGLES,
+};
 
 type V3 = [f32; 3];
 
@@ -384,57 +340,4 @@ pub fn typical(layout: Layout, u: [f32; 2], rng: &mut Rng) -> Vec<f32> {
         }
     }
     w
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The rows of the `[f32; 12]` array named `name` in the fingerprint source (`I` and `NAN`
-    /// spelled as there).
-    fn rows(src: &str, name: &str) -> Vec<Vec<f32>> {
-        let start = src
-            .find(&format!("pub const {name}"))
-            .expect("the array is there");
-        src[start..]
-            .lines()
-            .skip_while(|l| !l.trim_start().starts_with("let "))
-            .skip(1)
-            .take_while(|l| l.trim_start().starts_with('['))
-            .map(|l| {
-                l.trim()
-                    .trim_start_matches('[')
-                    .trim_end_matches(',')
-                    .trim_end_matches(']')
-                    .split(',')
-                    .map(|x| match x.trim() {
-                        "I" => I,
-                        "-I" => -I,
-                        "NAN" => NAN,
-                        x => x.replace('_', "").parse::<f32>().expect("a number"),
-                    })
-                    .collect()
-            })
-            .collect()
-    }
-
-    /// The copies equal the golden fingerprint's lights (bit for bit, NaN as NaN).
-    #[test]
-    fn the_lights_are_the_fingerprints() {
-        let src = include_str!("../../examples/wasm-demo/src/fingerprint.rs");
-        for (name, ours) in [
-            ("SPHERICAL_TRIANGLES", &FINGERPRINT_TRIANGLES),
-            ("SPHERICAL_RECTANGLES", &FINGERPRINT_RECTANGLES),
-        ] {
-            let theirs = rows(src, name);
-            assert_eq!(theirs.len(), ours.len(), "{name}");
-            for (a, b) in theirs.iter().zip(ours.iter()) {
-                let same = a.len() == 12
-                    && a.iter()
-                        .zip(b)
-                        .all(|(x, y)| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()));
-                assert!(same, "{name}: {a:?} != {b:?}");
-            }
-        }
-    }
 }

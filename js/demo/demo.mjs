@@ -34,7 +34,7 @@ const demo = (window.demo = {
 });
 let gpu = null; // { device, adapter } once WebGPU is open
 
-// ---- the report's palette (examples/report/strata.rs): golden-angle hues ----
+// ---- the report's palette (report/src/strata.rs): golden-angle hues ----
 
 function hsv(h, s, v) {
   const i = Math.floor(h * 6);

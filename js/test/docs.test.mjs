@@ -47,7 +47,7 @@ test('the extractor finds blocks and markers (a wrong extractor would pass every
     { line: 6, code: 'b();\n', fragment: true },
   ]);
   const all = pages.flatMap((p) => jsBlocks(readFileSync(join(root, p), 'utf8')));
-  assert.ok(jsBlocks(readFileSync(join(root, 'README.md'), 'utf8')).length >= 2, 'README.md has its two JS quick starts');
+  assert.ok(jsBlocks(readFileSync(join(root, 'docs/quickstart.md'), 'utf8')).length >= 2, 'docs/quickstart.md has its two JS quick starts');
   assert.ok(jsBlocks(readFileSync(join(root, 'docs/javascript.md'), 'utf8')).length >= 3, 'docs/javascript.md has its examples');
   assert.ok(all.filter((b) => !b.fragment).length >= 5, 'most blocks run');
 });

@@ -1,5 +1,5 @@
 // The determinism fingerprint computed through the JavaScript API: the same FNV-1a 64 hash
-// over the same inputs as examples/wasm-demo/src/fingerprint.rs (and its C port,
+// over the same inputs as registry/src/fingerprint.rs (and its C port,
 // capi/tests/c/fingerprint.c), every scalar and x8 call replaced by a JS call on 1 or 8
 // points and every slice call by one JS call writing into an `out` subarray at an odd offset.
 // It must equal tests/golden/fingerprint.txt, which the Rust tests check against the crate.
@@ -350,7 +350,7 @@ const ENVMAP = 'tests/data/envmaps/park.pfm';
 function rustExtras() {
   const out = execFileSync(
     'cargo',
-    ['run', '-q', '--release', '--manifest-path', 'examples/wasm-demo/Cargo.toml', '--bin', 'fingerprint', '--', '--extras', ENVMAP],
+    ['run', '-q', '--release', '-p', 'warpcore-demo', '--bin', 'fingerprint', '--', '--extras', ENVMAP],
     { cwd: root, encoding: 'utf8', stdio: ['ignore', 'pipe', 'inherit'] },
   );
   return Object.fromEntries(out.trim().split('\n').map((l) => l.split(' ')));

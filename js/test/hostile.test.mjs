@@ -3,7 +3,10 @@
 // typed arrays from another realm or over detached buffers, objects whose `toString`,
 // `valueOf` or `Symbol.toPrimitive` throw, shared and resizable buffers, and `out` arrays
 // aliasing the inputs; and every call runs with the built-in prototypes the module could
-// touch patched to record any use. The test asserts:
+// touch patched to record any use (array iterators, accessors planted on the indices of
+// Array.prototype and Object.prototype, every Math/Number/Object/Reflect/%TypedArray%
+// function). Every exported function and every EnvMap and SamplerPath method has cases (the
+// last tests enumerate the exports and fail on one without). The test asserts:
 //
 // * the exact error type (TypeError or RangeError, never a user's exception, never a wasm
 //   trap), or for valid arguments the same result as a plain call;
@@ -27,7 +30,10 @@ WebAssembly.instantiate = async (...args) => {
   memories.push((r instanceof WebAssembly.Instance ? r : r.instance).exports.memory);
   return r;
 };
-const { load } = await import('../warpcore.mjs');
+const warpcore = await import('../warpcore.mjs');
+const { load } = warpcore;
+/** Exported functions, classes' methods and getters that a hostile case exercised. */
+const COVERED = new Set();
 const wasmUrl = process.env.WARPCORE_WASM ? pathToFileURL(process.env.WARPCORE_WASM) : new URL('../warpcore.wasm', import.meta.url);
 const wc = await load(wasmUrl);
 WebAssembly.instantiate = realInstantiate;
@@ -39,6 +45,16 @@ const taBuffer = Object.getOwnPropertyDescriptor(TypedArray, 'buffer').get;
 const dvBuffer = Object.getOwnPropertyDescriptor(DataView.prototype, 'buffer').get;
 const memoryBuffer = Object.getOwnPropertyDescriptor(WebAssembly.Memory.prototype, 'buffer').get;
 const { TypeError: TE, RangeError: RE } = globalThis;
+// The test's own machinery runs while built-ins are patched: it uses these, captured now, and
+// never an iterator or an index write on an ordinary array.
+const rApply = Reflect.apply;
+const rConstruct = Reflect.construct;
+const rDefine = Reflect.defineProperty;
+const rDelete = Reflect.deleteProperty;
+const ArrayIteratorPrototype = Object.getPrototypeOf([][Symbol.iterator]());
+const IteratorPrototype = Object.getPrototypeOf(ArrayIteratorPrototype);
+/** Appends `v` to the array `a` by definition (no setter on Array.prototype runs). */
+const append = (a, v) => rDefine(a, a.length, { value: v, writable: true, enumerable: true, configurable: true });
 
 // Every buffer the memory ever had (it is replaced when it grows).
 const wasmBuffers = new WeakSet();
@@ -69,7 +85,7 @@ let recording = false; // re-entrancy guard: recording must not record itself
 const record = (what, self, args) => {
   if (!active || recording) return;
   recording = true;
-  ran[ran.length] = [what, self, args];
+  append(ran, { __proto__: null, what, self, args });
   recording = false;
 };
 const SPIES = []; // [object, key, original descriptor, spy descriptor]
@@ -83,7 +99,7 @@ function spyOn(o, key, what) {
       ...d,
       value: function (...args) {
         record(what, this, args);
-        return new.target ? Reflect.construct(f, args, new.target) : Reflect.apply(f, this, args);
+        return new.target ? rConstruct(f, args, new.target) : rApply(f, this, args);
       },
     };
   } else if ('value' in d) {
@@ -105,11 +121,16 @@ function spyOn(o, key, what) {
       ...d,
       get() {
         record(`get ${what}`, this, []);
-        return g && Reflect.apply(g, this, []);
+        return g && rApply(g, this, []);
       },
     };
   }
   SPIES.push([o, key, d, spy]);
+}
+/** Accessors planted where no property was (index keys on Array.prototype and Object.prototype). */
+function plant(o, key, what) {
+  if (Object.getOwnPropertyDescriptor(o, key)) return;
+  SPIES.push([o, key, undefined, { configurable: true, get() { record(`get ${what}`, this, []); }, set(v) { record(`set ${what}`, this, [v]); } }]); // prettier-ignore
 }
 for (const key of Reflect.ownKeys(TypedArray)) spyOn(TypedArray, key, `%TypedArray%.prototype.${String(key)}`);
 for (const T of [Float32Array, Uint32Array, Int32Array, Uint8Array, Float64Array]) {
@@ -121,8 +142,21 @@ for (const key of ['buffer', 'grow']) spyOn(WebAssembly.Memory.prototype, key, `
 for (const key of ['byteLength', 'slice', 'resize']) spyOn(ArrayBuffer.prototype, key, `ArrayBuffer.prototype.${key}`);
 spyOn(ArrayBuffer, 'isView', 'ArrayBuffer.isView');
 for (const key of ['getPrototypeOf', 'keys', 'assign', 'defineProperty', 'freeze', 'entries']) spyOn(Object, key, `Object.${key}`);
-for (const key of ['ceil', 'max', 'min', 'floor']) spyOn(Math, key, `Math.${key}`);
-spyOn(Number, 'isInteger', 'Number.isInteger');
+// Iterators (destructuring, for-of and spread run these), every Math, Number, Object, Reflect
+// and Array function, the String and Number methods, and accessors planted on the indices of
+// Array.prototype and Object.prototype (an index write or a read past an array's end runs them).
+for (const key of Reflect.ownKeys(ArrayIteratorPrototype)) spyOn(ArrayIteratorPrototype, key, `%ArrayIteratorPrototype%.${String(key)}`);
+for (const key of Reflect.ownKeys(IteratorPrototype)) if (key !== 'constructor') spyOn(IteratorPrototype, key, `%IteratorPrototype%.${String(key)}`);
+for (const [o, name] of [[Math, 'Math'], [Number, 'Number'], [Object, 'Object'], [Reflect, 'Reflect'], [Array, 'Array'], [String.prototype, 'String.prototype'], [Number.prototype, 'Number.prototype'], [Uint8Array, 'Uint8Array'], [Float32Array, 'Float32Array'], [Uint32Array, 'Uint32Array'], [Int32Array, 'Int32Array'], [TypedArray.constructor, '%TypedArray%']]) {
+  for (const key of Reflect.ownKeys(o)) {
+    if (key === 'prototype' || key === 'length' || key === 'name' || key === 'constructor' || SPIES.some((s) => s[0] === o && s[1] === key)) continue;
+    spyOn(o, key, `${name}.${String(key)}`);
+  }
+}
+for (let i = 0; i < 16; i++) {
+  plant(Array.prototype, String(i), `Array.prototype[${i}]`);
+  plant(Object.prototype, String(i), `Object.prototype[${i}]`);
+}
 for (const key of ['register', 'unregister']) spyOn(FinalizationRegistry.prototype, key, `FinalizationRegistry.prototype.${key}`);
 for (const key of ['toString', 'valueOf']) spyOn(Object.prototype, key, `Object.prototype.${key}`);
 spyOn(Number.prototype, 'toString', 'Number.prototype.toString');
@@ -134,15 +168,15 @@ for (const [o, key] of [[Object.prototype, 'code'], [Error.prototype, 'code'], [
   SPIES.push([o, key, undefined, { configurable: true, set(v) { record(`set ${key}`, this, [v]); } }]); // prettier-ignore
 }
 function arm() {
-  for (let i = 0; i < SPIES.length; i++) Reflect.defineProperty(SPIES[i][0], SPIES[i][1], SPIES[i][3]);
+  for (let i = 0; i < SPIES.length; i++) rDefine(SPIES[i][0], SPIES[i][1], SPIES[i][3]);
   active = true;
 }
 function disarm() {
   active = false;
   for (let i = SPIES.length - 1; i >= 0; i--) {
-    const [o, key, d] = SPIES[i];
-    if (d) Reflect.defineProperty(o, key, d);
-    else Reflect.deleteProperty(o, key);
+    const s = SPIES[i];
+    if (s[2]) rDefine(s[0], s[1], s[2]);
+    else rDelete(s[0], s[1]);
   }
 }
 
@@ -162,7 +196,7 @@ function call(f) {
     disarm();
   }
   noteBuffer();
-  assert.deepEqual(ran.map(([what]) => what), [], 'user code ran during the call');
+  assert.deepEqual(ran.map((r) => r.what), [], 'user code ran during the call');
   assert.ok(!escapes(result), 'a wasm memory view in the result');
   assert.ok(!escapes(error), 'a wasm memory view in the error');
   if (error !== undefined) assert.ok(!(error instanceof WebAssembly.RuntimeError), `a wasm trap: ${error.message}`);
@@ -191,6 +225,17 @@ const STORAGE = (() => {
 
 const vec = (T, d, n = 3) => ({ T, d, good: () => new T(d * n).map((_, i) => (i % 7) * 0.125) });
 const NUM = (v) => ({ num: true, good: () => v });
+const STR = (v) => ({ str: true, good: () => v });
+const FIXED = (T, values) => ({ T, d: values.length, good: () => new T(values) });
+// Lights by solid angle: v0 v1 v2 p (triangle), corner ex ey p (rectangle), and n (cosine).
+const TRI = [0, 0, 1, 1, 0, 1, 0, 1, 1, 0.2, 0.2, 0];
+const RECT = [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 0.1, 0, 0];
+const N = [0, 0.6, 0.8];
+// A sampler's domain path: keys, or (below) the SamplerPath of the same domains.
+const KEYS = [4, 2];
+const PATH = { T: Uint32Array, d: 1, path: true, good: () => new Uint32Array(KEYS) };
+const PIXEL = FIXED(Uint32Array, [3, 5]);
+const WEIGHTS = { T: Float32Array, d: 6, good: () => new Float32Array([1, 2, 0, 3, 1, 1]) };
 const SPEC = {
   diskPolar: [vec(Float32Array, 2)],
   diskPolarInverse: [vec(Float32Array, 2)],
@@ -233,8 +278,24 @@ const SPEC = {
   envmapEquirectPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
   envmapEquirectSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, NUM(3), NUM(2)],
   envmapEquirectToEqualArea: [{ T: Float32Array, d: 18, good: () => new Float32Array(18).fill(0.5) }, NUM(3), NUM(2), NUM(3), NUM(4), NUM(2)],
-  envmapHierarchical: [{ T: Float32Array, d: 6, good: () => new Float32Array([1, 2, 0, 3, 1, 1]) }, NUM(3), NUM(2)],
-  envmapMarginalConditional: [{ T: Float32Array, d: 6, good: () => new Float32Array([1, 2, 0, 3, 1, 1]) }, NUM(3), NUM(2)],
+  envmapHierarchical: [WEIGHTS, NUM(3), NUM(2)],
+  envmapMarginalConditional: [WEIGHTS, NUM(3), NUM(2)],
+  envmapHierarchicalCompensated: [WEIGHTS, NUM(3), NUM(2), STR('uniform'), NUM(0.5)],
+  envmapMarginalConditionalCompensated: [WEIGHTS, NUM(3), NUM(2), STR('equirect'), NUM(0.25)],
+  sphericalTriangle: [FIXED(Float32Array, TRI), vec(Float32Array, 2)],
+  sphericalTriangleInverse: [FIXED(Float32Array, TRI), FIXED(Float32Array, [0.2, 0.3, 0.5, 1, 0, 0])],
+  sphericalRectangle: [FIXED(Float32Array, RECT), vec(Float32Array, 2)],
+  sphericalRectangleInverse: [FIXED(Float32Array, RECT), vec(Float32Array, 2)],
+  sphericalTriangleCosine: [FIXED(Float32Array, [...TRI, ...N]), vec(Float32Array, 2)],
+  sphericalRectangleCosine: [FIXED(Float32Array, [...RECT, ...N]), vec(Float32Array, 2)],
+  sphericalTriangleSolidAngle: [FIXED(Float32Array, TRI)],
+  sphericalRectangleSolidAngle: [FIXED(Float32Array, RECT)],
+  samplerPath: [],
+  samplerDraw: [STR('sobol'), PIXEL, NUM(1), NUM(7), NUM(9), PATH, NUM(4)],
+  samplerDrawU32: [STR('pmj02bn'), PIXEL, NUM(1), NUM(7), NUM(9), PATH, NUM(3)],
+  samplerRnd: [STR('blueSobol'), PIXEL, NUM(1), NUM(7), NUM(9), PATH, NUM(2)],
+  samplerDrawSlice: [STR('bluePmj02bn'), PIXEL, NUM(1), NUM(7), NUM(5), NUM(9), PATH, NUM(4)],
+  memoryStats: [],
   // Storage words: any ArrayBufferView of bytes is accepted (a subclass or another realm's
   // Uint32Array as its bytes, read with the intrinsic getters only; a DataView of zeros is a
   // RangeError: not a storage).
@@ -242,11 +303,12 @@ const SPEC = {
 };
 // Functions whose last argument is an optional `out` of this type and length (for the good
 // arguments).
-const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapFromStorage', 'envmapLatlongSolidAngleWeights', 'envmapLatlongToEqualArea', 'envmapEquirectSolidAngleWeights', 'envmapEquirectToEqualArea']);
+const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapHierarchicalCompensated', 'envmapMarginalConditionalCompensated', 'envmapFromStorage', 'envmapLatlongSolidAngleWeights', 'envmapLatlongToEqualArea', 'envmapEquirectSolidAngleWeights', 'envmapEquirectToEqualArea', 'sphericalTriangleSolidAngle', 'sphericalRectangleSolidAngle', 'samplerPath', 'memoryStats']);
 const OUT = {};
 for (const [name, specs] of Object.entries(SPEC)) {
   if (NO_OUT.has(name)) continue;
   const r = wc[name](...specs.map((s) => s.good()));
+  assert.ok(ArrayBuffer.isView(r), `${name} returns a typed array (else: add it to NO_OUT)`);
   OUT[name] = { T: { Float32Array, Uint32Array, Int32Array }[r[Symbol.toStringTag]], length: r.length, at: specs.length };
 }
 
@@ -349,6 +411,43 @@ function hostileNumbers() {
   ];
 }
 
+// Hostile stand-ins for a string (a pattern, a compensation): only primitives are strings.
+function hostileStrings(good) {
+  const log = (what) => () => {
+    record(`user ${what}`, null, []);
+    throw new Error(what);
+  };
+  return [
+    ['String object', Object(good), TE],
+    ['toString', { toString: log('toString') }, TE],
+    ['Symbol.toPrimitive', { [Symbol.toPrimitive]: log('toPrimitive') }, TE],
+    ['Proxy', new Proxy({}, { get: log('Proxy get'), has: log('Proxy has'), getPrototypeOf: log('Proxy getPrototypeOf') }), TE],
+    ['symbol', Symbol(good), TE],
+    ['number', 1, TE],
+    ['unknown name', 'toString', RE],
+    ['an inherited name', '__proto__', RE],
+  ];
+}
+
+// Hostile stand-ins for a domain path: the keys' typed-array stand-ins, plus a SamplerPath of
+// the same domains (same result) and things that look like one.
+function hostilePaths() {
+  const real = wc.samplerPath().domain(KEYS[0]).domain(KEYS[1]);
+  const log = (what) => (...a) => {
+    record(`user ${what}`, null, a);
+    return Reflect[what](...a);
+  };
+  const traps = {};
+  for (const trap of ['get', 'getPrototypeOf', 'has', 'ownKeys', 'getOwnPropertyDescriptor']) traps[trap] = log(trap);
+  return [
+    ...hostileArrays(Uint32Array, new Uint32Array(KEYS)),
+    ['SamplerPath', real, null],
+    ['an object on SamplerPath.prototype', Object.create(Object.getPrototypeOf(real)), TE],
+    ['Proxy of a SamplerPath', new Proxy(real, traps), TE],
+    ['Int32Array of keys', new Int32Array(KEYS), TE],
+  ];
+}
+
 test('hostile arguments: exact errors, no user code, no wasm memory view', (t) => {
   const reserved = wc.memoryStats().reserved;
   const kept = wc.envmapHierarchical(new Float32Array([1, 2, 0, 3, 1, 1, 4, 0]), 4, 2);
@@ -357,22 +456,22 @@ test('hostile arguments: exact errors, no user code, no wasm memory view', (t) =
   for (const [name, specs] of Object.entries(SPEC)) {
     const good = () => specs.map((s) => s.good());
     const goodArgs = good();
-    const want = call(() => Reflect.apply(wc[name], wc, goodArgs))[0];
+    const want = call(() => rApply(wc[name], wc, goodArgs))[0];
     const wantPlain = plain(want);
     free(want);
     const positions = specs.map((s, k) => [s, k]);
     if (OUT[name]) positions.push([{ T: OUT[name].T, d: 1, good: () => new OUT[name].T(OUT[name].length), out: true }, OUT[name].at]);
     for (const [spec, k] of positions) {
-      let variants = spec.num ? hostileNumbers() : hostileArrays(spec.T, spec.good());
+      let variants = spec.num ? hostileNumbers() : spec.str ? hostileStrings(spec.good()) : spec.path ? hostilePaths() : hostileArrays(spec.T, spec.good());
       if (spec.bytes) variants = variants.map(([what, value, Want]) => [what, value, what in spec.bytes ? spec.bytes[what] : Want]);
       for (const [what, value, Want] of variants) {
         const args = good();
         args[k] = value;
         const label = `${name} argument ${k} (${spec.out ? 'out' : ''}): ${what}`;
         if (Want) {
-          expectError(() => Reflect.apply(wc[name], wc, args), Want, label);
+          expectError(() => rApply(wc[name], wc, args), Want, label);
         } else {
-          const [r, e] = call(() => Reflect.apply(wc[name], wc, args));
+          const [r, e] = call(() => rApply(wc[name], wc, args));
           assert.equal(e, undefined, `${label}: ${e?.message}`);
           assert.deepEqual(plain(r), wantPlain, label);
           if (spec.out) assert.equal(r, value, `${label}: out is returned`);
@@ -382,22 +481,91 @@ test('hostile arguments: exact errors, no user code, no wasm memory view', (t) =
       }
     }
   }
-  // EnvMap methods on hostile arrays, and on objects that are not EnvMaps.
-  for (const method of ['sample', 'pdf']) {
-    for (const [what, value, Want] of hostileArrays(Float32Array, U_PROBE)) {
-      if (Want) expectError(() => kept[method](value), Want, `EnvMap.${method}: ${what}`);
-      else expectSame(() => kept[method](value), kept[method](U_PROBE), `EnvMap.${method}: ${what}`);
-      cases++;
+  for (const name in SPEC) COVERED.add(name);
+  // EnvMap methods: every argument (and `out`) hostile, and `this` not an EnvMap.
+  const DIRS = new Float32Array([0, 0, 1, 0.6, 0, 0.8, 0, -1, 0, 0.48, 0.6, -0.64]);
+  const ENV = {
+    sample: [{ T: Float32Array, good: () => U_PROBE.slice() }],
+    pdf: [{ T: Float32Array, good: () => U_PROBE.slice() }, { T: Float32Array, out: true, good: () => new Float32Array(4) }],
+    sampleDirection: [STR('equal-area'), { T: Float32Array, good: () => U_PROBE.slice() }],
+    pdfDirection: [STR('equirect'), { T: Float32Array, good: () => DIRS.slice() }, { T: Float32Array, out: true, good: () => new Float32Array(4) }],
+    storage: [],
+  };
+  for (const method in ENV) {
+    const specs = ENV[method];
+    const good = () => specs.map((s) => s.good());
+    const want = rApply(wc.EnvMap.prototype[method], kept, good());
+    const goodArgs = good();
+    expectSame(() => rApply(wc.EnvMap.prototype[method], kept, goodArgs), want, `EnvMap.${method}`);
+    for (let k = 0; k < specs.length; k++) {
+      const spec = specs[k];
+      const variants = spec.str ? hostileStrings(spec.good()) : hostileArrays(spec.T, spec.good());
+      for (const [what, value, Want] of variants) {
+        const args = good();
+        args[k] = value;
+        const label = `EnvMap.${method} argument ${k}: ${what}`;
+        if (Want) expectError(() => rApply(wc.EnvMap.prototype[method], kept, args), Want, label);
+        else if (!spec.out) expectSame(() => rApply(wc.EnvMap.prototype[method], kept, args), want, label);
+        cases++;
+      }
     }
     for (const self of [{}, null, Object.create(wc.EnvMap.prototype), new Proxy(kept, {})]) {
-      expectError(() => Reflect.apply(wc.EnvMap.prototype[method], self, [U_PROBE]), TE, `EnvMap.${method} on a non-EnvMap`);
+      expectError(() => rApply(wc.EnvMap.prototype[method], self, goodArgs), TE, `EnvMap.${method} on a non-EnvMap`);
       cases++;
     }
+    COVERED.add(`EnvMap.prototype.${method}`);
   }
-  for (const [what, value, Want] of hostileArrays(Float32Array, new Float32Array(4))) {
-    if (Want) expectError(() => kept.pdf(U_PROBE, value), Want, `EnvMap.pdf out: ${what}`);
-    cases++;
+  const storageLength = Object.getOwnPropertyDescriptor(wc.EnvMap.prototype, 'storageLength').get;
+  expectSame(() => rApply(storageLength, kept, []), kept.storageLength, 'EnvMap.storageLength');
+  expectError(() => rApply(storageLength, {}, []), TE, 'EnvMap.storageLength on a non-EnvMap');
+  COVERED.add('EnvMap.prototype.storageLength');
+  for (const key of ['free', Symbol.dispose]) {
+    const env = wc.envmapHierarchical(new Float32Array([1, 2, 3, 4]), 2, 2);
+    expectSame(() => env[key](), undefined, `EnvMap.${String(key)}`);
+    expectSame(() => env[key](), undefined, `EnvMap.${String(key)} twice`);
+    expectError(() => env.sample(U_PROBE), TE, `EnvMap.sample after ${String(key)}`);
+    for (const self of [{}, null, Object.create(wc.EnvMap.prototype)]) expectError(() => rApply(wc.EnvMap.prototype[key], self, []), TE, `EnvMap.${String(key)} on a non-EnvMap`);
+    COVERED.add(`EnvMap.prototype.${String(key)}`);
   }
+  for (const args of [[], [Symbol('EnvMap'), 'hierarchical', 64, 16]]) {
+    expectError(() => rConstruct(wc.EnvMap, args), TE, 'new EnvMap');
+    expectError(() => rApply(wc.EnvMap, undefined, args), TE, 'EnvMap called');
+  }
+  COVERED.add('EnvMap');
+  // SamplerPath methods: every argument hostile, `this` not a SamplerPath.
+  const root = wc.samplerPath().domain(1);
+  const PATH_METHODS = { domain: [NUM(3)], split: [NUM(3), NUM(4), NUM(1)] };
+  for (const method in PATH_METHODS) {
+    const specs = PATH_METHODS[method];
+    const good = () => specs.map((s) => s.good());
+    const f = Object.getPrototypeOf(root)[method];
+    const want = wc.samplerDraw('sobol', new Uint32Array([1, 2]), 0, 3, 4, rApply(f, root, good()), 4);
+    const goodArgs = good();
+    const [r] = call(() => rApply(f, root, goodArgs));
+    assert.deepEqual(wc.samplerDraw('sobol', new Uint32Array([1, 2]), 0, 3, 4, r, 4), want, `SamplerPath.${method}`);
+    for (let k = 0; k < specs.length; k++) {
+      for (const [what, value, Want] of hostileNumbers()) {
+        const args = good();
+        args[k] = value;
+        expectError(() => rApply(f, root, args), Want, `SamplerPath.${method} argument ${k}: ${what}`);
+        cases++;
+      }
+    }
+    for (const self of [{}, null, Object.create(Object.getPrototypeOf(root)), new Proxy(root, {})]) {
+      expectError(() => rApply(f, self, goodArgs), TE, `SamplerPath.${method} on a non-SamplerPath`);
+      cases++;
+    }
+    COVERED.add(`SamplerPath.prototype.${method}`);
+  }
+  const pathLength = Object.getOwnPropertyDescriptor(Object.getPrototypeOf(root), 'length').get;
+  expectSame(() => rApply(pathLength, root, []), 1, 'SamplerPath.length');
+  expectError(() => rApply(pathLength, {}, []), TE, 'SamplerPath.length on a non-SamplerPath');
+  COVERED.add('SamplerPath.prototype.length');
+  for (const args of [[], [Symbol('SamplerPath'), new Uint32Array(4)]]) {
+    expectError(() => rConstruct(root.constructor, args), TE, 'new SamplerPath');
+    expectError(() => rApply(root.constructor, undefined, args), TE, 'SamplerPath called');
+  }
+  COVERED.add('SamplerPath');
   // The class and its prototype are frozen: no method swapped, no setter planted.
   assert.throws(() => {
     wc.EnvMap.prototype.sample = () => 0;
@@ -409,6 +577,88 @@ test('hostile arguments: exact errors, no user code, no wasm memory view', (t) =
   assert.equal(wc.memoryStats().reserved, reserved, 'no memory left reserved');
   t.diagnostic(`${cases} hostile arguments, ${calls} calls so far`);
   assert.ok(cases > 900, `${cases} cases`);
+});
+
+test('load: a bad source is a TypeError (a rejected promise)', async () => {
+  for (const source of [Symbol('wasm'), 4, Object(4), {}, [], true, () => 0]) {
+    await assert.rejects(load(source), (e) => Object.getPrototypeOf(e) === TypeError.prototype, String(typeof source));
+  }
+  COVERED.add('load');
+});
+
+test('a SamplerPath cannot be changed, nor its class patched', () => {
+  const path = wc.samplerPath().domain(3).split(1, 4, 2);
+  const pix = new Uint32Array([1, 2]);
+  const draw = () => wc.samplerDraw('sobol', pix, 0, 5, 7, path, 4);
+  const before = draw();
+  // Whatever the class and its prototype expose, nothing returns the path's steps to change.
+  const C = path.constructor;
+  for (const o of [C, C.prototype]) {
+    for (const key of Reflect.ownKeys(o)) {
+      const d = Object.getOwnPropertyDescriptor(o, key);
+      for (const f of [d.value, d.get]) {
+        if (typeof f !== 'function' || f === C) continue;
+        let r;
+        try {
+          r = f.call(o === C ? undefined : path, path);
+        } catch {
+          continue;
+        }
+        if (ArrayBuffer.isView(r) && !Object.isFrozen(r)) for (let i = 0; i < r.length; i++) r[i] ^= 6;
+      }
+    }
+  }
+  assert.deepEqual(draw(), before, 'the path drew other points');
+  // Frozen: no static method replaced or added (the module would call it on every draw).
+  assert.ok(Object.isFrozen(C) && Object.isFrozen(C.prototype) && Object.isFrozen(path));
+  let ran = 0;
+  for (const key of ['steps', 'from', Symbol.hasInstance]) {
+    assert.throws(() => {
+      C[key] = () => ran++;
+    }, TypeError);
+  }
+  expectSame(draw, before, 'samplerDraw on the path');
+  assert.equal(ran, 0);
+});
+
+test('index setters that swallow writes: an EnvMap from storage keeps its memory', () => {
+  const u = new Float32Array([0.1, 0.2, 0.7, 0.4]);
+  const plainEnv = wc.envmapFromStorage(STORAGE.slice());
+  const want = [plainEnv.sample(u), plainEnv.pdf(u), plainEnv.storage()];
+  plainEnv.free();
+  const keys = [];
+  for (let i = 0; i < 16; i++) keys.push(String(i));
+  const swallowed = { n: 0 };
+  for (let i = 0; i < keys.length; i++) {
+    rDefine(Array.prototype, keys[i], { configurable: true, get() {}, set() { swallowed.n++; } }); // prettier-ignore
+  }
+  let got;
+  let error;
+  try {
+    const env = wc.envmapFromStorage(STORAGE.slice());
+    got = { __proto__: null, sample: env.sample(u), pdf: env.pdf(u), storage: env.storage() };
+    env.free();
+  } catch (e) {
+    error = e;
+  } finally {
+    for (let i = 0; i < keys.length; i++) rDelete(Array.prototype, keys[i]);
+  }
+  assert.equal(error, undefined, `${error?.constructor?.name}: ${error?.message}`);
+  assert.deepEqual([got.sample, got.pdf, got.storage], want);
+  assert.equal(swallowed.n, 0, 'the module wrote array indices');
+});
+
+test('every export has a hostile case', () => {
+  const exported = [];
+  for (const key of Object.keys(warpcore)) if (typeof warpcore[key] === 'function') exported.push(key);
+  for (const key of Object.keys(wc)) if (typeof wc[key] === 'function') exported.push(key);
+  const classes = [['EnvMap', wc.EnvMap.prototype], ['SamplerPath', Object.getPrototypeOf(wc.samplerPath())]];
+  for (const [name, proto] of classes) {
+    for (const key of Reflect.ownKeys(proto)) if (key !== 'constructor') exported.push(`${name}.prototype.${String(key)}`);
+    for (const key of Reflect.ownKeys(proto.constructor)) if (typeof proto.constructor[key] === 'function') exported.push(`${name}.${String(key)}`);
+  }
+  const missing = exported.filter((name) => !COVERED.has(name));
+  assert.deepEqual(missing, [], 'exports without a hostile case');
 });
 
 test('aliasing: out is an input, or overlaps one through another view', (t) => {
@@ -463,45 +713,85 @@ test('aliasing: out is an input, or overlaps one through another view', (t) => {
 
 test('patched built-ins after loading change nothing', (t) => {
   // Break the methods and getters a careless module would call; the API must not notice.
-  // (Indexed loops only: the test's own code must not use what it breaks.)
+  // Every function with its good arguments (and the EnvMap and SamplerPath methods) runs with
+  // these throwing; the test's own code while they are broken uses indexed loops, captured
+  // intrinsics and null-prototype objects only.
+  const all = (o) => Reflect.ownKeys(o).filter((k) => k !== 'constructor' && k !== 'prototype' && k !== 'length' && k !== 'name' && k !== '__proto__');
+  const indices = [];
+  for (let i = 0; i < 16; i++) indices.push(String(i));
   const targets = [
-    [TypedArray, ['set', 'subarray', 'slice', 'length', 'buffer', 'byteOffset', Symbol.toStringTag, Symbol.iterator]],
-    [Array.prototype, [Symbol.iterator, 'map', 'find', 'splice', 'push', 'findIndex', 'reduce']],
+    [TypedArray, all(TypedArray)],
+    [TypedArray.constructor, all(TypedArray.constructor)],
+    [Array.prototype, [Symbol.iterator, 'map', 'find', 'splice', 'push', 'findIndex', 'reduce', 'forEach', 'slice', 'concat', 'fill', 'indexOf', 'includes', 'join', 'keys', 'values', 'entries', ...indices]],
+    [Object.prototype, indices],
+    [ArrayIteratorPrototype, ['next']],
+    [IteratorPrototype, [Symbol.iterator]],
+    [Array, all(Array)],
     [WebAssembly.Memory.prototype, ['buffer', 'grow']],
     [ArrayBuffer, ['isView']],
-    [Object, ['getPrototypeOf', 'keys', 'defineProperty']],
-    [Math, ['ceil']],
+    [ArrayBuffer.prototype, ['byteLength', 'slice']],
+    [Object, all(Object)],
+    [Math, all(Math).filter((k) => typeof Math[k] === 'function')],
+    [Number, all(Number).filter((k) => typeof Number[k] === 'function')],
+    [Number.prototype, all(Number.prototype)],
+    [String.prototype, all(String.prototype)],
+    [Function.prototype, ['call', 'apply', 'bind']],
   ];
+  for (const T of [Float32Array, Uint32Array, Int32Array, Uint8Array]) targets.push([T, all(T).filter((k) => typeof T[k] === 'function')]);
   const saved = [];
   for (let i = 0; i < targets.length; i++) {
     const keys = targets[i][1];
-    for (let j = 0; j < keys.length; j++) saved[saved.length] = [targets[i][0], keys[j], Object.getOwnPropertyDescriptor(targets[i][0], keys[j])];
+    for (let j = 0; j < keys.length; j++) saved.push([targets[i][0], keys[j], Object.getOwnPropertyDescriptor(targets[i][0], keys[j])]);
   }
   const thrower = () => {
     throw new Error('a patched built-in ran');
   };
+  // The calls: every function of SPEC, then methods, with their arguments made beforehand.
+  const env = wc.envmapHierarchical(new Float32Array([1, 2, 0, 3, 1, 1, 4, 0]), 4, 2);
+  const path = wc.samplerPath().domain(4);
   const u = new Float32Array([0.1, 0.2, 0.3, 0.4]);
-  const weights = new Float32Array([1, 1, 1, 1]);
-  let results;
+  const DIRS = new Float32Array([0, 0, 1, 0.6, 0, 0.8]);
+  const jobs = [];
+  for (const name in SPEC) jobs.push([name, wc[name], wc, SPEC[name].map((s) => s.good())]);
+  jobs.push(['big pmj02bnSample (grows the memory)', wc.pmj02bnSample, wc, [0, 1, 300_000]]);
+  jobs.push(['diskPolar4', wc.diskPolar4, wc, [u, 6]]);
+  for (const [method, args] of [['sample', [u]], ['pdf', [u]], ['sampleDirection', ['equirect', u]], ['pdfDirection', ['equal-area', DIRS]], ['storage', []]]) {
+    jobs.push([`EnvMap.${method}`, wc.EnvMap.prototype[method], env, args]);
+  }
+  jobs.push(['SamplerPath.split', path.split, path, [1, 2, 3]]);
+  jobs.push(['samplerDraw on a SamplerPath', wc.samplerDraw, wc, ['pmj02bn', new Uint32Array([1, 2]), 0, 3, 4, path.split(1, 2, 3), 4]]);
+  const want = jobs.map(([, f, self, args]) => rApply(f, self, args));
+  const got = { __proto__: null };
   let error;
   for (let i = 0; i < saved.length; i++) {
     const d = saved[i][2];
-    Reflect.defineProperty(saved[i][0], saved[i][1], d.get ? { configurable: true, get: thrower } : { configurable: true, writable: true, value: thrower });
+    rDefine(saved[i][0], saved[i][1], !d || d.get || d.set ? { configurable: true, get: thrower, set: thrower } : { configurable: true, writable: true, value: thrower });
   }
+  let at = 0;
   try {
-    const env = wc.envmapHierarchical(weights, 2, 2);
-    results = [wc.diskConcentric(u), wc.pmj02bnSample(0, 1, 300_000), wc.diskPolar4(u, 6), env.sample(u).pdf, env.storage()];
-    env.free();
+    for (; at < jobs.length; at++) got[at] = rApply(jobs[at][1], jobs[at][2], jobs[at][3]);
   } catch (e) {
     error = e;
   } finally {
-    for (let i = saved.length - 1; i >= 0; i--) Reflect.defineProperty(saved[i][0], saved[i][1], saved[i][2]);
+    for (let i = saved.length - 1; i >= 0; i--) {
+      if (saved[i][2]) rDefine(saved[i][0], saved[i][1], saved[i][2]);
+      else rDelete(saved[i][0], saved[i][1]);
+    }
   }
-  assert.equal(error, undefined, `a call used a patched built-in: ${error?.stack}`);
-  assert.deepEqual(results[0], wc.diskConcentric(new Float32Array([0.1, 0.2, 0.3, 0.4])));
-  assert.equal(results[1].length, 600_000, 'grew the memory');
-  assert.deepEqual([...results[3]], [1, 1]);
-  t.diagnostic(`6 calls with ${saved.length} built-ins broken`);
+  assert.equal(error, undefined, `${jobs[at]?.[0]} used a patched built-in: ${error?.stack}`);
+  for (let i = 0; i < jobs.length; i++) {
+    if (want[i] instanceof wc.EnvMap) {
+      assert.deepEqual(envSummary(got[i]), envSummary(want[i]), jobs[i][0]);
+      got[i].free();
+      want[i].free();
+    } else if (jobs[i][0] === 'memoryStats' || jobs[i][0].startsWith('SamplerPath')) {
+      assert.equal(typeof got[i], typeof want[i], jobs[i][0]);
+    } else {
+      assert.deepEqual(got[i], want[i], jobs[i][0]);
+    }
+  }
+  env.free();
+  t.diagnostic(`${jobs.length} calls with ${saved.length} built-ins broken`);
 });
 
 test('options.verify: read once, first; a throwing getter becomes a TypeError', () => {

@@ -23,13 +23,15 @@ fn sample_linear<L: Lane>(u: L, a: L, b: L) -> L {
 }
 
 /// The weights made usable: negative and NaN to 0, then divided by their sum; and whether the
-/// sum was positive and finite (else the warp is the identity with density 1).
+/// sum is a normal finite number (at least `2^-126`, the smallest normal `f32`; else the warp
+/// is the identity with density 1). A subnormal sum counts as zero: its reciprocal
+/// overflows, and a device that flushes subnormals would see zero there anyway.
 #[inline(always)]
 fn normalise<L: Lane>(w: [L; 4]) -> ([L; 4], L::Mask) {
     let zero = L::splat(0.0);
     let w = w.map(|x| L::select(zero.simd_lt(x), x, zero));
     let sum = w[0] + w[1] + w[2] + w[3];
-    let ok = positive_finite(sum);
+    let ok = L::splat(f32::MIN_POSITIVE).simd_le(sum) & sum.simd_lt(L::splat(f32::INFINITY));
     let inv = L::select(ok, L::splat(1.0) / sum, zero);
     (w.map(|x| x * inv), ok)
 }

@@ -52,9 +52,22 @@
 //! finite and `>= 0`. The density is 0 exactly where the solid angle is 0: a degenerate
 //! light (zero area, collinear vertices, `ex` or `ey` zero), `p` on the light's plane or at
 //! a vertex, or non-finite input (NaN or inf anywhere, or coordinate differences of
-//! `2^127` or more; differences below `2^-126` count as zero); the point is then the
-//! area-sampling one. Solid angles of such lights are 0, except that `p` on the plane inside
-//! the light may report `2 pi` (the `atan2` of `+0` over a negative number). Inverses clamp
+//! `2^127` or more; every difference `v_i - p`, edge, `corner - p`, `ex`, `ey` component
+//! below `2^-126` in magnitude is made 0 before the power-of-two scaling, so a point
+//! `2^-149 .. 2^-127` above the light is on its plane), and lights below
+//! [`AREA_FALLBACK_SR`] seen edge-on: triple product `a0 . (e1 x e2)` below `2^-120`
+//! (triangle) or `z w h` below `2^-116` (rectangle) in the scaled frame, whose largest
+//! coordinate is in `[1, 2)` (at most about `1e-36` sr for far lights; these thresholds keep
+//! the area density below `2^127`). The point is then the area-sampling one. Solid angles of
+//! such lights are 0, except that `p` on the plane inside the light may report `2 pi` (the
+//! `atan2` of `+0` over a negative number). The density is never NaN, infinite or
+//! `FLT_MAX`. Above [`AREA_FALLBACK_SR`] the triple product may be as small as it likes
+//! (a point `2^-126` above the light, a `1e18` dynamic range): the density is `1 / omega`
+//! and the barycentrics, whose numerators are lifted by an exact `2^64` when their sum is
+//! below `2^-64`, stay in the simplex (their accuracy is then the input's). Rectangles keep
+//! their accuracy while the shortest of `z`, `w`, `h` exceeds `2^-63` times the largest
+//! coordinate (a `1 x 2^63` rectangle at distance 1 gets `pi / 4`). `docs/warps.md` gives
+//! the reasons. Inverses clamp
 //! barycentrics to `[0, 1]` and renormalise (all zero: the centroid), `(s, t)` to
 //! `[0, 1]^2`, NaN to 0; their results are in `[0, 1 - 2^-24]`. `ey` is made orthogonal to
 //! `ex` (its component along `ex` is dropped), a no-op for the rectangles of the contract.
@@ -375,10 +388,12 @@ pub fn rectangle_solid_angle_x16(
 }
 
 /// The bilinear density on the unit square with corner weights `w = [w00, w10, w01, w11]`
-/// (`w_xy` the weight at `(x, y)`), normalised: `4 ((1-x)(1-y) w00 + x(1-y) w10 + (1-x) y w01
-/// + x y w11) / (w00 + w10 + w01 + w11)`. The density of [`bilinear`]'s points. `p` is
+/// (`w_xy` the weight at `(x, y)`), normalised: `4 ((1-x)(1-y) w00 + x(1-y) w10 +
+/// (1-x) y w01 + x y w11) / (w00 + w10 + w01 + w11)`. The density of [`bilinear`]'s points. `p` is
 /// clamped to `[0, 1]^2` (NaN to 0); negative and NaN weights count as 0; weights whose sum is
-/// not positive and finite give 1 (the uniform density [`bilinear`] falls back to).
+/// below `2^-126` (the smallest normal `f32`, where `1 / sum` would overflow and a GPU that
+/// flushes subnormals sees 0) or not finite give 1, the uniform density [`bilinear`] falls
+/// back to.
 #[inline]
 pub fn bilinear_pdf(p: [f32; 2], w: [f32; 4]) -> f32 {
     cosine::bilinear_pdf_body(p, w)
@@ -389,7 +404,7 @@ pub fn bilinear_pdf(p: [f32; 2], w: [f32; 4]) -> f32 {
 /// b) / (a + sqrt((1 - u) a^2 + u b^2))`). Returns the point, in `[0, 1 - 2^-24]^2`, and its
 /// density. An exact bijection of the open square, so composing it with a map and
 /// multiplying the densities stays unbiased. `u` is clamped as everywhere; weights whose sum
-/// is not positive and finite leave `u` unchanged with density 1. Hart et al. 2020,
+/// is below `2^-126` or not finite leave `u` unchanged with density 1. Hart et al. 2020,
 /// "Practical Product Sampling by Fitting and Composing Warps" (EGSR).
 #[inline]
 pub fn bilinear(u: [f32; 2], w: [f32; 4]) -> ([f32; 2], f32) {

@@ -2,7 +2,7 @@
 //! closed-form start refined by Newton steps on an accurate residual, its inverse, and the
 //! solid angle as two Van Oosterom-Strackee triangles joined in one `atan2`.
 
-use super::triangle::FALLBACK_TURNS;
+use super::triangle::{FALLBACK_TURNS, SMALL_Q};
 use super::vec::*;
 use crate::kernels::{atan2_turns, sin_cos_turns};
 use crate::lanes::{Lane, unit_interval};
@@ -31,7 +31,8 @@ pub(super) struct Rect<L: Lane> {
 pub(super) fn setup<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Rect<L> {
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
-    let c = sub(corner, p);
+    let c = flush_subnormal(sub(corner, p));
+    let (ex, ey) = (flush_subnormal(ex), flush_subnormal(ey));
     let finite = all_finite([c, ex, ey]);
     let (k, scaled) = pow2_scale([c, ex, ey]);
     let (c, ex, ey) = (scale(c, k), scale(ex, k), scale(ey, k));
@@ -46,19 +47,29 @@ pub(super) fn setup<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Rect<
     let z = dot(c, nh).abs();
     let ok = finite & scaled & zero.simd_lt(w) & zero.simd_lt(h);
     let turns = quad_turns(x0, w, y0, h, z);
+    // Below the area-sampling threshold, z w h below FLAT_ZWH counts as zero (the light seen
+    // edge-on, solid angle 0): it bounds the area density |q|^3 / (z w h) (|q| < 6 sqrt 3
+    // in this frame) below 2^127.
+    let flat = turns.simd_lt(L::splat(FALLBACK_TURNS)) & (z * w * h).simd_lt(L::splat(FLAT_ZWH));
+    let z = L::select(flat, zero, z);
     Rect {
         x0,
         w,
         y0,
         h,
         z,
-        turns: L::select(ok, turns, zero),
+        turns: L::select(ok & !flat, turns, zero),
         ok,
         c,
         ex,
         eyp,
     }
 }
+
+/// Below [`FALLBACK_TURNS`], rectangles whose `z w h` (in the scaled frame, largest
+/// coordinate of `corner - p`, `ex`, `ey` in `[1, 2)`) is below this count as seen edge-on:
+/// solid angle and density 0.
+pub(super) const FLAT_ZWH: f32 = 1.0 / (1u128 << 116) as f32;
 
 /// Solid angle (turns of `4 pi`) of `[x0, x0 + dx] x [y0, y0 + dy]` at height `z`: the
 /// triangles `(00, 10, 11)` and `(00, 11, 01)` by Van Oosterom-Strackee (both have
@@ -80,6 +91,11 @@ pub(super) fn quad_turns<L: Lane>(x0: L, dx: L, y0: L, dy: L, z: L) -> L {
     let den1 = r00 * r10 * r11 + d00_10 * r11 + d00_11 * r10 + d10_11 * r00;
     let den2 = r00 * r11 * r01 + d00_11 * r01 + d00_01 * r11 + d11_01 * r00;
     let n = z * dx * dy;
+    // The product (den1 + i n)(den2 + i n) is of degree 6 in the lengths: lift both factors
+    // by one exact power of two so that it cannot underflow (long or far rectangles lost
+    // their half-infinite part there); elsewhere the lift changes no bits.
+    let s = pow2_lift([den1, den2, n]);
+    let (den1, den2, n) = (den1 * s, den2 * s, n * s);
     let y = n * (den1 + den2);
     let zero = L::splat(0.0);
     atan2_turns(L::select(zero.simd_lt(y), y, zero), den1 * den2 - n * n)
@@ -244,7 +260,13 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 2], 
     let qx = x0 + u0 * w;
     let qy = y0 + u1 * h;
     let ql = (qx * qx + qy * qy + z2).sqrt();
-    let area_pdf = ql * ql * ql / (z * w * h);
+    let zwh = z * w * h;
+    let area_pdf = L::select(
+        ql.simd_lt(L::splat(SMALL_Q)),
+        // |q|^3 would lose bits to underflow: the same quotient in another order.
+        ql * (ql * (ql / zwh)),
+        ql * ql * ql / zwh,
+    );
     let area_pdf = L::select(
         pr.area_ok,
         L::select(

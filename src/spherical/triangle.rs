@@ -26,9 +26,10 @@ pub(super) struct Tri<L: Lane> {
 #[inline(always)]
 pub(super) fn setup<L: Lane>(v: [V<L>; 3], p: V<L>) -> Tri<L> {
     let a = [sub(v[0], p), sub(v[1], p), sub(v[2], p)];
-    let e1 = sub(v[1], v[0]);
-    let e2 = sub(v[2], v[0]);
-    let f2 = sub(v[2], v[1]);
+    let a = a.map(flush_subnormal);
+    let e1 = flush_subnormal(sub(v[1], v[0]));
+    let e2 = flush_subnormal(sub(v[2], v[0]));
+    let f2 = flush_subnormal(sub(v[2], v[1]));
     let finite = all_finite([a[0], a[1], a[2], e1, e2, f2]);
     let (k, scaled) = pow2_scale(a);
     let a = [scale(a[0], k), scale(a[1], k), scale(a[2], k)];
@@ -38,6 +39,12 @@ pub(super) fn setup<L: Lane>(v: [V<L>; 3], p: V<L>) -> Tri<L> {
     let ok = finite & scaled & zero.simd_lt(len[0]) & zero.simd_lt(len[1]) & zero.simd_lt(len[2]);
     let det = dot(a[0], cross(e1, e2));
     let turns = half_angle_turns(a, len, det.abs());
+    // Below the area-sampling threshold, a triple product below FLAT_DET counts as zero (the
+    // light as seen edge-on, solid angle 0): it bounds the area density 2 |q|^3 / |det|
+    // (|q| < 2 sqrt 3 in this frame) below 2^127.
+    let flat = turns.simd_lt(L::splat(FALLBACK_TURNS)) & det.abs().simd_lt(L::splat(FLAT_DET));
+    let det = L::select(flat, zero, det);
+    let ok_turns = ok & !flat;
     Tri {
         a,
         e1,
@@ -45,10 +52,15 @@ pub(super) fn setup<L: Lane>(v: [V<L>; 3], p: V<L>) -> Tri<L> {
         f2,
         len,
         det,
-        turns: L::select(ok, turns, zero),
+        turns: L::select(ok_turns, turns, zero),
         ok,
     }
 }
+
+/// Below [`FALLBACK_TURNS`], lights whose triple product `a0 . (e1 x e2)` (in the scaled
+/// frame, largest coordinate in `[1, 2)`) is below this count as seen edge-on: solid angle
+/// and density 0.
+pub(super) const FLAT_DET: f32 = 1.0 / (1u128 << 120) as f32;
 
 /// Van Oosterom and Strackee (1983): `tan(omega / 2) = |det| / (|a||b||c| + (a.b)|c| +
 /// (a.c)|b| + (b.c)|a|)`, returned as `omega / (4 pi)` through `atan2_turns`.
@@ -200,6 +212,15 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 3], 
     };
     let (l0, l1, l2b) = (pos(l0), pos(l1), pos(l2b));
     let tot = l0 + l1 + l2b;
+    // The numerators are homogeneous in the light's triple product: for a light seen nearly
+    // edge-on their sum can be subnormal (its reciprocal overflows). Lift them by an exact
+    // 2^64 there (a no-op elsewhere, so no bits change where 1 / tot was finite).
+    let lift = L::select(
+        tot.simd_lt(L::splat(LIFT_BELOW)),
+        L::splat(1.0 / LIFT_BELOW),
+        one,
+    );
+    let (l0, l1, l2b, tot) = (l0 * lift, l1 * lift, l2b * lift, tot * lift);
     let arvo = pr.arvo & positive_finite(tot);
     let inv = one / tot;
     let bary = [
@@ -211,7 +232,12 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 3], 
     let fb = uniform_body([u0, u1]);
     let qv = add(va, add(scale(t.e1, fb[1]), scale(t.e2, fb[2])));
     let ql = norm(qv);
-    let area_pdf = (ql * ql * ql + ql * ql * ql) / t.det.abs();
+    let area_pdf = L::select(
+        ql.simd_lt(L::splat(SMALL_Q)),
+        // |q|^3 would lose bits to underflow: the same quotient in another order.
+        ql * ((ql + ql) * (ql / t.det.abs())),
+        (ql * ql * ql + ql * ql * ql) / t.det.abs(),
+    );
     let area_pdf = L::select(
         pr.area_ok,
         L::select(
@@ -221,7 +247,10 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 3], 
         ),
         zero,
     );
-    let pdf = L::select(arvo, L::splat(INV_4PI) / t.turns, area_pdf);
+    // The density is the light's (Arvo's map or area sampling), not the sample's: where a
+    // direction's numerators are all <= 0 (it left the spherical triangle by rounding), the
+    // point is the area map's but the density stays 1 / omega.
+    let pdf = L::select(pr.arvo, L::splat(INV_4PI) / t.turns, area_pdf);
     (
         [
             L::select(arvo, bary[0], fb[0]),
@@ -231,6 +260,11 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 3], 
         pdf,
     )
 }
+
+/// Barycentric numerators summing below this are lifted by its inverse (exact).
+const LIFT_BELOW: f32 = 1.0 / (1u128 << 64) as f32;
+/// Below this `|q|` the area density is computed as `|q| (2 |q| (|q| / det))` (no underflow).
+pub(super) const SMALL_Q: f32 = 1.0 / (1u64 << 40) as f32;
 
 #[inline(always)]
 pub(super) fn inverse_body<L: Lane>(v: [V<L>; 3], p: V<L>, bary: [L; 3]) -> [L; 2] {

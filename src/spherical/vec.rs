@@ -76,6 +76,35 @@ pub(super) fn all_finite<L: Lane, const N: usize>(vs: [V<L>; N]) -> L::Mask {
     acc.simd_eq(zero)
 }
 
+/// `v` with every component below the smallest normal `f32` (`2^-126`) in magnitude made 0:
+/// the rule "coordinate differences below `2^-126` count as zero", applied to each
+/// difference before the power-of-two scaling (which would otherwise lift a subnormal
+/// height next to normal coordinates into the computation, where its few significant bits
+/// decide the side of the plane), and flush-proof (a device that flushes subnormals sees
+/// the same zeros).
+#[inline(always)]
+pub(super) fn flush_subnormal<L: Lane>(v: V<L>) -> V<L> {
+    let tiny = L::splat(f32::MIN_POSITIVE);
+    v.map(|x| L::select(x.abs().simd_lt(tiny), L::splat(0.0), x))
+}
+
+/// A power of two `2^k` that lifts the largest magnitude of `xs` into `[1, 2)` where it is a
+/// normal number below 1, else 1: multiplying every `x` by it is exact and changes no bits of
+/// any later product, quotient or ratio that did not underflow, while products that did
+/// underflow become exact or correctly rounded.
+#[inline(always)]
+pub(super) fn pow2_lift<L: Lane, const N: usize>(xs: [L; N]) -> L {
+    let mut m = L::splat(0.0);
+    for x in xs {
+        let a = x.abs();
+        m = L::select(m.simd_lt(a), a, m);
+    }
+    let e = m.to_bits().shr(23);
+    let ok = L::U::splat(0).simd_lt(e) & e.simd_lt(L::U::splat(127));
+    let bits = (L::U::splat(254) - e).shl(23);
+    L::from_bits(L::U::select(ok, bits, L::splat(1.0).to_bits()))
+}
+
 /// A power of two `2^k` such that `2^k max|x_i|` lies in `[1, 2)`, and whether it exists: the
 /// largest magnitude must be a normal `f32` below `2^127` (smaller differences count as zero,
 /// larger as non-finite). Scaling by it is exact, so every length, dot and cross product of

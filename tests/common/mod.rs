@@ -3,7 +3,6 @@
 #![allow(dead_code)]
 
 pub mod chi2;
-pub mod pfm;
 
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;

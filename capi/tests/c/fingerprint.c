@@ -1,5 +1,5 @@
 /*
- * The determinism fingerprint (examples/wasm-demo/src/fingerprint.rs) computed through the C
+ * The determinism fingerprint (registry/src/fingerprint.rs) computed through the C
  * API: the same FNV-1a 64 hash over the same inputs, with every scalar and x8 call of the Rust
  * version replaced by a C call on 1 or 8 points and every slice call by one C call. It must
  * equal tests/golden/fingerprint.txt (capi/tests/c.rs compares). Slice outputs are written at

@@ -1,12 +1,12 @@
 //! warpcore in a minimal `no_std` WebAssembly module: no imports, no allocator.
 //!
-//! Exports: `fingerprint()` (see `fingerprint.rs`), and small per-family entry points that a
+//! Exports: `fingerprint()` (see `warpcore_registry::fingerprint`), and small per-family entry points that a
 //! browser or Node can call directly, e.g. `disk_concentric(u0, u1, k)` returns coordinate
 //! `k` (0 or 1) of the concentric map.
 #![cfg_attr(target_arch = "wasm32", no_std)]
 
 #[cfg(feature = "all")]
-pub mod fingerprint;
+pub use warpcore_registry::fingerprint;
 
 /// The determinism fingerprint of every family compiled in.
 #[cfg(feature = "all")]

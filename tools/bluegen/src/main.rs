@@ -1,7 +1,7 @@
 //! `bluegen`: writes (or checks) warpcore's screen-space blue-noise key tiles.
 //!
 //! ```text
-//! cargo run --release --manifest-path tools/bluegen/Cargo.toml -- [--check] [--out DIR]
+//! cargo run --release -p bluegen -- [--check] [--out DIR]
 //!     [--only sobol|pmj02bn] [--seed S] [--pool N] [--edges T] [--levels L] [--sweeps S] [--rounds R]
 //!     [--threshold X] [--weights W1,W2,..]
 //! ```
@@ -126,7 +126,7 @@ fn main() -> ExitCode {
     );
     let mut manifest = format!(
         "# warpcore blue-noise key tiles: 64 x 64 little-endian u32 keys, row-major.\n\
-         # Written by `cargo run --release --manifest-path tools/bluegen/Cargo.toml -- {settings}`.\n\
+         # Written by `cargo run --release -p bluegen -- {settings}`.\n\
          # file bytes fnv1a64\n"
     );
     let mut files = Vec::new();

@@ -1,7 +1,7 @@
 //! `pmjgen`: writes (or checks) warpcore's pmj02bn tables.
 //!
 //! ```text
-//! cargo run --release --manifest-path tools/pmjgen/Cargo.toml -- [--check] [--out DIR]
+//! cargo run --release -p pmjgen -- [--check] [--out DIR]
 //!     [--seed S] [--sets N] [--candidates K]
 //! ```
 //!
@@ -18,7 +18,7 @@
 //! Defaults: `--out src/tables --seed 20180702 --sets 4 --candidates 64` (run from the
 //! repository root).
 
-mod pmj;
+use pmjgen as pmj;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -119,7 +119,7 @@ fn main() -> ExitCode {
     );
     let mut manifest = format!(
         "# warpcore pmj02bn tables: two little-endian u32 (x, y) per point, 0.32 fixed point.\n\
-         # Written by `cargo run --release --manifest-path tools/pmjgen/Cargo.toml -- --seed {} \
+         # Written by `cargo run --release -p pmjgen -- --seed {} \
          --sets {} --candidates {}`.\n# file bytes fnv1a64\n",
         args.seed, args.sets, args.candidates
     );

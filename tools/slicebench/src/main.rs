@@ -3,8 +3,8 @@
 //! for before/after comparisons of two checkouts under the same load (run the two binaries
 //! alternately). Only API that every version since v1 has, so an older checkout builds it too.
 //!
-//!   cargo run --release --manifest-path tools/slicebench/Cargo.toml [-- FILTER]
-//!   cargo run --release --manifest-path tools/slicebench/Cargo.toml --target wasm32-wasip1
+//!   cargo run --release -p slicebench [-- FILTER]
+//!   cargo run --release -p slicebench --target wasm32-wasip1
 //!   RUSTFLAGS="-C target-feature=+simd128" cargo run ... --target wasm32-wasip1
 //!
 //! (run from the repository root, where `.cargo/config.toml` names the Node runner). Each
@@ -13,9 +13,6 @@
 //! The env-map lines sample the `park` map (luminance, lat-long solid-angle weights) at
 //! 512 x 256 and upsampled bilinearly to 4096 x 2048, as `benches/envmap.rs` does, with the
 //! slice and `_x8` forms (filter `envmap`).
-
-#[path = "../../../tests/common/pfm.rs"]
-mod pfm;
 
 use std::hint::black_box;
 use std::time::Instant;

@@ -1,0 +1,833 @@
+//! The golden fingerprint: a 64-bit FNV-1a hash of the output bits of every warp — scalar,
+//! `_x8` and slice forms — over a fixed set of inputs (special values and 1024 pseudo-random
+//! points from a counter hash; for the `spherical` lights, those inputs on each of a fixed
+//! set of lights, ordinary and extreme). Identical on every target and instruction set, or the
+//! determinism promise is broken. `no_std`, no allocation; shared by `registry/tests/fingerprint.rs`, the C and GPU tests,
+//! the native `fingerprint` binary and the wasm cdylib.
+//!
+//! [`fingerprint_x16`] hashes the same bits with every `_x8` call replaced by the `_x16` form
+//! (lanes hashed in the same order, eight at a time), so it must equal the same golden value:
+//! the 16-wide forms are checked on every target too, emulated by `wide` where the target
+//! has no 16-lane vectors.
+
+#![allow(dead_code)]
+
+use warpcore::{f32x8, f32x16, u32x8, u32x16};
+
+/// Inputs every warp sees: a special-value cross product, then counter-hash points.
+pub const N: usize = 1024 + SPECIALS.len() * SPECIALS.len();
+
+const SPECIALS: [f32; 12] = [
+    0.0,
+    -0.0,
+    0.5,
+    0.999_999_94,
+    1.0,
+    -1.0,
+    f32::NAN,
+    f32::INFINITY,
+    f32::NEG_INFINITY,
+    1.0e-40,
+    0.25,
+    0.75,
+];
+
+/// The running hash, and which SIMD width stands for the `_x8` forms.
+pub struct Hasher(u64, bool);
+
+impl Default for Hasher {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Hasher {
+    pub fn new() -> Self {
+        Hasher(0xcbf2_9ce4_8422_2325, false)
+    }
+    /// A hasher that runs the `_x16` forms where the fingerprint has `_x8` ones.
+    pub fn new_x16() -> Self {
+        Hasher(0xcbf2_9ce4_8422_2325, true)
+    }
+    pub fn word(&mut self, w: u32) {
+        for b in w.to_le_bytes() {
+            self.0 = (self.0 ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    pub fn floats(&mut self, v: &[f32]) {
+        for x in v {
+            self.word(x.to_bits());
+        }
+    }
+    pub fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+/// A counter-based hash to `[0, 1)` (PCG output permutation), 24 random bits.
+pub fn unit(i: u32) -> f32 {
+    let mut x = i.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+    x = ((x >> ((x >> 28).wrapping_add(4))) ^ x).wrapping_mul(277_803_737);
+    x ^= x >> 22;
+    (x >> 8) as f32 * (1.0 / 16_777_216.0)
+}
+
+/// Input point `i` of the fixed set; dimension `d` of `D`.
+pub fn input<const D: usize>(i: usize) -> [f32; D] {
+    let s = SPECIALS.len();
+    core::array::from_fn(|d| {
+        if i < s * s {
+            SPECIALS[if d % 2 == 0 {
+                i % s
+            } else {
+                (i / s + d / 2) % s
+            }]
+        } else {
+            unit((i * D + d) as u32)
+        }
+    })
+}
+
+/// Hashes `scalar` over all inputs, then `x8` over groups of 8 and `slice` over the whole set
+/// in chunks of 37 (so padded tails are included).
+pub fn warp<const I: usize, const O: usize>(
+    h: &mut Hasher,
+    scalar: impl Fn([f32; I]) -> [f32; O],
+    x8: impl Fn([f32x8; I]) -> [f32x8; O],
+    x16: impl Fn([f32x16; I]) -> [f32x16; O],
+    slice: impl Fn(&[[f32; I]], &mut [[f32; O]]) -> usize,
+) {
+    let mut chunk_in = [[0.0f32; I]; 37];
+    let mut chunk_out = [[0.0f32; O]; 37];
+    let mut i = 0;
+    while i < N {
+        let n = (N - i).min(37);
+        for (k, slot) in chunk_in.iter_mut().enumerate().take(n) {
+            *slot = input(i + k);
+        }
+        let (src, dst) = (
+            chunk_in.get(..n).unwrap_or(&[]),
+            chunk_out.get_mut(..n).unwrap_or(&mut []),
+        );
+        h.word(slice(src, dst) as u32);
+        for (u, o) in src.iter().zip(dst.iter()) {
+            h.floats(&scalar(*u));
+            h.floats(o);
+        }
+        i += n;
+    }
+    let mut g = 0;
+    while g + 16 <= N {
+        let group: [[f32; I]; 16] = core::array::from_fn(|j| input(g + j));
+        hash_groups(h, &group, &x8, &x16);
+        g += 16;
+    }
+}
+
+/// Hashes the outputs of 16 inputs as two groups of 8, each component's eight lanes in turn:
+/// from two `x8` calls, or from one `x16` call (the hasher's width), in the same order.
+fn hash_groups<const I: usize, const O: usize>(
+    h: &mut Hasher,
+    group: &[[f32; I]; 16],
+    x8: impl Fn([f32x8; I]) -> [f32x8; O],
+    x16: impl Fn([f32x16; I]) -> [f32x16; O],
+) {
+    if h.1 {
+        let v = x16(core::array::from_fn(|d| {
+            f32x16::new(core::array::from_fn(|j| group[j][d]))
+        }));
+        for half in 0..2 {
+            for c in &v {
+                h.floats(&c.to_array()[8 * half..8 * half + 8]);
+            }
+        }
+    } else {
+        for half in 0..2 {
+            let v = x8(core::array::from_fn(|d| {
+                f32x8::new(core::array::from_fn(|j| group[8 * half + j][d]))
+            }));
+            for c in v {
+                h.floats(&c.to_array());
+            }
+        }
+    }
+}
+
+/// Hashes an index-driven sequence: `scalar(index, seed)` over a fixed set of (index, seed)
+/// pairs (small, near `2^k` boundaries, past any table, and extremes), `x8` on groups of 8
+/// and `slice(start, seed, out)` filling 37 consecutive points from several starts.
+pub fn indexed<const O: usize>(
+    h: &mut Hasher,
+    scalar: impl Fn(u32, u32) -> [f32; O],
+    x8: impl Fn(u32x8, u32x8) -> [f32x8; O],
+    x16: impl Fn(u32x16, u32x16) -> [f32x16; O],
+    slice: impl Fn(u32, u32, &mut [[f32; O]]) -> usize,
+) {
+    let seeds = [0u32, 1, 0x9e37_79b9, u32::MAX];
+    let starts = [0u32, 5, 1023, 4090, 65530, 1 << 20, u32::MAX - 20];
+    for &seed in &seeds {
+        for &start in &starts {
+            let mut out = [[0.0f32; O]; 37];
+            h.word(slice(start, seed, &mut out) as u32);
+            for (k, o) in out.iter().enumerate() {
+                let i = start.wrapping_add(k as u32);
+                h.floats(&scalar(i, seed));
+                h.floats(o);
+            }
+            let idx = |j: usize| start.wrapping_add(3 * j as u32);
+            let sd = |j: usize| seed ^ j as u32;
+            if h.1 {
+                // Lanes 0..8 as the 8-wide call; lanes 8..16 hold other indices and seeds,
+                // checked against the scalar form.
+                let v = x16(
+                    u32x16::new(core::array::from_fn(idx)),
+                    u32x16::new(core::array::from_fn(sd)),
+                );
+                for c in &v {
+                    h.floats(&c.to_array()[..8]);
+                }
+                if (8..16).any(|j| {
+                    let s = scalar(idx(j), sd(j));
+                    (0..O).any(|c| s[c].to_bits() != v[c].to_array()[j].to_bits())
+                }) {
+                    h.word(0xbad);
+                }
+            } else {
+                let v = x8(
+                    u32x8::new(core::array::from_fn(idx)),
+                    u32x8::new(core::array::from_fn(sd)),
+                );
+                for c in v {
+                    h.floats(&c.to_array());
+                }
+            }
+        }
+    }
+}
+
+/// Lights with a shading point for the `spherical` family, 12 floats each: `v0, v1, v2, p`.
+/// Ordinary, nearly `2 pi`, the other winding, a sliver, collinear, below
+/// `AREA_FALLBACK_SR`, `p` on the plane (inside, outside), grazing, far away (`1e6`), large
+/// and far, `p` at a vertex, coordinates near `1e30` and `1e-30`, NaN, inf, and differences
+/// past `2^127`.
+pub const SPHERICAL_TRIANGLES: [[f32; 12]; 17] = {
+    const I: f32 = f32::INFINITY;
+    const NAN: f32 = f32::NAN;
+    #[rustfmt::skip]
+    let t = [
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.1, 0.2, 0.0],
+        [-1.0, -1.0, 0.05, 2.0, -1.0, 0.05, -1.0, 2.0, 0.05, 0.0, 0.0, 0.0],
+        [0.3, -2.0, 0.5, -0.7, 0.4, 1.9, 1.5, 0.8, -0.3, -0.2, 0.1, 0.05],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0, 1e-5, 1.0, 0.3, 0.4, 0.0],
+        [0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 3.0, 3.0, 1.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 1e-4, 0.0, 1.0, 0.0, 1e-4, 1.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.2, 0.2, 1.0],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 5.0, -3.0, 1.0],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.2, 0.2, 0.999_999],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 3e5, -2e5, 1e6],
+        [-1e5, 0.0, 1e6, 1e5, -1e5, 1e6, 0.0, 1e5, 1e6, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 1.0, 0.0, 1.0],
+        [0.0, 0.0, 1e30, 1e30, 0.0, 1e30, 0.0, 1e30, 1e30, 1e29, 2e29, 0.0],
+        [0.0, 0.0, 1e-30, 1e-30, 0.0, 1e-30, 0.0, 1e-30, 1e-30, 1e-31, 2e-31, 0.0],
+        [NAN, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, I, 0.0],
+        [-3e38, 0.0, 1.0, 3e38, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0],
+    ];
+    t
+};
+
+/// Rectangles with a shading point for the `spherical` family, 12 floats each:
+/// `corner, ex, ey, p`. Ordinary, tilted, nearly `2 pi`, a sliver, `ey = 0`, below
+/// `AREA_FALLBACK_SR`, `p` on the plane (inside, outside), grazing, far away (`1e6`), large
+/// and far, `ey` not orthogonal to `ex` with `p` behind, `p` at the corner, coordinates near
+/// `1e30` and `1e-30`, NaN, -inf.
+pub const SPHERICAL_RECTANGLES: [[f32; 12]; 17] = {
+    const I: f32 = f32::INFINITY;
+    const NAN: f32 = f32::NAN;
+    #[rustfmt::skip]
+    let r = [
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.1, 0.2, 0.0],
+        [0.3, -0.2, 0.7, 0.6, 0.8, 0.0, 0.0, 0.0, 1.5, 0.0, 0.0, 0.0],
+        [-50.0, -50.0, 0.01, 100.0, 0.0, 0.0, 0.0, 100.0, 0.0, 0.0, 0.0, 0.0],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1e-6, 0.0, 0.0, 0.0, 0.0],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 5e-5, 0.0, 0.0, 0.0, 5e-5, 0.0, 0.0, 0.0, 0.0],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3.0, 0.5, 1.0],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.1, 0.1, 0.999_999],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 2e5, -1e5, -1e6],
+        [-1e5, -1e5, 1e6, 2e5, 0.0, 0.0, 0.0, 2e5, 0.0, 0.0, 0.0, 0.0],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.3, 1.0, 0.0, 0.2, -0.1, 2.5],
+        [-0.5, -0.5, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, -0.5, -0.5, 1.0],
+        [-5e29, -5e29, 1e30, 1e30, 0.0, 0.0, 0.0, 1e30, 0.0, 1e29, 0.0, 0.0],
+        [-5e-31, -5e-31, 1e-30, 1e-30, 0.0, 0.0, 0.0, 1e-30, 0.0, 0.0, 0.0, 0.0],
+        [-0.5, -0.5, 1.0, 1.0, NAN, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+        [-I, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+    ];
+    r
+};
+
+/// A light's 12 floats as four points (`v0, v1, v2, p` or `corner, ex, ey, p`).
+fn points<T: Copy>(l: [T; 12]) -> [[T; 3]; 4] {
+    core::array::from_fn(|k| core::array::from_fn(|c| l[3 * k + c]))
+}
+
+/// A triangle light's vertices (its first three points).
+#[cfg(feature = "spherical")]
+fn tri<T: Copy>(l: [[T; 3]; 4]) -> [[T; 3]; 3] {
+    [l[0], l[1], l[2]]
+}
+
+/// Hashes a warp of a light and shading point over every light `l` of `lights`: `slice` on
+/// light `l` over all inputs in chunks of 37 with `scalar` on each input, as [`warp`]; then
+/// the lane forms on groups of 16 inputs, input `i` paired with light `(l + i) % L`, so the
+/// lanes of one call hold different lights (hashed as [`hash_groups`]).
+pub fn lights<const L: usize, const I: usize, const O: usize>(
+    h: &mut Hasher,
+    lights: &[[f32; 12]; L],
+    scalar: impl Fn([[f32; 3]; 4], [f32; I]) -> [f32; O],
+    x8: impl Fn([[f32x8; 3]; 4], [f32x8; I]) -> [f32x8; O],
+    x16: impl Fn([[f32x16; 3]; 4], [f32x16; I]) -> [f32x16; O],
+    slice: impl Fn([[f32; 3]; 4], &[[f32; I]], &mut [[f32; O]]) -> usize,
+) {
+    for l in 0..L {
+        let light = points(lights[l % L]);
+        let mut chunk_in = [[0.0f32; I]; 37];
+        let mut chunk_out = [[0.0f32; O]; 37];
+        let mut i = 0;
+        while i < N {
+            let n = (N - i).min(37);
+            for (k, slot) in chunk_in.iter_mut().enumerate().take(n) {
+                *slot = input(i + k);
+            }
+            let (src, dst) = (
+                chunk_in.get(..n).unwrap_or(&[]),
+                chunk_out.get_mut(..n).unwrap_or(&mut []),
+            );
+            h.word(slice(light, src, dst) as u32);
+            for (u, o) in src.iter().zip(dst.iter()) {
+                h.floats(&scalar(light, *u));
+                h.floats(o);
+            }
+            i += n;
+        }
+        let mut g = 0;
+        while g + 16 <= N {
+            let ls: [[f32; 12]; 16] = core::array::from_fn(|j| lights[(l + g + j) % L]);
+            let us: [[f32; I]; 16] = core::array::from_fn(|j| input(g + j));
+            if h.1 {
+                let v = x16(
+                    points(core::array::from_fn(|c| {
+                        f32x16::new(core::array::from_fn(|j| ls[j][c]))
+                    })),
+                    core::array::from_fn(|d| f32x16::new(core::array::from_fn(|j| us[j][d]))),
+                );
+                for half in 0..2 {
+                    for c in &v {
+                        h.floats(&c.to_array()[8 * half..8 * half + 8]);
+                    }
+                }
+            } else {
+                for half in 0..2 {
+                    let v = x8(
+                        points(core::array::from_fn(|c| {
+                            f32x8::new(core::array::from_fn(|j| ls[8 * half + j][c]))
+                        })),
+                        core::array::from_fn(|d| {
+                            f32x8::new(core::array::from_fn(|j| us[8 * half + j][d]))
+                        }),
+                    );
+                    for c in v {
+                        h.floats(&c.to_array());
+                    }
+                }
+            }
+            g += 16;
+        }
+    }
+}
+
+/// Hashes a light's solid angle: `scalar` on every light, then the lane forms on 16 lights
+/// at a time, lane `j` of group `g` holding light `(g + j) % L`, for `g` in `0..L`.
+pub fn solid_angles<const L: usize>(
+    h: &mut Hasher,
+    lights: &[[f32; 12]; L],
+    scalar: impl Fn([[f32; 3]; 4]) -> f32,
+    x8: impl Fn([[f32x8; 3]; 4]) -> f32x8,
+    x16: impl Fn([[f32x16; 3]; 4]) -> f32x16,
+) {
+    for l in lights {
+        h.floats(&[scalar(points(*l))]);
+    }
+    for g in 0..L {
+        let ls: [[f32; 12]; 16] = core::array::from_fn(|j| lights[(g + j) % L]);
+        if h.1 {
+            let v = x16(points(core::array::from_fn(|c| {
+                f32x16::new(core::array::from_fn(|j| ls[j][c]))
+            })));
+            h.floats(&v.to_array());
+        } else {
+            for half in 0..2 {
+                let v = x8(points(core::array::from_fn(|c| {
+                    f32x8::new(core::array::from_fn(|j| ls[8 * half + j][c]))
+                })));
+                h.floats(&v.to_array());
+            }
+        }
+    }
+}
+
+/// The sampling core for one pattern: 4D draws (scalar, 8 and 16 lanes, slices) through a
+/// domain path and a split, with the pixel taken from the seed so every lane has its own;
+/// then `draw_u32` and `rnd` of the same states.
+#[cfg(feature = "sampler")]
+fn sampler<P: warpcore::sampler::Pattern>(h: &mut Hasher) {
+    use warpcore::sampler::{Sampler, SamplerX8, SamplerX16};
+    let at = |index: u32, seed: u32| {
+        Sampler::<P>::new([seed % 641, seed >> 20], seed ^ 5, index, seed)
+            .domain(3)
+            .split(7, 4, index & 3)
+    };
+    let wide = |index: [u32; 16], seed: [u32; 16]| {
+        let lanes: [Sampler<P>; 16] = core::array::from_fn(|j| {
+            Sampler::<P>::new(
+                [seed[j] % 641, seed[j] >> 20],
+                seed[j] ^ 5,
+                index[j],
+                seed[j],
+            )
+            .domain(3)
+        });
+        (lanes, index.map(|i| i & 3))
+    };
+    indexed(
+        h,
+        |i, s| at(i, s).draw::<4>(),
+        |i, s| {
+            let (lanes, sub) = wide(pad(i.to_array()), pad(s.to_array()));
+            let sub = u32x8::new(core::array::from_fn(|j| sub[j]));
+            let x8 = SamplerX8::from_lanes(core::array::from_fn(|j| lanes[j]));
+            x8.split(7, 4, sub).draw::<4>()
+        },
+        |i, s| {
+            let (lanes, sub) = wide(i.to_array(), s.to_array());
+            SamplerX16::from_lanes(lanes)
+                .split(7, 4, u32x16::new(sub))
+                .draw::<4>()
+        },
+        |start, s, out| {
+            Sampler::<P>::new([s % 641, s >> 20], s ^ 5, start, s)
+                .domain(3)
+                .draw_slice(out)
+        },
+    );
+    for k in 0..64u32 {
+        let s = at(k.wrapping_mul(0x9e37_79b9), k);
+        for w in s.draw_u32::<4>() {
+            h.word(w);
+        }
+        h.floats(&s.rnd::<4>());
+    }
+}
+
+/// Eight lanes padded to sixteen (zeros).
+#[cfg(feature = "sampler")]
+fn pad(a: [u32; 8]) -> [u32; 16] {
+    core::array::from_fn(|j| if j < 8 { a[j] } else { 0 })
+}
+
+/// The fingerprint of every family compiled in.
+pub fn fingerprint() -> u64 {
+    fingerprint_with(Hasher::new())
+}
+
+/// [`fingerprint`] with the `_x16` forms in place of the `_x8` ones: the same value.
+pub fn fingerprint_x16() -> u64 {
+    fingerprint_with(Hasher::new_x16())
+}
+
+fn fingerprint_with(mut h: Hasher) -> u64 {
+    #[cfg(feature = "disk")]
+    {
+        use warpcore::disk;
+        warp(
+            &mut h,
+            disk::polar,
+            disk::polar_x8,
+            disk::polar_x16,
+            disk::polar_slice,
+        );
+        warp(
+            &mut h,
+            disk::concentric,
+            disk::concentric_x8,
+            disk::concentric_x16,
+            disk::concentric_slice,
+        );
+        warp(
+            &mut h,
+            disk::polar_inverse,
+            disk::polar_inverse_x8,
+            disk::polar_inverse_x16,
+            disk::polar_inverse_slice,
+        );
+        warp(
+            &mut h,
+            disk::concentric_inverse,
+            disk::concentric_inverse_x8,
+            disk::concentric_inverse_x16,
+            disk::concentric_inverse_slice,
+        );
+        for q in 0..4u32 {
+            warp(
+                &mut h,
+                |u| disk::polar4(u, q),
+                |u| disk::polar4_x8(u, warpcore::u32x8::splat(q)),
+                |u| disk::polar4_x16(u, warpcore::u32x16::splat(q)),
+                |u, o| {
+                    for (a, b) in u.iter().zip(o.iter_mut()) {
+                        *b = disk::polar4(*a, q);
+                    }
+                    u.len().min(o.len())
+                },
+            );
+        }
+        for q in 0..4u32 {
+            warp(
+                &mut h,
+                |u| disk::concentric4(u, q),
+                |u| disk::concentric4_x8(u, warpcore::u32x8::splat(q)),
+                |u| disk::concentric4_x16(u, warpcore::u32x16::splat(q)),
+                |u, o| {
+                    for (a, b) in u.iter().zip(o.iter_mut()) {
+                        *b = disk::concentric4(*a, q);
+                    }
+                    u.len().min(o.len())
+                },
+            );
+        }
+        for i in 0..N {
+            let (u, q) = disk::concentric4_inverse(input(i));
+            h.floats(&u);
+            h.word(q);
+        }
+        let pts: [[f32; 2]; 9] = core::array::from_fn(input);
+        let mut out = [[0.0f32; 2]; 35];
+        h.word(disk::polar4_slice(&pts, &mut out) as u32);
+        for p in out {
+            h.floats(&p);
+        }
+        h.word(disk::concentric4_slice(&pts, &mut out) as u32);
+        for p in out {
+            h.floats(&p);
+        }
+    }
+    #[cfg(feature = "pmj02bn")]
+    {
+        use warpcore::pmj02bn;
+        indexed(
+            &mut h,
+            pmj02bn::sample,
+            pmj02bn::sample_x8,
+            pmj02bn::sample_x16,
+            pmj02bn::sample_slice,
+        );
+        for (set, index) in [(0usize, 0usize), (1, 1), (3, 4095), (7, 1 << 30)] {
+            for w in pmj02bn::raw(set, index) {
+                h.word(w);
+            }
+        }
+    }
+    #[cfg(feature = "sampler")]
+    {
+        use warpcore::sampler::{Pmj02bn, Sobol};
+        sampler::<Pmj02bn>(&mut h);
+        sampler::<Sobol>(&mut h);
+        #[cfg(feature = "blue-noise")]
+        {
+            use warpcore::sampler::Blue;
+            sampler::<Blue<Pmj02bn>>(&mut h);
+            sampler::<Blue<Sobol>>(&mut h);
+        }
+    }
+    #[cfg(feature = "sequence")]
+    {
+        use warpcore::sequence;
+        indexed(
+            &mut h,
+            sequence::random,
+            sequence::random_x8,
+            sequence::random_x16,
+            sequence::random_slice,
+        );
+        for count in [1u32, 16, 17, 1024] {
+            indexed(
+                &mut h,
+                |i, s| sequence::stratified(i, count, s),
+                |i, s| sequence::stratified_x8(i, count, s),
+                |i, s| sequence::stratified_x16(i, count, s),
+                |st, s, o| sequence::stratified_slice(st, count, s, o),
+            );
+        }
+    }
+    #[cfg(feature = "triangle")]
+    {
+        use warpcore::triangle as t;
+        warp(
+            &mut h,
+            t::uniform,
+            t::uniform_x8,
+            t::uniform_x16,
+            t::uniform_slice,
+        );
+        warp(
+            &mut h,
+            t::uniform_inverse,
+            t::uniform_inverse_x8,
+            t::uniform_inverse_x16,
+            t::uniform_inverse_slice,
+        );
+        warp(
+            &mut h,
+            t::sqrt_map,
+            t::sqrt_map_x8,
+            t::sqrt_map_x16,
+            t::sqrt_map_slice,
+        );
+        warp(
+            &mut h,
+            t::sqrt_map_inverse,
+            t::sqrt_map_inverse_x8,
+            t::sqrt_map_inverse_x16,
+            t::sqrt_map_inverse_slice,
+        );
+        indexed(
+            &mut h,
+            t::basu_owen,
+            t::basu_owen_x8,
+            t::basu_owen_x16,
+            t::basu_owen_slice,
+        );
+        indexed(
+            &mut h,
+            t::basu_owen_permuted,
+            t::basu_owen_permuted_x8,
+            t::basu_owen_permuted_x16,
+            t::basu_owen_permuted_slice,
+        );
+    }
+    #[cfg(feature = "sphere")]
+    {
+        use warpcore::sphere as s;
+        warp(
+            &mut h,
+            s::equal_area,
+            s::equal_area_x8,
+            s::equal_area_x16,
+            s::equal_area_slice,
+        );
+        warp(
+            &mut h,
+            s::equal_area_inverse,
+            s::equal_area_inverse_x8,
+            s::equal_area_inverse_x16,
+            s::equal_area_inverse_slice,
+        );
+        warp(
+            &mut h,
+            s::equal_area_wrap,
+            s::equal_area_wrap_x8,
+            s::equal_area_wrap_x16,
+            s::equal_area_wrap_slice,
+        );
+        warp(
+            &mut h,
+            s::equirect,
+            s::equirect_x8,
+            s::equirect_x16,
+            s::equirect_slice,
+        );
+        warp(
+            &mut h,
+            s::equirect_inverse,
+            s::equirect_inverse_x8,
+            s::equirect_inverse_x16,
+            s::equirect_inverse_slice,
+        );
+        warp(
+            &mut h,
+            s::uniform,
+            s::uniform_x8,
+            s::uniform_x16,
+            s::uniform_slice,
+        );
+        warp(
+            &mut h,
+            s::uniform_inverse,
+            s::uniform_inverse_x8,
+            s::uniform_inverse_x16,
+            s::uniform_inverse_slice,
+        );
+        warp(
+            &mut h,
+            s::uniform_hemisphere,
+            s::uniform_hemisphere_x8,
+            s::uniform_hemisphere_x16,
+            s::uniform_hemisphere_slice,
+        );
+        warp(
+            &mut h,
+            s::uniform_hemisphere_inverse,
+            s::uniform_hemisphere_inverse_x8,
+            s::uniform_hemisphere_inverse_x16,
+            s::uniform_hemisphere_inverse_slice,
+        );
+        warp(
+            &mut h,
+            s::cosine_hemisphere,
+            s::cosine_hemisphere_x8,
+            s::cosine_hemisphere_x16,
+            s::cosine_hemisphere_slice,
+        );
+        warp(
+            &mut h,
+            s::cosine_hemisphere_inverse,
+            s::cosine_hemisphere_inverse_x8,
+            s::cosine_hemisphere_inverse_x16,
+            s::cosine_hemisphere_inverse_slice,
+        );
+        for i in 0..N {
+            let d: [f32; 3] = input(i);
+            let [p]: [f32; 1] = input(i);
+            h.floats(&[
+                s::equirect_pdf_to_solid_angle(p, d),
+                s::equal_area_pdf_to_solid_angle(p),
+                s::cosine_hemisphere_pdf(p),
+            ]);
+            let t: [f32; 2] = input(i);
+            for w in s::equal_area_wrap_texel(t.map(|c| ((c * 64.0) as i32).wrapping_sub(16)), 32) {
+                h.word(w);
+            }
+        }
+    }
+    #[cfg(feature = "envmap")]
+    {
+        use warpcore::envmap::{Hierarchical, MarginalConditional, Sample};
+        // A 13 x 7 map with zeros, a negative texel, a NaN and a 10^6:1 bright texel.
+        let weights: [f32; 91] = core::array::from_fn(|k| match k {
+            3 | 40 | 41 => 0.0,
+            17 => -2.0,
+            60 => f32::NAN,
+            77 => 1.0e6,
+            _ => unit(k as u32) + 0.01,
+        });
+        let hash_sample = |h: &mut Hasher, s: Sample, pdf_at: f32| {
+            h.floats(&[s.uv[0], s.uv[1], s.pdf, pdf_at]);
+            h.word(s.texel[0]);
+            h.word(s.texel[1]);
+        };
+        let mut storage = [0u32; 4096];
+        let len = MarginalConditional::storage_len(13, 7).min(storage.len());
+        if let Ok(m) =
+            MarginalConditional::new(&weights, 13, 7, storage.get_mut(..len).unwrap_or(&mut []))
+        {
+            for i in 0..N {
+                let s = m.sample(input(i));
+                hash_sample(&mut h, s, m.pdf(s.uv));
+            }
+            for g in (0..N / 8).map(|g| g * 8) {
+                let v: [f32x8; 2] = core::array::from_fn(|d| {
+                    f32x8::new(core::array::from_fn(|j| input::<2>(g + j)[d]))
+                });
+                for s in m.sample_x8(v).to_array() {
+                    hash_sample(&mut h, s, m.pdf(s.uv));
+                }
+            }
+        }
+        let len = Hierarchical::storage_len(13, 7).min(storage.len());
+        if let Ok(t) = Hierarchical::new(&weights, 13, 7, storage.get_mut(..len).unwrap_or(&mut []))
+        {
+            for i in 0..N {
+                let s = t.sample(input(i));
+                hash_sample(&mut h, s, t.pdf(s.uv));
+            }
+            for g in (0..N / 8).map(|g| g * 8) {
+                let v: [f32x8; 2] = core::array::from_fn(|d| {
+                    f32x8::new(core::array::from_fn(|j| input::<2>(g + j)[d]))
+                });
+                for s in t.sample_x8(v).to_array() {
+                    hash_sample(&mut h, s, t.pdf(s.uv));
+                }
+            }
+        }
+    }
+    #[cfg(feature = "spherical")]
+    {
+        use warpcore::spherical as sp;
+        lights(
+            &mut h,
+            &SPHERICAL_TRIANGLES,
+            |l, u| {
+                let (b, d) = sp::triangle(tri(l), l[3], u);
+                [b[0], b[1], b[2], d]
+            },
+            |l, u| {
+                let (b, d) = sp::triangle_x8(tri(l), l[3], u);
+                [b[0], b[1], b[2], d]
+            },
+            |l, u| {
+                let (b, d) = sp::triangle_x16(tri(l), l[3], u);
+                [b[0], b[1], b[2], d]
+            },
+            |l, u, o| sp::triangle_slice(tri(l), l[3], u, o),
+        );
+        lights(
+            &mut h,
+            &SPHERICAL_TRIANGLES,
+            |l, b| sp::triangle_inverse(tri(l), l[3], b),
+            |l, b| sp::triangle_inverse_x8(tri(l), l[3], b),
+            |l, b| sp::triangle_inverse_x16(tri(l), l[3], b),
+            |l, b, o| sp::triangle_inverse_slice(tri(l), l[3], b, o),
+        );
+        solid_angles(
+            &mut h,
+            &SPHERICAL_TRIANGLES,
+            |l| sp::triangle_solid_angle(tri(l), l[3]),
+            |l| sp::triangle_solid_angle_x8(tri(l), l[3]),
+            |l| sp::triangle_solid_angle_x16(tri(l), l[3]),
+        );
+        lights(
+            &mut h,
+            &SPHERICAL_RECTANGLES,
+            |l, u| {
+                let (st, d) = sp::rectangle(l[0], l[1], l[2], l[3], u);
+                [st[0], st[1], d]
+            },
+            |l, u| {
+                let (st, d) = sp::rectangle_x8(l[0], l[1], l[2], l[3], u);
+                [st[0], st[1], d]
+            },
+            |l, u| {
+                let (st, d) = sp::rectangle_x16(l[0], l[1], l[2], l[3], u);
+                [st[0], st[1], d]
+            },
+            |l, u, o| sp::rectangle_slice(l[0], l[1], l[2], l[3], u, o),
+        );
+        lights(
+            &mut h,
+            &SPHERICAL_RECTANGLES,
+            |l, st| sp::rectangle_inverse(l[0], l[1], l[2], l[3], st),
+            |l, st| sp::rectangle_inverse_x8(l[0], l[1], l[2], l[3], st),
+            |l, st| sp::rectangle_inverse_x16(l[0], l[1], l[2], l[3], st),
+            |l, st, o| sp::rectangle_inverse_slice(l[0], l[1], l[2], l[3], st, o),
+        );
+        solid_angles(
+            &mut h,
+            &SPHERICAL_RECTANGLES,
+            |l| sp::rectangle_solid_angle(l[0], l[1], l[2], l[3]),
+            |l| sp::rectangle_solid_angle_x8(l[0], l[1], l[2], l[3]),
+            |l| sp::rectangle_solid_angle_x16(l[0], l[1], l[2], l[3]),
+        );
+    }
+    h.finish()
+}

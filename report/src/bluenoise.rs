@@ -1,0 +1,238 @@
+//! Screen-space blue noise, measured: the RMS of the error image after a Gaussian blur.
+//!
+//! ```text
+//! cargo run --release -p warpcore-report --bin bluenoise
+//! ```
+//!
+//! The image is 64 x 64 pixels; pixel `(x, y)` integrates its own half-plane edge over the
+//! pixel square `[0,1)^2` (the edge's angle and offset vary slowly across the image, see
+//! [`edge`]) with the points `draw::<2>()` of domain 0 of `Sampler::new([x, y], frame, i,
+//! 0)`, `i < spp`. The exact value of every pixel is the area of its half-plane in the square
+//! (f64). The error image of a frame is blurred with a Gaussian of sigma 1.5 pixels (weights
+//! renormalised at the image border), a stand-in for a denoiser or the eye; the figure is the
+//! RMS of the blurred error over all pixels and [`FRAMES`] frames. White-noise error (every
+//! pixel scrambled independently, as `Sampler<P>` does) keeps a flat spectrum that the blur
+//! only scales down; blue-noise error (`Blue<P>`: neighbouring pixels' errors cancel) loses
+//! most of its energy in the blur.
+//!
+//! Prints one table per base pattern (spp 1-16; `Sampler<P>`, `Sampler<Blue<P>>`, their
+//! ratio, and OpenQMC's base and blue-noise samplers through `openqmc-rs` for reference) and
+//! writes `target/bluenoise.png`: for each pattern (rows Sobol', pmj02bn) the 1-spp error
+//! image of frame 0 under `P` and `Blue<P>`, then both after the blur (4x contrast).
+//! `report/tests/blue_noise.rs` asserts the ratios with this code.
+
+use std::path::Path;
+use warpcore::sampler::{Blue, Pattern, Pmj02bn, Sampler, Sobol};
+
+/// Image side in pixels.
+pub const SIZE: usize = 64;
+/// Standard deviation of the Gaussian blur, in pixels.
+pub const SIGMA: f64 = 1.5;
+/// Frames averaged (frame `f` of seed 0, `f < FRAMES`).
+pub const FRAMES: u32 = 32;
+/// Samples per pixel reported: every power of two up to 16 (one progressive run per frame).
+pub const SPP: [u32; 5] = [1, 2, 4, 8, 16];
+
+/// A sampler under test: the 2D point of sample `index` of pixel `(x, y)` in `frame`.
+pub type Draw = fn(u32, u32, u32, u32) -> [f32; 2];
+
+/// `Sampler<P>`: domain 0, seed 0.
+pub fn ours<P: Pattern>(x: u32, y: u32, frame: u32, index: u32) -> [f32; 2] {
+    Sampler::<P>::new([x, y], frame, index, 0)
+        .domain(0)
+        .draw::<2>()
+}
+
+pub fn openqmc_sobol(x: u32, y: u32, frame: u32, index: u32) -> [f32; 2] {
+    openqmc::SobolSampler::new(x as i32, y as i32, frame as i32, index as i32)
+        .new_domain(0)
+        .draw_sample_f32::<2>()
+}
+
+pub fn openqmc_sobol_bn(x: u32, y: u32, frame: u32, index: u32) -> [f32; 2] {
+    openqmc::SobolBnSampler::new(x as i32, y as i32, frame as i32, index as i32)
+        .new_domain(0)
+        .draw_sample_f32::<2>()
+}
+
+pub fn openqmc_pmj(x: u32, y: u32, frame: u32, index: u32) -> [f32; 2] {
+    openqmc::PmjSampler::new(x as i32, y as i32, frame as i32, index as i32)
+        .new_domain(0)
+        .draw_sample_f32::<2>()
+}
+
+pub fn openqmc_pmj_bn(x: u32, y: u32, frame: u32, index: u32) -> [f32; 2] {
+    openqmc::PmjBnSampler::new(x as i32, y as i32, frame as i32, index as i32)
+        .new_domain(0)
+        .draw_sample_f32::<2>()
+}
+
+/// The half-plane of pixel `(x, y)`: `{u in [0,1)^2 : (u - 1/2) . n < c}` as `[n_x, n_y,
+/// c]`, with the normal's angle turning by about 0.07 radians per pixel along x (0.03 along
+/// y) and the offset `|c| <= 0.3` (so every pixel's edge crosses its square) drifting more
+/// slowly still.
+pub fn edge(x: usize, y: usize) -> [f64; 3] {
+    let tau = std::f64::consts::TAU;
+    let (x, y) = (x as f64, y as f64);
+    let angle = tau * (x + 0.5 * y) / 96.0 + 0.3;
+    let c = 0.3 * (tau * (y - 0.5 * x) / 80.0 + 0.5).sin();
+    [angle.cos(), angle.sin(), c]
+}
+
+/// Is `p` inside the half-plane `e`?
+pub fn inside(e: &[f64; 3], p: [f32; 2]) -> bool {
+    (p[0] as f64 - 0.5) * e[0] + (p[1] as f64 - 0.5) * e[1] < e[2]
+}
+
+/// The area of the half-plane `e` inside the unit square: the square clipped by the line
+/// (Sutherland-Hodgman), then the shoelace formula.
+pub fn area(e: &[f64; 3]) -> f64 {
+    let s = |p: [f64; 2]| (p[0] - 0.5) * e[0] + (p[1] - 0.5) * e[1] - e[2];
+    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let mut poly: Vec<[f64; 2]> = Vec::with_capacity(5);
+    for k in 0..4 {
+        let (a, b) = (square[k], square[(k + 1) % 4]);
+        let (sa, sb) = (s(a), s(b));
+        if sa < 0.0 {
+            poly.push(a);
+        }
+        if (sa < 0.0) != (sb < 0.0) {
+            let t = sa / (sa - sb);
+            poly.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
+        }
+    }
+    let n = poly.len();
+    (0..n)
+        .map(|k| {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            a[0] * b[1] - a[1] * b[0]
+        })
+        .sum::<f64>()
+        / 2.0
+}
+
+/// The error images of one frame, one per entry of [`SPP`] (row-major, `SIZE * SIZE`).
+pub fn error_images(draw: Draw, frame: u32) -> Vec<Vec<f64>> {
+    let mut out = vec![vec![0.0; SIZE * SIZE]; SPP.len()];
+    for y in 0..SIZE {
+        for x in 0..SIZE {
+            let e = edge(x, y);
+            let exact = area(&e);
+            let mut hits = 0u32;
+            let mut level = 0;
+            for i in 0..SPP[SPP.len() - 1] {
+                hits += inside(&e, draw(x as u32, y as u32, frame, i)) as u32;
+                if i + 1 == SPP[level] {
+                    out[level][y * SIZE + x] = hits as f64 / SPP[level] as f64 - exact;
+                    level += 1;
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The image blurred by a Gaussian of sigma [`SIGMA`] (separable, truncated at 4 sigma,
+/// weights renormalised where the kernel leaves the image).
+pub fn blur(img: &[f64]) -> Vec<f64> {
+    let r = (4.0 * SIGMA).ceil() as isize;
+    let w: Vec<f64> = (-r..=r)
+        .map(|d| (-((d * d) as f64) / (2.0 * SIGMA * SIGMA)).exp())
+        .collect();
+    let pass = |src: &[f64], horizontal: bool| {
+        let mut dst = vec![0.0; SIZE * SIZE];
+        for y in 0..SIZE {
+            for x in 0..SIZE {
+                let (mut sum, mut norm) = (0.0, 0.0);
+                for d in -r..=r {
+                    let (qx, qy) = if horizontal {
+                        (x as isize + d, y as isize)
+                    } else {
+                        (x as isize, y as isize + d)
+                    };
+                    if (0..SIZE as isize).contains(&qx) && (0..SIZE as isize).contains(&qy) {
+                        let k = w[(d + r) as usize];
+                        sum += k * src[qy as usize * SIZE + qx as usize];
+                        norm += k;
+                    }
+                }
+                dst[y * SIZE + x] = sum / norm;
+            }
+        }
+        dst
+    };
+    pass(&pass(img, true), false)
+}
+
+/// RMS of the blurred error over all pixels of frames `frames`, one figure per entry of
+/// [`SPP`].
+pub fn rms_after_blur(draw: Draw, frames: std::ops::Range<u32>) -> Vec<f64> {
+    let mut sum = vec![0.0; SPP.len()];
+    let count = frames.len() * SIZE * SIZE;
+    for frame in frames {
+        for (level, img) in error_images(draw, frame).iter().enumerate() {
+            sum[level] += blur(img).iter().map(|e| e * e).sum::<f64>();
+        }
+    }
+    sum.iter().map(|s| (s / count as f64).sqrt()).collect()
+}
+
+/// One pattern's row set of the table: `(name, P, Blue<P>, OpenQMC base, OpenQMC BN)`.
+pub fn patterns() -> [(&'static str, Draw, Draw, Draw, Draw); 2] {
+    [
+        (
+            "Sobol",
+            ours::<Sobol>,
+            ours::<Blue<Sobol>>,
+            openqmc_sobol,
+            openqmc_sobol_bn,
+        ),
+        (
+            "Pmj02bn",
+            ours::<Pmj02bn>,
+            ours::<Blue<Pmj02bn>>,
+            openqmc_pmj,
+            openqmc_pmj_bn,
+        ),
+    ]
+}
+
+/// Rows Sobol' and pmj02bn; columns: `P` and `Blue<P>` error at 1 spp (frame 0), then both
+/// blurred (4x contrast). Grey 128 is zero error.
+pub fn picture(path: &Path) -> std::io::Result<()> {
+    const SCALE: usize = 3;
+    const GAP: usize = 6;
+    let cell = SIZE * SCALE;
+    let (w, h) = (4 * cell + 5 * GAP, 2 * cell + 3 * GAP);
+    let mut px = vec![255u8; w * h];
+    for (row, (_, base, blue, _, _)) in patterns().into_iter().enumerate() {
+        let [e_base, e_blue] = [base, blue].map(|d| error_images(d, 0).swap_remove(0));
+        let images = [
+            (e_base.clone(), 1.0),
+            (e_blue.clone(), 1.0),
+            (blur(&e_base), 4.0),
+            (blur(&e_blue), 4.0),
+        ];
+        for (col, (img, contrast)) in images.iter().enumerate() {
+            let (ox, oy) = (GAP + col * (cell + GAP), GAP + row * (cell + GAP));
+            for y in 0..cell {
+                for x in 0..cell {
+                    let e = img[(y / SCALE) * SIZE + x / SCALE] * contrast;
+                    px[(oy + y) * w + ox + x] = (128.0 + 127.0 * e.clamp(-1.0, 1.0)).round() as u8;
+                }
+            }
+        }
+    }
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)?;
+    }
+    let file = std::io::BufWriter::new(std::fs::File::create(path)?);
+    let mut enc = png::Encoder::new(file, w as u32, h as u32);
+    enc.set_color(png::ColorType::Grayscale);
+    enc.set_depth(png::BitDepth::Eight);
+    let mut writer = enc.write_header().map_err(std::io::Error::other)?;
+    writer
+        .write_image_data(&px)
+        .map_err(std::io::Error::other)?;
+    writer.finish().map_err(std::io::Error::other)
+}
