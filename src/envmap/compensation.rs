@@ -107,6 +107,20 @@ impl Compensator {
         Ok(left.then_some(c))
     }
 
+    /// The largest compensated weight of `weights` (`width` per row): one pass. Positive for
+    /// an active compensation (`new` returns `None` when nothing is left).
+    pub(super) fn max(&self, weights: &[f32], width: usize) -> f64 {
+        weights
+            .chunks_exact(width.max(1))
+            .enumerate()
+            .fold(0.0, |m, (r, row)| {
+                row.iter().fold(m, |m, &x| {
+                    let v = self.apply(clean(x), r);
+                    if v > m { v } else { m }
+                })
+            })
+    }
+
     /// The compensated weight of a cleaned weight `x` in row `row`: `max(0, x - sub * factor)`.
     #[inline]
     pub(super) fn apply(&self, x: f32, row: usize) -> f64 {

@@ -45,7 +45,9 @@
 //! faint that its interval would be shorter than one unit (probability below about `2^-30`
 //! per axis) can be unreachable; its pdf then says 0, consistently. Node sums are `f32`,
 //! rescaled by a power of two when the total would overflow (weights below `2^-149` of that
-//! scale then count as 0).
+//! scale then count as 0), and compensated weights (computed in `f64`) by the power of two
+//! that brings the largest into `[1, 2)` when it is below `f32`'s normal range, so a map of
+//! subnormal weights keeps its compensated texels instead of rounding them all to 0.
 //!
 //! Layout: levels are stored in pairs, as 64-byte blocks aligned to cache lines — a node's
 //! three fractions, its (up to) four children's three fractions each, and its sum (used
@@ -345,8 +347,9 @@ impl<'a> Hierarchical<'a> {
     /// [`new`](Self::new) with MIS compensation: the tables (and so every pdf) are those of
     /// the compensated weights, `max(0, w - fraction * average)` (see [`Compensation`] for
     /// the lat-long form), falling back to the weights as given when compensation would
-    /// remove them all. One more pass over the weights (two for `MarginalConditional`'s
-    /// check); `Compensation::None` is `new`. Errors: those of `new`.
+    /// remove them all. Two more passes over the weights (the average, then the largest
+    /// compensated weight, which sets the pyramid's scale), and a third that stops at the
+    /// first texel compensation keeps; `Compensation::None` is `new`. Errors: those of `new`.
     pub fn new_compensated(
         weights: &[f32],
         width: usize,
@@ -394,6 +397,27 @@ impl<'a> Hierarchical<'a> {
         } else {
             1.0
         };
+        // Compensated weights are `f64` and go into the `f32` pyramid scaled by `cscale`:
+        // `scale` as above, unless even the largest is below `f32`'s normal range (a map of
+        // subnormal weights, or a fraction that leaves only a sliver above the average).
+        // Rounded to `f32` as they are, such weights would lose precision or all round to 0
+        // (every texel below `2^-150`), leaving an empty pyramid whose walk ends on a texel
+        // of zero weight; so they are scaled by the power of two that brings the largest into
+        // `[1, 2)`. Power-of-two scaling leaves every fraction as it is; maps whose largest
+        // compensated weight is normal get exactly the tables they always had.
+        let cscale = match compensator {
+            Some(c) => {
+                let top = c.max(weights, w);
+                if top < f64::from(f32::MIN_POSITIVE) {
+                    // `top` is a positive normal f64 in [2^-1022, 2^-126): 2^-exponent.
+                    let e = ((top.to_bits() >> 52) & 0x7ff) as i64 - 1023;
+                    f64::from_bits(((1023 - e) as u64) << 52)
+                } else {
+                    f64::from(scale)
+                }
+            }
+            None => f64::from(scale),
+        };
         let place = Placement::new(shape, w, h);
         let [ox, oy] = place.offsets();
         // Padded texel `(tx, ty)`: map texel `(tx - ox, ty - oy)`, or padding.
@@ -412,7 +436,7 @@ impl<'a> Hierarchical<'a> {
                     .unwrap_or(0.0),
             );
             match compensator {
-                Some(c) => (c.apply(x, ty as usize) * f64::from(scale)) as f32,
+                Some(c) => (c.apply(x, ty as usize) * cscale) as f32,
                 None => x * scale,
             }
         };

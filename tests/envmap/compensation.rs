@@ -8,7 +8,7 @@
 
 use warpcore_testkit as common;
 
-use common::{rng, unit2};
+use common::{ONE_MINUS_EPS, rng, unit2};
 use rand::RngExt;
 use std::f64::consts::PI;
 use warpcore::envmap::{
@@ -32,18 +32,9 @@ fn weights(w: usize, h: usize, seed: u64) -> Vec<f32> {
 
 /// The compensated weights, in `f64`, from the definition (not the library's code).
 fn reference(wts: &[f32], w: usize, h: usize, how: Compensation) -> Vec<f64> {
-    let row = |r: usize| (PI * (r as f64 + 0.5) / h as f64).sin();
-    let (fraction, latlong) = match how {
-        Compensation::Uniform(f) => (f as f64, false),
-        Compensation::Equirect(f) => (f as f64, true),
-        _ => (0.0, false),
-    };
-    let factor = |r: usize| if latlong { row(r) } else { 1.0 };
-    let total: f64 = wts.iter().map(|&x| x.max(0.0) as f64).sum();
-    let measure: f64 = (0..h).map(factor).sum::<f64>() * w as f64;
-    let sub = fraction * total / measure;
-    (0..w * h)
-        .map(|k| (wts[k].max(0.0) as f64 - sub * factor(k / w)).max(0.0))
+    signed_reference(wts, w, h, how)
+        .into_iter()
+        .map(|c| c.max(0.0))
         .collect()
 }
 
@@ -218,4 +209,215 @@ fn compensated_builds_report_errors() {
     assert_eq!(d.pdf(centre(0, 0, w, h)), 0.0);
     assert_eq!(d.pdf(centre(1, 0, w, h)), 0.0);
     let _: Sample = d.sample([0.5, 0.5]);
+}
+
+/// The fuzz finding of a compensated 2 x 33 map (`fuzz/corpus/envmap/93216fcb...`,
+/// decoded): its only positive weight is the smallest subnormal, `2^-149`, at texel `[0, 2]`
+/// (the others 0, NaN or negative), at `Uniform(42.426)`. Compensation leaves that texel
+/// `2^-149 (1 - 42.426 / 66)`, positive but below half the smallest `f32` subnormal, so it is
+/// the whole distribution: every `u` must give texel `[0, 2]` at density `66` (all of the
+/// probability on one texel of a 66-texel map) — never a zero-weight texel.
+#[test]
+fn compensated_subnormal_only_weight_is_sampled() {
+    let (w, h) = (2usize, 33usize);
+    let mut wts = vec![0.0f32; w * h];
+    wts[0] = f32::from_bits(0xffff_ffff); // NaN
+    wts[1] = f32::from_bits(0xff7e_ffff); // -3.4e38
+    wts[2] = f32::from_bits(0xfffe_fffd); // NaN
+    wts[3] = f32::from_bits(0xff5b_ffff); // -2.9e38
+    wts[4] = f32::from_bits(1); // 1e-45, texel [0, 2]
+    let how = Compensation::Uniform(f32::from_bits(0x6e84_5368u32.rotate_left(7)));
+    assert_eq!(how, Compensation::Uniform(42.42599));
+    let mut hs = vec![0 as Word; Hierarchical::storage_len(w, h)];
+    let hier = Hierarchical::new_compensated(&wts, w, h, how, &mut hs).unwrap();
+    let mut ms = vec![0 as Word; MarginalConditional::storage_len(w, h)];
+    let marg = MarginalConditional::new_compensated(&wts, w, h, how, &mut ms).unwrap();
+    let mut g = rng(36);
+    let us = [[0.0, 0.0], [0.5, 0.5], [ONE_MINUS_EPS; 2]]
+        .into_iter()
+        .chain((0..1000).map(|_| unit2(&mut g)));
+    for u in us {
+        for (name, s, at) in [
+            ("hierarchical", hier.sample(u), hier.pdf(hier.sample(u).uv)),
+            ("marginal", marg.sample(u), marg.pdf(marg.sample(u).uv)),
+        ] {
+            assert_eq!(s.texel, [0, 2], "{name} {u:?}");
+            assert_eq!(s.pdf, 66.0, "{name} {u:?}");
+            assert_eq!(at.to_bits(), s.pdf.to_bits(), "{name} {u:?}");
+        }
+    }
+    assert_eq!(hier.pdf(centre(0, 0, w, h)), 0.0);
+    assert_eq!(marg.pdf(centre(0, 0, w, h)), 0.0);
+}
+
+/// Property: on small maps (powers of two and centred non-powers of two) whose only positive
+/// weights are subnormal — the others 0, NaN, `-0.0` or negative — both distributions, with
+/// and without compensation (`Uniform` and `Equirect` at fractions that remove some, most or
+/// all texels), agree on the support: no texel with zero compensated weight (the `f64`
+/// reference above; the weights as given when it removes everything) has a positive pdf or
+/// is ever sampled, and every texel the reference keeps has a positive pdf (hierarchical:
+/// those with at least `2^-20` of the total, far above its documented `2^-30`-per-axis
+/// resolution). The pdfs are consistent: they sum to 1 over the texels (within 1e-6), agree
+/// with the reference share within 1e-4 for texels of at least a sixteenth of the average,
+/// and `pdf(sample.uv) == sample.pdf`, finite and positive. 1,600 maps (cases too close to
+/// the compensation threshold for `f32` row factors to decide are skipped and counted),
+/// 64 samples each.
+#[test]
+fn subnormal_maps_agree_between_distributions() {
+    let sizes = [
+        (1usize, 1usize),
+        (2, 2),
+        (4, 4),
+        (8, 2),
+        (16, 4),
+        (2, 33),
+        (33, 2),
+        (3, 5),
+        (5, 3),
+        (7, 7),
+        (13, 9),
+        (1, 13),
+    ];
+    let mut g = rng(3636);
+    let (mut cases, mut skipped, mut compensated) = (0, 0, 0);
+    for i in 0..1600 {
+        let (w, h) = sizes[i % sizes.len()];
+        // Subnormal magnitudes: single ulps, small multiples, or all 23 bits.
+        let top = [1u32, 2, 16, 0x7f_ffff][(i / sizes.len()) % 4];
+        let mut wts: Vec<f32> = (0..w * h)
+            .map(|_| match g.random::<u32>() % 8 {
+                0 | 1 => f32::from_bits(1 + g.random::<u32>() % top),
+                2 => f32::NAN,
+                3 => -f32::from_bits(g.random::<u32>() >> 1).abs(),
+                4 => -0.0,
+                _ => 0.0,
+            })
+            .collect();
+        if !wts.iter().any(|x| *x > 0.0) {
+            wts[g.random::<u32>() as usize % (w * h)] = f32::from_bits(1 + g.random::<u32>() % top);
+        }
+        let fraction = [
+            0.5f32,
+            1.0,
+            42.426,
+            2.0 * g.random::<f32>() * (w * h) as f32,
+        ][i % 4];
+        let how = [
+            Compensation::None,
+            Compensation::Uniform(fraction),
+            Compensation::Equirect(fraction),
+        ][(i / 4) % 3];
+        let comp = reference(&wts, w, h, how);
+        let raw: Vec<f64> = wts.iter().map(|&x| x.max(0.0) as f64).collect();
+        // The fallback: nothing left after compensation.
+        let want = if comp.iter().any(|&x| x > 0.0) {
+            comp
+        } else {
+            raw.clone()
+        };
+        // Skip maps where a positive texel sits within 1e-6 (relative) of the threshold:
+        // the library's f32 row factors and its rounding of the average may decide it
+        // either way.
+        let near = wts
+            .iter()
+            .zip(signed_reference(&wts, w, h, how))
+            .any(|(&x, c)| x > 0.0 && c.abs() < 1e-6 * x as f64);
+        if near {
+            skipped += 1;
+            continue;
+        }
+        cases += 1;
+        compensated += usize::from(want != raw);
+        let total: f64 = want.iter().sum();
+        let label = format!("{w}x{h} {how:?} {wts:?}");
+        let mut hs = vec![0 as Word; Hierarchical::storage_len(w, h)];
+        let hier = Hierarchical::new_compensated(&wts, w, h, how, &mut hs).unwrap();
+        let mut ms = vec![0 as Word; MarginalConditional::storage_len(w, h)];
+        let marg = MarginalConditional::new_compensated(&wts, w, h, how, &mut ms).unwrap();
+        let check =
+            |d: &dyn Fn([f32; 2]) -> (Sample, f32), pdf: &dyn Fn([f32; 2]) -> f32, hier: bool| {
+                let name = if hier { "hierarchical" } else { "marginal" };
+                let mut sum = 0.0;
+                for r in 0..h {
+                    for c in 0..w {
+                        let p = pdf(centre(c, r, w, h)) as f64 / (w * h) as f64;
+                        sum += p;
+                        let x = want[r * w + c] / total;
+                        if x == 0.0 {
+                            assert_eq!(p, 0.0, "{name} [{c}, {r}] zero weight, {label}");
+                        } else if !hier || x >= 1.0 / (1u64 << 20) as f64 {
+                            assert!(p > 0.0, "{name} [{c}, {r}] unreachable, {label}");
+                        }
+                        if x >= 1.0 / (16 * w * h) as f64 {
+                            assert!(
+                                (p / x - 1.0).abs() < 1e-4,
+                                "{name} [{c}, {r}]: {p} vs {x}, {label}"
+                            );
+                        }
+                    }
+                }
+                assert!((sum - 1.0).abs() < 1e-6, "{name}: sum {sum}, {label}");
+                let mut u = rng(i as u64);
+                for k in 0..64 {
+                    let u = match k {
+                        0 => [0.0, 0.0],
+                        1 => [ONE_MINUS_EPS; 2],
+                        _ => unit2(&mut u),
+                    };
+                    let (s, at) = d(u);
+                    let t = s.texel[1] as usize * w + s.texel[0] as usize;
+                    assert!(
+                        want[t] > 0.0,
+                        "{name} {u:?}: zero-weight texel {:?}, {label}",
+                        s.texel
+                    );
+                    assert!(
+                        s.pdf.is_finite() && s.pdf > 0.0,
+                        "{name}: pdf {}, {label}",
+                        s.pdf
+                    );
+                    assert_eq!(s.pdf.to_bits(), at.to_bits(), "{name}: pdf(uv), {label}");
+                }
+            };
+        check(
+            &|u| {
+                let s = hier.sample(u);
+                (s, hier.pdf(s.uv))
+            },
+            &|uv| hier.pdf(uv),
+            true,
+        );
+        check(
+            &|u| {
+                let s = marg.sample(u);
+                (s, marg.pdf(s.uv))
+            },
+            &|uv| marg.pdf(uv),
+            false,
+        );
+    }
+    eprintln!(
+        "{cases} maps checked ({compensated} compensated, not the fallback), {skipped} skipped"
+    );
+    assert!(
+        cases >= 1500 && compensated >= 300,
+        "{cases} cases, {compensated} compensated"
+    );
+}
+
+/// `w - fraction * average * factor` before the `max(0, ..)` of [`reference`].
+fn signed_reference(wts: &[f32], w: usize, h: usize, how: Compensation) -> Vec<f64> {
+    let row = |r: usize| (PI * (r as f64 + 0.5) / h as f64).sin();
+    let (fraction, latlong) = match how {
+        Compensation::Uniform(f) => (f as f64, false),
+        Compensation::Equirect(f) => (f as f64, true),
+        _ => (0.0, false),
+    };
+    let factor = |r: usize| if latlong { row(r) } else { 1.0 };
+    let total: f64 = wts.iter().map(|&x| x.max(0.0) as f64).sum();
+    let measure: f64 = (0..h).map(factor).sum::<f64>() * w as f64;
+    let sub = fraction * total / measure;
+    (0..w * h)
+        .map(|k| wts[k].max(0.0) as f64 - sub * factor(k / w))
+        .collect()
 }
