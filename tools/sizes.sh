@@ -69,8 +69,8 @@ fi
 node -e '
 const fs = require("fs");
 const has = (wasm, table) => fs.readFileSync(wasm).includes(fs.readFileSync(table).subarray(0, 64));
-const tables = fs.readdirSync("../../src/tables").filter(f => f.endsWith(".bin")).map(f => "../../src/tables/" + f);
-if (tables.some(t => has("target/probe-concentric.wasm", t))) { console.error("concentric-only build contains pmj02bn tables"); process.exit(1); }
-if (!has("target/probe-pmj02bn-1024.wasm", "../../src/tables/pmj02bn_1024_0.bin")) { console.error("control failed: table not found in the pmj02bn probe"); process.exit(1); }
+const tables = fs.readdirSync("src/tables").filter(f => f.endsWith(".bin")).map(f => "src/tables/" + f);
+if (tables.some(t => has("target/wasm32-unknown-unknown/wasm/probe-concentric.wasm", t))) { console.error("concentric-only build contains pmj02bn tables"); process.exit(1); }
+if (!has("target/wasm32-unknown-unknown/wasm/probe-pmj02bn-1024.wasm", "src/tables/pmj02bn_1024_0.bin")) { console.error("control failed: table not found in the pmj02bn probe"); process.exit(1); }
 console.log("concentric-only build contains no pmj02bn table bytes (control: found in the pmj02bn probe)");
 '
