@@ -2,6 +2,8 @@
 //! coordinates, and a prefix-preserving shuffle of sample indices. Integer arithmetic only,
 //! so one body gives the same bits for `Wrapping<u32>` and `u32x8`.
 
+#[cfg(feature = "sampler")]
+use crate::lanes::Kernel4;
 use crate::lanes::UintLane;
 
 /// A bijective 32-bit mixer with low bias: Chris Wellons' `lowbias32` from *hash-prospector*
@@ -42,6 +44,32 @@ pub(crate) fn lk_hash<U: UintLane>(x: U, seed: U) -> U {
 pub(crate) fn scramble<U: UintLane, const REVERSE_IN: bool>(v: U, seed: U) -> U {
     let v = if REVERSE_IN { v.reverse_bits() } else { v };
     lk_hash(v, seed).reverse_bits()
+}
+
+/// [`scramble`] as a [`Kernel4`].
+#[cfg(feature = "sampler")]
+#[derive(Clone, Copy)]
+struct Scramble<const REVERSE_IN: bool>;
+
+#[cfg(feature = "sampler")]
+impl<const REVERSE_IN: bool> Kernel4 for Scramble<REVERSE_IN> {
+    #[inline(always)]
+    fn run<U: UintLane>(self, word: U, key: U) -> U {
+        scramble::<U, REVERSE_IN>(word, key)
+    }
+}
+
+/// The four words of one 4D point (in each lane) scrambled under four keys: the Laine-Karras
+/// hash of each word (bit-reversed first when `REVERSE_IN`, i.e. Owen's nested scramble of
+/// [`owen_scramble`]; Sobol' words arrive reversed already), reversed back; a scalar runs the
+/// four as one 4-lane vector ([`UintLane::map4`]).
+#[cfg(feature = "sampler")]
+#[inline(always)]
+pub(crate) fn scramble4<U: UintLane, const REVERSE_IN: bool>(
+    words: [U; 4],
+    keys: [U; 4],
+) -> [U; 4] {
+    U::map4(words, keys, Scramble::<REVERSE_IN>)
 }
 
 #[inline(always)]

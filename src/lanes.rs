@@ -48,6 +48,13 @@ pub(crate) trait Mask:
 {
 }
 
+/// A lane-generic integer kernel of a word and a key, for [`UintLane::map4`] (a closure
+/// cannot be generic over the lane type).
+#[cfg(feature = "sampler")]
+pub(crate) trait Kernel4: Copy {
+    fn run<U: UintLane>(self, word: U, key: U) -> U;
+}
+
 /// The unsigned-integer lane paired with a [`Lane`]: `Wrapping<u32>` or [`u32x8`].
 /// Arithmetic wraps (it never panics); shifts take the count modulo 32.
 pub(crate) trait UintLane:
@@ -87,16 +94,15 @@ pub(crate) trait UintLane:
     #[allow(dead_code)] // for the table-driven families (pmj02bn)
     fn gather_pairs(self, f: impl Fn(u32) -> [u32; 2]) -> [Self; 2];
 
-    /// The four words of one 4D point (in each lane) scrambled under four keys: the
-    /// Laine-Karras hash of each word (bit-reversed first when `REVERSE_IN`, i.e. Owen's
-    /// nested scramble of [`owen_scramble`](crate::hash::owen_scramble); Sobol' words arrive
-    /// reversed already), reversed back. A scalar runs the four as one 4-lane vector (the same
-    /// integer operations, so the same bits): one vector hash and vector bit reversals instead
-    /// of four hashes and up to eight scalar reversals (no bit-reverse instruction on x86).
+    /// `kernel` applied to four (word, key) pairs of this lane type: one call per pair, except
+    /// that a scalar runs the four as one 4-lane vector (the same integer operations, so the
+    /// same bits): one vector hash and vector bit reversals instead of four hashes and up to
+    /// eight scalar reversals (no bit-reverse instruction on x86). The sampling core's Owen
+    /// scrambles of a 4D point go through it (`crate::hash::scramble4`).
     #[cfg(feature = "sampler")]
     #[inline(always)]
-    fn scramble4<const REVERSE_IN: bool>(words: [Self; 4], keys: [Self; 4]) -> [Self; 4] {
-        core::array::from_fn(|d| crate::hash::scramble::<Self, REVERSE_IN>(words[d], keys[d]))
+    fn map4<K: Kernel4>(words: [Self; 4], keys: [Self; 4], kernel: K) -> [Self; 4] {
+        core::array::from_fn(|d| kernel.run(words[d], keys[d]))
     }
 
     /// Each lane rotated right by `n` bits (`n` in `1..32`): the cheap derived keys of the
@@ -202,12 +208,10 @@ impl UintLane for Wrapping<u32> {
 
     #[cfg(feature = "sampler")]
     #[inline(always)]
-    fn scramble4<const REVERSE_IN: bool>(words: [Self; 4], keys: [Self; 4]) -> [Self; 4] {
+    fn map4<K: Kernel4>(words: [Self; 4], keys: [Self; 4], kernel: K) -> [Self; 4] {
         let w = u32x4::new(words.map(|w| w.0));
         let k = u32x4::new(keys.map(|k| k.0));
-        crate::hash::scramble::<u32x4, REVERSE_IN>(w, k)
-            .to_array()
-            .map(Wrapping)
+        kernel.run(w, k).to_array().map(Wrapping)
     }
 
     #[inline(always)]

@@ -8,6 +8,8 @@
 
 use crate::lanes::{Lane, UintLane};
 use wide::{ShuffleExt, f32x8, f32x16, u32x8, u32x16};
+#[cfg(feature = "sampler")]
+use wide::{u64x4, u64x8};
 
 /// The lane type the slice forms run: [`f32x16`] when the build has AVX-512F (`-C
 /// target-cpu=native` on such a CPU, or `-C target-feature=+avx512f`), [`f32x8`] otherwise
@@ -352,6 +354,85 @@ const fn chain_plan<const N: usize, const S: usize, const ROWS: usize, const LAY
         r += 1;
     }
     plan
+}
+
+/// The slices' vectors: [`Vector`] with the full-width interleaves of `wide`, from which the
+/// array-of-structs stores of 2 and 4 components are built.
+#[cfg(feature = "sampler")]
+pub(crate) trait Rows<const LN: usize>: Vector<LN> {
+    /// `[a0, b0, a1, b1, ..]`: the low halves of `a` and `b` interleaved, then the high halves.
+    fn zip32(a: Self::U, b: Self::U) -> [Self::U; 2];
+    /// The same with pairs of lanes as the elements.
+    fn zip64(a: Self::U, b: Self::U) -> [Self::U; 2];
+}
+
+#[cfg(feature = "sampler")]
+impl Rows<8> for f32x8 {
+    #[inline(always)]
+    fn zip32(a: u32x8, b: u32x8) -> [u32x8; 2] {
+        [a.unpack_lo(b), a.unpack_hi(b)]
+    }
+    #[inline(always)]
+    fn zip64(a: u32x8, b: u32x8) -> [u32x8; 2] {
+        let (a, b): (u64x4, u64x4) = (bytemuck::cast(a), bytemuck::cast(b));
+        [
+            bytemuck::cast(a.unpack_lo(b)),
+            bytemuck::cast(a.unpack_hi(b)),
+        ]
+    }
+}
+
+#[cfg(feature = "sampler")]
+impl Rows<16> for f32x16 {
+    #[inline(always)]
+    fn zip32(a: u32x16, b: u32x16) -> [u32x16; 2] {
+        [a.unpack_lo(b), a.unpack_hi(b)]
+    }
+    #[inline(always)]
+    fn zip64(a: u32x16, b: u32x16) -> [u32x16; 2] {
+        let (a, b): (u64x8, u64x8) = (bytemuck::cast(a), bytemuck::cast(b));
+        [
+            bytemuck::cast(a.unpack_lo(b)),
+            bytemuck::cast(a.unpack_hi(b)),
+        ]
+    }
+}
+
+/// `LN` points of `N` components, one vector per component, stored as an array of points:
+/// two interleaves per pair of components (4 components: the pairs `(x, y)`, `(z, w)`, then
+/// their pairs of lanes), or [`store`]'s permutes for 3.
+#[cfg(feature = "sampler")]
+#[inline(always)]
+pub(crate) fn store_rows<L: Rows<LN>, const LN: usize, const N: usize>(
+    v: [L; N],
+    dst: &mut [[f32; N]; LN],
+) {
+    let w = |k: usize| v[k % N].to_bits();
+    let rows: &mut [[f32; LN]] = dst.as_flattened_mut().as_chunks_mut::<LN>().0;
+    let mut put = |r: usize, words: L::U| {
+        if let Some(row) = rows.get_mut(r) {
+            *row = bytemuck::cast(L::to_words(words));
+        }
+    };
+    match N {
+        1 => put(0, w(0)),
+        2 => {
+            let [r0, r1] = L::zip32(w(0), w(1));
+            put(0, r0);
+            put(1, r1);
+        }
+        4 => {
+            let [xy0, xy1] = L::zip32(w(0), w(1));
+            let [zw0, zw1] = L::zip32(w(2), w(3));
+            let [r0, r1] = L::zip64(xy0, zw0);
+            let [r2, r3] = L::zip64(xy1, zw1);
+            put(0, r0);
+            put(1, r1);
+            put(2, r2);
+            put(3, r3);
+        }
+        _ => *dst = store(v),
+    }
 }
 
 #[cfg(test)]

@@ -267,7 +267,7 @@ fn pmj02bn_pairs<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
     };
     let a = pair(0);
     let b = if N > 2 { pair(1) } else { a };
-    let [x0, y0, x1, y1] = U::scramble4::<true>([a[0], a[1], b[0], b[1]], scramble);
+    let [x0, y0, x1, y1] = crate::hash::scramble4::<U, true>([a[0], a[1], b[0], b[1]], scramble);
     let (a, b) = ([x0, y0], [x1, y1]);
     core::array::from_fn(|d| [a[0], a[1], b[0], b[1]][d])
 }
@@ -305,7 +305,7 @@ fn pmj02bn_block_keys<U: UintLane>(seed: U, block: U) -> ([U; 2], [U; 4]) {
 /// shuffle maps each aligned block of `POINTS` indices onto one block of the table's, so the
 /// keys are derived once per run of groups inside such a block.
 #[inline(always)]
-fn pmj02bn_groups<L: simd::Rows<LN>, const LN: usize, const N: usize>(
+fn pmj02bn_groups<L: crate::slices::Rows<LN>, const LN: usize, const N: usize>(
     first: u32,
     seed: u32,
     groups: &mut [[[f32; N]; LN]],
@@ -329,7 +329,7 @@ fn pmj02bn_groups<L: simd::Rows<LN>, const LN: usize, const N: usize>(
                 [x0, y0]
             };
             let comps = [x0, y0, x1, y1];
-            simd::store_rows(core::array::from_fn(|d| comps[d % 4]), dst);
+            crate::slices::store_rows(core::array::from_fn(|d| comps[d % 4]), dst);
         }
         done += run.len();
     }
@@ -338,7 +338,7 @@ fn pmj02bn_groups<L: simd::Rows<LN>, const LN: usize, const N: usize>(
 /// One pmj02bn pair of the slices (see [`pmj02bn_groups`]): the draw's key, the pair, its
 /// shuffle key, and the lane constants.
 #[derive(Clone, Copy)]
-struct PairRun<L: simd::Rows<LN>, const LN: usize> {
+struct PairRun<L: crate::slices::Rows<LN>, const LN: usize> {
     seed: u32,
     pair: usize,
     shuffle_key: Wrapping<u32>,
@@ -348,12 +348,12 @@ struct PairRun<L: simd::Rows<LN>, const LN: usize> {
 
 /// The keys of one block of the table for one pair: the set and the x/y scramble keys
 /// alternating by lane.
-struct BlockKeys<L: simd::Rows<LN>, const LN: usize> {
+struct BlockKeys<L: crate::slices::Rows<LN>, const LN: usize> {
     set: &'static [[u8; 8]; POINTS],
     keys_xy: L::U,
 }
 
-impl<L: simd::Rows<LN>, const LN: usize> PairRun<L, LN> {
+impl<L: crate::slices::Rows<LN>, const LN: usize> PairRun<L, LN> {
     const S: u32 = LN.trailing_zeros();
 
     #[inline(always)]

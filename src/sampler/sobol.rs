@@ -133,7 +133,7 @@ pub(super) fn point<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
     // the matrices and the scrambles, which work on reversed values.
     let r = lk_hash(index.reverse_bits(), keys[0]);
     let [_, k1, k2, k3, k4] = keys;
-    let out = U::scramble4::<false>(reversed_dims(r), [k1, k2, k3, k4]);
+    let out = crate::hash::scramble4::<U, false>(reversed_dims(r), [k1, k2, k3, k4]);
     core::array::from_fn(|d| out[d])
 }
 
@@ -150,7 +150,7 @@ pub(super) fn point<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
 /// dimensions are those of the common bits (one scalar table product per group; bytes 0-2
 /// change once per 256 indices) XOR those of `v` (a lane permute of a constant).
 #[inline(always)]
-pub(super) fn fill_groups<L: super::simd::Rows<LN>, const LN: usize, const N: usize>(
+pub(super) fn fill_groups<L: crate::slices::Rows<LN>, const LN: usize, const N: usize>(
     first: u32,
     seed: u32,
     groups: &mut [[[f32; N]; LN]],
@@ -195,7 +195,7 @@ pub(super) fn fill_groups<L: super::simd::Rows<LN>, const LN: usize, const N: us
             let r = L::U::splat(common[d % 4]) ^ L::shuffle(low[d % 4], v);
             *p = to_unit(lk_hash(r, L::U::splat(keys[(d + 1) % 5].0)).reverse_bits());
         }
-        super::simd::store_rows(point, dst);
+        crate::slices::store_rows(point, dst);
     }
 }
 
