@@ -97,7 +97,7 @@ for t in "${targets[@]}"; do
   if [ "$rc" -ne 0 ]; then
     findings=$((findings + 1))
     artifact=$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | tail -1)
-    finding="exit $rc: fuzz/${artifact:-?} (log fuzz/$log)"
+    finding="exit $rc: ${artifact:-no artifact} (log fuzz/$log)"
     grep -m1 -E "panicked at|ERROR: libFuzzer|ERROR: AddressSanitizer" "$log" | sed 's/^/    /'
   else
     finding=none
