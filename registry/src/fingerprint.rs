@@ -281,7 +281,7 @@ fn tri<T: Copy>(l: [[T; 3]; 4]) -> [[T; 3]; 3] {
 /// Hashes a warp of a light and shading point over every light `l` of `lights`: `slice` on
 /// light `l` over all inputs in chunks of 37 with `scalar` on each input, as [`warp`]; then
 /// the lane forms on groups of 16 inputs, input `i` paired with light `(l + i) % L`, so the
-/// lanes of one call hold different lights (hashed as [`hash_groups`]).
+/// lanes of one call hold different lights (hashed as the private `hash_groups` does).
 pub fn lights<const L: usize, const I: usize, const O: usize>(
     h: &mut Hasher,
     lights: &[[f32; 12]; L],

@@ -3,7 +3,7 @@
 //! For each scene (`cornell`, `cornell-disk`), each sampler of [`samplers::KINDS`] and each
 //! sample count, independent frames (64 x 64, seeds hashed from scene, sampler, count and
 //! frame) are rendered single-threaded (frames run in parallel), compared with the cached
-//! reference (see [`reference`]), and timed:
+//! reference (see [`mod@reference`]), and timed:
 //!
 //! * **MSE** over pixels and channels, minus the reference's own variance; its standard error
 //!   from the pixels (independent per pixel for every sampler but the blue-noise ones, whose

@@ -298,7 +298,7 @@ fn camera() -> Camera {
 }
 
 impl Scene {
-    /// The scene names `--scene` accepts (tests use [`Scene::furnace`] besides).
+    /// The scene names `--scene` accepts (tests use a white furnace scene besides).
     pub const NAMES: [&'static str; 2] = ["cornell", "cornell-disk"];
 
     pub fn by_name(name: &str, size: usize) -> Option<Scene> {
