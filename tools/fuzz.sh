@@ -27,7 +27,8 @@
 # (fuzz/target/asan) so that switching sanitizers never rebuilds the other. Without a nightly
 # toolchain everything runs with `-s none` on stable, and the script says so.
 #
-# Environment: WARPCORE_FUZZ_MERGE (default 1), WARPCORE_FUZZ_ARGS (extra libFuzzer flags).
+# Environment: WARPCORE_FUZZ_MERGE (default 1), WARPCORE_FUZZ_ASAN (default 1; 0: no sanitizer
+# anywhere), WARPCORE_FUZZ_ARGS (extra libFuzzer flags).
 set -uo pipefail
 cd "$(dirname "$0")/../fuzz" || exit 2
 
@@ -53,6 +54,9 @@ else
   asan_targets=" "
   echo "no nightly toolchain: every target runs without a sanitizer (stable, -s none)"
 fi
+# WARPCORE_FUZZ_ASAN=0: no sanitizer for any target (CI's short search: a cold ASan build costs
+# about five minutes, and CI replays the capi_envmap corpus under ASan in its C API step).
+[ "${WARPCORE_FUZZ_ASAN:-1}" = 0 ] && asan_targets=" "
 
 # The sanitizer and target directory of a target.
 sanitizer() { case $asan_targets in *" $1 "*) echo address ;; *) echo none ;; esac; }
