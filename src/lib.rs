@@ -123,21 +123,8 @@ pub mod triangle;
     feature = "envmap"
 ))]
 #[doc = include_str!("../README.md")]
-struct ReadmeDoctests;
-
-#[cfg(all(
-    doctest,
-    feature = "disk",
-    feature = "triangle",
-    feature = "sphere",
-    feature = "pmj02bn",
-    feature = "sequence",
-    feature = "blue-noise",
-    feature = "spherical",
-    feature = "envmap"
-))]
 #[doc = include_str!("../docs/quickstart.md")]
-struct QuickstartDoctests;
+struct ReadmeDoctests;
 
 #[cfg(all(doctest, feature = "pmj02bn", feature = "sequence"))]
 #[doc = include_str!("../docs/pmj02bn.md")]
