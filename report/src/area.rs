@@ -34,7 +34,7 @@
 //! `(X, Y) = x - q` (the planar form of Lambert's polygon formula). Along a straight edge
 //! from `A` to `B` it has the closed form [`edge_term`]; along a circular arc its integrand
 //! is analytic and periodic, integrated by 16-point Gauss-Legendre on pieces of at most
-//! `pi / 8` (converged to rounding: `tests/report.rs` checks it against an independent 2D
+//! `pi / 8` (converged to rounding: `report/tests/report.rs` checks it against an independent 2D
 //! quadrature and the closed form of the whole disk).
 
 use crate::math::{Rng, cross2, dot2, gl16, hash, integrate, sub2};

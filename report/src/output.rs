@@ -243,7 +243,7 @@ pub fn write(path: &Path, text: &str) -> io::Result<()> {
 }
 
 /// `page` with every `<!-- generated: report/X.md -->` ... `<!-- end: report/X.md -->` block
-/// replaced by the file `dir/report/X.md` (what `tests/report.rs` checks): the report's
+/// replaced by the file `dir/report/X.md` (what `report/tests/report.rs` checks): the report's
 /// pages quote its generated tables, never a stale copy. Run when the report writes to
 /// `docs/report`.
 pub fn paste_generated(page: &str, dir: &Path) -> io::Result<String> {

@@ -34,7 +34,7 @@
 //! near-tangency) is detected by a bound on the edge's curvature and located by a dense scan;
 //! a pair of roots closer than 1/32 of an edge could still be missed, which changes the
 //! result by less than `(texel size / 32)^3` relative to the texel: far below everything
-//! measured. `tests/report.rs` checks the whole against closed forms (a uniform map gives
+//! measured. `report/tests/report.rs` checks the whole against closed forms (a uniform map gives
 //! `(pi / 2)(1 + n . m)`), the lat-long texel integrals against their closed form, and
 //! importance-sampled Monte Carlo with `10^7` samples.
 

@@ -14,7 +14,7 @@
 //! of neighbouring pixels cancel under a Gaussian blur, for half-plane integrands at 1, 2, 4,
 //! 8 and 16 samples per pixel at once, through the library's own points
 //! (`Sampler::<P>::from_domain_hash`). `report/src/bluenoise.rs` measures the result and
-//! `tests/blue_noise.rs` asserts it. A pmj02bn key also picks the table set: the pmj02bn tile
+//! `report/tests/blue_noise.rs` asserts it. A pmj02bn key also picks the table set: the pmj02bn tile
 //! is optimised for the default four sets (`pmj02bn-4-sets`); a build with one set draws other
 //! points for the same keys, still nets, but with nearly white error across pixels.
 
