@@ -1,8 +1,31 @@
-//! What warpcore's cross-cutting proofs share, in one crate every checker depends on (no
-//! `#[path]` includes across crates): [`fingerprint`], the golden hash of every warp's output
-//! bits over a fixed input set, computed identically by the Rust tests (native, wasm32 with
-//! and without simd128, `-C target-cpu=native`), the wasm cdylib, the C port and the GPU
-//! checker.
+//! The registry of warpcore's public functions and what every cross-cutting proof shares.
+//!
+//! [`entries`] lists every public function of the library once ([`Entry`]): its forms
+//! (scalar, `_x8`, `_x16`, `_slice`), its typed bodies, how its output bits are pinned
+//! ([`Golden`]) and its names in C, JS and WGSL. The proofs iterate over it instead of
+//! keeping lists of their own:
+//! - [`fingerprint`]: the golden hash of every function's output bits over a fixed input set,
+//!   identical on every target (the Rust tests natively and under wasm32, the wasm cdylib,
+//!   the C port, the GPU checker), and a golden hash per function
+//!   (`tests/golden/registry.txt`);
+//! - `tests/lanes.rs`: every lane and slice form equals the scalar form bit for bit on special
+//!   values and random bit patterns;
+//! - `tests/coverage.rs`: every public function of `src/`, every C declaration, JS method
+//!   and WGSL function has an entry, and every entry's names exist;
+//! - [`checks`] (with the `std` feature): the fuzz targets' definition of "correct on any
+//!   input", also replayed over the committed corpus by `tests/fuzz_corpus.rs`.
+//!
+//! `no_std` and no allocation without `std`: the fingerprint runs inside the wasm cdylib.
 #![no_std]
+#[cfg(feature = "std")]
+extern crate std;
 
+mod entries;
+mod entry;
 pub mod fingerprint;
+
+pub use entries::{NOT_FUNCTIONS, entries};
+pub use entry::{
+    Entry, Forms, Golden, Indexed, Kind, Lang, Light, LightMap, Map, OfLight, Quadrant, ToQuadrant,
+    Visit,
+};

@@ -1,12 +1,14 @@
-//! Determinism across targets: the hash of every warp's output bits over a fixed input set
-//! (`registry/src/fingerprint.rs`) must equal the committed golden value. CI runs this
-//! test natively, under wasm32-wasip1 with and without simd128, and the same code runs in the
-//! native `fingerprint` binary built with `-C target-cpu=native` and in the wasm32-unknown-unknown
-//! cdylib (`tools/wasm-demo.mjs`) — one golden file for all of them.
+//! Determinism across targets: the hash of every function's output bits over a fixed input
+//! set (`registry/src/fingerprint.rs`, driven by the registry's entries) must equal the
+//! committed golden values. CI runs this test natively, under wasm32-wasip1 with and without
+//! simd128, and the same code runs in the native `fingerprint` binary built with
+//! `-C target-cpu=native` and in the wasm32-unknown-unknown cdylib (`tools/wasm-demo.mjs`).
 //!
-//! The golden value covers the default feature set; when a change is *meant* to alter output
-//! bits, regenerate it with `cargo run --release -p warpcore-demo
-//! --bin fingerprint > tests/golden/fingerprint.txt` and say why in the commit.
+//! Two golden files: `tests/golden/fingerprint.txt`, one value over the functions that
+//! existed when it was fixed (the C port and the wasm demo compute it too), and
+//! `tests/golden/registry.txt`, one value per function (every entry with bits of its own).
+//! When a change is *meant* to alter output bits, regenerate them with `WARPCORE_BLESS=1
+//! cargo test -p warpcore-registry --test fingerprint` and say why in the commit.
 #![cfg(all(
     feature = "disk",
     feature = "triangle",
@@ -17,7 +19,13 @@
     feature = "spherical"
 ))]
 
-use warpcore_registry::fingerprint;
+use std::collections::BTreeMap;
+use warpcore_registry::fingerprint::{self, Hasher, entry_hash};
+use warpcore_registry::{Golden, entries};
+
+fn golden_path(name: &str) -> String {
+    format!("{}/../tests/golden/{name}", env!("CARGO_MANIFEST_DIR"))
+}
 
 #[test]
 fn output_bits_match_the_golden_fingerprint() {
@@ -38,130 +46,137 @@ fn x16_forms_match_the_golden_fingerprint() {
     assert_eq!(got, golden, "the _x16 forms give other bits on this target");
 }
 
+/// Each entry's own hash, with the `_x8` forms (`x16 = false`) or the `_x16` ones.
+fn per_entry(x16: bool) -> BTreeMap<&'static str, String> {
+    entries()
+        .filter_map(|e| {
+            let mut h = if x16 {
+                Hasher::new_x16()
+            } else {
+                Hasher::new()
+            };
+            entry_hash(e, &mut h).then(|| (e.name, format!("{:016x}", h.finish())))
+        })
+        .collect()
+}
+
+/// One golden hash per function: every entry with bits of its own (all but the accessors and
+/// constructors that `Golden::Tests` names), with either lane width.
+#[test]
+fn every_function_matches_its_golden_hash() {
+    let got = per_entry(false);
+    let text: String = got.iter().map(|(n, h)| format!("{n} {h}\n")).collect();
+    if std::env::var_os("WARPCORE_BLESS").is_some() {
+        std::fs::write(golden_path("registry.txt"), &text).unwrap();
+    }
+    assert!(got.len() >= 45, "only {} entries hashed", got.len());
+    let golden = include_str!("../../tests/golden/registry.txt");
+    let want: BTreeMap<&str, &str> = golden.lines().filter_map(|l| l.split_once(' ')).collect();
+    for (name, hash) in &got {
+        assert_eq!(
+            want.get(name).copied(),
+            Some(hash.as_str()),
+            "{name}: output bits changed on this target (or registry.txt lacks it)"
+        );
+    }
+    assert_eq!(
+        want.len(),
+        got.len(),
+        "registry.txt names a function that is gone"
+    );
+    assert_eq!(
+        got,
+        per_entry(true),
+        "an _x16 form differs from its _x8 form"
+    );
+}
+
 /// The fingerprint is sensitive: flipping one output bit of one warp changes it.
 #[test]
 fn fingerprint_detects_a_one_bit_change() {
-    let mut a = fingerprint::Hasher::new();
-    let mut b = fingerprint::Hasher::new();
-    fingerprint::warp(
-        &mut a,
-        warpcore::disk::polar,
-        warpcore::disk::polar_x8,
-        warpcore::disk::polar_x16,
-        warpcore::disk::polar_slice,
-    );
-    fingerprint::warp(
-        &mut b,
-        |u| {
-            let mut p = warpcore::disk::polar(u);
-            if u == [0.25, 0.75] {
-                p[0] = f32::from_bits(p[0].to_bits() ^ 1);
-            }
-            p
-        },
-        warpcore::disk::polar_x8,
-        warpcore::disk::polar_x16,
-        warpcore::disk::polar_slice,
-    );
-    assert_ne!(a.finish(), b.finish());
-    // And so is the x16 variant: a one-bit change in one lane of the 16-wide form.
-    let mut a = fingerprint::Hasher::new_x16();
-    let mut b = fingerprint::Hasher::new_x16();
-    let polar = |h: &mut fingerprint::Hasher, flip: bool| {
-        fingerprint::warp(
-            h,
-            warpcore::disk::polar,
-            warpcore::disk::polar_x8,
-            |u| {
-                let mut p = warpcore::disk::polar_x16(u);
-                if flip {
-                    let mut x = p[1].to_array();
-                    x[13] = f32::from_bits(x[13].to_bits() ^ 1);
-                    p[1] = warpcore::f32x16::new(x);
-                }
-                p
-            },
-            warpcore::disk::polar_slice,
-        );
-    };
-    polar(&mut a, false);
-    polar(&mut b, true);
-    assert_ne!(a.finish(), b.finish());
+    use warpcore::disk;
+    fn flipped(u: [f32; 2]) -> [f32; 2] {
+        let mut p = disk::polar(u);
+        if u == [0.25, 0.75] {
+            p[0] = f32::from_bits(p[0].to_bits() ^ 1);
+        }
+        p
+    }
+    fn flipped_x16(u: [warpcore::f32x16; 2]) -> [warpcore::f32x16; 2] {
+        let mut p = disk::polar_x16(u);
+        let mut x = p[1].to_array();
+        x[13] = f32::from_bits(x[13].to_bits() ^ 1);
+        p[1] = warpcore::f32x16::new(x);
+        p
+    }
+    for wide in [false, true] {
+        let new = if wide { Hasher::new_x16 } else { Hasher::new };
+        let (mut a, mut b) = (new(), new());
+        let (x8, x16, slice) = (disk::polar_x8, disk::polar_x16, disk::polar_slice);
+        fingerprint::warp(&mut a, disk::polar, x8, x16, slice);
+        if wide {
+            fingerprint::warp(&mut b, disk::polar, x8, flipped_x16, slice);
+        } else {
+            fingerprint::warp(&mut b, flipped, x8, x16, slice);
+        }
+        assert_ne!(a.finish(), b.finish(), "x16 hasher: {wide}");
+    }
 }
 
 /// The cosine-aware solid-angle maps (`spherical::triangle_cosine`, `rectangle_cosine`, added
 /// after the main fingerprint was frozen for C and JS) over the same lights, inputs and lane
 /// mixing, with a receiver normal derived from each light's floats (facing, grazing, behind,
-/// and NaN/inf for the non-finite lights), against their own golden value: the same on every
-/// target this test runs on (native, `-C target-cpu=native`, wasm32 with and without
-/// simd128). Regenerate with `WARPCORE_BLESS=1` when a change is meant to alter these bits.
-#[cfg(feature = "spherical")]
+/// and NaN/inf for the non-finite lights), hashed one after the other: their golden value
+/// from before the registry, which the registry's entries must reproduce.
 #[test]
 fn cosine_maps_match_their_golden_fingerprint() {
-    use fingerprint::{Hasher, SPHERICAL_RECTANGLES, SPHERICAL_TRIANGLES, lights};
-    use warpcore::spherical as sp;
-    use warpcore::{f32x8, f32x16};
-    let n1 = |l: [[f32; 3]; 4]| [l[0][1] - l[3][1] + 0.3, 0.5 - l[2][0], 0.7 - l[1][2] * 0.5];
-    let n8 = |l: [[f32x8; 3]; 4]| {
-        [
-            l[0][1] - l[3][1] + f32x8::splat(0.3),
-            f32x8::splat(0.5) - l[2][0],
-            f32x8::splat(0.7) - l[1][2] * f32x8::splat(0.5),
-        ]
-    };
-    let n16 = |l: [[f32x16; 3]; 4]| {
-        [
-            l[0][1] - l[3][1] + f32x16::splat(0.3),
-            f32x16::splat(0.5) - l[2][0],
-            f32x16::splat(0.7) - l[1][2] * f32x16::splat(0.5),
-        ]
-    };
     let mut h = Hasher::new();
-    lights(
-        &mut h,
-        &SPHERICAL_TRIANGLES,
-        |l, u| {
-            let (b, d) = sp::triangle_cosine([l[0], l[1], l[2]], l[3], n1(l), u);
-            [b[0], b[1], b[2], d]
-        },
-        |l, u| {
-            let (b, d) = sp::triangle_cosine_x8([l[0], l[1], l[2]], l[3], n8(l), u);
-            [b[0], b[1], b[2], d]
-        },
-        |l, u| {
-            let (b, d) = sp::triangle_cosine_x16([l[0], l[1], l[2]], l[3], n16(l), u);
-            [b[0], b[1], b[2], d]
-        },
-        |l, u, o| sp::triangle_cosine_slice([l[0], l[1], l[2]], l[3], n1(l), u, o),
-    );
-    lights(
-        &mut h,
-        &SPHERICAL_RECTANGLES,
-        |l, u| {
-            let (st, d) = sp::rectangle_cosine(l[0], l[1], l[2], l[3], n1(l), u);
-            [st[0], st[1], d]
-        },
-        |l, u| {
-            let (st, d) = sp::rectangle_cosine_x8(l[0], l[1], l[2], l[3], n8(l), u);
-            [st[0], st[1], d]
-        },
-        |l, u| {
-            let (st, d) = sp::rectangle_cosine_x16(l[0], l[1], l[2], l[3], n16(l), u);
-            [st[0], st[1], d]
-        },
-        |l, u, o| sp::rectangle_cosine_slice(l[0], l[1], l[2], l[3], n1(l), u, o),
-    );
-    let got = format!("{:016x}", h.finish());
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../tests/golden/fingerprint_cosine.txt"
-    );
-    if std::env::var_os("WARPCORE_BLESS").is_some() {
-        std::fs::write(path, format!("{got}\n")).unwrap();
+    for name in ["spherical::triangle_cosine", "spherical::rectangle_cosine"] {
+        let e = entries().find(|e| e.name == name).unwrap();
+        assert!(entry_hash(e, &mut h), "{name} has no hash");
     }
     let golden = include_str!("../../tests/golden/fingerprint_cosine.txt").trim();
     assert_eq!(
-        got, golden,
+        format!("{:016x}", h.finish()),
+        golden,
         "the cosine-aware maps give other bits on this target"
     );
+}
+
+/// How each entry is pinned is consistent: a `With` names an entry that hashes a piece of its
+/// own, a `Tests` names a test file that calls the function, and the typed bodies have the
+/// forms the entry declares.
+#[test]
+fn every_entry_is_pinned_somewhere() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    for e in entries() {
+        assert!(
+            e.kind_matches_forms(),
+            "{}: forms and bodies differ",
+            e.name
+        );
+        match e.golden {
+            Golden::With(other) => {
+                let o = entries()
+                    .find(|o| o.name == other)
+                    .unwrap_or_else(|| panic!("{}: With({other}) is no entry", e.name));
+                assert!(
+                    matches!(o.golden, Golden::Piece(_) | Golden::OwnPiece(_)),
+                    "{}: {other} hashes no piece that could cover it",
+                    e.name
+                );
+            }
+            Golden::Tests(file) => {
+                let text = std::fs::read_to_string(format!("{root}/{file}"))
+                    .unwrap_or_else(|err| panic!("{}: {file}: {err}", e.name));
+                let method = e.name.rsplit("::").next().unwrap();
+                assert!(
+                    text.contains(&format!("{method}(")) || text.contains(&format!("{method}::<")),
+                    "{}: {file} never calls {method}",
+                    e.name
+                );
+            }
+            _ => {}
+        }
+    }
 }
