@@ -245,7 +245,7 @@ const SEQUENCE: &[Entry] = {
             .golden(Golden::Piece(fp::stratified))
             .bound(CJ),
         Entry::new("sequence::stratified_side", Forms::SCALAR, Kind::Other)
-            .golden(Golden::Tests("tests/sequence.rs")),
+            .golden(Golden::Tests("tests/pmj02bn.rs")),
     ]
 };
 #[cfg(not(feature = "sequence"))]
@@ -634,13 +634,13 @@ const ENVMAP: &[Entry] = {
             Forms::SCALAR,
             Kind::Other,
         )
-        .golden(TESTS),
+        .golden(Golden::Tests("tests/envmap/centred.rs")),
         Entry::new(
             "envmap::MarginalConditional::height",
             Forms::SCALAR,
             Kind::Other,
         )
-        .golden(TESTS),
+        .golden(Golden::Tests("tests/envmap/centred.rs")),
         Entry::new(
             "envmap::MarginalConditional::sample_direction",
             Forms::SLICE,
