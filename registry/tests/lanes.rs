@@ -365,3 +365,26 @@ fn a_wrong_lane_form_is_caught() {
         checked: 0,
     });
 }
+
+/// The two lane forms whose entries have no typed body (a stratum count beside the index, an
+/// integer output): `sequence::stratified_x16` over edge counts and `pmj02bn::shuffle_x16`.
+#[test]
+fn stratified_and_shuffle_lanes_agree() {
+    use warpcore::{pmj02bn, sequence};
+    let mut r = rng(18);
+    for _ in 0..256 {
+        let i: [u32; 16] = std::array::from_fn(|_| rand::RngExt::random(&mut r));
+        let s: [u32; 16] = std::array::from_fn(|_| rand::RngExt::random(&mut r));
+        for count in [0u32, 1, 16, 17, 1024, u32::MAX] {
+            let v = sequence::stratified_x16(u32x16::new(i), count, u32x16::new(s));
+            for j in 0..16 {
+                let want = sequence::stratified(i[j], count, s[j]);
+                assert!(bits_eq(&l16(v, j), &want), "stratified {count}");
+            }
+        }
+        let sh = pmj02bn::shuffle_x16(u32x16::new(i), u32x16::new(s)).to_array();
+        for j in 0..16 {
+            assert_eq!(sh[j], pmj02bn::shuffle(i[j], s[j]), "shuffle");
+        }
+    }
+}
