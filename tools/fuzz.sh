@@ -8,7 +8,7 @@
 #   (libFuzzer's -merge=1 -use_counters=0: only inputs that reach an edge the corpus does
 #   not, so the corpus grows by a few files, not by everything the search kept — merging by
 #   hit counts as well kept over a thousand files after ten minutes of capi_envmap); the replay
-#   tests (tests/fuzz_corpus.rs, capi/tests/fuzz_corpus.rs) then run them in every
+#   tests (registry/tests/fuzz_corpus.rs, capi/tests/fuzz_corpus.rs) then run them in every
 #   `cargo test`. WARPCORE_FUZZ_MERGE=0 skips the merge (CI: the checkout is not changed);
 # * a table gives executions, executions per second, corpus files added and the finding
 #   (the artifact path) per target;

@@ -1,8 +1,7 @@
-//! Fuzz the disk warps: any bytes -> any f32 inputs; see `fuzz/checks.rs`.
+//! Fuzz the disk warps: any bytes -> any f32 inputs; see `registry/src/checks.rs`.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 
-#[path = "../checks.rs"]
-mod checks;
+use warpcore_registry::checks;
 
 fuzz_target!(|data: &[u8]| checks::disk(data));

@@ -1,9 +1,8 @@
 //! Fuzz loading environment-map storage: arbitrary words, and real storages with arbitrary
-//! words written over them; see `fuzz/checks.rs`.
+//! words written over them; see `registry/src/checks.rs`.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 
-#[path = "../checks.rs"]
-mod checks;
+use warpcore_registry::checks;
 
 fuzz_target!(|data: &[u8]| checks::envmap_storage(data));

@@ -1,8 +1,7 @@
-//! Fuzz the sphere warps: any bytes -> any inputs; see `fuzz/checks.rs`.
+//! Fuzz the sphere warps: any bytes -> any inputs; see `registry/src/checks.rs`.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 
-#[path = "../checks.rs"]
-mod checks;
+use warpcore_registry::checks;
 
 fuzz_target!(|data: &[u8]| checks::sphere(data));

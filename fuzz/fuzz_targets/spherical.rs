@@ -1,9 +1,8 @@
 //! Fuzz the solid-angle light maps: any bytes -> any light, point and samples; see
-//! `fuzz/checks.rs`.
+//! `registry/src/checks.rs`.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 
-#[path = "../checks.rs"]
-mod checks;
+use warpcore_registry::checks;
 
 fuzz_target!(|data: &[u8]| checks::spherical(data));

@@ -13,13 +13,16 @@
 //! - `tests/coverage.rs`: every public function of `src/`, every C declaration, JS method
 //!   and WGSL function has an entry, and every entry's names exist;
 //! - [`checks`] (with the `std` feature): the fuzz targets' definition of "correct on any
-//!   input", also replayed over the committed corpus by `tests/fuzz_corpus.rs`.
+//!   input", also replayed over the committed corpus by `tests/fuzz_corpus.rs`; the
+//!   fuzz targets (`fuzz/`, outside the workspace as cargo-fuzz expects) call them.
 //!
 //! `no_std` and no allocation without `std`: the fingerprint runs inside the wasm cdylib.
 #![no_std]
 #[cfg(feature = "std")]
 extern crate std;
 
+#[cfg(feature = "std")]
+pub mod checks;
 mod entries;
 mod entry;
 pub mod fingerprint;

@@ -1,11 +1,18 @@
 //! Domain and width checks shared by the fuzz targets (`fuzz/fuzz_targets/*.rs`) and the
-//! stable corpus replay (`tests/fuzz_corpus.rs`): one definition of what "correct on any input"
+//! stable corpus replay (`registry/tests/fuzz_corpus.rs`): one definition of what "correct on any input"
 //! means. Each check reads the fuzzer's bytes as little-endian `f32`/`u32` words, runs every
 //! form of the warps and panics on a violation of the promises in DESIGN.md:
 //! finite output inside the closed domain, and scalar == x8 == slice bit for bit.
-#![allow(dead_code)]
-
+#[allow(unused_imports)]
+use std::prelude::rust_2024::*;
+#[allow(unused_imports)]
+use std::{format, vec};
 use warpcore::f32x8;
+
+#[cfg(feature = "sampler")]
+mod sampler;
+#[cfg(feature = "sampler")]
+pub use sampler::sampler;
 
 /// The input bytes as 32-bit words (a trailing partial word is zero-padded).
 pub fn words(data: &[u8]) -> Vec<u32> {

@@ -1,5 +1,5 @@
 //! The sampling core's promises on any input, shared by the fuzz target
-//! (`fuzz/fuzz_targets/sampler.rs`) and the stable corpus replay (`tests/fuzz_corpus.rs`).
+//! (`fuzz/fuzz_targets/sampler.rs`) and the stable corpus replay (`registry/tests/fuzz_corpus.rs`).
 //!
 //! The fuzzer's bytes, as little-endian words: a pattern selector, the root's pixel, frame,
 //! index and seed, then a domain path of any length: each step a word whose low bit picks
@@ -9,7 +9,10 @@
 //! `[0, 1 - 2^-24]`, `draw == (draw_u32 >> 8) * 2^-24`, the lanes equal the scalar sampler (and
 //! `lane(j)` the scalar state), slices equal scalar draws at consecutive (wrapping) indices, and
 //! nothing panics.
-#![allow(dead_code)]
+#[allow(unused_imports)]
+use std::prelude::rust_2024::*;
+#[allow(unused_imports)]
+use std::{format, vec};
 
 use warpcore::sampler::{Pattern, Pmj02bn, Sampler, SamplerX8, SamplerX16, Sobol};
 use warpcore::{u32x8, u32x16};

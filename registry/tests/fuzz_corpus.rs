@@ -1,19 +1,15 @@
 //! Replays the checked-in fuzz corpus (`fuzz/corpus/<target>/`) through the same checks the
-//! fuzz targets run (`fuzz/checks.rs`), on stable, in every `cargo test`: every input a fuzzing
+//! fuzz targets run (`registry/src/checks.rs`), on stable, in every `cargo test`: every input a fuzzing
 //! run ever found interesting stays a regression test forever.
 #![cfg(feature = "disk")]
 
-#[path = "../fuzz/checks.rs"]
-mod checks;
-#[cfg(feature = "sampler")]
-#[path = "../fuzz/sampler_checks.rs"]
-mod sampler_checks;
+use warpcore_registry::checks;
 
 use std::path::Path;
 
 fn replay(target: &str, check: fn(&[u8])) {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("fuzz/corpus")
+        .join("../fuzz/corpus")
         .join(target);
     let mut entries: Vec<_> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("corpus {}: {e}", dir.display()))
@@ -71,5 +67,5 @@ fn envmap_storage_corpus() {
 #[cfg(feature = "sampler")]
 #[test]
 fn sampler_corpus() {
-    replay("sampler", sampler_checks::sampler);
+    replay("sampler", checks::sampler);
 }
