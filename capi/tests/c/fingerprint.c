@@ -444,7 +444,8 @@ static uint64_t fingerprint(void) {
     return h;
 }
 
-/* ---- functions the fingerprint does not cover: one hash each ---- */
+/* ---- functions the fingerprint does not cover: one hash each, named by the registry entry
+   whose piece computes the same (registry/src/fingerprint.rs) ---- */
 
 static void line(const char *name) { printf("%s %016" PRIx64 "\n", name, h); }
 
@@ -459,7 +460,7 @@ static void extras(void) {
         floats(out + 2 * i, 2);
         word(wout[i]);
     }
-    line("disk_polar4_inverse");
+    line("disk::polar4_inverse");
 
     h = UINT64_C(0xcbf29ce484222325);
     for (size_t i = 0; i < N; i++) idx[i] = (uint32_t)i * 2654435761u;
@@ -467,13 +468,13 @@ static void extras(void) {
     for (size_t i = 0; i < N; i++) word(wout[i]);
     word((uint32_t)wc_pmj02bn_points());
     word((uint32_t)wc_pmj02bn_sets());
-    line("pmj02bn_shuffle");
+    line("pmj02bn::shuffle");
 
     h = UINT64_C(0xcbf29ce484222325);
     inputs(in, 0, N, 3);
     EXPECT(wc_envmap_luminance(in, out, N) == N);
     floats(out, N);
-    line("envmap_luminance");
+    line("envmap::image::luminance");
 
     h = UINT64_C(0xcbf29ce484222325);
     {
@@ -485,7 +486,7 @@ static void extras(void) {
         EXPECT(wc_envmap_equirect_pdf_to_solid_angle(pdf, v, out, N) == N);
         floats(out, N);
     }
-    line("envmap_equirect_pdf_to_solid_angle");
+    line("envmap::image::equirect_pdf_to_solid_angle");
 
     h = UINT64_C(0xcbf29ce484222325);
     {
@@ -499,7 +500,7 @@ static void extras(void) {
         EXPECT(wc_envmap_equirect_to_equal_area(rgb, 13, 7, 3, dst, 8, 3) == WC_OK);
         floats(dst, 64 * 3);
     }
-    line("envmap_image");
+    line("envmap::image::equirect_solid_angle_weights");
 
     /* The marginal-conditional storage words (the hierarchical ones depend on the buffer's
        address modulo 64, by design). */
@@ -516,7 +517,7 @@ static void extras(void) {
         word((uint32_t)wc_envmap_hierarchical_storage_len(13, 7));
         word((uint32_t)wc_envmap_hierarchical_storage_len(4096, 2048));
     }
-    line("envmap_storage");
+    line("envmap::MarginalConditional::new");
 }
 
 int main(void) {
