@@ -46,12 +46,13 @@ class Fnv {
   }
 }
 
-const SPECIAL_BITS = [
-  0x00000000, 0x80000000, 0x3f000000, 0x3f7fffff, 0x3f800000, 0xbf800000, 0x7fc00000, 0x7f800000,
-  0xff800000, 0x000116c2, 0x3e800000, 0x3f400000,
-];
-const S = 12;
-const N = 1024 + S * S;
+// The inputs, as the registry exports them (registry/tests/fingerprint.rs writes
+// js/test/registry.json and fails when it is stale): special values and lights as f32 bits.
+const data = JSON.parse(readFileSync(new URL('./registry.json', import.meta.url), 'utf8'));
+const SPECIAL_BITS = data.specials;
+const S = SPECIAL_BITS.length;
+const N = data.n;
+assert.equal(N, 1024 + S * S);
 
 function unit(i) {
   let x = (Math.imul(i, 747796405) + 2891336453) >>> 0;
@@ -163,46 +164,11 @@ function envmap(h, build) {
   }
 }
 
-// Lights for the spherical family, as fingerprint.rs's SPHERICAL_TRIANGLES (v0, v1, v2, p) and
-// SPHERICAL_RECTANGLES (corner, ex, ey, p); every constant is rounded to f32 once.
-const TRIANGLES = [
-  [0, 0, 1, 1, 0, 1, 0, 1, 1, 0.1, 0.2, 0],
-  [-1, -1, 0.05, 2, -1, 0.05, -1, 2, 0.05, 0, 0, 0],
-  [0.3, -2, 0.5, -0.7, 0.4, 1.9, 1.5, 0.8, -0.3, -0.2, 0.1, 0.05],
-  [0, 0, 1, 1, 0, 1, 1, 1e-5, 1, 0.3, 0.4, 0],
-  [0, 0, 1, 1, 1, 1, 3, 3, 1, 0, 0, 0],
-  [0, 0, 1, 1e-4, 0, 1, 0, 1e-4, 1, 0, 0, 0],
-  [0, 0, 1, 1, 0, 1, 0, 1, 1, 0.2, 0.2, 1],
-  [0, 0, 1, 1, 0, 1, 0, 1, 1, 5, -3, 1],
-  [0, 0, 1, 1, 0, 1, 0, 1, 1, 0.2, 0.2, 0.999999],
-  [0, 0, 1, 1, 0, 1, 0, 1, 1, 3e5, -2e5, 1e6],
-  [-1e5, 0, 1e6, 1e5, -1e5, 1e6, 0, 1e5, 1e6, 0, 0, 0],
-  [0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 0, 1],
-  [0, 0, 1e30, 1e30, 0, 1e30, 0, 1e30, 1e30, 1e29, 2e29, 0],
-  [0, 0, 1e-30, 1e-30, 0, 1e-30, 0, 1e-30, 1e-30, 1e-31, 2e-31, 0],
-  [NaN, 0, 1, 1, 0, 1, 0, 1, 1, 0, 0, 0],
-  [0, 0, 1, 1, 0, 1, 0, 1, 1, 0, Infinity, 0],
-  [-3e38, 0, 1, 3e38, 0, 1, 0, 1, 1, 0, 0, 0],
-].map((l) => Float32Array.from(l));
-const RECTANGLES = [
-  [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 0.1, 0.2, 0],
-  [0.3, -0.2, 0.7, 0.6, 0.8, 0, 0, 0, 1.5, 0, 0, 0],
-  [-50, -50, 0.01, 100, 0, 0, 0, 100, 0, 0, 0, 0],
-  [-0.5, -0.5, 1, 1, 0, 0, 0, 1e-6, 0, 0, 0, 0],
-  [-0.5, -0.5, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0],
-  [0, 0, 1, 5e-5, 0, 0, 0, 5e-5, 0, 0, 0, 0],
-  [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 0, 0, 1],
-  [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 3, 0.5, 1],
-  [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 0.1, 0.1, 0.999999],
-  [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, 2e5, -1e5, -1e6],
-  [-1e5, -1e5, 1e6, 2e5, 0, 0, 0, 2e5, 0, 0, 0, 0],
-  [-0.5, -0.5, 1, 1, 0, 0, 0.3, 1, 0, 0.2, -0.1, 2.5],
-  [-0.5, -0.5, 1, 1, 0, 0, 0, 1, 0, -0.5, -0.5, 1],
-  [-5e29, -5e29, 1e30, 1e30, 0, 0, 0, 1e30, 0, 1e29, 0, 0],
-  [-5e-31, -5e-31, 1e-30, 1e-30, 0, 0, 0, 1e-30, 0, 0, 0, 0],
-  [-0.5, -0.5, 1, 1, NaN, 0, 0, 1, 0, 0, 0, 0],
-  [-Infinity, 0, 1, 1, 0, 0, 0, 1, 0, 0, 0, 0],
-].map((l) => Float32Array.from(l));
+// Lights for the spherical family, the registry's SPHERICAL_TRIANGLES (v0, v1, v2, p) and
+// SPHERICAL_RECTANGLES (corner, ex, ey, p).
+const lightsOf = (rows) => rows.map((l) => new Float32Array(Uint32Array.from(l).buffer));
+const TRIANGLES = lightsOf(data.triangles);
+const RECTANGLES = lightsOf(data.rectangles);
 
 // fingerprint.rs's `lights`: for each light l, the slice over all inputs in chunks of 37 and
 // one call per input; then the lane forms as single calls, input i with light (l + i) % L.

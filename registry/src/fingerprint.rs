@@ -16,7 +16,7 @@ use warpcore::{f32x8, f32x16, u32x8, u32x16};
 /// Inputs every warp sees: a special-value cross product, then counter-hash points.
 pub const N: usize = 1024 + SPECIALS.len() * SPECIALS.len();
 
-const SPECIALS: [f32; 12] = [
+pub const SPECIALS: [f32; 12] = [
     0.0,
     -0.0,
     0.5,
