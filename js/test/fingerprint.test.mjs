@@ -5,12 +5,11 @@
 // It must equal tests/golden/fingerprint.txt, which the Rust tests check against the crate.
 //
 // Then the functions the fingerprint does not cover (and a real environment map), hashed the
-// same way and compared with the Rust crate's own hashes, computed at test time by
-// `fingerprint --extras` (examples/wasm-demo/src/main.rs).
+// same way as the registry's pieces and compared with the hashes it exports
+// (js/test/registry.json: each entry's golden hash, and the real map's).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { execFileSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { load } from '../warpcore.mjs';
 
@@ -311,16 +310,7 @@ test('the FNV-1a 64 port matches known values', () => {
 
 // ---- the functions the fingerprint does not cover, against the Rust crate ----
 
-const ENVMAP = 'tests/data/envmaps/park.pfm';
-
-function rustExtras() {
-  const out = execFileSync(
-    'cargo',
-    ['run', '-q', '--release', '-p', 'warpcore-demo', '--bin', 'fingerprint', '--', '--extras', ENVMAP],
-    { cwd: root, encoding: 'utf8', stdio: ['ignore', 'pipe', 'inherit'] },
-  );
-  return Object.fromEntries(out.trim().split('\n').map((l) => l.split(' ')));
-}
+const ENVMAP = `tests/data/envmaps/${data.envmap.name}.pfm`;
 
 /** A PFM file (RGB, little-endian): width, height and RGB floats, rows top to bottom. */
 export function readPfm(bytes) {
@@ -341,31 +331,31 @@ function jsExtras() {
     f(h);
     hashes[name] = h.hex();
   };
-  hash('disk_polar4_inverse', (h) => {
+  hash('disk::polar4_inverse', (h) => {
     const { u, quadrant: q } = wc.diskPolar4Inverse(inputs(0, N, 2));
     for (let i = 0; i < N; i++) {
       h.floats(u.subarray(2 * i, 2 * i + 2));
       h.word(q[i]);
     }
   });
-  hash('pmj02bn_shuffle', (h) => {
+  hash('pmj02bn::shuffle', (h) => {
     const idx = Uint32Array.from({ length: N }, (_, i) => Math.imul(i, 2654435761) >>> 0);
     h.words(wc.pmj02bnShuffle(idx, 0xabcd));
     h.word(wc.pmj02bnPoints);
     h.word(wc.pmj02bnSets);
   });
-  hash('envmap_luminance', (h) => h.floats(wc.envmapLuminance(inputs(0, N, 3))));
-  hash('envmap_equirect_pdf_to_solid_angle', (h) => {
+  hash('envmap::image::luminance', (h) => h.floats(wc.envmapLuminance(inputs(0, N, 3))));
+  hash('envmap::image::equirect_pdf_to_solid_angle', (h) => {
     const pv = inputs(0, N, 2);
     const pdf = pv.filter((_, k) => k % 2 === 0);
     const v = pv.filter((_, k) => k % 2 === 1);
     h.floats(wc.envmapEquirectPdfToSolidAngle(pdf, v));
   });
-  hash('envmap_image', (h) => {
+  hash('envmap::image::equirect_solid_angle_weights', (h) => {
     h.floats(wc.envmapEquirectSolidAngleWeights(envmapWeights(), 13, 7));
     h.floats(wc.envmapEquirectToEqualArea(inputs(200, 91, 3), 13, 7, 3, 8, 3));
   });
-  hash('envmap_storage', (h) => {
+  hash('envmap::MarginalConditional::new', (h) => {
     const env = wc.envmapMarginalConditional(envmapWeights(), 13, 7);
     h.words(env.storage());
     env.free();
@@ -374,8 +364,8 @@ function jsExtras() {
   const weights = wc.envmapEquirectSolidAngleWeights(wc.envmapLuminance(rgb), width, height);
   const u = wc.pmj02bnSample(0, 7, 4096);
   for (const [name, build] of [
-    ['envmap_file_hierarchical', wc.envmapHierarchical],
-    ['envmap_file_marginal_conditional', wc.envmapMarginalConditional],
+    ['hierarchical', wc.envmapHierarchical],
+    ['marginalConditional', wc.envmapMarginalConditional],
   ]) {
     hash(name, (h) => {
       const env = build(weights, width, height);
@@ -391,16 +381,10 @@ function jsExtras() {
   return hashes;
 }
 
-let cargo = true;
-try {
-  execFileSync('cargo', ['--version'], { stdio: 'ignore' });
-} catch {
-  cargo = false;
-}
-
-test('functions outside the fingerprint equal the Rust crate (computed now by cargo)', { skip: !cargo && 'cargo is not installed' }, () => {
-  const want = rustExtras();
+test('functions outside the fingerprint equal their registry hashes', () => {
   const got = jsExtras();
+  const want = { hierarchical: data.envmap.hierarchical, marginalConditional: data.envmap.marginalConditional };
+  for (const e of data.entries) if (e.name in got) want[e.name] = e.hash;
   assert.equal(Object.keys(want).length, 8);
   assert.deepEqual(got, want);
 });

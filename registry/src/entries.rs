@@ -554,14 +554,14 @@ const ENVMAP: &[Entry] = {
             Forms::SCALAR,
             Kind::Other,
         )
-        .golden(Golden::With("envmap::MarginalConditional::new"))
+        .golden(Golden::OwnPiece(fp::envmap_storage_lens))
         .named(&[(C, "wc_envmap_marginal_conditional_storage_len")]),
         Entry::new(
             "envmap::Hierarchical::storage_len",
             Forms::SCALAR,
             Kind::Other,
         )
-        .golden(Golden::With("envmap::MarginalConditional::new"))
+        .golden(Golden::With("envmap::MarginalConditional::storage_len"))
         .named(&[(C, "wc_envmap_hierarchical_storage_len")]),
         Entry::new(
             "envmap::MarginalConditional::new_compensated",

@@ -503,7 +503,7 @@ static void extras(void) {
     line("envmap::image::equirect_solid_angle_weights");
 
     /* The marginal-conditional storage words (the hierarchical ones depend on the buffer's
-       address modulo 64, by design). */
+       address modulo 64, by design), then the storage lengths. */
     h = UINT64_C(0xcbf29ce484222325);
     {
         float w[91];
@@ -513,11 +513,14 @@ static void extras(void) {
         EXPECT(wc_envmap_marginal_conditional_build(w, 13, 7, storage, n) == WC_OK);
         EXPECT(wc_envmap_marginal_conditional_verify(storage, n) == WC_OK);
         for (size_t i = 0; i < n; i++) word(storage[i]);
-        word((uint32_t)n);
-        word((uint32_t)wc_envmap_hierarchical_storage_len(13, 7));
-        word((uint32_t)wc_envmap_hierarchical_storage_len(4096, 2048));
     }
     line("envmap::MarginalConditional::new");
+
+    h = UINT64_C(0xcbf29ce484222325);
+    word((uint32_t)wc_envmap_marginal_conditional_storage_len(13, 7));
+    word((uint32_t)wc_envmap_hierarchical_storage_len(13, 7));
+    word((uint32_t)wc_envmap_hierarchical_storage_len(4096, 2048));
+    line("envmap::MarginalConditional::storage_len");
 }
 
 int main(void) {
