@@ -20,7 +20,9 @@
 
 use crate::envmap::*;
 use std::sync::atomic::{AtomicU64, Ordering};
-use warpcore::envmap::{Error, Hierarchical, MAX_SIDE, MarginalConditional, Sample, image};
+use warpcore::envmap::{
+    Error, HEADER_WORDS, Hierarchical, MAX_SIDE, MarginalConditional, Sample, image,
+};
 
 /// C calls made so far (all threads): the replay reports it.
 pub static CALLS: AtomicU64 = AtomicU64::new(0);
@@ -73,6 +75,17 @@ impl Bytes<'_> {
             2 => Plan::Overlap(self.word() as usize),
             3 => Plan::InPlace,
             _ => Plan::Ok,
+        }
+    }
+    /// A distribution (an odd byte: hierarchical), or (one byte in 16) a `kind` that names
+    /// none.
+    fn kind(&mut self) -> Result<Kind, u32> {
+        let b = self.byte();
+        match b % 16 {
+            15 => Err(2 + u32::from(b >> 4)),
+            _ => Ok(Kind {
+                hierarchical: b & 1 == 1,
+            }),
         }
     }
     /// A float: any bits.
@@ -149,33 +162,19 @@ fn bits(x: &[f32]) -> Vec<u32> {
     x.iter().map(|f| f.to_bits()).collect()
 }
 
-fn code(e: Error) -> i32 {
-    match e {
-        Error::ZeroSize => WC_ERR_ZERO_SIZE,
-        Error::TooLarge => WC_ERR_TOO_LARGE,
-        Error::LengthMismatch { .. } => WC_ERR_LENGTH_MISMATCH,
-        Error::StorageTooSmall { .. } => WC_ERR_STORAGE_TOO_SMALL,
-        Error::InfiniteWeight { .. } => WC_ERR_INFINITE_WEIGHT,
-        Error::WrongFormat { .. } => WC_ERR_WRONG_FORMAT,
-        Error::UnsupportedVersion { .. } => WC_ERR_UNSUPPORTED_VERSION,
-        Error::Corrupt { .. } => WC_ERR_CORRUPT,
-        _ => WC_ERR_OTHER,
-    }
-}
-
-/// The two distributions: C entry points and the safe crate's.
+/// A distribution: the C `kind` and the safe crate's type.
 #[derive(Clone, Copy)]
 struct Kind {
     hierarchical: bool,
 }
 
 impl Kind {
-    fn storage_len(self, w: u32, h: u32) -> usize {
-        counted();
+    /// Its `WC_ENVMAP_KIND_*`.
+    fn c(self) -> u32 {
         if self.hierarchical {
-            wc_envmap_hierarchical_storage_len(w, h)
+            WC_ENVMAP_KIND_HIERARCHICAL
         } else {
-            wc_envmap_marginal_conditional_storage_len(w, h)
+            WC_ENVMAP_KIND_MARGINAL_CONDITIONAL
         }
     }
     fn rust_len(self, w: usize, h: usize) -> usize {
@@ -185,74 +184,7 @@ impl Kind {
             MarginalConditional::storage_len(w, h)
         }
     }
-    /// # Safety
-    /// The C function's contract.
-    unsafe fn build(self, w: *const f32, x: u32, y: u32, s: *mut u32, len: usize) -> i32 {
-        counted();
-        // SAFETY: the caller's.
-        unsafe {
-            if self.hierarchical {
-                wc_envmap_hierarchical_build(w, x, y, s, len)
-            } else {
-                wc_envmap_marginal_conditional_build(w, x, y, s, len)
-            }
-        }
-    }
-    /// # Safety
-    /// The C function's contract.
-    unsafe fn check(self, s: *const u32, len: usize, verify: bool) -> i32 {
-        counted();
-        // SAFETY: the caller's.
-        unsafe {
-            match (self.hierarchical, verify) {
-                (true, false) => wc_envmap_hierarchical_validate(s, len),
-                (true, true) => wc_envmap_hierarchical_verify(s, len),
-                (false, false) => wc_envmap_marginal_conditional_validate(s, len),
-                (false, true) => wc_envmap_marginal_conditional_verify(s, len),
-            }
-        }
-    }
-    /// # Safety
-    /// The C function's contract.
-    unsafe fn sample(
-        self,
-        s: *const u32,
-        len: usize,
-        u: *const f32,
-        out: *mut WcEnvSample,
-        n: usize,
-    ) -> usize {
-        counted();
-        // SAFETY: the caller's.
-        unsafe {
-            if self.hierarchical {
-                wc_envmap_hierarchical_sample(s, len, u, out, n)
-            } else {
-                wc_envmap_marginal_conditional_sample(s, len, u, out, n)
-            }
-        }
-    }
-    /// # Safety
-    /// The C function's contract.
-    unsafe fn pdf(
-        self,
-        s: *const u32,
-        len: usize,
-        uv: *const f32,
-        out: *mut f32,
-        n: usize,
-    ) -> usize {
-        counted();
-        // SAFETY: the caller's.
-        unsafe {
-            if self.hierarchical {
-                wc_envmap_hierarchical_pdf(s, len, uv, out, n)
-            } else {
-                wc_envmap_marginal_conditional_pdf(s, len, uv, out, n)
-            }
-        }
-    }
-    /// The safe crate's verdict on a storage (O(1) or verified).
+    /// The safe crate's verdict on a storage of this distribution (O(1) or verified).
     fn load(self, words: &[u32], verify: bool) -> Result<(), Error> {
         match (self.hierarchical, verify) {
             (true, false) => Hierarchical::from_storage(words).map(|_| ()),
@@ -280,6 +212,21 @@ impl Kind {
         }
         (s, p)
     }
+}
+
+/// The documented reading of a storage: the distribution its format tag names (word 0 as
+/// bytes, `"wcHI"` or `"wcMC"`) and the safe crate's verdict for it; a storage shorter than
+/// the header is too small, any other tag the wrong format. The `WC_ERR_*` code on failure.
+fn loaded(words: &[u32], verify: bool) -> Result<Kind, i32> {
+    let kind = match words.first().map(|w| w.to_ne_bytes()) {
+        _ if words.len() < HEADER_WORDS => return Err(WC_ERR_STORAGE_TOO_SMALL),
+        Some(t) if &t == b"wcHI" => Kind { hierarchical: true },
+        Some(t) if &t == b"wcMC" => Kind {
+            hierarchical: false,
+        },
+        _ => return Err(WC_ERR_WRONG_FORMAT),
+    };
+    kind.load(words, verify).map_err(code).map(|()| kind)
 }
 
 /// State carried between operations: the last storage a build produced.
@@ -322,13 +269,20 @@ pub fn capi_envmap(data: &[u8]) {
 
 fn storage_len(b: &mut Bytes) {
     let (w, h) = (b.side(), b.side());
+    counted();
+    assert_eq!(
+        wc_envmap_storage_len(2 + w % 7, w, h),
+        usize::MAX,
+        "unknown kind"
+    );
     for kind in [
         Kind { hierarchical: true },
         Kind {
             hierarchical: false,
         },
     ] {
-        let got = kind.storage_len(w, h);
+        counted();
+        let got = wc_envmap_storage_len(kind.c(), w, h);
         if w == 0 || h == 0 {
             assert_eq!(got, 0, "storage_len({w}, {h})");
         } else if w as usize > MAX_SIDE || h as usize > MAX_SIDE {
@@ -344,11 +298,11 @@ fn storage_len(b: &mut Bytes) {
 }
 
 fn build(b: &mut Bytes, state: &mut State) {
-    let kind = Kind {
-        hierarchical: b.byte() & 1 == 1,
-    };
+    let kind = b.kind();
+    let c_kind = kind.map_or_else(|k| k, Kind::c);
     let (w, h) = (b.side(), b.side());
-    let need = kind.storage_len(w, h);
+    counted();
+    let need = wc_envmap_storage_len(c_kind, w, h);
     let len = match b.byte() % 5 {
         0 => need.wrapping_sub((b.byte() % 8) as usize),
         1 => need.wrapping_add((b.byte() % 8) as usize),
@@ -384,7 +338,9 @@ fn build(b: &mut Bytes, state: &mut State) {
     let sptr = arena.ptr::<u32>(s_at, sp);
     // The model, in the documented order.
     let ok_ptr = |p: Plan| !matches!(p, Plan::Null | Plan::Skew(_));
-    let want = if w == 0 || h == 0 {
+    let want = if kind.is_err() {
+        WC_ERR_INVALID_ARGUMENT
+    } else if w == 0 || h == 0 {
         WC_ERR_ZERO_SIZE
     } else if need == usize::MAX || !fits64(texels, 4) || !fits(need, 4) {
         WC_ERR_TOO_LARGE
@@ -403,7 +359,8 @@ fn build(b: &mut Bytes, state: &mut State) {
     // SAFETY: the model says the call either fails before touching memory, or gets past its
     // checks with `weights` readable for `w * h` floats and the storage writable for `need`
     // words (`len` more only if the slack words exist: they must not be written).
-    let got = unsafe { kind.build(wptr, w, h, sptr, len) };
+    counted();
+    let got = unsafe { wc_envmap_build(c_kind, wptr, w, h, sptr, len) };
     assert_eq!(
         got, want,
         "build {w}x{h} len {len} (need {need}) {wp:?} {sp:?}"
@@ -416,7 +373,7 @@ fn build(b: &mut Bytes, state: &mut State) {
     } else {
         assert!(arena.v == before, "a refused build wrote");
     }
-    if want == WC_OK {
+    if let (WC_OK, Ok(kind)) = (want, kind) {
         let words = arena.get(s_at, need).to_vec();
         let (w, h) = (w as usize, h as usize);
         let mut rust = vec![0u32; need];
@@ -479,12 +436,18 @@ fn check(b: &mut Bytes, state: &State) {
     let want = if lie || (len > 0 && bad_ptr) {
         WC_ERR_INVALID_ARGUMENT
     } else {
-        kind.load(&words[..len], verify)
-            .map_or_else(code, |()| WC_OK)
+        loaded(&words[..len], verify).map_or_else(|c| c, |_| WC_OK)
     };
     let before = arena.v.clone();
+    counted();
     // SAFETY: `len` words are readable at `p` unless the model says the call refuses first.
-    let got = unsafe { kind.check(p, len, verify) };
+    let got = unsafe {
+        if verify {
+            wc_envmap_from_storage_verified(p, len)
+        } else {
+            wc_envmap_from_storage(p, len)
+        }
+    };
     assert_eq!(got, want, "check {plan:?} len {len}");
     assert!(arena.v == before, "a check wrote");
 }
@@ -517,7 +480,7 @@ fn sample(b: &mut Bytes, state: &State, pdf: bool) {
     let uptr = arena.ptr::<f32>(u_at, up);
     let optr = arena.ptr::<u32>(o_at, op);
     let ok_ptr = |p: Plan| !matches!(p, Plan::Null | Plan::Skew(_));
-    let loads = kind.load(&words, false).is_ok();
+    let loads = loaded(&words, false);
     let want = if n == 0
         || !ok_ptr(up)
         || !ok_ptr(op)
@@ -526,7 +489,7 @@ fn sample(b: &mut Bytes, state: &State, pdf: bool) {
         || !fits(n, elem)
         || (overlap((u_at, 2 * n), (o_at, n * ow)) && !(pdf && o_at == u_at))
         || overlap((s_at, sl), (o_at, n * ow))
-        || !loads
+        || loads.is_err()
     {
         0
     } else {
@@ -535,11 +498,12 @@ fn sample(b: &mut Bytes, state: &State, pdf: bool) {
     let before = arena.v.clone();
     // SAFETY: the model: either refused before touching memory, or `u` holds `2n` floats,
     // `out` room for `n` outputs and the storage `sl` words, all inside the arena.
+    counted();
     let got = unsafe {
         if pdf {
-            kind.pdf(s, sl, uptr, optr.cast(), n)
+            wc_envmap_pdf(s, sl, uptr, optr.cast(), n)
         } else {
-            kind.sample(s, sl, uptr, optr.cast(), n)
+            wc_envmap_sample(s, sl, uptr, optr.cast(), n)
         }
     };
     assert_eq!(got, want, "sample/pdf n {n} {up:?} {op:?} {sp:?}");
@@ -552,7 +516,7 @@ fn sample(b: &mut Bytes, state: &State, pdf: bool) {
         "wrote outside its outputs"
     );
     let pts: Vec<[f32; 2]> = u.chunks_exact(2).map(|c| [c[0], c[1]]).collect();
-    let (rs, rp) = kind.reference(&words, &pts);
+    let (rs, rp) = loads.expect("loads").reference(&words, &pts);
     let out = arena.get(o_at, n * ow);
     if pdf {
         assert_eq!(out, &bits(&rp)[..], "pdf differs from the crate's");

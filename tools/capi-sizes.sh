@@ -45,8 +45,8 @@ int main(int argc, char **argv) {
     {
         static uint32_t s[4096];
         WcEnvSample e[2];
-        if (wc_envmap_hierarchical_build(u, 4, 4, s, 4096) == WC_OK)
-            n += wc_envmap_hierarchical_sample(s, 4096, u, e, 2);
+        if (wc_envmap_build(WC_ENVMAP_KIND_HIERARCHICAL, u, 4, 4, s, 4096) == WC_OK)
+            n += wc_envmap_sample(s, 4096, u, e, 2);
     }
 #endif
     printf("%zu %g\n", n, (double)o[0]);
