@@ -140,6 +140,18 @@ impl Arena {
         let (a, b) = (PAD + at, PAD + at + len);
         self.v[..a] == before[..a] && self.v[b..] == before[b..]
     }
+    /// The promise on memory of call `name`: a refused call (`accepted` false) changed
+    /// nothing; an accepted one nothing outside its outputs `[at, at + len)`.
+    fn changed_only(&self, before: &[u32], accepted: bool, (at, len): (usize, usize), name: &str) {
+        if accepted {
+            assert!(
+                self.unchanged_outside(before, at, len),
+                "{name} wrote outside its outputs"
+            );
+        } else {
+            assert!(self.v == before, "a refused {name} wrote");
+        }
+    }
 }
 
 fn fits(count: usize, elem: usize) -> bool {
@@ -365,14 +377,8 @@ fn build(b: &mut Bytes, state: &mut State) {
         got, want,
         "build {w}x{h} len {len} (need {need}) {wp:?} {sp:?}"
     );
-    if want == WC_OK || want == WC_ERR_INFINITE_WEIGHT {
-        assert!(
-            arena.unchanged_outside(&before, s_at, need),
-            "build wrote outside its storage"
-        );
-    } else {
-        assert!(arena.v == before, "a refused build wrote");
-    }
+    let accepted = want == WC_OK || want == WC_ERR_INFINITE_WEIGHT;
+    arena.changed_only(&before, accepted, (s_at, need), "build");
     if let (WC_OK, Ok(kind)) = (want, kind) {
         let words = arena.get(s_at, need).to_vec();
         let (w, h) = (w as usize, h as usize);
@@ -507,14 +513,15 @@ fn sample(b: &mut Bytes, state: &State, pdf: bool) {
         }
     };
     assert_eq!(got, want, "sample/pdf n {n} {up:?} {op:?} {sp:?}");
+    arena.changed_only(
+        &before,
+        want != 0,
+        (o_at, n.saturating_mul(ow)),
+        "sample/pdf",
+    );
     if want == 0 {
-        assert!(arena.v == before, "a refused sample/pdf wrote");
         return;
     }
-    assert!(
-        arena.unchanged_outside(&before, o_at, n * ow),
-        "wrote outside its outputs"
-    );
     let pts: Vec<[f32; 2]> = u.chunks_exact(2).map(|c| [c[0], c[1]]).collect();
     let (rs, rp) = loads.expect("loads").reference(&words, &pts);
     let out = arena.get(o_at, n * ow);
@@ -576,14 +583,10 @@ fn map_call<const I: usize, const O: usize>(
     // inside the arena.
     let got = unsafe { f(iptr, optr, n) };
     assert_eq!(got, want, "{name} n {n} {ip:?} {op:?}");
+    arena.changed_only(&before, want != 0, (o_at, n.saturating_mul(O)), name);
     if want == 0 {
-        assert!(arena.v == before, "a refused {name} wrote");
         return;
     }
-    assert!(
-        arena.unchanged_outside(&before, o_at, O * n),
-        "{name} wrote outside"
-    );
     let pts: Vec<[f32; I]> = input
         .chunks_exact(I)
         .map(|c| std::array::from_fn(|k| c[k]))
@@ -639,14 +642,10 @@ fn latlong_pdf(b: &mut Bytes) {
     // SAFETY: refused before touching memory, or every array holds `n` floats in the arena.
     let got = unsafe { wc_envmap_equirect_pdf_to_solid_angle(pptr, vptr, optr, n) };
     assert_eq!(got, want, "latlong_pdf n {n} {pp:?} {vp:?} {op:?}");
+    arena.changed_only(&before, want != 0, (o_at, n), "latlong_pdf");
     if want == 0 {
-        assert!(arena.v == before, "a refused latlong_pdf wrote");
         return;
     }
-    assert!(
-        arena.unchanged_outside(&before, o_at, n),
-        "latlong_pdf wrote outside"
-    );
     let r: Vec<f32> = (0..n)
         .map(|i| image::equirect_pdf_to_solid_angle(vals[i], vals[small + i]))
         .collect();
@@ -679,14 +678,13 @@ fn solid_angle_weights(b: &mut Bytes) {
     // SAFETY: refused before touching memory, or `w h` floats in the arena.
     let got = unsafe { wc_envmap_equirect_solid_angle_weights(p, w, h) };
     assert_eq!(got, want, "solid_angle_weights {w}x{h} {plan:?}");
+    arena.changed_only(&before, want == WC_OK, (0, count), "solid_angle_weights");
     if want != WC_OK {
-        assert!(arena.v == before, "a refused solid_angle_weights wrote");
         return;
     }
     let mut r = vals.clone();
     image::equirect_solid_angle_weights(&mut r, w as usize, h as usize).expect("valid");
     assert_eq!(arena.get(0, count), &bits(&r)[..]);
-    assert!(arena.unchanged_outside(&before, 0, count));
 }
 
 fn to_equal_area(b: &mut Bytes) {
@@ -749,11 +747,10 @@ fn to_equal_area(b: &mut Bytes) {
         got, want,
         "to_equal_area {sw}x{sh}x{c} -> {size} ss {ss} {srcp:?} {dstp:?}"
     );
+    arena.changed_only(&before, want == WC_OK, (d_at, dl), "to_equal_area");
     if want != WC_OK {
-        assert!(arena.v == before, "a refused to_equal_area wrote");
         return;
     }
-    assert!(arena.unchanged_outside(&before, d_at, dl));
     let (w, h, n, s) = (sw as usize, sh as usize, size as usize, ss as usize);
     let mut d = vec![0.0f32; dl];
     fn run<const C: usize>(src: &[f32], w: usize, h: usize, d: &mut [f32], n: usize, s: usize) {

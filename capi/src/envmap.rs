@@ -2,7 +2,7 @@
 //! weights (or load them from a file: the storage is self-describing and little-endian on
 //! every target), then sample texels in proportion to their weight.
 
-use crate::ffi::{fits, map, overlap, slice, span};
+use crate::ffi::{fits, map, overlap, slice, span, zip_map};
 use core::mem::size_of;
 use warpcore::envmap::{
     self, Compensation, DirectionSample, Distribution, Error, Hierarchical, Layout, MAX_SIDE,
@@ -759,35 +759,9 @@ pub unsafe extern "C" fn wc_envmap_equirect_pdf_to_solid_angle(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    if n == 0 {
-        return 0;
-    }
-    // Every pointer rule first (`map` checks `pdf` against `out` again).
-    let (Some(p), Some(r), Some(o)) = (span(pdf, n), span(v, n), span(out.cast_const(), n)) else {
-        return 0;
-    };
-    if overlap(r, o) || (overlap(p, o) && p != o) {
-        return 0;
-    }
-    // SAFETY: the caller's contract; checked above (and again by `slice`): non-null,
-    // aligned, of valid size, not written by this call.
-    let Some(v) = (unsafe { slice(v, n, Some(o)) }) else {
-        return 0;
-    };
-    let mut i = 0usize;
-    // SAFETY: the caller's contract; `map` checks null, alignment, size and overlap.
-    unsafe {
-        map::<f32, f32, 1, 1>(pdf, out, n, |p, o| {
-            for (p, o) in p.iter().zip(o.iter_mut()) {
-                *o = [image::equirect_pdf_to_solid_angle(
-                    p[0],
-                    v.get(i).copied().unwrap_or(0.0),
-                )];
-                i += 1;
-            }
-            p.len().min(o.len())
-        })
-    }
+    // SAFETY: the caller's contract above; `zip_map` checks null, alignment, size and
+    // overlap.
+    unsafe { zip_map(pdf, v, out, n, image::equirect_pdf_to_solid_angle) }
 }
 
 /// Resamples an equirect (lat-long) image (`src_width x src_height` texels of `channels` floats, 1 to 4)

@@ -1,5 +1,5 @@
 /*
- * The sampler through the C API (capi/tests/sampler.rs compiles and runs this).
+ * The sampler through the C API (capi/tests/c.rs compiles and runs this).
  *
  * 1. One line "name hash" per hash of capi/examples/sampler_hashes.rs: the same cases (every
  *    pattern, six roots, domain paths with and without splits) and the same FNV-1a 64 over the
@@ -17,16 +17,7 @@
 #include <stdio.h>
 #include <string.h>
 
-static int passed, failed;
-#define CHECK(cond)                                                                      \
-    do {                                                                                 \
-        if (cond) {                                                                      \
-            passed++;                                                                    \
-        } else {                                                                         \
-            failed++;                                                                    \
-            fprintf(stderr, "%s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond);     \
-        }                                                                                \
-    } while (0)
+#include "check.h"
 
 /* ---- FNV-1a 64 over little-endian words, as sampler_hashes.rs ---- */
 
