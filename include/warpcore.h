@@ -367,9 +367,8 @@ size_t wc_envmap_pdf(const uint32_t *storage,
 // `pdf / (2 pi^2 sin(pi v))` with the point's own `v`, 0 exactly at the pole;
 // `WC_ENVMAP_LAYOUT_EQUAL_AREA`: `wc_sphere_equal_area`, density `pdf / (4 pi)`). `u` holds
 // `2n` floats (any values, clamped to `[0, 1)`); `out` receives `n` `WcEnvDirection`s.
-// Returns `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count
-// whose byte size overflows, an `out` that overlaps `u` or the storage, an unknown
-// `layout`, or a storage that fails `wc_envmap_from_storage`.
+// Returns `n`, or 0 (writing nothing) where `wc_envmap_sample` returns 0 and for an unknown
+// `layout`.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
@@ -386,11 +385,9 @@ size_t wc_envmap_sample_direction(const uint32_t *storage,
 // `layout`'s inverse (`wc_sphere_equirect_inverse` or `wc_sphere_equal_area_inverse`), the
 // density of `wc_envmap_pdf` there converted to solid angle at the direction. For a
 // direction of `wc_envmap_sample_direction` it equals the sample's `pdf` to a few ulp
-// (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) for `n == 0`,
-// a null or misaligned pointer, a count whose byte size overflows, an `out` that overlaps
-// the storage or overlaps `dir` other than exactly in place (`out == dir`: density `i`
-// overwrites float `i` after direction `i / 3` was read), an unknown `layout`, or a storage
-// that fails `wc_envmap_from_storage`.
+// (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) where
+// `wc_envmap_pdf` returns 0 (`out == dir` is in place: density `i` overwrites float `i` after
+// direction `i / 3` was read) and for an unknown `layout`.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words, `dir` for `3n` floats, and `out`

@@ -2,7 +2,7 @@
 //! weights (or load them from a file: the storage is self-describing and little-endian on
 //! every target), then sample texels in proportion to their weight.
 
-use crate::ffi::{fits, map, overlap, slice, span, zip_map};
+use crate::ffi::{fits, map, overlap, read_and_fill, slice, span, zip_map};
 use core::mem::size_of;
 use warpcore::envmap::{
     self, Compensation, DirectionSample, Distribution, Error, Hierarchical, Layout, MAX_SIDE,
@@ -546,9 +546,8 @@ pub unsafe extern "C" fn wc_envmap_pdf(
 /// `pdf / (2 pi^2 sin(pi v))` with the point's own `v`, 0 exactly at the pole;
 /// `WC_ENVMAP_LAYOUT_EQUAL_AREA`: `wc_sphere_equal_area`, density `pdf / (4 pi)`). `u` holds
 /// `2n` floats (any values, clamped to `[0, 1)`); `out` receives `n` `WcEnvDirection`s.
-/// Returns `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count
-/// whose byte size overflows, an `out` that overlaps `u` or the storage, an unknown
-/// `layout`, or a storage that fails `wc_envmap_from_storage`.
+/// Returns `n`, or 0 (writing nothing) where `wc_envmap_sample` returns 0 and for an unknown
+/// `layout`.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
@@ -574,11 +573,9 @@ pub unsafe extern "C" fn wc_envmap_sample_direction(
 /// `layout`'s inverse (`wc_sphere_equirect_inverse` or `wc_sphere_equal_area_inverse`), the
 /// density of `wc_envmap_pdf` there converted to solid angle at the direction. For a
 /// direction of `wc_envmap_sample_direction` it equals the sample's `pdf` to a few ulp
-/// (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) for `n == 0`,
-/// a null or misaligned pointer, a count whose byte size overflows, an `out` that overlaps
-/// the storage or overlaps `dir` other than exactly in place (`out == dir`: density `i`
-/// overwrites float `i` after direction `i / 3` was read), an unknown `layout`, or a storage
-/// that fails `wc_envmap_from_storage`.
+/// (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) where
+/// `wc_envmap_pdf` returns 0 (`out == dir` is in place: density `i` overwrites float `i` after
+/// direction `i / 3` was read) and for an unknown `layout`.
 ///
 /// # Safety
 /// `storage` must be readable for `storage_len` words, `dir` for `3n` floats, and `out`
@@ -636,28 +633,13 @@ unsafe fn build(
     if storage_len < needed {
         return WC_ERR_STORAGE_TOO_SMALL;
     }
-    let (Some(range), Some(read)) = (span(storage.cast_const(), needed), span(weights, texels))
+    // Every check but the arrays' is done: from here on the call writes the storage.
+    // SAFETY: the caller's contract: the weights readable for `texels` floats and unchanged
+    // during the call, the storage writable for `storage_len >= needed` words; a zero word is
+    // a valid `u32`. `read_and_fill` checks null, alignment, size and overlap first.
+    let Some((weights, storage)) = (unsafe { read_and_fill(weights, texels, storage, needed) })
     else {
         return WC_ERR_INVALID_ARGUMENT;
-    };
-    if overlap(range, read) {
-        return WC_ERR_INVALID_ARGUMENT;
-    }
-    // Every check is done: from here on the call writes the storage.
-    // SAFETY: the caller's contract (weights readable for `texels` floats, unchanged during
-    // the call); non-null, aligned, of valid size and disjoint from the storage (checked
-    // above; `slice` checks again).
-    let Some(weights) = (unsafe { slice(weights, texels, Some(range)) }) else {
-        return WC_ERR_INVALID_ARGUMENT;
-    };
-    // The storage may be uninitialized C memory: zero the words we use through the raw
-    // pointer first, so the Rust slice below only ever refers to initialized words.
-    // SAFETY: `storage` is writable for `storage_len >= needed` words (the caller's
-    // contract); non-null, aligned and of valid size (checked by `span`); it overlaps neither
-    // the weights (checked above) nor anything else we hold.
-    let storage = unsafe {
-        core::ptr::write_bytes(storage, 0, needed);
-        core::slice::from_raw_parts_mut(storage, needed)
     };
     match kind.build(weights, (w, h), compensation, storage) {
         Ok(()) => WC_OK,
@@ -811,24 +793,12 @@ pub unsafe extern "C" fn wc_envmap_equirect_to_equal_area(
         (Some(a), Some(b)) if fits::<f32>(a) && fits::<f32>(b) => (a, b),
         _ => return WC_ERR_TOO_LARGE,
     };
-    let (Some(read), Some(write)) = (span(src, src_len), span(dst.cast_const(), dst_len)) else {
+    // SAFETY: the caller's contract: `src` readable for `src_len` floats and unchanged during
+    // the call, `dst` writable for `dst_len` floats; a zero float is valid. `read_and_fill`
+    // checks null, alignment, size and overlap first. Every other check is done (the core
+    // repeats them and cannot fail now).
+    let Some((src, dst)) = (unsafe { read_and_fill(src, src_len, dst, dst_len) }) else {
         return WC_ERR_INVALID_ARGUMENT;
-    };
-    if overlap(read, write) {
-        return WC_ERR_INVALID_ARGUMENT;
-    }
-    // Every check is done (the core repeats them and cannot fail now).
-    // SAFETY: the caller's contract; non-null, aligned, of valid size, disjoint from `dst`
-    // (checked above; `slice` checks again).
-    let Some(src) = (unsafe { slice(src, src_len, Some(write)) }) else {
-        return WC_ERR_INVALID_ARGUMENT;
-    };
-    // SAFETY: `dst` is writable for `dst_len` floats (the caller's contract), non-null,
-    // aligned, of valid size and disjoint from `src` (checked above); zeroed first so the
-    // slice refers to initialized floats.
-    let dst = unsafe {
-        core::ptr::write_bytes(dst, 0, dst_len);
-        core::slice::from_raw_parts_mut(dst, dst_len)
     };
     fn run<const C: usize>(
         s: &[f32],

@@ -227,6 +227,38 @@ pub unsafe fn generate<const O: usize>(
     n
 }
 
+/// The arrays of a call that reads `input` (`n_in` values) throughout and fills `out` (`n_out`
+/// values): the input as a shared slice and the output, zeroed through the raw pointer first
+/// (C memory may be uninitialized), as a mutable one. `None`, reading and writing nothing,
+/// for a null or misaligned pointer, a size past `PTRDIFF_MAX` or overlapping arrays.
+///
+/// # Safety
+/// `input` must be valid for reads of `n_in` values, initialized and not written by anyone
+/// else during the call; `out` valid for writes of `n_out` values; all-zero bytes must be a
+/// valid `B`. The returned lifetime is the call's.
+pub unsafe fn read_and_fill<'a, A, B>(
+    input: *const A,
+    n_in: usize,
+    out: *mut B,
+    n_out: usize,
+) -> Option<(&'a [A], &'a mut [B])> {
+    let (read, write) = (span(input, n_in)?, span(out.cast_const(), n_out)?);
+    if overlap(read, write) {
+        return None;
+    }
+    // SAFETY: the caller's contract; non-null, aligned, of valid size and disjoint from `out`
+    // (checked above; `slice` checks again).
+    let input = unsafe { slice(input, n_in, Some(write))? };
+    // SAFETY: `out` is writable for `n_out` values (the caller's contract), non-null, aligned,
+    // of valid size (checked by `span`) and disjoint from `input`; zeroed first, and zero
+    // bytes are a valid `B` (the caller's contract), so the slice refers to initialized values.
+    let out = unsafe {
+        core::ptr::write_bytes(out, 0, n_out);
+        core::slice::from_raw_parts_mut(out, n_out)
+    };
+    Some((input, out))
+}
+
 /// A read-only C array as a slice, for inputs read throughout a call (weights, storage),
 /// unless a pointer rule is broken or it overlaps `writes` (the range the call writes).
 ///
