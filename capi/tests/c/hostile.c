@@ -1229,17 +1229,24 @@ static void one_sampler_value(void) {
     }
 }
 
+/* A sampler's output of `bytes` bytes, flush against a guard page: one call in six null,
+   one in six misaligned. */
+static float *hostile_out(size_t bytes) {
+    int end = rnd() & 1;
+    float *out = place(0, bytes, end, 0);
+    uint32_t r = rnd() % 6;
+    if (r == 0) return NULL;
+    if (r == 1) return place(0, bytes, end, 1 + below(3));
+    return out;
+}
+
 /* wc_sampler_draw (0), wc_sampler_draw_u32 (1), wc_sampler_rnd (2). */
 static void one_sampler_draw(int which) {
     static const char *names[] = {"wc_sampler_draw", "wc_sampler_draw_u32", "wc_sampler_rnd"};
     WcSampler s = hostile_sampler();
     size_t n = hostile_dims();
     size_t small = n >= 1 && n <= 4 ? n : 4; /* elements placed */
-    int end = rnd() & 1;
-    float *out = place(0, small * 4, end, 0);
-    uint32_t r = rnd() % 6;
-    if (r == 0) out = NULL;
-    if (r == 1) out = place(0, small * 4, end, 1 + below(3));
+    float *out = hostile_out(small * 4);
     const char *outcome;
     size_t want = 0;
     if (n < 1 || n > 4) outcome = "0:n-range";
@@ -1286,11 +1293,7 @@ static void one_sampler_slice(void) {
     int dims_ok = n_dims >= 1 && n_dims <= 4;
     size_t count = hostile_count(4 * (dims_ok ? n_dims : 1), 300);
     size_t placed = dims_ok && count <= 300 ? count * n_dims : 16; /* floats */
-    int end = rnd() & 1;
-    float *out = place(0, placed * 4, end, 0);
-    uint32_t r = rnd() % 6;
-    if (r == 0) out = NULL;
-    if (r == 1) out = place(0, placed * 4, end, 1 + below(3));
+    float *out = hostile_out(placed * 4);
     const char *outcome;
     size_t want = 0;
     if (count == 0) outcome = "0:count=0";
