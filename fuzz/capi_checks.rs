@@ -140,17 +140,30 @@ impl Arena {
         let (a, b) = (PAD + at, PAD + at + len);
         self.v[..a] == before[..a] && self.v[b..] == before[b..]
     }
-    /// The promise on memory of call `name`: a refused call (`accepted` false) changed
-    /// nothing; an accepted one nothing outside its outputs `[at, at + len)`.
-    fn changed_only(&self, before: &[u32], accepted: bool, (at, len): (usize, usize), name: &str) {
+    /// Makes the C call `call` on this arena's arrays (counted) and checks the promises: it
+    /// returns `want`; a refused call (`accepted` false) changes nothing, an accepted one
+    /// nothing outside its outputs `[at, at + len)`. `what` names the call in messages.
+    /// Returns `accepted`.
+    fn call<R: PartialEq + core::fmt::Debug>(
+        &self,
+        want: R,
+        accepted: bool,
+        (at, len): (usize, usize),
+        what: &str,
+        call: impl FnOnce() -> R,
+    ) -> bool {
+        let before = self.v.clone();
+        counted();
+        assert_eq!(call(), want, "{what}");
         if accepted {
             assert!(
-                self.unchanged_outside(before, at, len),
-                "{name} wrote outside its outputs"
+                self.unchanged_outside(&before, at, len),
+                "{what} wrote outside its outputs"
             );
         } else {
-            assert!(self.v == before, "a refused {name} wrote");
+            assert!(self.v == before, "a refused {what} wrote");
         }
+        accepted
     }
 }
 
@@ -367,18 +380,14 @@ fn build(b: &mut Bytes, state: &mut State) {
     } else {
         WC_OK
     };
-    let before = arena.v.clone();
+    let accepted = want == WC_OK || want == WC_ERR_INFINITE_WEIGHT;
+    let what = format!("build {w}x{h} len {len} (need {need}) {wp:?} {sp:?}");
     // SAFETY: the model says the call either fails before touching memory, or gets past its
     // checks with `weights` readable for `w * h` floats and the storage writable for `need`
     // words (`len` more only if the slack words exist: they must not be written).
-    counted();
-    let got = unsafe { wc_envmap_build(c_kind, wptr, w, h, sptr, len) };
-    assert_eq!(
-        got, want,
-        "build {w}x{h} len {len} (need {need}) {wp:?} {sp:?}"
-    );
-    let accepted = want == WC_OK || want == WC_ERR_INFINITE_WEIGHT;
-    arena.changed_only(&before, accepted, (s_at, need), "build");
+    arena.call(want, accepted, (s_at, need), &what, || unsafe {
+        wc_envmap_build(c_kind, wptr, w, h, sptr, len)
+    });
     if let (WC_OK, Ok(kind)) = (want, kind) {
         let words = arena.get(s_at, need).to_vec();
         let (w, h) = (w as usize, h as usize);
@@ -444,18 +453,21 @@ fn check(b: &mut Bytes, state: &State) {
     } else {
         loaded(&words[..len], verify).map_or_else(|c| c, |_| WC_OK)
     };
-    let before = arena.v.clone();
-    counted();
+    // Reads only: accepted or not, it writes nothing.
     // SAFETY: `len` words are readable at `p` unless the model says the call refuses first.
-    let got = unsafe {
-        if verify {
-            wc_envmap_from_storage_verified(p, len)
-        } else {
-            wc_envmap_from_storage(p, len)
-        }
-    };
-    assert_eq!(got, want, "check {plan:?} len {len}");
-    assert!(arena.v == before, "a check wrote");
+    arena.call(
+        want,
+        false,
+        (0, 0),
+        &format!("check {plan:?} len {len}"),
+        || unsafe {
+            if verify {
+                wc_envmap_from_storage_verified(p, len)
+            } else {
+                wc_envmap_from_storage(p, len)
+            }
+        },
+    );
 }
 
 fn sample(b: &mut Bytes, state: &State, pdf: bool) {
@@ -501,25 +513,23 @@ fn sample(b: &mut Bytes, state: &State, pdf: bool) {
     } else {
         n
     };
-    let before = arena.v.clone();
+    let what = format!("sample/pdf n {n} {up:?} {op:?} {sp:?}");
     // SAFETY: the model: either refused before touching memory, or `u` holds `2n` floats,
     // `out` room for `n` outputs and the storage `sl` words, all inside the arena.
-    counted();
-    let got = unsafe {
-        if pdf {
-            wc_envmap_pdf(s, sl, uptr, optr.cast(), n)
-        } else {
-            wc_envmap_sample(s, sl, uptr, optr.cast(), n)
-        }
-    };
-    assert_eq!(got, want, "sample/pdf n {n} {up:?} {op:?} {sp:?}");
-    arena.changed_only(
-        &before,
+    let accepted = arena.call(
+        want,
         want != 0,
         (o_at, n.saturating_mul(ow)),
-        "sample/pdf",
+        &what,
+        || unsafe {
+            if pdf {
+                wc_envmap_pdf(s, sl, uptr, optr.cast(), n)
+            } else {
+                wc_envmap_sample(s, sl, uptr, optr.cast(), n)
+            }
+        },
     );
-    if want == 0 {
+    if !accepted {
         return;
     }
     let pts: Vec<[f32; 2]> = u.chunks_exact(2).map(|c| [c[0], c[1]]).collect();
@@ -577,14 +587,16 @@ fn map_call<const I: usize, const O: usize>(
     } else {
         n
     };
-    let before = arena.v.clone();
-    counted();
+    let what = format!("{name} n {n} {ip:?} {op:?}");
     // SAFETY: refused before touching memory, or `I n` floats readable and `O n` writable
     // inside the arena.
-    let got = unsafe { f(iptr, optr, n) };
-    assert_eq!(got, want, "{name} n {n} {ip:?} {op:?}");
-    arena.changed_only(&before, want != 0, (o_at, n.saturating_mul(O)), name);
-    if want == 0 {
+    if !arena.call(
+        want,
+        want != 0,
+        (o_at, n.saturating_mul(O)),
+        &what,
+        || unsafe { f(iptr, optr, n) },
+    ) {
         return;
     }
     let pts: Vec<[f32; I]> = input
@@ -637,13 +649,11 @@ fn latlong_pdf(b: &mut Bytes) {
     } else {
         n
     };
-    let before = arena.v.clone();
-    counted();
+    let what = format!("latlong_pdf n {n} {pp:?} {vp:?} {op:?}");
     // SAFETY: refused before touching memory, or every array holds `n` floats in the arena.
-    let got = unsafe { wc_envmap_equirect_pdf_to_solid_angle(pptr, vptr, optr, n) };
-    assert_eq!(got, want, "latlong_pdf n {n} {pp:?} {vp:?} {op:?}");
-    arena.changed_only(&before, want != 0, (o_at, n), "latlong_pdf");
-    if want == 0 {
+    if !arena.call(want, want != 0, (o_at, n), &what, || unsafe {
+        wc_envmap_equirect_pdf_to_solid_angle(pptr, vptr, optr, n)
+    }) {
         return;
     }
     let r: Vec<f32> = (0..n)
@@ -673,13 +683,11 @@ fn solid_angle_weights(b: &mut Bytes) {
     } else {
         WC_OK
     };
-    let before = arena.v.clone();
-    counted();
+    let what = format!("solid_angle_weights {w}x{h} {plan:?}");
     // SAFETY: refused before touching memory, or `w h` floats in the arena.
-    let got = unsafe { wc_envmap_equirect_solid_angle_weights(p, w, h) };
-    assert_eq!(got, want, "solid_angle_weights {w}x{h} {plan:?}");
-    arena.changed_only(&before, want == WC_OK, (0, count), "solid_angle_weights");
-    if want != WC_OK {
+    if !arena.call(want, want == WC_OK, (0, count), &what, || unsafe {
+        wc_envmap_equirect_solid_angle_weights(p, w, h)
+    }) {
         return;
     }
     let mut r = vals.clone();
@@ -739,16 +747,11 @@ fn to_equal_area(b: &mut Bytes) {
     } else {
         WC_OK
     };
-    let before = arena.v.clone();
-    counted();
+    let what = format!("to_equal_area {sw}x{sh}x{c} -> {size} ss {ss} {srcp:?} {dstp:?}");
     // SAFETY: refused before touching memory, or both arrays of their sizes in the arena.
-    let got = unsafe { wc_envmap_equirect_to_equal_area(sp, sw, sh, c, dp, size, ss) };
-    assert_eq!(
-        got, want,
-        "to_equal_area {sw}x{sh}x{c} -> {size} ss {ss} {srcp:?} {dstp:?}"
-    );
-    arena.changed_only(&before, want == WC_OK, (d_at, dl), "to_equal_area");
-    if want != WC_OK {
+    if !arena.call(want, want == WC_OK, (d_at, dl), &what, || unsafe {
+        wc_envmap_equirect_to_equal_area(sp, sw, sh, c, dp, size, ss)
+    }) {
         return;
     }
     let (w, h, n, s) = (sw as usize, sh as usize, size as usize, ss as usize);

@@ -81,10 +81,11 @@ static void state(WcSampler s) {
     word(s.index);
 }
 
-static void draws(WcSampler s) {
+/* wc_sampler_draw or wc_sampler_rnd for 1 to 4 dimensions. */
+static void draws(WcSampler s, size_t (*draw)(WcSampler, size_t, float *)) {
     for (size_t n = 1; n <= 4; n++) {
         float v[4];
-        CHECK(wc_sampler_draw(s, n, v) == n);
+        CHECK(draw(s, n, v) == n);
         floats(v, n);
     }
 }
@@ -94,14 +95,6 @@ static void draws_u32(WcSampler s) {
         uint32_t v[4];
         CHECK(wc_sampler_draw_u32(s, n, v) == n);
         words(v, n);
-    }
-}
-
-static void rnds(WcSampler s) {
-    for (size_t n = 1; n <= 4; n++) {
-        float v[4];
-        CHECK(wc_sampler_rnd(s, n, v) == n);
-        floats(v, n);
     }
 }
 
@@ -123,9 +116,9 @@ static void hashes(void) {
                     WcSampler s = key_path(root(pattern, r), p);
                     switch (what) {
                     case 0: state(s); break;
-                    case 1: draws(s); break;
+                    case 1: draws(s, wc_sampler_draw); break;
                     case 2: draws_u32(s); break;
-                    case 3: rnds(s); break;
+                    case 3: draws(s, wc_sampler_rnd); break;
                     default: slices(s); break;
                     }
                 }
@@ -141,9 +134,9 @@ static void hashes(void) {
                         state(s);
                         continue;
                     }
-                    draws(s);
+                    draws(s, wc_sampler_draw);
                     draws_u32(s);
-                    rnds(s);
+                    draws(s, wc_sampler_rnd);
                     slices(s);
                 }
             }
