@@ -20,7 +20,9 @@
 
 use crate::envmap::*;
 use std::sync::atomic::{AtomicU64, Ordering};
-use warpcore::envmap::{Error, Hierarchical, MAX_SIDE, MarginalConditional, Sample, image};
+use warpcore::envmap::{
+    Error, HEADER_WORDS, Hierarchical, MAX_SIDE, MarginalConditional, Sample, image,
+};
 
 /// C calls made so far (all threads): the replay reports it.
 pub static CALLS: AtomicU64 = AtomicU64::new(0);
@@ -75,6 +77,17 @@ impl Bytes<'_> {
             _ => Plan::Ok,
         }
     }
+    /// A distribution (an odd byte: hierarchical), or (one byte in 16) a `kind` that names
+    /// none.
+    fn kind(&mut self) -> Result<Kind, u32> {
+        let b = self.byte();
+        match b % 16 {
+            15 => Err(2 + u32::from(b >> 4)),
+            _ => Ok(Kind {
+                hierarchical: b & 1 == 1,
+            }),
+        }
+    }
     /// A float: any bits.
     fn float(&mut self) -> f32 {
         f32::from_bits(self.word())
@@ -127,6 +140,31 @@ impl Arena {
         let (a, b) = (PAD + at, PAD + at + len);
         self.v[..a] == before[..a] && self.v[b..] == before[b..]
     }
+    /// Makes the C call `call` on this arena's arrays (counted) and checks the promises: it
+    /// returns `want`; a refused call (`accepted` false) changes nothing, an accepted one
+    /// nothing outside its outputs `[at, at + len)`. `what` names the call in messages.
+    /// Returns `accepted`.
+    fn call<R: PartialEq + core::fmt::Debug>(
+        &self,
+        want: R,
+        accepted: bool,
+        (at, len): (usize, usize),
+        what: &str,
+        call: impl FnOnce() -> R,
+    ) -> bool {
+        let before = self.v.clone();
+        counted();
+        assert_eq!(call(), want, "{what}");
+        if accepted {
+            assert!(
+                self.unchanged_outside(&before, at, len),
+                "{what} wrote outside its outputs"
+            );
+        } else {
+            assert!(self.v == before, "a refused {what} wrote");
+        }
+        accepted
+    }
 }
 
 fn fits(count: usize, elem: usize) -> bool {
@@ -149,33 +187,19 @@ fn bits(x: &[f32]) -> Vec<u32> {
     x.iter().map(|f| f.to_bits()).collect()
 }
 
-fn code(e: Error) -> i32 {
-    match e {
-        Error::ZeroSize => WC_ERR_ZERO_SIZE,
-        Error::TooLarge => WC_ERR_TOO_LARGE,
-        Error::LengthMismatch { .. } => WC_ERR_LENGTH_MISMATCH,
-        Error::StorageTooSmall { .. } => WC_ERR_STORAGE_TOO_SMALL,
-        Error::InfiniteWeight { .. } => WC_ERR_INFINITE_WEIGHT,
-        Error::WrongFormat { .. } => WC_ERR_WRONG_FORMAT,
-        Error::UnsupportedVersion { .. } => WC_ERR_UNSUPPORTED_VERSION,
-        Error::Corrupt { .. } => WC_ERR_CORRUPT,
-        _ => WC_ERR_OTHER,
-    }
-}
-
-/// The two distributions: C entry points and the safe crate's.
+/// A distribution: the C `kind` and the safe crate's type.
 #[derive(Clone, Copy)]
 struct Kind {
     hierarchical: bool,
 }
 
 impl Kind {
-    fn storage_len(self, w: u32, h: u32) -> usize {
-        counted();
+    /// Its `WC_ENVMAP_KIND_*`.
+    fn c(self) -> u32 {
         if self.hierarchical {
-            wc_envmap_hierarchical_storage_len(w, h)
+            WC_ENVMAP_KIND_HIERARCHICAL
         } else {
-            wc_envmap_marginal_conditional_storage_len(w, h)
+            WC_ENVMAP_KIND_MARGINAL_CONDITIONAL
         }
     }
     fn rust_len(self, w: usize, h: usize) -> usize {
@@ -185,74 +209,7 @@ impl Kind {
             MarginalConditional::storage_len(w, h)
         }
     }
-    /// # Safety
-    /// The C function's contract.
-    unsafe fn build(self, w: *const f32, x: u32, y: u32, s: *mut u32, len: usize) -> i32 {
-        counted();
-        // SAFETY: the caller's.
-        unsafe {
-            if self.hierarchical {
-                wc_envmap_hierarchical_build(w, x, y, s, len)
-            } else {
-                wc_envmap_marginal_conditional_build(w, x, y, s, len)
-            }
-        }
-    }
-    /// # Safety
-    /// The C function's contract.
-    unsafe fn check(self, s: *const u32, len: usize, verify: bool) -> i32 {
-        counted();
-        // SAFETY: the caller's.
-        unsafe {
-            match (self.hierarchical, verify) {
-                (true, false) => wc_envmap_hierarchical_validate(s, len),
-                (true, true) => wc_envmap_hierarchical_verify(s, len),
-                (false, false) => wc_envmap_marginal_conditional_validate(s, len),
-                (false, true) => wc_envmap_marginal_conditional_verify(s, len),
-            }
-        }
-    }
-    /// # Safety
-    /// The C function's contract.
-    unsafe fn sample(
-        self,
-        s: *const u32,
-        len: usize,
-        u: *const f32,
-        out: *mut WcEnvSample,
-        n: usize,
-    ) -> usize {
-        counted();
-        // SAFETY: the caller's.
-        unsafe {
-            if self.hierarchical {
-                wc_envmap_hierarchical_sample(s, len, u, out, n)
-            } else {
-                wc_envmap_marginal_conditional_sample(s, len, u, out, n)
-            }
-        }
-    }
-    /// # Safety
-    /// The C function's contract.
-    unsafe fn pdf(
-        self,
-        s: *const u32,
-        len: usize,
-        uv: *const f32,
-        out: *mut f32,
-        n: usize,
-    ) -> usize {
-        counted();
-        // SAFETY: the caller's.
-        unsafe {
-            if self.hierarchical {
-                wc_envmap_hierarchical_pdf(s, len, uv, out, n)
-            } else {
-                wc_envmap_marginal_conditional_pdf(s, len, uv, out, n)
-            }
-        }
-    }
-    /// The safe crate's verdict on a storage (O(1) or verified).
+    /// The safe crate's verdict on a storage of this distribution (O(1) or verified).
     fn load(self, words: &[u32], verify: bool) -> Result<(), Error> {
         match (self.hierarchical, verify) {
             (true, false) => Hierarchical::from_storage(words).map(|_| ()),
@@ -280,6 +237,21 @@ impl Kind {
         }
         (s, p)
     }
+}
+
+/// The documented reading of a storage: the distribution its format tag names (word 0 as
+/// bytes, `"wcHI"` or `"wcMC"`) and the safe crate's verdict for it; a storage shorter than
+/// the header is too small, any other tag the wrong format. The `WC_ERR_*` code on failure.
+fn loaded(words: &[u32], verify: bool) -> Result<Kind, i32> {
+    let kind = match words.first().map(|w| w.to_ne_bytes()) {
+        _ if words.len() < HEADER_WORDS => return Err(WC_ERR_STORAGE_TOO_SMALL),
+        Some(t) if &t == b"wcHI" => Kind { hierarchical: true },
+        Some(t) if &t == b"wcMC" => Kind {
+            hierarchical: false,
+        },
+        _ => return Err(WC_ERR_WRONG_FORMAT),
+    };
+    kind.load(words, verify).map_err(code).map(|()| kind)
 }
 
 /// State carried between operations: the last storage a build produced.
@@ -322,13 +294,20 @@ pub fn capi_envmap(data: &[u8]) {
 
 fn storage_len(b: &mut Bytes) {
     let (w, h) = (b.side(), b.side());
+    counted();
+    assert_eq!(
+        wc_envmap_storage_len(2 + w % 7, w, h),
+        usize::MAX,
+        "unknown kind"
+    );
     for kind in [
         Kind { hierarchical: true },
         Kind {
             hierarchical: false,
         },
     ] {
-        let got = kind.storage_len(w, h);
+        counted();
+        let got = wc_envmap_storage_len(kind.c(), w, h);
         if w == 0 || h == 0 {
             assert_eq!(got, 0, "storage_len({w}, {h})");
         } else if w as usize > MAX_SIDE || h as usize > MAX_SIDE {
@@ -344,11 +323,11 @@ fn storage_len(b: &mut Bytes) {
 }
 
 fn build(b: &mut Bytes, state: &mut State) {
-    let kind = Kind {
-        hierarchical: b.byte() & 1 == 1,
-    };
+    let kind = b.kind();
+    let c_kind = kind.map_or_else(|k| k, Kind::c);
     let (w, h) = (b.side(), b.side());
-    let need = kind.storage_len(w, h);
+    counted();
+    let need = wc_envmap_storage_len(c_kind, w, h);
     let len = match b.byte() % 5 {
         0 => need.wrapping_sub((b.byte() % 8) as usize),
         1 => need.wrapping_add((b.byte() % 8) as usize),
@@ -384,7 +363,9 @@ fn build(b: &mut Bytes, state: &mut State) {
     let sptr = arena.ptr::<u32>(s_at, sp);
     // The model, in the documented order.
     let ok_ptr = |p: Plan| !matches!(p, Plan::Null | Plan::Skew(_));
-    let want = if w == 0 || h == 0 {
+    let want = if kind.is_err() {
+        WC_ERR_INVALID_ARGUMENT
+    } else if w == 0 || h == 0 {
         WC_ERR_ZERO_SIZE
     } else if need == usize::MAX || !fits64(texels, 4) || !fits(need, 4) {
         WC_ERR_TOO_LARGE
@@ -399,24 +380,15 @@ fn build(b: &mut Bytes, state: &mut State) {
     } else {
         WC_OK
     };
-    let before = arena.v.clone();
+    let accepted = want == WC_OK || want == WC_ERR_INFINITE_WEIGHT;
+    let what = format!("build {w}x{h} len {len} (need {need}) {wp:?} {sp:?}");
     // SAFETY: the model says the call either fails before touching memory, or gets past its
     // checks with `weights` readable for `w * h` floats and the storage writable for `need`
     // words (`len` more only if the slack words exist: they must not be written).
-    let got = unsafe { kind.build(wptr, w, h, sptr, len) };
-    assert_eq!(
-        got, want,
-        "build {w}x{h} len {len} (need {need}) {wp:?} {sp:?}"
-    );
-    if want == WC_OK || want == WC_ERR_INFINITE_WEIGHT {
-        assert!(
-            arena.unchanged_outside(&before, s_at, need),
-            "build wrote outside its storage"
-        );
-    } else {
-        assert!(arena.v == before, "a refused build wrote");
-    }
-    if want == WC_OK {
+    arena.call(want, accepted, (s_at, need), &what, || unsafe {
+        wc_envmap_build(c_kind, wptr, w, h, sptr, len)
+    });
+    if let (WC_OK, Ok(kind)) = (want, kind) {
         let words = arena.get(s_at, need).to_vec();
         let (w, h) = (w as usize, h as usize);
         let mut rust = vec![0u32; need];
@@ -479,14 +451,23 @@ fn check(b: &mut Bytes, state: &State) {
     let want = if lie || (len > 0 && bad_ptr) {
         WC_ERR_INVALID_ARGUMENT
     } else {
-        kind.load(&words[..len], verify)
-            .map_or_else(code, |()| WC_OK)
+        loaded(&words[..len], verify).map_or_else(|c| c, |_| WC_OK)
     };
-    let before = arena.v.clone();
+    // Reads only: accepted or not, it writes nothing.
     // SAFETY: `len` words are readable at `p` unless the model says the call refuses first.
-    let got = unsafe { kind.check(p, len, verify) };
-    assert_eq!(got, want, "check {plan:?} len {len}");
-    assert!(arena.v == before, "a check wrote");
+    arena.call(
+        want,
+        false,
+        (0, 0),
+        &format!("check {plan:?} len {len}"),
+        || unsafe {
+            if verify {
+                wc_envmap_from_storage_verified(p, len)
+            } else {
+                wc_envmap_from_storage(p, len)
+            }
+        },
+    );
 }
 
 fn sample(b: &mut Bytes, state: &State, pdf: bool) {
@@ -517,7 +498,7 @@ fn sample(b: &mut Bytes, state: &State, pdf: bool) {
     let uptr = arena.ptr::<f32>(u_at, up);
     let optr = arena.ptr::<u32>(o_at, op);
     let ok_ptr = |p: Plan| !matches!(p, Plan::Null | Plan::Skew(_));
-    let loads = kind.load(&words, false).is_ok();
+    let loads = loaded(&words, false);
     let want = if n == 0
         || !ok_ptr(up)
         || !ok_ptr(op)
@@ -526,33 +507,33 @@ fn sample(b: &mut Bytes, state: &State, pdf: bool) {
         || !fits(n, elem)
         || (overlap((u_at, 2 * n), (o_at, n * ow)) && !(pdf && o_at == u_at))
         || overlap((s_at, sl), (o_at, n * ow))
-        || !loads
+        || loads.is_err()
     {
         0
     } else {
         n
     };
-    let before = arena.v.clone();
+    let what = format!("sample/pdf n {n} {up:?} {op:?} {sp:?}");
     // SAFETY: the model: either refused before touching memory, or `u` holds `2n` floats,
     // `out` room for `n` outputs and the storage `sl` words, all inside the arena.
-    let got = unsafe {
-        if pdf {
-            kind.pdf(s, sl, uptr, optr.cast(), n)
-        } else {
-            kind.sample(s, sl, uptr, optr.cast(), n)
-        }
-    };
-    assert_eq!(got, want, "sample/pdf n {n} {up:?} {op:?} {sp:?}");
-    if want == 0 {
-        assert!(arena.v == before, "a refused sample/pdf wrote");
+    let accepted = arena.call(
+        want,
+        want != 0,
+        (o_at, n.saturating_mul(ow)),
+        &what,
+        || unsafe {
+            if pdf {
+                wc_envmap_pdf(s, sl, uptr, optr.cast(), n)
+            } else {
+                wc_envmap_sample(s, sl, uptr, optr.cast(), n)
+            }
+        },
+    );
+    if !accepted {
         return;
     }
-    assert!(
-        arena.unchanged_outside(&before, o_at, n * ow),
-        "wrote outside its outputs"
-    );
     let pts: Vec<[f32; 2]> = u.chunks_exact(2).map(|c| [c[0], c[1]]).collect();
-    let (rs, rp) = kind.reference(&words, &pts);
+    let (rs, rp) = loads.expect("loads").reference(&words, &pts);
     let out = arena.get(o_at, n * ow);
     if pdf {
         assert_eq!(out, &bits(&rp)[..], "pdf differs from the crate's");
@@ -606,20 +587,18 @@ fn map_call<const I: usize, const O: usize>(
     } else {
         n
     };
-    let before = arena.v.clone();
-    counted();
+    let what = format!("{name} n {n} {ip:?} {op:?}");
     // SAFETY: refused before touching memory, or `I n` floats readable and `O n` writable
     // inside the arena.
-    let got = unsafe { f(iptr, optr, n) };
-    assert_eq!(got, want, "{name} n {n} {ip:?} {op:?}");
-    if want == 0 {
-        assert!(arena.v == before, "a refused {name} wrote");
+    if !arena.call(
+        want,
+        want != 0,
+        (o_at, n.saturating_mul(O)),
+        &what,
+        || unsafe { f(iptr, optr, n) },
+    ) {
         return;
     }
-    assert!(
-        arena.unchanged_outside(&before, o_at, O * n),
-        "{name} wrote outside"
-    );
     let pts: Vec<[f32; I]> = input
         .chunks_exact(I)
         .map(|c| std::array::from_fn(|k| c[k]))
@@ -670,19 +649,13 @@ fn latlong_pdf(b: &mut Bytes) {
     } else {
         n
     };
-    let before = arena.v.clone();
-    counted();
+    let what = format!("latlong_pdf n {n} {pp:?} {vp:?} {op:?}");
     // SAFETY: refused before touching memory, or every array holds `n` floats in the arena.
-    let got = unsafe { wc_envmap_equirect_pdf_to_solid_angle(pptr, vptr, optr, n) };
-    assert_eq!(got, want, "latlong_pdf n {n} {pp:?} {vp:?} {op:?}");
-    if want == 0 {
-        assert!(arena.v == before, "a refused latlong_pdf wrote");
+    if !arena.call(want, want != 0, (o_at, n), &what, || unsafe {
+        wc_envmap_equirect_pdf_to_solid_angle(pptr, vptr, optr, n)
+    }) {
         return;
     }
-    assert!(
-        arena.unchanged_outside(&before, o_at, n),
-        "latlong_pdf wrote outside"
-    );
     let r: Vec<f32> = (0..n)
         .map(|i| image::equirect_pdf_to_solid_angle(vals[i], vals[small + i]))
         .collect();
@@ -710,19 +683,16 @@ fn solid_angle_weights(b: &mut Bytes) {
     } else {
         WC_OK
     };
-    let before = arena.v.clone();
-    counted();
+    let what = format!("solid_angle_weights {w}x{h} {plan:?}");
     // SAFETY: refused before touching memory, or `w h` floats in the arena.
-    let got = unsafe { wc_envmap_equirect_solid_angle_weights(p, w, h) };
-    assert_eq!(got, want, "solid_angle_weights {w}x{h} {plan:?}");
-    if want != WC_OK {
-        assert!(arena.v == before, "a refused solid_angle_weights wrote");
+    if !arena.call(want, want == WC_OK, (0, count), &what, || unsafe {
+        wc_envmap_equirect_solid_angle_weights(p, w, h)
+    }) {
         return;
     }
     let mut r = vals.clone();
     image::equirect_solid_angle_weights(&mut r, w as usize, h as usize).expect("valid");
     assert_eq!(arena.get(0, count), &bits(&r)[..]);
-    assert!(arena.unchanged_outside(&before, 0, count));
 }
 
 fn to_equal_area(b: &mut Bytes) {
@@ -777,19 +747,13 @@ fn to_equal_area(b: &mut Bytes) {
     } else {
         WC_OK
     };
-    let before = arena.v.clone();
-    counted();
+    let what = format!("to_equal_area {sw}x{sh}x{c} -> {size} ss {ss} {srcp:?} {dstp:?}");
     // SAFETY: refused before touching memory, or both arrays of their sizes in the arena.
-    let got = unsafe { wc_envmap_equirect_to_equal_area(sp, sw, sh, c, dp, size, ss) };
-    assert_eq!(
-        got, want,
-        "to_equal_area {sw}x{sh}x{c} -> {size} ss {ss} {srcp:?} {dstp:?}"
-    );
-    if want != WC_OK {
-        assert!(arena.v == before, "a refused to_equal_area wrote");
+    if !arena.call(want, want == WC_OK, (d_at, dl), &what, || unsafe {
+        wc_envmap_equirect_to_equal_area(sp, sw, sh, c, dp, size, ss)
+    }) {
         return;
     }
-    assert!(arena.unchanged_outside(&before, d_at, dl));
     let (w, h, n, s) = (sw as usize, sh as usize, size as usize, ss as usize);
     let mut d = vec![0.0f32; dl];
     fn run<const C: usize>(src: &[f32], w: usize, h: usize, d: &mut [f32], n: usize, s: usize) {

@@ -45,18 +45,19 @@
 // A weight is `+inf`.
 #define WC_ERR_INFINITE_WEIGHT (-5)
 
-// Word 0 of the storage is not this distribution's format tag.
+// Word 0 of the storage is the format tag of neither distribution.
 #define WC_ERR_WRONG_FORMAT (-6)
 
 // The storage's format version is not the one this library reads.
 #define WC_ERR_UNSUPPORTED_VERSION (-7)
 
-// A header word (or, for `verify` / `from_storage_verified`, a table word, or content that
+// A header word (or, for `from_storage_verified`, a table word, or content that
 // does not match the checksum in header word 8) holds a value a build never writes.
 #define WC_ERR_CORRUPT (-8)
 
 // A null or misaligned pointer, arrays that overlap where they must not, or (see each
-// function) a bad `channels` or a `storage_len` no array can have.
+// function) a bad `kind`, `compensation` or `channels`, or a `storage_len` no array can
+// have.
 #define WC_ERR_INVALID_ARGUMENT (-9)
 
 // An error this version of the header has no name for.
@@ -71,7 +72,7 @@
 // older storages get `WC_ERR_UNSUPPORTED_VERSION`: rebuild them from the weights.
 #define WC_ENVMAP_FORMAT_VERSION 3
 
-// `compensation` of the `build_compensated` functions: the weights as given.
+// `compensation` of `wc_envmap_build_compensated`: the weights as given.
 #define WC_ENVMAP_COMPENSATION_NONE 0
 
 // `compensation`: subtract `fraction` times the mean weight (texels of equal solid angle:
@@ -90,6 +91,15 @@
 // `layout` of the direction functions: the equal-area octahedral square of
 // `wc_sphere_equal_area` (its centre at `+z`).
 #define WC_ENVMAP_LAYOUT_EQUAL_AREA 1
+
+// `kind` of `wc_envmap_storage_len` and the builds: the hierarchical (MIP-pyramid)
+// distribution, which walks the map's pyramid and keeps 2D strata compact (format tag
+// `"wcHI"`).
+#define WC_ENVMAP_KIND_HIERARCHICAL 0
+
+// `kind`: the marginal-conditional distribution, a row by its total, then a column within
+// the row (format tag `"wcMC"`).
+#define WC_ENVMAP_KIND_MARGINAL_CONDITIONAL 1
 
 // Owen-scrambled pmj02bn points: a draw of up to four dimensions is two independent (0,2)
 // pairs (dimensions 0-1 and 2-3).
@@ -226,360 +236,168 @@ size_t wc_disk_concentric4_inverse(const float *p, float *out, uint32_t *quadran
 // argument; reads and writes no memory (the strings live as long as the program).
 const char *wc_error_string(int32_t code);
 
-// Words of storage `wc_envmap_hierarchical_build` needs for a `width x height` map (the hierarchical (MIP-pyramid) distribution: compact 2D strata), the
-// 16-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
-// tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE` and
+// Words of storage `wc_envmap_build` needs for a `width x height` map of distribution
+// `kind` (`WC_ENVMAP_KIND_*`), the 16-word header included: `SIZE_MAX` for an unknown
+// `kind` (whatever the sides), else 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24
+// or the tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE`, `WC_ERR_INVALID_ARGUMENT` and
 // `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
-size_t wc_envmap_hierarchical_storage_len(uint32_t width,
-                                          uint32_t height);
+size_t wc_envmap_storage_len(uint32_t kind,
+                             uint32_t width,
+                             uint32_t height);
 
-// Builds the hierarchical (MIP-pyramid) distribution: compact 2D strata, of `weights` (row-major, `width * height` floats; NaN, negatives and
-// `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. Returns `WC_OK` (0) or
-// the first failed check, in this order:
+// Builds the distribution `kind` (`WC_ENVMAP_KIND_HIERARCHICAL` or
+// `WC_ENVMAP_KIND_MARGINAL_CONDITIONAL`) of `weights` (row-major, `width * height` floats;
+// NaN, negatives and `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. The
+// storage's header records the distribution: the other functions read it from there.
+// Returns `WC_OK` (0) or the first failed check, in this order:
 //
+// * `WC_ERR_INVALID_ARGUMENT`: `kind` is not one of the two constants;
 // * `WC_ERR_ZERO_SIZE`: `width` or `height` is 0;
-// * `WC_ERR_TOO_LARGE`: a side above 2^24, tables above 2^32 words (`wc_envmap_hierarchical_storage_len` is
-//   `SIZE_MAX`), or weights or tables larger than `PTRDIFF_MAX` bytes (32-bit targets);
-// * `WC_ERR_STORAGE_TOO_SMALL`: `storage_len` is below `wc_envmap_hierarchical_storage_len(width, height)`;
+// * `WC_ERR_TOO_LARGE`: a side above 2^24, tables above 2^32 words (`wc_envmap_storage_len`
+//   is `SIZE_MAX`), or weights or tables larger than `PTRDIFF_MAX` bytes (32-bit targets);
+// * `WC_ERR_STORAGE_TOO_SMALL`: `storage_len` is below
+//   `wc_envmap_storage_len(kind, width, height)`;
 // * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or weights overlapping the
-//   storage's first `wc_envmap_hierarchical_storage_len(width, height)` words;
+//   storage's first `wc_envmap_storage_len(kind, width, height)` words;
 // * `WC_ERR_INFINITE_WEIGHT`: a weight is `+inf`.
 //
 // Nothing is written before these checks but the last: on the other errors the storage is
 // untouched; on success and on `WC_ERR_INFINITE_WEIGHT` exactly the first
-// `wc_envmap_hierarchical_storage_len(width, height)` words are written, never more. The storage's bytes are
-// the file format: write them to a file and sample them later, on any machine.
+// `wc_envmap_storage_len(kind, width, height)` words are written, never more. The storage's
+// bytes are the file format: write them to a file and sample them later, on any machine.
 //
 // # Safety
 // `weights` must be readable for `width * height` floats and `storage` writable for
 // `storage_len` words (only when the checks above pass, so a call that returns one of the
 // errors before `WC_ERR_INFINITE_WEIGHT` may pass any pointers).
-int32_t wc_envmap_hierarchical_build(const float *weights,
-                                     uint32_t width,
-                                     uint32_t height,
-                                     uint32_t *storage,
-                                     size_t storage_len);
+int32_t wc_envmap_build(uint32_t kind,
+                        const float *weights,
+                        uint32_t width,
+                        uint32_t height,
+                        uint32_t *storage,
+                        size_t storage_len);
 
-// `wc_envmap_hierarchical_build` with MIS compensation (Karlik et al. 2019; pbrt-v4's
+// `wc_envmap_build` with MIS compensation (Karlik et al. 2019; pbrt-v4's
 // `compensatedDistribution`, Mitsuba 3's `mis_compensation`): the tables, and every pdf
 // the distribution reports, are those of `max(0, w - fraction * average)`.
-// `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_hierarchical_build`),
+// `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_build`),
 // `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
 // `WC_ENVMAP_COMPENSATION_EQUIRECT` (equirect weights made by
 // `wc_envmap_equirect_solid_angle_weights`: the radiance's solid-angle average, times each
 // row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
 // zero and negative mean no compensation. When compensation would remove every weight (a
 // constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
-// given, bit for bit `wc_envmap_hierarchical_build`.
+// given, bit for bit `wc_envmap_build`.
 //
-// Returns `WC_OK` or the first failed check: `WC_ERR_INVALID_ARGUMENT` if `compensation`
-// is not one of the three constants (checked first: nothing is read or written), then
-// exactly the checks, order and writes of `wc_envmap_hierarchical_build`.
+// Returns `WC_OK` or the first failed check: `WC_ERR_INVALID_ARGUMENT` if `kind` or
+// `compensation` is not one of its constants (checked first: nothing is read or written),
+// then exactly the checks, order and writes of `wc_envmap_build`.
 //
 // # Safety
-// As `wc_envmap_hierarchical_build`.
-int32_t wc_envmap_hierarchical_build_compensated(const float *weights,
-                                                 uint32_t width,
-                                                 uint32_t height,
-                                                 uint32_t compensation,
-                                                 float fraction,
-                                                 uint32_t *storage,
-                                                 size_t storage_len);
+// As `wc_envmap_build`.
+int32_t wc_envmap_build_compensated(uint32_t kind,
+                                    const float *weights,
+                                    uint32_t width,
+                                    uint32_t height,
+                                    uint32_t compensation,
+                                    float fraction,
+                                    uint32_t *storage,
+                                    size_t storage_len);
 
-// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
-// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
-// and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
-// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 16 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
-// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION` (an older format: rebuild),
+// Checks a storage's header in O(1) and names the distribution it holds (the crate's
+// `from_storage`): format tag, version, sizes and lengths. Returns `WC_OK` or the first
+// failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0` and `storage`
+// null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
+// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 16 words), `WC_ERR_WRONG_FORMAT` (word 0 is the tag
+// of neither distribution), `WC_ERR_UNSUPPORTED_VERSION` (an older format: rebuild),
 // `WC_ERR_CORRUPT` (a size, length or reserved word a build never writes),
-// `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
-// Sampling a storage that passes is safe whatever its table words hold (samples stay in the
-// map); the sample and pdf functions run this check on every call. Reads only.
+// `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says). Sampling a storage that
+// passes is safe whatever its table words hold (samples stay in the map); the sampling
+// functions run this check on every call. Reads only.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words.
-int32_t wc_envmap_hierarchical_validate(const uint32_t *storage, size_t storage_len);
+int32_t wc_envmap_from_storage(const uint32_t *storage, size_t storage_len);
 
-// `wc_envmap_hierarchical_validate` (the same codes, in the same order) plus one pass over every
-// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants or do
-// not match the content checksum (header word 8): every single-bit flip of a storage is
-// caught. For loaders of files. Time proportional to the storage. Reads only.
+// `wc_envmap_from_storage` (the same codes, in the same order) plus one pass over every
+// table word (the crate's `from_storage_verified`), rejecting (`WC_ERR_CORRUPT`) tables that
+// break the format's invariants or do not match the content checksum (header word 8): every
+// single-bit flip of a storage is caught. For loaders of files. Time proportional to the
+// storage. Reads only.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words.
-int32_t wc_envmap_hierarchical_verify(const uint32_t *storage, size_t storage_len);
+int32_t wc_envmap_from_storage_verified(const uint32_t *storage, size_t storage_len);
 
-// Draws `n` samples from a built (or loaded) storage: texels in proportion to their weight,
-// a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
-// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) for
-// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
-// overlaps `u` (`out == u` too: a sample is larger than a point) or the storage, or a
-// storage that fails `wc_envmap_hierarchical_validate`.
+// Draws `n` samples from a built (or loaded) storage, of the distribution its header names:
+// texels in proportion to their weight, a uniform point inside each. `u` holds `2n` floats
+// (`u[2i]` picks the column, `u[2i+1]` the row; any values, clamped to `[0, 1)`). Returns
+// `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count whose byte
+// size overflows, an `out` that overlaps `u` (`out == u` too: a sample is larger than a
+// point) or the storage, or a storage that fails `wc_envmap_from_storage`.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
 // writable for `n` samples.
-size_t wc_envmap_hierarchical_sample(const uint32_t *storage,
-                                     size_t storage_len,
-                                     const float *u,
-                                     WcEnvSample *out,
-                                     size_t n);
+size_t wc_envmap_sample(const uint32_t *storage,
+                        size_t storage_len,
+                        const float *u,
+                        WcEnvSample *out,
+                        size_t n);
 
 // Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
 // the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
 // sample at that point reports. Returns `n`, or 0 (writing nothing) for `n == 0`, a null or
 // misaligned pointer, a count whose byte size overflows, an `out` that overlaps the storage
 // or overlaps `uv` other than exactly in place (`out == uv`: density `i` overwrites float
-// `i` after point `i / 2` was read), or a storage that fails
-// `wc_envmap_hierarchical_validate`.
+// `i` after point `i / 2` was read), or a storage that fails `wc_envmap_from_storage`.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
 // writable for `n` floats.
-size_t wc_envmap_hierarchical_pdf(const uint32_t *storage,
+size_t wc_envmap_pdf(const uint32_t *storage,
+                     size_t storage_len,
+                     const float *uv,
+                     float *out,
+                     size_t n);
+
+// Draws `n` samples as directions with their density per steradian, in one call: the
+// samples of `wc_envmap_sample`, each `uv` mapped onto the sphere by `layout`
+// (`WC_ENVMAP_LAYOUT_EQUIRECT`: `wc_sphere_equirect`, density
+// `pdf / (2 pi^2 sin(pi v))` with the point's own `v`, 0 exactly at the pole;
+// `WC_ENVMAP_LAYOUT_EQUAL_AREA`: `wc_sphere_equal_area`, density `pdf / (4 pi)`). `u` holds
+// `2n` floats (any values, clamped to `[0, 1)`); `out` receives `n` `WcEnvDirection`s.
+// Returns `n`, or 0 (writing nothing) where `wc_envmap_sample` returns 0 and for an unknown
+// `layout`.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
+// writable for `n` directions.
+size_t wc_envmap_sample_direction(const uint32_t *storage,
                                   size_t storage_len,
-                                  const float *uv,
-                                  float *out,
+                                  uint32_t layout,
+                                  const float *u,
+                                  WcEnvDirection *out,
                                   size_t n);
 
-// `wc_envmap_hierarchical_validate` under the Rust and JavaScript name (`from_storage`): the
-// same O(1) header check, the same codes in the same order: `WC_OK`,
-// `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
-// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
-//
-// # Safety
-// `storage` must be readable for `storage_len` words.
-int32_t wc_envmap_hierarchical_from_storage(const uint32_t *storage, size_t storage_len);
-
-// `wc_envmap_hierarchical_verify` under the Rust and JavaScript name (`from_storage_verified`):
-// the header check plus one pass over every word (the format's invariants, then the content
-// checksum, which catches every single-bit flip), the same codes in the same order:
-// `WC_OK`, `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
-// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
-//
-// # Safety
-// `storage` must be readable for `storage_len` words.
-int32_t wc_envmap_hierarchical_from_storage_verified(const uint32_t *storage, size_t storage_len);
-
-// Draws `n` samples as directions with their density per steradian, in one call: the
-// samples of `wc_envmap_hierarchical_sample`, each `uv` mapped onto the sphere by `layout`
-// (`WC_ENVMAP_LAYOUT_EQUIRECT`: `wc_sphere_equirect`, density
-// `pdf / (2 pi^2 sin(pi v))` with the point's own `v`, 0 exactly at the pole;
-// `WC_ENVMAP_LAYOUT_EQUAL_AREA`: `wc_sphere_equal_area`, density `pdf / (4 pi)`). `u` holds
-// `2n` floats (any values, clamped to `[0, 1)`); `out` receives `n` `WcEnvDirection`s.
-// Returns `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count
-// whose byte size overflows, an `out` that overlaps `u` or the storage, an unknown
-// `layout`, or a storage that fails `wc_envmap_hierarchical_validate`.
-//
-// # Safety
-// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
-// writable for `n` directions.
-size_t wc_envmap_hierarchical_sample_direction(const uint32_t *storage,
-                                               size_t storage_len,
-                                               uint32_t layout,
-                                               const float *u,
-                                               WcEnvDirection *out,
-                                               size_t n);
-
 // Densities per steradian of `n` directions `dir` (`3n` floats, any length; the MIS weight
 // of a direction found by BSDF sampling): each direction mapped to the unit square by
 // `layout`'s inverse (`wc_sphere_equirect_inverse` or `wc_sphere_equal_area_inverse`), the
-// density of `wc_envmap_hierarchical_pdf` there converted to solid angle at the direction.
-// For a direction of `wc_envmap_hierarchical_sample_direction` it equals the sample's `pdf` to a
-// few ulp (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) for
-// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
-// overlaps the storage or overlaps `dir` other than exactly in place (`out == dir`: density
-// `i` overwrites float `i` after direction `i / 3` was read), an unknown `layout`, or a
-// storage that fails `wc_envmap_hierarchical_validate`.
+// density of `wc_envmap_pdf` there converted to solid angle at the direction. For a
+// direction of `wc_envmap_sample_direction` it equals the sample's `pdf` to a few ulp
+// (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) where
+// `wc_envmap_pdf` returns 0 (`out == dir` is in place: density `i` overwrites float `i` after
+// direction `i / 3` was read) and for an unknown `layout`.
 //
 // # Safety
 // `storage` must be readable for `storage_len` words, `dir` for `3n` floats, and `out`
 // writable for `n` floats.
-size_t wc_envmap_hierarchical_pdf_direction(const uint32_t *storage,
-                                            size_t storage_len,
-                                            uint32_t layout,
-                                            const float *dir,
-                                            float *out,
-                                            size_t n);
-
-// Words of storage `wc_envmap_marginal_conditional_build` needs for a `width x height` map (the marginal-conditional distribution (a row by its total, then a column)), the
-// 16-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
-// tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE` and
-// `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
-size_t wc_envmap_marginal_conditional_storage_len(uint32_t width,
-                                                  uint32_t height);
-
-// Builds the marginal-conditional distribution (a row by its total, then a column), of `weights` (row-major, `width * height` floats; NaN, negatives and
-// `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. Returns `WC_OK` (0) or
-// the first failed check, in this order:
-//
-// * `WC_ERR_ZERO_SIZE`: `width` or `height` is 0;
-// * `WC_ERR_TOO_LARGE`: a side above 2^24, tables above 2^32 words (`wc_envmap_marginal_conditional_storage_len` is
-//   `SIZE_MAX`), or weights or tables larger than `PTRDIFF_MAX` bytes (32-bit targets);
-// * `WC_ERR_STORAGE_TOO_SMALL`: `storage_len` is below `wc_envmap_marginal_conditional_storage_len(width, height)`;
-// * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or weights overlapping the
-//   storage's first `wc_envmap_marginal_conditional_storage_len(width, height)` words;
-// * `WC_ERR_INFINITE_WEIGHT`: a weight is `+inf`.
-//
-// Nothing is written before these checks but the last: on the other errors the storage is
-// untouched; on success and on `WC_ERR_INFINITE_WEIGHT` exactly the first
-// `wc_envmap_marginal_conditional_storage_len(width, height)` words are written, never more. The storage's bytes are
-// the file format: write them to a file and sample them later, on any machine.
-//
-// # Safety
-// `weights` must be readable for `width * height` floats and `storage` writable for
-// `storage_len` words (only when the checks above pass, so a call that returns one of the
-// errors before `WC_ERR_INFINITE_WEIGHT` may pass any pointers).
-int32_t wc_envmap_marginal_conditional_build(const float *weights,
-                                             uint32_t width,
-                                             uint32_t height,
-                                             uint32_t *storage,
-                                             size_t storage_len);
-
-// `wc_envmap_marginal_conditional_build` with MIS compensation (Karlik et al. 2019; pbrt-v4's
-// `compensatedDistribution`, Mitsuba 3's `mis_compensation`): the tables, and every pdf
-// the distribution reports, are those of `max(0, w - fraction * average)`.
-// `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_marginal_conditional_build`),
-// `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
-// `WC_ENVMAP_COMPENSATION_EQUIRECT` (equirect weights made by
-// `wc_envmap_equirect_solid_angle_weights`: the radiance's solid-angle average, times each
-// row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
-// zero and negative mean no compensation. When compensation would remove every weight (a
-// constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
-// given, bit for bit `wc_envmap_marginal_conditional_build`.
-//
-// Returns `WC_OK` or the first failed check: `WC_ERR_INVALID_ARGUMENT` if `compensation`
-// is not one of the three constants (checked first: nothing is read or written), then
-// exactly the checks, order and writes of `wc_envmap_marginal_conditional_build`.
-//
-// # Safety
-// As `wc_envmap_marginal_conditional_build`.
-int32_t wc_envmap_marginal_conditional_build_compensated(const float *weights,
-                                                         uint32_t width,
-                                                         uint32_t height,
-                                                         uint32_t compensation,
-                                                         float fraction,
-                                                         uint32_t *storage,
-                                                         size_t storage_len);
-
-// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
-// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
-// and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
-// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 16 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
-// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION` (an older format: rebuild),
-// `WC_ERR_CORRUPT` (a size, length or reserved word a build never writes),
-// `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
-// Sampling a storage that passes is safe whatever its table words hold (samples stay in the
-// map); the sample and pdf functions run this check on every call. Reads only.
-//
-// # Safety
-// `storage` must be readable for `storage_len` words.
-int32_t wc_envmap_marginal_conditional_validate(const uint32_t *storage, size_t storage_len);
-
-// `wc_envmap_marginal_conditional_validate` (the same codes, in the same order) plus one pass over every
-// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants or do
-// not match the content checksum (header word 8): every single-bit flip of a storage is
-// caught. For loaders of files. Time proportional to the storage. Reads only.
-//
-// # Safety
-// `storage` must be readable for `storage_len` words.
-int32_t wc_envmap_marginal_conditional_verify(const uint32_t *storage,
-                                              size_t storage_len);
-
-// Draws `n` samples from a built (or loaded) storage: texels in proportion to their weight,
-// a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
-// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) for
-// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
-// overlaps `u` (`out == u` too: a sample is larger than a point) or the storage, or a
-// storage that fails `wc_envmap_marginal_conditional_validate`.
-//
-// # Safety
-// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
-// writable for `n` samples.
-size_t wc_envmap_marginal_conditional_sample(const uint32_t *storage,
-                                             size_t storage_len,
-                                             const float *u,
-                                             WcEnvSample *out,
-                                             size_t n);
-
-// Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
-// the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
-// sample at that point reports. Returns `n`, or 0 (writing nothing) for `n == 0`, a null or
-// misaligned pointer, a count whose byte size overflows, an `out` that overlaps the storage
-// or overlaps `uv` other than exactly in place (`out == uv`: density `i` overwrites float
-// `i` after point `i / 2` was read), or a storage that fails
-// `wc_envmap_marginal_conditional_validate`.
-//
-// # Safety
-// `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
-// writable for `n` floats.
-size_t wc_envmap_marginal_conditional_pdf(const uint32_t *storage,
-                                          size_t storage_len,
-                                          const float *uv,
-                                          float *out,
-                                          size_t n);
-
-// `wc_envmap_marginal_conditional_validate` under the Rust and JavaScript name (`from_storage`): the
-// same O(1) header check, the same codes in the same order: `WC_OK`,
-// `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
-// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
-//
-// # Safety
-// `storage` must be readable for `storage_len` words.
-int32_t wc_envmap_marginal_conditional_from_storage(const uint32_t *storage,
-                                                    size_t storage_len);
-
-// `wc_envmap_marginal_conditional_verify` under the Rust and JavaScript name (`from_storage_verified`):
-// the header check plus one pass over every word (the format's invariants, then the content
-// checksum, which catches every single-bit flip), the same codes in the same order:
-// `WC_OK`, `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
-// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
-//
-// # Safety
-// `storage` must be readable for `storage_len` words.
-int32_t wc_envmap_marginal_conditional_from_storage_verified(const uint32_t *storage,
-                                                             size_t storage_len);
-
-// Draws `n` samples as directions with their density per steradian, in one call: the
-// samples of `wc_envmap_marginal_conditional_sample`, each `uv` mapped onto the sphere by `layout`
-// (`WC_ENVMAP_LAYOUT_EQUIRECT`: `wc_sphere_equirect`, density
-// `pdf / (2 pi^2 sin(pi v))` with the point's own `v`, 0 exactly at the pole;
-// `WC_ENVMAP_LAYOUT_EQUAL_AREA`: `wc_sphere_equal_area`, density `pdf / (4 pi)`). `u` holds
-// `2n` floats (any values, clamped to `[0, 1)`); `out` receives `n` `WcEnvDirection`s.
-// Returns `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count
-// whose byte size overflows, an `out` that overlaps `u` or the storage, an unknown
-// `layout`, or a storage that fails `wc_envmap_marginal_conditional_validate`.
-//
-// # Safety
-// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
-// writable for `n` directions.
-size_t wc_envmap_marginal_conditional_sample_direction(const uint32_t *storage,
-                                                       size_t storage_len,
-                                                       uint32_t layout,
-                                                       const float *u,
-                                                       WcEnvDirection *out,
-                                                       size_t n);
-
-// Densities per steradian of `n` directions `dir` (`3n` floats, any length; the MIS weight
-// of a direction found by BSDF sampling): each direction mapped to the unit square by
-// `layout`'s inverse (`wc_sphere_equirect_inverse` or `wc_sphere_equal_area_inverse`), the
-// density of `wc_envmap_marginal_conditional_pdf` there converted to solid angle at the direction.
-// For a direction of `wc_envmap_marginal_conditional_sample_direction` it equals the sample's `pdf` to a
-// few ulp (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) for
-// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
-// overlaps the storage or overlaps `dir` other than exactly in place (`out == dir`: density
-// `i` overwrites float `i` after direction `i / 3` was read), an unknown `layout`, or a
-// storage that fails `wc_envmap_marginal_conditional_validate`.
-//
-// # Safety
-// `storage` must be readable for `storage_len` words, `dir` for `3n` floats, and `out`
-// writable for `n` floats.
-size_t wc_envmap_marginal_conditional_pdf_direction(const uint32_t *storage,
-                                                    size_t storage_len,
-                                                    uint32_t layout,
-                                                    const float *dir,
-                                                    float *out,
-                                                    size_t n);
+size_t wc_envmap_pdf_direction(const uint32_t *storage,
+                               size_t storage_len,
+                               uint32_t layout,
+                               const float *dir,
+                               float *out,
+                               size_t n);
 
 // Rec. 709 luminance of `n` linear RGB texels (`3n` floats) as `n` weights:
 // `0.2126 R + 0.7152 G + 0.0722 B` (in that order, without FMA) where positive, else `+0.0`:

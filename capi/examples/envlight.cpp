@@ -10,7 +10,7 @@
 // Disk light: pmj02bn points, four disk samples per point with polar4 (spp / 4 points per
 // pixel). Environment: hierarchical importance sampling of the map's luminance times the rows'
 // solid angle, from tables built once, saved to a file and loaded back (as an asset pipeline
-// would), checked with wc_envmap_hierarchical_verify. Each pixel uses its own pmj02bn seed.
+// would), checked with wc_envmap_from_storage_verified. Each pixel uses its own pmj02bn seed.
 //
 // Self-check (exit status 1 on failure): the light the environment reflects off an unoccluded
 // plane, estimated with importance sampling, agrees with the exact sum over the map's texels.
@@ -103,7 +103,7 @@ Vec3 env_radiance(const Env &env, uint32_t column, uint32_t row) {
 Vec3 env_light(const Env &env, Vec3 p, const float *u, size_t n, std::vector<WcEnvSample> &s,
                std::vector<float> &dirs, std::vector<float> &pdf_sa, bool shadows = true) {
     const size_t len = env.storage.size();
-    if (wc_envmap_hierarchical_sample(env.storage.data(), len, u, s.data(), n) != n) std::abort();
+    if (wc_envmap_sample(env.storage.data(), len, u, s.data(), n) != n) std::abort();
     std::vector<float> uv(2 * n), pdf(n), v(n);
     for (size_t i = 0; i < n; i++) {
         uv[2 * i] = s[i].uv[0];
@@ -161,8 +161,9 @@ int main(int argc, char **argv) {
     std::vector<float> weights(size_t(w) * h);
     wc_envmap_luminance(env.map.rgb.data(), weights.data(), weights.size());
     if (wc_envmap_equirect_solid_angle_weights(weights.data(), w, h) != WC_OK) return 2;
-    std::vector<uint32_t> built(wc_envmap_hierarchical_storage_len(w, h));
-    int32_t err = wc_envmap_hierarchical_build(weights.data(), w, h, built.data(), built.size());
+    std::vector<uint32_t> built(wc_envmap_storage_len(WC_ENVMAP_KIND_HIERARCHICAL, w, h));
+    int32_t err = wc_envmap_build(WC_ENVMAP_KIND_HIERARCHICAL, weights.data(), w, h, built.data(),
+                                  built.size());
     if (err != WC_OK) {
         std::fprintf(stderr, "build failed: %d\n", int(err));
         return 1;
@@ -181,7 +182,7 @@ int main(int argc, char **argv) {
     size_t got = std::fread(env.storage.data(), 4, env.storage.size(), f);
     std::fclose(f);
     std::remove(table_path.c_str());
-    err = wc_envmap_hierarchical_verify(env.storage.data(), got);
+    err = wc_envmap_from_storage_verified(env.storage.data(), got);
     if (got != built.size() || err != WC_OK) {
         std::fprintf(stderr, "loaded tables rejected: %d\n", int(err));
         return 1;

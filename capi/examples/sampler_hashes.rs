@@ -1,5 +1,5 @@
 //! The sampler's outputs hashed from the Rust crate's API: what the C API
-//! (`capi/tests/c/sampler.c`, run by `capi/tests/sampler.rs`) and the JavaScript module
+//! (`capi/tests/c/sampler.c`, run by `capi/tests/c.rs`) and the JavaScript module
 //! (`js/test/sampler.test.mjs`, which runs this program) must reproduce bit for bit.
 //!
 //! Prints `name hash` lines (FNV-1a 64 over little-endian words, as the fingerprint). The

@@ -2,9 +2,10 @@
 //! weights (or load them from a file: the storage is self-describing and little-endian on
 //! every target), then sample texels in proportion to their weight.
 
-use crate::ffi::{fits, map, overlap, slice, span};
+use crate::ffi::{fits, map, overlap, read_and_fill, slice, span, zip_map};
+use core::mem::size_of;
 use warpcore::envmap::{
-    self, Compensation, DirectionSample, Error, Hierarchical, Layout, MAX_SIDE,
+    self, Compensation, DirectionSample, Distribution, Error, Hierarchical, Layout, MAX_SIDE,
     MarginalConditional, Sample, image,
 };
 
@@ -22,15 +23,16 @@ pub const WC_ERR_LENGTH_MISMATCH: i32 = -3;
 pub const WC_ERR_STORAGE_TOO_SMALL: i32 = -4;
 /// A weight is `+inf`.
 pub const WC_ERR_INFINITE_WEIGHT: i32 = -5;
-/// Word 0 of the storage is not this distribution's format tag.
+/// Word 0 of the storage is the format tag of neither distribution.
 pub const WC_ERR_WRONG_FORMAT: i32 = -6;
 /// The storage's format version is not the one this library reads.
 pub const WC_ERR_UNSUPPORTED_VERSION: i32 = -7;
-/// A header word (or, for `verify` / `from_storage_verified`, a table word, or content that
+/// A header word (or, for `from_storage_verified`, a table word, or content that
 /// does not match the checksum in header word 8) holds a value a build never writes.
 pub const WC_ERR_CORRUPT: i32 = -8;
 /// A null or misaligned pointer, arrays that overlap where they must not, or (see each
-/// function) a bad `channels` or a `storage_len` no array can have.
+/// function) a bad `kind`, `compensation` or `channels`, or a `storage_len` no array can
+/// have.
 pub const WC_ERR_INVALID_ARGUMENT: i32 = -9;
 /// An error this version of the header has no name for.
 pub const WC_ERR_OTHER: i32 = -10;
@@ -43,7 +45,7 @@ pub const WC_ENVMAP_HEADER_WORDS: u32 = 16;
 /// older storages get `WC_ERR_UNSUPPORTED_VERSION`: rebuild them from the weights.
 pub const WC_ENVMAP_FORMAT_VERSION: u32 = 3;
 
-/// `compensation` of the `build_compensated` functions: the weights as given.
+/// `compensation` of `wc_envmap_build_compensated`: the weights as given.
 pub const WC_ENVMAP_COMPENSATION_NONE: u32 = 0;
 /// `compensation`: subtract `fraction` times the mean weight (texels of equal solid angle:
 /// equal-area maps), clamp at 0.
@@ -114,7 +116,7 @@ pub extern "C" fn wc_error_string(code: i32) -> *const core::ffi::c_char {
         WC_ERR_STORAGE_TOO_SMALL => c"storage shorter than needed (or than its header says)",
         WC_ERR_INFINITE_WEIGHT => c"a weight is +inf",
         WC_ERR_WRONG_FORMAT => {
-            c"not this distribution's storage (wrong format tag, or a byte-swapped copy)"
+            c"not an environment-map storage (wrong format tag, or a byte-swapped copy)"
         }
         WC_ERR_UNSUPPORTED_VERSION => {
             c"storage format version not supported (older storages: rebuild the tables from the weights)"
@@ -131,7 +133,8 @@ pub extern "C" fn wc_error_string(code: i32) -> *const core::ffi::c_char {
     s.as_ptr()
 }
 
-fn code(e: Error) -> i32 {
+/// The `WC_ERR_*` code of a crate error.
+pub(crate) fn code(e: Error) -> i32 {
     match e {
         Error::ZeroSize => WC_ERR_ZERO_SIZE,
         Error::TooLarge => WC_ERR_TOO_LARGE,
@@ -145,85 +148,467 @@ fn code(e: Error) -> i32 {
     }
 }
 
-/// The two distributions behind one interface.
-trait Dist<'a>: Sized {
-    fn storage_len(width: usize, height: usize) -> usize;
-    fn new(
-        weights: &[f32],
-        w: usize,
-        h: usize,
-        c: Compensation,
-        storage: &'a mut [u32],
-    ) -> Result<Self, Error>;
-    fn from_storage(storage: &'a [u32]) -> Result<Self, Error>;
-    fn from_storage_verified(storage: &'a [u32]) -> Result<Self, Error>;
-    fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize;
-    fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize;
-    fn sample_direction_slice(
-        &self,
-        layout: Layout,
-        u: &[[f32; 2]],
-        out: &mut [DirectionSample],
-    ) -> usize;
-    fn pdf_direction_slice(&self, layout: Layout, dir: &[[f32; 3]], out: &mut [f32]) -> usize;
+/// `kind` of `wc_envmap_storage_len` and the builds: the hierarchical (MIP-pyramid)
+/// distribution, which walks the map's pyramid and keeps 2D strata compact (format tag
+/// `"wcHI"`).
+pub const WC_ENVMAP_KIND_HIERARCHICAL: u32 = 0;
+/// `kind`: the marginal-conditional distribution, a row by its total, then a column within
+/// the row (format tag `"wcMC"`).
+pub const WC_ENVMAP_KIND_MARGINAL_CONDITIONAL: u32 = 1;
+
+/// The distribution a build makes (a caller's `kind`).
+#[derive(Clone, Copy)]
+enum Kind {
+    Hierarchical,
+    MarginalConditional,
 }
 
-macro_rules! dist {
-    ($t:ident) => {
-        impl<'a> Dist<'a> for $t<'a> {
-            fn storage_len(width: usize, height: usize) -> usize {
-                $t::storage_len(width, height)
+impl Kind {
+    /// `None` for an unknown `kind`.
+    fn of(kind: u32) -> Option<Kind> {
+        match kind {
+            WC_ENVMAP_KIND_HIERARCHICAL => Some(Kind::Hierarchical),
+            WC_ENVMAP_KIND_MARGINAL_CONDITIONAL => Some(Kind::MarginalConditional),
+            _ => None,
+        }
+    }
+
+    fn storage_len(self, width: usize, height: usize) -> usize {
+        match self {
+            Kind::Hierarchical => Hierarchical::storage_len(width, height),
+            Kind::MarginalConditional => MarginalConditional::storage_len(width, height),
+        }
+    }
+
+    fn build(
+        self,
+        weights: &[f32],
+        (w, h): (usize, usize),
+        compensation: Compensation,
+        storage: &mut [u32],
+    ) -> Result<(), Error> {
+        match self {
+            Kind::Hierarchical => {
+                Hierarchical::new_compensated(weights, w, h, compensation, storage).map(drop)
             }
-            fn new(
-                w8: &[f32],
-                w: usize,
-                h: usize,
-                c: Compensation,
-                s: &'a mut [u32],
-            ) -> Result<Self, Error> {
-                $t::new_compensated(w8, w, h, c, s)
-            }
-            fn from_storage(storage: &'a [u32]) -> Result<Self, Error> {
-                $t::from_storage(storage)
-            }
-            fn from_storage_verified(storage: &'a [u32]) -> Result<Self, Error> {
-                $t::from_storage_verified(storage)
-            }
-            fn sample_slice(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
-                $t::sample_slice(self, u, out)
-            }
-            fn pdf_slice(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
-                $t::pdf_slice(self, uv, out)
-            }
-            fn sample_direction_slice(
-                &self,
-                layout: Layout,
-                u: &[[f32; 2]],
-                out: &mut [DirectionSample],
-            ) -> usize {
-                $t::sample_direction_slice(self, layout, u, out)
-            }
-            fn pdf_direction_slice(
-                &self,
-                layout: Layout,
-                dir: &[[f32; 3]],
-                out: &mut [f32],
-            ) -> usize {
-                $t::pdf_direction_slice(self, layout, dir, out)
+            Kind::MarginalConditional => {
+                MarginalConditional::new_compensated(weights, w, h, compensation, storage).map(drop)
             }
         }
-    };
+    }
 }
-dist!(Hierarchical);
-dist!(MarginalConditional);
 
-fn storage_len<'a, D: Dist<'a>>(width: u32, height: u32) -> usize {
-    D::storage_len(width as usize, height as usize)
+/// A storage loaded as the distribution its header names (word 0, the format tag).
+enum Map<'a> {
+    Hierarchical(Hierarchical<'a>),
+    MarginalConditional(MarginalConditional<'a>),
+}
+
+impl<'a> Map<'a> {
+    /// The crate's `from_storage` (or `from_storage_verified`) of the distribution whose tag
+    /// word 0 holds. A storage of neither gets the hierarchical loader's error: too small
+    /// (fewer than 16 words), else the wrong format.
+    fn load(storage: &'a [u32], verified: bool) -> Result<Self, Error> {
+        let hierarchical = if verified {
+            Hierarchical::from_storage_verified(storage)
+        } else {
+            Hierarchical::from_storage(storage)
+        };
+        match hierarchical {
+            Err(Error::WrongFormat { .. }) if verified => {
+                MarginalConditional::from_storage_verified(storage).map(Map::MarginalConditional)
+            }
+            Err(Error::WrongFormat { .. }) => {
+                MarginalConditional::from_storage(storage).map(Map::MarginalConditional)
+            }
+            loaded => loaded.map(Map::Hierarchical),
+        }
+    }
+
+    /// `op` on the loaded distribution.
+    fn run<O, const I: usize>(
+        &self,
+        op: &impl Op<O, I>,
+        input: &[[f32; I]],
+        out: &mut [O],
+    ) -> usize {
+        match self {
+            Map::Hierarchical(d) => op.call(d, input, out),
+            Map::MarginalConditional(d) => op.call(d, input, out),
+        }
+    }
+}
+
+/// One of the sampling functions' slice forms, written once for both distributions: `n`
+/// inputs of `I` floats to `n` outputs `O`.
+trait Op<O, const I: usize> {
+    fn call<D: Distribution>(&self, d: &D, input: &[[f32; I]], out: &mut [O]) -> usize;
+}
+
+/// `wc_envmap_sample`.
+struct Samples;
+/// `wc_envmap_pdf`.
+struct Densities;
+/// `wc_envmap_sample_direction`.
+struct Directions(Layout);
+/// `wc_envmap_pdf_direction`.
+struct DirectionDensities(Layout);
+
+impl Op<WcEnvSample, 2> for Samples {
+    fn call<D: Distribution>(&self, d: &D, u: &[[f32; 2]], out: &mut [WcEnvSample]) -> usize {
+        converted(out, |tmp: &mut [Sample]| d.sample_slice(u, tmp))
+    }
+}
+
+impl Op<f32, 2> for Densities {
+    fn call<D: Distribution>(&self, d: &D, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
+        d.pdf_slice(uv, out)
+    }
+}
+
+impl Op<WcEnvDirection, 2> for Directions {
+    fn call<D: Distribution>(&self, d: &D, u: &[[f32; 2]], out: &mut [WcEnvDirection]) -> usize {
+        converted(out, |tmp: &mut [DirectionSample]| {
+            d.sample_direction_slice(self.0, u, tmp)
+        })
+    }
+}
+
+impl Op<f32, 3> for DirectionDensities {
+    fn call<D: Distribution>(&self, d: &D, dir: &[[f32; 3]], out: &mut [f32]) -> usize {
+        d.pdf_direction_slice(self.0, dir, out)
+    }
+}
+
+/// Fills `out` (at most a chunk) with the C forms of what `fill` writes into a local buffer.
+fn converted<S: Copy + Default, O: From<S>>(
+    out: &mut [O],
+    fill: impl FnOnce(&mut [S]) -> usize,
+) -> usize {
+    let mut buf = [S::default(); crate::ffi::CHUNK];
+    let tmp = &mut buf[..out.len().min(crate::ffi::CHUNK)];
+    let k = fill(tmp);
+    for (o, s) in out.iter_mut().zip(tmp.iter().take(k)) {
+        *o = O::from(*s);
+    }
+    k
+}
+
+impl From<Sample> for WcEnvSample {
+    fn from(s: Sample) -> Self {
+        WcEnvSample {
+            uv: s.uv,
+            pdf: s.pdf,
+            texel: s.texel,
+        }
+    }
+}
+
+impl From<DirectionSample> for WcEnvDirection {
+    fn from(s: DirectionSample) -> Self {
+        WcEnvDirection {
+            dir: s.dir,
+            pdf: s.pdf,
+            uv: s.uv,
+            texel: s.texel,
+        }
+    }
+}
+
+/// The sampling functions' common part: `op` from `n` points of `I` floats at `input` to
+/// `n` outputs at `out`, over the distribution `storage` holds. Every pointer rule first
+/// (`map`'s, and `out` disjoint from the storage, which is read throughout), then the
+/// storage's O(1) check; 0, writing nothing, when one fails.
+///
+/// # Safety
+/// As the exported functions: `storage` readable for `storage_len` words, `input` for
+/// `I n` floats, `out` writable for `n` outputs.
+unsafe fn sampled<O: Copy + Default, const I: usize>(
+    storage: *const u32,
+    storage_len: usize,
+    input: *const f32,
+    out: *mut O,
+    n: usize,
+    op: &impl Op<O, I>,
+) -> usize {
+    if n == 0 {
+        return 0;
+    }
+    let (Some(src), Some(writes)) = (
+        n.checked_mul(I).and_then(|k| span(input, k)),
+        span(out.cast_const(), n),
+    ) else {
+        return 0;
+    };
+    // In place only where an output is no larger than a point (`map` checks again).
+    if overlap(src, writes) && !(src.0 == writes.0 && size_of::<O>() <= I * size_of::<f32>()) {
+        return 0;
+    }
+    // SAFETY: the caller's contract; `slice` checks null, alignment, size and that `out`
+    // (which we write) does not overlap the storage (which we read throughout).
+    let Some(s) = (unsafe { slice(storage, storage_len, Some(writes)) }) else {
+        return 0;
+    };
+    let Ok(d) = Map::load(s, false) else {
+        return 0;
+    };
+    // SAFETY: the caller's contract; `map` checks null, alignment, size and overlap of
+    // `input` and `out` again.
+    unsafe {
+        map::<f32, O, I, 1>(input, out, n, |input, o| {
+            d.run(op, input, o.as_flattened_mut())
+        })
+    }
+}
+
+/// Words of storage `wc_envmap_build` needs for a `width x height` map of distribution
+/// `kind` (`WC_ENVMAP_KIND_*`), the 16-word header included: `SIZE_MAX` for an unknown
+/// `kind` (whatever the sides), else 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24
+/// or the tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE`, `WC_ERR_INVALID_ARGUMENT` and
+/// `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
+#[unsafe(no_mangle)]
+pub extern "C" fn wc_envmap_storage_len(kind: u32, width: u32, height: u32) -> usize {
+    Kind::of(kind).map_or(usize::MAX, |k| {
+        k.storage_len(width as usize, height as usize)
+    })
+}
+
+/// Builds the distribution `kind` (`WC_ENVMAP_KIND_HIERARCHICAL` or
+/// `WC_ENVMAP_KIND_MARGINAL_CONDITIONAL`) of `weights` (row-major, `width * height` floats;
+/// NaN, negatives and `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. The
+/// storage's header records the distribution: the other functions read it from there.
+/// Returns `WC_OK` (0) or the first failed check, in this order:
+///
+/// * `WC_ERR_INVALID_ARGUMENT`: `kind` is not one of the two constants;
+/// * `WC_ERR_ZERO_SIZE`: `width` or `height` is 0;
+/// * `WC_ERR_TOO_LARGE`: a side above 2^24, tables above 2^32 words (`wc_envmap_storage_len`
+///   is `SIZE_MAX`), or weights or tables larger than `PTRDIFF_MAX` bytes (32-bit targets);
+/// * `WC_ERR_STORAGE_TOO_SMALL`: `storage_len` is below
+///   `wc_envmap_storage_len(kind, width, height)`;
+/// * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or weights overlapping the
+///   storage's first `wc_envmap_storage_len(kind, width, height)` words;
+/// * `WC_ERR_INFINITE_WEIGHT`: a weight is `+inf`.
+///
+/// Nothing is written before these checks but the last: on the other errors the storage is
+/// untouched; on success and on `WC_ERR_INFINITE_WEIGHT` exactly the first
+/// `wc_envmap_storage_len(kind, width, height)` words are written, never more. The storage's
+/// bytes are the file format: write them to a file and sample them later, on any machine.
+///
+/// # Safety
+/// `weights` must be readable for `width * height` floats and `storage` writable for
+/// `storage_len` words (only when the checks above pass, so a call that returns one of the
+/// errors before `WC_ERR_INFINITE_WEIGHT` may pass any pointers).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_build(
+    kind: u32,
+    weights: *const f32,
+    width: u32,
+    height: u32,
+    storage: *mut u32,
+    storage_len: usize,
+) -> i32 {
+    let Some(k) = Kind::of(kind) else {
+        return WC_ERR_INVALID_ARGUMENT;
+    };
+    // SAFETY: the caller's contract above.
+    unsafe {
+        build(
+            k,
+            weights,
+            width,
+            height,
+            Compensation::None,
+            storage,
+            storage_len,
+        )
+    }
+}
+
+/// `wc_envmap_build` with MIS compensation (Karlik et al. 2019; pbrt-v4's
+/// `compensatedDistribution`, Mitsuba 3's `mis_compensation`): the tables, and every pdf
+/// the distribution reports, are those of `max(0, w - fraction * average)`.
+/// `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_build`),
+/// `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
+/// `WC_ENVMAP_COMPENSATION_EQUIRECT` (equirect weights made by
+/// `wc_envmap_equirect_solid_angle_weights`: the radiance's solid-angle average, times each
+/// row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
+/// zero and negative mean no compensation. When compensation would remove every weight (a
+/// constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
+/// given, bit for bit `wc_envmap_build`.
+///
+/// Returns `WC_OK` or the first failed check: `WC_ERR_INVALID_ARGUMENT` if `kind` or
+/// `compensation` is not one of its constants (checked first: nothing is read or written),
+/// then exactly the checks, order and writes of `wc_envmap_build`.
+///
+/// # Safety
+/// As `wc_envmap_build`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_build_compensated(
+    kind: u32,
+    weights: *const f32,
+    width: u32,
+    height: u32,
+    compensation: u32,
+    fraction: f32,
+    storage: *mut u32,
+    storage_len: usize,
+) -> i32 {
+    let (Some(k), Some(c)) = (Kind::of(kind), compensation_of(compensation, fraction)) else {
+        return WC_ERR_INVALID_ARGUMENT;
+    };
+    // SAFETY: the caller's contract above.
+    unsafe { build(k, weights, width, height, c, storage, storage_len) }
+}
+
+/// Checks a storage's header in O(1) and names the distribution it holds (the crate's
+/// `from_storage`): format tag, version, sizes and lengths. Returns `WC_OK` or the first
+/// failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0` and `storage`
+/// null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
+/// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 16 words), `WC_ERR_WRONG_FORMAT` (word 0 is the tag
+/// of neither distribution), `WC_ERR_UNSUPPORTED_VERSION` (an older format: rebuild),
+/// `WC_ERR_CORRUPT` (a size, length or reserved word a build never writes),
+/// `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says). Sampling a storage that
+/// passes is safe whatever its table words hold (samples stay in the map); the sampling
+/// functions run this check on every call. Reads only.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_from_storage(storage: *const u32, storage_len: usize) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { check(storage, storage_len, false) }
+}
+
+/// `wc_envmap_from_storage` (the same codes, in the same order) plus one pass over every
+/// table word (the crate's `from_storage_verified`), rejecting (`WC_ERR_CORRUPT`) tables that
+/// break the format's invariants or do not match the content checksum (header word 8): every
+/// single-bit flip of a storage is caught. For loaders of files. Time proportional to the
+/// storage. Reads only.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_from_storage_verified(
+    storage: *const u32,
+    storage_len: usize,
+) -> i32 {
+    // SAFETY: the caller's contract above.
+    unsafe { check(storage, storage_len, true) }
+}
+
+/// Draws `n` samples from a built (or loaded) storage, of the distribution its header names:
+/// texels in proportion to their weight, a uniform point inside each. `u` holds `2n` floats
+/// (`u[2i]` picks the column, `u[2i+1]` the row; any values, clamped to `[0, 1)`). Returns
+/// `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count whose byte
+/// size overflows, an `out` that overlaps `u` (`out == u` too: a sample is larger than a
+/// point) or the storage, or a storage that fails `wc_envmap_from_storage`.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
+/// writable for `n` samples.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_sample(
+    storage: *const u32,
+    storage_len: usize,
+    u: *const f32,
+    out: *mut WcEnvSample,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    unsafe { sampled(storage, storage_len, u, out, n, &Samples) }
+}
+
+/// Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
+/// the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
+/// sample at that point reports. Returns `n`, or 0 (writing nothing) for `n == 0`, a null or
+/// misaligned pointer, a count whose byte size overflows, an `out` that overlaps the storage
+/// or overlaps `uv` other than exactly in place (`out == uv`: density `i` overwrites float
+/// `i` after point `i / 2` was read), or a storage that fails `wc_envmap_from_storage`.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
+/// writable for `n` floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_pdf(
+    storage: *const u32,
+    storage_len: usize,
+    uv: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above.
+    unsafe { sampled(storage, storage_len, uv, out, n, &Densities) }
+}
+
+/// Draws `n` samples as directions with their density per steradian, in one call: the
+/// samples of `wc_envmap_sample`, each `uv` mapped onto the sphere by `layout`
+/// (`WC_ENVMAP_LAYOUT_EQUIRECT`: `wc_sphere_equirect`, density
+/// `pdf / (2 pi^2 sin(pi v))` with the point's own `v`, 0 exactly at the pole;
+/// `WC_ENVMAP_LAYOUT_EQUAL_AREA`: `wc_sphere_equal_area`, density `pdf / (4 pi)`). `u` holds
+/// `2n` floats (any values, clamped to `[0, 1)`); `out` receives `n` `WcEnvDirection`s.
+/// Returns `n`, or 0 (writing nothing) where `wc_envmap_sample` returns 0 and for an unknown
+/// `layout`.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
+/// writable for `n` directions.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_sample_direction(
+    storage: *const u32,
+    storage_len: usize,
+    layout: u32,
+    u: *const f32,
+    out: *mut WcEnvDirection,
+    n: usize,
+) -> usize {
+    let Some(layout) = layout_of(layout) else {
+        return 0;
+    };
+    // SAFETY: the caller's contract above.
+    unsafe { sampled(storage, storage_len, u, out, n, &Directions(layout)) }
+}
+
+/// Densities per steradian of `n` directions `dir` (`3n` floats, any length; the MIS weight
+/// of a direction found by BSDF sampling): each direction mapped to the unit square by
+/// `layout`'s inverse (`wc_sphere_equirect_inverse` or `wc_sphere_equal_area_inverse`), the
+/// density of `wc_envmap_pdf` there converted to solid angle at the direction. For a
+/// direction of `wc_envmap_sample_direction` it equals the sample's `pdf` to a few ulp
+/// (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) where
+/// `wc_envmap_pdf` returns 0 (`out == dir` is in place: density `i` overwrites float `i` after
+/// direction `i / 3` was read) and for an unknown `layout`.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, `dir` for `3n` floats, and `out`
+/// writable for `n` floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_envmap_pdf_direction(
+    storage: *const u32,
+    storage_len: usize,
+    layout: u32,
+    dir: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    let Some(layout) = layout_of(layout) else {
+        return 0;
+    };
+    // SAFETY: the caller's contract above.
+    unsafe {
+        sampled(
+            storage,
+            storage_len,
+            dir,
+            out,
+            n,
+            &DirectionDensities(layout),
+        )
+    }
 }
 
 /// # Safety
-/// As the exported `build` functions.
-unsafe fn build<'a, D: Dist<'a>>(
+/// As `wc_envmap_build`, with `kind` and `compensation` already checked.
+unsafe fn build(
+    kind: Kind,
     weights: *const f32,
     width: u32,
     height: u32,
@@ -235,7 +620,7 @@ unsafe fn build<'a, D: Dist<'a>>(
     if w == 0 || h == 0 {
         return WC_ERR_ZERO_SIZE;
     }
-    let needed = D::storage_len(w, h);
+    let needed = kind.storage_len(w, h);
     if needed == usize::MAX {
         return WC_ERR_TOO_LARGE;
     }
@@ -248,31 +633,16 @@ unsafe fn build<'a, D: Dist<'a>>(
     if storage_len < needed {
         return WC_ERR_STORAGE_TOO_SMALL;
     }
-    let (Some(range), Some(read)) = (span(storage.cast_const(), needed), span(weights, texels))
+    // Every check but the arrays' is done: from here on the call writes the storage.
+    // SAFETY: the caller's contract: the weights readable for `texels` floats and unchanged
+    // during the call, the storage writable for `storage_len >= needed` words; a zero word is
+    // a valid `u32`. `read_and_fill` checks null, alignment, size and overlap first.
+    let Some((weights, storage)) = (unsafe { read_and_fill(weights, texels, storage, needed) })
     else {
         return WC_ERR_INVALID_ARGUMENT;
     };
-    if overlap(range, read) {
-        return WC_ERR_INVALID_ARGUMENT;
-    }
-    // Every check is done: from here on the call writes the storage.
-    // SAFETY: the caller's contract (weights readable for `texels` floats, unchanged during
-    // the call); non-null, aligned, of valid size and disjoint from the storage (checked
-    // above; `slice` checks again).
-    let Some(weights) = (unsafe { slice(weights, texels, Some(range)) }) else {
-        return WC_ERR_INVALID_ARGUMENT;
-    };
-    // The storage may be uninitialized C memory: zero the words we use through the raw
-    // pointer first, so the Rust slice below only ever refers to initialized words.
-    // SAFETY: `storage` is writable for `storage_len >= needed` words (the caller's
-    // contract); non-null, aligned and of valid size (checked by `span`); it overlaps neither
-    // the weights (checked above) nor anything else we hold.
-    let storage = unsafe {
-        core::ptr::write_bytes(storage, 0, needed);
-        core::slice::from_raw_parts_mut(storage, needed)
-    };
-    match D::new(weights, w, h, compensation, storage) {
-        Ok(_) => WC_OK,
+    match kind.build(weights, (w, h), compensation, storage) {
+        Ok(()) => WC_OK,
         Err(e) => code(e),
     }
 }
@@ -289,689 +659,16 @@ fn compensation_of(compensation: u32, fraction: f32) -> Option<Compensation> {
 
 /// # Safety
 /// `storage` readable for `storage_len` words, unchanged during the call.
-unsafe fn check<'a, D: Dist<'a>>(storage: *const u32, storage_len: usize, verified: bool) -> i32 {
+unsafe fn check(storage: *const u32, storage_len: usize, verified: bool) -> i32 {
     // SAFETY: the caller's contract; `slice` checks null (with `storage_len > 0`), alignment
     // and that `storage_len` words fit `PTRDIFF_MAX` bytes.
     let Some(s) = (unsafe { slice(storage, storage_len, None) }) else {
         return WC_ERR_INVALID_ARGUMENT;
     };
-    let loaded = if verified {
-        D::from_storage_verified(s).map(|_| ())
-    } else {
-        D::from_storage(s).map(|_| ())
-    };
-    match loaded {
-        Ok(()) => WC_OK,
+    match Map::load(s, verified) {
+        Ok(_) => WC_OK,
         Err(e) => code(e),
     }
-}
-
-/// The pointer rules of `sample` and `pdf` for `n` points `uv` (`2n` floats) and `n` outputs
-/// of `O`: `n > 0`, both non-null, aligned and of valid size, and disjoint — except, when
-/// `in_place` (an output no larger than a point), exactly in place. Returns the range of
-/// `out`.
-fn arrays<O>(uv: *const f32, out: *mut O, n: usize, in_place: bool) -> Option<(usize, usize)> {
-    arrays_of::<O, 2>(uv, out, n, in_place)
-}
-
-/// [`arrays`] for points of `I` floats.
-fn arrays_of<O, const I: usize>(
-    uv: *const f32,
-    out: *mut O,
-    n: usize,
-    in_place: bool,
-) -> Option<(usize, usize)> {
-    if n == 0 {
-        return None;
-    }
-    let src = span(uv, n.checked_mul(I)?)?;
-    let dst = span(out.cast_const(), n)?;
-    if overlap(src, dst) && !(in_place && src.0 == dst.0) {
-        return None;
-    }
-    Some(dst)
-}
-
-/// # Safety
-/// As the exported `sample` functions.
-unsafe fn sample<'a, D: Dist<'a>>(
-    storage: *const u32,
-    storage_len: usize,
-    u: *const f32,
-    out: *mut WcEnvSample,
-    n: usize,
-) -> usize {
-    // Every pointer rule first, before the storage becomes a slice.
-    let Some(writes) = arrays::<WcEnvSample>(u, out, n, false) else {
-        return 0;
-    };
-    // SAFETY: the caller's contract; `slice` checks null, alignment, size and that `out`
-    // (which we write) does not overlap the storage (which we read throughout).
-    let Some(s) = (unsafe { slice(storage, storage_len, Some(writes)) }) else {
-        return 0;
-    };
-    let Ok(d) = D::from_storage(s) else {
-        return 0;
-    };
-    // SAFETY: the caller's contract; `map` checks null, alignment, size and overlap of `u`
-    // and `out` again.
-    unsafe {
-        map::<f32, WcEnvSample, 2, 1>(u, out, n, |u, o| {
-            let mut tmp = [Sample::default(); crate::ffi::CHUNK];
-            let k = d.sample_slice(u, &mut tmp[..u.len().min(o.len())]);
-            for (o, s) in o.iter_mut().zip(&tmp[..k]) {
-                *o = [WcEnvSample {
-                    uv: s.uv,
-                    pdf: s.pdf,
-                    texel: s.texel,
-                }];
-            }
-            k
-        })
-    }
-}
-
-/// # Safety
-/// As the exported `pdf` functions.
-unsafe fn pdf<'a, D: Dist<'a>>(
-    storage: *const u32,
-    storage_len: usize,
-    uv: *const f32,
-    out: *mut f32,
-    n: usize,
-) -> usize {
-    let Some(writes) = arrays::<f32>(uv, out, n, true) else {
-        return 0;
-    };
-    // SAFETY: as in `sample`.
-    let Some(s) = (unsafe { slice(storage, storage_len, Some(writes)) }) else {
-        return 0;
-    };
-    let Ok(d) = D::from_storage(s) else {
-        return 0;
-    };
-    // SAFETY: as in `sample`.
-    unsafe { map::<f32, f32, 2, 1>(uv, out, n, |uv, o| d.pdf_slice(uv, o.as_flattened_mut())) }
-}
-
-/// # Safety
-/// As the exported `sample_direction` functions.
-unsafe fn sample_direction<'a, D: Dist<'a>>(
-    storage: *const u32,
-    storage_len: usize,
-    layout: u32,
-    u: *const f32,
-    out: *mut WcEnvDirection,
-    n: usize,
-) -> usize {
-    let Some(writes) = arrays::<WcEnvDirection>(u, out, n, false) else {
-        return 0;
-    };
-    // SAFETY: as in `sample`.
-    let Some(s) = (unsafe { slice(storage, storage_len, Some(writes)) }) else {
-        return 0;
-    };
-    let Some(layout) = layout_of(layout) else {
-        return 0;
-    };
-    let Ok(d) = D::from_storage(s) else {
-        return 0;
-    };
-    // SAFETY: as in `sample`.
-    unsafe {
-        map::<f32, WcEnvDirection, 2, 1>(u, out, n, |u, o| {
-            let mut tmp = [DirectionSample::default(); crate::ffi::CHUNK];
-            let k = d.sample_direction_slice(layout, u, &mut tmp[..u.len().min(o.len())]);
-            for (o, s) in o.iter_mut().zip(&tmp[..k]) {
-                *o = [WcEnvDirection {
-                    dir: s.dir,
-                    pdf: s.pdf,
-                    uv: s.uv,
-                    texel: s.texel,
-                }];
-            }
-            k
-        })
-    }
-}
-
-/// # Safety
-/// As the exported `pdf_direction` functions.
-unsafe fn pdf_direction<'a, D: Dist<'a>>(
-    storage: *const u32,
-    storage_len: usize,
-    layout: u32,
-    dir: *const f32,
-    out: *mut f32,
-    n: usize,
-) -> usize {
-    let Some(writes) = arrays_of::<f32, 3>(dir, out, n, true) else {
-        return 0;
-    };
-    // SAFETY: as in `sample`.
-    let Some(s) = (unsafe { slice(storage, storage_len, Some(writes)) }) else {
-        return 0;
-    };
-    let Some(layout) = layout_of(layout) else {
-        return 0;
-    };
-    let Ok(d) = D::from_storage(s) else {
-        return 0;
-    };
-    // SAFETY: as in `sample`.
-    unsafe {
-        map::<f32, f32, 3, 1>(dir, out, n, |dir, o| {
-            d.pdf_direction_slice(layout, dir, o.as_flattened_mut())
-        })
-    }
-}
-
-/// Words of storage `wc_envmap_hierarchical_build` needs for a `width x height` map (the hierarchical (MIP-pyramid) distribution: compact 2D strata), the
-/// 16-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
-/// tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE` and
-/// `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
-#[unsafe(no_mangle)]
-pub extern "C" fn wc_envmap_hierarchical_storage_len(width: u32, height: u32) -> usize {
-    storage_len::<Hierarchical>(width, height)
-}
-
-/// Builds the hierarchical (MIP-pyramid) distribution: compact 2D strata, of `weights` (row-major, `width * height` floats; NaN, negatives and
-/// `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. Returns `WC_OK` (0) or
-/// the first failed check, in this order:
-///
-/// * `WC_ERR_ZERO_SIZE`: `width` or `height` is 0;
-/// * `WC_ERR_TOO_LARGE`: a side above 2^24, tables above 2^32 words (`wc_envmap_hierarchical_storage_len` is
-///   `SIZE_MAX`), or weights or tables larger than `PTRDIFF_MAX` bytes (32-bit targets);
-/// * `WC_ERR_STORAGE_TOO_SMALL`: `storage_len` is below `wc_envmap_hierarchical_storage_len(width, height)`;
-/// * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or weights overlapping the
-///   storage's first `wc_envmap_hierarchical_storage_len(width, height)` words;
-/// * `WC_ERR_INFINITE_WEIGHT`: a weight is `+inf`.
-///
-/// Nothing is written before these checks but the last: on the other errors the storage is
-/// untouched; on success and on `WC_ERR_INFINITE_WEIGHT` exactly the first
-/// `wc_envmap_hierarchical_storage_len(width, height)` words are written, never more. The storage's bytes are
-/// the file format: write them to a file and sample them later, on any machine.
-///
-/// # Safety
-/// `weights` must be readable for `width * height` floats and `storage` writable for
-/// `storage_len` words (only when the checks above pass, so a call that returns one of the
-/// errors before `WC_ERR_INFINITE_WEIGHT` may pass any pointers).
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_hierarchical_build(
-    weights: *const f32,
-    width: u32,
-    height: u32,
-    storage: *mut u32,
-    storage_len: usize,
-) -> i32 {
-    // SAFETY: the caller's contract above.
-    unsafe {
-        build::<Hierarchical>(
-            weights,
-            width,
-            height,
-            Compensation::None,
-            storage,
-            storage_len,
-        )
-    }
-}
-
-/// `wc_envmap_hierarchical_build` with MIS compensation (Karlik et al. 2019; pbrt-v4's
-/// `compensatedDistribution`, Mitsuba 3's `mis_compensation`): the tables, and every pdf
-/// the distribution reports, are those of `max(0, w - fraction * average)`.
-/// `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_hierarchical_build`),
-/// `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
-/// `WC_ENVMAP_COMPENSATION_EQUIRECT` (equirect weights made by
-/// `wc_envmap_equirect_solid_angle_weights`: the radiance's solid-angle average, times each
-/// row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
-/// zero and negative mean no compensation. When compensation would remove every weight (a
-/// constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
-/// given, bit for bit `wc_envmap_hierarchical_build`.
-///
-/// Returns `WC_OK` or the first failed check: `WC_ERR_INVALID_ARGUMENT` if `compensation`
-/// is not one of the three constants (checked first: nothing is read or written), then
-/// exactly the checks, order and writes of `wc_envmap_hierarchical_build`.
-///
-/// # Safety
-/// As `wc_envmap_hierarchical_build`.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_hierarchical_build_compensated(
-    weights: *const f32,
-    width: u32,
-    height: u32,
-    compensation: u32,
-    fraction: f32,
-    storage: *mut u32,
-    storage_len: usize,
-) -> i32 {
-    let Some(c) = compensation_of(compensation, fraction) else {
-        return WC_ERR_INVALID_ARGUMENT;
-    };
-    // SAFETY: the caller's contract above.
-    unsafe { build::<Hierarchical>(weights, width, height, c, storage, storage_len) }
-}
-
-/// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
-/// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
-/// and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
-/// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 16 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
-/// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION` (an older format: rebuild),
-/// `WC_ERR_CORRUPT` (a size, length or reserved word a build never writes),
-/// `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
-/// Sampling a storage that passes is safe whatever its table words hold (samples stay in the
-/// map); the sample and pdf functions run this check on every call. Reads only.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_hierarchical_validate(
-    storage: *const u32,
-    storage_len: usize,
-) -> i32 {
-    // SAFETY: the caller's contract above.
-    unsafe { check::<Hierarchical>(storage, storage_len, false) }
-}
-
-/// `wc_envmap_hierarchical_validate` (the same codes, in the same order) plus one pass over every
-/// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants or do
-/// not match the content checksum (header word 8): every single-bit flip of a storage is
-/// caught. For loaders of files. Time proportional to the storage. Reads only.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_hierarchical_verify(
-    storage: *const u32,
-    storage_len: usize,
-) -> i32 {
-    // SAFETY: the caller's contract above.
-    unsafe { check::<Hierarchical>(storage, storage_len, true) }
-}
-
-/// Draws `n` samples from a built (or loaded) storage: texels in proportion to their weight,
-/// a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
-/// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) for
-/// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
-/// overlaps `u` (`out == u` too: a sample is larger than a point) or the storage, or a
-/// storage that fails `wc_envmap_hierarchical_validate`.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
-/// writable for `n` samples.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_hierarchical_sample(
-    storage: *const u32,
-    storage_len: usize,
-    u: *const f32,
-    out: *mut WcEnvSample,
-    n: usize,
-) -> usize {
-    // SAFETY: the caller's contract above.
-    unsafe { sample::<Hierarchical>(storage, storage_len, u, out, n) }
-}
-
-/// Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
-/// the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
-/// sample at that point reports. Returns `n`, or 0 (writing nothing) for `n == 0`, a null or
-/// misaligned pointer, a count whose byte size overflows, an `out` that overlaps the storage
-/// or overlaps `uv` other than exactly in place (`out == uv`: density `i` overwrites float
-/// `i` after point `i / 2` was read), or a storage that fails
-/// `wc_envmap_hierarchical_validate`.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
-/// writable for `n` floats.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_hierarchical_pdf(
-    storage: *const u32,
-    storage_len: usize,
-    uv: *const f32,
-    out: *mut f32,
-    n: usize,
-) -> usize {
-    // SAFETY: the caller's contract above.
-    unsafe { pdf::<Hierarchical>(storage, storage_len, uv, out, n) }
-}
-
-/// `wc_envmap_hierarchical_validate` under the Rust and JavaScript name (`from_storage`): the
-/// same O(1) header check, the same codes in the same order: `WC_OK`,
-/// `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
-/// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_hierarchical_from_storage(
-    storage: *const u32,
-    storage_len: usize,
-) -> i32 {
-    // SAFETY: the caller's contract above.
-    unsafe { check::<Hierarchical>(storage, storage_len, false) }
-}
-
-/// `wc_envmap_hierarchical_verify` under the Rust and JavaScript name (`from_storage_verified`):
-/// the header check plus one pass over every word (the format's invariants, then the content
-/// checksum, which catches every single-bit flip), the same codes in the same order:
-/// `WC_OK`, `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
-/// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_hierarchical_from_storage_verified(
-    storage: *const u32,
-    storage_len: usize,
-) -> i32 {
-    // SAFETY: the caller's contract above.
-    unsafe { check::<Hierarchical>(storage, storage_len, true) }
-}
-
-/// Draws `n` samples as directions with their density per steradian, in one call: the
-/// samples of `wc_envmap_hierarchical_sample`, each `uv` mapped onto the sphere by `layout`
-/// (`WC_ENVMAP_LAYOUT_EQUIRECT`: `wc_sphere_equirect`, density
-/// `pdf / (2 pi^2 sin(pi v))` with the point's own `v`, 0 exactly at the pole;
-/// `WC_ENVMAP_LAYOUT_EQUAL_AREA`: `wc_sphere_equal_area`, density `pdf / (4 pi)`). `u` holds
-/// `2n` floats (any values, clamped to `[0, 1)`); `out` receives `n` `WcEnvDirection`s.
-/// Returns `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count
-/// whose byte size overflows, an `out` that overlaps `u` or the storage, an unknown
-/// `layout`, or a storage that fails `wc_envmap_hierarchical_validate`.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
-/// writable for `n` directions.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_hierarchical_sample_direction(
-    storage: *const u32,
-    storage_len: usize,
-    layout: u32,
-    u: *const f32,
-    out: *mut WcEnvDirection,
-    n: usize,
-) -> usize {
-    // SAFETY: the caller's contract above.
-    unsafe { sample_direction::<Hierarchical>(storage, storage_len, layout, u, out, n) }
-}
-
-/// Densities per steradian of `n` directions `dir` (`3n` floats, any length; the MIS weight
-/// of a direction found by BSDF sampling): each direction mapped to the unit square by
-/// `layout`'s inverse (`wc_sphere_equirect_inverse` or `wc_sphere_equal_area_inverse`), the
-/// density of `wc_envmap_hierarchical_pdf` there converted to solid angle at the direction.
-/// For a direction of `wc_envmap_hierarchical_sample_direction` it equals the sample's `pdf` to a
-/// few ulp (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) for
-/// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
-/// overlaps the storage or overlaps `dir` other than exactly in place (`out == dir`: density
-/// `i` overwrites float `i` after direction `i / 3` was read), an unknown `layout`, or a
-/// storage that fails `wc_envmap_hierarchical_validate`.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words, `dir` for `3n` floats, and `out`
-/// writable for `n` floats.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_hierarchical_pdf_direction(
-    storage: *const u32,
-    storage_len: usize,
-    layout: u32,
-    dir: *const f32,
-    out: *mut f32,
-    n: usize,
-) -> usize {
-    // SAFETY: the caller's contract above.
-    unsafe { pdf_direction::<Hierarchical>(storage, storage_len, layout, dir, out, n) }
-}
-
-/// Words of storage `wc_envmap_marginal_conditional_build` needs for a `width x height` map (the marginal-conditional distribution (a row by its total, then a column)), the
-/// 16-word header included: 0 for a zero side, `SIZE_MAX` when a side exceeds 2^24 or the
-/// tables would exceed 2^32 words (the cases where the build returns `WC_ERR_ZERO_SIZE` and
-/// `WC_ERR_TOO_LARGE`). Any arguments; reads and writes no memory.
-#[unsafe(no_mangle)]
-pub extern "C" fn wc_envmap_marginal_conditional_storage_len(width: u32, height: u32) -> usize {
-    storage_len::<MarginalConditional>(width, height)
-}
-
-/// Builds the marginal-conditional distribution (a row by its total, then a column), of `weights` (row-major, `width * height` floats; NaN, negatives and
-/// `-inf` weigh 0, an all-zero map samples uniformly) into `storage`. Returns `WC_OK` (0) or
-/// the first failed check, in this order:
-///
-/// * `WC_ERR_ZERO_SIZE`: `width` or `height` is 0;
-/// * `WC_ERR_TOO_LARGE`: a side above 2^24, tables above 2^32 words (`wc_envmap_marginal_conditional_storage_len` is
-///   `SIZE_MAX`), or weights or tables larger than `PTRDIFF_MAX` bytes (32-bit targets);
-/// * `WC_ERR_STORAGE_TOO_SMALL`: `storage_len` is below `wc_envmap_marginal_conditional_storage_len(width, height)`;
-/// * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or weights overlapping the
-///   storage's first `wc_envmap_marginal_conditional_storage_len(width, height)` words;
-/// * `WC_ERR_INFINITE_WEIGHT`: a weight is `+inf`.
-///
-/// Nothing is written before these checks but the last: on the other errors the storage is
-/// untouched; on success and on `WC_ERR_INFINITE_WEIGHT` exactly the first
-/// `wc_envmap_marginal_conditional_storage_len(width, height)` words are written, never more. The storage's bytes are
-/// the file format: write them to a file and sample them later, on any machine.
-///
-/// # Safety
-/// `weights` must be readable for `width * height` floats and `storage` writable for
-/// `storage_len` words (only when the checks above pass, so a call that returns one of the
-/// errors before `WC_ERR_INFINITE_WEIGHT` may pass any pointers).
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_marginal_conditional_build(
-    weights: *const f32,
-    width: u32,
-    height: u32,
-    storage: *mut u32,
-    storage_len: usize,
-) -> i32 {
-    // SAFETY: the caller's contract above.
-    unsafe {
-        build::<MarginalConditional>(
-            weights,
-            width,
-            height,
-            Compensation::None,
-            storage,
-            storage_len,
-        )
-    }
-}
-
-/// `wc_envmap_marginal_conditional_build` with MIS compensation (Karlik et al. 2019; pbrt-v4's
-/// `compensatedDistribution`, Mitsuba 3's `mis_compensation`): the tables, and every pdf
-/// the distribution reports, are those of `max(0, w - fraction * average)`.
-/// `compensation` is `WC_ENVMAP_COMPENSATION_NONE` (then this is `wc_envmap_marginal_conditional_build`),
-/// `WC_ENVMAP_COMPENSATION_UNIFORM` (equal-area maps: the mean weight) or
-/// `WC_ENVMAP_COMPENSATION_EQUIRECT` (equirect weights made by
-/// `wc_envmap_equirect_solid_angle_weights`: the radiance's solid-angle average, times each
-/// row's `sin(theta)`). `fraction` (1 is pbrt's and Mitsuba's choice) may be any float: NaN,
-/// zero and negative mean no compensation. When compensation would remove every weight (a
-/// constant map, `fraction = +inf`, an all-zero map) the build falls back to the weights as
-/// given, bit for bit `wc_envmap_marginal_conditional_build`.
-///
-/// Returns `WC_OK` or the first failed check: `WC_ERR_INVALID_ARGUMENT` if `compensation`
-/// is not one of the three constants (checked first: nothing is read or written), then
-/// exactly the checks, order and writes of `wc_envmap_marginal_conditional_build`.
-///
-/// # Safety
-/// As `wc_envmap_marginal_conditional_build`.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_marginal_conditional_build_compensated(
-    weights: *const f32,
-    width: u32,
-    height: u32,
-    compensation: u32,
-    fraction: f32,
-    storage: *mut u32,
-    storage_len: usize,
-) -> i32 {
-    let Some(c) = compensation_of(compensation, fraction) else {
-        return WC_ERR_INVALID_ARGUMENT;
-    };
-    // SAFETY: the caller's contract above.
-    unsafe { build::<MarginalConditional>(weights, width, height, c, storage, storage_len) }
-}
-
-/// Checks a storage's header in O(1): format tag, version, sizes and lengths. Returns `WC_OK`
-/// or the first failed check, in this order: `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0`
-/// and `storage` null or misaligned, or `storage_len` words larger than `PTRDIFF_MAX` bytes),
-/// `WC_ERR_STORAGE_TOO_SMALL` (fewer than 16 words), `WC_ERR_WRONG_FORMAT` (word 0 is not this
-/// distribution's tag), `WC_ERR_UNSUPPORTED_VERSION` (an older format: rebuild),
-/// `WC_ERR_CORRUPT` (a size, length or reserved word a build never writes),
-/// `WC_ERR_STORAGE_TOO_SMALL` (fewer words than the header says).
-/// Sampling a storage that passes is safe whatever its table words hold (samples stay in the
-/// map); the sample and pdf functions run this check on every call. Reads only.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_marginal_conditional_validate(
-    storage: *const u32,
-    storage_len: usize,
-) -> i32 {
-    // SAFETY: the caller's contract above.
-    unsafe { check::<MarginalConditional>(storage, storage_len, false) }
-}
-
-/// `wc_envmap_marginal_conditional_validate` (the same codes, in the same order) plus one pass over every
-/// table word, rejecting (`WC_ERR_CORRUPT`) tables that break the format's invariants or do
-/// not match the content checksum (header word 8): every single-bit flip of a storage is
-/// caught. For loaders of files. Time proportional to the storage. Reads only.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_marginal_conditional_verify(
-    storage: *const u32,
-    storage_len: usize,
-) -> i32 {
-    // SAFETY: the caller's contract above.
-    unsafe { check::<MarginalConditional>(storage, storage_len, true) }
-}
-
-/// Draws `n` samples from a built (or loaded) storage: texels in proportion to their weight,
-/// a uniform point inside each. `u` holds `2n` floats (`u[2i]` picks the column, `u[2i+1]`
-/// the row; any values, clamped to `[0, 1)`). Returns `n`, or 0 (writing nothing) for
-/// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
-/// overlaps `u` (`out == u` too: a sample is larger than a point) or the storage, or a
-/// storage that fails `wc_envmap_marginal_conditional_validate`.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
-/// writable for `n` samples.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_marginal_conditional_sample(
-    storage: *const u32,
-    storage_len: usize,
-    u: *const f32,
-    out: *mut WcEnvSample,
-    n: usize,
-) -> usize {
-    // SAFETY: the caller's contract above.
-    unsafe { sample::<MarginalConditional>(storage, storage_len, u, out, n) }
-}
-
-/// Densities at `n` points `uv` (`2n` floats) with respect to area on `[0, 1]^2`: the pdf of
-/// the texel holding each point (0 on zero-weight texels), equal bit for bit to the `pdf` a
-/// sample at that point reports. Returns `n`, or 0 (writing nothing) for `n == 0`, a null or
-/// misaligned pointer, a count whose byte size overflows, an `out` that overlaps the storage
-/// or overlaps `uv` other than exactly in place (`out == uv`: density `i` overwrites float
-/// `i` after point `i / 2` was read), or a storage that fails
-/// `wc_envmap_marginal_conditional_validate`.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words, `uv` for `2n` floats, and `out`
-/// writable for `n` floats.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_marginal_conditional_pdf(
-    storage: *const u32,
-    storage_len: usize,
-    uv: *const f32,
-    out: *mut f32,
-    n: usize,
-) -> usize {
-    // SAFETY: the caller's contract above.
-    unsafe { pdf::<MarginalConditional>(storage, storage_len, uv, out, n) }
-}
-
-/// `wc_envmap_marginal_conditional_validate` under the Rust and JavaScript name (`from_storage`): the
-/// same O(1) header check, the same codes in the same order: `WC_OK`,
-/// `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
-/// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_marginal_conditional_from_storage(
-    storage: *const u32,
-    storage_len: usize,
-) -> i32 {
-    // SAFETY: the caller's contract above.
-    unsafe { check::<MarginalConditional>(storage, storage_len, false) }
-}
-
-/// `wc_envmap_marginal_conditional_verify` under the Rust and JavaScript name (`from_storage_verified`):
-/// the header check plus one pass over every word (the format's invariants, then the content
-/// checksum, which catches every single-bit flip), the same codes in the same order:
-/// `WC_OK`, `WC_ERR_INVALID_ARGUMENT`, `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`,
-/// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT`. Reads only.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_marginal_conditional_from_storage_verified(
-    storage: *const u32,
-    storage_len: usize,
-) -> i32 {
-    // SAFETY: the caller's contract above.
-    unsafe { check::<MarginalConditional>(storage, storage_len, true) }
-}
-
-/// Draws `n` samples as directions with their density per steradian, in one call: the
-/// samples of `wc_envmap_marginal_conditional_sample`, each `uv` mapped onto the sphere by `layout`
-/// (`WC_ENVMAP_LAYOUT_EQUIRECT`: `wc_sphere_equirect`, density
-/// `pdf / (2 pi^2 sin(pi v))` with the point's own `v`, 0 exactly at the pole;
-/// `WC_ENVMAP_LAYOUT_EQUAL_AREA`: `wc_sphere_equal_area`, density `pdf / (4 pi)`). `u` holds
-/// `2n` floats (any values, clamped to `[0, 1)`); `out` receives `n` `WcEnvDirection`s.
-/// Returns `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count
-/// whose byte size overflows, an `out` that overlaps `u` or the storage, an unknown
-/// `layout`, or a storage that fails `wc_envmap_marginal_conditional_validate`.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words, `u` for `2n` floats, and `out`
-/// writable for `n` directions.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_marginal_conditional_sample_direction(
-    storage: *const u32,
-    storage_len: usize,
-    layout: u32,
-    u: *const f32,
-    out: *mut WcEnvDirection,
-    n: usize,
-) -> usize {
-    // SAFETY: the caller's contract above.
-    unsafe { sample_direction::<MarginalConditional>(storage, storage_len, layout, u, out, n) }
-}
-
-/// Densities per steradian of `n` directions `dir` (`3n` floats, any length; the MIS weight
-/// of a direction found by BSDF sampling): each direction mapped to the unit square by
-/// `layout`'s inverse (`wc_sphere_equirect_inverse` or `wc_sphere_equal_area_inverse`), the
-/// density of `wc_envmap_marginal_conditional_pdf` there converted to solid angle at the direction.
-/// For a direction of `wc_envmap_marginal_conditional_sample_direction` it equals the sample's `pdf` to a
-/// few ulp (except within an ulp of a texel edge). Returns `n`, or 0 (writing nothing) for
-/// `n == 0`, a null or misaligned pointer, a count whose byte size overflows, an `out` that
-/// overlaps the storage or overlaps `dir` other than exactly in place (`out == dir`: density
-/// `i` overwrites float `i` after direction `i / 3` was read), an unknown `layout`, or a
-/// storage that fails `wc_envmap_marginal_conditional_validate`.
-///
-/// # Safety
-/// `storage` must be readable for `storage_len` words, `dir` for `3n` floats, and `out`
-/// writable for `n` floats.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_envmap_marginal_conditional_pdf_direction(
-    storage: *const u32,
-    storage_len: usize,
-    layout: u32,
-    dir: *const f32,
-    out: *mut f32,
-    n: usize,
-) -> usize {
-    // SAFETY: the caller's contract above.
-    unsafe { pdf_direction::<MarginalConditional>(storage, storage_len, layout, dir, out, n) }
 }
 
 /// Rec. 709 luminance of `n` linear RGB texels (`3n` floats) as `n` weights:
@@ -1044,35 +741,9 @@ pub unsafe extern "C" fn wc_envmap_equirect_pdf_to_solid_angle(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    if n == 0 {
-        return 0;
-    }
-    // Every pointer rule first (`map` checks `pdf` against `out` again).
-    let (Some(p), Some(r), Some(o)) = (span(pdf, n), span(v, n), span(out.cast_const(), n)) else {
-        return 0;
-    };
-    if overlap(r, o) || (overlap(p, o) && p != o) {
-        return 0;
-    }
-    // SAFETY: the caller's contract; checked above (and again by `slice`): non-null,
-    // aligned, of valid size, not written by this call.
-    let Some(v) = (unsafe { slice(v, n, Some(o)) }) else {
-        return 0;
-    };
-    let mut i = 0usize;
-    // SAFETY: the caller's contract; `map` checks null, alignment, size and overlap.
-    unsafe {
-        map::<f32, f32, 1, 1>(pdf, out, n, |p, o| {
-            for (p, o) in p.iter().zip(o.iter_mut()) {
-                *o = [image::equirect_pdf_to_solid_angle(
-                    p[0],
-                    v.get(i).copied().unwrap_or(0.0),
-                )];
-                i += 1;
-            }
-            p.len().min(o.len())
-        })
-    }
+    // SAFETY: the caller's contract above; `zip_map` checks null, alignment, size and
+    // overlap.
+    unsafe { zip_map(pdf, v, out, n, image::equirect_pdf_to_solid_angle) }
 }
 
 /// Resamples an equirect (lat-long) image (`src_width x src_height` texels of `channels` floats, 1 to 4)
@@ -1122,24 +793,12 @@ pub unsafe extern "C" fn wc_envmap_equirect_to_equal_area(
         (Some(a), Some(b)) if fits::<f32>(a) && fits::<f32>(b) => (a, b),
         _ => return WC_ERR_TOO_LARGE,
     };
-    let (Some(read), Some(write)) = (span(src, src_len), span(dst.cast_const(), dst_len)) else {
+    // SAFETY: the caller's contract: `src` readable for `src_len` floats and unchanged during
+    // the call, `dst` writable for `dst_len` floats; a zero float is valid. `read_and_fill`
+    // checks null, alignment, size and overlap first. Every other check is done (the core
+    // repeats them and cannot fail now).
+    let Some((src, dst)) = (unsafe { read_and_fill(src, src_len, dst, dst_len) }) else {
         return WC_ERR_INVALID_ARGUMENT;
-    };
-    if overlap(read, write) {
-        return WC_ERR_INVALID_ARGUMENT;
-    }
-    // Every check is done (the core repeats them and cannot fail now).
-    // SAFETY: the caller's contract; non-null, aligned, of valid size, disjoint from `dst`
-    // (checked above; `slice` checks again).
-    let Some(src) = (unsafe { slice(src, src_len, Some(write)) }) else {
-        return WC_ERR_INVALID_ARGUMENT;
-    };
-    // SAFETY: `dst` is writable for `dst_len` floats (the caller's contract), non-null,
-    // aligned, of valid size and disjoint from `src` (checked above); zeroed first so the
-    // slice refers to initialized floats.
-    let dst = unsafe {
-        core::ptr::write_bytes(dst, 0, dst_len);
-        core::slice::from_raw_parts_mut(dst, dst_len)
     };
     fn run<const C: usize>(
         s: &[f32],

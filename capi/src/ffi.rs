@@ -120,6 +120,86 @@ pub unsafe fn map<A: Copy + Default, B: Copy + Default, const I: usize, const O:
     n
 }
 
+/// [`map`] through a scalar form: `out[i] = f(input[i])`, in order (so `f` may walk a second
+/// array alongside).
+///
+/// # Safety
+/// As [`map`].
+pub unsafe fn map_each<A: Copy + Default, B: Copy + Default, const I: usize, const O: usize>(
+    input: *const A,
+    out: *mut B,
+    n: usize,
+    mut f: impl FnMut([A; I]) -> [B; O],
+) -> usize {
+    // SAFETY: the caller's contract, passed on; `map` checks the pointers.
+    unsafe {
+        map::<A, B, I, O>(input, out, n, |i, o| {
+            for (i, o) in i.iter().zip(o.iter_mut()) {
+                *o = f(*i);
+            }
+            i.len().min(o.len())
+        })
+    }
+}
+
+/// `out[i] = f(a[i], b[i])` for `n` floats `a` and `n` values `b`. `b` is read throughout the
+/// call: `out` must not overlap it; `out` may be `a` exactly (in place), no other overlap.
+/// Returns `n`, or 0 (writing nothing) when a pointer rule is broken.
+///
+/// # Safety
+/// `a` and `b` must be valid for reads of `n` values, `out` for writes of `n` floats.
+pub unsafe fn zip_map<B: Copy + Default>(
+    a: *const f32,
+    b: *const B,
+    out: *mut f32,
+    n: usize,
+    f: impl Fn(f32, B) -> f32,
+) -> usize {
+    if n == 0 {
+        return 0;
+    }
+    // Every pointer rule first (`map` checks `a` against `out` again).
+    let (Some(ra), Some(rb), Some(ro)) = (span(a, n), span(b, n), span(out.cast_const(), n)) else {
+        return 0;
+    };
+    if overlap(rb, ro) || (overlap(ra, ro) && ra != ro) {
+        return 0;
+    }
+    // SAFETY: the caller's contract; checked above (and again by `slice`): non-null, aligned,
+    // of valid size, not written by this call.
+    let Some(b) = (unsafe { slice(b, n, Some(ro)) }) else {
+        return 0;
+    };
+    let mut b = b.iter();
+    // SAFETY: the caller's contract; `map` checks null, alignment, size and overlap.
+    unsafe {
+        map_each::<f32, f32, 1, 1>(a, out, n, |[a]| {
+            [f(a, b.next().copied().unwrap_or_default())]
+        })
+    }
+}
+
+/// `n` outputs of an index-driven sequence of `seed` (`O` floats each): its slice form
+/// `f(first, seed, chunk)` over the indices `start, start + 1, ...`, wrapping after
+/// `u32::MAX`. Returns `n`, or 0 when `out` breaks a pointer rule.
+///
+/// # Safety
+/// `out` must be valid for writes of `n * O` floats.
+pub unsafe fn indexed<const O: usize>(
+    start: u32,
+    seed: u32,
+    out: *mut f32,
+    n: usize,
+    f: impl Fn(u32, u32, &mut [[f32; O]]) -> usize,
+) -> usize {
+    // SAFETY: the caller's contract, passed on; `generate` checks null, alignment and size.
+    unsafe {
+        generate::<O>(out, n, |offset, chunk| {
+            f(start.wrapping_add(offset), seed, chunk)
+        })
+    }
+}
+
 /// `n` generated outputs of `O` floats: `f(offset, chunk)` fills `chunk` with the outputs
 /// `offset..offset + chunk.len()` (the offset as the `u32` the index-driven sequences wrap
 /// at). Returns `n`, or 0 when `out` breaks a pointer rule.
@@ -145,6 +225,38 @@ pub unsafe fn generate<const O: usize>(
         done += k;
     }
     n
+}
+
+/// The arrays of a call that reads `input` (`n_in` values) throughout and fills `out` (`n_out`
+/// values): the input as a shared slice and the output, zeroed through the raw pointer first
+/// (C memory may be uninitialized), as a mutable one. `None`, reading and writing nothing,
+/// for a null or misaligned pointer, a size past `PTRDIFF_MAX` or overlapping arrays.
+///
+/// # Safety
+/// `input` must be valid for reads of `n_in` values, initialized and not written by anyone
+/// else during the call; `out` valid for writes of `n_out` values; all-zero bytes must be a
+/// valid `B`. The returned lifetime is the call's.
+pub unsafe fn read_and_fill<'a, A, B>(
+    input: *const A,
+    n_in: usize,
+    out: *mut B,
+    n_out: usize,
+) -> Option<(&'a [A], &'a mut [B])> {
+    let (read, write) = (span(input, n_in)?, span(out.cast_const(), n_out)?);
+    if overlap(read, write) {
+        return None;
+    }
+    // SAFETY: the caller's contract; non-null, aligned, of valid size and disjoint from `out`
+    // (checked above; `slice` checks again).
+    let input = unsafe { slice(input, n_in, Some(write))? };
+    // SAFETY: `out` is writable for `n_out` values (the caller's contract), non-null, aligned,
+    // of valid size (checked by `span`) and disjoint from `input`; zeroed first, and zero
+    // bytes are a valid `B` (the caller's contract), so the slice refers to initialized values.
+    let out = unsafe {
+        core::ptr::write_bytes(out, 0, n_out);
+        core::slice::from_raw_parts_mut(out, n_out)
+    };
+    Some((input, out))
 }
 
 /// A read-only C array as a slice, for inputs read throughout a call (weights, storage),

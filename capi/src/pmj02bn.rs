@@ -1,7 +1,7 @@
 //! pmj02bn points: Owen-scrambled progressive multi-jittered (0,2) sequences with blue-noise
 //! spacing, from tables embedded in the library.
 
-use crate::ffi::{generate, map, span};
+use crate::ffi::{indexed, map_each, span};
 use warpcore::pmj02bn;
 
 /// Points `start, start + 1, ..., start + n - 1` (indices wrap after `UINT32_MAX`) of
@@ -18,12 +18,8 @@ pub unsafe extern "C" fn wc_pmj02bn_sample(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above; `generate` checks null, alignment and size.
-    unsafe {
-        generate::<2>(out, n, |offset, chunk| {
-            pmj02bn::sample_slice(start.wrapping_add(offset), seed, chunk)
-        })
-    }
+    // SAFETY: the caller's contract above; `indexed` checks null, alignment and size.
+    unsafe { indexed(start, seed, out, n, pmj02bn::sample_slice) }
 }
 
 /// The unscrambled table points `start, ..., start + n - 1` of table set `set` (both taken
@@ -60,15 +56,9 @@ pub unsafe extern "C" fn wc_pmj02bn_shuffle(
     out: *mut u32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
-    unsafe {
-        map::<u32, u32, 1, 1>(index, out, n, |i, o| {
-            for (i, o) in i.iter().zip(o.iter_mut()) {
-                *o = [pmj02bn::shuffle(i[0], seed)];
-            }
-            i.len().min(o.len())
-        })
-    }
+    // SAFETY: the caller's contract above; `map_each` checks null, alignment, size and
+    // overlap.
+    unsafe { map_each(index, out, n, |[i]| [pmj02bn::shuffle(i, seed)]) }
 }
 
 /// Points per table set in this build (1024, 4096, 16384 or 65536; features).

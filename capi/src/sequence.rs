@@ -1,6 +1,6 @@
 //! Baseline samplers without tables: independent random points and a jittered grid.
 
-use crate::ffi::generate;
+use crate::ffi::indexed;
 use warpcore::sequence;
 
 /// Independent uniform points `start, ..., start + n - 1` of `seed` (a counter-based hash),
@@ -16,12 +16,8 @@ pub unsafe extern "C" fn wc_sequence_random(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above; `generate` checks null, alignment and size.
-    unsafe {
-        generate::<2>(out, n, |offset, chunk| {
-            sequence::random_slice(start.wrapping_add(offset), seed, chunk)
-        })
-    }
+    // SAFETY: the caller's contract above; `indexed` checks null, alignment and size.
+    unsafe { indexed(start, seed, out, n, sequence::random_slice) }
 }
 
 /// Jittered points `start, ..., start + n - 1` of an `m x m` grid, `m = floor(sqrt(count))`
@@ -38,10 +34,10 @@ pub unsafe extern "C" fn wc_sequence_stratified(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above; `generate` checks null, alignment and size.
+    // SAFETY: the caller's contract above; `indexed` checks null, alignment and size.
     unsafe {
-        generate::<2>(out, n, |offset, chunk| {
-            sequence::stratified_slice(start.wrapping_add(offset), count, seed, chunk)
+        indexed(start, seed, out, n, |i, seed, chunk| {
+            sequence::stratified_slice(i, count, seed, chunk)
         })
     }
 }

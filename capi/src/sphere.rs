@@ -2,7 +2,7 @@
 //! direction (clamped to `[-1, 1]` per coordinate, then normalized); hemisphere inverses map a
 //! direction below the horizon like its mirror image.
 
-use crate::ffi::{map, overlap, slice, span};
+use crate::ffi::{map, map_each, zip_map};
 use warpcore::sphere;
 
 /// Equal-area octahedral map (Clarberg 2008; the square's centre is +z, its corners -z): `n` points `u` (`2n` floats) to `n` unit directions (`3n` floats). Returns `n`, or
@@ -183,15 +183,9 @@ pub unsafe extern "C" fn wc_sphere_equal_area_wrap_texel(
     if size == 0 {
         return 0;
     }
-    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
-    unsafe {
-        map::<i32, u32, 2, 2>(texel, out, n, |t, o| {
-            for (t, o) in t.iter().zip(o.iter_mut()) {
-                *o = sphere::equal_area_wrap_texel(*t, size);
-            }
-            t.len().min(o.len())
-        })
-    }
+    // SAFETY: the caller's contract above; `map_each` checks null, alignment, size and
+    // overlap.
+    unsafe { map_each(texel, out, n, |t| sphere::equal_area_wrap_texel(t, size)) }
 }
 
 /// Density conversion for the equal-area map: `n` densities over the square to densities per
@@ -206,13 +200,11 @@ pub unsafe extern "C" fn wc_sphere_equal_area_pdf_to_solid_angle(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    // SAFETY: the caller's contract above; `map_each` checks null, alignment, size and
+    // overlap.
     unsafe {
-        map::<f32, f32, 1, 1>(pdf, out, n, |p, o| {
-            for (p, o) in p.iter().zip(o.iter_mut()) {
-                *o = [sphere::equal_area_pdf_to_solid_angle(p[0])];
-            }
-            p.len().min(o.len())
+        map_each(pdf, out, n, |[p]| {
+            [sphere::equal_area_pdf_to_solid_angle(p)]
         })
     }
 }
@@ -229,15 +221,9 @@ pub unsafe extern "C" fn wc_sphere_cosine_hemisphere_pdf(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
-    unsafe {
-        map::<f32, f32, 1, 1>(cos_theta, out, n, |c, o| {
-            for (c, o) in c.iter().zip(o.iter_mut()) {
-                *o = [sphere::cosine_hemisphere_pdf(c[0])];
-            }
-            c.len().min(o.len())
-        })
-    }
+    // SAFETY: the caller's contract above; `map_each` checks null, alignment, size and
+    // overlap.
+    unsafe { map_each(cos_theta, out, n, |[c]| [sphere::cosine_hemisphere_pdf(c)]) }
 }
 
 /// Density conversion for the lat-long map: `n` densities over the square (`pdf`) at
@@ -255,33 +241,11 @@ pub unsafe extern "C" fn wc_sphere_equirect_pdf_to_solid_angle(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    if n == 0 {
-        return 0;
-    }
-    // Every pointer rule first (`map` checks `pdf` against `out` again).
-    let (Some(p), Some(r), Some(o)) = (span(pdf, n), span(d.cast::<[f32; 3]>(), n), span(out, n))
-    else {
-        return 0;
-    };
-    if overlap(r, o) || (overlap(p, o) && p != o) {
-        return 0;
-    }
-    // The directions are read throughout: a shared slice, which `out` does not overlap.
-    // SAFETY: the caller's contract above; checked above (and again by `slice`): non-null,
-    // aligned, of valid size, not written by this call.
-    let Some(d) = (unsafe { slice(d.cast::<[f32; 3]>(), n, Some(o)) }) else {
-        return 0;
-    };
-    let mut i = 0usize;
-    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    // SAFETY: the caller's contract above; `zip_map` checks null, alignment, size and
+    // overlap.
     unsafe {
-        map::<f32, f32, 1, 1>(pdf, out, n, |p, o| {
-            for (p, o) in p.iter().zip(o.iter_mut()) {
-                let dir = d.get(i).copied().unwrap_or([0.0, 0.0, 1.0]);
-                *o = [sphere::equirect_pdf_to_solid_angle(p[0], dir)];
-                i += 1;
-            }
-            p.len().min(o.len())
+        zip_map(pdf, d.cast::<[f32; 3]>(), out, n, |p, dir| {
+            sphere::equirect_pdf_to_solid_angle(p, dir)
         })
     }
 }

@@ -8,6 +8,29 @@
 
 use warpcore::spherical;
 
+/// `n` inputs of `I` floats to `n` outputs of `O` floats through a slice form
+/// `f(light, input, out)` of the `K` vectors at `light` (read first, so `light` may overlap
+/// `out`). Returns `n`, or 0 (writing nothing) for a null or misaligned `light`, then as
+/// `map`.
+///
+/// # Safety
+/// `light` must be readable for `3 K` floats, `input` for `I n` and `out` writable for
+/// `O n`.
+unsafe fn lit<const K: usize, const I: usize, const O: usize>(
+    light: *const f32,
+    input: *const f32,
+    out: *mut f32,
+    n: usize,
+    f: impl Fn([[f32; 3]; K], &[[f32; I]], &mut [[f32; O]]) -> usize,
+) -> usize {
+    // SAFETY: the caller's contract, passed on.
+    let Some(l) = (unsafe { read_vectors::<K>(light) }) else {
+        return 0;
+    };
+    // SAFETY: the caller's contract; `map` checks null, alignment, size and overlap.
+    unsafe { crate::ffi::map::<f32, f32, I, O>(input, out, n, |i, o| f(l, i, o)) }
+}
+
 /// The 12 floats at `light`, or `None` for a null or misaligned pointer.
 ///
 /// # Safety
@@ -47,13 +70,9 @@ pub unsafe extern "C" fn wc_spherical_triangle(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above.
-    let Some([v0, v1, v2, p]) = (unsafe { read_light(light) }) else {
-        return 0;
-    };
-    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    // SAFETY: the caller's contract above; `lit` checks `light`, `map` the arrays.
     unsafe {
-        crate::ffi::map::<f32, f32, 2, 4>(u, out, n, |u, o| {
+        lit(light, u, out, n, |[v0, v1, v2, p], u, o| {
             spherical::triangle_slice([v0, v1, v2], p, u, o)
         })
     }
@@ -72,13 +91,9 @@ pub unsafe extern "C" fn wc_spherical_triangle_inverse(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above.
-    let Some([v0, v1, v2, p]) = (unsafe { read_light(light) }) else {
-        return 0;
-    };
-    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    // SAFETY: the caller's contract above; `lit` checks `light`, `map` the arrays.
     unsafe {
-        crate::ffi::map::<f32, f32, 3, 2>(b, out, n, |b, o| {
+        lit(light, b, out, n, |[v0, v1, v2, p], b, o| {
             spherical::triangle_inverse_slice([v0, v1, v2], p, b, o)
         })
     }
@@ -97,13 +112,9 @@ pub unsafe extern "C" fn wc_spherical_rectangle(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above.
-    let Some([c, ex, ey, p]) = (unsafe { read_light(light) }) else {
-        return 0;
-    };
-    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    // SAFETY: the caller's contract above; `lit` checks `light`, `map` the arrays.
     unsafe {
-        crate::ffi::map::<f32, f32, 2, 3>(u, out, n, |u, o| {
+        lit(light, u, out, n, |[c, ex, ey, p], u, o| {
             spherical::rectangle_slice(c, ex, ey, p, u, o)
         })
     }
@@ -122,13 +133,9 @@ pub unsafe extern "C" fn wc_spherical_rectangle_inverse(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above.
-    let Some([c, ex, ey, p]) = (unsafe { read_light(light) }) else {
-        return 0;
-    };
-    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    // SAFETY: the caller's contract above; `lit` checks `light`, `map` the arrays.
     unsafe {
-        crate::ffi::map::<f32, f32, 2, 2>(st, out, n, |s, o| {
+        lit(light, st, out, n, |[c, ex, ey, p], s, o| {
             spherical::rectangle_inverse_slice(c, ex, ey, p, s, o)
         })
     }
@@ -178,13 +185,9 @@ pub unsafe extern "C" fn wc_spherical_triangle_cosine(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above.
-    let Some([v0, v1, v2, p, nrm]) = (unsafe { read_vectors::<5>(light) }) else {
-        return 0;
-    };
-    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    // SAFETY: the caller's contract above; `lit` checks `light`, `map` the arrays.
     unsafe {
-        crate::ffi::map::<f32, f32, 2, 4>(u, out, n, |u, o| {
+        lit(light, u, out, n, |[v0, v1, v2, p, nrm], u, o| {
             spherical::triangle_cosine_slice([v0, v1, v2], p, nrm, u, o)
         })
     }
@@ -204,13 +207,9 @@ pub unsafe extern "C" fn wc_spherical_rectangle_cosine(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above.
-    let Some([c, ex, ey, p, nrm]) = (unsafe { read_vectors::<5>(light) }) else {
-        return 0;
-    };
-    // SAFETY: the caller's contract above; `map` checks null, alignment, size and overlap.
+    // SAFETY: the caller's contract above; `lit` checks `light`, `map` the arrays.
     unsafe {
-        crate::ffi::map::<f32, f32, 2, 3>(u, out, n, |u, o| {
+        lit(light, u, out, n, |[c, ex, ey, p, nrm], u, o| {
             spherical::rectangle_cosine_slice(c, ex, ey, p, nrm, u, o)
         })
     }

@@ -70,12 +70,8 @@ pub unsafe extern "C" fn wc_triangle_basu_owen(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above; `generate` checks null, alignment and size.
-    unsafe {
-        crate::ffi::generate::<3>(out, n, |offset, chunk| {
-            triangle::basu_owen_slice(start.wrapping_add(offset), seed, chunk)
-        })
-    }
+    // SAFETY: the caller's contract above; `indexed` checks null, alignment and size.
+    unsafe { crate::ffi::indexed(start, seed, out, n, triangle::basu_owen_slice) }
 }
 
 /// Basu-Owen points with one digit permutation per level, shared by every node of the level
@@ -92,10 +88,6 @@ pub unsafe extern "C" fn wc_triangle_basu_owen_permuted(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above; `generate` checks null, alignment and size.
-    unsafe {
-        crate::ffi::generate::<3>(out, n, |offset, chunk| {
-            triangle::basu_owen_permuted_slice(start.wrapping_add(offset), seed, chunk)
-        })
-    }
+    // SAFETY: the caller's contract above; `indexed` checks null, alignment and size.
+    unsafe { crate::ffi::indexed(start, seed, out, n, triangle::basu_owen_permuted_slice) }
 }

@@ -8,6 +8,10 @@
 //!   Rust crate.
 //! * `rules.c` checks the pointer and count rules, the env-map errors and a storage written
 //!   to a file and read back.
+//! * `sampler.c` (with the `blue-noise` feature) prints one `name hash` line per case of
+//!   `capi/examples/sampler_hashes.rs`, which must equal the Rust crate's (bit-identity for
+//!   every pattern, domain path, split, draw, `draw_u32`, `rnd` and slice), and checks the
+//!   sampler's promises and error returns.
 //! * `hostile.c` makes randomized hostile calls against arrays flush with guard pages and
 //!   reports which (function, documented outcome) rows it reached; [`TABLE`] lists every
 //!   function's documented outcomes, and the test fails on a function or outcome without its
@@ -22,16 +26,12 @@
 //! `WARPCORE_CAPI_LIB` links that static library instead of building one (CI: a nightly
 //! `-Zsanitizer=address` build, or the `i686-unknown-linux-gnu` one for `-m32`);
 //! `WARPCORE_HOSTILE_ROUNDS` sets `hostile.c`'s rounds (about 50 calls each).
-#![cfg(all(
-    feature = "disk",
-    feature = "triangle",
-    feature = "sphere",
-    feature = "pmj02bn",
-    feature = "sequence",
-    feature = "envmap",
-    feature = "sampler",
-    feature = "spherical"
-))]
+//!
+//! Every family is needed: `Cargo.toml` names the features this target requires.
+
+#[cfg(feature = "blue-noise")]
+#[path = "../examples/sampler_hashes.rs"]
+mod sampler_hashes;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -87,6 +87,43 @@ fn compiler(var: &str, default: &str) -> String {
     std::env::var(var).unwrap_or_else(|_| default.to_string())
 }
 
+/// What a `std` static library needs on Linux (`--print native-static-libs`).
+const STD_LIBS: [&str; 5] = ["-lpthread", "-ldl", "-lm", "-lrt", "-lutil"];
+
+/// The directory the compiled programs go to.
+fn out_dir() -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capi-c");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Compiles `src` with `$var` (or `default`) as `-std=<std>`, warnings as errors, with
+/// `WARPCORE_CFLAGS` and this checkout's `include/`: optimised and linked with the static
+/// library into `exe`, or (`exe` = `None`) syntax only. The test fails on a compiler error.
+fn compile(var: &str, default: &str, std: &str, src: &Path, exe: Option<&Path>) {
+    let cc = compiler(var, default);
+    let mut cmd = Command::new(&cc);
+    cmd.arg(format!("-std={std}"))
+        .args(["-Wall", "-Wextra", "-Werror", "-pedantic"])
+        .args(extra_flags())
+        .arg("-I")
+        .arg(root().join("include"))
+        .arg(src);
+    match exe {
+        Some(exe) => cmd
+            .arg("-O2")
+            .arg(staticlib())
+            .args(STD_LIBS)
+            .arg("-o")
+            .arg(exe),
+        None => cmd.arg("-fsyntax-only"),
+    };
+    let status = cmd
+        .status()
+        .unwrap_or_else(|e| panic!("cannot run the compiler `{cc}`: {e}"));
+    assert!(status.success(), "{cc} failed on {}", src.display());
+}
+
 /// Compiles `capi/tests/c/<name>.c` and runs it; returns its stdout (the test fails on a
 /// compiler error or a nonzero exit).
 fn compile_and_run(name: &str) -> String {
@@ -94,35 +131,12 @@ fn compile_and_run(name: &str) -> String {
 }
 
 fn compile_and_run_with(name: &str, args: &[&str]) -> String {
-    let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capi-c");
-    std::fs::create_dir_all(&out_dir).unwrap();
-    let exe = out_dir.join(name);
+    let exe = out_dir().join(name);
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/c/{name}.c"));
-    let cc = compiler("CC", "cc");
-    let status = Command::new(&cc)
-        .args([
-            "-std=c99",
-            "-O2",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-pedantic",
-        ])
-        .args(extra_flags())
-        .arg("-I")
-        .arg(root().join("include"))
-        .arg(&src)
-        .arg(staticlib())
-        // What a `std` static library needs on Linux (`--print native-static-libs`).
-        .args(["-lpthread", "-ldl", "-lm", "-lrt", "-lutil"])
-        .arg("-o")
-        .arg(&exe)
-        .status()
-        .unwrap_or_else(|e| panic!("cannot run the C compiler `{cc}`: {e}"));
-    assert!(status.success(), "{cc} failed on {}", src.display());
+    compile("CC", "cc", "c99", &src, Some(&exe));
     let run = Command::new(&exe)
         .args(args)
-        .current_dir(&out_dir)
+        .current_dir(out_dir())
         .output()
         .expect("run the C test");
     let stdout = String::from_utf8_lossy(&run.stdout).into_owned();
@@ -183,21 +197,40 @@ fn c_fingerprint_matches_the_golden_file_and_the_crate() {
     );
 }
 
+/// `sampler.c`'s hashes equal the crate's, and its checks (promises, error returns, garbage)
+/// all pass.
+#[cfg(feature = "blue-noise")]
 #[test]
-fn c_pointer_rules_errors_and_files() {
-    let out = compile_and_run("rules");
+fn c_sampler_matches_the_crate_and_keeps_the_rules() {
+    let out = compile_and_run("sampler");
+    let got = hashes(&out);
+    let want = sampler_hashes::hashes();
+    assert_eq!(want.len(), 28);
+    for (name, hash) in &want {
+        assert_eq!(got.get(name), Some(hash), "{name}: C and Rust disagree");
+    }
+    let passed = passed(&out);
+    assert!(passed > 5000, "only {passed} checks ran");
+}
+
+/// The count of a test program's last line, `N passed, 0 failed` (the test fails on
+/// another last line).
+fn passed(out: &str) -> usize {
     let last = out.lines().last().unwrap_or("");
     assert!(last.ends_with(" passed, 0 failed"), "{last}");
-    let passed: usize = last.split(' ').next().unwrap().parse().unwrap();
+    last.split(' ').next().unwrap().parse().unwrap()
+}
+
+#[test]
+fn c_pointer_rules_errors_and_files() {
+    let passed = passed(&compile_and_run("rules"));
     assert!(passed > 100, "only {passed} checks ran");
 }
 
 /// The header is valid C++ too (`extern "C"`, no C-only constructs), warnings as errors.
 #[test]
 fn header_compiles_as_cpp() {
-    let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capi-c");
-    std::fs::create_dir_all(&out_dir).unwrap();
-    let src = out_dir.join("header.cpp");
+    let src = out_dir().join("header.cpp");
     std::fs::write(
         &src,
         "#include \"warpcore.h\"\n#include <cstdio>\nint main() {\n  float u[2] = {0.25f, \
@@ -205,54 +238,17 @@ fn header_compiles_as_cpp() {
          WC_ERR_ZERO_SIZE < 0 ? 0 : 1;\n}\n",
     )
     .unwrap();
-    let cxx = compiler("CXX", "c++");
-    let status = Command::new(&cxx)
-        .args([
-            "-std=c++11",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-pedantic",
-            "-fsyntax-only",
-        ])
-        .args(extra_flags())
-        .arg("-I")
-        .arg(root().join("include"))
-        .arg(&src)
-        .status()
-        .unwrap_or_else(|e| panic!("cannot run the C++ compiler `{cxx}`: {e}"));
-    assert!(status.success(), "the header does not compile as C++");
+    compile("CXX", "c++", "c++11", &src, None);
 }
 
 /// The C++ example (`capi/examples/envlight.cpp`), small: it renders, writes a PFM, and
 /// exits nonzero when its environment estimate disagrees with the exact sum over the map.
 #[test]
 fn cpp_example_renders_and_checks_itself() {
-    let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capi-c");
-    std::fs::create_dir_all(&out_dir).unwrap();
-    let exe = out_dir.join("envlight");
-    let cxx = compiler("CXX", "c++");
-    let status = Command::new(&cxx)
-        .args([
-            "-std=c++17",
-            "-O2",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-pedantic",
-        ])
-        .args(extra_flags())
-        .arg("-I")
-        .arg(root().join("include"))
-        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/envlight.cpp"))
-        .arg(staticlib())
-        .args(["-lpthread", "-ldl", "-lm", "-lrt", "-lutil"])
-        .arg("-o")
-        .arg(&exe)
-        .status()
-        .unwrap_or_else(|e| panic!("cannot run the C++ compiler `{cxx}`: {e}"));
-    assert!(status.success(), "{cxx} failed on envlight.cpp");
-    let pfm = out_dir.join("envlight.pfm");
+    let exe = out_dir().join("envlight");
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/envlight.cpp");
+    compile("CXX", "c++", "c++17", &src, Some(&exe));
+    let pfm = out_dir().join("envlight.pfm");
     let run = Command::new(&exe)
         .arg(root().join("tests/data/envmaps/sunset.pfm"))
         .arg(&pfm)
@@ -389,7 +385,7 @@ fn docs_c_blocks_compile_with_their_printed_build_line_and_run() {
             cmd.args(["-Wall", "-Wextra", "-pedantic", "-Werror"]);
             cmd.args(extra_flags());
             if !release {
-                cmd.args(["-lpthread", "-ldl", "-lm", "-lrt", "-lutil"]);
+                cmd.args(STD_LIBS);
             }
             let status = cmd
                 .status()
@@ -608,37 +604,15 @@ const TABLE: &[(&str, &[&str])] = {
         ),
         ("wc_sequence_random", GEN),
         ("wc_sequence_stratified", GEN),
-        ("wc_envmap_hierarchical_storage_len", LEN),
-        ("wc_envmap_hierarchical_build", BUILD),
-        ("wc_envmap_hierarchical_build_compensated", BUILD),
-        ("wc_envmap_hierarchical_validate", CHECK),
-        ("wc_envmap_hierarchical_verify", CHECK),
-        ("wc_envmap_hierarchical_sample", SAMPLE),
-        ("wc_envmap_hierarchical_pdf", PDF),
-        ("wc_envmap_hierarchical_from_storage", CHECK),
-        ("wc_envmap_hierarchical_from_storage_verified", CHECK),
-        ("wc_envmap_hierarchical_sample_direction", SAMPLE_DIRECTION),
-        ("wc_envmap_hierarchical_pdf_direction", PDF_DIRECTION),
-        ("wc_envmap_marginal_conditional_storage_len", LEN),
-        ("wc_envmap_marginal_conditional_build", BUILD),
-        ("wc_envmap_marginal_conditional_build_compensated", BUILD),
-        ("wc_envmap_marginal_conditional_validate", CHECK),
-        ("wc_envmap_marginal_conditional_verify", CHECK),
-        ("wc_envmap_marginal_conditional_sample", SAMPLE),
-        ("wc_envmap_marginal_conditional_pdf", PDF),
-        ("wc_envmap_marginal_conditional_from_storage", CHECK),
-        (
-            "wc_envmap_marginal_conditional_from_storage_verified",
-            CHECK,
-        ),
-        (
-            "wc_envmap_marginal_conditional_sample_direction",
-            SAMPLE_DIRECTION,
-        ),
-        (
-            "wc_envmap_marginal_conditional_pdf_direction",
-            PDF_DIRECTION,
-        ),
+        ("wc_envmap_storage_len", LEN),
+        ("wc_envmap_build", BUILD),
+        ("wc_envmap_build_compensated", BUILD),
+        ("wc_envmap_from_storage", CHECK),
+        ("wc_envmap_from_storage_verified", CHECK),
+        ("wc_envmap_sample", SAMPLE),
+        ("wc_envmap_pdf", PDF),
+        ("wc_envmap_sample_direction", SAMPLE_DIRECTION),
+        ("wc_envmap_pdf_direction", PDF_DIRECTION),
         ("wc_envmap_luminance", MAP_IN_PLACE),
         ("wc_envmap_equirect_solid_angle_weights", IMAGE),
         ("wc_envmap_equirect_pdf_to_solid_angle", MAP_IN_PLACE),

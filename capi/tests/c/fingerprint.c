@@ -216,11 +216,6 @@ static void envmap_weights(float *w) {
     }
 }
 
-typedef size_t (*len_fn)(uint32_t, uint32_t);
-typedef int32_t (*build_fn)(const float *, uint32_t, uint32_t, uint32_t *, size_t);
-typedef size_t (*sample_fn)(const uint32_t *, size_t, const float *, WcEnvSample *, size_t);
-typedef size_t (*pdf_fn)(const uint32_t *, size_t, const float *, float *, size_t);
-
 static void hash_sample(WcEnvSample s, float pdf_at) {
     float v[4] = {s.uv[0], s.uv[1], s.pdf, pdf_at};
     floats(v, 4);
@@ -228,13 +223,13 @@ static void hash_sample(WcEnvSample s, float pdf_at) {
     word(s.texel[1]);
 }
 
-static void envmap(len_fn len, build_fn build, sample_fn sample, pdf_fn pdf) {
+static void envmap(uint32_t kind) {
     static uint32_t storage[4096];
     float weights[91];
     envmap_weights(weights);
-    size_t n = len(13, 7);
+    size_t n = wc_envmap_storage_len(kind, 13, 7);
     if (n > 4096) n = 4096;
-    if (build(weights, 13, 7, storage, n) != WC_OK) {
+    if (wc_envmap_build(kind, weights, 13, 7, storage, n) != WC_OK) {
         failures++;
         return;
     }
@@ -244,8 +239,8 @@ static void envmap(len_fn len, build_fn build, sample_fn sample, pdf_fn pdf) {
             inputs(u, i, 1, 2);
             WcEnvSample s;
             float p;
-            EXPECT(sample(storage, n, u, &s, 1) == 1);
-            EXPECT(pdf(storage, n, s.uv, &p, 1) == 1);
+            EXPECT(wc_envmap_sample(storage, n, u, &s, 1) == 1);
+            EXPECT(wc_envmap_pdf(storage, n, s.uv, &p, 1) == 1);
             hash_sample(s, p);
         }
     }
@@ -430,10 +425,8 @@ static uint64_t fingerprint(void) {
         word(wrapped[1]);
     }
     /* envmap */
-    envmap(wc_envmap_marginal_conditional_storage_len, wc_envmap_marginal_conditional_build,
-           wc_envmap_marginal_conditional_sample, wc_envmap_marginal_conditional_pdf);
-    envmap(wc_envmap_hierarchical_storage_len, wc_envmap_hierarchical_build,
-           wc_envmap_hierarchical_sample, wc_envmap_hierarchical_pdf);
+    envmap(WC_ENVMAP_KIND_MARGINAL_CONDITIONAL);
+    envmap(WC_ENVMAP_KIND_HIERARCHICAL);
     /* spherical */
     lights(TRIANGLES, wc_spherical_triangle, 2, 4);
     lights(TRIANGLES, wc_spherical_triangle_inverse, 3, 2);
@@ -509,17 +502,17 @@ static void extras(void) {
         float w[91];
         static uint32_t storage[4096];
         envmap_weights(w);
-        size_t n = wc_envmap_marginal_conditional_storage_len(13, 7);
-        EXPECT(wc_envmap_marginal_conditional_build(w, 13, 7, storage, n) == WC_OK);
-        EXPECT(wc_envmap_marginal_conditional_verify(storage, n) == WC_OK);
+        size_t n = wc_envmap_storage_len(WC_ENVMAP_KIND_MARGINAL_CONDITIONAL, 13, 7);
+        EXPECT(wc_envmap_build(WC_ENVMAP_KIND_MARGINAL_CONDITIONAL, w, 13, 7, storage, n) == WC_OK);
+        EXPECT(wc_envmap_from_storage_verified(storage, n) == WC_OK);
         for (size_t i = 0; i < n; i++) word(storage[i]);
     }
     line("envmap::MarginalConditional::new");
 
     h = UINT64_C(0xcbf29ce484222325);
-    word((uint32_t)wc_envmap_marginal_conditional_storage_len(13, 7));
-    word((uint32_t)wc_envmap_hierarchical_storage_len(13, 7));
-    word((uint32_t)wc_envmap_hierarchical_storage_len(4096, 2048));
+    word((uint32_t)wc_envmap_storage_len(WC_ENVMAP_KIND_MARGINAL_CONDITIONAL, 13, 7));
+    word((uint32_t)wc_envmap_storage_len(WC_ENVMAP_KIND_HIERARCHICAL, 13, 7));
+    word((uint32_t)wc_envmap_storage_len(WC_ENVMAP_KIND_HIERARCHICAL, 4096, 2048));
     line("envmap::MarginalConditional::storage_len");
 }
 

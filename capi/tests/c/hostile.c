@@ -652,59 +652,26 @@ static void one_quad(int which) {
 
 /* ---- environment maps ---- */
 
-typedef size_t (*len_fn)(uint32_t, uint32_t);
-typedef int32_t (*build_fn)(const float *, uint32_t, uint32_t, uint32_t *, size_t);
-typedef int32_t (*build_c_fn)(const float *, uint32_t, uint32_t, uint32_t, float, uint32_t *, size_t);
-typedef int32_t (*check_fn)(const uint32_t *, size_t);
-typedef size_t (*sample_fn)(const uint32_t *, size_t, const float *, WcEnvSample *, size_t);
-typedef size_t (*pdf_fn)(const uint32_t *, size_t, const float *, float *, size_t);
-typedef size_t (*dir_fn)(const uint32_t *, size_t, uint32_t, const float *, WcEnvDirection *, size_t);
-typedef size_t (*pdf_dir_fn)(const uint32_t *, size_t, uint32_t, const float *, float *, size_t);
+/* The two distributions: their `kind` and format tag (storage word 0). */
 struct dist {
-    const char *len_name, *build_name, *validate_name, *verify_name, *sample_name, *pdf_name;
-    len_fn len;
-    build_fn build;
-    check_fn validate, verify;
-    sample_fn sample;
-    pdf_fn pdf;
-    uint32_t tag;
-    const char *build_c_name;
-    build_c_fn build_c;
-    /* The `from_storage` names of validate and verify; the direction functions. */
-    const char *from_name, *from_verified_name, *dir_name, *pdf_dir_name;
-    check_fn from, from_verified;
-    dir_fn dir;
-    pdf_dir_fn pdf_dir;
+    uint32_t kind, tag;
 };
 static const struct dist DISTS[2] = {
-    {"wc_envmap_hierarchical_storage_len", "wc_envmap_hierarchical_build",
-     "wc_envmap_hierarchical_validate", "wc_envmap_hierarchical_verify",
-     "wc_envmap_hierarchical_sample", "wc_envmap_hierarchical_pdf",
-     wc_envmap_hierarchical_storage_len, wc_envmap_hierarchical_build,
-     wc_envmap_hierarchical_validate, wc_envmap_hierarchical_verify,
-     wc_envmap_hierarchical_sample, wc_envmap_hierarchical_pdf, 0x49486377u,
-     "wc_envmap_hierarchical_build_compensated", wc_envmap_hierarchical_build_compensated,
-     "wc_envmap_hierarchical_from_storage", "wc_envmap_hierarchical_from_storage_verified",
-     "wc_envmap_hierarchical_sample_direction", "wc_envmap_hierarchical_pdf_direction",
-     wc_envmap_hierarchical_from_storage, wc_envmap_hierarchical_from_storage_verified,
-     wc_envmap_hierarchical_sample_direction, wc_envmap_hierarchical_pdf_direction},
-    {"wc_envmap_marginal_conditional_storage_len", "wc_envmap_marginal_conditional_build",
-     "wc_envmap_marginal_conditional_validate", "wc_envmap_marginal_conditional_verify",
-     "wc_envmap_marginal_conditional_sample", "wc_envmap_marginal_conditional_pdf",
-     wc_envmap_marginal_conditional_storage_len, wc_envmap_marginal_conditional_build,
-     wc_envmap_marginal_conditional_validate, wc_envmap_marginal_conditional_verify,
-     wc_envmap_marginal_conditional_sample, wc_envmap_marginal_conditional_pdf, 0x434d6377u,
-     "wc_envmap_marginal_conditional_build_compensated",
-     wc_envmap_marginal_conditional_build_compensated,
-     "wc_envmap_marginal_conditional_from_storage",
-     "wc_envmap_marginal_conditional_from_storage_verified",
-     "wc_envmap_marginal_conditional_sample_direction",
-     "wc_envmap_marginal_conditional_pdf_direction",
-     wc_envmap_marginal_conditional_from_storage,
-     wc_envmap_marginal_conditional_from_storage_verified,
-     wc_envmap_marginal_conditional_sample_direction,
-     wc_envmap_marginal_conditional_pdf_direction},
+    {WC_ENVMAP_KIND_HIERARCHICAL, 0x49486377u},
+    {WC_ENVMAP_KIND_MARGINAL_CONDITIONAL, 0x434d6377u},
 };
+
+/* A `kind`: usually `D`'s, sometimes one that names no distribution. */
+static uint32_t hostile_kind(const struct dist *D) {
+    uint32_t r = rnd() % 8;
+    if (r == 0) return 2 + rnd() % 1000;
+    if (r == 1) return UINT32_MAX - rnd() % 4;
+    return D->kind;
+}
+
+static int known_kind(uint32_t kind) {
+    return kind == WC_ENVMAP_KIND_HIERARCHICAL || kind == WC_ENVMAP_KIND_MARGINAL_CONDITIONAL;
+}
 
 #define MAX_SIDE ((uint32_t)1 << 24)
 
@@ -719,21 +686,25 @@ static uint32_t hostile_side(void) {
 }
 
 static void one_storage_len(const struct dist *D) {
-    uint32_t w = hostile_side(), h = hostile_side();
-    size_t got = D->len(w, h);
-    current = D->len_name;
-    if (w == 0 || h == 0) {
-        reach(D->len_name, "0:zero-side");
+    uint32_t w = hostile_side(), h = hostile_side(), kind = hostile_kind(D);
+    size_t got = wc_envmap_storage_len(kind, w, h);
+    const char *name = "wc_envmap_storage_len";
+    current = name;
+    if (!known_kind(kind)) {
+        reach(name, "SIZE_MAX");
+        CHECK(got == SIZE_MAX);
+    } else if (w == 0 || h == 0) {
+        reach(name, "0:zero-side");
         CHECK(got == 0);
     } else if (w > MAX_SIDE || h > MAX_SIDE) {
-        reach(D->len_name, "SIZE_MAX");
+        reach(name, "SIZE_MAX");
         CHECK(got == SIZE_MAX);
     } else if (got == SIZE_MAX) {
         /* Tables above 2^32 words (hierarchical pads to powers of two: up to 4x). */
-        reach(D->len_name, "SIZE_MAX");
+        reach(name, "SIZE_MAX");
         CHECK((uint64_t)w * h > UINT32_MAX / 8);
     } else {
-        reach(D->len_name, "words");
+        reach(name, "words");
         CHECK((uint64_t)got >= 8 + (uint64_t)w * h && fits_u32(got));
     }
 }
@@ -746,8 +717,8 @@ static size_t built_len[2];
 #define BH 7
 
 static void one_build(const struct dist *D) {
-    uint32_t w = hostile_side(), h = hostile_side();
-    size_t need = D->len(w, h);
+    uint32_t w = hostile_side(), h = hostile_side(), kind = hostile_kind(D);
+    size_t need = wc_envmap_storage_len(kind, w, h);
     size_t len;
     switch (rnd() % 6) {
     case 0: len = 0; break;
@@ -790,16 +761,17 @@ static void one_build(const struct dist *D) {
     /* Half the calls go to the compensated build, with any compensation (known or not) and
        any fraction. */
     int compensated = rnd() & 1;
-    uint32_t kinds[] = {WC_ENVMAP_COMPENSATION_NONE, WC_ENVMAP_COMPENSATION_UNIFORM,
+    uint32_t comps[] = {WC_ENVMAP_COMPENSATION_NONE, WC_ENVMAP_COMPENSATION_UNIFORM,
                         WC_ENVMAP_COMPENSATION_EQUIRECT, 3, UINT32_MAX};
-    uint32_t kind = kinds[rnd() % 5];
+    uint32_t comp = comps[rnd() % 5];
     float fraction;
     fill_floats(&fraction, 1);
-    const char *name = compensated ? D->build_c_name : D->build_name;
+    const char *name = compensated ? "wc_envmap_build_compensated" : "wc_envmap_build";
     /* The model, in the documented order. */
     int32_t want;
     int access = 0;
-    if (compensated && kind > WC_ENVMAP_COMPENSATION_EQUIRECT) want = WC_ERR_INVALID_ARGUMENT;
+    if (!known_kind(kind) || (compensated && comp > WC_ENVMAP_COMPENSATION_EQUIRECT))
+        want = WC_ERR_INVALID_ARGUMENT;
     else if (w == 0 || h == 0) want = WC_ERR_ZERO_SIZE;
     else if (need == SIZE_MAX || !fits64(texels, 4) || !fits(need, 4))
         want = WC_ERR_TOO_LARGE;
@@ -817,8 +789,8 @@ static void one_build(const struct dist *D) {
     /* Exactly `need` words written: the words after them keep what they held (the sentinel,
        or the weights of case 4, which may start there). */
     else if (slack) snapshot(1, storage + need, (len - need) * 4);
-    int32_t got = compensated ? D->build_c(weights, w, h, kind, fraction, storage, len)
-                              : D->build(weights, w, h, storage, len);
+    int32_t got = compensated ? wc_envmap_build_compensated(kind, weights, w, h, comp, fraction, storage, len)
+                              : wc_envmap_build(kind, weights, w, h, storage, len);
     const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "WC_ERR_LENGTH_MISMATCH",
                            "WC_ERR_STORAGE_TOO_SMALL", "WC_ERR_INFINITE_WEIGHT", "WC_ERR_WRONG_FORMAT",
                            "WC_ERR_UNSUPPORTED_VERSION", "WC_ERR_CORRUPT", "WC_ERR_INVALID_ARGUMENT"};
@@ -827,7 +799,9 @@ static void one_build(const struct dist *D) {
     CHECK(got == want);
     CHECK(unchanged()); /* the weights always; the storage when refused, its slack if not */
     if (access) {
-        if (want == WC_OK) CHECK(D->validate(storage, need) == WC_OK && D->verify(storage, need) == WC_OK);
+        if (want == WC_OK)
+            CHECK(wc_envmap_from_storage(storage, need) == WC_OK &&
+                  wc_envmap_from_storage_verified(storage, need) == WC_OK);
     }
     reset();
 }
@@ -864,8 +838,17 @@ static void one_check(const struct dist *D, const struct dist *other, int verify
         memcpy(s, built[k], len * 4);
         want = WC_ERR_STORAGE_TOO_SMALL;
         break;
-    case 7: memcpy(s, built[other - DISTS], 8 * 4); want = WC_ERR_WRONG_FORMAT; break;
-    case 8: s[0] = rnd() | 1u; want = s[0] == D->tag ? WC_OK : WC_ERR_WRONG_FORMAT; break;
+    case 7: /* the other distribution's storage: read by its own tag */
+        len = built_len[other - DISTS];
+        s = place(0, len * 4, end, 0);
+        memcpy(s, built[other - DISTS], len * 4);
+        want = WC_OK;
+        break;
+    case 8: /* a tag of neither */
+        do s[0] = rnd() | 1u;
+        while (s[0] == D->tag || s[0] == other->tag);
+        want = WC_ERR_WRONG_FORMAT;
+        break;
     case 9: { /* any other version: 0, 1 (the corner-padded format), later ones */
         uint32_t v = rnd() % 100;
         s[1] = v == WC_ENVMAP_FORMAT_VERSION ? 1 : v;
@@ -893,11 +876,8 @@ static void one_check(const struct dist *D, const struct dist *other, int verify
         break;
     }
     snapshot(0, s, len < need + 64 ? len * 4 : need * 4);
-    int alias = rnd() & 1; /* the `from_storage` names: the same functions */
-    int32_t got = alias ? (verify ? D->from_verified : D->from)(s, len)
-                        : (verify ? D->verify : D->validate)(s, len);
-    const char *name = alias ? (verify ? D->from_verified_name : D->from_name)
-                             : (verify ? D->verify_name : D->validate_name);
+    int32_t got = verify ? wc_envmap_from_storage_verified(s, len) : wc_envmap_from_storage(s, len);
+    const char *name = verify ? "wc_envmap_from_storage_verified" : "wc_envmap_from_storage";
     const char *names[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "WC_ERR_LENGTH_MISMATCH",
                            "WC_ERR_STORAGE_TOO_SMALL", "WC_ERR_INFINITE_WEIGHT", "WC_ERR_WRONG_FORMAT",
                            "WC_ERR_UNSUPPORTED_VERSION", "WC_ERR_CORRUPT", "WC_ERR_INVALID_ARGUMENT"};
@@ -955,7 +935,7 @@ static void one_sample(const struct dist *D, int mode) {
     default: break;
     }
     if (u && aligned(u) && small) fill_floats(u, small * in_floats);
-    int storage_ok = s && aligned(s) && D->validate(s, len) == WC_OK;
+    int storage_ok = s && aligned(s) && wc_envmap_from_storage(s, len) == WC_OK;
     const char *outcome;
     size_t want = 0;
     if (n == 0) outcome = "0:n=0";
@@ -975,10 +955,10 @@ static void one_sample(const struct dist *D, int mode) {
         memcpy(ru, u, n * in_elem);
         memcpy(rs, s, len * 4);
         switch (mode) {
-        case 0: D->sample(rs, len, ru, ref_samples, n); break;
-        case 1: D->pdf(rs, len, ru, ref_out, n); break;
-        case 2: D->dir(rs, len, layout, ru, ref_dirs, n); break;
-        default: D->pdf_dir(rs, len, layout, ru, ref_out, n); break;
+        case 0: wc_envmap_sample(rs, len, ru, ref_samples, n); break;
+        case 1: wc_envmap_pdf(rs, len, ru, ref_out, n); break;
+        case 2: wc_envmap_sample_direction(rs, len, layout, ru, ref_dirs, n); break;
+        default: wc_envmap_pdf_direction(rs, len, layout, ru, ref_out, n); break;
         }
     }
     if (!want) snapshot(0, out, small * elem);
@@ -987,10 +967,10 @@ static void one_sample(const struct dist *D, int mode) {
     size_t got;
     const char *name;
     switch (mode) {
-    case 0: got = D->sample(s, len, u, out, n); name = D->sample_name; break;
-    case 1: got = D->pdf(s, len, u, out, n); name = D->pdf_name; break;
-    case 2: got = D->dir(s, len, layout, u, out, n); name = D->dir_name; break;
-    default: got = D->pdf_dir(s, len, layout, u, out, n); name = D->pdf_dir_name; break;
+    case 0: got = wc_envmap_sample(s, len, u, out, n); name = "wc_envmap_sample"; break;
+    case 1: got = wc_envmap_pdf(s, len, u, out, n); name = "wc_envmap_pdf"; break;
+    case 2: got = wc_envmap_sample_direction(s, len, layout, u, out, n); name = "wc_envmap_sample_direction"; break;
+    default: got = wc_envmap_pdf_direction(s, len, layout, u, out, n); name = "wc_envmap_pdf_direction"; break;
     }
     reach(name, outcome);
     current = name;
@@ -1249,17 +1229,24 @@ static void one_sampler_value(void) {
     }
 }
 
+/* A sampler's output of `bytes` bytes, flush against a guard page: one call in six null,
+   one in six misaligned. */
+static float *hostile_out(size_t bytes) {
+    int end = rnd() & 1;
+    float *out = place(0, bytes, end, 0);
+    uint32_t r = rnd() % 6;
+    if (r == 0) return NULL;
+    if (r == 1) return place(0, bytes, end, 1 + below(3));
+    return out;
+}
+
 /* wc_sampler_draw (0), wc_sampler_draw_u32 (1), wc_sampler_rnd (2). */
 static void one_sampler_draw(int which) {
     static const char *names[] = {"wc_sampler_draw", "wc_sampler_draw_u32", "wc_sampler_rnd"};
     WcSampler s = hostile_sampler();
     size_t n = hostile_dims();
     size_t small = n >= 1 && n <= 4 ? n : 4; /* elements placed */
-    int end = rnd() & 1;
-    float *out = place(0, small * 4, end, 0);
-    uint32_t r = rnd() % 6;
-    if (r == 0) out = NULL;
-    if (r == 1) out = place(0, small * 4, end, 1 + below(3));
+    float *out = hostile_out(small * 4);
     const char *outcome;
     size_t want = 0;
     if (n < 1 || n > 4) outcome = "0:n-range";
@@ -1306,11 +1293,7 @@ static void one_sampler_slice(void) {
     int dims_ok = n_dims >= 1 && n_dims <= 4;
     size_t count = hostile_count(4 * (dims_ok ? n_dims : 1), 300);
     size_t placed = dims_ok && count <= 300 ? count * n_dims : 16; /* floats */
-    int end = rnd() & 1;
-    float *out = place(0, placed * 4, end, 0);
-    uint32_t r = rnd() % 6;
-    if (r == 0) out = NULL;
-    if (r == 1) out = place(0, placed * 4, end, 1 + below(3));
+    float *out = hostile_out(placed * 4);
     const char *outcome;
     size_t want = 0;
     if (count == 0) outcome = "0:count=0";
@@ -1361,8 +1344,8 @@ int main(int argc, char **argv) {
     for (int k = 0; k < 2; k++) {
         float w[BW * BH];
         for (int i = 0; i < BW * BH; i++) w[i] = i % 5 == 0 ? 0.0f : (float)(i % 7) + 0.5f;
-        built_len[k] = DISTS[k].len(BW, BH);
-        if (built_len[k] > 8192 || DISTS[k].build(w, BW, BH, built[k], built_len[k]) != WC_OK) {
+        built_len[k] = wc_envmap_storage_len(DISTS[k].kind, BW, BH);
+        if (built_len[k] > 8192 || wc_envmap_build(DISTS[k].kind, w, BW, BH, built[k], built_len[k]) != WC_OK) {
             fprintf(stderr, "cannot build the reference storage\n");
             return 2;
         }

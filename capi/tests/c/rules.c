@@ -11,16 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
-static int passed, failed;
-#define CHECK(cond)                                                                      \
-    do {                                                                                 \
-        if (cond) {                                                                      \
-            passed++;                                                                    \
-        } else {                                                                         \
-            failed++;                                                                    \
-            fprintf(stderr, "%s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond);     \
-        }                                                                                \
-    } while (0)
+#include "check.h"
 
 #define SENTINEL 0x5au
 #define BIG 1024
@@ -257,25 +248,6 @@ static void disk_extras(void) {
 
 /* ---- environment maps ---- */
 
-typedef size_t (*len_fn)(uint32_t, uint32_t);
-typedef int32_t (*build_fn)(const float *, uint32_t, uint32_t, uint32_t *, size_t);
-typedef int32_t (*check_fn)(const uint32_t *, size_t);
-typedef size_t (*sample_fn)(const uint32_t *, size_t, const float *, WcEnvSample *, size_t);
-typedef size_t (*pdf_fn)(const uint32_t *, size_t, const float *, float *, size_t);
-typedef size_t (*dir_fn)(const uint32_t *, size_t, uint32_t, const float *, WcEnvDirection *, size_t);
-typedef size_t (*pdf_dir_fn)(const uint32_t *, size_t, uint32_t, const float *, float *, size_t);
-struct dist {
-    const char *tag;
-    len_fn len;
-    build_fn build;
-    check_fn validate, verify;
-    sample_fn sample;
-    pdf_fn pdf;
-    check_fn from_storage, from_storage_verified;
-    dir_fn dir;
-    pdf_dir_fn pdf_dir;
-};
-
 #define W 37
 #define H 19
 static float weights[W * H];
@@ -293,40 +265,46 @@ static int in_map(const WcEnvSample *s, size_t n) {
     return 1;
 }
 
-static void envmap(struct dist D, struct dist O) {
-    size_t need = D.len(W, H);
+/* `kind`, its format tag as bytes, and the other kind. */
+static void envmap(uint32_t kind, const char *tag, uint32_t other_kind) {
+    size_t need = wc_envmap_storage_len(kind, W, H);
     CHECK(need > WC_ENVMAP_HEADER_WORDS && need < 64 * 1024);
-    CHECK(D.len(0, 5) == 0 && D.len(5, 0) == 0);
-    CHECK(D.len(1u << 24, 1u << 24) == SIZE_MAX && D.len((1u << 24) + 1, 1) == SIZE_MAX);
+    CHECK(wc_envmap_storage_len(kind, 0, 5) == 0 && wc_envmap_storage_len(kind, 5, 0) == 0);
+    CHECK(wc_envmap_storage_len(kind, 1u << 24, 1u << 24) == SIZE_MAX && wc_envmap_storage_len(kind, (1u << 24) + 1, 1) == SIZE_MAX);
+    CHECK(wc_envmap_storage_len(2, W, H) == SIZE_MAX && wc_envmap_storage_len(UINT32_MAX, 0, 5) == SIZE_MAX);
 
     /* Build errors; nothing written on argument errors. */
     memset(storage, SENTINEL, sizeof storage);
-    CHECK(D.build(weights, 0, H, storage, need) == WC_ERR_ZERO_SIZE);
-    CHECK(D.build(weights, (1u << 24) + 1, 1, storage, need) == WC_ERR_TOO_LARGE);
-    CHECK(D.build(weights, W, H, storage, need - 1) == WC_ERR_STORAGE_TOO_SMALL);
-    CHECK(D.build(NULL, W, H, storage, need) == WC_ERR_INVALID_ARGUMENT);
-    CHECK(D.build(weights, W, H, NULL, need) == WC_ERR_INVALID_ARGUMENT);
-    CHECK(D.build(weights, W, H, (uint32_t *)(void *)(bytes + 2), need) == WC_ERR_INVALID_ARGUMENT);
-    CHECK(D.build((const float *)(const void *)storage, W, H, storage, need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_build(2, weights, W, H, storage, need) == WC_ERR_INVALID_ARGUMENT); /* unknown kind */
+    CHECK(wc_envmap_build_compensated(UINT32_MAX, weights, 0, H, WC_ENVMAP_COMPENSATION_NONE, 1.0f, storage,
+                                      need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_build_compensated(kind, weights, 0, H, 3, 1.0f, storage, need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_build(kind, weights, 0, H, storage, need) == WC_ERR_ZERO_SIZE);
+    CHECK(wc_envmap_build(kind, weights, (1u << 24) + 1, 1, storage, need) == WC_ERR_TOO_LARGE);
+    CHECK(wc_envmap_build(kind, weights, W, H, storage, need - 1) == WC_ERR_STORAGE_TOO_SMALL);
+    CHECK(wc_envmap_build(kind, NULL, W, H, storage, need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_build(kind, weights, W, H, NULL, need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_build(kind, weights, W, H, (uint32_t *)(void *)(bytes + 2), need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_build(kind, (const float *)(const void *)storage, W, H, storage, need) == WC_ERR_INVALID_ARGUMENT);
     CHECK(untouched(storage, sizeof storage));
     weights[100] = INFINITY;
-    CHECK(D.build(weights, W, H, storage, need) == WC_ERR_INFINITE_WEIGHT);
+    CHECK(wc_envmap_build(kind, weights, W, H, storage, need) == WC_ERR_INFINITE_WEIGHT);
     weights[100] = 0.5f;
 
     /* Build; only `need` words are written. */
     memset(storage, SENTINEL, sizeof storage);
-    CHECK(D.build(weights, W, H, storage, sizeof storage / 4) == WC_OK);
+    CHECK(wc_envmap_build(kind, weights, W, H, storage, sizeof storage / 4) == WC_OK);
     CHECK(untouched(storage + need, (sizeof storage / 4 - need) * 4));
-    CHECK(memcmp(storage, D.tag, 4) == 0); /* the format tag, as bytes */
-    CHECK(D.validate(storage, need) == WC_OK && D.verify(storage, need) == WC_OK);
-    CHECK(D.sample(storage, need, us, ref, BIG) == BIG && in_map(ref, BIG));
+    CHECK(memcmp(storage, tag, 4) == 0); /* the format tag, as bytes */
+    CHECK(wc_envmap_from_storage(storage, need) == WC_OK && wc_envmap_from_storage_verified(storage, need) == WC_OK);
+    CHECK(wc_envmap_sample(storage, need, us, ref, BIG) == BIG && in_map(ref, BIG));
     {
         float p[BIG], uv[BIG * 2];
         for (size_t i = 0; i < BIG; i++) {
             uv[2 * i] = ref[i].uv[0];
             uv[2 * i + 1] = ref[i].uv[1];
         }
-        CHECK(D.pdf(storage, need, uv, p, BIG) == BIG);
+        CHECK(wc_envmap_pdf(storage, need, uv, p, BIG) == BIG);
         int same = 1;
         for (size_t i = 0; i < BIG; i++) same &= memcmp(&p[i], &ref[i].pdf, 4) == 0;
         CHECK(same);
@@ -337,55 +315,66 @@ static void envmap(struct dist D, struct dist O) {
     /* Output at odd offsets, in pieces: the same samples. */
     {
         static WcEnvSample buf[BIG + 3];
-        CHECK(D.sample(storage, need, us, buf + 1, 500) == 500);
-        CHECK(D.sample(storage, need, us + 1000, buf + 501, BIG - 500) == BIG - 500);
+        CHECK(wc_envmap_sample(storage, need, us, buf + 1, 500) == 500);
+        CHECK(wc_envmap_sample(storage, need, us + 1000, buf + 501, BIG - 500) == BIG - 500);
         CHECK(memcmp(buf + 1, ref, sizeof ref) == 0);
     }
 
     /* The pointer rules. */
     memset(got, SENTINEL, sizeof got);
-    CHECK(D.sample(storage, need, us, got, 0) == 0);
-    CHECK(D.sample(NULL, need, us, got, 4) == 0);
-    CHECK(D.sample(storage, need, NULL, got, 4) == 0);
-    CHECK(D.sample(storage, need, us, NULL, 4) == 0);
-    CHECK(D.sample(storage, need, us, (WcEnvSample *)(void *)storage, 4) == 0); /* overlap */
-    CHECK(D.sample(storage, need, (const float *)(const void *)got, got, 4) == 0);
-    CHECK(D.pdf(storage, need, us, (float *)(void *)(storage + 8), 4) == 0);
+    CHECK(wc_envmap_sample(storage, need, us, got, 0) == 0);
+    CHECK(wc_envmap_sample(NULL, need, us, got, 4) == 0);
+    CHECK(wc_envmap_sample(storage, need, NULL, got, 4) == 0);
+    CHECK(wc_envmap_sample(storage, need, us, NULL, 4) == 0);
+    CHECK(wc_envmap_sample(storage, need, us, (WcEnvSample *)(void *)storage, 4) == 0); /* overlap */
+    CHECK(wc_envmap_sample(storage, need, (const float *)(const void *)got, got, 4) == 0);
+    CHECK(wc_envmap_pdf(storage, need, us, (float *)(void *)(storage + 8), 4) == 0);
     CHECK(untouched(got, sizeof got));
-    CHECK(D.validate(NULL, need) == WC_ERR_INVALID_ARGUMENT);
-    CHECK(D.validate((const uint32_t *)(const void *)(bytes + 1), need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_from_storage(NULL, need) == WC_ERR_INVALID_ARGUMENT);
+    CHECK(wc_envmap_from_storage((const uint32_t *)(const void *)(bytes + 1), need) == WC_ERR_INVALID_ARGUMENT);
 
     /* Invalid and truncated storage: an error, and sampling returns 0 writing nothing. */
     for (size_t n = 0; n < need; n += (n < 12 ? 1 : need / 7)) {
-        CHECK(D.validate(storage, n) == WC_ERR_STORAGE_TOO_SMALL);
-        CHECK(D.verify(storage, n) == WC_ERR_STORAGE_TOO_SMALL);
-        CHECK(D.sample(storage, n, us, got, 4) == 0 && untouched(got, sizeof got));
+        CHECK(wc_envmap_from_storage(storage, n) == WC_ERR_STORAGE_TOO_SMALL);
+        CHECK(wc_envmap_from_storage_verified(storage, n) == WC_ERR_STORAGE_TOO_SMALL);
+        CHECK(wc_envmap_sample(storage, n, us, got, 4) == 0 && untouched(got, sizeof got));
     }
-    CHECK(D.validate(storage, need - 1) == WC_ERR_STORAGE_TOO_SMALL);
-    CHECK(D.validate(storage, need + 1) == WC_OK); /* longer is fine */
-    size_t other_need = O.len(W, H);
-    CHECK(O.build(weights, W, H, other, other_need) == WC_OK);
-    CHECK(D.validate(other, other_need) == WC_ERR_WRONG_FORMAT);
-    CHECK(D.sample(other, other_need, us, got, 4) == 0 && untouched(got, sizeof got));
+    CHECK(wc_envmap_from_storage(storage, need - 1) == WC_ERR_STORAGE_TOO_SMALL);
+    CHECK(wc_envmap_from_storage(storage, need + 1) == WC_OK); /* longer is fine */
+    size_t other_need = wc_envmap_storage_len(other_kind, W, H);
+    CHECK(wc_envmap_build(other_kind, weights, W, H, other, other_need) == WC_OK);
+    /* The other distribution's storage: read as that one (its tag), not as this one. */
+    CHECK(wc_envmap_from_storage(other, other_need) == WC_OK && wc_envmap_from_storage_verified(other, other_need) == WC_OK);
+    CHECK(wc_envmap_sample(other, other_need, us, got, BIG) == BIG && in_map(got, BIG));
+    CHECK(memcmp(got, ref, sizeof ref) != 0);
+    memset(got, SENTINEL, sizeof got);
+    /* A tag of neither (one changed byte; a byte-swapped copy): the wrong format. */
+    memcpy(loaded, storage, need * 4);
+    loaded[0] ^= 0x20u;
+    CHECK(wc_envmap_from_storage(loaded, need) == WC_ERR_WRONG_FORMAT);
+    CHECK(wc_envmap_from_storage_verified(loaded, need) == WC_ERR_WRONG_FORMAT);
+    CHECK(wc_envmap_sample(loaded, need, us, got, 4) == 0 && untouched(got, sizeof got));
+    loaded[0] = storage[0] >> 24 | (storage[0] >> 8 & 0xff00u) | (storage[0] << 8 & 0xff0000u) | storage[0] << 24;
+    CHECK(wc_envmap_from_storage(loaded, need) == WC_ERR_WRONG_FORMAT);
     memcpy(loaded, storage, need * 4);
     loaded[1] = WC_ENVMAP_FORMAT_VERSION + 1;
-    CHECK(D.validate(loaded, need) == WC_ERR_UNSUPPORTED_VERSION);
+    CHECK(wc_envmap_from_storage(loaded, need) == WC_ERR_UNSUPPORTED_VERSION);
     loaded[1] = 1; /* version 1 (corner-padded pyramids): refused, never misread */
-    CHECK(D.validate(loaded, need) == WC_ERR_UNSUPPORTED_VERSION);
-    CHECK(D.verify(loaded, need) == WC_ERR_UNSUPPORTED_VERSION);
+    CHECK(wc_envmap_from_storage(loaded, need) == WC_ERR_UNSUPPORTED_VERSION);
+    CHECK(wc_envmap_from_storage_verified(loaded, need) == WC_ERR_UNSUPPORTED_VERSION);
     memcpy(loaded, storage, need * 4);
     loaded[2] = 0;
-    CHECK(D.validate(loaded, need) == WC_ERR_CORRUPT);
+    CHECK(wc_envmap_from_storage(loaded, need) == WC_ERR_CORRUPT);
     memcpy(loaded, storage, need * 4);
     loaded[5] += 1;
-    CHECK(D.validate(loaded, need) == WC_ERR_CORRUPT);
-    CHECK(D.sample(loaded, need, us, got, 4) == 0 && untouched(got, sizeof got));
+    CHECK(wc_envmap_from_storage(loaded, need) == WC_ERR_CORRUPT);
+    CHECK(wc_envmap_sample(loaded, need, us, got, 4) == 0 && untouched(got, sizeof got));
     /* A corrupt table word: the O(1) check passes, the one-pass check does not, and sampling
        stays in the map. */
     memcpy(loaded, storage, need * 4);
     loaded[need - 10] ^= 0x40000000u; /* an edge */
-    CHECK(D.validate(loaded, need) == WC_OK && D.verify(loaded, need) == WC_ERR_CORRUPT);
-    CHECK(D.sample(loaded, need, us, got, BIG) == BIG && in_map(got, BIG));
+    CHECK(wc_envmap_from_storage(loaded, need) == WC_OK && wc_envmap_from_storage_verified(loaded, need) == WC_ERR_CORRUPT);
+    CHECK(wc_envmap_sample(loaded, need, us, got, BIG) == BIG && in_map(got, BIG));
     /* Garbage tables behind a valid header: samples stay in the map. */
     for (uint32_t seed = 1; seed < 40; seed++) {
         uint32_t s = seed;
@@ -394,10 +383,10 @@ static void envmap(struct dist D, struct dist O) {
             uint32_t r = lcg(&s);
             loaded[i] = seed % 3 == 0 ? r : seed % 3 == 1 ? (r & 1u ? 0xffffffffu : 0u) : loaded[i] ^ (r & 0x80000401u);
         }
-        CHECK(D.validate(loaded, need) == WC_OK);
-        CHECK(D.sample(loaded, need, us, got, BIG) == BIG && in_map(got, BIG));
+        CHECK(wc_envmap_from_storage(loaded, need) == WC_OK);
+        CHECK(wc_envmap_sample(loaded, need, us, got, BIG) == BIG && in_map(got, BIG));
         float p[16];
-        CHECK(D.pdf(loaded, need, us, p, 16) == 16);
+        CHECK(wc_envmap_pdf(loaded, need, us, p, 16) == 16);
         int finite = 1;
         for (int i = 0; i < 16; i++) finite &= p[i] >= 0.0f && p[i] <= 3.4e38f;
         CHECK(finite);
@@ -405,11 +394,8 @@ static void envmap(struct dist D, struct dist O) {
 
     /* The same map built at another address: the same bytes (format version 3). */
     memset(loaded, SENTINEL, sizeof loaded);
-    CHECK(D.build(weights, W, H, loaded + 3, need) == WC_OK);
+    CHECK(wc_envmap_build(kind, weights, W, H, loaded + 3, need) == WC_OK);
     CHECK(memcmp(loaded + 3, storage, need * 4) == 0);
-    /* The `from_storage` names are the same checks. */
-    CHECK(D.from_storage(storage, need) == WC_OK && D.from_storage_verified(storage, need) == WC_OK);
-    CHECK(D.from_storage(storage, 3) == WC_ERR_STORAGE_TOO_SMALL);
     /* Every single-bit flip of the header and of the first 200 table words is caught by the
        verifying loader (the content checksum). */
     {
@@ -418,8 +404,7 @@ static void envmap(struct dist D, struct dist O) {
             for (int b = 0; b < 32; b++) {
                 memcpy(loaded, storage, need * 4);
                 loaded[i] ^= 1u << b;
-                caught &= D.verify(loaded, need) != WC_OK;
-                caught &= D.from_storage_verified(loaded, need) != WC_OK;
+                caught &= wc_envmap_from_storage_verified(loaded, need) != WC_OK;
             }
         }
         CHECK(caught);
@@ -428,30 +413,30 @@ static void envmap(struct dist D, struct dist O) {
     for (uint32_t layout = 0; layout < 2; layout++) {
         static WcEnvDirection d[BIG];
         static float dirs[BIG * 3], p[BIG * 3];
-        CHECK(D.dir(storage, need, layout, us, d, BIG) == BIG);
+        CHECK(wc_envmap_sample_direction(storage, need, layout, us, d, BIG) == BIG);
         size_t close = 0;
         for (size_t i = 0; i < BIG; i++) {
             CHECK(memcmp(d[i].uv, ref[i].uv, 8) == 0 && d[i].texel[0] == ref[i].texel[0] &&
                   d[i].texel[1] == ref[i].texel[1]);
             for (int c = 0; c < 3; c++) dirs[3 * i + c] = d[i].dir[c];
         }
-        CHECK(D.pdf_dir(storage, need, layout, dirs, p, BIG) == BIG);
+        CHECK(wc_envmap_pdf_direction(storage, need, layout, dirs, p, BIG) == BIG);
         for (size_t i = 0; i < BIG; i++) close += fabsf(p[i] - d[i].pdf) <= 1e-4f * d[i].pdf;
         CHECK(close * 1000 >= BIG * 999);
         /* In place: density i overwrites float i after direction i / 3 was read. */
         memcpy(p, dirs, sizeof dirs);
-        CHECK(D.pdf_dir(storage, need, layout, p, p, BIG) == BIG);
+        CHECK(wc_envmap_pdf_direction(storage, need, layout, p, p, BIG) == BIG);
         {
             float q[BIG];
-            CHECK(D.pdf_dir(storage, need, layout, dirs, q, BIG) == BIG);
+            CHECK(wc_envmap_pdf_direction(storage, need, layout, dirs, q, BIG) == BIG);
             CHECK(memcmp(p, q, sizeof q) == 0);
         }
         /* The rules: unknown layout, null, overlap, n = 0. */
         memset(got, SENTINEL, sizeof got);
-        CHECK(D.dir(storage, need, 2, us, (WcEnvDirection *)(void *)got, 4) == 0);
-        CHECK(D.dir(storage, need, layout, NULL, (WcEnvDirection *)(void *)got, 4) == 0);
-        CHECK(D.dir(storage, need, layout, us, (WcEnvDirection *)(void *)got, 0) == 0);
-        CHECK(D.pdf_dir(storage, need, 7, dirs, (float *)(void *)got, 4) == 0);
+        CHECK(wc_envmap_sample_direction(storage, need, 2, us, (WcEnvDirection *)(void *)got, 4) == 0);
+        CHECK(wc_envmap_sample_direction(storage, need, layout, NULL, (WcEnvDirection *)(void *)got, 4) == 0);
+        CHECK(wc_envmap_sample_direction(storage, need, layout, us, (WcEnvDirection *)(void *)got, 0) == 0);
+        CHECK(wc_envmap_pdf_direction(storage, need, 7, dirs, (float *)(void *)got, 4) == 0);
         CHECK(untouched(got, sizeof got));
     }
 
@@ -469,8 +454,8 @@ static void envmap(struct dist D, struct dist O) {
             if (!f) return;
             CHECK(fread(loaded + off, 4, need + 1, f) == need);
             fclose(f);
-            CHECK(D.verify(loaded + off, need) == WC_OK);
-            CHECK(D.sample(loaded + off, need, us, got, BIG) == BIG);
+            CHECK(wc_envmap_from_storage_verified(loaded + off, need) == WC_OK);
+            CHECK(wc_envmap_sample(loaded + off, need, us, got, BIG) == BIG);
             CHECK(memcmp(got, ref, sizeof ref) == 0);
         }
         remove("envmap.bin");
@@ -517,24 +502,8 @@ int main(void) {
     warps();
     generators();
     disk_extras();
-    struct dist hier = {"wcHI", wc_envmap_hierarchical_storage_len, wc_envmap_hierarchical_build,
-                        wc_envmap_hierarchical_validate, wc_envmap_hierarchical_verify,
-                        wc_envmap_hierarchical_sample, wc_envmap_hierarchical_pdf,
-                        wc_envmap_hierarchical_from_storage,
-                        wc_envmap_hierarchical_from_storage_verified,
-                        wc_envmap_hierarchical_sample_direction,
-                        wc_envmap_hierarchical_pdf_direction};
-    struct dist marg = {"wcMC", wc_envmap_marginal_conditional_storage_len,
-                        wc_envmap_marginal_conditional_build,
-                        wc_envmap_marginal_conditional_validate,
-                        wc_envmap_marginal_conditional_verify,
-                        wc_envmap_marginal_conditional_sample, wc_envmap_marginal_conditional_pdf,
-                        wc_envmap_marginal_conditional_from_storage,
-                        wc_envmap_marginal_conditional_from_storage_verified,
-                        wc_envmap_marginal_conditional_sample_direction,
-                        wc_envmap_marginal_conditional_pdf_direction};
-    envmap(hier, marg);
-    envmap(marg, hier);
+    envmap(WC_ENVMAP_KIND_HIERARCHICAL, "wcHI", WC_ENVMAP_KIND_MARGINAL_CONDITIONAL);
+    envmap(WC_ENVMAP_KIND_MARGINAL_CONDITIONAL, "wcMC", WC_ENVMAP_KIND_HIERARCHICAL);
     images();
     error_strings();
     printf("%d passed, %d failed\n", passed, failed);

@@ -1,5 +1,5 @@
 /*
- * The sampler through the C API (capi/tests/sampler.rs compiles and runs this).
+ * The sampler through the C API (capi/tests/c.rs compiles and runs this).
  *
  * 1. One line "name hash" per hash of capi/examples/sampler_hashes.rs: the same cases (every
  *    pattern, six roots, domain paths with and without splits) and the same FNV-1a 64 over the
@@ -17,16 +17,7 @@
 #include <stdio.h>
 #include <string.h>
 
-static int passed, failed;
-#define CHECK(cond)                                                                      \
-    do {                                                                                 \
-        if (cond) {                                                                      \
-            passed++;                                                                    \
-        } else {                                                                         \
-            failed++;                                                                    \
-            fprintf(stderr, "%s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond);     \
-        }                                                                                \
-    } while (0)
+#include "check.h"
 
 /* ---- FNV-1a 64 over little-endian words, as sampler_hashes.rs ---- */
 
@@ -90,10 +81,11 @@ static void state(WcSampler s) {
     word(s.index);
 }
 
-static void draws(WcSampler s) {
+/* wc_sampler_draw or wc_sampler_rnd for 1 to 4 dimensions. */
+static void draws(WcSampler s, size_t (*draw)(WcSampler, size_t, float *)) {
     for (size_t n = 1; n <= 4; n++) {
         float v[4];
-        CHECK(wc_sampler_draw(s, n, v) == n);
+        CHECK(draw(s, n, v) == n);
         floats(v, n);
     }
 }
@@ -103,14 +95,6 @@ static void draws_u32(WcSampler s) {
         uint32_t v[4];
         CHECK(wc_sampler_draw_u32(s, n, v) == n);
         words(v, n);
-    }
-}
-
-static void rnds(WcSampler s) {
-    for (size_t n = 1; n <= 4; n++) {
-        float v[4];
-        CHECK(wc_sampler_rnd(s, n, v) == n);
-        floats(v, n);
     }
 }
 
@@ -132,9 +116,9 @@ static void hashes(void) {
                     WcSampler s = key_path(root(pattern, r), p);
                     switch (what) {
                     case 0: state(s); break;
-                    case 1: draws(s); break;
+                    case 1: draws(s, wc_sampler_draw); break;
                     case 2: draws_u32(s); break;
-                    case 3: rnds(s); break;
+                    case 3: draws(s, wc_sampler_rnd); break;
                     default: slices(s); break;
                     }
                 }
@@ -150,9 +134,9 @@ static void hashes(void) {
                         state(s);
                         continue;
                     }
-                    draws(s);
+                    draws(s, wc_sampler_draw);
                     draws_u32(s);
-                    rnds(s);
+                    draws(s, wc_sampler_rnd);
                     slices(s);
                 }
             }
