@@ -307,8 +307,9 @@ function fail(code, what) {
 const tag = (s) => s.charCodeAt(0) | (s.charCodeAt(1) << 8) | (s.charCodeAt(2) << 16) | ((s.charCodeAt(3) << 24) >>> 0);
 const KINDS = {
   __proto__: null,
-  hierarchical: { __proto__: null, prefix: 'wc_envmap_hierarchical_', tag: tag('wcHI') },
-  'marginal-conditional': { __proto__: null, prefix: 'wc_envmap_marginal_conditional_', tag: tag('wcMC') },
+  // `kind`: the C ABI's WC_ENVMAP_KIND_* value.
+  hierarchical: { __proto__: null, kind: 0, tag: tag('wcHI') },
+  'marginal-conditional': { __proto__: null, kind: 1, tag: tag('wcMC') },
 };
 const HEADER_WORDS = 16;
 const SAMPLE_WORDS = 5; // WcEnvSample: uv[2], pdf, texel[2]
@@ -661,10 +662,11 @@ function create(x) {
       if (key !== secret) throw typeError('use envmapHierarchical, envmapMarginalConditional or envmapFromStorage');
       this.#p = p;
       this.#len = len;
-      this.#sample = x[KINDS[kind].prefix + 'sample'];
-      this.#pdf = x[KINDS[kind].prefix + 'pdf'];
-      this.#sampleDirection = x[KINDS[kind].prefix + 'sample_direction'];
-      this.#pdfDirection = x[KINDS[kind].prefix + 'pdf_direction'];
+      // One set of C functions for both distributions (the storage header says which).
+      this.#sample = x.wc_envmap_sample;
+      this.#pdf = x.wc_envmap_pdf;
+      this.#sampleDirection = x.wc_envmap_sample_direction;
+      this.#pdfDirection = x.wc_envmap_pdf_direction;
       const header = view(U, p, HEADER_WORDS);
       /** `'hierarchical'` or `'marginal-conditional'`; texels per row; rows. */
       own(this, 'kind', kind);
@@ -813,14 +815,14 @@ function create(x) {
       if (typeof fraction !== 'number') throw typeError(`fraction must be a number, not ${describe(fraction)}`);
     }
     const n = size(weights, width, height, 1, 'weights');
-    const len = x[k.prefix + 'storage_len'](width, height) >>> 0;
+    const len = x.wc_envmap_storage_len(k.kind, width, height) >>> 0;
     if (len === 0xffff_ffff) throw fail(-2, `envmap ${kind}`);
     const p = heap.alloc(4 * len);
     try {
       scratch1(F, n, weights, (pw) => {
         const code = compensated
-          ? x[k.prefix + 'build_compensated'](pw, width, height, c, fraction, p, len)
-          : x[k.prefix + 'build'](pw, width, height, p, len);
+          ? x.wc_envmap_build_compensated(k.kind, pw, width, height, c, fraction, p, len)
+          : x.wc_envmap_build(k.kind, pw, width, height, p, len);
         if (code !== 0) throw fail(code, `envmap ${kind}`);
       });
     } catch (e) {
@@ -876,7 +878,7 @@ function create(x) {
       const p = heap.alloc(4 * len);
       try {
         stored.copy(p);
-        const code = x[KINDS[kind].prefix + (verify ? 'verify' : 'validate')](p, len);
+        const code = verify ? x.wc_envmap_from_storage_verified(p, len) : x.wc_envmap_from_storage(p, len);
         if (code !== 0) throw fail(code, 'envmapFromStorage');
       } catch (e) {
         heap.free(p);

@@ -512,57 +512,48 @@ const ENVMAP: &[Entry] = {
         )
         .golden(Golden::Piece(fp::envmap_distributions))
         .named(&[
-            (C, "wc_envmap_marginal_conditional_sample"),
+            (C, "wc_envmap_sample"),
             (Wgsl, "wc_envmap_marginal_conditional_sample"),
         ]),
         Entry::new("envmap::MarginalConditional::pdf", Forms::ALL, Kind::Other)
             .golden(SAMPLE)
             .named(&[
-                (C, "wc_envmap_marginal_conditional_pdf"),
+                (C, "wc_envmap_pdf"),
                 (Wgsl, "wc_envmap_marginal_conditional_pdf"),
             ]),
         Entry::new("envmap::Hierarchical::sample", Forms::ALL, Kind::Other)
             .golden(SAMPLE)
             .named(&[
-                (C, "wc_envmap_hierarchical_sample"),
+                (C, "wc_envmap_sample"),
                 (Wgsl, "wc_envmap_hierarchical_sample"),
             ]),
         Entry::new("envmap::Hierarchical::pdf", Forms::ALL, Kind::Other)
             .golden(SAMPLE)
-            .named(&[
-                (C, "wc_envmap_hierarchical_pdf"),
-                (Wgsl, "wc_envmap_hierarchical_pdf"),
-            ]),
+            .named(&[(C, "wc_envmap_pdf"), (Wgsl, "wc_envmap_hierarchical_pdf")]),
         Entry::new(
             "envmap::MarginalConditional::new",
             Forms::SCALAR,
             Kind::Other,
         )
         .golden(Golden::OwnPiece(fp::envmap_storage))
-        .named(&[
-            (C, "wc_envmap_marginal_conditional_build"),
-            (Js, "envmapMarginalConditional"),
-        ]),
+        .named(&[(C, "wc_envmap_build"), (Js, "envmapMarginalConditional")]),
         Entry::new("envmap::Hierarchical::new", Forms::SCALAR, Kind::Other)
             .golden(STORAGE)
-            .named(&[
-                (C, "wc_envmap_hierarchical_build"),
-                (Js, "envmapHierarchical"),
-            ]),
+            .named(&[(C, "wc_envmap_build"), (Js, "envmapHierarchical")]),
         Entry::new(
             "envmap::MarginalConditional::storage_len",
             Forms::SCALAR,
             Kind::Other,
         )
         .golden(Golden::OwnPiece(fp::envmap_storage_lens))
-        .named(&[(C, "wc_envmap_marginal_conditional_storage_len")]),
+        .named(&[(C, "wc_envmap_storage_len")]),
         Entry::new(
             "envmap::Hierarchical::storage_len",
             Forms::SCALAR,
             Kind::Other,
         )
         .golden(Golden::With("envmap::MarginalConditional::storage_len"))
-        .named(&[(C, "wc_envmap_hierarchical_storage_len")]),
+        .named(&[(C, "wc_envmap_storage_len")]),
         Entry::new(
             "envmap::MarginalConditional::new_compensated",
             Forms::SCALAR,
@@ -570,7 +561,7 @@ const ENVMAP: &[Entry] = {
         )
         .golden(Golden::Tests("tests/envmap/compensation.rs"))
         .named(&[
-            (C, "wc_envmap_marginal_conditional_build_compensated"),
+            (C, "wc_envmap_build_compensated"),
             (Js, "envmapMarginalConditionalCompensated"),
         ]),
         Entry::new(
@@ -580,7 +571,7 @@ const ENVMAP: &[Entry] = {
         )
         .golden(Golden::Tests("tests/envmap/compensation.rs"))
         .named(&[
-            (C, "wc_envmap_hierarchical_build_compensated"),
+            (C, "wc_envmap_build_compensated"),
             (Js, "envmapHierarchicalCompensated"),
         ]),
         Entry::new(
@@ -589,40 +580,28 @@ const ENVMAP: &[Entry] = {
             Kind::Other,
         )
         .golden(STORAGE)
-        .named(&[
-            (C, "wc_envmap_marginal_conditional_from_storage"),
-            (C, "wc_envmap_marginal_conditional_validate"),
-        ]),
+        .named(&[(C, "wc_envmap_from_storage")]),
         Entry::new(
             "envmap::Hierarchical::from_storage",
             Forms::SCALAR,
             Kind::Other,
         )
         .golden(STORAGE)
-        .named(&[
-            (C, "wc_envmap_hierarchical_from_storage"),
-            (C, "wc_envmap_hierarchical_validate"),
-        ]),
+        .named(&[(C, "wc_envmap_from_storage")]),
         Entry::new(
             "envmap::MarginalConditional::from_storage_verified",
             Forms::SCALAR,
             Kind::Other,
         )
         .golden(STORAGE)
-        .named(&[
-            (C, "wc_envmap_marginal_conditional_from_storage_verified"),
-            (C, "wc_envmap_marginal_conditional_verify"),
-        ]),
+        .named(&[(C, "wc_envmap_from_storage_verified")]),
         Entry::new(
             "envmap::Hierarchical::from_storage_verified",
             Forms::SCALAR,
             Kind::Other,
         )
         .golden(STORAGE)
-        .named(&[
-            (C, "wc_envmap_hierarchical_from_storage_verified"),
-            (C, "wc_envmap_hierarchical_verify"),
-        ]),
+        .named(&[(C, "wc_envmap_from_storage_verified")]),
         Entry::new(
             "envmap::MarginalConditional::storage",
             Forms::SCALAR,
@@ -647,20 +626,14 @@ const ENVMAP: &[Entry] = {
             Kind::Other,
         )
         .golden(Golden::Tests("tests/envmap/direction.rs"))
-        .named(&[
-            (C, "wc_envmap_marginal_conditional_sample_direction"),
-            (C, "wc_envmap_hierarchical_sample_direction"),
-        ]),
+        .named(&[(C, "wc_envmap_sample_direction")]),
         Entry::new(
             "envmap::MarginalConditional::pdf_direction",
             Forms::SLICE,
             Kind::Other,
         )
         .golden(Golden::Tests("tests/envmap/direction.rs"))
-        .named(&[
-            (C, "wc_envmap_marginal_conditional_pdf_direction"),
-            (C, "wc_envmap_hierarchical_pdf_direction"),
-        ]),
+        .named(&[(C, "wc_envmap_pdf_direction")]),
         Entry::new("envmap::SampleX8::to_array", Forms::SCALAR, Kind::Other).golden(TESTS),
         Entry::new(
             "envmap::image::luminance",
