@@ -12,6 +12,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { load } from '../warpcore.mjs';
+import { Fnv } from './fnv.mjs';
 
 const root = fileURLToPath(new URL('../../', import.meta.url));
 const wasm = process.env.WARPCORE_WASM; // test another build (CI: the fresh one)
@@ -19,31 +20,6 @@ const wc = await load(wasm);
 
 // ---- hashing and inputs, as in fingerprint.rs ----
 
-class Fnv {
-  constructor() {
-    this.hi = 0xcbf29ce4;
-    this.lo = 0x84222325;
-  }
-  word(w) {
-    for (let i = 0; i < 4; i++) {
-      const lo = (this.lo ^ ((w >>> (8 * i)) & 0xff)) >>> 0;
-      // (hi:lo) * 0x100000001b3 mod 2^64 = (hi:lo) * 0x1b3 + (lo << 40)
-      const p = lo * 0x1b3;
-      const carry = Math.floor(p / 2 ** 32);
-      this.lo = p >>> 0;
-      this.hi = (this.hi * 0x1b3 + carry + ((lo << 8) >>> 0)) >>> 0;
-    }
-  }
-  words(a) {
-    for (let i = 0; i < a.length; i++) this.word(a[i]);
-  }
-  floats(f) {
-    this.words(new Uint32Array(f.buffer, f.byteOffset, f.length));
-  }
-  hex() {
-    return this.hi.toString(16).padStart(8, '0') + this.lo.toString(16).padStart(8, '0');
-  }
-}
 
 // The inputs, as the registry exports them (registry/tests/fingerprint.rs writes
 // js/test/registry.json and fails when it is stale): special values and lights as f32 bits.

@@ -12,6 +12,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { load } from '../warpcore.mjs';
+import { Fnv } from './fnv.mjs';
 
 const root = fileURLToPath(new URL('../../', import.meta.url));
 const wasmUrl = process.env.WARPCORE_WASM ? pathToFileURL(process.env.WARPCORE_WASM) : new URL('../warpcore.wasm', import.meta.url);
@@ -19,30 +20,6 @@ const wc = await load(wasmUrl);
 
 // ---- the cases and the hash of sampler_hashes.rs ----
 
-class Fnv {
-  constructor() {
-    this.hi = 0xcbf29ce4;
-    this.lo = 0x84222325;
-  }
-  word(w) {
-    for (let i = 0; i < 4; i++) {
-      const lo = (this.lo ^ ((w >>> (8 * i)) & 0xff)) >>> 0;
-      const p = lo * 0x1b3;
-      const carry = Math.floor(p / 2 ** 32);
-      this.lo = p >>> 0;
-      this.hi = (this.hi * 0x1b3 + carry + ((lo << 8) >>> 0)) >>> 0;
-    }
-  }
-  words(a) {
-    for (let i = 0; i < a.length; i++) this.word(a[i]);
-  }
-  floats(f) {
-    this.words(new Uint32Array(f.buffer, f.byteOffset, f.length));
-  }
-  hex() {
-    return this.hi.toString(16).padStart(8, '0') + this.lo.toString(16).padStart(8, '0');
-  }
-}
 
 const ROOTS = [
   [0, 0, 0, 0, 0],

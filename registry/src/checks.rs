@@ -443,7 +443,7 @@ pub fn sphere(data: &[u8]) {
 /// all-zero map), with a finite positive pdf equal to `pdf(uv)`, and x8 == scalar.
 #[cfg(feature = "envmap")]
 pub fn envmap(data: &[u8]) {
-    use warpcore::envmap::{Error, Hierarchical, MarginalConditional, Sample};
+    use warpcore::envmap::{Distribution, Error, Hierarchical, MarginalConditional, Sample};
     let w = words(data);
     let get = |k: usize| w.get(k).copied().unwrap_or(0);
     let (width, height) = ((get(0) % 40 + 1) as usize, (get(1) % 40 + 1) as usize);
@@ -497,31 +497,26 @@ pub fn envmap(data: &[u8]) {
     };
 
     // One body for both distributions: build (or expect the documented error), then sample.
-    /// `ops`: the distribution's `sample`, `sample_x8` (as an array) and `pdf`.
-    fn run<D, S, S8, P>(
+    fn run<D: Distribution>(
         name: &str,
         built: Result<D, Error>,
         expected_error: Option<Error>,
         us: &[[f32; 2]],
-        (sample, sample_x8, pdf): (S, S8, P),
         check: &dyn Fn(&str, Sample, f32),
-    ) where
-        S: Fn(&D, [f32; 2]) -> Sample,
-        S8: Fn(&D, [f32x8; 2]) -> [Sample; 8],
-        P: Fn(&D, [f32; 2]) -> f32,
-    {
+    ) {
         match built {
             Err(e) => assert_eq!(Some(e), expected_error, "{name}: unexpected error"),
             Ok(d) => {
                 assert!(expected_error.is_none(), "{name} accepted a bad input");
                 for g in us.chunks_exact(8) {
-                    let v = sample_x8(
-                        &d,
-                        std::array::from_fn(|k| f32x8::new(std::array::from_fn(|j| g[j][k]))),
-                    );
+                    let v = d
+                        .sample_x8(std::array::from_fn(|k| {
+                            f32x8::new(std::array::from_fn(|j| g[j][k]))
+                        }))
+                        .to_array();
                     for (j, u) in g.iter().enumerate() {
-                        let s = sample(&d, *u);
-                        check(name, s, pdf(&d, s.uv));
+                        let s = d.sample(*u);
+                        check(name, s, d.pdf(s.uv));
                         assert_eq!(s, v[j], "{name} x8");
                     }
                 }
@@ -539,33 +534,14 @@ pub fn envmap(data: &[u8]) {
     let need = MarginalConditional::storage_len(width, height);
     let mut storage = vec![0u32; need.saturating_sub(short)];
     let got = storage.len();
-    run(
-        "marginal",
-        MarginalConditional::new_compensated(&weights, width, height, compensation, &mut storage),
-        expected(need, got),
-        &us,
-        (
-            |d: &_, u| d.sample(u),
-            |d: &_, u| d.sample_x8(u).to_array(),
-            |d: &_, uv| d.pdf(uv),
-        ),
-        &check,
-    );
+    let built =
+        MarginalConditional::new_compensated(&weights, width, height, compensation, &mut storage);
+    run("marginal", built, expected(need, got), &us, &check);
     let need = Hierarchical::storage_len(width, height);
     let mut storage = vec![0u32; need.saturating_sub(short)];
     let got = storage.len();
-    run(
-        "hierarchical",
-        Hierarchical::new_compensated(&weights, width, height, compensation, &mut storage),
-        expected(need, got),
-        &us,
-        (
-            |d: &_, u| d.sample(u),
-            |d: &_, u| d.sample_x8(u).to_array(),
-            |d: &_, uv| d.pdf(uv),
-        ),
-        &check,
-    );
+    let built = Hierarchical::new_compensated(&weights, width, height, compensation, &mut storage);
+    run("hierarchical", built, expected(need, got), &us, &check);
 }
 
 /// Env-map storage loading: arbitrary words as a storage (`from_storage` and
@@ -581,7 +557,7 @@ pub fn envmap(data: &[u8]) {
 /// too).
 #[cfg(feature = "envmap")]
 pub fn envmap_storage(data: &[u8]) {
-    use warpcore::envmap::{Error, Hierarchical, MarginalConditional, Sample};
+    use warpcore::envmap::{Distribution, Error, Hierarchical, MarginalConditional, Sample};
     let flags = data.first().copied().unwrap_or(0);
     let w = words(data.get(4..).unwrap_or(&[]));
     let hierarchical = flags & 1 != 0;
@@ -640,19 +616,8 @@ pub fn envmap_storage(data: &[u8]) {
         ]
     }));
 
-    fn run<D>(
-        name: &str,
-        d: &D,
-        us: &[[f32; 2]],
-        (sample, sample_x8, slice, pdf, size): (
-            impl Fn(&D, [f32; 2]) -> Sample,
-            impl Fn(&D, [f32x8; 2]) -> [Sample; 8],
-            impl Fn(&D, &[[f32; 2]], &mut [Sample]) -> usize,
-            impl Fn(&D, [f32; 2]) -> f32,
-            impl Fn(&D) -> (usize, usize),
-        ),
-    ) {
-        let (width, height) = size(d);
+    fn run<D: Distribution>(name: &str, d: &D, us: &[[f32; 2]]) {
+        let (width, height) = (d.width(), d.height());
         let mut out = vec![
             Sample {
                 uv: [0.0; 2],
@@ -661,13 +626,13 @@ pub fn envmap_storage(data: &[u8]) {
             };
             us.len()
         ];
-        assert_eq!(slice(d, us, &mut out), us.len());
+        assert_eq!(d.sample_slice(us, &mut out), us.len());
         for (g, group) in us.chunks_exact(8).enumerate() {
             let v: [f32x8; 2] =
                 std::array::from_fn(|k| f32x8::new(std::array::from_fn(|j| group[j][k])));
-            let x8 = sample_x8(d, v);
+            let x8 = d.sample_x8(v).to_array();
             for (j, u) in group.iter().enumerate() {
-                let s = sample(d, *u);
+                let s = d.sample(*u);
                 assert_eq!(s, x8[j], "{name}: scalar != x8 for {u:?}");
                 assert_eq!(s, out[g * 8 + j], "{name}: scalar != slice for {u:?}");
                 let [c, r] = s.texel.map(|t| t as usize);
@@ -678,7 +643,7 @@ pub fn envmap_storage(data: &[u8]) {
                 );
                 assert!(in_unit_square(s.uv), "{name}: uv {:?}", s.uv);
                 assert!(s.pdf.is_finite() && s.pdf >= 0.0, "{name}: pdf {}", s.pdf);
-                let p = pdf(d, s.uv);
+                let p = d.pdf(s.uv);
                 assert!(p.is_finite() && p >= 0.0, "{name}: pdf(uv) {p}");
             }
         }
@@ -695,30 +660,39 @@ pub fn envmap_storage(data: &[u8]) {
             assert_eq!(a, b, "{name}: the header errors differ");
         }
     };
-    macro_rules! both_loads {
-        ($t:ident, $name:literal) => {{
-            let ops = (
-                |d: &$t, u| d.sample(u),
-                |d: &$t, u| d.sample_x8(u).to_array(),
-                |d: &$t, u: &[[f32; 2]], o: &mut [Sample]| d.sample_slice(u, o),
-                |d: &$t, uv| d.pdf(uv),
-                |d: &$t| (d.width(), d.height()),
-            );
-            let loaded = $t::from_storage(&storage);
-            if let Ok(d) = &loaded {
-                run($name, d, &us, ops);
+    /// Both loads of the storage as `D`: each sampled where it succeeds, their errors checked.
+    fn both_loads<'a, D: Distribution>(
+        name: &str,
+        storage: &'a [u32],
+        us: &[[f32; 2]],
+        (load, load_verified): LoadPair<'a, D>,
+        check: &LoadCheck,
+    ) {
+        let (loaded, verified) = (load(storage), load_verified(storage));
+        for (d, how) in [(&loaded, ""), (&verified, " (verified)")] {
+            if let Ok(d) = d {
+                run(&format!("{name}{how}"), d, us);
             }
-            let verified = $t::from_storage_verified(&storage);
-            if let Ok(d) = &verified {
-                run(concat!($name, " (verified)"), d, &us, ops);
-            }
-            check($name, loaded.map(|_| ()), verified.map(|_| ()));
-        }};
+        }
+        check(name, loaded.map(|_| ()), verified.map(|_| ()));
     }
+    type LoadCheck = dyn Fn(&str, Result<(), Error>, Result<(), Error>);
+    type LoadPair<'a, D> = (
+        fn(&'a [u32]) -> Result<D, Error>,
+        fn(&'a [u32]) -> Result<D, Error>,
+    );
     if hierarchical {
-        both_loads!(Hierarchical, "hierarchical");
+        let loads: LoadPair<'_, Hierarchical> = (
+            Hierarchical::from_storage,
+            Hierarchical::from_storage_verified,
+        );
+        both_loads("hierarchical", &storage, &us, loads, &check);
     } else {
-        both_loads!(MarginalConditional, "marginal");
+        let loads: LoadPair<'_, MarginalConditional> = (
+            MarginalConditional::from_storage,
+            MarginalConditional::from_storage_verified,
+        );
+        both_loads("marginal", &storage, &us, loads, &check);
     }
 }
 

@@ -53,6 +53,13 @@ impl Forms {
     }
 }
 
+/// A slice form: inputs, outputs, the count written.
+pub type SliceFn<const I: usize, const O: usize> = fn(&[[f32; I]], &mut [[f32; O]]) -> usize;
+
+/// A light's slice form: the light, inputs, outputs, the count written.
+pub type LightSliceFn<const I: usize, const O: usize> =
+    fn(Light<f32>, &[[f32; I]], &mut [[f32; O]]) -> usize;
+
 /// A map of points, `[f32; I] -> [f32; O]`, with its lane and slice forms where it has them.
 /// Functions of other argument lists enter through non-capturing adapter closures.
 #[derive(Clone, Copy)]
@@ -60,7 +67,7 @@ pub struct Map<const I: usize, const O: usize> {
     pub scalar: fn([f32; I]) -> [f32; O],
     pub x8: Option<fn([f32x8; I]) -> [f32x8; O]>,
     pub x16: Option<fn([f32x16; I]) -> [f32x16; O]>,
-    pub slice: Option<fn(&[[f32; I]], &mut [[f32; O]]) -> usize>,
+    pub slice: Option<SliceFn<I, O>>,
 }
 
 /// An index-driven sequence, `(index, seed) -> [f32; O]`; the slice form fills consecutive
@@ -101,7 +108,7 @@ pub struct LightMap<const I: usize, const O: usize> {
     pub scalar: fn(Light<f32>, [f32; I]) -> [f32; O],
     pub x8: fn(Light<f32x8>, [f32x8; I]) -> [f32x8; O],
     pub x16: fn(Light<f32x16>, [f32x16; I]) -> [f32x16; O],
-    pub slice: fn(Light<f32>, &[[f32; I]], &mut [[f32; O]]) -> usize,
+    pub slice: LightSliceFn<I, O>,
 }
 
 /// A function of a light alone (its solid angle).

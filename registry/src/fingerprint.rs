@@ -93,31 +93,7 @@ pub fn input<const D: usize>(i: usize) -> [f32; D] {
 /// without lane forms skips the second; one without an `_x16` form hashes its `_x8` form in
 /// both hashers.
 pub fn map<const I: usize, const O: usize>(h: &mut Hasher, m: &Map<I, O>) {
-    let mut chunk_in = [[0.0f32; I]; 37];
-    let mut chunk_out = [[0.0f32; O]; 37];
-    let mut i = 0;
-    while i < N {
-        let n = (N - i).min(37);
-        for (k, slot) in chunk_in.iter_mut().enumerate().take(n) {
-            *slot = input(i + k);
-        }
-        let (src, dst) = (
-            chunk_in.get(..n).unwrap_or(&[]),
-            chunk_out.get_mut(..n).unwrap_or(&mut []),
-        );
-        if let Some(slice) = m.slice {
-            h.word(slice(src, dst) as u32);
-            for (u, o) in src.iter().zip(dst.iter()) {
-                h.floats(&(m.scalar)(*u));
-                h.floats(o);
-            }
-        } else {
-            for u in src {
-                h.floats(&(m.scalar)(*u));
-            }
-        }
-        i += n;
-    }
+    chunks(h, m.scalar, m.slice);
     let Some(x8) = m.x8 else { return };
     let mut g = 0;
     while g + 16 <= N {
@@ -134,6 +110,40 @@ pub fn map<const I: usize, const O: usize>(h: &mut Hasher, m: &Map<I, O>) {
     }
 }
 
+/// The set in chunks of 37 (so padded tails are included): per chunk the slice form's count,
+/// then input by input the scalar form's output and the slice form's; without a slice form,
+/// the scalar outputs alone.
+fn chunks<const I: usize, const O: usize>(
+    h: &mut Hasher,
+    scalar: impl Fn([f32; I]) -> [f32; O],
+    slice: Option<impl Fn(&[[f32; I]], &mut [[f32; O]]) -> usize>,
+) {
+    let mut chunk_in = [[0.0f32; I]; 37];
+    let mut chunk_out = [[0.0f32; O]; 37];
+    let mut i = 0;
+    while i < N {
+        let n = (N - i).min(37);
+        for (k, slot) in chunk_in.iter_mut().enumerate().take(n) {
+            *slot = input(i + k);
+        }
+        let (src, dst) = (
+            chunk_in.get(..n).unwrap_or(&[]),
+            chunk_out.get_mut(..n).unwrap_or(&mut []),
+        );
+        match &slice {
+            Some(slice) => {
+                h.word(slice(src, dst) as u32);
+                for (u, o) in src.iter().zip(dst.iter()) {
+                    h.floats(&scalar(*u));
+                    h.floats(o);
+                }
+            }
+            None => src.iter().for_each(|u| h.floats(&scalar(*u))),
+        }
+        i += n;
+    }
+}
+
 /// [`map`] on a map with every form, from its four functions (the `spherical` tests use it
 /// on modified forms).
 pub fn warp<const I: usize, const O: usize>(
@@ -141,7 +151,7 @@ pub fn warp<const I: usize, const O: usize>(
     scalar: fn([f32; I]) -> [f32; O],
     x8: fn([f32x8; I]) -> [f32x8; O],
     x16: fn([f32x16; I]) -> [f32x16; O],
-    slice: fn(&[[f32; I]], &mut [[f32; O]]) -> usize,
+    slice: crate::entry::SliceFn<I, O>,
 ) {
     map(
         h,
@@ -322,25 +332,11 @@ pub fn light_map<const I: usize, const O: usize>(h: &mut Hasher, m: &LightMap<I,
     let l_count = lights.len();
     for l in 0..l_count {
         let light = points(lights[l % l_count]);
-        let mut chunk_in = [[0.0f32; I]; 37];
-        let mut chunk_out = [[0.0f32; O]; 37];
-        let mut i = 0;
-        while i < N {
-            let n = (N - i).min(37);
-            for (k, slot) in chunk_in.iter_mut().enumerate().take(n) {
-                *slot = input(i + k);
-            }
-            let (src, dst) = (
-                chunk_in.get(..n).unwrap_or(&[]),
-                chunk_out.get_mut(..n).unwrap_or(&mut []),
-            );
-            h.word(slice(light, src, dst) as u32);
-            for (u, o) in src.iter().zip(dst.iter()) {
-                h.floats(&scalar(light, *u));
-                h.floats(o);
-            }
-            i += n;
-        }
+        chunks(
+            h,
+            |u| scalar(light, u),
+            Some(|s: &_, d: &mut _| slice(light, s, d)),
+        );
         let mut g = 0;
         while g + 16 <= N {
             let ls: [[f32; 12]; 16] = core::array::from_fn(|j| lights[(l + g + j) % l_count]);
@@ -476,24 +472,13 @@ pub fn indexed_forms<const O: usize>(h: &mut Hasher, s: &Indexed<O>) {
 /// (its slice part a loop of the scalar form: the slice form writes four points per input).
 pub fn quadrant(h: &mut Hasher, m: &Quadrant) {
     for q in 0..4u32 {
-        let mut chunk_out = [[0.0f32; 2]; 37];
-        let mut chunk_in = [[0.0f32; 2]; 37];
-        let mut i = 0;
-        while i < N {
-            let n = (N - i).min(37);
-            for (k, slot) in chunk_in.iter_mut().enumerate().take(n) {
-                *slot = input(i + k);
-            }
-            for (u, o) in chunk_in.iter().zip(chunk_out.iter_mut()).take(n) {
+        let each = |u: &[[f32; 2]], o: &mut [[f32; 2]]| {
+            for (u, o) in u.iter().zip(o.iter_mut()) {
                 *o = (m.scalar)(*u, q);
             }
-            h.word(n as u32);
-            for (u, o) in chunk_in.iter().zip(chunk_out.iter()).take(n) {
-                h.floats(&(m.scalar)(*u, q));
-                h.floats(o);
-            }
-            i += n;
-        }
+            u.len().min(o.len())
+        };
+        chunks(h, |u| (m.scalar)(u, q), Some(each));
         let mut g = 0;
         while g + 16 <= N {
             let group: [[f32; 2]; 16] = core::array::from_fn(|j| input(g + j));

@@ -4,16 +4,7 @@
 //! `include/warpcore.h`, each method of the JS module's API and each `wc_` function of the
 //! WGSL libraries is bound by an entry (or is listed in `NOT_FUNCTIONS`); and each name an
 //! entry gives exists in its language. Adding a public function without an entry fails here.
-#![cfg(all(
-    feature = "disk",
-    feature = "triangle",
-    feature = "sphere",
-    feature = "pmj02bn",
-    feature = "sequence",
-    feature = "envmap",
-    feature = "sampler",
-    feature = "spherical"
-))]
+#![cfg(feature = "all")]
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};

@@ -9,15 +9,7 @@
 //! `tests/golden/registry.txt`, one value per function (every entry with bits of its own).
 //! When a change is *meant* to alter output bits, regenerate them with `WARPCORE_BLESS=1
 //! cargo test -p warpcore-registry --test fingerprint` and say why in the commit.
-#![cfg(all(
-    feature = "disk",
-    feature = "triangle",
-    feature = "sphere",
-    feature = "pmj02bn",
-    feature = "sequence",
-    feature = "envmap",
-    feature = "spherical"
-))]
+#![cfg(feature = "all")]
 
 use std::collections::BTreeMap;
 use warpcore_registry::fingerprint::{self, Hasher, entry_hash};

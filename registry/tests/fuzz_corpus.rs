@@ -1,7 +1,7 @@
 //! Replays the checked-in fuzz corpus (`fuzz/corpus/<target>/`) through the same checks the
 //! fuzz targets run (`registry/src/checks.rs`), on stable, in every `cargo test`: every input a fuzzing
 //! run ever found interesting stays a regression test forever.
-#![cfg(feature = "disk")]
+#![cfg(feature = "all")]
 
 use warpcore_registry::checks;
 
@@ -23,49 +23,21 @@ fn replay(target: &str, check: fn(&[u8])) {
     eprintln!("{target}: replayed {} corpus inputs", entries.len());
 }
 
+/// Every target's corpus through its check (each target's family is a default feature).
 #[test]
-fn disk_corpus() {
-    replay("disk", checks::disk);
-}
-
-#[cfg(all(feature = "pmj02bn", feature = "sequence"))]
-#[test]
-fn pmj02bn_corpus() {
-    replay("pmj02bn", checks::pmj02bn);
-}
-
-#[cfg(feature = "triangle")]
-#[test]
-fn triangle_corpus() {
-    replay("triangle", checks::triangle);
-}
-
-#[cfg(feature = "spherical")]
-#[test]
-fn spherical_corpus() {
-    replay("spherical", checks::spherical);
-}
-
-#[cfg(feature = "sphere")]
-#[test]
-fn sphere_corpus() {
-    replay("sphere", checks::sphere);
-}
-
-#[cfg(feature = "envmap")]
-#[test]
-fn envmap_corpus() {
-    replay("envmap", checks::envmap);
-}
-
-#[cfg(feature = "envmap")]
-#[test]
-fn envmap_storage_corpus() {
-    replay("envmap_storage", checks::envmap_storage);
-}
-
-#[cfg(feature = "sampler")]
-#[test]
-fn sampler_corpus() {
-    replay("sampler", checks::sampler);
+fn every_corpus_replays() {
+    type Check = fn(&[u8]);
+    let targets: [(&str, Check); 8] = [
+        ("disk", checks::disk),
+        ("pmj02bn", checks::pmj02bn),
+        ("triangle", checks::triangle),
+        ("spherical", checks::spherical),
+        ("sphere", checks::sphere),
+        ("envmap", checks::envmap),
+        ("envmap_storage", checks::envmap_storage),
+        ("sampler", checks::sampler),
+    ];
+    for (target, check) in targets {
+        replay(target, check);
+    }
 }

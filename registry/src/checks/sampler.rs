@@ -14,19 +14,9 @@ use std::prelude::rust_2024::*;
 #[allow(unused_imports)]
 use std::{format, vec};
 
+use super::words;
 use warpcore::sampler::{Pattern, Pmj02bn, Sampler, SamplerX8, SamplerX16, Sobol};
 use warpcore::{u32x8, u32x16};
-
-/// The input bytes as 32-bit words (a trailing partial word is zero-padded).
-fn words(data: &[u8]) -> Vec<u32> {
-    data.chunks(4)
-        .map(|c| {
-            let mut w = [0u8; 4];
-            w[..c.len()].copy_from_slice(c);
-            u32::from_le_bytes(w)
-        })
-        .collect()
-}
 
 /// A step of a domain path.
 #[derive(Clone, Copy, Debug)]
