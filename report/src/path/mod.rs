@@ -315,43 +315,43 @@ pub fn run_scene(cfg: &PathConfig, name: &str) -> Result<PathResult, String> {
     Ok(res)
 }
 
+/// Every (scene, row) of `results`, in the CSV files' order.
+fn entries(results: &[PathResult]) -> impl Iterator<Item = (&PathResult, &PathRow)> {
+    results
+        .iter()
+        .flat_map(|r| r.rows.iter().map(move |row| (r, row)))
+}
+
 /// Rows for `results.csv` (same header as the other scenes; warp `path`).
 pub fn results_csv_rows(results: &[PathResult]) -> String {
-    let mut s = String::new();
-    for r in results {
-        for row in &r.rows {
-            let _ = writeln!(
-                s,
-                "{},{},path,{},{:.6e},{:.3}",
-                r.scene,
+    entries(results)
+        .map(|(r, row)| {
+            let ns = row.ns_per_sample(r.reference.px.len());
+            let line = crate::output::csv_line(
+                &r.scene,
                 row.kind.name(),
-                row.spp,
+                "path",
+                row.spp as usize,
                 row.mse,
-                row.ns_per_sample(r.reference.px.len())
+                ns,
             );
-        }
-    }
-    s
+            line + "\n"
+        })
+        .collect()
 }
 
 /// `filtered.csv`.
 pub fn filtered_csv(results: &[PathResult]) -> String {
     let mut s = String::from("scene,sampler,spp,sigma,mse\n");
-    for r in results {
-        for row in &r.rows {
-            if let Some(f) = &row.filtered {
-                for (sigma, (m, _)) in SIGMAS.iter().zip(f) {
-                    let _ = writeln!(
-                        s,
-                        "{},{},{},{},{:.6e}",
-                        r.scene,
-                        row.kind.name(),
-                        row.spp,
-                        sigma,
-                        m
-                    );
-                }
-            }
+    for (r, row) in entries(results) {
+        for (sigma, (m, _)) in SIGMAS.iter().zip(row.filtered.iter().flatten()) {
+            let _ = writeln!(
+                s,
+                "{},{},{},{sigma},{m:.6e}",
+                r.scene,
+                row.kind.name(),
+                row.spp
+            );
         }
     }
     s
@@ -362,24 +362,22 @@ pub fn details_csv(results: &[PathResult]) -> String {
     let mut s = String::from(
         "scene,sampler,spp,frames,mse,mse_rel_se,mean_error,bias_z,frame_ms,ns_per_sample,reference_variance\n",
     );
-    for r in results {
-        for row in &r.rows {
-            let _ = writeln!(
-                s,
-                "{},{},{},{},{:.6e},{:.4},{:.4e},{:.3},{:.3},{:.2},{:.4e}",
-                r.scene,
-                row.kind.name(),
-                row.spp,
-                row.frames,
-                row.mse,
-                row.mse_se / row.mse,
-                row.mean_error,
-                row.bias_z,
-                row.frame_s * 1e3,
-                row.ns_per_sample(r.reference.px.len()),
-                r.ref_var[0].0
-            );
-        }
+    for (r, row) in entries(results) {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{:.6e},{:.4},{:.4e},{:.3},{:.3},{:.2},{:.4e}",
+            r.scene,
+            row.kind.name(),
+            row.spp,
+            row.frames,
+            row.mse,
+            row.mse_se / row.mse,
+            row.mean_error,
+            row.bias_z,
+            row.frame_s * 1e3,
+            row.ns_per_sample(r.reference.px.len()),
+            r.ref_var[0].0
+        );
     }
     s
 }
