@@ -263,6 +263,27 @@ impl SceneResult {
     }
 }
 
+/// How much of the study a run computes: `--quick` (a smoke run for CI), the default (the
+/// answer at reduced pixel counts, a few minutes on 2 cores) or `--full` (the committed
+/// docs/REPORT.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scale {
+    Quick,
+    Default,
+    Full,
+}
+
+impl Scale {
+    /// The setting of this scale among `[quick, default, full]`.
+    pub fn pick<T>(self, [quick, default, full]: [T; 3]) -> T {
+        match self {
+            Scale::Quick => quick,
+            Scale::Default => default,
+            Scale::Full => full,
+        }
+    }
+}
+
 /// What to run.
 #[derive(Clone, Debug)]
 pub struct Config {

@@ -7,7 +7,7 @@
 
 use super::samplers::{KINDS, Kind};
 use super::trace::Image;
-use super::{FILTERED_SPPS, PathResult, SIGMAS};
+use super::{FILTERED_SPPS, PathResult, PathRow, SIGMAS};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -180,30 +180,18 @@ fn convergence_svg(r: &PathResult, dir: &Path) -> Result<(), Box<dyn std::error:
     let root = SVGBackend::new(&path, (1100, 480)).into_drawing_area();
     root.fill(&WHITE)?;
     let (left, right) = root.split_horizontally(550);
-    let by_n: Vec<Series> = KINDS
-        .iter()
-        .map(|&k| {
-            let p = r
-                .rows
-                .iter()
-                .filter(|x| x.kind == k)
-                .map(|x| (x.spp as f64, x.mse))
-                .collect();
-            (k, p)
-        })
-        .collect();
-    let by_t: Vec<Series> = KINDS
-        .iter()
-        .map(|&k| {
-            let p = r
-                .rows
-                .iter()
-                .filter(|x| x.kind == k)
-                .map(|x| (x.frame_s * 1e3, x.mse))
-                .collect();
-            (k, p)
-        })
-        .collect();
+    // Per sampler, (x of each row, its MSE).
+    let series = |x: fn(&PathRow) -> f64| -> Vec<Series> {
+        KINDS
+            .iter()
+            .map(|&k| {
+                let rows = r.rows.iter().filter(|row| row.kind == k);
+                (k, rows.map(|row| (x(row), row.mse)).collect())
+            })
+            .collect()
+    };
+    let by_n = series(|row| row.spp as f64);
+    let by_t = series(|row| row.frame_s * 1e3);
     log_panel(
         &left,
         &format!("{}: MSE vs samples per pixel", r.scene),
