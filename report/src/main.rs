@@ -14,25 +14,22 @@ use clap::{Arg, ArgAction, Command, value_parser};
 use std::path::PathBuf;
 use warpcore_report::*;
 
+/// A flag `--name` (no value).
+fn flag(name: &'static str, help: &'static str) -> Arg {
+    Arg::new(name)
+        .long(name)
+        .action(ArgAction::SetTrue)
+        .help(help)
+}
+
 /// The command line.
 fn command() -> Command {
     Command::new("report")
         .about(
             "Error versus run time for every sampler x warp of warpcore, against exact references",
         )
-        .arg(
-            Arg::new("quick")
-                .long("quick")
-                .action(ArgAction::SetTrue)
-                .help("fewer pixels and shorter timings (a smoke run, under 15 s)"),
-        )
-        .arg(
-            Arg::new("full")
-                .long("full")
-                .action(ArgAction::SetTrue)
-                .conflicts_with("quick")
-                .help("the whole study at the committed page's pixel counts, with the photographed maps (about 10 minutes on 2 cores); writes docs/report and pastes it into docs/REPORT.md unless --out says otherwise"),
-        )
+        .arg(flag("quick", "fewer pixels and shorter timings (a smoke run, under 15 s)"))
+        .arg(flag("full", "the whole study at the committed page's pixel counts, with the photographed maps (6 to 13 minutes on 2 cores); writes docs/report and pastes it into docs/REPORT.md unless --out says otherwise").conflicts_with("quick"))
         .arg(
             Arg::new("out")
                 .long("out")
@@ -87,18 +84,8 @@ fn command() -> Command {
                 .action(ArgAction::Append)
                 .help("run only scenes whose name starts with PREFIX (repeatable; see the valid names in an error message)"),
         )
-        .arg(
-            Arg::new("orientation-only")
-                .long("orientation-only")
-                .action(ArgAction::SetTrue)
-                .help("run only the environment-map orientation study (envmap_orientation.csv/.md: each map as authored and rotated; --scene and --env-pixels apply)"),
-        )
-        .arg(
-            Arg::new("reference")
-                .long("reference")
-                .action(ArgAction::SetTrue)
-                .help("re-render the path scenes' cached references (docs/report/path-*.ref; about a minute each on 2 cores)"),
-        )
+        .arg(flag("orientation-only", "run only the environment-map orientation study (envmap_orientation.csv/.md: each map as authored and rotated; --scene and --env-pixels apply)"))
+        .arg(flag("reference", "re-render the path scenes' cached references (docs/report/path-*.ref; about a minute each on 2 cores)"))
 }
 
 /// A command line that fails before any work: clap's own errors (help, version, a value
