@@ -36,39 +36,34 @@ const DIMS: usize = 16;
 /// A sampler as the table sees it: the 16 dimensions of sample `index` of `pixel`.
 type Path = fn([u32; 2], u32) -> [f64; DIMS];
 
-/// One path from a warpcore sampler: domains 0 and 1 draw two dimensions, 2..5 draw four.
-fn warpcore_path<P: warpcore::sampler::Pattern>(pixel: [u32; 2], index: u32) -> [f64; DIMS] {
-    let root = Sampler::<P>::new(pixel, 0, index, 0);
+/// One path from a sampler's domains: domains 0 and 1 draw two dimensions, 2..5 draw four.
+fn path_of(draw2: impl Fn(u32) -> [f32; 2], draw4: impl Fn(u32) -> [f32; 4]) -> [f64; DIMS] {
     let mut d = [0.0; DIMS];
-    let a = root.domain(0).draw::<2>();
-    let b = root.domain(1).draw::<2>();
-    d[..2].copy_from_slice(&a.map(f64::from));
-    d[2..4].copy_from_slice(&b.map(f64::from));
+    d[..2].copy_from_slice(&draw2(0).map(f64::from));
+    d[2..4].copy_from_slice(&draw2(1).map(f64::from));
     for bounce in 0..3 {
-        let c = root.domain(2 + bounce as u32).draw::<4>();
+        let c = draw4(2 + bounce as u32);
         d[4 + 4 * bounce..8 + 4 * bounce].copy_from_slice(&c.map(f64::from));
     }
     d
 }
 
+/// One path from a warpcore sampler (`root.domain(k).draw::<N>()`).
+fn warpcore_path<P: warpcore::sampler::Pattern>(pixel: [u32; 2], index: u32) -> [f64; DIMS] {
+    let root = Sampler::<P>::new(pixel, 0, index, 0);
+    path_of(
+        |k| root.domain(k).draw::<2>(),
+        |k| root.domain(k).draw::<4>(),
+    )
+}
+
 /// The same path from an openqmc-rs sampler (`X::new(x, y, frame, index).new_domain(k)`).
-macro_rules! openqmc_path {
-    ($x:ty) => {{
-        fn path(pixel: [u32; 2], index: u32) -> [f64; DIMS] {
-            let root = <$x>::new(pixel[0] as i32, pixel[1] as i32, 0, index as i32);
-            let mut d = [0.0; DIMS];
-            let a = root.new_domain(0).draw_sample_f32::<2>();
-            let b = root.new_domain(1).draw_sample_f32::<2>();
-            d[..2].copy_from_slice(&a.map(f64::from));
-            d[2..4].copy_from_slice(&b.map(f64::from));
-            for bounce in 0..3 {
-                let c = root.new_domain(2 + bounce as i32).draw_sample_f32::<4>();
-                d[4 + 4 * bounce..8 + 4 * bounce].copy_from_slice(&c.map(f64::from));
-            }
-            d
-        }
-        path as Path
-    }};
+fn openqmc_path<T: openqmc::SamplerImpl>(pixel: [u32; 2], index: u32) -> [f64; DIMS] {
+    let root = openqmc::Sampler::<T>::new(pixel[0] as i32, pixel[1] as i32, 0, index as i32);
+    path_of(
+        |k| root.new_domain(k as i32).draw_sample_f32::<2>(),
+        |k| root.new_domain(k as i32).draw_sample_f32::<4>(),
+    )
 }
 
 /// A well-mixed 32-bit hash (lowbias32) for the seeds of the baselines.
@@ -132,32 +127,9 @@ fn gauss_of_difference(s: f64) -> f64 {
     2.0 * (s * (PI / 2.0).sqrt() * libm::erf(1.0 / k) - s * s * (1.0 - (-1.0 / (k * k)).exp()))
 }
 
-/// Area of `{p in [0, 1]^2 : n . p < t}`: the unit square clipped by the half-plane
-/// (Sutherland-Hodgman), then the shoelace formula.
+/// Area of `{p in [0, 1]^2 : n . p < t}` (the square clipped by the half-plane).
 fn half_plane_area(n: [f64; 2], t: f64) -> f64 {
-    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-    let side = |p: [f64; 2]| n[0] * p[0] + n[1] * p[1] - t;
-    let mut poly: Vec<[f64; 2]> = Vec::new();
-    for k in 0..4 {
-        let (a, b) = (square[k], square[(k + 1) % 4]);
-        let (sa, sb) = (side(a), side(b));
-        if sa < 0.0 {
-            poly.push(a);
-        }
-        if (sa < 0.0) != (sb < 0.0) {
-            let f = sa / (sa - sb);
-            poly.push([a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])]);
-        }
-    }
-    let m = poly.len();
-    (0..m)
-        .map(|k| {
-            let (a, b) = (poly[k], poly[(k + 1) % m]);
-            a[0] * b[1] - a[1] * b[0]
-        })
-        .sum::<f64>()
-        .abs()
-        / 2.0
+    pmjgen::tool::square_area_below(|p| n[0] * p[0] + n[1] * p[1] - t).abs()
 }
 
 /// `P(u0 + u1 + u2 + u3 < t)` for independent uniforms (the Irwin-Hall distribution).
@@ -377,9 +349,12 @@ fn main() {
         ("warpcore Sampler<Sobol>", warpcore_path::<Sobol>),
         (
             "openqmc-rs SobolSampler",
-            openqmc_path!(openqmc::SobolSampler),
+            openqmc_path::<openqmc::sobol::SobolImpl>,
         ),
-        ("openqmc-rs PmjSampler", openqmc_path!(openqmc::PmjSampler)),
+        (
+            "openqmc-rs PmjSampler",
+            openqmc_path::<openqmc::pmj::PmjImpl>,
+        ),
         ("sobol_burley::sample_4d", sobol_burley_path),
         ("random", random_path),
     ];

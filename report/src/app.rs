@@ -6,7 +6,7 @@ use crate::area::{self, AreaScene};
 use crate::envscene::EnvScene;
 use crate::output;
 use crate::plots;
-use crate::run::{self, Config, Scene, SceneResult};
+use crate::run::{self, Config, Scale, Scene, SceneResult};
 use crate::strata;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -17,10 +17,13 @@ use std::time::Instant;
 pub struct Options {
     /// Fewer pixels and shorter timings: a smoke run (under 15 s).
     pub quick: bool,
+    /// The whole study at the committed page's pixel counts (`docs/REPORT.md`); neither
+    /// flag: the same scenes at a quarter of the pixels, without the photographed maps.
+    pub full: bool,
     pub out: PathBuf,
-    /// Pixels per class of an area-light scene (default 32768, quick 1024).
+    /// Pixels per class of an area-light scene (quick 1024, default 8192, full 32768).
     pub pixels: Option<usize>,
-    /// Pixels per class of an environment-map scene (default 6144, quick 192).
+    /// Pixels per class of an environment-map scene (quick 192, default 1536, full 6144).
     pub env_pixels: Option<usize>,
     /// Extra lat-long PFM maps, scenes `envmap:<stem>`.
     pub envmaps: Vec<PathBuf>,
@@ -39,6 +42,7 @@ impl Default for Options {
     fn default() -> Self {
         Options {
             quick: false,
+            full: false,
             out: PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join("target/report"),
             pixels: None,
             env_pixels: None,
@@ -89,9 +93,16 @@ impl Options {
         names
     }
 
-    /// The checks made before any work (`main` exits with code 2 on an error): every
-    /// `--scene` prefix selects some scene, every `--envmap` file reads as a usable map.
+    /// The checks made before any work (`main` exits with code 2 on an error): only the full
+    /// study writes the committed `docs/report`, every `--scene` prefix selects some scene,
+    /// every `--envmap` file reads as a usable map.
     pub fn check(&self) -> Result<(), String> {
+        if !self.full_study() && writes_docs(&self.out) {
+            return Err(format!(
+                "--out {}: the committed report is the full study; add --full",
+                self.out.display()
+            ));
+        }
         let names = self.scene_names();
         for s in &self.scenes {
             if !names.iter().any(|n| n.starts_with(s.as_str())) {
@@ -112,28 +123,59 @@ impl Options {
         Ok(())
     }
 
-    /// Map rotations each environment-map scene's pixels cycle through: 8 (quick: 2).
+    /// How much of the study this run computes (`--quick` wins over `--full`).
+    pub fn scale(&self) -> Scale {
+        match (self.quick, self.full) {
+            (true, _) => Scale::Quick,
+            (false, false) => Scale::Default,
+            (false, true) => Scale::Full,
+        }
+    }
+
+    /// Pixels per class of an environment-map scene: `--env-pixels`, or 192 / 1536 / 6144.
+    #[cfg(feature = "envmap")]
+    fn env_pixels(&self) -> usize {
+        self.env_pixels
+            .unwrap_or(self.scale().pick([192, 1536, 6144]))
+    }
+
+    /// Map rotations each environment-map scene's pixels cycle through: 8 (default 4,
+    /// quick 2).
     #[cfg(feature = "envmap")]
     pub fn rotations(&self) -> usize {
-        if self.quick { 2 } else { 8 }
+        self.scale().pick([2, 4, 8])
     }
 
     /// Pixels per class of the orientation study (`orientation.rs`): the built-in sky and
     /// interior `env_pixels / 4` (1536), the other maps `env_pixels / 6` (1024, as their
-    /// scenes); quick: 32.
+    /// scenes); without `--full` (and `--env-pixels`): 32.
     #[cfg(feature = "envmap")]
     pub fn orientation_pixels(&self, builtin: bool) -> usize {
-        if self.quick && self.env_pixels.is_none() {
+        if !self.full_study() && self.env_pixels.is_none() {
             return 32;
         }
-        let p = self
-            .env_pixels
-            .unwrap_or(if self.quick { 192 } else { 6144 });
+        let p = self.env_pixels();
         (if builtin { p / 4 } else { p / 6 }).max(2)
     }
 
-    /// The PFM maps to run as scenes: the real maps of `tests/data/envmaps/` (in a quick
-    /// run only when a `--scene` names them) and every `--envmap` file.
+    /// The side studies (variance split, orientation, strata pictures) at their full sizes.
+    fn full_study(&self) -> bool {
+        self.scale() == Scale::Full
+    }
+
+    /// Pixels per class and grid side of the variance split (`env_split.rs`, and the
+    /// orientation study's split): 256 and 128 with `--full`, else 16 and 32.
+    #[cfg(feature = "envmap")]
+    fn split_sizes(&self) -> (usize, usize) {
+        if self.full_study() {
+            (256, 128)
+        } else {
+            (16, 32)
+        }
+    }
+
+    /// The PFM maps to run as scenes: the real maps of `tests/data/envmaps/` (without
+    /// `--full` only when a `--scene` names them) and every `--envmap` file.
     #[cfg(feature = "envmap")]
     fn envmap_files(&self) -> Vec<PathBuf> {
         let named = |p: &PathBuf| {
@@ -146,10 +188,10 @@ impl Options {
         real_envmaps()
             .into_iter()
             .filter(|p| {
-                if self.quick {
-                    named(p)
-                } else {
+                if self.full_study() {
                     self.wants_name(p)
+                } else {
+                    named(p)
                 }
             })
             .chain(self.envmaps.iter().cloned())
@@ -180,8 +222,8 @@ impl Options {
             pixels,
             spps: self.spps(),
             threads: self.threads.max(1),
-            timing_samples: if self.quick { 1 << 14 } else { 1 << 18 },
-            timing_reps: if self.quick { 2 } else { 5 },
+            timing_samples: self.scale().pick([1 << 14, 1 << 16, 1 << 18]),
+            timing_reps: self.scale().pick([2, 3, 5]),
         }
     }
 }
@@ -318,7 +360,8 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         build_features(),
         opts.threads
     );
-    let area_pixels = opts.pixels.unwrap_or(if opts.quick { 1024 } else { 32768 });
+    let scale = opts.scale();
+    let area_pixels = opts.pixels.unwrap_or(scale.pick([1024, 8192, 32768]));
     let mut results = Vec::new();
     let scenes = AreaScene::all();
     for pair in scenes.chunks_exact(2) {
@@ -329,11 +372,11 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         }
     }
     // Lights by solid angle against by area (issue 22): lit and penumbra at three distances;
-    // quick: 256 pixels per class.
+    // 8192 pixels per class (default 2048, quick 256).
     #[cfg(feature = "spherical")]
     {
         let sa = crate::solid_angle::SolidAngleScene::all();
-        let cfg = opts.config(opts.pixels.unwrap_or(if opts.quick { 256 } else { 8192 }));
+        let cfg = opts.config(opts.pixels.unwrap_or(scale.pick([256, 2048, 8192])));
         for pair in sa.chunks_exact(2) {
             if opts.wants(&pair[0].light_name()) || opts.wants("sa_") {
                 let mut l = measure(&pair[0], &cfg);
@@ -349,9 +392,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
     }
     #[cfg(feature = "envmap")]
     {
-        let env_pixels = opts
-            .env_pixels
-            .unwrap_or(if opts.quick { 192 } else { 6144 });
+        let env_pixels = opts.env_pixels();
         let envs = env_scenes(opts)?;
         for scene in &envs {
             if opts.wants(&scene.name) {
@@ -377,9 +418,9 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
             }
         }
         // The variance split per layout (issue 25): 256 pixels per class, 128 x 128 points
-        // (quick: 16 and 32).
+        // (without --full: 16 and 32).
         if !envs.is_empty() {
-            let (pixels, grid) = if opts.quick { (16, 32) } else { (256, 128) };
+            let (pixels, grid) = opts.split_sizes();
             let chosen: Vec<&EnvScene> = envs.iter().filter(|s| opts.wants(&s.name)).collect();
             let splits = crate::env_split::run(&chosen, pixels, grid, opts.threads);
             output::write(
@@ -397,7 +438,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
             orientation_study(opts, &envs)?;
         }
         if let Some(interior) = envs.iter().find(|s| s.name == "envmap:interior") {
-            let grid = if opts.quick { 128 } else { 1024 };
+            let grid = if opts.full_study() { 1024 } else { 128 };
             crate::strata_env::write(interior, &opts.out, grid)?;
         }
     }
@@ -410,7 +451,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
     // join results.csv.
     let path_cfg = crate::path::PathConfig::new(
         opts.path_scenes(),
-        opts.quick,
+        scale,
         opts.threads.max(1),
         opts.reference,
     );
@@ -432,15 +473,13 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
             .map(|r| output::markdown(r) + "\n")
             .collect::<String>();
     output::write(&opts.out.join("tables.md"), &tables)?;
-    output::write(
-        &opts.out.join("recommendations.md"),
-        &(output::recommendations_markdown(&results)
-            + &if path_results.is_empty() {
-                String::new()
-            } else {
-                crate::path::recommendations_markdown(&path_results)
-            }),
-    )?;
+    let recommendations = output::recommendations_markdown(&results)
+        + &if path_results.is_empty() {
+            String::new()
+        } else {
+            crate::path::recommendations_markdown(&path_results)
+        };
+    output::write(&opts.out.join("recommendations.md"), &recommendations)?;
     output::write(
         &opts.out.join("comparison.md"),
         &output::comparison_markdown(&results),
@@ -451,18 +490,40 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
     output::write(&opts.out.join("strata.svg"), &strata::disk_triangle_svg())?;
     paste_into_page(opts)?;
     println!(
-        "\nwrote {} (and details.csv, tables.md, one SVG plot per scene, strata pictures) in {:.1} s",
+        "\nWhich sampler and warp, per light and pixel class ({:?} run; recommendations.md):\n\n{recommendations}",
+        opts.scale()
+    );
+    println!(
+        "wrote {} (and details.csv, tables.md, recommendations.md, one SVG plot per scene, strata pictures) in {:.1} s",
         csv.display(),
         start.elapsed().as_secs_f64()
     );
     Ok(results)
 }
 
+/// The repository's `docs`.
+fn docs() -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join("docs")
+}
+
+/// The committed report's files, `docs/report` (what `--full` writes by default).
+pub fn docs_report() -> PathBuf {
+    docs().join("report")
+}
+
+/// Is `out` the committed `docs/report`?
+fn writes_docs(out: &std::path::Path) -> bool {
+    match (out.canonicalize(), docs_report().canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
+}
+
 /// When the output is `docs/report`, pastes the generated files into `docs/REPORT.md`'s
 /// marked blocks.
 fn paste_into_page(opts: &Options) -> Result<(), Box<dyn std::error::Error>> {
-    let docs = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join("docs");
-    if opts.out.canonicalize().ok() == docs.join("report").canonicalize().ok() {
+    if writes_docs(&opts.out) {
+        let docs = docs();
         let page = docs.join("REPORT.md");
         let text = std::fs::read_to_string(&page)?;
         std::fs::write(&page, output::paste_generated(&text, &docs)?)?;
@@ -498,7 +559,7 @@ pub fn orientation_study(
     envs: &[EnvScene],
 ) -> Result<(), Box<dyn std::error::Error>> {
     use crate::orientation;
-    let (split_pixels, grid) = if opts.quick { (16, 32) } else { (256, 128) };
+    let (split_pixels, grid) = opts.split_sizes();
     let mut classes = Vec::new();
     let mut splits = Vec::new();
     for scene in envs.iter().filter(|s| opts.wants(&s.name)) {

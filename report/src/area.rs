@@ -189,6 +189,24 @@ impl AreaWarp {
     }
 }
 
+/// The disk light's warps: the six strategies of Christensen's memo, in the tables' order.
+pub const DISK_WARPS: [AreaWarp; 6] = [
+    AreaWarp::Polar,
+    AreaWarp::Concentric,
+    AreaWarp::Polar4,
+    AreaWarp::Concentric4,
+    AreaWarp::PadZero,
+    AreaWarp::Rejection,
+];
+
+/// The triangle light's warps, in the tables' order.
+pub const TRIANGLE_WARPS: [AreaWarp; 4] = [
+    AreaWarp::Uniform,
+    AreaWarp::Sqrt,
+    AreaWarp::BasuOwen,
+    AreaWarp::BasuOwenPermuted,
+];
+
 /// Which pixels a scene holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PixelClass {
@@ -390,18 +408,8 @@ impl AreaScene {
         let lights: [(&str, Shape, Vec<AreaWarp>, u64); 4] = [
             ("square", square(), vec![Identity], 1),
             ("skinny", skinny(), vec![Identity], 2),
-            (
-                "disk",
-                disk(),
-                vec![Polar, Concentric, Polar4, Concentric4, PadZero, Rejection],
-                3,
-            ),
-            (
-                "triangle",
-                triangle(),
-                vec![Uniform, Sqrt, BasuOwen, BasuOwenPermuted],
-                4,
-            ),
+            ("disk", disk(), DISK_WARPS.to_vec(), 3),
+            ("triangle", triangle(), TRIANGLE_WARPS.to_vec(), 4),
         ];
         lights
             .into_iter()
@@ -512,6 +520,35 @@ impl AreaScene {
     }
 }
 
+/// The index-driven triangle warps into `out`: `triangle::basu_owen(_permuted)` of indices
+/// `0..N` scrambled by the pixel's seed, or for the `random` row of hashed indices.
+fn basu_owen(permuted: bool, sampler: Sampler, seed: u32, out: &mut [[f32; 3]]) {
+    match sampler {
+        Sampler::Random => {
+            let lanes = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
+            let (key, scramble) = (u32x8::splat(seed), u32x8::splat(seed | 1));
+            for (g, out) in out.chunks_mut(8).enumerate() {
+                let index = hash_x8((u32x8::splat(8 * g as u32) + lanes) ^ hash_x8(key));
+                let b = if permuted {
+                    triangle::basu_owen_permuted_x8(index, scramble)
+                } else {
+                    triangle::basu_owen_x8(index, scramble)
+                };
+                let [b0, b1, b2] = b.map(|c| c.to_array());
+                for (j, o) in out.iter_mut().enumerate() {
+                    *o = [b0[j], b1[j], b2[j]];
+                }
+            }
+        }
+        _ if permuted => {
+            triangle::basu_owen_permuted_slice(0, seed | 1, out);
+        }
+        _ => {
+            triangle::basu_owen_slice(0, seed | 1, out);
+        }
+    }
+}
+
 impl Scene for AreaScene {
     type Pixel = AreaPixel;
 
@@ -572,72 +609,37 @@ impl Scene for AreaScene {
     fn draw(&self, warp: usize, sampler: Sampler, spp: usize, seed: u32, s: &mut Scratch) {
         // Rejection consumes about 4/pi points per sample; every buffer holds 2 spp + 16.
         s.reserve(2 * spp + 16);
-        let pts = &mut s.points[..spp];
-        match self.warps[warp] {
-            AreaWarp::Identity => sampler.fill(seed, pts),
-            AreaWarp::Polar => {
-                sampler.fill(seed, pts);
-                disk::polar_slice(pts, &mut s.out2[..spp]);
+        let w = self.warps[warp];
+        // The sampler's points: one per sample, a quarter of them for the four-sample disk
+        // warps; rejection draws its own, the index-driven warps none.
+        let points = match w {
+            AreaWarp::Rejection => {
+                self.rejection(sampler, spp, seed, s);
+                return;
             }
-            AreaWarp::Concentric => {
-                sampler.fill(seed, pts);
-                disk::concentric_slice(pts, &mut s.out2[..spp]);
+            AreaWarp::BasuOwen | AreaWarp::BasuOwenPermuted => {
+                let permuted = w == AreaWarp::BasuOwenPermuted;
+                return basu_owen(permuted, sampler, seed, &mut s.out3[..spp]);
             }
-            AreaWarp::Polar4 => {
-                let pts = &mut s.points[..spp / 4];
-                sampler.fill(seed, pts);
-                disk::polar4_slice(pts, &mut s.out2[..spp]);
-            }
-            AreaWarp::Concentric4 => {
-                let pts = &mut s.points[..spp / 4];
-                sampler.fill(seed, pts);
-                disk::concentric4_slice(pts, &mut s.out2[..spp]);
-            }
+            AreaWarp::Polar4 | AreaWarp::Concentric4 => spp / 4,
+            _ => spp,
+        };
+        let pts = &mut s.points[..points];
+        sampler.fill(seed, pts);
+        let (out2, out3) = (&mut s.out2[..spp], &mut s.out3[..spp]);
+        match w {
+            AreaWarp::Polar => _ = disk::polar_slice(pts, out2),
+            AreaWarp::Concentric => _ = disk::concentric_slice(pts, out2),
+            AreaWarp::Polar4 => _ = disk::polar4_slice(pts, out2),
+            AreaWarp::Concentric4 => _ = disk::concentric4_slice(pts, out2),
             AreaWarp::PadZero => {
-                sampler.fill(seed, pts);
-                for (o, u) in s.out2[..spp].iter_mut().zip(pts.iter()) {
+                for (o, u) in out2.iter_mut().zip(pts.iter()) {
                     *o = [2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0];
                 }
             }
-            AreaWarp::Rejection => {
-                self.rejection(sampler, spp, seed, s);
-            }
-            AreaWarp::Uniform => {
-                sampler.fill(seed, pts);
-                triangle::uniform_slice(pts, &mut s.out3[..spp]);
-            }
-            AreaWarp::Sqrt => {
-                sampler.fill(seed, pts);
-                triangle::sqrt_map_slice(pts, &mut s.out3[..spp]);
-            }
-            w @ (AreaWarp::BasuOwen | AreaWarp::BasuOwenPermuted) => {
-                let permuted = w == AreaWarp::BasuOwenPermuted;
-                match sampler {
-                    Sampler::Random => {
-                        let lanes = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
-                        let (key, scramble) = (u32x8::splat(seed), u32x8::splat(seed | 1));
-                        for (g, out) in s.out3[..spp].chunks_mut(8).enumerate() {
-                            let index =
-                                hash_x8((u32x8::splat(8 * g as u32) + lanes) ^ hash_x8(key));
-                            let b = if permuted {
-                                triangle::basu_owen_permuted_x8(index, scramble)
-                            } else {
-                                triangle::basu_owen_x8(index, scramble)
-                            };
-                            let [b0, b1, b2] = b.map(|c| c.to_array());
-                            for (j, o) in out.iter_mut().enumerate() {
-                                *o = [b0[j], b1[j], b2[j]];
-                            }
-                        }
-                    }
-                    _ if permuted => {
-                        triangle::basu_owen_permuted_slice(0, seed | 1, &mut s.out3[..spp]);
-                    }
-                    _ => {
-                        triangle::basu_owen_slice(0, seed | 1, &mut s.out3[..spp]);
-                    }
-                }
-            }
+            AreaWarp::Uniform => _ = triangle::uniform_slice(pts, out3),
+            AreaWarp::Sqrt => _ = triangle::sqrt_map_slice(pts, out3),
+            _ => {}
         }
     }
 

@@ -21,6 +21,9 @@
 //! image of frame 0 under `P` and `Blue<P>`, then both after the blur (4x contrast).
 //! `report/tests/blue_noise.rs` asserts the ratios with this code.
 
+use crate::path::samplers::{OpenQmc, PathSampler};
+use openqmc::{PmjBnSampler, PmjSampler, SobolBnSampler, SobolSampler};
+use std::marker::PhantomData;
 use std::path::Path;
 use warpcore::sampler::{Blue, Pattern, Pmj02bn, Sampler, Sobol};
 
@@ -43,28 +46,14 @@ pub fn ours<P: Pattern>(x: u32, y: u32, frame: u32, index: u32) -> [f32; 2] {
         .draw::<2>()
 }
 
-pub fn openqmc_sobol(x: u32, y: u32, frame: u32, index: u32) -> [f32; 2] {
-    openqmc::SobolSampler::new(x as i32, y as i32, frame as i32, index as i32)
-        .new_domain(0)
-        .draw_sample_f32::<2>()
-}
-
-pub fn openqmc_sobol_bn(x: u32, y: u32, frame: u32, index: u32) -> [f32; 2] {
-    openqmc::SobolBnSampler::new(x as i32, y as i32, frame as i32, index as i32)
-        .new_domain(0)
-        .draw_sample_f32::<2>()
-}
-
-pub fn openqmc_pmj(x: u32, y: u32, frame: u32, index: u32) -> [f32; 2] {
-    openqmc::PmjSampler::new(x as i32, y as i32, frame as i32, index as i32)
-        .new_domain(0)
-        .draw_sample_f32::<2>()
-}
-
-pub fn openqmc_pmj_bn(x: u32, y: u32, frame: u32, index: u32) -> [f32; 2] {
-    openqmc::PmjBnSampler::new(x as i32, y as i32, frame as i32, index as i32)
-        .new_domain(0)
-        .draw_sample_f32::<2>()
+/// An OpenQMC sampler (`openqmc-rs`) through the path tracer's interface: domain 0, the
+/// frame as its seed.
+pub fn openqmc<T>(x: u32, y: u32, frame: u32, index: u32) -> [f32; 2]
+where
+    OpenQmc<T>: PathSampler,
+{
+    let s = OpenQmc::<T>(PhantomData);
+    s.draw2(&s.sample([x, y], index, 0, frame), 0)
 }
 
 /// The half-plane of pixel `(x, y)`: `{u in [0,1)^2 : (u - 1/2) . n < c}` as `[n_x, n_y,
@@ -84,31 +73,9 @@ pub fn inside(e: &[f64; 3], p: [f32; 2]) -> bool {
     (p[0] as f64 - 0.5) * e[0] + (p[1] as f64 - 0.5) * e[1] < e[2]
 }
 
-/// The area of the half-plane `e` inside the unit square: the square clipped by the line
-/// (Sutherland-Hodgman), then the shoelace formula.
+/// The area of the half-plane `e` inside the unit square.
 pub fn area(e: &[f64; 3]) -> f64 {
-    let s = |p: [f64; 2]| (p[0] - 0.5) * e[0] + (p[1] - 0.5) * e[1] - e[2];
-    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-    let mut poly: Vec<[f64; 2]> = Vec::with_capacity(5);
-    for k in 0..4 {
-        let (a, b) = (square[k], square[(k + 1) % 4]);
-        let (sa, sb) = (s(a), s(b));
-        if sa < 0.0 {
-            poly.push(a);
-        }
-        if (sa < 0.0) != (sb < 0.0) {
-            let t = sa / (sa - sb);
-            poly.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
-        }
-    }
-    let n = poly.len();
-    (0..n)
-        .map(|k| {
-            let (a, b) = (poly[k], poly[(k + 1) % n]);
-            a[0] * b[1] - a[1] * b[0]
-        })
-        .sum::<f64>()
-        / 2.0
+    pmjgen::tool::square_area_below(|p| (p[0] - 0.5) * e[0] + (p[1] - 0.5) * e[1] - e[2])
 }
 
 /// The error images of one frame, one per entry of [`SPP`] (row-major, `SIZE * SIZE`).
@@ -184,15 +151,15 @@ pub fn patterns() -> [(&'static str, Draw, Draw, Draw, Draw); 2] {
             "Sobol",
             ours::<Sobol>,
             ours::<Blue<Sobol>>,
-            openqmc_sobol,
-            openqmc_sobol_bn,
+            openqmc::<SobolSampler>,
+            openqmc::<SobolBnSampler>,
         ),
         (
             "Pmj02bn",
             ours::<Pmj02bn>,
             ours::<Blue<Pmj02bn>>,
-            openqmc_pmj,
-            openqmc_pmj_bn,
+            openqmc::<PmjSampler>,
+            openqmc::<PmjBnSampler>,
         ),
     ]
 }

@@ -2,15 +2,25 @@
 //! error of a renderer's estimate against an exact reference at 4 to 1024 samples per pixel,
 //! the fitted convergence rate, and the time to draw and warp the samples.
 //!
-//! `cargo run-report` (an alias of `cargo run --release -p warpcore-report --`; add `--help` for
-//! the options). Writes
-//! `target/report/results.csv`, `details.csv`, `tables.md`, one SVG plot per scene and the
-//! strata pictures (and, for the environment maps, the variance split and the orientation
-//! study, `envmap_orientation.*`); see `docs/REPORT.md` for a reading of the results.
+//! `cargo run-report` (an alias of `cargo run --release -p warpcore-report --bin report --`;
+//! add `--help` for the options): the study at reduced pixel counts (a few minutes on 2 cores)
+//! into `target/report/`: `results.csv`, `details.csv`, `tables.md`, `recommendations.md`, one
+//! SVG plot per scene and the strata pictures (and, for the environment maps, the variance
+//! split and the orientation study, `envmap_orientation.*`); the recommendations table last
+//! on stdout. `--full`: the whole study into `docs/report/`, pasted into `docs/REPORT.md`
+//! (a reading of the results); `--quick`: a smoke run.
 
 use clap::{Arg, ArgAction, Command, value_parser};
 use std::path::PathBuf;
 use warpcore_report::*;
+
+/// A flag `--name` (no value).
+fn flag(name: &'static str, help: &'static str) -> Arg {
+    Arg::new(name)
+        .long(name)
+        .action(ArgAction::SetTrue)
+        .help(help)
+}
 
 /// The command line.
 fn command() -> Command {
@@ -18,25 +28,21 @@ fn command() -> Command {
         .about(
             "Error versus run time for every sampler x warp of warpcore, against exact references",
         )
-        .arg(
-            Arg::new("quick")
-                .long("quick")
-                .action(ArgAction::SetTrue)
-                .help("fewer pixels and shorter timings (a smoke run, under 15 s)"),
-        )
+        .arg(flag("quick", "fewer pixels and shorter timings (a smoke run, under 15 s)"))
+        .arg(flag("full", "the whole study at the committed page's pixel counts, with the photographed maps (6 to 13 minutes on 2 cores); writes docs/report and pastes it into docs/REPORT.md unless --out says otherwise").conflicts_with("quick"))
         .arg(
             Arg::new("out")
                 .long("out")
                 .value_name("DIR")
                 .value_parser(value_parser!(PathBuf))
-                .help("output directory [default: target/report]"),
+                .help("output directory [default: target/report; --full: docs/report]; docs/report only with --full"),
         )
         .arg(
             Arg::new("pixels")
                 .long("pixels")
                 .value_name("N")
                 .value_parser(value_parser!(usize))
-                .help("pixels per class (lit, penumbra) of each area-light scene [default: 32768; quick: 1024]"),
+                .help("pixels per class (lit, penumbra) of each area-light scene [default: 8192; quick: 1024; full: 32768]"),
         )
         .arg(
             Arg::new("max-spp")
@@ -69,7 +75,7 @@ fn command() -> Command {
                 .long("env-pixels")
                 .value_name("N")
                 .value_parser(value_parser!(usize))
-                .help("pixels per class (with and without the occluder) of each environment-map scene [default: 6144; quick: 192]"),
+                .help("pixels per class (with and without the occluder) of each environment-map scene [default: 1536; quick: 192; full: 6144]"),
         )
         .arg(
             Arg::new("scene")
@@ -78,18 +84,8 @@ fn command() -> Command {
                 .action(ArgAction::Append)
                 .help("run only scenes whose name starts with PREFIX (repeatable; see the valid names in an error message)"),
         )
-        .arg(
-            Arg::new("orientation-only")
-                .long("orientation-only")
-                .action(ArgAction::SetTrue)
-                .help("run only the environment-map orientation study (envmap_orientation.csv/.md: each map as authored and rotated; --scene and --env-pixels apply)"),
-        )
-        .arg(
-            Arg::new("reference")
-                .long("reference")
-                .action(ArgAction::SetTrue)
-                .help("re-render the path scenes' cached references (docs/report/path-*.ref; about a minute each on 2 cores)"),
-        )
+        .arg(flag("orientation-only", "run only the environment-map orientation study (envmap_orientation.csv/.md: each map as authored and rotated; --scene and --env-pixels apply)"))
+        .arg(flag("reference", "re-render the path scenes' cached references (docs/report/path-*.ref; about a minute each on 2 cores)"))
 }
 
 /// A command line that fails before any work: clap's own errors (help, version, a value
@@ -132,10 +128,13 @@ where
         .map_err(CliError::Clap)?;
     let mut opts = app::Options {
         quick: m.get_flag("quick"),
+        full: m.get_flag("full"),
         ..app::Options::default()
     };
     if let Some(out) = m.get_one::<PathBuf>("out") {
         opts.out = out.clone();
+    } else if opts.full {
+        opts.out = app::docs_report();
     }
     opts.pixels = count(&m, "pixels", 1, MAX_PIXELS)?;
     opts.env_pixels = count(&m, "env-pixels", 1, MAX_ENV_PIXELS)?;
@@ -200,12 +199,25 @@ mod cli_tests {
             &["--scene", "envmap:sky"],
             &["--threads", "1", "--reference", "--scene", "corn"],
             &["--orientation-only", "--scene", "envmap:park"],
+            &["--full", "--scene", "square"],
+            &["--full", "--out", "target/report-full"],
         ] {
             assert!(
                 parse(std::iter::once("report").chain(args.iter().copied())).is_ok(),
                 "{args:?}"
             );
         }
+    }
+
+    #[test]
+    fn only_the_full_study_writes_the_committed_page() {
+        let docs = app::docs_report();
+        let docs = docs.to_str().unwrap();
+        assert!(err(&["--out", docs]).contains("--full"));
+        assert!(err(&["--quick", "--out", docs]).contains("--full"));
+        err(&["--quick", "--full"]);
+        let full = parse(["report", "--full"]).ok().unwrap();
+        assert_eq!(full.out, app::docs_report());
     }
 
     #[test]

@@ -3,6 +3,40 @@
 
 use std::sync::OnceLock;
 
+/// Running sums of independent values: their count, sum and sum of squares.
+#[derive(Clone, Copy, Default, Debug)]
+pub struct Moments {
+    pub n: u64,
+    pub sum: f64,
+    pub sum2: f64,
+}
+
+impl Moments {
+    pub fn add(&mut self, x: f64) {
+        self.n += 1;
+        self.sum += x;
+        self.sum2 += x * x;
+    }
+
+    pub fn merge(&mut self, o: &Moments) {
+        self.n += o.n;
+        self.sum += o.sum;
+        self.sum2 += o.sum2;
+    }
+
+    pub fn mean(&self) -> f64 {
+        self.sum / self.n as f64
+    }
+
+    /// The mean and its standard error (the sample variance clamped at 0 against rounding).
+    pub fn mean_se(&self) -> (f64, f64) {
+        let n = self.n as f64;
+        let m = self.mean();
+        let var = (self.sum2 / n - m * m).max(0.0) * n / (n - 1.0);
+        (m, (var / n).sqrt())
+    }
+}
+
 /// Nodes and weights of `n`-point Gauss-Legendre quadrature on `[-1, 1]`, by Newton's
 /// iteration on the three-term recurrence of the Legendre polynomials (converged to the
 /// last bit: the nodes' residual is below `1e-15`).

@@ -262,14 +262,9 @@ pub fn split_csv(splits: &[ClassSplit]) -> String {
         for (o, orient) in ORIENTATIONS.iter().enumerate() {
             for s in &c.splits[o] {
                 out += &format!(
-                    "{},{orient},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n",
+                    "{},{orient},{},{:.6e},{:.6e}\n",
                     c.scene,
-                    s.warp,
-                    s.pixels,
-                    s.var,
-                    s.var_u0,
-                    s.var_u1,
-                    s.var_both,
+                    s.csv_columns(),
                     s.var_strat16,
                     s.var_strat256
                 );

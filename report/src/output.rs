@@ -1,6 +1,6 @@
 //! Terminal tables, the CSV files and the markdown tables.
 
-use crate::run::SceneResult;
+use crate::run::{Row, SceneResult};
 use crate::samplers::{SAMPLERS, Sampler};
 use std::fmt::Write as _;
 use std::io;
@@ -186,54 +186,56 @@ pub fn warps(res: &SceneResult) -> Vec<&'static str> {
     warps
 }
 
+/// Every (scene, row, sample count index) of `results`, in the CSV files' order.
+fn entries(results: &[SceneResult]) -> impl Iterator<Item = (&SceneResult, &Row, usize)> {
+    results.iter().flat_map(|res| {
+        res.rows
+            .iter()
+            .flat_map(move |r| (0..res.spps.len()).map(move |k| (res, r, k)))
+    })
+}
+
+/// One line of `results.csv` (the path scenes' rows too, warp `path`), without its newline:
+/// the columns of [`CSV_HEADER`].
+pub fn csv_line(scene: &str, sampler: &str, warp: &str, spp: usize, mse: f64, ns: f64) -> String {
+    format!("{scene},{sampler},{warp},{spp},{mse:.6e},{ns:.3}")
+}
+
+fn entry_line(res: &SceneResult, r: &Row, k: usize) -> String {
+    csv_line(
+        &res.scene,
+        r.sampler.name(),
+        r.warp,
+        res.spps[k],
+        r.mse(k),
+        r.ns[k],
+    )
+}
+
 /// `results.csv`: one row per scene, combination and sample count.
 pub fn csv(results: &[SceneResult]) -> String {
     let mut s = format!("{CSV_HEADER}\n");
-    for res in results {
-        for r in &res.rows {
-            for (k, &spp) in res.spps.iter().enumerate() {
-                let _ = writeln!(
-                    s,
-                    "{},{},{},{},{:.6e},{:.3}",
-                    res.scene,
-                    r.sampler.name(),
-                    r.warp,
-                    spp,
-                    r.mse(k),
-                    r.ns[k]
-                );
-            }
-        }
+    for (res, r, k) in entries(results) {
+        let _ = writeln!(s, "{}", entry_line(res, r, k));
     }
     s
 }
 
 /// `details.csv`: the same rows with the statistics behind them.
 pub fn details_csv(results: &[SceneResult]) -> String {
-    let mut s = String::from(
-        "scene,sampler,warp,spp,mse,ns_per_sample,pixels,mse_rel_se,mean_error,bias_z,same_as\n",
-    );
-    for res in results {
-        for r in &res.rows {
-            for (k, &spp) in res.spps.iter().enumerate() {
-                let st = &r.stats[k];
-                let _ = writeln!(
-                    s,
-                    "{},{},{},{},{:.6e},{:.3},{},{:.4},{:.4e},{:.3},{}",
-                    res.scene,
-                    r.sampler.name(),
-                    r.warp,
-                    spp,
-                    st.mse,
-                    r.ns[k],
-                    st.n,
-                    st.rel_se(),
-                    st.mean,
-                    st.bias_z(),
-                    r.alias_of.map(|a| a.name()).unwrap_or("")
-                );
-            }
-        }
+    let mut s = format!("{CSV_HEADER},pixels,mse_rel_se,mean_error,bias_z,same_as\n");
+    for (res, r, k) in entries(results) {
+        let st = &r.stats[k];
+        let _ = writeln!(
+            s,
+            "{},{},{:.4},{:.4e},{:.3},{}",
+            entry_line(res, r, k),
+            st.n,
+            st.rel_se(),
+            st.mean,
+            st.bias_z(),
+            r.alias_of.map(|a| a.name()).unwrap_or("")
+        );
     }
     s
 }
@@ -625,21 +627,15 @@ pub fn comparison_markdown(results: &[SceneResult]) -> String {
     );
     for (suffix, _) in classes {
         let cell = find(&format!("disk{suffix}")).map_or("-".to_string(), |res| {
-            [
-                "polar",
-                "concentric",
-                "polar4",
-                "concentric4",
-                "pad_zero",
-                "rejection",
-            ]
-            .iter()
-            .filter_map(|w| {
-                res.row(Pmj02bn, w)
-                    .map(|r| format!("{w} {:.2}", r.rate(&res.spps)))
-            })
-            .collect::<Vec<_>>()
-            .join(", ")
+            crate::area::DISK_WARPS
+                .iter()
+                .filter_map(|w| {
+                    let w = w.name();
+                    res.row(Pmj02bn, w)
+                        .map(|r| format!("{w} {:.2}", r.rate(&res.spps)))
+                })
+                .collect::<Vec<_>>()
+                .join(", ")
         });
         let _ = write!(s, " {cell} |");
     }

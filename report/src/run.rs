@@ -14,6 +14,7 @@
 //! environment map's radiance) is not included: it is the same for every sampler and warp of
 //! a scene and would be a renderer's own code.
 
+use crate::math::Moments;
 use crate::math::hash;
 use crate::samplers::{SAMPLERS, Sampler};
 use indicatif::ProgressBar;
@@ -94,44 +95,35 @@ pub fn seed(scene: &str, pixel: u64, spp: usize, sampler: Sampler) -> u32 {
 /// Running sums of the errors `E_N - E` of one combination at one sample count.
 #[derive(Clone, Copy, Default, Debug)]
 pub struct Stat {
-    pub n: u64,
-    pub sum: f64,
-    pub sum2: f64,
-    pub sum4: f64,
+    /// Of the errors.
+    pub err: Moments,
+    /// Of the squared errors.
+    pub sq: Moments,
 }
 
 impl Stat {
     pub fn add(&mut self, err: f64) {
-        let e2 = err * err;
-        self.n += 1;
-        self.sum += err;
-        self.sum2 += e2;
-        self.sum4 += e2 * e2;
+        self.err.add(err);
+        self.sq.add(err * err);
     }
     pub fn merge(&mut self, o: &Stat) {
-        self.n += o.n;
-        self.sum += o.sum;
-        self.sum2 += o.sum2;
-        self.sum4 += o.sum4;
+        self.err.merge(&o.err);
+        self.sq.merge(&o.sq);
     }
     pub fn mse(&self) -> f64 {
-        self.sum2 / self.n as f64
+        self.sq.mean()
     }
     /// Relative standard error of [`Stat::mse`].
     pub fn mse_rel_se(&self) -> f64 {
-        let n = self.n as f64;
-        let m = self.mse();
-        let var = (self.sum4 / n - m * m).max(0.0) * n / (n - 1.0);
-        (var / n).sqrt() / m
+        let (m, se) = self.sq.mean_se();
+        se / m
     }
     /// Mean error over pixels in units of its standard error (an unbiased estimator gives
     /// a standard normal value). (The tables use [`Summary::bias_z`]; the tests use this.)
     #[allow(dead_code)]
     pub fn bias_z(&self) -> f64 {
-        let n = self.n as f64;
-        let mean = self.sum / n;
-        let var = (self.sum2 / n - mean * mean) * n / (n - 1.0);
-        mean / (var / n).sqrt()
+        let (mean, se) = self.err.mean_se();
+        mean / se
     }
 }
 
@@ -150,16 +142,14 @@ pub struct Summary {
 
 impl Summary {
     pub fn of(st: &Stat) -> Summary {
-        let n = st.n as f64;
         let mse = st.mse();
-        let mean = st.sum / n;
-        let var = (st.sum2 / n - mean * mean).max(0.0) * n / (n - 1.0);
+        let (mean, mean_se) = st.err.mean_se();
         Summary {
-            n: st.n,
+            n: st.err.n,
             mse,
             mse_se: st.mse_rel_se() * mse,
             mean,
-            mean_se: (var / n).sqrt(),
+            mean_se,
         }
     }
 
@@ -269,6 +259,27 @@ impl SceneResult {
             spps: first.spps.clone(),
             rows,
             seconds: parts.iter().map(|p| p.1.seconds).sum(),
+        }
+    }
+}
+
+/// How much of the study a run computes: `--quick` (a smoke run for CI), the default (the
+/// answer at reduced pixel counts, a few minutes on 2 cores) or `--full` (the committed
+/// docs/REPORT.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scale {
+    Quick,
+    Default,
+    Full,
+}
+
+impl Scale {
+    /// The setting of this scale among `[quick, default, full]`.
+    pub fn pick<T>(self, [quick, default, full]: [T; 3]) -> T {
+        match self {
+            Scale::Quick => quick,
+            Scale::Default => default,
+            Scale::Full => full,
         }
     }
 }

@@ -133,21 +133,19 @@ pub fn write(scene: &EnvScene, dir: &Path, grid: usize) -> io::Result<Vec<PathBu
     save(format!("{stem}-equal_area.png"), map_picture(ea, 2))?;
     let (lw, lh) = (2 * ll.width(), 2 * ll.height());
     let (ew, eh) = (2 * ea.width(), 2 * ea.height());
-    save(
-        "strata-marginal_equirect.png".into(),
-        strata(lw, lh, grid, &|u| ll.marginal.sample(u)),
-    )?;
-    save(
-        "strata-hierarchical_equirect.png".into(),
-        strata(lw, lh, grid, &|u| ll.hierarchical.sample(u)),
-    )?;
-    save(
-        "strata-marginal_equal_area.png".into(),
-        strata(ew, eh, grid, &|u| ea.marginal.sample(u)),
-    )?;
-    save(
-        "strata-hierarchical_equal_area.png".into(),
-        strata(ew, eh, grid, &|u| ea.hierarchical.sample(u)),
-    )?;
+    type Draw<'a> = &'a dyn Fn([f32; 2]) -> Sample;
+    let warps: [(&str, (usize, usize), Draw); 4] = [
+        ("marginal_equirect", (lw, lh), &|u| ll.marginal.sample(u)),
+        ("hierarchical_equirect", (lw, lh), &|u| {
+            ll.hierarchical.sample(u)
+        }),
+        ("marginal_equal_area", (ew, eh), &|u| ea.marginal.sample(u)),
+        ("hierarchical_equal_area", (ew, eh), &|u| {
+            ea.hierarchical.sample(u)
+        }),
+    ];
+    for (warp, (w, h), draw) in warps {
+        save(format!("strata-{warp}.png"), strata(w, h, grid, draw))?;
+    }
     Ok(files)
 }

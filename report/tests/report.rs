@@ -311,6 +311,42 @@ fn bias_z<S: Scene>(
     stat.bias_z()
 }
 
+/// Asserts that the mean error of every warp and sampler of `scene` that `tested` selects,
+/// over `pixels` pixels at 16 samples per pixel, is within `bound` standard errors; returns
+/// how many it tested.
+fn assert_unbiased<S: Scene>(
+    scene: &S,
+    pixels: u64,
+    bound: f64,
+    tested: impl Fn(usize, Sampler) -> bool,
+) -> u32 {
+    let pixels: Vec<_> = (0..pixels).map(|i| scene.pixel(i)).collect();
+    let mut tests = 0;
+    for (w, name) in scene.warps().iter().enumerate() {
+        for sampler in SAMPLERS.into_iter().filter(|&s| tested(w, s)) {
+            tests += 1;
+            let z = bias_z(scene, &pixels, w, sampler, 16);
+            println!(
+                "{} {name} {}: z = {z:+.2} (bound {bound:.2})",
+                scene.name(),
+                sampler.name()
+            );
+            assert!(
+                z.abs() < bound,
+                "{} {name} {}: z = {z} (bound {bound:.2})",
+                scene.name(),
+                sampler.name()
+            );
+        }
+    }
+    tests
+}
+
+/// The rows the report runs of `scene`: not an alias of another sampler's, applicable.
+fn reported<S: Scene>(scene: &S) -> impl Fn(usize, Sampler) -> bool + '_ {
+    |w, sampler| scene.alias(w, sampler).is_none() && scene.applies(w, sampler)
+}
+
 /// For each area scene (both pixel classes), warp and sampler, the mean error over 4096
 /// pixels at 16 samples per pixel is within the Sidak bound (4.0 standard errors for 188
 /// tests at 1% overall). Rejection sampling included: its stopping rule (points until `N`
@@ -319,26 +355,7 @@ fn bias_z<S: Scene>(
 fn area_estimators_are_unbiased() {
     let bound = sidak_bound(BIAS_FAMILY);
     for scene in AreaScene::all() {
-        let pixels: Vec<_> = (0..4096).map(|i| scene.pixel(i)).collect();
-        for (w, name) in scene.warps().iter().enumerate() {
-            for sampler in SAMPLERS {
-                if scene.alias(w, sampler).is_some() || !scene.applies(w, sampler) {
-                    continue;
-                }
-                let z = bias_z(&scene, &pixels, w, sampler, 16);
-                println!(
-                    "{} {name} {}: z = {z:+.2} (bound {bound:.2})",
-                    scene.name(),
-                    sampler.name()
-                );
-                assert!(
-                    z.abs() < bound,
-                    "{} {name} {}: z = {z}",
-                    scene.name(),
-                    sampler.name()
-                );
-            }
-        }
+        assert_unbiased(&scene, 4096, bound, reported(&scene));
     }
 }
 
@@ -354,22 +371,7 @@ fn solid_angle_estimators_are_unbiased() {
     let bound = sidak_bound(FAMILY);
     let mut tests = 0;
     for scene in solid_angle::SolidAngleScene::all() {
-        let pixels: Vec<_> = (0..1024).map(|i| scene.pixel(i)).collect();
-        for (w, name) in scene.warps().iter().enumerate() {
-            for sampler in SAMPLERS {
-                if scene.alias(w, sampler).is_some() || !scene.applies(w, sampler) {
-                    continue;
-                }
-                tests += 1;
-                let z = bias_z(&scene, &pixels, w, sampler, 16);
-                assert!(
-                    z.abs() < bound,
-                    "{} {name} {}: z = {z} (bound {bound:.2})",
-                    scene.name(),
-                    sampler.name()
-                );
-            }
-        }
+        tests += assert_unbiased(&scene, 1024, bound, reported(&scene));
     }
     assert_eq!(tests, FAMILY, "the family size in the bound");
 }
@@ -423,15 +425,8 @@ fn quick_run_writes_a_well_formed_csv() {
         lines.next(),
         Some("scene,sampler,warp,spp,mse,ns_per_sample")
     );
-    let disk = vec![
-        "polar",
-        "concentric",
-        "polar4",
-        "concentric4",
-        "pad_zero",
-        "rejection",
-    ];
-    let triangle = vec!["uniform", "sqrt", "basu_owen", "basu_owen_permuted"];
+    let disk = area::DISK_WARPS.map(area::AreaWarp::name).to_vec();
+    let triangle = area::TRIANGLE_WARPS.map(area::AreaWarp::name).to_vec();
     let mut warps_of: Vec<(String, Vec<&str>)> = Vec::new();
     for (light, warps) in [
         ("square", vec!["identity"]),
@@ -443,15 +438,9 @@ fn quick_run_writes_a_well_formed_csv() {
             warps_of.push((format!("{light}{class}"), warps.clone()));
         }
     }
-    if cfg!(feature = "envmap") {
-        let env = vec![
-            "marginal_equirect",
-            "hierarchical_equirect",
-            "marginal_equal_area",
-            "hierarchical_equal_area",
-            "hierarchical_equirect_mis",
-            "hierarchical_equal_area_mis",
-        ];
+    #[cfg(feature = "envmap")]
+    {
+        let env = envscene::WARPS.to_vec();
         for map in ["envmap:sky", "envmap:interior", "envmap:sky_200x100"] {
             warps_of.push((map.to_string(), env.clone()));
             warps_of.push((format!("{map}/lit"), env.clone()));
@@ -1038,23 +1027,7 @@ mod env {
         // Two rotations: odd pixels see the turned maps and their own distributions.
         let maps = envscene::EnvScene::builtin(2);
         for scene in maps.iter().flat_map(|m| [m.view(false), m.view(true)]) {
-            let pixels: Vec<_> = (0..384).map(|i| scene.pixel(i)).collect();
-            for (w, name) in scene.warps().iter().enumerate() {
-                for sampler in SAMPLERS {
-                    let z = bias_z(&scene, &pixels, w, sampler, 16);
-                    println!(
-                        "{} {name} {}: z = {z:+.2} (bound {bound:.2})",
-                        scene.name(),
-                        sampler.name()
-                    );
-                    assert!(
-                        z.abs() < bound,
-                        "{} {name} {}: z = {z}",
-                        scene.name(),
-                        sampler.name()
-                    );
-                }
-            }
+            assert_unbiased(&scene, 384, bound, |_, _| true);
         }
     }
 }

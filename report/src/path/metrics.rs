@@ -3,6 +3,7 @@
 //! variance in both.
 
 use super::trace::Image;
+use crate::math::Moments;
 
 /// A Gaussian blur of standard deviation `sigma` pixels (truncated at `3 sigma`, weights
 /// renormalised where the kernel leaves the image); `sigma = 0` is the identity.
@@ -69,46 +70,29 @@ pub fn mean_se(v: &[f64]) -> (f64, f64) {
 /// Running sums over the pixels of all frames of one (scene, sampler, spp).
 #[derive(Clone, Copy, Default, Debug)]
 pub struct PixelStats {
-    pub n: u64,
-    /// Mean over channels of the error.
-    pub e: f64,
-    pub e2: f64,
-    /// Mean over channels of the squared error.
-    pub sq: f64,
-    pub sq2: f64,
+    /// Of the mean over channels of the error.
+    pub e: Moments,
+    /// Of the mean over channels of the squared error.
+    pub sq: Moments,
 }
 
 impl PixelStats {
     pub fn add_frame(&mut self, err: &Image) {
         for p in &err.px {
-            let e = (p[0] + p[1] + p[2]) / 3.0;
-            let s = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) / 3.0;
-            self.n += 1;
-            self.e += e;
-            self.e2 += e * e;
-            self.sq += s;
-            self.sq2 += s * s;
+            self.e.add((p[0] + p[1] + p[2]) / 3.0);
+            self.sq.add((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) / 3.0);
         }
     }
     pub fn merge(&mut self, o: &PixelStats) {
-        self.n += o.n;
-        self.e += o.e;
-        self.e2 += o.e2;
-        self.sq += o.sq;
-        self.sq2 += o.sq2;
+        self.e.merge(&o.e);
+        self.sq.merge(&o.sq);
     }
     /// Uncorrected MSE and its standard error (pixels independent).
     pub fn mse(&self) -> (f64, f64) {
-        let n = self.n as f64;
-        let m = self.sq / n;
-        let var = (self.sq2 / n - m * m).max(0.0) * n / (n - 1.0);
-        (m, (var / n).sqrt())
+        self.sq.mean_se()
     }
     /// Mean error and its standard error.
     pub fn bias(&self) -> (f64, f64) {
-        let n = self.n as f64;
-        let m = self.e / n;
-        let var = (self.e2 / n - m * m).max(0.0) * n / (n - 1.0);
-        (m, (var / n).sqrt())
+        self.e.mean_se()
     }
 }

@@ -1,9 +1,9 @@
 //! The path-traced scenes: which *sampler* drives a whole path best, and at what cost.
 //!
 //! For each scene (`cornell`, `cornell-disk`), each sampler of [`samplers::KINDS`] and each
-//! sample count, independent frames (64 x 64, seeds hashed from scene, sampler, count and
-//! frame) are rendered single-threaded (frames run in parallel), compared with the cached
-//! reference (see [`mod@reference`]), and timed:
+//! sample count, independent frames (64 x 64 with `--full`, else 32 x 32; seeds hashed from
+//! scene, sampler, count and frame) are rendered single-threaded (frames run in parallel),
+//! compared with the cached reference (see [`mod@reference`]), and timed:
 //!
 //! * **MSE** over pixels and channels, minus the reference's own variance; its standard error
 //!   from the pixels (independent per pixel for every sampler but the blue-noise ones, whose
@@ -20,6 +20,7 @@ pub mod samplers;
 pub mod scene;
 pub mod trace;
 
+use crate::run::Scale;
 use metrics::{PixelStats, blur, diff, mean_se, squares};
 use reference::Reference;
 use samplers::{KINDS, Kind, with_sampler};
@@ -45,44 +46,47 @@ pub struct PathConfig {
     pub scenes: Vec<String>,
     pub spps: Vec<u32>,
     pub threads: usize,
-    pub quick: bool,
+    pub scale: Scale,
     /// Re-render the references (`--reference`).
     pub rebuild_reference: bool,
     /// Where the cached references live (`docs/report`).
     pub reference_dir: PathBuf,
     pub reference_spp_per_half: u32,
-    /// Image side: [`SIZE`], or half of it with `--quick` (the reference is averaged over 2 x 2
-    /// pixels: with a box pixel filter that is exactly the expected value of the coarser
+    /// Image side: [`SIZE`] with `--full`, else half of it (the reference is averaged over
+    /// 2 x 2 pixels: with a box pixel filter that is exactly the expected value of the coarser
     /// pixels).
     pub size: usize,
 }
 
 impl PathConfig {
-    pub fn new(scenes: Vec<String>, quick: bool, threads: usize, rebuild: bool) -> Self {
+    /// Sample counts 1 to 256 (default: to 64; quick: to 16), 64 x 64 pixels (else 32 x 32).
+    pub fn new(scenes: Vec<String>, scale: Scale, threads: usize, rebuild: bool) -> Self {
+        let top = scale.pick([16, 64, 256]);
         PathConfig {
             scenes,
-            spps: if quick {
-                vec![1, 2, 4, 8, 16]
-            } else {
-                vec![1, 2, 4, 8, 16, 64, 256]
-            },
+            spps: [1, 2, 4, 8, 16, 64, 256]
+                .into_iter()
+                .filter(|&n| n <= top)
+                .collect(),
             threads,
-            quick,
+            scale,
             rebuild_reference: rebuild,
             reference_dir: PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
                 .join("docs/report"),
             reference_spp_per_half: REFERENCE_SPP_PER_HALF,
-            size: if quick { SIZE / 2 } else { SIZE },
+            size: if scale == Scale::Full { SIZE } else { SIZE / 2 },
         }
     }
 
-    /// Independent frames rendered at `spp`.
+    /// Independent frames rendered at `spp`: 8 up to 16 spp, 2 at 64, 1 at 256 (default: 4
+    /// up to 16, 1 at 64; quick: 2 at the filtered counts, else 1).
     pub fn frames(&self, spp: u32) -> u32 {
-        match (self.quick, spp) {
-            (true, s) if FILTERED_SPPS.contains(&s) => 2,
-            (true, _) => 1,
-            (false, 0..=16) => 8,
-            (false, 17..=64) => 2,
+        match (self.scale, spp) {
+            (Scale::Quick, s) if FILTERED_SPPS.contains(&s) => 2,
+            (Scale::Quick, _) => 1,
+            (Scale::Default, 0..=16) => 4,
+            (Scale::Full, 0..=16) => 8,
+            (Scale::Full, 17..=64) => 2,
             _ => 1,
         }
     }
@@ -315,43 +319,43 @@ pub fn run_scene(cfg: &PathConfig, name: &str) -> Result<PathResult, String> {
     Ok(res)
 }
 
+/// Every (scene, row) of `results`, in the CSV files' order.
+fn entries(results: &[PathResult]) -> impl Iterator<Item = (&PathResult, &PathRow)> {
+    results
+        .iter()
+        .flat_map(|r| r.rows.iter().map(move |row| (r, row)))
+}
+
 /// Rows for `results.csv` (same header as the other scenes; warp `path`).
 pub fn results_csv_rows(results: &[PathResult]) -> String {
-    let mut s = String::new();
-    for r in results {
-        for row in &r.rows {
-            let _ = writeln!(
-                s,
-                "{},{},path,{},{:.6e},{:.3}",
-                r.scene,
+    entries(results)
+        .map(|(r, row)| {
+            let ns = row.ns_per_sample(r.reference.px.len());
+            let line = crate::output::csv_line(
+                &r.scene,
                 row.kind.name(),
-                row.spp,
+                "path",
+                row.spp as usize,
                 row.mse,
-                row.ns_per_sample(r.reference.px.len())
+                ns,
             );
-        }
-    }
-    s
+            line + "\n"
+        })
+        .collect()
 }
 
 /// `filtered.csv`.
 pub fn filtered_csv(results: &[PathResult]) -> String {
     let mut s = String::from("scene,sampler,spp,sigma,mse\n");
-    for r in results {
-        for row in &r.rows {
-            if let Some(f) = &row.filtered {
-                for (sigma, (m, _)) in SIGMAS.iter().zip(f) {
-                    let _ = writeln!(
-                        s,
-                        "{},{},{},{},{:.6e}",
-                        r.scene,
-                        row.kind.name(),
-                        row.spp,
-                        sigma,
-                        m
-                    );
-                }
-            }
+    for (r, row) in entries(results) {
+        for (sigma, (m, _)) in SIGMAS.iter().zip(row.filtered.iter().flatten()) {
+            let _ = writeln!(
+                s,
+                "{},{},{},{sigma},{m:.6e}",
+                r.scene,
+                row.kind.name(),
+                row.spp
+            );
         }
     }
     s
@@ -362,24 +366,22 @@ pub fn details_csv(results: &[PathResult]) -> String {
     let mut s = String::from(
         "scene,sampler,spp,frames,mse,mse_rel_se,mean_error,bias_z,frame_ms,ns_per_sample,reference_variance\n",
     );
-    for r in results {
-        for row in &r.rows {
-            let _ = writeln!(
-                s,
-                "{},{},{},{},{:.6e},{:.4},{:.4e},{:.3},{:.3},{:.2},{:.4e}",
-                r.scene,
-                row.kind.name(),
-                row.spp,
-                row.frames,
-                row.mse,
-                row.mse_se / row.mse,
-                row.mean_error,
-                row.bias_z,
-                row.frame_s * 1e3,
-                row.ns_per_sample(r.reference.px.len()),
-                r.ref_var[0].0
-            );
-        }
+    for (r, row) in entries(results) {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{:.6e},{:.4},{:.4e},{:.3},{:.3},{:.2},{:.4e}",
+            r.scene,
+            row.kind.name(),
+            row.spp,
+            row.frames,
+            row.mse,
+            row.mse_se / row.mse,
+            row.mean_error,
+            row.bias_z,
+            row.frame_s * 1e3,
+            row.ns_per_sample(r.reference.px.len()),
+            r.ref_var[0].0
+        );
     }
     s
 }

@@ -7,7 +7,7 @@
 
 use super::samplers::{KINDS, Kind};
 use super::trace::Image;
-use super::{FILTERED_SPPS, PathResult, SIGMAS};
+use super::{FILTERED_SPPS, PathResult, PathRow, SIGMAS};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -101,23 +101,14 @@ fn err_tile(img: &Image, reference: &Image) -> Vec<[u8; 3]> {
         .collect()
 }
 
+/// A colour per sampler (matplotlib's tab20 hues, as `0xRRGGBB`).
 fn colour(kind: Kind) -> RGBColor {
-    const C: [RGBColor; 13] = [
-        RGBColor(31, 119, 180),
-        RGBColor(214, 39, 40),
-        RGBColor(23, 190, 207),
-        RGBColor(255, 127, 14),
-        RGBColor(44, 160, 44),
-        RGBColor(152, 223, 138),
-        RGBColor(148, 103, 189),
-        RGBColor(197, 176, 213),
-        RGBColor(140, 86, 75),
-        RGBColor(196, 156, 148),
-        RGBColor(227, 119, 194),
-        RGBColor(188, 189, 34),
-        RGBColor(127, 127, 127),
+    const C: [u32; 13] = [
+        0x1f77b4, 0xd62728, 0x17becf, 0xff7f0e, 0x2ca02c, 0x98df8a, 0x9467bd, 0xc5b0d5, 0x8c564b,
+        0xc49c94, 0xe377c2, 0xbcbd22, 0x7f7f7f,
     ];
-    C[kind.index()]
+    let c = C[kind.index()];
+    RGBColor((c >> 16) as u8, (c >> 8) as u8, c as u8)
 }
 
 type Series = (Kind, Vec<(f64, f64)>);
@@ -189,30 +180,18 @@ fn convergence_svg(r: &PathResult, dir: &Path) -> Result<(), Box<dyn std::error:
     let root = SVGBackend::new(&path, (1100, 480)).into_drawing_area();
     root.fill(&WHITE)?;
     let (left, right) = root.split_horizontally(550);
-    let by_n: Vec<Series> = KINDS
-        .iter()
-        .map(|&k| {
-            let p = r
-                .rows
-                .iter()
-                .filter(|x| x.kind == k)
-                .map(|x| (x.spp as f64, x.mse))
-                .collect();
-            (k, p)
-        })
-        .collect();
-    let by_t: Vec<Series> = KINDS
-        .iter()
-        .map(|&k| {
-            let p = r
-                .rows
-                .iter()
-                .filter(|x| x.kind == k)
-                .map(|x| (x.frame_s * 1e3, x.mse))
-                .collect();
-            (k, p)
-        })
-        .collect();
+    // Per sampler, (x of each row, its MSE).
+    let series = |x: fn(&PathRow) -> f64| -> Vec<Series> {
+        KINDS
+            .iter()
+            .map(|&k| {
+                let rows = r.rows.iter().filter(|row| row.kind == k);
+                (k, rows.map(|row| (x(row), row.mse)).collect())
+            })
+            .collect()
+    };
+    let by_n = series(|row| row.spp as f64);
+    let by_t = series(|row| row.frame_s * 1e3);
     log_panel(
         &left,
         &format!("{}: MSE vs samples per pixel", r.scene),

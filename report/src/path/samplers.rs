@@ -17,9 +17,7 @@
 //!   own code over warpcore's tables);
 //! * independent uniform random numbers (a counter hash).
 
-use openqmc::{
-    LatticeBnSampler, LatticeSampler, PmjBnSampler, PmjSampler, SobolBnSampler, SobolSampler,
-};
+use openqmc::SamplerImpl;
 use warpcore::pmj02bn;
 use warpcore::sampler::{Pattern, Sampler};
 
@@ -75,37 +73,27 @@ impl<P: Pattern> PathSampler for Warpcore<P> {
 /// An openqmc-rs sampler; the render's seed goes in as the frame number.
 pub struct OpenQmc<T>(pub std::marker::PhantomData<fn() -> T>);
 
-macro_rules! openqmc_impl {
-    ($t:ty) => {
-        impl PathSampler for OpenQmc<$t> {
-            type Sample = $t;
-            fn sample(&self, pixel: [u32; 2], index: u32, _spp: u32, seed: u32) -> $t {
-                <$t>::new(
-                    pixel[0] as i32,
-                    pixel[1] as i32,
-                    (seed & 0x7fff_ffff) as i32,
-                    index as i32,
-                )
-            }
-            fn draw2(&self, s: &$t, domain: u32) -> [f32; 2] {
-                s.new_domain(domain as i32).draw_sample_f32::<2>()
-            }
-            fn draw4(&self, s: &$t, domain: u32) -> [f32; 4] {
-                s.new_domain(domain as i32).draw_sample_f32::<4>()
-            }
-            fn rnd(&self, s: &$t, domain: u32) -> f32 {
-                s.new_domain((RND_DOMAIN + domain) as i32)
-                    .draw_rnd_f32::<1>()[0]
-            }
-        }
-    };
+impl<T: SamplerImpl> PathSampler for OpenQmc<openqmc::Sampler<T>> {
+    type Sample = openqmc::Sampler<T>;
+    fn sample(&self, pixel: [u32; 2], index: u32, _spp: u32, seed: u32) -> Self::Sample {
+        Self::Sample::new(
+            pixel[0] as i32,
+            pixel[1] as i32,
+            (seed & 0x7fff_ffff) as i32,
+            index as i32,
+        )
+    }
+    fn draw2(&self, s: &Self::Sample, domain: u32) -> [f32; 2] {
+        s.new_domain(domain as i32).draw_sample_f32::<2>()
+    }
+    fn draw4(&self, s: &Self::Sample, domain: u32) -> [f32; 4] {
+        s.new_domain(domain as i32).draw_sample_f32::<4>()
+    }
+    fn rnd(&self, s: &Self::Sample, domain: u32) -> f32 {
+        s.new_domain((RND_DOMAIN + domain) as i32)
+            .draw_rnd_f32::<1>()[0]
+    }
 }
-openqmc_impl!(SobolSampler);
-openqmc_impl!(SobolBnSampler);
-openqmc_impl!(PmjSampler);
-openqmc_impl!(PmjBnSampler);
-openqmc_impl!(LatticeSampler);
-openqmc_impl!(LatticeBnSampler);
 
 /// `sobol_burley::sample_4d`, padded: domain `k` is dimension set `k`.
 pub struct SobolBurley;
@@ -327,66 +315,37 @@ impl Kind {
 }
 
 /// Calls `$body` with `$s` bound to the sampler of `$kind` (a generic call per core: the
-/// scene code is monomorphised for each, no dynamic dispatch inside a path).
+/// scene code is monomorphised for each, no dynamic dispatch inside a path). One line per
+/// [`Kind`]: its sampler value.
 macro_rules! with_sampler {
     ($kind:expr, $s:ident => $body:expr) => {{
         use std::marker::PhantomData as PD;
+        use warpcore::sampler::{Blue, Pmj02bn, Sobol};
         use $crate::path::samplers::*;
-        match $kind {
-            Kind::Pmj02bn => {
-                let $s = &Warpcore::<warpcore::sampler::Pmj02bn>(PD);
-                $body
-            }
-            Kind::Sobol => {
-                let $s = &Warpcore::<warpcore::sampler::Sobol>(PD);
-                $body
-            }
-            Kind::BluePmj02bn => {
-                let $s = &Warpcore::<warpcore::sampler::Blue<warpcore::sampler::Pmj02bn>>(PD);
-                $body
-            }
-            Kind::BlueSobol => {
-                let $s = &Warpcore::<warpcore::sampler::Blue<warpcore::sampler::Sobol>>(PD);
-                $body
-            }
-            Kind::OpenqmcSobol => {
-                let $s = &OpenQmc::<openqmc::SobolSampler>(PD);
-                $body
-            }
-            Kind::OpenqmcSobolbn => {
-                let $s = &OpenQmc::<openqmc::SobolBnSampler>(PD);
-                $body
-            }
-            Kind::OpenqmcPmj => {
-                let $s = &OpenQmc::<openqmc::PmjSampler>(PD);
-                $body
-            }
-            Kind::OpenqmcPmjbn => {
-                let $s = &OpenQmc::<openqmc::PmjBnSampler>(PD);
-                $body
-            }
-            Kind::OpenqmcLattice => {
-                let $s = &OpenQmc::<openqmc::LatticeSampler>(PD);
-                $body
-            }
-            Kind::OpenqmcLatticebn => {
-                let $s = &OpenQmc::<openqmc::LatticeBnSampler>(PD);
-                $body
-            }
-            Kind::SobolBurley => {
-                let $s = &SobolBurley;
-                $body
-            }
-            Kind::PbrtPmj02bn => {
-                let $s = &PbrtPmj;
-                $body
-            }
-            Kind::Random => {
-                let $s = &Random;
-                $body
-            }
-        }
+        $crate::path::samplers::with_sampler!(@match $kind, $s, $body,
+            Pmj02bn => Warpcore::<Pmj02bn>(PD),
+            Sobol => Warpcore::<Sobol>(PD),
+            BluePmj02bn => Warpcore::<Blue<Pmj02bn>>(PD),
+            BlueSobol => Warpcore::<Blue<Sobol>>(PD),
+            OpenqmcSobol => OpenQmc::<openqmc::SobolSampler>(PD),
+            OpenqmcSobolbn => OpenQmc::<openqmc::SobolBnSampler>(PD),
+            OpenqmcPmj => OpenQmc::<openqmc::PmjSampler>(PD),
+            OpenqmcPmjbn => OpenQmc::<openqmc::PmjBnSampler>(PD),
+            OpenqmcLattice => OpenQmc::<openqmc::LatticeSampler>(PD),
+            OpenqmcLatticebn => OpenQmc::<openqmc::LatticeBnSampler>(PD),
+            SobolBurley => SobolBurley,
+            PbrtPmj02bn => PbrtPmj,
+            Random => Random,
+        )
     }};
+    (@match $kind:expr, $s:ident, $body:expr, $($k:ident => $v:expr,)*) => {
+        match $kind {
+            $(Kind::$k => {
+                let $s = &$v;
+                $body
+            })*
+        }
+    };
 }
 
 pub(crate) use with_sampler;

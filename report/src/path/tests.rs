@@ -138,12 +138,12 @@ fn frames_are_reproducible() {
     }
 }
 
-/// `--quick` compares 32 x 32 renders with the 64 x 64 reference averaged over 2 x 2 pixels:
-/// with a box pixel filter the two have the same expectation. Checked at 8 x 8: 8 references
-/// of 16 x 16 pixels at 256 spp averaged down, and 8 direct 8 x 8 references at 1024 spp
-/// (same samples per coarse pixel), differ by their noise only: summed over the 192 pixel
-/// channels, the squared difference of the two means over the sum of their variances (each
-/// from its 8 replicates) lies in [0.5, 2] (measured 1.2).
+/// Without `--full` the report compares 32 x 32 renders with the 64 x 64 reference averaged
+/// over 2 x 2 pixels: with a box pixel filter the two have the same expectation. Checked at
+/// 8 x 8: 8 references of 16 x 16 pixels at 256 spp averaged down, and 8 direct 8 x 8
+/// references at 1024 spp (same samples per coarse pixel), differ by their noise only: summed
+/// over the 192 pixel channels, the squared difference of the two means over the sum of their
+/// variances (each from its 8 replicates) lies in [0.5, 2] (measured 1.2).
 #[test]
 fn downsampled_reference_matches_a_coarser_render() {
     let fine = Scene::by_name("cornell", 16).unwrap();

@@ -19,16 +19,10 @@
 mod opt;
 
 use opt::{Base, Params};
+use pmjgen::tool::{fnv1a64, write_or_check};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
-
-/// FNV-1a, 64 bits (as `tools/pmjgen`'s manifest).
-fn fnv1a64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
-    })
-}
 
 struct Args {
     out: PathBuf,
@@ -165,41 +159,5 @@ fn main() -> ExitCode {
         "bluegen {settings}: generated in {:.1} s",
         start.elapsed().as_secs_f64()
     );
-    if args.check {
-        let mut ok = true;
-        for (name, bytes) in &files {
-            let path = args.out.join(name);
-            match std::fs::read(&path) {
-                Ok(have) if have == *bytes => {}
-                Ok(_) => {
-                    eprintln!(
-                        "bluegen: {} differs from the generator's output",
-                        path.display()
-                    );
-                    ok = false;
-                }
-                Err(e) => {
-                    eprintln!("bluegen: {}: {e}", path.display());
-                    ok = false;
-                }
-            }
-        }
-        if !ok {
-            return ExitCode::FAILURE;
-        }
-        eprintln!("{} files match", files.len());
-    } else {
-        if let Err(e) = std::fs::create_dir_all(&args.out) {
-            eprintln!("bluegen: {}: {e}", args.out.display());
-            return ExitCode::FAILURE;
-        }
-        for (name, bytes) in &files {
-            if let Err(e) = std::fs::write(args.out.join(name), bytes) {
-                eprintln!("bluegen: {name}: {e}");
-                return ExitCode::FAILURE;
-            }
-        }
-        eprintln!("wrote {} files to {}", files.len(), args.out.display());
-    }
-    ExitCode::SUCCESS
+    write_or_check("bluegen", &args.out, &files, args.check)
 }

@@ -68,6 +68,8 @@
 //! multiply-adds), no libm: the kernel's weights and the lattice's directions come from our
 //! own series. The same bytes on every machine.
 
+use pmjgen::Rng;
+use pmjgen::tool::square_area_below;
 use warpcore::sampler::{Pmj02bn, Sampler, Sobol};
 
 /// Tile side (must equal `warpcore::sampler::BLUE_TILE`).
@@ -105,28 +107,6 @@ impl Base {
             Base::Sobol => Sampler::<Sobol>::from_domain_hash(key, index).draw::<2>(),
             Base::Pmj02bn => Sampler::<Pmj02bn>::from_domain_hash(key, index).draw::<2>(),
         }
-    }
-}
-
-/// SplitMix64 (Steele, Lea and Flood 2014).
-pub struct Rng(u64);
-
-impl Rng {
-    pub fn new(seed: u64) -> Self {
-        Rng(seed)
-    }
-
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// A value in `0..n` by multiply-shift.
-    pub fn below(&mut self, n: usize) -> usize {
-        (((self.next_u64() >> 32) * n as u64) >> 32) as usize
     }
 }
 
@@ -190,30 +170,9 @@ impl Edge {
         (p[0] as f64 - 0.5) * self.n[0] + (p[1] as f64 - 0.5) * self.n[1] < self.c
     }
 
-    /// The square clipped by the line (Sutherland-Hodgman), then the shoelace formula.
+    /// The exact area of the half-plane in the square.
     fn exact_area(&self) -> f64 {
-        let s = |p: [f64; 2]| (p[0] - 0.5) * self.n[0] + (p[1] - 0.5) * self.n[1] - self.c;
-        let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-        let mut poly: Vec<[f64; 2]> = Vec::with_capacity(5);
-        for k in 0..4 {
-            let (a, b) = (square[k], square[(k + 1) % 4]);
-            let (sa, sb) = (s(a), s(b));
-            if sa < 0.0 {
-                poly.push(a);
-            }
-            if (sa < 0.0) != (sb < 0.0) {
-                let t = sa / (sa - sb);
-                poly.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
-            }
-        }
-        let n = poly.len();
-        let twice: f64 = (0..n)
-            .map(|k| {
-                let (a, b) = (poly[k], poly[(k + 1) % n]);
-                a[0] * b[1] - a[1] * b[0]
-            })
-            .sum();
-        twice / 2.0
+        square_area_below(|p| (p[0] - 0.5) * self.n[0] + (p[1] - 0.5) * self.n[1] - self.c)
     }
 }
 

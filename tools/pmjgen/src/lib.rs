@@ -36,7 +36,10 @@
 //! SplitMix64 stream, so the output is a pure function of `(count, seed, candidates)` on every
 //! machine.
 
-/// SplitMix64 (Steele, Lea and Flood 2014): small, fast, and fully specified.
+pub mod tool;
+
+/// SplitMix64 (Steele, Lea and Flood 2014): small, fast, and fully specified (bluegen's
+/// optimiser draws from it too).
 pub struct Rng(u64);
 
 impl Rng {

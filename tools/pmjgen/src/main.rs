@@ -19,6 +19,7 @@
 //! repository root).
 
 use pmjgen as pmj;
+use pmjgen::tool::{fnv1a64, write_or_check};
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -49,13 +50,6 @@ pub fn table_set(seed: u64, s: usize, candidates: usize) -> Result<Vec<[u32; 2]>
         }
     }
     Ok(points)
-}
-
-/// FNV-1a, 64 bits: a small, fully specified checksum for the manifest.
-fn fnv1a64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
-    })
 }
 
 fn to_bytes(points: &[[u32; 2]]) -> Vec<u8> {
@@ -150,43 +144,7 @@ fn main() -> ExitCode {
         "{command}: generated in {:.2} s",
         start.elapsed().as_secs_f64()
     );
-    if args.check {
-        let mut ok = true;
-        for (name, bytes) in &files {
-            let path = args.out.join(name);
-            match std::fs::read(&path) {
-                Ok(have) if have == *bytes => {}
-                Ok(_) => {
-                    eprintln!(
-                        "pmjgen: {} differs from the generator's output",
-                        path.display()
-                    );
-                    ok = false;
-                }
-                Err(e) => {
-                    eprintln!("pmjgen: {}: {e}", path.display());
-                    ok = false;
-                }
-            }
-        }
-        if !ok {
-            return ExitCode::FAILURE;
-        }
-        eprintln!("{} files match", files.len());
-    } else {
-        if let Err(e) = std::fs::create_dir_all(&args.out) {
-            eprintln!("pmjgen: {}: {e}", args.out.display());
-            return ExitCode::FAILURE;
-        }
-        for (name, bytes) in &files {
-            if let Err(e) = std::fs::write(args.out.join(name), bytes) {
-                eprintln!("pmjgen: {name}: {e}");
-                return ExitCode::FAILURE;
-            }
-        }
-        eprintln!("wrote {} files to {}", files.len(), args.out.display());
-    }
-    ExitCode::SUCCESS
+    write_or_check("pmjgen", &args.out, &files, args.check)
 }
 
 /// Nearest-neighbour statistics of plain pmj02 and of the pmj02bn tables' prefixes.
