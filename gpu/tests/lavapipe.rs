@@ -9,14 +9,14 @@
 
 use std::path::PathBuf;
 use warpcore_gpu::testing::{assert_bit_identical, lavapipe, translate};
-use warpcore_gpu::{FUNCTIONS, Func, Gpu, WGSL, compare, cpu_outputs, inputs};
+use warpcore_gpu::{Func, Gpu, WGSL, compare, cpu_outputs, inputs, warps};
 
 /// Every output word of every function equals the crate's, over edge values, grids, random
 /// points of each domain and random bit patterns (every f32 class).
 #[test]
 fn every_function_is_bit_identical_on_lavapipe() {
     let Some(gpu) = lavapipe() else { return };
-    assert_bit_identical(&gpu, FUNCTIONS, 0x5eed_0000);
+    assert_bit_identical(&gpu, warps(), 0x5eed_0000);
 }
 
 /// The comparison is sharp: the sine kernel's leading constant moved by one ulp changes the
@@ -25,12 +25,12 @@ fn every_function_is_bit_identical_on_lavapipe() {
 #[test]
 fn a_one_ulp_change_is_detected() {
     let Some(gpu) = lavapipe() else { return };
-    let func = *FUNCTIONS
+    let func = warps()
         .iter()
         .find(|f| f.name == "wc_disk_concentric")
         .unwrap();
     let input = inputs(func.domain, 1 << 12, 7);
-    let want = cpu_outputs(&func, &input);
+    let want = cpu_outputs(func, &input);
     let wrong = WGSL.replace(
         "const WCI_S0: f32 = 0x1.921fb4p-1f;",
         "const WCI_S0: f32 = 0x1.921fb6p-1f;",
@@ -39,8 +39,8 @@ fn a_one_ulp_change_is_detected() {
         wrong, WGSL,
         "the constant to perturb is where the test expects it"
     );
-    let got = run_source(&gpu, &func, &wrong, &input);
-    let d = compare(&func, &got, &want);
+    let got = run_source(&gpu, func, &wrong, &input);
+    let d = compare(func, &got, &want);
     println!("S0 + 1 ulp: {} of {} points differ", d.mismatches, d.points);
     assert!(d.mismatches * 10 > d.points, "{d:?}");
     assert!(d.max_ulp >= 0.5 && d.max_abs < 1e-6, "{d:?}");
@@ -108,7 +108,7 @@ fn the_file_is_a_library_with_the_contract_signatures() {
     for name in &public {
         assert!(
             warpcore_gpu::all_functions().any(|f| f.name == *name),
-            "{name} is not in FUNCTIONS or SPHERICAL_FUNCTIONS"
+            "{name} is not bound by a registry entry"
         );
     }
     assert_eq!(public.len(), warpcore_gpu::all_functions().count());
@@ -145,7 +145,7 @@ fn naga_translates_to_spirv_glsl_hlsl_msl() {
     let (glsl, hlsl, msl) = (&t.glsl, &t.hlsl, &t.msl);
     for (lang, text) in [("GLSL", glsl), ("HLSL", hlsl), ("MSL", msl)] {
         for f in warpcore_gpu::all_functions() {
-            assert!(text.contains(f.name), "{lang} lacks {}", f.name);
+            assert!(text.contains(&f.name), "{lang} lacks {}", f.name);
         }
         println!("{lang}: {} bytes", text.len());
     }

@@ -4,17 +4,17 @@
 //! (`warpcore_gpu::spherical`). Same environment variables as `tests/lavapipe.rs`.
 
 use warpcore_gpu::testing::{assert_bit_identical, lavapipe};
-use warpcore_gpu::{Func, Gpu, SPHERICAL_FUNCTIONS, WGSL, compare, cpu_outputs, inputs};
+use warpcore_gpu::{Func, Gpu, WGSL, compare, cpu_outputs, inputs, lights};
 
 /// Every output word of every solid-angle function equals the crate's.
 #[test]
 fn every_solid_angle_function_is_bit_identical_on_lavapipe() {
     let Some(gpu) = lavapipe() else { return };
-    assert_bit_identical(&gpu, SPHERICAL_FUNCTIONS, 0x5fe0_0000);
+    assert_bit_identical(&gpu, lights(), 0x5fe0_0000);
 }
 
-fn find(name: &str) -> Func {
-    *SPHERICAL_FUNCTIONS.iter().find(|f| f.name == name).unwrap()
+fn find(name: &str) -> &'static Func {
+    lights().iter().find(|f| f.name == name).unwrap()
 }
 
 fn mismatches(gpu: &Gpu, func: &Func, wgsl: &str, input: &[u32]) -> (usize, usize) {
@@ -40,7 +40,7 @@ fn small_changes_are_detected() {
         "const WCI_INV_4PI: f32 = 0x1.45f308p-4f;",
     );
     assert_ne!(wrong, WGSL, "the constant is where the test expects it");
-    let (m, n) = mismatches(&gpu, &tri, &wrong, &input);
+    let (m, n) = mismatches(&gpu, tri, &wrong, &input);
     println!("1 / (4 pi) + 1 ulp: {m} of {n} triangle samples differ");
     assert!(m * 3 > n, "{m} of {n}");
 
@@ -51,7 +51,7 @@ fn small_changes_are_detected() {
         "    let dx = dx1;",
     );
     assert_ne!(wrong, WGSL, "the Newton step is where the test expects it");
-    let (m, n) = mismatches(&gpu, &rect, &wrong, &input);
+    let (m, n) = mismatches(&gpu, rect, &wrong, &input);
     println!("one Newton step fewer: {m} of {n} rectangle samples differ");
     assert!(m * 10 > n, "{m} of {n}");
 }
