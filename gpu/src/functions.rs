@@ -8,8 +8,7 @@
 //! cosine-aware lights' ([`BY_HAND`]).
 
 use crate::spherical::Layout;
-use crate::{Domain, WGSL};
-use std::fmt::Write as _;
+use crate::{Domain, WGSL, all_shader, call_body};
 use std::sync::LazyLock;
 use warpcore::spherical as sp;
 use warpcore_registry::fingerprint::tri;
@@ -324,37 +323,21 @@ impl Visit for Eval<'_> {
     }
 }
 
-/// One compute shader that calls every public function (entry point `wc_all`), for the
-/// translation checks: naga's GLSL, HLSL and MSL writers and `spirv-val` want an entry point.
+/// One compute shader that calls every public function ([`crate::all_shader`]), each point's
+/// outputs after the previous function's.
 pub fn all_functions_shader() -> String {
-    let mut s = String::from(WGSL);
-    s.push_str(
-        "\n@group(0) @binding(0) var<storage, read> wc_in: array<u32>;\n\
-         @group(0) @binding(1) var<storage, read_write> wc_out: array<u32>;\n\
-         @compute @workgroup_size(64)\n\
-         fn wc_all(@builtin(global_invocation_id) gid: vec3<u32>) {\n\
-         \x20   let i = gid.x;\n",
-    );
     let mut base = 0usize;
-    for func in all_functions() {
+    let bodies = all_functions().map(|func| {
         let (call, outs) = func.wgsl();
         let n = func.out_words();
-        let _ = writeln!(
-            s,
-            "    {{\n        let b = i * {}u;\n        let r = {call};",
-            func.in_words()
+        let body = format!(
+            "    let b = i * {}u;\n    let o = i * {}u + {base}u;\n{}",
+            func.in_words(),
+            base + n,
+            call_body(call, outs)
         );
-        for (k, e) in outs.enumerate() {
-            let _ = writeln!(
-                s,
-                "        wc_out[i * {}u + {}u] = {e};",
-                base + n,
-                base + k
-            );
-        }
-        s.push_str("    }\n");
         base += n;
-    }
-    s.push_str("}\n");
-    s
+        body
+    });
+    all_shader(WGSL, [0, 1], bodies.collect::<Vec<_>>())
 }

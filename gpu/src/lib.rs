@@ -656,6 +656,28 @@ pub fn check_shader(
     )
 }
 
+/// A compute shader that runs each of `bodies` in its own block for invocation `i` (entry
+/// point `wc_all`; `wc_in` and `wc_out` at bindings `[in, out]` of group 0), for the
+/// translation checks: naga's GLSL, HLSL and MSL writers and `spirv-val` want an entry point.
+pub fn all_shader(
+    library: &str,
+    [in_binding, out_binding]: [u32; 2],
+    bodies: impl IntoIterator<Item = String>,
+) -> String {
+    let mut s = format!(
+        "{library}\n@group(0) @binding({in_binding}) var<storage, read> wc_in: array<u32>;\n\
+         @group(0) @binding({out_binding}) var<storage, read_write> wc_out: array<u32>;\n\
+         @compute @workgroup_size(64)\n\
+         fn wc_all(@builtin(global_invocation_id) gid: vec3<u32>) {{\n\
+         \x20   let i = gid.x;\n"
+    );
+    for body in bodies {
+        let _ = write!(s, "    {{\n{body}    }}\n");
+    }
+    s.push_str("}\n");
+    s
+}
+
 /// The statements of a [`check_shader`] body that call `call` and write the output words
 /// `outs` of its result `r`.
 pub fn call_body<'a>(call: &str, outs: impl Iterator<Item = &'a str>) -> String {

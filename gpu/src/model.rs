@@ -455,7 +455,14 @@ impl<'m> Interpreter<'m> {
                 (naga::UnaryOperator::LogicalNot, Val::B(x)) => Val::B(!x),
                 (op, v) => panic!("{op:?} {v:?}"),
             },
-            E::Binary { op, left, right } => self.binary(f, fr, *op, *left, *right),
+            E::Binary { op, left, right } => {
+                let e = Binary {
+                    op: *op,
+                    left: *left,
+                    right: *right,
+                };
+                self.binary(f, fr, e)
+            }
             E::Select {
                 condition,
                 accept,
@@ -552,45 +559,34 @@ impl<'m> Interpreter<'m> {
         None
     }
 
-    fn binary(
-        &mut self,
-        f: &naga::Function,
-        fr: &mut Frame,
-        op: B,
-        left: Handle<E>,
-        right: Handle<E>,
-    ) -> Val {
-        let (l, r) = (self.eval(f, fr, left), self.eval(f, fr, right));
+    fn binary(&mut self, f: &naga::Function, fr: &mut Frame, e: Binary) -> Val {
+        let (l, r) = (self.eval(f, fr, e.left), self.eval(f, fr, e.right));
         let n = match (&l, &r) {
             (Val::C(c), _) | (_, Val::C(c)) => c.len(),
-            _ => return self.binary_vals(f, fr, op, left, right, l, r, None),
+            _ => return self.binary_vals(f, fr, e, l, r, None),
         };
         // Vectors (and scalar-vector operands) lane by lane, with the deviations per lane.
         Val::C(
             (0..n)
-                .map(|i| {
-                    self.binary_vals(f, fr, op, left, right, lane(&l, i), lane(&r, i), Some(i))
-                })
+                .map(|i| self.binary_vals(f, fr, e, lane(&l, i), lane(&r, i), Some(i)))
                 .collect(),
         )
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn binary_vals(
         &mut self,
         f: &naga::Function,
         fr: &mut Frame,
-        op: B,
-        left: Handle<E>,
-        right: Handle<E>,
+        e: Binary,
         l: Val,
         r: Val,
         at: Option<usize>,
     ) -> Val {
+        let op = e.op;
         match (l, r) {
             (Val::F(a), Val::F(b)) => match comparison(op, a, b) {
                 Some(c) => Val::B(c),
-                None => Val::F(self.float_op(f, fr, op, left, right, a, b, at)),
+                None => Val::F(self.float_op(f, fr, e, a, b, at)),
             },
             (Val::U(a), Val::U(b)) => match op {
                 B::Add => Val::U(a.wrapping_add(b)),
@@ -612,19 +608,16 @@ impl<'m> Interpreter<'m> {
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn float_op(
         &mut self,
         f: &naga::Function,
         fr: &mut Frame,
-        op: B,
-        left: Handle<E>,
-        right: Handle<E>,
+        e: Binary,
         a: f32,
         b: f32,
         at: Option<usize>,
     ) -> f32 {
-        let d = self.dev;
+        let (d, Binary { op, left, right }) = (self.dev, e);
         match op {
             B::Add | B::Subtract => {
                 let sub = op == B::Subtract;
@@ -684,6 +677,14 @@ impl<'m> Interpreter<'m> {
             _ => panic!("f32 {op:?}"),
         }
     }
+}
+
+/// A binary expression `left op right` of the function being interpreted.
+#[derive(Clone, Copy)]
+struct Binary {
+    op: B,
+    left: Handle<E>,
+    right: Handle<E>,
 }
 
 /// A comparison `op` of two values, or `None` where `op` is not a comparison.

@@ -38,6 +38,46 @@ pub fn tool(name: &str) -> bool {
     found
 }
 
+/// `func` on `gpu` with `wrong` (a changed copy of `shaders/warpcore.wgsl`) as its library,
+/// compared with the crate on `input`.
+pub fn compare_changed(gpu: &Gpu, func: &crate::Func, wrong: &str, input: &[u32]) -> crate::Diff {
+    assert_ne!(
+        wrong,
+        crate::WGSL,
+        "the text to change is where the test expects it"
+    );
+    let source = Gpu::shader_source(func).replacen(crate::WGSL, wrong, 1);
+    let got = gpu
+        .run_source(func, &source, input)
+        .unwrap_or_else(|e| panic!("{e}"));
+    crate::compare(func, &got, &crate::cpu_outputs(func, input))
+}
+
+/// The names of the public (`wc_`) functions of a WGSL library file, parsed by naga
+/// (panicking with naga's message) and checked for the rules every library keeps: no entry
+/// point, `bindings` module-scope variables (its bindings).
+pub fn library(source: &str, bindings: usize) -> Vec<String> {
+    let module = naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
+    assert!(module.entry_points.is_empty(), "an entry point");
+    assert_eq!(module.global_variables.len(), bindings, "bindings");
+    module
+        .functions
+        .iter()
+        .filter_map(|(_, f)| f.name.clone())
+        .filter(|n| n.starts_with("wc_"))
+        .collect()
+}
+
+/// `source` without its `//` comments.
+pub fn code(source: &str) -> String {
+    source
+        .lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// naga's translations of one compute shader, as written to disk and validated.
 pub struct Translations {
     /// SPIR-V words.

@@ -8,8 +8,10 @@
 //! `WARPCORE_GPU_RANDOM` sets the number of points of each random class (default 65536).
 
 use std::path::PathBuf;
-use warpcore_gpu::testing::{assert_bit_identical, lavapipe, translate};
-use warpcore_gpu::{Func, Gpu, WGSL, compare, cpu_outputs, inputs, warps};
+use warpcore_gpu::testing::{
+    assert_bit_identical, code, compare_changed, lavapipe, library, translate,
+};
+use warpcore_gpu::{WGSL, inputs, warps};
 
 /// Every output word of every function equals the crate's, over edge values, grids, random
 /// points of each domain and random bit patterns (every f32 class).
@@ -30,38 +32,21 @@ fn a_one_ulp_change_is_detected() {
         .find(|f| f.name == "wc_disk_concentric")
         .unwrap();
     let input = inputs(func.domain, 1 << 12, 7);
-    let want = cpu_outputs(func, &input);
     let wrong = WGSL.replace(
         "const WCI_S0: f32 = 0x1.921fb4p-1f;",
         "const WCI_S0: f32 = 0x1.921fb6p-1f;",
     );
-    assert_ne!(
-        wrong, WGSL,
-        "the constant to perturb is where the test expects it"
-    );
-    let got = run_source(&gpu, func, &wrong, &input);
-    let d = compare(func, &got, &want);
+    let d = compare_changed(&gpu, func, &wrong, &input);
     println!("S0 + 1 ulp: {} of {} points differ", d.mismatches, d.points);
     assert!(d.mismatches * 10 > d.points, "{d:?}");
     assert!(d.max_ulp >= 0.5 && d.max_abs < 1e-6, "{d:?}");
-}
-
-fn run_source(gpu: &Gpu, func: &Func, wgsl: &str, input: &[u32]) -> Vec<u32> {
-    // The harness builds its shader from `WGSL`; swap the library text in its source.
-    let source = Gpu::shader_source(func).replacen(WGSL, wgsl, 1);
-    gpu.run_source(func, &source, input)
-        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The library rules of the file (DESIGN.md, "Shaders"): no bindings, no entry points, no
 /// `enable`, no fma/pow/builtin trigonometry, and the contract signatures exactly.
 #[test]
 fn the_file_is_a_library_with_the_contract_signatures() {
-    let code: String = WGSL
-        .lines()
-        .map(|l| l.split("//").next().unwrap_or(""))
-        .collect::<Vec<_>>()
-        .join("\n");
+    let code = code(WGSL);
     for banned in [
         "@group",
         "@binding",
@@ -98,13 +83,7 @@ fn the_file_is_a_library_with_the_contract_signatures() {
         assert!(code.contains(sig), "missing contract signature {sig}");
     }
     // Every public function of the file is checked by the harness.
-    let module = naga::front::wgsl::parse_str(WGSL).expect("warpcore.wgsl parses");
-    let public: Vec<&str> = module
-        .functions
-        .iter()
-        .filter_map(|(_, f)| f.name.as_deref())
-        .filter(|n| n.starts_with("wc_"))
-        .collect();
+    let public = library(WGSL, 0);
     for name in &public {
         assert!(
             warpcore_gpu::all_functions().any(|f| f.name == *name),
@@ -112,7 +91,6 @@ fn the_file_is_a_library_with_the_contract_signatures() {
         );
     }
     assert_eq!(public.len(), warpcore_gpu::all_functions().count());
-    assert!(module.entry_points.is_empty() && module.global_variables.is_empty());
 }
 
 fn out_dir() -> PathBuf {

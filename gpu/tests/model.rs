@@ -3,42 +3,18 @@
 //! solid-angle lights). See `src/model.rs`.
 
 use warpcore_gpu::model::{Deviations, deviation};
-use warpcore_gpu::{WGSL, inputs, lights, warps};
+use warpcore_gpu::{Func, WGSL, inputs, lights, warps};
 
-#[test]
-fn interpreted_wgsl_equals_the_crate() {
+/// The functions of `funcs` whose interpreted WGSL differs from the crate on their points
+/// (`points(k, func)`), after printing the counts.
+fn differing(
+    funcs: &'static [Func],
+    points: impl Fn(usize, &Func) -> Vec<u32>,
+) -> Vec<&'static str> {
     let module = naga::front::wgsl::parse_str(WGSL).expect("parses");
     let mut failed = Vec::new();
-    for (k, func) in warps().iter().enumerate() {
-        let input = inputs(func.domain, 1 << 10, 0xface + k as u64);
-        let d = deviation(&module, func, &input, Deviations::NONE, 1, 1);
-        println!(
-            "{:<42} {:>8} points, {} mismatches",
-            func.name, d.points, d.mismatches
-        );
-        if d.mismatches > 0 {
-            failed.push(func.name.as_str());
-        }
-    }
-    assert!(failed.is_empty(), "{failed:?}");
-}
-
-/// The same for the solid-angle lights (the lavapipe test's classes at a small random size,
-/// every 7th sample point: the interpreter is slow on them; every solid-angle point).
-#[test]
-fn interpreted_wgsl_equals_the_crate_on_the_solid_angle_lights() {
-    let module = naga::front::wgsl::parse_str(WGSL).expect("parses");
-    let mut failed = Vec::new();
-    for (k, func) in lights().iter().enumerate() {
-        let w = func.in_words();
-        let all = inputs(func.domain, 1 << 10, 0xface + k as u64);
-        let input: Vec<u32> = all
-            .chunks_exact(w)
-            .step_by(if w == 12 { 1 } else { 7 })
-            .flatten()
-            .copied()
-            .collect();
-        let d = deviation(&module, func, &input, Deviations::NONE, 1, 1);
+    for (k, func) in funcs.iter().enumerate() {
+        let d = deviation(&module, func, &points(k, func), Deviations::NONE, 1, 1);
         println!(
             "{:<42} {:>8} points, {} mismatches",
             func.name, d.points, d.mismatches
@@ -48,6 +24,30 @@ fn interpreted_wgsl_equals_the_crate_on_the_solid_angle_lights() {
             failed.push(func.name.as_str());
         }
     }
+    failed
+}
+
+#[test]
+fn interpreted_wgsl_equals_the_crate() {
+    let failed = differing(warps(), |k, func| {
+        inputs(func.domain, 1 << 10, 0xface + k as u64)
+    });
+    assert!(failed.is_empty(), "{failed:?}");
+}
+
+/// The same for the solid-angle lights (the lavapipe test's classes at a small random size,
+/// every 7th sample point: the interpreter is slow on them; every solid-angle point).
+#[test]
+fn interpreted_wgsl_equals_the_crate_on_the_solid_angle_lights() {
+    let failed = differing(lights(), |k, func| {
+        let w = func.in_words();
+        let all = inputs(func.domain, 1 << 10, 0xface + k as u64);
+        all.chunks_exact(w)
+            .step_by(if w == 12 { 1 } else { 7 })
+            .flatten()
+            .copied()
+            .collect()
+    });
     assert!(failed.is_empty(), "{failed:?}");
 }
 
