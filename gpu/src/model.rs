@@ -712,18 +712,6 @@ pub fn to_words(v: &Val, out: &mut Vec<u32>) {
     }
 }
 
-/// The interpreted WGSL's output words for `func` on every point of `input` (one trial of the
-/// deviations `dev`, random choices from `seed`).
-pub fn outputs(
-    module: &naga::Module,
-    func: &crate::Func,
-    input: &[u32],
-    dev: Deviations,
-    seed: u64,
-) -> Vec<u32> {
-    Interpreter::new(module, dev, seed).outputs(func, input)
-}
-
 /// The largest deviation of the interpreted WGSL from the crate for `func` over `input`
 /// (`trials` evaluations per point with fresh random choices).
 pub fn deviation(

@@ -69,13 +69,33 @@ pub fn library(source: &str, bindings: usize) -> Vec<String> {
         .collect()
 }
 
-/// `source` without its `//` comments.
-pub fn code(source: &str) -> String {
-    source
+/// What no WGSL library file uses: entry points, `enable`, and `fma` and `pow` (whose results
+/// differ between devices).
+pub const NOT_IN_A_LIBRARY: &[&str] = &[
+    "@compute",
+    "@vertex",
+    "@fragment",
+    "enable ",
+    "fma(",
+    "pow(",
+];
+
+/// The text rules of a WGSL library file `file`: its code (`source` without its `//`
+/// comments, which it returns) uses none of [`NOT_IN_A_LIBRARY`] and `banned`, and has each of
+/// `signatures` exactly.
+pub fn library_text(source: &str, file: &str, banned: &[&str], signatures: &[&str]) -> String {
+    let code = source
         .lines()
         .map(|l| l.split("//").next().unwrap_or(""))
         .collect::<Vec<_>>()
-        .join("\n")
+        .join("\n");
+    for b in NOT_IN_A_LIBRARY.iter().chain(banned) {
+        assert!(!code.contains(b), "{file} uses {b:?}");
+    }
+    for sig in signatures {
+        assert!(code.contains(sig), "{file} lacks the signature {sig}");
+    }
+    code
 }
 
 /// naga's translations of one compute shader, as written to disk and validated.

@@ -140,7 +140,7 @@ fn or_exit<T>(r: Result<T, String>) -> T {
 
 /// The CPU model of the WGSL accuracy rules: the largest deviation from the crate per function.
 fn run_model(random: usize, trials: u32) {
-    use warpcore_gpu::model::{Deviations, deviation};
+    use warpcore_gpu::model::{Deviations, Interpreter, deviation};
     let module = naga::front::wgsl::parse_str(warpcore_gpu::WGSL).expect("warpcore.wgsl parses");
     println!(
         "CPU model of the WGSL accuracy rules ({:?}), {trials} trials per point",
@@ -197,13 +197,8 @@ fn run_model(random: usize, trials: u32) {
         let has_density = scalar || outw >= 3;
         let (mut moved, mut coord, mut rel) = (0usize, 0f64, 0f64);
         for t in 0..trials {
-            let got = warpcore_gpu::model::outputs(
-                &module,
-                func,
-                &input,
-                Deviations::WGSL,
-                0x5151 + k as u64 + 1000 * t as u64,
-            );
+            let seed = 0x5151 + k as u64 + 1000 * t as u64;
+            let got = Interpreter::new(&module, Deviations::WGSL, seed).outputs(func, &input);
             for (g, w) in got.chunks_exact(outw).zip(want.chunks_exact(outw)) {
                 moved += usize::from(g != w);
                 for j in 0..outw {
