@@ -245,38 +245,11 @@ export interface Warpcore {
    * may split). The Rust crate's
    * `Sampler::<P>::new(pixel, frame, index, seed).domain(k0).domain(k1)...draw::<n>()`.
    */
-  samplerDraw(
-    pattern: SamplerPattern,
-    pixel: Uint32Array,
-    frame: number,
-    index: number,
-    seed: number,
-    domainPath: Uint32Array | SamplerPath,
-    n: 1 | 2 | 3 | 4,
-    out?: Float32Array,
-  ): Float32Array;
+  samplerDraw(...args: [...SamplerDimensions, out?: Float32Array]): Float32Array;
   /** The point of `samplerDraw` as 0.32 fixed point (`samplerDraw` is `(w >>> 8) * 2^-24`). */
-  samplerDrawU32(
-    pattern: SamplerPattern,
-    pixel: Uint32Array,
-    frame: number,
-    index: number,
-    seed: number,
-    domainPath: Uint32Array | SamplerPath,
-    n: 1 | 2 | 3 | 4,
-    out?: Uint32Array,
-  ): Uint32Array;
+  samplerDrawU32(...args: [...SamplerDimensions, out?: Uint32Array]): Uint32Array;
   /** `n` cheap unstratified values in [0, 1 - 2^-24] (Russian roulette and other decisions). */
-  samplerRnd(
-    pattern: SamplerPattern,
-    pixel: Uint32Array,
-    frame: number,
-    index: number,
-    seed: number,
-    domainPath: Uint32Array | SamplerPath,
-    n: 1 | 2 | 3 | 4,
-    out?: Float32Array,
-  ): Float32Array;
+  samplerRnd(...args: [...SamplerDimensions, out?: Float32Array]): Float32Array;
   /**
    * The points of samples `start .. start + count - 1` (wrapping after 2^32 - 1) of one
    * domain: `count * n` floats, interleaved, the bits of `count` calls of `samplerDraw`.
@@ -293,6 +266,21 @@ export interface Warpcore {
     out?: Float32Array,
   ): Float32Array;
 }
+
+/**
+ * The arguments that name `n` dimensions of one sample of a sampler (`samplerDraw`,
+ * `samplerDrawU32`, `samplerRnd`): its pattern, `pixel` (`[x, y]`), `frame`, `index`, `seed`,
+ * the domain path and `n`.
+ */
+export type SamplerDimensions = [
+  pattern: SamplerPattern,
+  pixel: Uint32Array,
+  frame: number,
+  index: number,
+  seed: number,
+  domainPath: Uint32Array | SamplerPath,
+  n: 1 | 2 | 3 | 4,
+];
 
 /**
  * The sampler's point patterns: Owen-scrambled pmj02bn pairs or Sobol' dimensions, each also

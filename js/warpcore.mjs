@@ -716,13 +716,22 @@ function create(x) {
 
     /** Densities over the unit square at `n` points `uv` (`2n` floats), bit-equal to `sample`'s. */
     pdf(uv, out) {
+      const f = this.#pdf;
+      return this.#densities(uv, 2, 'uv', out, 'pdf', (p, len, pu, po, n) => f(p, len, pu, po, n));
+    }
+
+    /**
+     * Densities at the `n` points `x` (`d` floats each, the argument `what`) into `out` (or a
+     * new array): `call(tables, len, px, po, n)` writes them (the C function `name`).
+     */
+    #densities(x, d, what, out, name, call) {
       const p = this.#live();
-      const n = elements(uv, F, 2, 'uv');
+      const n = elements(x, F, d, what);
       const result = output(out, F, n);
       if (n === 0) return result;
-      const f = this.#pdf;
-      return scratch2(F, 2 * n, uv, F, n, undefined, (pu, po) => {
-        expect(f(p, this.#len, pu, po, n), n, 'pdf');
+      const len = this.#len;
+      return scratch2(F, d * n, x, F, n, undefined, (px, po) => {
+        expect(call(p, len, px, po, n), n, name);
         return read(F, po, n, result);
       });
     }
@@ -769,15 +778,8 @@ function create(x) {
      */
     pdfDirection(layout, dir, out) {
       const l = layoutOf(layout);
-      const p = this.#live();
-      const n = elements(dir, F, 3, 'dir');
-      const result = output(out, F, n);
-      if (n === 0) return result;
       const f = this.#pdfDirection;
-      return scratch2(F, 3 * n, dir, F, n, undefined, (pd, po) => {
-        expect(f(p, this.#len, l, pd, po, n), n, 'pdfDirection');
-        return read(F, po, n, result);
-      });
+      return this.#densities(dir, 3, 'dir', out, 'pdfDirection', (p, len, pd, po, n) => f(p, len, l, pd, po, n));
     }
 
     /** A copy of the storage words: the file format (little-endian bytes on every target). */

@@ -3,6 +3,7 @@
 // (js/warpcore.mjs, the crate compiled to wasm). Inputs stay away from subnormals, which
 // SwiftShader (Chromium's software adapter) flushes to zero. See webgpu.test.mjs.
 import { load } from '../../js/warpcore.mjs';
+import { callBody, computeShader, createPipeline, library, openGpu, runCompute } from '../../js/demo/gpu.mjs';
 
 // [WGSL function, JS method, input kind, output floats per point]
 const FUNCTIONS = [
@@ -88,33 +89,47 @@ function shader(lib, name, kind, outFloats) {
     density: [1, `${name}(${f(0)})`],
     'density-direction': [4, `${name}(${f(0)}, vec3<f32>(${f(1)}, ${f(2)}, ${f(3)}))`],
   }[kind] ?? [2, `${name}(${v2})`];
-  const comps =
+  const writes =
     kind === 'quadrant-inverse'
-      ? ['u.x', 'u.y', 'quadrant']
+      ? ['bitcast<u32>(r.u.x)', 'bitcast<u32>(r.u.y)', 'r.quadrant']
       : outFloats === 1
-        ? ['']
-        : ['x', 'y', 'z'].slice(0, outFloats);
-  const word = (c) => (c === 'quadrant' ? 'r.quadrant' : `bitcast<u32>(r${c ? '.' + c : ''})`);
-  return `${lib}
-@group(0) @binding(0) var<storage, read> wc_in: array<u32>;
-@group(0) @binding(1) var<storage, read_write> wc_out: array<u32>;
-@compute @workgroup_size(64)
-fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let i = gid.x;
-    if (i >= arrayLength(&wc_out) / ${outFloats}u) { return; }
-    let b = i * ${inw}u;
-    let r = ${call};
-${comps.map((c, k) => `    wc_out[i * ${outFloats}u + ${k}u] = ${word(c)};`).join('\n')}
-}
-`;
+        ? ['bitcast<u32>(r)']
+        : ['x', 'y', 'z'].slice(0, outFloats).map((c) => `bitcast<u32>(r.${c})`);
+  return computeShader(lib, 'wc_check_main', [0, 1], inw, outFloats, callBody(call, writes));
 }
 
-/** Runs `code`'s `wc_check_main` over `input` (`wc_in`, binding 0) into `outWords` words
- * (`wc_out`, binding 1); with `tables`, the table buffer is binding 0 and the two move up. */
-async function runOnGpu(device, code, input, outWords, tables = null) {
-  return tables
-    ? runOnGpuBound(device, code, [[0, tables]], input, outWords, 1)
-    : runOnGpuBound(device, code, [], input, outWords, 0);
+/** The library `shaders/${file}` (`edit` = [from, to] replaces a string of it first), the
+ * JavaScript module and a WebGPU device: `{ wc, lib, device, adapter }`. */
+async function setup(file, edit = null) {
+  const gpu = await openGpu();
+  if (gpu.reason) throw new Error(gpu.reason);
+  const lib = await library(file, edit);
+  return { wc: await load(), lib, device: gpu.device, adapter: `${gpu.adapter} (fallback ${gpu.fallback})` };
+}
+
+/** Runs `code`'s entry point `wc_check_main` over the `n` points of `input` (`wc_in` at
+ * binding `inBinding`, `wc_out` after it) into `outWords` words, with the buffers `bound`
+ * (`[binding, GPUBuffer]`). */
+async function run(device, code, input, n, outWords, bound = [], inBinding = 0) {
+  const pipeline = await createPipeline(device, code, 'wc_check_main');
+  return runCompute(device, pipeline, bound, inBinding, input, n, outWords);
+}
+
+/** A row of the results: `[name, points, mismatches, first]`, the first mismatching point with
+ * its words (and its input words, `inw` per point, when `input` is given). */
+function row(name, got, want, outw, input = null, inw = 0) {
+  const points = want.length / outw;
+  const words = (a, p, w) => Array.from(a.subarray(p * w, (p + 1) * w));
+  let mismatches = 0;
+  let first = null;
+  for (let p = 0; p < points; p++) {
+    const g = got.subarray(p * outw, (p + 1) * outw);
+    if (g.some((x, k) => x !== want[p * outw + k])) {
+      mismatches++;
+      first ??= { point: p, got: Array.from(g), want: words(want, p, outw), ...(input ? { input: words(input, p, inw) } : {}) };
+    }
+  }
+  return [name, points, mismatches, first];
 }
 
 /**
@@ -123,16 +138,7 @@ async function runOnGpu(device, code, input, outWords, tables = null) {
  * a one-ulp change is seen).
  */
 export async function check(n = 1 << 14, edit = null) {
-  const wc = await load();
-  let lib = await (await fetch(new URL('../../shaders/warpcore.wgsl', import.meta.url))).text();
-  if (edit) {
-    if (!lib.includes(edit[0])) throw new Error(`not in the library: ${edit[0]}`);
-    lib = lib.replace(edit[0], edit[1]);
-  }
-  const adapter = await navigator.gpu.requestAdapter();
-  if (!adapter) throw new Error('no WebGPU adapter');
-  const device = await adapter.requestDevice();
-  const info = adapter.info ?? {};
+  const { wc, lib, device, adapter } = await setup('warpcore.wgsl', edit);
   const rows = [];
   for (const [k, [name, js, kind, outFloats]] of FUNCTIONS.entries()) {
     const next = rng(0x9e3779b9 ^ (k * 0x85ebca6b));
@@ -175,22 +181,10 @@ export async function check(n = 1 << 14, edit = null) {
       input = new Uint32Array(x.buffer.slice(0));
       want = new Uint32Array(wc[js](x).buffer.slice(0));
     }
-    // The point count is the output's, which the entry point bounds by (n threads).
-    const got = await runOnGpu(device, shader(lib, name, kind, outFloats), input, n * outFloats);
-    let mismatches = 0;
-    let first = null;
-    for (let p = 0; p < n; p++) {
-      for (let w = 0; w < outFloats; w++) {
-        if (got[p * outFloats + w] !== want[p * outFloats + w]) {
-          mismatches++;
-          first ??= { point: p, got: Array.from(got.subarray(p * outFloats, (p + 1) * outFloats)), want: Array.from(want.subarray(p * outFloats, (p + 1) * outFloats)) };
-          break;
-        }
-      }
-    }
-    rows.push([name, n, mismatches, first]);
+    const got = await run(device, shader(lib, name, kind, outFloats), input, n, n * outFloats);
+    rows.push(row(name, got, want, outFloats));
   }
-  return { adapter: `${info.vendor} ${info.architecture} (fallback ${info.isFallbackAdapter})`, rows };
+  return { adapter, rows };
 }
 
 // The solid-angle lights: [WGSL function, JS method, shape, what follows the light, output
@@ -253,16 +247,7 @@ function randomLight(shape, next) {
  * on the module's own samples). Returns `{ adapter, rows }` as `check`.
  */
 export async function checkSpherical(n = 1 << 14, edit = null) {
-  const wc = await load();
-  let lib = await (await fetch(new URL('../../shaders/warpcore.wgsl', import.meta.url))).text();
-  if (edit) {
-    if (!lib.includes(edit[0])) throw new Error(`not in the library: ${edit[0]}`);
-    lib = lib.replace(edit[0], edit[1]);
-  }
-  const adapter = await navigator.gpu.requestAdapter();
-  if (!adapter) throw new Error('no WebGPU adapter');
-  const device = await adapter.requestDevice();
-  const info = adapter.info ?? {};
+  const { wc, lib, device, adapter } = await setup('warpcore.wgsl', edit);
   const rows = [];
   const words = (a) => new Uint32Array(a.buffer.slice(a.byteOffset, a.byteOffset + a.byteLength));
   for (const [k, [name, js, shape, kind, outFloats]] of LIGHT_FUNCTIONS.entries()) {
@@ -323,57 +308,17 @@ export async function checkSpherical(n = 1 << 14, edit = null) {
       b: `${name}(${light}, ${v3(12)})`,
       nu: `${name}(${light}, ${v3(12)}, ${v2(15)})`,
     }[kind];
-    const comps = outFloats === 1 ? [''] : ['.x', '.y', '.z', '.w'].slice(0, outFloats);
-    const code = `${lib}
-@group(0) @binding(0) var<storage, read> wc_in: array<u32>;
-@group(0) @binding(1) var<storage, read_write> wc_out: array<u32>;
-@compute @workgroup_size(64)
-fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let i = gid.x;
-    if (i >= arrayLength(&wc_out) / ${outFloats}u) { return; }
-    let b = i * ${inw}u;
-    let r = ${call};
-${comps.map((c, k) => `    wc_out[i * ${outFloats}u + ${k}u] = bitcast<u32>(r${c});`).join('\n')}
-}
-`;
-    const got = await runOnGpu(device, code, input, n * outFloats);
-    let mismatches = 0;
-    let first = null;
-    for (let p = 0; p < n; p++) {
-      for (let w = 0; w < outFloats; w++) {
-        if (got[p * outFloats + w] !== want[p * outFloats + w]) {
-          mismatches++;
-          first ??= {
-            point: p,
-            input: Array.from(new Float32Array(input.buffer.slice(p * inw * 4, (p + 1) * inw * 4))),
-            got: Array.from(new Float32Array(got.buffer.slice(p * outFloats * 4, (p + 1) * outFloats * 4))),
-            want: Array.from(new Float32Array(want.buffer.slice(p * outFloats * 4, (p + 1) * outFloats * 4))),
-          };
-          break;
-        }
-      }
-    }
-    rows.push([name, n, mismatches, first]);
+    const writes = (outFloats === 1 ? [''] : ['.x', '.y', '.z', '.w'].slice(0, outFloats)).map((c) => `bitcast<u32>(r${c})`);
+    const code = computeShader(lib, 'wc_check_main', [0, 1], inw, outFloats, callBody(call, writes));
+    const got = await run(device, code, input, n, n * outFloats);
+    rows.push(row(name, got, want, outFloats, input, inw));
   }
-  return { adapter: `${info.vendor} ${info.architecture} (fallback ${info.isFallbackAdapter})`, rows };
+  return { adapter, rows };
 }
 
 // shaders/warpcore_tables.wgsl: the compute shader around one check's body (reads wc_in[b + k],
 // writes wc_out[o + k]); the library's wc_tables is binding 0.
-function tablesShader(lib, inw, outw, body) {
-  return `${lib}
-@group(0) @binding(1) var<storage, read> wc_in: array<u32>;
-@group(0) @binding(2) var<storage, read_write> wc_out: array<u32>;
-@compute @workgroup_size(64)
-fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let i = gid.x;
-    if (i >= arrayLength(&wc_out) / ${outw}u) { return; }
-    let b = i * ${inw}u;
-    let o = i * ${outw}u;
-${body}
-}
-`;
-}
+const tablesShader = (lib, inw, outw, body) => computeShader(lib, 'wc_check_main', [1, 2], inw, outw, body);
 
 const SAMPLER_BODY = `    var s = wc_sampler_new(wc_in[b], vec2<u32>(wc_in[b + 1u], wc_in[b + 2u]), wc_in[b + 3u], wc_in[b + 4u], wc_in[b + 5u]);
     s = wc_sampler_domain(s, wc_in[b + 6u]);
@@ -395,42 +340,23 @@ const SAMPLER_BODY = `    var s = wc_sampler_new(wc_in[b], vec2<u32>(wc_in[b + 1
  * pmj02bn table word before the upload (the test's check that the comparison sees the tables).
  */
 export async function checkTables(n = 1 << 12, corrupt = false) {
-  const wc = await load();
-  const lib = await (await fetch(new URL('../../shaders/warpcore_tables.wgsl', import.meta.url))).text();
+  const { wc, lib, device, adapter } = await setup('warpcore_tables.wgsl');
   const bin = await (await fetch(new URL('../../shaders/warpcore_tables.bin', import.meta.url))).arrayBuffer();
   if (corrupt) {
     const w = new Uint32Array(bin, 0, 2 * wc.pmj02bnSets * wc.pmj02bnPoints);
     for (let i = 0; i < w.length; i++) w[i] ^= 0x80000000;
   }
-  const adapter = await navigator.gpu.requestAdapter();
-  if (!adapter) throw new Error('no WebGPU adapter');
-  const device = await adapter.requestDevice();
-  const info = adapter.info ?? {};
   const tables = device.createBuffer({ size: bin.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
   device.queue.writeBuffer(tables, 0, bin);
   const words = (a) => new Uint32Array(a.buffer.slice(a.byteOffset, a.byteOffset + a.byteLength));
   const rows = [];
-  const compare = (name, got, want, outw) => {
-    let mismatches = 0;
-    let first = null;
-    for (let p = 0; p < got.length / outw; p++) {
-      for (let w = 0; w < outw; w++) {
-        if (got[p * outw + w] !== want[p * outw + w]) {
-          mismatches++;
-          first ??= { point: p, got: Array.from(got.subarray(p * outw, (p + 1) * outw)), want: Array.from(want.subarray(p * outw, (p + 1) * outw)) };
-          break;
-        }
-      }
-    }
-    rows.push([name, got.length / outw, mismatches, first]);
-  };
   const pmjBody = '    let r = wc_pmj02bn_sample(wc_in[b], wc_in[b + 1u]);\n    wc_out[o] = bitcast<u32>(r.x);\n    wc_out[o + 1u] = bitcast<u32>(r.y);';
   for (const [start, seed] of [[0, 0], [3 * wc.pmj02bnPoints - 100, 0xdeadbeef], [2 ** 32 - n / 2, 0xffffffff]]) {
     const input = new Uint32Array(2 * n);
     for (let i = 0; i < n; i++) input.set([(start + i) >>> 0, seed], 2 * i);
     const want = words(wc.pmj02bnSample(start, seed, n));
-    const got = await runOnGpu(device, tablesShader(lib, 2, 2, pmjBody), input, 2 * n, tables);
-    compare(`wc_pmj02bn_sample from ${start}`, got, want, 2);
+    const got = await run(device, tablesShader(lib, 2, 2, pmjBody), input, n, 2 * n, [[0, tables]], 1);
+    rows.push(row(`wc_pmj02bn_sample from ${start}`, got, want, 2));
   }
   for (const [id, pattern] of ['pmj02bn', 'sobol', 'bluePmj02bn', 'blueSobol'].entries()) {
     const next = rng(0x2545f491 ^ (id * 0x9e3779b9));
@@ -446,10 +372,10 @@ export async function checkTables(n = 1 << 12, corrupt = false) {
       want.set(words(wc.samplerDraw(...args, 2)), 10 * i + 4);
       want.set(words(wc.samplerRnd(...args, 4)), 10 * i + 6);
     }
-    const got = await runOnGpu(device, tablesShader(lib, 9, 10, SAMPLER_BODY), input, 10 * n, tables);
-    compare(`wc_sampler_* ${pattern}`, got, want, 10);
+    const got = await run(device, tablesShader(lib, 9, 10, SAMPLER_BODY), input, n, 10 * n, [[0, tables]], 1);
+    rows.push(row(`wc_sampler_* ${pattern}`, got, want, 10));
   }
-  return { adapter: `${info.vendor} ${info.architecture} (fallback ${info.isFallbackAdapter})`, rows };
+  return { adapter, rows };
 }
 
 /**
@@ -459,12 +385,7 @@ export async function checkTables(n = 1 << 12, corrupt = false) {
  * `check` does, with the largest difference of a `uv` coordinate and of a pdf (relative).
  */
 export async function checkEnvmap(n = 1 << 12) {
-  const wc = await load();
-  const lib = await (await fetch(new URL('../../shaders/warpcore_envmap.wgsl', import.meta.url))).text();
-  const adapter = await navigator.gpu.requestAdapter();
-  if (!adapter) throw new Error('no WebGPU adapter');
-  const device = await adapter.requestDevice();
-  const info = adapter.info ?? {};
+  const { wc, lib, device, adapter } = await setup('warpcore_envmap.wgsl');
   const next = rng(0x51ed);
   const maps = [];
   for (const [w, h] of [[4, 2], [13, 7], [64, 32], [300, 7]]) {
@@ -514,34 +435,18 @@ export async function checkEnvmap(n = 1 << 12) {
     const want = new Uint32Array(wants.reduce((s, c) => s + c.length, 0));
     chunks.reduce((o, c) => (input.set(c, o), o + c.length), 0);
     wants.reduce((o, c) => (want.set(c, o), o + c.length), 0);
-    const code = `${lib}
-@group(0) @binding(2) var<storage, read> wc_in: array<u32>;
-@group(0) @binding(3) var<storage, read_write> wc_out: array<u32>;
-@compute @workgroup_size(64)
-fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let i = gid.x;
-    if (i >= arrayLength(&wc_out) / ${outw}u) { return; }
-    let b = i * 3u;
-    let o = i * ${outw}u;
-    let r = ${name}(wc_in[b], vec2<f32>(bitcast<f32>(wc_in[b + 1u]), bitcast<f32>(wc_in[b + 2u])));
-${sample ? '    wc_out[o] = bitcast<u32>(r.uv.x);\n    wc_out[o + 1u] = bitcast<u32>(r.uv.y);\n    wc_out[o + 2u] = bitcast<u32>(r.pdf);\n    wc_out[o + 3u] = r.texel.x;\n    wc_out[o + 4u] = r.texel.y;' : '    wc_out[o] = bitcast<u32>(r);'}
-}
-`;
-    const got = await runOnGpuBound(device, code, [[1, envBuf]], input, want.length);
+    const call = `${name}(wc_in[b], vec2<f32>(bitcast<f32>(wc_in[b + 1u]), bitcast<f32>(wc_in[b + 2u])))`;
+    const writes = sample ? ['bitcast<u32>(r.uv.x)', 'bitcast<u32>(r.uv.y)', 'bitcast<u32>(r.pdf)', 'r.texel.x', 'r.texel.y'] : ['bitcast<u32>(r)'];
+    const code = computeShader(lib, 'wc_check_main', [2, 3], 3, outw, callBody(call, writes));
+    const points = want.length / outw;
+    const got = await run(device, code, input, points, want.length, [[1, envBuf]], 2);
     const f = (x) => new Float32Array(new Uint32Array([x]).buffer)[0];
-    let mismatches = 0;
-    let first = null;
     let texelMismatches = 0;
     let maxUv = 0;
     let maxPdf = 0;
-    const points = want.length / outw;
     for (let p = 0; p < points; p++) {
       const g = got.subarray(p * outw, (p + 1) * outw);
       const e = want.subarray(p * outw, (p + 1) * outw);
-      if (g.some((x, k) => x !== e[k])) {
-        mismatches++;
-        first ??= { point: p, got: Array.from(g), want: Array.from(e) };
-      }
       if (sample) {
         if (g[3] !== e[3] || g[4] !== e[4]) texelMismatches++;
         maxUv = Math.max(maxUv, Math.abs(f(g[0]) - f(e[0])), Math.abs(f(g[1]) - f(e[1])));
@@ -550,43 +455,8 @@ ${sample ? '    wc_out[o] = bitcast<u32>(r.uv.x);\n    wc_out[o + 1u] = bitcast<
       const pe = f(e[sample ? 2 : 0]);
       maxPdf = Math.max(maxPdf, pe === 0 ? (pg === 0 ? 0 : Infinity) : Math.abs(pg - pe) / pe);
     }
-    rows.push([name, points, mismatches, first, texelMismatches, maxUv, maxPdf]);
+    rows.push([...row(name, got, want, outw), texelMismatches, maxUv, maxPdf]);
   }
   for (const [, m] of maps) m.free();
-  return { adapter: `${info.vendor} ${info.architecture} (fallback ${info.isFallbackAdapter})`, rows };
-}
-
-/** `runOnGpu` with buffers already on the device at the given bindings (`[binding, buffer]`),
- * `wc_in` at `inBinding` and `wc_out` after it. */
-async function runOnGpuBound(device, code, bound, input, outWords, inBinding = 2) {
-  device.pushErrorScope('validation');
-  const module = device.createShaderModule({ code });
-  const pipeline = device.createComputePipeline({ layout: 'auto', compute: { module, entryPoint: 'wc_check_main' } });
-  const error = await device.popErrorScope();
-  if (error) throw new Error(error.message);
-  const inBuf = device.createBuffer({ size: input.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
-  device.queue.writeBuffer(inBuf, 0, input);
-  const size = outWords * 4;
-  const outBuf = device.createBuffer({ size, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
-  const readBuf = device.createBuffer({ size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
-  const bind = device.createBindGroup({
-    layout: pipeline.getBindGroupLayout(0),
-    entries: [
-      ...bound.map(([binding, buffer]) => ({ binding, resource: { buffer } })),
-      { binding: inBinding, resource: { buffer: inBuf } },
-      { binding: inBinding + 1, resource: { buffer: outBuf } },
-    ],
-  });
-  const enc = device.createCommandEncoder();
-  const pass = enc.beginComputePass();
-  pass.setPipeline(pipeline);
-  pass.setBindGroup(0, bind);
-  pass.dispatchWorkgroups(Math.ceil(outWords / 64));
-  pass.end();
-  enc.copyBufferToBuffer(outBuf, 0, readBuf, 0, size);
-  device.queue.submit([enc.finish()]);
-  await readBuf.mapAsync(GPUMapMode.READ);
-  const out = new Uint32Array(readBuf.getMappedRange().slice(0));
-  readBuf.unmap();
-  return out;
+  return { adapter, rows };
 }

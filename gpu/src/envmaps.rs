@@ -2,8 +2,7 @@
 //! the crate: a buffer of maps built by the crate ([`env_buffer`]), the checks
 //! ([`ENV_FUNCTIONS`]), their test points ([`env_inputs`]) and the GPU run ([`run`]).
 
-use crate::{Gpu, Rng, square_edges};
-use std::fmt::Write as _;
+use crate::{Gpu, Rng, call_body, check_shader, square_edges};
 use std::sync::OnceLock;
 use warpcore::envmap::{Hierarchical, MarginalConditional, Word};
 
@@ -235,35 +234,23 @@ pub fn shader_source(func: &EnvFunc) -> String {
 
 /// [`shader_source`] with another library text.
 pub fn shader_source_with(func: &EnvFunc, library: &str) -> String {
-    let outw = func.out_words();
     let call = format!(
         "{}(wc_in[b], vec2<f32>(bitcast<f32>(wc_in[b + 1u]), bitcast<f32>(wc_in[b + 2u])))",
         func.name
     );
-    let mut s = String::from(library);
-    let _ = write!(
-        s,
-        "\n@group(0) @binding(2) var<storage, read> wc_in: array<u32>;\n\
-         @group(0) @binding(3) var<storage, read_write> wc_out: array<u32>;\n\
-         @compute @workgroup_size(64)\n\
-         fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {{\n\
-         \x20   let i = gid.x;\n\
-         \x20   if (i >= arrayLength(&wc_out) / {outw}u) {{ return; }}\n\
-         \x20   let b = i * 3u;\n\
-         \x20   let o = i * {outw}u;\n\
-         \x20   let r = {call};\n"
-    );
-    if func.sample {
-        s.push_str(
-            "    wc_out[o] = bitcast<u32>(r.uv.x);\n    wc_out[o + 1u] = bitcast<u32>(r.uv.y);\n\
-             \x20   wc_out[o + 2u] = bitcast<u32>(r.pdf);\n    wc_out[o + 3u] = r.texel.x;\n\
-             \x20   wc_out[o + 4u] = r.texel.y;\n",
-        );
+    let outs: &[&str] = if func.sample {
+        &[
+            "bitcast<u32>(r.uv.x)",
+            "bitcast<u32>(r.uv.y)",
+            "bitcast<u32>(r.pdf)",
+            "r.texel.x",
+            "r.texel.y",
+        ]
     } else {
-        s.push_str("    wc_out[o] = bitcast<u32>(r);\n");
-    }
-    s.push_str("}\n");
-    s
+        &["bitcast<u32>(r)"]
+    };
+    let body = call_body(&call, outs.iter().copied());
+    check_shader(library, [2, 3], [3, func.out_words()], &body)
 }
 
 /// `func` on the GPU for every point of `input`, with the test maps bound.

@@ -1,67 +1,34 @@
 //! The harness that runs `shaders/warpcore.wgsl` on a GPU and compares it with the crate.
 //!
-//! [`FUNCTIONS`] lists every public WGSL function with its Rust counterpart; [`inputs`] builds
-//! the test points of a function (edge values, grids, random points of the domain, random bit
-//! patterns of every `f32` class); [`Gpu::run`] evaluates the WGSL function on every point in
-//! a compute shader and returns the output words; [`Cpu::eval`] gives the crate's words for
-//! the same point. `tests/lavapipe.rs` requires them to be equal on Mesa's lavapipe, and the
+//! [`functions`] lists every public WGSL function from the registry (each bound by a
+//! registry entry, whose scalar body is the crate reference); [`inputs`] builds the test
+//! points of a function (edge values, grids, random points of the domain, random bit patterns
+//! of every `f32` class); [`Gpu::run`] evaluates the WGSL function on every point in a compute
+//! shader and returns the output words; [`Func::eval`] gives the crate's words for the same
+//! point. `tests/lavapipe.rs` requires them to be equal on Mesa's lavapipe, and the
 //! `gpu-check` binary reports the differences on any adapter. See `docs/gpu.md`.
 //!
 //! [`tables`] does the same for `shaders/warpcore_tables.wgsl` (pmj02bn and the sampling core,
 //! with the buffer of tables it builds; `tests/lavapipe_tables.rs`), and [`envmaps`] for
 //! `shaders/warpcore_envmap.wgsl` (environment maps from their storage words;
-//! `tests/lavapipe_envmap.rs`). The solid-angle lights of `warpcore.wgsl` are listed apart,
-//! in [`SPHERICAL_FUNCTIONS`], with their lights and samples in [`spherical`]
+//! `tests/lavapipe_envmap.rs`). The solid-angle lights of `warpcore.wgsl` are listed apart
+//! ([`lights`]; the rest are the [`warps`]), with their lights and samples in [`spherical`]
 //! (`tests/lavapipe_spherical.rs`).
 
 pub mod envmaps;
+pub mod functions;
 pub mod model;
 pub mod spherical;
 pub mod tables;
 pub mod testing;
 
-use std::fmt::Write as _;
-use warpcore::spherical as sp;
-use warpcore::{disk, sphere, triangle};
+pub use functions::{Func, all_functions, all_functions_shader, lights, warps};
 
-type V3 = [f32; 3];
-/// The signatures of the crate's `spherical` functions.
-type SphTriFn = fn([V3; 3], V3, [f32; 2]) -> (V3, f32);
-type SphTriCosineFn = fn([V3; 3], V3, V3, [f32; 2]) -> (V3, f32);
-type SphRectFn = fn(V3, V3, V3, V3, [f32; 2]) -> ([f32; 2], f32);
-type SphRectCosineFn = fn(V3, V3, V3, V3, V3, [f32; 2]) -> ([f32; 2], f32);
+use std::fmt::Write as _;
+use warpcore::{disk, sphere, triangle};
 
 /// The WGSL library, as shipped.
 pub const WGSL: &str = include_str!("../../shaders/warpcore.wgsl");
-
-/// A WGSL function's signature, with the crate function that defines it.
-#[derive(Clone, Copy)]
-pub enum Cpu {
-    V2V2(fn([f32; 2]) -> [f32; 2]),
-    V2V3(fn([f32; 2]) -> [f32; 3]),
-    V3V2(fn([f32; 3]) -> [f32; 2]),
-    V2QuadrantV2(fn([f32; 2], u32) -> [f32; 2]),
-    V2ToQuadrant(fn([f32; 2]) -> ([f32; 2], u32)),
-    IndexSeed(fn(u32, u32) -> [f32; 3]),
-    F(fn(f32) -> f32),
-    FV3(fn(f32, [f32; 3]) -> f32),
-    /// A triangle light `v0, v1, v2, p` (12 words) and a sample `u`: `(b, density)`.
-    SphTri(SphTriFn),
-    /// A triangle light and barycentrics: `u`.
-    SphTriInverse(fn([V3; 3], V3, V3) -> [f32; 2]),
-    /// A triangle light: its solid angle.
-    SphTriSolidAngle(fn([V3; 3], V3) -> f32),
-    /// A triangle light, a normal `n` and `u`: `(b, density)`.
-    SphTriCosine(SphTriCosineFn),
-    /// A rectangle light `corner, ex, ey, p` (12 words) and `u`: `((s, t), density)`.
-    SphRect(SphRectFn),
-    /// A rectangle light and `(s, t)`: `u`.
-    SphRectInverse(fn(V3, V3, V3, V3, [f32; 2]) -> [f32; 2]),
-    /// A rectangle light: its solid angle.
-    SphRectSolidAngle(fn(V3, V3, V3, V3) -> f32),
-    /// A rectangle light, a normal `n` and `u`: `((s, t), density)`.
-    SphRectCosine(SphRectCosineFn),
-}
 
 /// What a function's test points look like.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -89,386 +56,19 @@ pub enum Domain {
     Light(spherical::Layout),
 }
 
-/// One public WGSL function.
-#[derive(Clone, Copy)]
-pub struct Func {
-    /// Its WGSL name (`wc_...`).
-    pub name: &'static str,
-    pub cpu: Cpu,
-    pub domain: Domain,
-}
-
-impl Cpu {
-    /// Input words per point.
-    pub fn in_words(self) -> usize {
-        match self {
-            Cpu::V2V2(_) | Cpu::V2V3(_) | Cpu::V2ToQuadrant(_) | Cpu::IndexSeed(_) => 2,
-            Cpu::V3V2(_) | Cpu::V2QuadrantV2(_) => 3,
-            Cpu::F(_) => 1,
-            Cpu::FV3(_) => 4,
-            Cpu::SphTriSolidAngle(_) | Cpu::SphRectSolidAngle(_) => 12,
-            Cpu::SphTri(_) | Cpu::SphRect(_) | Cpu::SphRectInverse(_) => 14,
-            Cpu::SphTriInverse(_) => 15,
-            Cpu::SphTriCosine(_) | Cpu::SphRectCosine(_) => 17,
-        }
-    }
-
-    /// Output words per point.
-    pub fn out_words(self) -> usize {
-        match self {
-            Cpu::V2V2(_) | Cpu::V3V2(_) | Cpu::V2QuadrantV2(_) => 2,
-            Cpu::V2V3(_) | Cpu::IndexSeed(_) | Cpu::V2ToQuadrant(_) => 3,
-            Cpu::F(_) | Cpu::FV3(_) => 1,
-            Cpu::SphTri(_) | Cpu::SphTriCosine(_) => 4,
-            Cpu::SphRect(_) | Cpu::SphRectCosine(_) => 3,
-            Cpu::SphTriInverse(_) | Cpu::SphRectInverse(_) => 2,
-            Cpu::SphTriSolidAngle(_) | Cpu::SphRectSolidAngle(_) => 1,
-        }
-    }
-
-    /// Which output words are `u32` rather than `f32` bit patterns.
-    pub fn is_integer_output(self, word: usize) -> bool {
-        matches!(self, Cpu::V2ToQuadrant(_)) && word == 2
-    }
-
-    /// The crate's output words for one point's input words.
-    pub fn eval(self, i: &[u32], o: &mut [u32]) {
-        let f = f32::from_bits;
-        let put = |o: &mut [u32], v: &[f32]| {
-            for (o, v) in o.iter_mut().zip(v) {
-                *o = v.to_bits();
-            }
-        };
-        match self {
-            Cpu::V2V2(g) => put(o, &g([f(i[0]), f(i[1])])),
-            Cpu::V2V3(g) => put(o, &g([f(i[0]), f(i[1])])),
-            Cpu::V3V2(g) => put(o, &g([f(i[0]), f(i[1]), f(i[2])])),
-            Cpu::V2QuadrantV2(g) => put(o, &g([f(i[0]), f(i[1])], i[2])),
-            Cpu::V2ToQuadrant(g) => {
-                let (u, q) = g([f(i[0]), f(i[1])]);
-                put(o, &u);
-                o[2] = q;
-            }
-            Cpu::IndexSeed(g) => put(o, &g(i[0], i[1])),
-            Cpu::F(g) => put(o, &[g(f(i[0]))]),
-            Cpu::FV3(g) => put(o, &[g(f(i[0]), [f(i[1]), f(i[2]), f(i[3])])]),
-            _ => {
-                let v = |k: usize| [f(i[3 * k]), f(i[3 * k + 1]), f(i[3 * k + 2])];
-                let u = |k: usize| [f(i[k]), f(i[k + 1])];
-                let (a, b, c, p) = (v(0), v(1), v(2), v(3));
-                match self {
-                    Cpu::SphTri(g) => {
-                        let (b, d) = g([a, b, c], p, u(12));
-                        put(o, &[b[0], b[1], b[2], d]);
-                    }
-                    Cpu::SphTriInverse(g) => put(o, &g([a, b, c], p, v(4))),
-                    Cpu::SphTriSolidAngle(g) => put(o, &[g([a, b, c], p)]),
-                    Cpu::SphTriCosine(g) => {
-                        let (b, d) = g([a, b, c], p, v(4), u(15));
-                        put(o, &[b[0], b[1], b[2], d]);
-                    }
-                    Cpu::SphRect(g) => {
-                        let (st, d) = g(a, b, c, p, u(12));
-                        put(o, &[st[0], st[1], d]);
-                    }
-                    Cpu::SphRectInverse(g) => put(o, &g(a, b, c, p, u(12))),
-                    Cpu::SphRectSolidAngle(g) => put(o, &[g(a, b, c, p)]),
-                    Cpu::SphRectCosine(g) => {
-                        let (st, d) = g(a, b, c, p, v(4), u(15));
-                        put(o, &[st[0], st[1], d]);
-                    }
-                    _ => unreachable!(),
-                }
-            }
-        }
-    }
-
-    /// The WGSL call on the input words `wc_in[b + k]`, and the output words of its result `r`.
-    fn wgsl(self, name: &str) -> (String, Vec<&'static str>) {
-        let fl = |k: usize| format!("bitcast<f32>(wc_in[b + {k}u])");
-        let call = match self {
-            Cpu::V2V2(_) | Cpu::V2V3(_) | Cpu::V2ToQuadrant(_) => {
-                format!("{name}(vec2<f32>({}, {}))", fl(0), fl(1))
-            }
-            Cpu::V3V2(_) => format!("{name}(vec3<f32>({}, {}, {}))", fl(0), fl(1), fl(2)),
-            Cpu::V2QuadrantV2(_) => {
-                format!("{name}(vec2<f32>({}, {}), wc_in[b + 2u])", fl(0), fl(1))
-            }
-            Cpu::IndexSeed(_) => format!("{name}(wc_in[b], wc_in[b + 1u])"),
-            Cpu::F(_) => format!("{name}({})", fl(0)),
-            Cpu::FV3(_) => format!(
-                "{name}({}, vec3<f32>({}, {}, {}))",
-                fl(0),
-                fl(1),
-                fl(2),
-                fl(3)
-            ),
-            _ => {
-                let v3 = |k: usize| format!("vec3<f32>({}, {}, {})", fl(k), fl(k + 1), fl(k + 2));
-                let v2 = |k: usize| format!("vec2<f32>({}, {})", fl(k), fl(k + 1));
-                let light = format!("{}, {}, {}, {}", v3(0), v3(3), v3(6), v3(9));
-                match self {
-                    Cpu::SphTriSolidAngle(_) | Cpu::SphRectSolidAngle(_) => {
-                        format!("{name}({light})")
-                    }
-                    Cpu::SphTri(_) | Cpu::SphRect(_) | Cpu::SphRectInverse(_) => {
-                        format!("{name}({light}, {})", v2(12))
-                    }
-                    Cpu::SphTriInverse(_) => format!("{name}({light}, {})", v3(12)),
-                    _ => format!("{name}({light}, {}, {})", v3(12), v2(15)),
-                }
-            }
-        };
-        let outs: Vec<&'static str> = match self {
-            Cpu::V2V2(_) | Cpu::V3V2(_) | Cpu::V2QuadrantV2(_) => {
-                vec!["bitcast<u32>(r.x)", "bitcast<u32>(r.y)"]
-            }
-            Cpu::V2V3(_) | Cpu::IndexSeed(_) => {
-                vec![
-                    "bitcast<u32>(r.x)",
-                    "bitcast<u32>(r.y)",
-                    "bitcast<u32>(r.z)",
-                ]
-            }
-            Cpu::V2ToQuadrant(_) => {
-                vec!["bitcast<u32>(r.u.x)", "bitcast<u32>(r.u.y)", "r.quadrant"]
-            }
-            Cpu::F(_) | Cpu::FV3(_) => vec!["bitcast<u32>(r)"],
-            Cpu::SphTri(_) | Cpu::SphTriCosine(_) => vec![
-                "bitcast<u32>(r.x)",
-                "bitcast<u32>(r.y)",
-                "bitcast<u32>(r.z)",
-                "bitcast<u32>(r.w)",
-            ],
-            Cpu::SphRect(_) | Cpu::SphRectCosine(_) => vec![
-                "bitcast<u32>(r.x)",
-                "bitcast<u32>(r.y)",
-                "bitcast<u32>(r.z)",
-            ],
-            Cpu::SphTriInverse(_) | Cpu::SphRectInverse(_) => {
-                vec!["bitcast<u32>(r.x)", "bitcast<u32>(r.y)"]
-            }
-            Cpu::SphTriSolidAngle(_) | Cpu::SphRectSolidAngle(_) => vec!["bitcast<u32>(r)"],
-        };
-        (call, outs)
-    }
-}
-
-/// Every public function of `shaders/warpcore.wgsl` and the crate function it transcribes.
-pub const FUNCTIONS: &[Func] = &[
-    Func {
-        name: "wc_disk_polar",
-        cpu: Cpu::V2V2(disk::polar),
-        domain: Domain::Square,
-    },
-    Func {
-        name: "wc_disk_polar_inverse",
-        cpu: Cpu::V2V2(disk::polar_inverse),
-        domain: Domain::Plane,
-    },
-    Func {
-        name: "wc_disk_concentric",
-        cpu: Cpu::V2V2(disk::concentric),
-        domain: Domain::Square,
-    },
-    Func {
-        name: "wc_disk_concentric_inverse",
-        cpu: Cpu::V2V2(disk::concentric_inverse),
-        domain: Domain::Plane,
-    },
-    Func {
-        name: "wc_disk_polar4",
-        cpu: Cpu::V2QuadrantV2(disk::polar4),
-        domain: Domain::SquareQuadrant,
-    },
-    Func {
-        name: "wc_disk_polar4_inverse",
-        cpu: Cpu::V2ToQuadrant(disk::polar4_inverse),
-        domain: Domain::Plane,
-    },
-    Func {
-        name: "wc_disk_concentric4",
-        cpu: Cpu::V2QuadrantV2(disk::concentric4),
-        domain: Domain::SquareQuadrant,
-    },
-    Func {
-        name: "wc_disk_concentric4_inverse",
-        cpu: Cpu::V2ToQuadrant(disk::concentric4_inverse),
-        domain: Domain::Plane,
-    },
-    Func {
-        name: "wc_triangle_uniform",
-        cpu: Cpu::V2V3(triangle::uniform),
-        domain: Domain::Square,
-    },
-    Func {
-        name: "wc_triangle_uniform_inverse",
-        cpu: Cpu::V3V2(triangle::uniform_inverse),
-        domain: Domain::Barycentric,
-    },
-    Func {
-        name: "wc_triangle_sqrt_map",
-        cpu: Cpu::V2V3(triangle::sqrt_map),
-        domain: Domain::Square,
-    },
-    Func {
-        name: "wc_triangle_sqrt_map_inverse",
-        cpu: Cpu::V3V2(triangle::sqrt_map_inverse),
-        domain: Domain::Barycentric,
-    },
-    Func {
-        name: "wc_triangle_basu_owen",
-        cpu: Cpu::IndexSeed(triangle::basu_owen),
-        domain: Domain::IndexSeed,
-    },
-    Func {
-        name: "wc_triangle_basu_owen_permuted",
-        cpu: Cpu::IndexSeed(triangle::basu_owen_permuted),
-        domain: Domain::IndexSeed,
-    },
-    Func {
-        name: "wc_sphere_equal_area",
-        cpu: Cpu::V2V3(sphere::equal_area),
-        domain: Domain::Square,
-    },
-    Func {
-        name: "wc_sphere_equal_area_inverse",
-        cpu: Cpu::V3V2(sphere::equal_area_inverse),
-        domain: Domain::Direction,
-    },
-    Func {
-        name: "wc_sphere_equal_area_pdf_to_solid_angle",
-        cpu: Cpu::F(sphere::equal_area_pdf_to_solid_angle),
-        domain: Domain::Density,
-    },
-    Func {
-        name: "wc_sphere_equal_area_wrap",
-        cpu: Cpu::V2V2(sphere::equal_area_wrap),
-        domain: Domain::Extended,
-    },
-    Func {
-        name: "wc_sphere_uniform",
-        cpu: Cpu::V2V3(sphere::uniform),
-        domain: Domain::Square,
-    },
-    Func {
-        name: "wc_sphere_uniform_inverse",
-        cpu: Cpu::V3V2(sphere::uniform_inverse),
-        domain: Domain::Direction,
-    },
-    Func {
-        name: "wc_sphere_uniform_hemisphere",
-        cpu: Cpu::V2V3(sphere::uniform_hemisphere),
-        domain: Domain::Square,
-    },
-    Func {
-        name: "wc_sphere_uniform_hemisphere_inverse",
-        cpu: Cpu::V3V2(sphere::uniform_hemisphere_inverse),
-        domain: Domain::Direction,
-    },
-    Func {
-        name: "wc_sphere_cosine_hemisphere",
-        cpu: Cpu::V2V3(sphere::cosine_hemisphere),
-        domain: Domain::Square,
-    },
-    Func {
-        name: "wc_sphere_cosine_hemisphere_inverse",
-        cpu: Cpu::V3V2(sphere::cosine_hemisphere_inverse),
-        domain: Domain::Direction,
-    },
-    Func {
-        name: "wc_sphere_cosine_hemisphere_pdf",
-        cpu: Cpu::F(sphere::cosine_hemisphere_pdf),
-        domain: Domain::Density,
-    },
-    Func {
-        name: "wc_sphere_equirect",
-        cpu: Cpu::V2V3(sphere::equirect),
-        domain: Domain::Square,
-    },
-    Func {
-        name: "wc_sphere_equirect_inverse",
-        cpu: Cpu::V3V2(sphere::equirect_inverse),
-        domain: Domain::Direction,
-    },
-    Func {
-        name: "wc_sphere_equirect_pdf_to_solid_angle",
-        cpu: Cpu::FV3(sphere::equirect_pdf_to_solid_angle),
-        domain: Domain::DensityDirection,
-    },
-];
-
-/// The solid-angle lights of `shaders/warpcore.wgsl` (`spherical::*`), listed apart from
-/// [`FUNCTIONS`]: their points are lights times samples ([`spherical::inputs`]), and the CPU
-/// model's bounds of `FUNCTIONS` do not cover them.
-pub const SPHERICAL_FUNCTIONS: &[Func] = &[
-    Func {
-        name: "wc_spherical_triangle",
-        cpu: Cpu::SphTri(sp::triangle),
-        domain: Domain::Light(spherical::Layout::TriangleU),
-    },
-    Func {
-        name: "wc_spherical_triangle_inverse",
-        cpu: Cpu::SphTriInverse(sp::triangle_inverse),
-        domain: Domain::Light(spherical::Layout::TriangleB),
-    },
-    Func {
-        name: "wc_spherical_triangle_solid_angle",
-        cpu: Cpu::SphTriSolidAngle(sp::triangle_solid_angle),
-        domain: Domain::Light(spherical::Layout::Triangle),
-    },
-    Func {
-        name: "wc_spherical_rectangle",
-        cpu: Cpu::SphRect(sp::rectangle),
-        domain: Domain::Light(spherical::Layout::RectangleU),
-    },
-    Func {
-        name: "wc_spherical_rectangle_inverse",
-        cpu: Cpu::SphRectInverse(sp::rectangle_inverse),
-        domain: Domain::Light(spherical::Layout::RectangleSt),
-    },
-    Func {
-        name: "wc_spherical_rectangle_solid_angle",
-        cpu: Cpu::SphRectSolidAngle(sp::rectangle_solid_angle),
-        domain: Domain::Light(spherical::Layout::Rectangle),
-    },
-    Func {
-        name: "wc_spherical_triangle_cosine",
-        cpu: Cpu::SphTriCosine(sp::triangle_cosine),
-        domain: Domain::Light(spherical::Layout::TriangleNU),
-    },
-    Func {
-        name: "wc_spherical_rectangle_cosine",
-        cpu: Cpu::SphRectCosine(sp::rectangle_cosine),
-        domain: Domain::Light(spherical::Layout::RectangleNU),
-    },
-];
-
-/// Every public function of `shaders/warpcore.wgsl`: [`FUNCTIONS`], then
-/// [`SPHERICAL_FUNCTIONS`].
-pub fn all_functions() -> impl Iterator<Item = &'static Func> {
-    FUNCTIONS.iter().chain(SPHERICAL_FUNCTIONS)
-}
-
 // ---------------------------------------------------------------------------------------
 // Test points
 
-/// SplitMix64: a small, well-mixed generator (the test points need no more).
-pub struct Rng(u64);
+/// The test points' generator: pmjgen's SplitMix64 (a small, well-mixed generator; the test
+/// points need no more), with the draws of floats the points are made of.
+pub struct Rng(pmjgen::Rng);
 
 impl Rng {
     pub fn new(seed: u64) -> Self {
-        Rng(seed)
-    }
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
+        Rng(pmjgen::Rng::new(seed))
     }
     pub fn next_u32(&mut self) -> u32 {
-        (self.next_u64() >> 32) as u32
+        self.0.next_u32()
     }
     /// Uniform on the 2^-24 grid of [0, 1) (what fixed-point samplers produce).
     pub fn grid24(&mut self) -> f32 {
@@ -865,26 +465,9 @@ impl Gpu {
 
     /// The compute shader that evaluates `func` on every point of `wc_in`.
     pub fn shader_source(func: &Func) -> String {
-        let (call, outs) = func.cpu.wgsl(func.name);
-        let (inw, outw) = (func.cpu.in_words(), func.cpu.out_words());
-        let mut s = String::from(WGSL);
-        let _ = write!(
-            s,
-            "\n@group(0) @binding(0) var<storage, read> wc_in: array<u32>;\n\
-             @group(0) @binding(1) var<storage, read_write> wc_out: array<u32>;\n\
-             @compute @workgroup_size(64)\n\
-             fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {{\n\
-             \x20   let i = gid.x;\n\
-             \x20   if (i >= arrayLength(&wc_out) / {outw}u) {{ return; }}\n\
-             \x20   let b = i * {inw}u;\n\
-             \x20   let o = i * {outw}u;\n\
-             \x20   let r = {call};\n"
-        );
-        for (k, e) in outs.iter().enumerate() {
-            let _ = writeln!(s, "    wc_out[o + {k}u] = {e};");
-        }
-        s.push_str("}\n");
-        s
+        let (call, outs) = func.wgsl();
+        let words = [func.in_words(), func.out_words()];
+        check_shader(WGSL, [0, 1], words, &call_body(call, outs))
     }
 
     /// `func` evaluated on the GPU for every point of `input` (`in_words` words each); returns
@@ -896,8 +479,8 @@ impl Gpu {
     /// [`Gpu::run`] with another shader source (entry point `wc_check_main` and the bindings
     /// of [`Gpu::shader_source`]).
     pub fn run_source(&self, func: &Func, source: &str, input: &[u32]) -> Result<Vec<u32>, String> {
-        let (inw, outw) = (func.cpu.in_words(), func.cpu.out_words());
-        self.run_words(func.name, source, input, inw, outw, None)
+        let (inw, outw) = (func.in_words(), func.out_words());
+        self.run_words(&func.name, source, input, inw, outw, None)
     }
 
     /// Runs the compute shader `source` (entry point `wc_check_main`) on `input` (`inw` words
@@ -1051,6 +634,60 @@ impl Gpu {
     }
 }
 
+/// A check's compute shader: `library`, then `wc_in` and `wc_out` (bindings `[in, out]` of
+/// group 0) and the entry point `wc_check_main`, which runs `body` for point `i` with its
+/// `inw` input words at `wc_in[b + k]` and its `outw` output words at `wc_out[o + k]`.
+pub fn check_shader(
+    library: &str,
+    [in_binding, out_binding]: [u32; 2],
+    [inw, outw]: [usize; 2],
+    body: &str,
+) -> String {
+    format!(
+        "{library}\n@group(0) @binding({in_binding}) var<storage, read> wc_in: array<u32>;\n\
+         @group(0) @binding({out_binding}) var<storage, read_write> wc_out: array<u32>;\n\
+         @compute @workgroup_size(64)\n\
+         fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {{\n\
+         \x20   let i = gid.x;\n\
+         \x20   if (i >= arrayLength(&wc_out) / {outw}u) {{ return; }}\n\
+         \x20   let b = i * {inw}u;\n\
+         \x20   let o = i * {outw}u;\n\
+         {body}}}\n"
+    )
+}
+
+/// A compute shader that runs each of `bodies` in its own block for invocation `i` (entry
+/// point `wc_all`; `wc_in` and `wc_out` at bindings `[in, out]` of group 0), for the
+/// translation checks: naga's GLSL, HLSL and MSL writers and `spirv-val` want an entry point.
+pub fn all_shader(
+    library: &str,
+    [in_binding, out_binding]: [u32; 2],
+    bodies: impl IntoIterator<Item = String>,
+) -> String {
+    let mut s = format!(
+        "{library}\n@group(0) @binding({in_binding}) var<storage, read> wc_in: array<u32>;\n\
+         @group(0) @binding({out_binding}) var<storage, read_write> wc_out: array<u32>;\n\
+         @compute @workgroup_size(64)\n\
+         fn wc_all(@builtin(global_invocation_id) gid: vec3<u32>) {{\n\
+         \x20   let i = gid.x;\n"
+    );
+    for body in bodies {
+        let _ = write!(s, "    {{\n{body}    }}\n");
+    }
+    s.push_str("}\n");
+    s
+}
+
+/// The statements of a [`check_shader`] body that call `call` and write the output words
+/// `outs` of its result `r`.
+pub fn call_body<'a>(call: &str, outs: impl Iterator<Item = &'a str>) -> String {
+    let mut s = format!("    let r = {call};\n");
+    for (k, e) in outs.enumerate() {
+        let _ = writeln!(s, "    wc_out[o + {k}u] = {e};");
+    }
+    s
+}
+
 fn instance() -> wgpu::Instance {
     wgpu::Instance::new(wgpu::InstanceDescriptor {
         backends: wgpu::Backends::VULKAN,
@@ -1060,10 +697,10 @@ fn instance() -> wgpu::Instance {
 
 /// The crate's output words for every point of `input`.
 pub fn cpu_outputs(func: &Func, input: &[u32]) -> Vec<u32> {
-    let (inw, outw) = (func.cpu.in_words(), func.cpu.out_words());
+    let (inw, outw) = (func.in_words(), func.out_words());
     let mut out = vec![0u32; input.len() / inw * outw];
     for (i, o) in input.chunks_exact(inw).zip(out.chunks_exact_mut(outw)) {
-        func.cpu.eval(i, o);
+        func.eval(i, o);
     }
     out
 }
@@ -1100,12 +737,7 @@ pub fn ulps(gpu: f32, want: f32) -> f64 {
 
 /// Compares GPU words with crate words, point by point.
 pub fn compare(func: &Func, gpu: &[u32], cpu: &[u32]) -> Diff {
-    compare_words(
-        func.cpu.out_words(),
-        |k| func.cpu.is_integer_output(k),
-        gpu,
-        cpu,
-    )
+    compare_words(func.out_words(), |k| func.is_integer_output(k), gpu, cpu)
 }
 
 /// [`compare`] for `outw` words per point, `is_integer(k)` telling which words are `u32`.
@@ -1156,38 +788,4 @@ pub fn compare_words(
         d.mismatches = d.points;
     }
     d
-}
-
-/// One compute shader that calls every public function (entry point `wc_all`), for the
-/// translation checks: naga's GLSL, HLSL and MSL writers and `spirv-val` want an entry point.
-pub fn all_functions_shader() -> String {
-    let mut s = String::from(WGSL);
-    s.push_str(
-        "\n@group(0) @binding(0) var<storage, read> wc_in: array<u32>;\n\
-         @group(0) @binding(1) var<storage, read_write> wc_out: array<u32>;\n\
-         @compute @workgroup_size(64)\n\
-         fn wc_all(@builtin(global_invocation_id) gid: vec3<u32>) {\n\
-         \x20   let i = gid.x;\n",
-    );
-    let mut base = 0usize;
-    for func in all_functions() {
-        let (call, outs) = func.cpu.wgsl(func.name);
-        let _ = writeln!(
-            s,
-            "    {{\n        let b = i * {}u;\n        let r = {call};",
-            func.cpu.in_words()
-        );
-        for (k, e) in outs.iter().enumerate() {
-            let _ = writeln!(
-                s,
-                "        wc_out[i * {}u + {}u] = {e};",
-                base + outs.len(),
-                base + k
-            );
-        }
-        s.push_str("    }\n");
-        base += outs.len();
-    }
-    s.push_str("}\n");
-    s
 }

@@ -197,6 +197,17 @@ impl<'m> Interpreter<'m> {
     }
 
     /// Builds the argument values of `name` from input words (f32 bits or u32s, flattened).
+    /// `func`'s output words on every point of `input` (the random choices continue).
+    pub fn outputs(&mut self, func: &crate::Func, input: &[u32]) -> Vec<u32> {
+        let mut got = Vec::with_capacity(input.len() / func.in_words() * func.out_words());
+        for p in input.chunks_exact(func.in_words()) {
+            let args = self.args_from_words(&func.name, p);
+            let v = self.call(&func.name, args);
+            to_words(&v, &mut got);
+        }
+        got
+    }
+
     pub fn args_from_words(&self, name: &str, words: &[u32]) -> Vec<Val> {
         let f = &self.module.functions[self.by_name[name]];
         let mut it = words.iter().copied();
@@ -444,7 +455,14 @@ impl<'m> Interpreter<'m> {
                 (naga::UnaryOperator::LogicalNot, Val::B(x)) => Val::B(!x),
                 (op, v) => panic!("{op:?} {v:?}"),
             },
-            E::Binary { op, left, right } => self.binary(f, fr, *op, *left, *right),
+            E::Binary { op, left, right } => {
+                let e = Binary {
+                    op: *op,
+                    left: *left,
+                    right: *right,
+                };
+                self.binary(f, fr, e)
+            }
             E::Select {
                 condition,
                 accept,
@@ -541,50 +559,34 @@ impl<'m> Interpreter<'m> {
         None
     }
 
-    fn binary(
-        &mut self,
-        f: &naga::Function,
-        fr: &mut Frame,
-        op: B,
-        left: Handle<E>,
-        right: Handle<E>,
-    ) -> Val {
-        let (l, r) = (self.eval(f, fr, left), self.eval(f, fr, right));
+    fn binary(&mut self, f: &naga::Function, fr: &mut Frame, e: Binary) -> Val {
+        let (l, r) = (self.eval(f, fr, e.left), self.eval(f, fr, e.right));
         let n = match (&l, &r) {
             (Val::C(c), _) | (_, Val::C(c)) => c.len(),
-            _ => return self.binary_vals(f, fr, op, left, right, l, r, None),
+            _ => return self.binary_vals(f, fr, e, l, r, None),
         };
         // Vectors (and scalar-vector operands) lane by lane, with the deviations per lane.
         Val::C(
             (0..n)
-                .map(|i| {
-                    self.binary_vals(f, fr, op, left, right, lane(&l, i), lane(&r, i), Some(i))
-                })
+                .map(|i| self.binary_vals(f, fr, e, lane(&l, i), lane(&r, i), Some(i)))
                 .collect(),
         )
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn binary_vals(
         &mut self,
         f: &naga::Function,
         fr: &mut Frame,
-        op: B,
-        left: Handle<E>,
-        right: Handle<E>,
+        e: Binary,
         l: Val,
         r: Val,
         at: Option<usize>,
     ) -> Val {
+        let op = e.op;
         match (l, r) {
-            (Val::F(a), Val::F(b)) => match op {
-                B::Equal => Val::B(a == b),
-                B::NotEqual => Val::B(a != b),
-                B::Less => Val::B(a < b),
-                B::LessEqual => Val::B(a <= b),
-                B::Greater => Val::B(a > b),
-                B::GreaterEqual => Val::B(a >= b),
-                _ => Val::F(self.float_op(f, fr, op, left, right, a, b, at)),
+            (Val::F(a), Val::F(b)) => match comparison(op, a, b) {
+                Some(c) => Val::B(c),
+                None => Val::F(self.float_op(f, fr, e, a, b, at)),
             },
             (Val::U(a), Val::U(b)) => match op {
                 B::Add => Val::U(a.wrapping_add(b)),
@@ -595,38 +597,27 @@ impl<'m> Interpreter<'m> {
                 B::ExclusiveOr => Val::U(a ^ b),
                 B::ShiftLeft => Val::U(a.wrapping_shl(b)),
                 B::ShiftRight => Val::U(a.wrapping_shr(b)),
-                B::Equal => Val::B(a == b),
-                B::NotEqual => Val::B(a != b),
-                B::Less => Val::B(a < b),
-                B::LessEqual => Val::B(a <= b),
-                B::Greater => Val::B(a > b),
-                B::GreaterEqual => Val::B(a >= b),
-                op => panic!("u32 {op:?}"),
+                op => Val::B(comparison(op, a, b).unwrap_or_else(|| panic!("u32 {op:?}"))),
             },
             (Val::B(a), Val::B(b)) => match op {
                 B::And | B::LogicalAnd => Val::B(a & b),
                 B::InclusiveOr | B::LogicalOr => Val::B(a | b),
-                B::Equal => Val::B(a == b),
-                B::NotEqual => Val::B(a != b),
-                op => panic!("bool {op:?}"),
+                op => Val::B(comparison(op, a, b).unwrap_or_else(|| panic!("bool {op:?}"))),
             },
             (l, r) => panic!("{l:?} {op:?} {r:?}"),
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn float_op(
         &mut self,
         f: &naga::Function,
         fr: &mut Frame,
-        op: B,
-        left: Handle<E>,
-        right: Handle<E>,
+        e: Binary,
         a: f32,
         b: f32,
         at: Option<usize>,
     ) -> f32 {
-        let d = self.dev;
+        let (d, Binary { op, left, right }) = (self.dev, e);
         match op {
             B::Add | B::Subtract => {
                 let sub = op == B::Subtract;
@@ -688,6 +679,27 @@ impl<'m> Interpreter<'m> {
     }
 }
 
+/// A binary expression `left op right` of the function being interpreted.
+#[derive(Clone, Copy)]
+struct Binary {
+    op: B,
+    left: Handle<E>,
+    right: Handle<E>,
+}
+
+/// A comparison `op` of two values, or `None` where `op` is not a comparison.
+fn comparison<T: PartialOrd>(op: B, a: T, b: T) -> Option<bool> {
+    Some(match op {
+        B::Equal => a == b,
+        B::NotEqual => a != b,
+        B::Less => a < b,
+        B::LessEqual => a <= b,
+        B::Greater => a > b,
+        B::GreaterEqual => a >= b,
+        _ => return None,
+    })
+}
+
 /// Flattens a returned value into words (f32 bits and u32s), in the harness's output order.
 pub fn to_words(v: &Val, out: &mut Vec<u32>) {
     match v {
@@ -698,25 +710,6 @@ pub fn to_words(v: &Val, out: &mut Vec<u32>) {
         Val::C(c) => c.iter().for_each(|v| to_words(v, out)),
         Val::P(_) | Val::Q(..) => panic!("pointer result"),
     }
-}
-
-/// The interpreted WGSL's output words for `func` on every point of `input` (one trial of the
-/// deviations `dev`, random choices from `seed`).
-pub fn outputs(
-    module: &naga::Module,
-    func: &crate::Func,
-    input: &[u32],
-    dev: Deviations,
-    seed: u64,
-) -> Vec<u32> {
-    let mut interp = Interpreter::new(module, dev, seed);
-    let mut got = Vec::with_capacity(input.len() / func.cpu.in_words() * func.cpu.out_words());
-    for p in input.chunks_exact(func.cpu.in_words()) {
-        let args = interp.args_from_words(func.name, p);
-        let v = interp.call(func.name, args);
-        to_words(&v, &mut got);
-    }
-    got
 }
 
 /// The largest deviation of the interpreted WGSL from the crate for `func` over `input`
@@ -733,12 +726,7 @@ pub fn deviation(
     let mut interp = Interpreter::new(module, dev, seed);
     let mut total = crate::Diff::default();
     for _ in 0..trials {
-        let mut got = Vec::with_capacity(want.len());
-        for p in input.chunks_exact(func.cpu.in_words()) {
-            let args = interp.args_from_words(func.name, p);
-            let v = interp.call(func.name, args);
-            to_words(&v, &mut got);
-        }
+        let got = interp.outputs(func, input);
         let d = crate::compare(func, &got, &want);
         total.points += d.points;
         total.mismatches += d.mismatches;

@@ -7,7 +7,7 @@
 //! words; [`table_inputs`] builds their test points (edge values, whole table blocks, random
 //! words); [`run`] evaluates one on a GPU.
 
-use crate::Gpu;
+use crate::{Gpu, check_shader};
 use std::fmt::Write as _;
 use warpcore::pmj02bn;
 use warpcore::sampler::{Blue, Pattern, Pmj02bn, Sampler, Sobol};
@@ -313,24 +313,11 @@ pub fn shader_source(func: &TableFunc) -> String {
 
 /// [`shader_source`] with another library text (for the sharpness checks).
 pub fn shader_source_with(func: &TableFunc, library: &str) -> String {
-    let mut s = String::from(library);
-    let _ = write!(
-        s,
-        "\n@group(0) @binding(1) var<storage, read> wc_in: array<u32>;\n\
-         @group(0) @binding(2) var<storage, read_write> wc_out: array<u32>;\n\
-         @compute @workgroup_size(64)\n\
-         fn wc_check_main(@builtin(global_invocation_id) gid: vec3<u32>) {{\n\
-         \x20   let i = gid.x;\n\
-         \x20   if (i >= arrayLength(&wc_out) / {outw}u) {{ return; }}\n\
-         \x20   if (arrayLength(&wc_tables) == 0u) {{ return; }}\n\
-         \x20   let b = i * {inw}u;\n\
-         \x20   let o = i * {outw}u;\n\
-         {body}}}\n",
-        outw = func.out_words,
-        inw = func.in_words,
-        body = (func.wgsl)()
+    let body = format!(
+        "    if (arrayLength(&wc_tables) == 0u) {{ return; }}\n{}",
+        (func.wgsl)()
     );
-    s
+    check_shader(library, [1, 2], [func.in_words, func.out_words], &body)
 }
 
 /// `func` on the GPU for every point of `input`, with the tables `tables` bound.

@@ -38,6 +38,66 @@ pub fn tool(name: &str) -> bool {
     found
 }
 
+/// `func` on `gpu` with `wrong` (a changed copy of `shaders/warpcore.wgsl`) as its library,
+/// compared with the crate on `input`.
+pub fn compare_changed(gpu: &Gpu, func: &crate::Func, wrong: &str, input: &[u32]) -> crate::Diff {
+    assert_ne!(
+        wrong,
+        crate::WGSL,
+        "the text to change is where the test expects it"
+    );
+    let source = Gpu::shader_source(func).replacen(crate::WGSL, wrong, 1);
+    let got = gpu
+        .run_source(func, &source, input)
+        .unwrap_or_else(|e| panic!("{e}"));
+    crate::compare(func, &got, &crate::cpu_outputs(func, input))
+}
+
+/// The names of the public (`wc_`) functions of a WGSL library file, parsed by naga
+/// (panicking with naga's message) and checked for the rules every library keeps: no entry
+/// point, `bindings` module-scope variables (its bindings).
+pub fn library(source: &str, bindings: usize) -> Vec<String> {
+    let module = naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
+    assert!(module.entry_points.is_empty(), "an entry point");
+    assert_eq!(module.global_variables.len(), bindings, "bindings");
+    module
+        .functions
+        .iter()
+        .filter_map(|(_, f)| f.name.clone())
+        .filter(|n| n.starts_with("wc_"))
+        .collect()
+}
+
+/// What no WGSL library file uses: entry points, `enable`, and `fma` and `pow` (whose results
+/// differ between devices).
+pub const NOT_IN_A_LIBRARY: &[&str] = &[
+    "@compute",
+    "@vertex",
+    "@fragment",
+    "enable ",
+    "fma(",
+    "pow(",
+];
+
+/// The text rules of a WGSL library file `file`: its code (`source` without its `//`
+/// comments, which it returns) uses none of [`NOT_IN_A_LIBRARY`] and `banned`, and has each of
+/// `signatures` exactly.
+pub fn library_text(source: &str, file: &str, banned: &[&str], signatures: &[&str]) -> String {
+    let code = source
+        .lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n");
+    for b in NOT_IN_A_LIBRARY.iter().chain(banned) {
+        assert!(!code.contains(b), "{file} uses {b:?}");
+    }
+    for sig in signatures {
+        assert!(code.contains(sig), "{file} lacks the signature {sig}");
+    }
+    code
+}
+
 /// naga's translations of one compute shader, as written to disk and validated.
 pub struct Translations {
     /// SPIR-V words.
@@ -175,7 +235,7 @@ pub fn assert_bit_identical(gpu: &Gpu, funcs: &[crate::Func], seed: u64) {
             "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
             func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
         );
-        let (inw, outw) = (func.cpu.in_words(), func.cpu.out_words());
+        let (inw, outw) = (func.in_words(), func.out_words());
         if let Some(p) = d.first {
             println!(
                 "    first mismatch: in [{}]\n      gpu [{}]\n    crate [{}]",
@@ -183,13 +243,15 @@ pub fn assert_bit_identical(gpu: &Gpu, funcs: &[crate::Func], seed: u64) {
                 show(&got[p * outw..(p + 1) * outw]),
                 show(&want[p * outw..(p + 1) * outw])
             );
-            failed.push(func.name);
+            failed.push(func.name.as_str());
         }
         // A sanity check of the comparison itself: the outputs are never NaN (the domain rule).
         assert!(
-            (0..d.points)
-                .all(|p| (0..outw).all(|w| func.cpu.is_integer_output(w)
-                    || !f32::from_bits(want[p * outw + w]).is_nan())),
+            (0..d.points).all(|p| {
+                (0..outw).all(|w| {
+                    func.is_integer_output(w) || !f32::from_bits(want[p * outw + w]).is_nan()
+                })
+            }),
             "{}: the crate returned NaN",
             func.name
         );

@@ -8,15 +8,17 @@
 //! `WARPCORE_GPU_RANDOM` sets the number of points of each random class (default 65536).
 
 use std::path::PathBuf;
-use warpcore_gpu::testing::{assert_bit_identical, lavapipe, translate};
-use warpcore_gpu::{FUNCTIONS, Func, Gpu, WGSL, compare, cpu_outputs, inputs};
+use warpcore_gpu::testing::{
+    assert_bit_identical, compare_changed, lavapipe, library, library_text, translate,
+};
+use warpcore_gpu::{WGSL, inputs, warps};
 
 /// Every output word of every function equals the crate's, over edge values, grids, random
 /// points of each domain and random bit patterns (every f32 class).
 #[test]
 fn every_function_is_bit_identical_on_lavapipe() {
     let Some(gpu) = lavapipe() else { return };
-    assert_bit_identical(&gpu, FUNCTIONS, 0x5eed_0000);
+    assert_bit_identical(&gpu, warps(), 0x5eed_0000);
 }
 
 /// The comparison is sharp: the sine kernel's leading constant moved by one ulp changes the
@@ -25,52 +27,28 @@ fn every_function_is_bit_identical_on_lavapipe() {
 #[test]
 fn a_one_ulp_change_is_detected() {
     let Some(gpu) = lavapipe() else { return };
-    let func = *FUNCTIONS
+    let func = warps()
         .iter()
         .find(|f| f.name == "wc_disk_concentric")
         .unwrap();
     let input = inputs(func.domain, 1 << 12, 7);
-    let want = cpu_outputs(&func, &input);
     let wrong = WGSL.replace(
         "const WCI_S0: f32 = 0x1.921fb4p-1f;",
         "const WCI_S0: f32 = 0x1.921fb6p-1f;",
     );
-    assert_ne!(
-        wrong, WGSL,
-        "the constant to perturb is where the test expects it"
-    );
-    let got = run_source(&gpu, &func, &wrong, &input);
-    let d = compare(&func, &got, &want);
+    let d = compare_changed(&gpu, func, &wrong, &input);
     println!("S0 + 1 ulp: {} of {} points differ", d.mismatches, d.points);
     assert!(d.mismatches * 10 > d.points, "{d:?}");
     assert!(d.max_ulp >= 0.5 && d.max_abs < 1e-6, "{d:?}");
-}
-
-fn run_source(gpu: &Gpu, func: &Func, wgsl: &str, input: &[u32]) -> Vec<u32> {
-    // The harness builds its shader from `WGSL`; swap the library text in its source.
-    let source = Gpu::shader_source(func).replacen(WGSL, wgsl, 1);
-    gpu.run_source(func, &source, input)
-        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The library rules of the file (DESIGN.md, "Shaders"): no bindings, no entry points, no
 /// `enable`, no fma/pow/builtin trigonometry, and the contract signatures exactly.
 #[test]
 fn the_file_is_a_library_with_the_contract_signatures() {
-    let code: String = WGSL
-        .lines()
-        .map(|l| l.split("//").next().unwrap_or(""))
-        .collect::<Vec<_>>()
-        .join("\n");
-    for banned in [
+    let banned = [
         "@group",
         "@binding",
-        "@compute",
-        "@vertex",
-        "@fragment",
-        "enable ",
-        "fma(",
-        "pow(",
         "sin(",
         "cos(",
         "tan(",
@@ -81,10 +59,8 @@ fn the_file_is_a_library_with_the_contract_signatures() {
         "log(",
         "floor(",
         "fract(",
-    ] {
-        assert!(!code.contains(banned), "warpcore.wgsl uses {banned:?}");
-    }
-    for sig in [
+    ];
+    let signatures = [
         "fn wc_disk_polar(u: vec2<f32>) -> vec2<f32>",
         "fn wc_disk_concentric(u: vec2<f32>) -> vec2<f32>",
         "fn wc_disk_concentric_inverse(p: vec2<f32>) -> vec2<f32>",
@@ -94,25 +70,17 @@ fn the_file_is_a_library_with_the_contract_signatures() {
         "fn wc_sphere_equal_area(u: vec2<f32>) -> vec3<f32>",
         "fn wc_sphere_equal_area_inverse(d: vec3<f32>) -> vec2<f32>",
         "fn wc_sphere_cosine_hemisphere(u: vec2<f32>) -> vec3<f32>",
-    ] {
-        assert!(code.contains(sig), "missing contract signature {sig}");
-    }
+    ];
+    library_text(WGSL, "warpcore.wgsl", &banned, &signatures);
     // Every public function of the file is checked by the harness.
-    let module = naga::front::wgsl::parse_str(WGSL).expect("warpcore.wgsl parses");
-    let public: Vec<&str> = module
-        .functions
-        .iter()
-        .filter_map(|(_, f)| f.name.as_deref())
-        .filter(|n| n.starts_with("wc_"))
-        .collect();
+    let public = library(WGSL, 0);
     for name in &public {
         assert!(
             warpcore_gpu::all_functions().any(|f| f.name == *name),
-            "{name} is not in FUNCTIONS or SPHERICAL_FUNCTIONS"
+            "{name} is not bound by a registry entry"
         );
     }
     assert_eq!(public.len(), warpcore_gpu::all_functions().count());
-    assert!(module.entry_points.is_empty() && module.global_variables.is_empty());
 }
 
 fn out_dir() -> PathBuf {
@@ -145,7 +113,7 @@ fn naga_translates_to_spirv_glsl_hlsl_msl() {
     let (glsl, hlsl, msl) = (&t.glsl, &t.hlsl, &t.msl);
     for (lang, text) in [("GLSL", glsl), ("HLSL", hlsl), ("MSL", msl)] {
         for f in warpcore_gpu::all_functions() {
-            assert!(text.contains(f.name), "{lang} lacks {}", f.name);
+            assert!(text.contains(&f.name), "{lang} lacks {}", f.name);
         }
         println!("{lang}: {} bytes", text.len());
     }

@@ -6,7 +6,7 @@ use warpcore_gpu::compare_words;
 use warpcore_gpu::envmaps::{
     ENV_FUNCTIONS, ENVMAP_WGSL, cpu_outputs, env_buffer, env_inputs, run, shader_source,
 };
-use warpcore_gpu::testing::{lavapipe, random_points, translate};
+use warpcore_gpu::testing::{lavapipe, library, random_points, translate};
 
 /// Every output word (uv, pdf, texel; pdf lookups) equals the crate's on every test map.
 #[test]
@@ -45,19 +45,11 @@ fn every_envmap_function_is_bit_identical_on_lavapipe() {
 /// three files parse together.
 #[test]
 fn the_envmap_file_is_a_library_with_one_binding() {
-    let module = naga::front::wgsl::parse_str(ENVMAP_WGSL).expect("warpcore_envmap.wgsl parses");
-    let public: Vec<&str> = module
-        .functions
-        .iter()
-        .filter_map(|(_, f)| f.name.as_deref())
-        .filter(|n| n.starts_with("wc_"))
-        .collect();
+    let public = library(ENVMAP_WGSL, 1);
     assert_eq!(public.len(), ENV_FUNCTIONS.len(), "{public:?}");
     for name in &public {
-        assert!(ENV_FUNCTIONS.iter().any(|f| f.name == *name), "{name}");
+        assert!(ENV_FUNCTIONS.iter().any(|f| f.name == name), "{name}");
     }
-    assert!(module.entry_points.is_empty());
-    assert_eq!(module.global_variables.len(), 1);
     let all = format!(
         "{}\n{}\n{}",
         warpcore_gpu::WGSL,

@@ -3,27 +3,14 @@
 //! fingerprint and random lights of every kind, times grids, random points and edge values
 //! (`warpcore_gpu::spherical`). Same environment variables as `tests/lavapipe.rs`.
 
-use warpcore_gpu::testing::{assert_bit_identical, lavapipe};
-use warpcore_gpu::{Func, Gpu, SPHERICAL_FUNCTIONS, WGSL, compare, cpu_outputs, inputs};
+use warpcore_gpu::testing::{assert_bit_identical, compare_changed, lavapipe};
+use warpcore_gpu::{WGSL, inputs, lights};
 
 /// Every output word of every solid-angle function equals the crate's.
 #[test]
 fn every_solid_angle_function_is_bit_identical_on_lavapipe() {
     let Some(gpu) = lavapipe() else { return };
-    assert_bit_identical(&gpu, SPHERICAL_FUNCTIONS, 0x5fe0_0000);
-}
-
-fn find(name: &str) -> Func {
-    *SPHERICAL_FUNCTIONS.iter().find(|f| f.name == name).unwrap()
-}
-
-fn mismatches(gpu: &Gpu, func: &Func, wgsl: &str, input: &[u32]) -> (usize, usize) {
-    let source = Gpu::shader_source(func).replacen(WGSL, wgsl, 1);
-    let got = gpu
-        .run_source(func, &source, input)
-        .unwrap_or_else(|e| panic!("{e}"));
-    let d = compare(func, &got, &cpu_outputs(func, input));
-    (d.mismatches, d.points)
+    assert_bit_identical(&gpu, lights(), 0x5fe0_0000);
 }
 
 /// The comparison is sharp on these functions too: a one-ulp change of `1 / (4 pi)` moves
@@ -33,25 +20,28 @@ fn mismatches(gpu: &Gpu, func: &Func, wgsl: &str, input: &[u32]) -> (usize, usiz
 #[test]
 fn small_changes_are_detected() {
     let Some(gpu) = lavapipe() else { return };
-    let tri = find("wc_spherical_triangle");
-    let input = inputs(tri.domain, 1 << 10, 7);
-    let wrong = WGSL.replace(
-        "const WCI_INV_4PI: f32 = 0x1.45f306p-4f;",
-        "const WCI_INV_4PI: f32 = 0x1.45f308p-4f;",
-    );
-    assert_ne!(wrong, WGSL, "the constant is where the test expects it");
-    let (m, n) = mismatches(&gpu, &tri, &wrong, &input);
-    println!("1 / (4 pi) + 1 ulp: {m} of {n} triangle samples differ");
-    assert!(m * 3 > n, "{m} of {n}");
-
-    let rect = find("wc_spherical_rectangle");
-    let input = inputs(rect.domain, 1 << 10, 7);
-    let wrong = WGSL.replace(
-        "    let dx = wci_rect_newton(r, z2, goal, dx1);",
-        "    let dx = dx1;",
-    );
-    assert_ne!(wrong, WGSL, "the Newton step is where the test expects it");
-    let (m, n) = mismatches(&gpu, &rect, &wrong, &input);
-    println!("one Newton step fewer: {m} of {n} rectangle samples differ");
-    assert!(m * 10 > n, "{m} of {n}");
+    for (name, what, from, to, at_least) in [
+        (
+            "wc_spherical_triangle",
+            "1 / (4 pi) + 1 ulp",
+            "const WCI_INV_4PI: f32 = 0x1.45f306p-4f;",
+            "const WCI_INV_4PI: f32 = 0x1.45f308p-4f;",
+            3,
+        ),
+        (
+            "wc_spherical_rectangle",
+            "one Newton step fewer",
+            "    let dx = wci_rect_newton(r, z2, goal, dx1);",
+            "    let dx = dx1;",
+            10,
+        ),
+    ] {
+        let func = lights().iter().find(|f| f.name == name).unwrap();
+        let input = inputs(func.domain, 1 << 10, 7);
+        let d = compare_changed(&gpu, func, &WGSL.replace(from, to), &input);
+        let (m, n) = (d.mismatches, d.points);
+        println!("{what}: {m} of {n} {name} samples differ");
+        // More than a third of the triangle's samples, a tenth of the rectangle's.
+        assert!(m * at_least > n, "{what}: {m} of {n}");
+    }
 }

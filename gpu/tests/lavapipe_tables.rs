@@ -7,8 +7,8 @@ use warpcore_gpu::tables::{
     TABLE_FUNCTIONS, TABLES_WGSL, TableFunc, cpu_outputs, run, run_source, shader_source,
     shader_source_with, table_inputs, table_words,
 };
-use warpcore_gpu::testing::{lavapipe, random_points, translate};
-use warpcore_gpu::{Gpu, compare_words};
+use warpcore_gpu::testing::{lavapipe, library, library_text, random_points, translate};
+use warpcore_gpu::{Gpu, all_shader, compare_words};
 
 /// Every output word (states, fixed-point draws, float draws, roulette values) equals the
 /// crate's, for every pattern, over whole table blocks, edge values of every argument
@@ -70,20 +70,27 @@ fn a_wrong_table_or_layout_is_detected() {
         0
     );
 
-    let one_set = TABLES_WGSL.replace(
-        "const WC_PMJ02BN_SETS: u32 = 4u;",
-        "const WC_PMJ02BN_SETS: u32 = 1u;",
-    );
-    assert_ne!(one_set, TABLES_WGSL);
-    let n = mismatches(
-        &gpu,
-        &pmj,
-        &shader_source_with(&pmj, &one_set),
-        &tables,
-        1 << 12,
-    );
-    println!("one set: {n} mismatches");
-    assert!(n > 1000, "{n}");
+    for (what, func, from, to) in [
+        (
+            "one set",
+            &pmj,
+            "const WC_PMJ02BN_SETS: u32 = 4u;",
+            "const WC_PMJ02BN_SETS: u32 = 1u;",
+        ),
+        (
+            "32 x 32 tile",
+            &blue,
+            "const WC_BLUE_TILE: u32 = 64u;",
+            "const WC_BLUE_TILE: u32 = 32u;",
+        ),
+    ] {
+        let wrong = TABLES_WGSL.replace(from, to);
+        assert_ne!(wrong, TABLES_WGSL, "{what}: the text to change is there");
+        let source = shader_source_with(func, &wrong);
+        let n = mismatches(&gpu, func, &source, &tables, 1 << 12);
+        println!("{what}: {n} mismatches");
+        assert!(n > 1000, "{what}: {n}");
+    }
 
     let mut flipped = tables.clone();
     let row = warpcore_gpu::tables::PMJ02BN_WORDS + 4 * (256 * 3 + 0x80) + 2;
@@ -91,74 +98,34 @@ fn a_wrong_table_or_layout_is_detected() {
     let n = mismatches(&gpu, &sobol, &shader_source(&sobol), &flipped, 1 << 12);
     println!("one Sobol' bit flipped: {n} mismatches");
     assert!(n > 10, "{n}");
-
-    let small_tile = TABLES_WGSL.replace(
-        "const WC_BLUE_TILE: u32 = 64u;",
-        "const WC_BLUE_TILE: u32 = 32u;",
-    );
-    assert_ne!(small_tile, TABLES_WGSL);
-    let n = mismatches(
-        &gpu,
-        &blue,
-        &shader_source_with(&blue, &small_tile),
-        &tables,
-        1 << 12,
-    );
-    println!("32 x 32 tile: {n} mismatches");
-    assert!(n > 1000, "{n}");
 }
 
 /// The library rules: one binding (the tables), no entry points, no `enable`, no floating-
 /// point arithmetic besides the exact conversion; every public function is checked.
 #[test]
 fn the_tables_file_is_a_library_with_one_binding() {
-    let code: String = TABLES_WGSL
-        .lines()
-        .map(|l| l.split("//").next().unwrap_or(""))
-        .collect::<Vec<_>>()
-        .join("\n");
-    assert_eq!(code.matches("@group").count(), 1);
-    assert_eq!(code.matches("@binding").count(), 1);
-    assert!(code.contains("@group(0) @binding(0) var<storage, read> wc_tables: array<u32>;"));
-    for banned in [
-        "@compute",
-        "@vertex",
-        "@fragment",
-        "enable ",
-        "fma(",
-        "pow(",
-    ] {
-        assert!(
-            !code.contains(banned),
-            "warpcore_tables.wgsl uses {banned:?}"
-        );
-    }
-    for sig in [
+    let signatures = [
         "fn wc_pmj02bn_sample(index: u32, seed: u32) -> vec2<f32>",
         "fn wc_sampler_new(pattern: u32, pixel: vec2<u32>, frame: u32, index: u32, seed: u32) -> WcSampler",
         "fn wc_sampler_domain(s: WcSampler, key: u32) -> WcSampler",
         "fn wc_sampler_split(s: WcSampler, key: u32, size: u32, sub: u32) -> WcSampler",
         "fn wc_sampler_draw2(s: WcSampler) -> vec2<f32>",
         "fn wc_sampler_draw4(s: WcSampler) -> vec4<f32>",
-    ] {
-        assert!(code.contains(sig), "missing signature {sig}");
-    }
-    let module = naga::front::wgsl::parse_str(TABLES_WGSL).expect("warpcore_tables.wgsl parses");
-    let public: Vec<&str> = module
-        .functions
-        .iter()
-        .filter_map(|(_, f)| f.name.as_deref())
-        .filter(|n| n.starts_with("wc_"))
-        .collect();
+    ];
+    let code = library_text(TABLES_WGSL, "warpcore_tables.wgsl", &[], &signatures);
+    assert_eq!(code.matches("@group").count(), 1);
+    assert_eq!(code.matches("@binding").count(), 1);
+    assert!(code.contains("@group(0) @binding(0) var<storage, read> wc_tables: array<u32>;"));
+    let public = library(TABLES_WGSL, 1);
     for name in &public {
         assert!(
-            TABLE_FUNCTIONS.iter().any(|f| f.covers.contains(name)),
+            TABLE_FUNCTIONS
+                .iter()
+                .any(|f| f.covers.contains(&name.as_str())),
             "{name} is not checked by TABLE_FUNCTIONS"
         );
     }
     assert_eq!(public.len(), 9, "{public:?}");
-    assert!(module.entry_points.is_empty());
-    assert_eq!(module.global_variables.len(), 1);
     // The two files together: no name is shared.
     let both = format!("{}\n{}", warpcore_gpu::WGSL, TABLES_WGSL);
     naga::front::wgsl::parse_str(&both).expect("warpcore.wgsl + warpcore_tables.wgsl parse");
@@ -168,23 +135,15 @@ fn the_tables_file_is_a_library_with_one_binding() {
 /// GLSL 450, HLSL and MSL 1.2; spirv-val and glslangValidator accept the SPIR-V and the GLSL.
 #[test]
 fn naga_translates_the_tables_file() {
-    let mut source = String::from(TABLES_WGSL);
-    source.push_str(
-        "\n@group(0) @binding(1) var<storage, read> wc_in: array<u32>;\n\
-         @group(0) @binding(2) var<storage, read_write> wc_out: array<u32>;\n\
-         @compute @workgroup_size(64)\n\
-         fn wc_all(@builtin(global_invocation_id) gid: vec3<u32>) {\n\
-         \x20   let i = gid.x;\n",
-    );
-    for f in TABLE_FUNCTIONS.iter().take(3) {
-        source.push_str(&format!(
-            "    {{\n    let b = i * {}u;\n    let o = i * {}u;\n{}    }}\n",
+    let bodies = TABLE_FUNCTIONS.iter().take(3).map(|f| {
+        format!(
+            "    let b = i * {}u;\n    let o = i * {}u;\n{}",
             f.in_words,
             f.out_words,
             (f.wgsl)()
-        ));
-    }
-    source.push_str("}\n");
+        )
+    });
+    let source = all_shader(TABLES_WGSL, [1, 2], bodies);
     let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("warpcore-wgsl");
     let t = translate(&source, "wc_all", &dir, "warpcore_tables");
     for (lang, text) in [("GLSL", &t.glsl), ("HLSL", &t.hlsl), ("MSL", &t.msl)] {

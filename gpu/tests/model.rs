@@ -3,23 +3,35 @@
 //! solid-angle lights). See `src/model.rs`.
 
 use warpcore_gpu::model::{Deviations, deviation};
-use warpcore_gpu::{FUNCTIONS, WGSL, inputs};
+use warpcore_gpu::{Func, WGSL, inputs, lights, warps};
 
-#[test]
-fn interpreted_wgsl_equals_the_crate() {
+/// The functions of `funcs` whose interpreted WGSL differs from the crate on their points
+/// (`points(k, func)`), after printing the counts.
+fn differing(
+    funcs: &'static [Func],
+    points: impl Fn(usize, &Func) -> Vec<u32>,
+) -> Vec<&'static str> {
     let module = naga::front::wgsl::parse_str(WGSL).expect("parses");
     let mut failed = Vec::new();
-    for (k, func) in FUNCTIONS.iter().enumerate() {
-        let input = inputs(func.domain, 1 << 10, 0xface + k as u64);
-        let d = deviation(&module, func, &input, Deviations::NONE, 1, 1);
+    for (k, func) in funcs.iter().enumerate() {
+        let d = deviation(&module, func, &points(k, func), Deviations::NONE, 1, 1);
         println!(
             "{:<42} {:>8} points, {} mismatches",
             func.name, d.points, d.mismatches
         );
+        assert!(d.points > 0);
         if d.mismatches > 0 {
-            failed.push(func.name);
+            failed.push(func.name.as_str());
         }
     }
+    failed
+}
+
+#[test]
+fn interpreted_wgsl_equals_the_crate() {
+    let failed = differing(warps(), |k, func| {
+        inputs(func.domain, 1 << 10, 0xface + k as u64)
+    });
     assert!(failed.is_empty(), "{failed:?}");
 }
 
@@ -27,27 +39,15 @@ fn interpreted_wgsl_equals_the_crate() {
 /// every 7th sample point: the interpreter is slow on them; every solid-angle point).
 #[test]
 fn interpreted_wgsl_equals_the_crate_on_the_solid_angle_lights() {
-    let module = naga::front::wgsl::parse_str(WGSL).expect("parses");
-    let mut failed = Vec::new();
-    for (k, func) in warpcore_gpu::SPHERICAL_FUNCTIONS.iter().enumerate() {
-        let w = func.cpu.in_words();
+    let failed = differing(lights(), |k, func| {
+        let w = func.in_words();
         let all = inputs(func.domain, 1 << 10, 0xface + k as u64);
-        let input: Vec<u32> = all
-            .chunks_exact(w)
+        all.chunks_exact(w)
             .step_by(if w == 12 { 1 } else { 7 })
             .flatten()
             .copied()
-            .collect();
-        let d = deviation(&module, func, &input, Deviations::NONE, 1, 1);
-        println!(
-            "{:<42} {:>8} points, {} mismatches",
-            func.name, d.points, d.mismatches
-        );
-        assert!(d.points > 0);
-        if d.mismatches > 0 {
-            failed.push(func.name);
-        }
-    }
+            .collect()
+    });
     assert!(failed.is_empty(), "{failed:?}");
 }
 
@@ -55,7 +55,7 @@ fn interpreted_wgsl_equals_the_crate_on_the_solid_angle_lights() {
 #[test]
 fn the_model_moves_results() {
     let module = naga::front::wgsl::parse_str(WGSL).expect("parses");
-    let func = FUNCTIONS
+    let func = warps()
         .iter()
         .find(|f| f.name == "wc_disk_concentric")
         .unwrap();
@@ -72,7 +72,7 @@ fn the_model_moves_results() {
 #[test]
 fn the_documented_model_bound_holds() {
     let module = naga::front::wgsl::parse_str(WGSL).expect("parses");
-    for (k, func) in FUNCTIONS.iter().enumerate() {
+    for (k, func) in warps().iter().enumerate() {
         let input = warpcore_gpu::typical_inputs(func.domain, 2048, 0x0de1_0000 + k as u64);
         let d = deviation(
             &module,

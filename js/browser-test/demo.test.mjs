@@ -67,16 +67,26 @@ const driver = (page) => (s) =>
              gpu: { ...window.demo.gpu }, readout: readout.textContent, readoutClass: readout.className };
   })()`);
 
-test('the demo page draws every warp with the expected points and strata', { skip, timeout: 240_000 }, async (t) => {
-  assert.equal(reportColours.length, 16, 'docs/report/strata.svg has the 16 palette colours');
+/**
+ * The demo page (concentric disk, 256 pmj02bn points, 4 x 4 strata, GPU mode asked for) from a
+ * local server in the Chromium of `launcher`, once it has drawn its first frame (or failed)
+ * within `wait` ms.
+ */
+async function openDemo(t, launcher, wait) {
   const server = await serve(root);
   t.after(() => server.close());
-  const browser = await launch(chromium);
+  const browser = await launch(launcher);
   t.after(() => browser.close());
   const page = await open(browser, `${server.url}js/demo/index.html?warp=disk:concentric&count=256&sampler=pmj02bn&grid=4x4&seed=7&gpu=1`);
   await page.evaluate('window.demo.ready');
   await page.evaluate(`new Promise((ok, fail) => { const t0 = Date.now(); (function poll() {
-    if (window.demo.frame >= 1 || window.demo.error) ok(); else if (Date.now() - t0 > 30000) fail(new Error('no frame')); else setTimeout(poll, 20); })(); })`);
+    if (window.demo.frame >= 1 || window.demo.error) ok(); else if (Date.now() - t0 > ${wait}) fail(new Error('no frame')); else setTimeout(poll, 20); })(); })`);
+  return page;
+}
+
+test('the demo page draws every warp with the expected points and strata', { skip, timeout: 240_000 }, async (t) => {
+  assert.equal(reportColours.length, 16, 'docs/report/strata.svg has the 16 palette colours');
+  const page = await openDemo(t, chromium, 30000);
 
   const drive = driver(page);
 
@@ -140,14 +150,7 @@ test('the demo page draws every warp with the expected points and strata', { ski
 // Every warp of the page, GPU on: all points have the wasm module's bits and the page says
 // so. Where the browser gives no adapter (outside CI), the toggle must be disabled instead.
 test('the demo page computes every warp on the GPU (WebGPU, SwiftShader) with the wasm bits', { skip, timeout: 300_000 }, async (t) => {
-  const server = await serve(root);
-  t.after(() => server.close());
-  const browser = await launch(webgpuChromium);
-  t.after(() => browser.close());
-  const page = await open(browser, `${server.url}js/demo/index.html?warp=disk:concentric&count=256&sampler=pmj02bn&grid=4x4&seed=7&gpu=1`);
-  await page.evaluate('window.demo.ready');
-  await page.evaluate(`new Promise((ok, fail) => { const t0 = Date.now(); (function poll() {
-    if (window.demo.frame >= 1 || window.demo.error) ok(); else if (Date.now() - t0 > 60000) fail(new Error('no frame')); else setTimeout(poll, 20); })(); })`);
+  const page = await openDemo(t, webgpuChromium, 60000);
   const control = await page.evaluate(`({ disabled: document.getElementById('gpu').disabled,
     checked: document.getElementById('gpu').checked, note: document.getElementById('gpu-note').textContent,
     gpu: { ...window.demo.gpu }, error: window.demo.error })`);

@@ -5,8 +5,9 @@
 // then compared with the wasm module's, so the page can say how many points have the same bits.
 //
 // The entry point reads `wc_in` (u32 words, `inWords` per point) and writes `wc_out` (`outWords`
-// per point), as gpu/browser/webgpu-check.mjs does; bindings 2 and 3, so that binding 1 stays
-// warpcore_envmap.wgsl's.
+// per point); bindings 2 and 3, so that binding 1 stays warpcore_envmap.wgsl's. The shader and
+// dispatch helpers (`library`, `computeShader`, `createPipeline`, `runCompute`) are
+// gpu/browser/webgpu-check.mjs's too.
 
 /**
  * The WGSL function of each demo warp: [function, input kind, output words per point].
@@ -61,7 +62,11 @@ export async function openGpu() {
 }
 
 const libraries = new Map(); // file -> Promise<string>
-function library(file) {
+/**
+ * The text of `shaders/${file}` (fetched once); `edit` ([from, to], or null) replaces a string
+ * of it (the browser tests' check that a comparison sees a one-ulp change).
+ */
+export async function library(file, edit = null) {
   if (!libraries.has(file)) {
     libraries.set(
       file,
@@ -71,8 +76,36 @@ function library(file) {
       }),
     );
   }
-  return libraries.get(file);
+  const lib = await libraries.get(file);
+  if (!edit) return lib;
+  if (!lib.includes(edit[0])) throw new Error(`not in the library: ${edit[0]}`);
+  return lib.replace(edit[0], edit[1]);
 }
+
+/**
+ * A compute shader: the library `lib`, `wc_in` (u32 words, `inWords` per point) and `wc_out`
+ * (`outWords` per point) at the bindings `[in, out]` of group 0, and the entry point `entry`,
+ * which runs `body` for point `i`, its input words at `wc_in[b + k]`, its output words at
+ * `wc_out[o + k]`.
+ */
+export function computeShader(lib, entry, [inBinding, outBinding], inWords, outWords, body) {
+  return `${lib}
+@group(0) @binding(${inBinding}) var<storage, read> wc_in: array<u32>;
+@group(0) @binding(${outBinding}) var<storage, read_write> wc_out: array<u32>;
+@compute @workgroup_size(64)
+fn ${entry}(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if (i >= arrayLength(&wc_out) / ${outWords}u) { return; }
+    let b = i * ${inWords}u;
+    let o = i * ${outWords}u;
+${body}
+}
+`;
+}
+
+/** A `computeShader` body: `let r = call;`, then the output words `writes` of `r`. */
+export const callBody = (call, writes) =>
+  [`    let r = ${call};`, ...writes.map((w, k) => `    wc_out[o + ${k}u] = ${w};`)].join('\n');
 
 /** The compute shader of one warp: the library, then the entry point `wc_demo_main`. */
 export function shaderSource(lib, fn, kind, outWords) {
@@ -89,18 +122,17 @@ export function shaderSource(lib, fn, kind, outWords) {
     kind === 'envmap'
       ? ['bitcast<u32>(r.uv.x)', 'bitcast<u32>(r.uv.y)', 'bitcast<u32>(r.pdf)', 'r.texel.x', 'r.texel.y']
       : ['x', 'y', 'z'].slice(0, outWords).map((c) => `bitcast<u32>(r.${c})`);
-  return `${lib}
-@group(0) @binding(2) var<storage, read> wc_in: array<u32>;
-@group(0) @binding(3) var<storage, read_write> wc_out: array<u32>;
-@compute @workgroup_size(64)
-fn wc_demo_main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let i = gid.x;
-    if (i >= arrayLength(&wc_out) / ${outWords}u) { return; }
-    let b = i * ${inWords}u;
-    let r = ${call};
-${writes.map((w, k) => `    wc_out[i * ${outWords}u + ${k}u] = ${w};`).join('\n')}
+  return computeShader(lib, 'wc_demo_main', [2, 3], inWords, outWords, callBody(call, writes));
 }
-`;
+
+/** The compute pipeline of `code`'s entry point `entry`, or an error with the validation message. */
+export async function createPipeline(device, code, entry) {
+  device.pushErrorScope('validation');
+  const module = device.createShaderModule({ code });
+  const p = device.createComputePipeline({ layout: 'auto', compute: { module, entryPoint: entry } });
+  const error = await device.popErrorScope();
+  if (error) throw new Error(`the compute shader ${entry}: ${error.message}`);
+  return p;
 }
 
 const pipelines = new WeakMap(); // device -> Map(code -> Promise<GPUComputePipeline>)
@@ -108,20 +140,42 @@ function pipeline(device, code) {
   if (!pipelines.has(device)) pipelines.set(device, new Map());
   const cache = pipelines.get(device);
   if (!cache.has(code)) {
-    cache.set(
-      code,
-      (async () => {
-        device.pushErrorScope('validation');
-        const module = device.createShaderModule({ code });
-        const p = device.createComputePipeline({ layout: 'auto', compute: { module, entryPoint: 'wc_demo_main' } });
-        const error = await device.popErrorScope();
-        if (error) throw new Error(`the demo's compute shader: ${error.message}`);
-        return p;
-      })(),
-    );
+    cache.set(code, createPipeline(device, code, 'wc_demo_main'));
     cache.get(code).catch(() => cache.delete(code));
   }
   return cache.get(code);
+}
+
+/**
+ * Runs `pipeline` over `n` points (64 per workgroup): `input` at binding `inBinding`, the
+ * output (`outWords` words in all) at the next binding, and the buffers `bound` (`[binding,
+ * GPUBuffer]`) besides. Resolves to the output words (`Uint32Array`).
+ */
+export async function runCompute(device, pipeline, bound, inBinding, input, n, outWords) {
+  const inBuf = device.createBuffer({ size: Math.max(4, input.byteLength), usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
+  device.queue.writeBuffer(inBuf, 0, input);
+  const size = 4 * outWords;
+  const outBuf = device.createBuffer({ size, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
+  const readBuf = device.createBuffer({ size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
+  const entries = [
+    ...bound.map(([binding, buffer]) => ({ binding, resource: { buffer } })),
+    { binding: inBinding, resource: { buffer: inBuf } },
+    { binding: inBinding + 1, resource: { buffer: outBuf } },
+  ];
+  const bind = device.createBindGroup({ layout: pipeline.getBindGroupLayout(0), entries });
+  const enc = device.createCommandEncoder();
+  const pass = enc.beginComputePass();
+  pass.setPipeline(pipeline);
+  pass.setBindGroup(0, bind);
+  pass.dispatchWorkgroups(Math.ceil(n / 64));
+  pass.end();
+  enc.copyBufferToBuffer(outBuf, 0, readBuf, 0, size);
+  device.queue.submit([enc.finish()]);
+  await readBuf.mapAsync(GPUMapMode.READ);
+  const out = new Uint32Array(readBuf.getMappedRange().slice(0));
+  readBuf.unmap();
+  for (const b of [inBuf, outBuf, readBuf]) b.destroy();
+  return out;
 }
 
 const envBuffers = new WeakMap(); // EnvMap -> GPUBuffer of its storage words
@@ -143,36 +197,10 @@ function envBuffer(device, env) {
  */
 export async function runWarp(device, warp, input, n, { env = null, edit = null } = {}) {
   const [fn, kind, outWords] = WGSL[warp];
-  let lib = await library(kind === 'envmap' ? 'warpcore_envmap.wgsl' : 'warpcore.wgsl');
-  if (edit) {
-    if (!lib.includes(edit[0])) throw new Error(`not in the library: ${edit[0]}`);
-    lib = lib.replace(edit[0], edit[1]);
-  }
+  const lib = await library(kind === 'envmap' ? 'warpcore_envmap.wgsl' : 'warpcore.wgsl', edit);
   const p = await pipeline(device, shaderSource(lib, fn, kind, outWords));
-  const size = 4 * outWords * n;
-  const inBuf = device.createBuffer({ size: Math.max(4, input.byteLength), usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
-  device.queue.writeBuffer(inBuf, 0, input);
-  const outBuf = device.createBuffer({ size, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
-  const readBuf = device.createBuffer({ size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
-  const entries = [
-    { binding: 2, resource: { buffer: inBuf } },
-    { binding: 3, resource: { buffer: outBuf } },
-  ];
-  if (kind === 'envmap') entries.push({ binding: 1, resource: { buffer: envBuffer(device, env) } });
-  const bind = device.createBindGroup({ layout: p.getBindGroupLayout(0), entries });
-  const enc = device.createCommandEncoder();
-  const pass = enc.beginComputePass();
-  pass.setPipeline(p);
-  pass.setBindGroup(0, bind);
-  pass.dispatchWorkgroups(Math.ceil(n / 64));
-  pass.end();
-  enc.copyBufferToBuffer(outBuf, 0, readBuf, 0, size);
-  device.queue.submit([enc.finish()]);
-  await readBuf.mapAsync(GPUMapMode.READ);
-  const out = new Uint32Array(readBuf.getMappedRange().slice(0));
-  readBuf.unmap();
-  for (const b of [inBuf, outBuf, readBuf]) b.destroy();
-  return out;
+  const bound = kind === 'envmap' ? [[1, envBuffer(device, env)]] : [];
+  return runCompute(device, p, bound, 2, input, n, outWords * n);
 }
 
 /** Points (`words` per point) whose every word is the same in `a` and `b`. */

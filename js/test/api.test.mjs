@@ -7,6 +7,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { load, MAX_COUNT } from '../warpcore.mjs';
+import { pointMaps } from './methods.mjs';
 
 const wasmUrl = process.env.WARPCORE_WASM ? pathToFileURL(process.env.WARPCORE_WASM) : new URL('../warpcore.wasm', import.meta.url);
 const wc = await load(wasmUrl);
@@ -30,14 +31,9 @@ const STORAGE = (() => {
 })();
 
 const SPEC = {
-  diskPolar: [vec(Float32Array, 2)],
-  diskPolarInverse: [vec(Float32Array, 2)],
-  diskConcentric: [vec(Float32Array, 2)],
-  diskConcentricInverse: [vec(Float32Array, 2)],
+  ...pointMaps((d) => vec(Float32Array, d)),
   diskPolar4: [vec(Float32Array, 2), COUNT],
-  diskPolar4Inverse: [vec(Float32Array, 2)],
   diskConcentric4: [vec(Float32Array, 2), COUNT],
-  diskConcentric4Inverse: [vec(Float32Array, 2)],
   sphericalTriangle: [LIGHT, vec(Float32Array, 2)],
   sphericalTriangleInverse: [LIGHT, vec(Float32Array, 3)],
   sphericalRectangle: [LIGHT, vec(Float32Array, 2)],
@@ -46,34 +42,14 @@ const SPEC = {
   sphericalRectangleSolidAngle: [LIGHT],
   sphericalTriangleCosine: [LIGHT15, vec(Float32Array, 2)],
   sphericalRectangleCosine: [LIGHT15, vec(Float32Array, 2)],
-  triangleUniform: [vec(Float32Array, 2)],
-  triangleUniformInverse: [vec(Float32Array, 3)],
-  triangleSqrtMap: [vec(Float32Array, 2)],
-  triangleSqrtMapInverse: [vec(Float32Array, 3)],
   triangleBasuOwen: [U32, U32, COUNT],
   triangleBasuOwenPermuted: [U32, U32, COUNT],
-  sphereEqualArea: [vec(Float32Array, 2)],
-  sphereEqualAreaInverse: [vec(Float32Array, 3)],
-  sphereEqualAreaWrap: [vec(Float32Array, 2)],
-  sphereEquirect: [vec(Float32Array, 2)],
-  sphereEquirectInverse: [vec(Float32Array, 3)],
-  sphereUniform: [vec(Float32Array, 2)],
-  sphereUniformInverse: [vec(Float32Array, 3)],
-  sphereUniformHemisphere: [vec(Float32Array, 2)],
-  sphereUniformHemisphereInverse: [vec(Float32Array, 3)],
-  sphereCosineHemisphere: [vec(Float32Array, 2)],
-  sphereCosineHemisphereInverse: [vec(Float32Array, 3)],
-  sphereEqualAreaPdfToSolidAngle: [vec(Float32Array, 1)],
-  sphereCosineHemispherePdf: [vec(Float32Array, 1)],
-  sphereEquirectPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 3)],
   sphereEqualAreaWrapTexel: [vec(Int32Array, 2), U32],
   pmj02bnSample: [U32, U32, COUNT],
   pmj02bnRaw: [U32, U32, COUNT],
   pmj02bnShuffle: [vec(Uint32Array, 1), U32],
   sequenceRandom: [U32, U32, COUNT],
   sequenceStratified: [U32, U32, U32, COUNT],
-  envmapLuminance: [vec(Float32Array, 3)],
-  envmapEquirectPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
   envmapEquirectSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, { u32: true, good: () => 3 }, { u32: true, good: () => 2 }],
   envmapEquirectToEqualArea: [
     { T: Float32Array, d: 18, good: () => new Float32Array(18).fill(1) },

@@ -20,6 +20,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import vm from 'node:vm';
 import { pathToFileURL } from 'node:url';
+import { pointMaps } from './methods.mjs';
 
 // ---- the module's memory, caught at instantiation (the module captures `instantiate` when it
 // is evaluated, so the hook goes in before the import) ----
@@ -237,42 +238,17 @@ const PATH = { T: Uint32Array, d: 1, path: true, good: () => new Uint32Array(KEY
 const PIXEL = FIXED(Uint32Array, [3, 5]);
 const WEIGHTS = { T: Float32Array, d: 6, good: () => new Float32Array([1, 2, 0, 3, 1, 1]) };
 const SPEC = {
-  diskPolar: [vec(Float32Array, 2)],
-  diskPolarInverse: [vec(Float32Array, 2)],
-  diskConcentric: [vec(Float32Array, 2)],
-  diskConcentricInverse: [vec(Float32Array, 2)],
+  ...pointMaps((d) => vec(Float32Array, d)),
   diskPolar4: [vec(Float32Array, 2), NUM(5)],
-  diskPolar4Inverse: [vec(Float32Array, 2)],
   diskConcentric4: [vec(Float32Array, 2), NUM(5)],
-  diskConcentric4Inverse: [vec(Float32Array, 2)],
-  triangleUniform: [vec(Float32Array, 2)],
-  triangleUniformInverse: [vec(Float32Array, 3)],
-  triangleSqrtMap: [vec(Float32Array, 2)],
-  triangleSqrtMapInverse: [vec(Float32Array, 3)],
   triangleBasuOwen: [NUM(1), NUM(2), NUM(3)],
   triangleBasuOwenPermuted: [NUM(1), NUM(2), NUM(3)],
-  sphereEqualArea: [vec(Float32Array, 2)],
-  sphereEqualAreaInverse: [vec(Float32Array, 3)],
-  sphereEqualAreaWrap: [vec(Float32Array, 2)],
-  sphereEquirect: [vec(Float32Array, 2)],
-  sphereEquirectInverse: [vec(Float32Array, 3)],
-  sphereUniform: [vec(Float32Array, 2)],
-  sphereUniformInverse: [vec(Float32Array, 3)],
-  sphereUniformHemisphere: [vec(Float32Array, 2)],
-  sphereUniformHemisphereInverse: [vec(Float32Array, 3)],
-  sphereCosineHemisphere: [vec(Float32Array, 2)],
-  sphereCosineHemisphereInverse: [vec(Float32Array, 3)],
-  sphereEqualAreaPdfToSolidAngle: [vec(Float32Array, 1)],
-  sphereCosineHemispherePdf: [vec(Float32Array, 1)],
-  sphereEquirectPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 3)],
   sphereEqualAreaWrapTexel: [vec(Int32Array, 2), NUM(8)],
   pmj02bnSample: [NUM(0), NUM(9), NUM(4)],
   pmj02bnRaw: [NUM(0), NUM(9), NUM(4)],
   pmj02bnShuffle: [vec(Uint32Array, 1), NUM(3)],
   sequenceRandom: [NUM(0), NUM(9), NUM(4)],
   sequenceStratified: [NUM(0), NUM(16), NUM(9), NUM(4)],
-  envmapLuminance: [vec(Float32Array, 3)],
-  envmapEquirectPdfToSolidAngle: [vec(Float32Array, 1), vec(Float32Array, 1)],
   envmapEquirectSolidAngleWeights: [{ T: Float32Array, d: 6, good: () => new Float32Array(6).fill(1) }, NUM(3), NUM(2)],
   envmapEquirectToEqualArea: [{ T: Float32Array, d: 18, good: () => new Float32Array(18).fill(0.5) }, NUM(3), NUM(2), NUM(3), NUM(4), NUM(2)],
   envmapHierarchical: [WEIGHTS, NUM(3), NUM(2)],

@@ -83,34 +83,41 @@ pub extern "C" fn pmj02bn_sample(index: u32, seed: u32, k: u32) -> f32 {
     if k == 0 { p[0] } else { p[1] }
 }
 
+/// Dimension `k` (0..3) of a 4D draw from domain `key` of `Sampler<P>` (pixel `(x, y)`,
+/// frame 0, seed 0): the sampler exports below.
+#[cfg(feature = "sampler")]
+fn sampler_draw<P: warpcore::sampler::Pattern>(
+    x: u32,
+    y: u32,
+    index: u32,
+    key: u32,
+    k: u32,
+) -> f32 {
+    warpcore::sampler::Sampler::<P>::new([x, y], 0, index, 0)
+        .domain(key)
+        .draw::<4>()[k as usize & 3]
+}
+
 /// Dimension `k` (0..3) of a 4D draw from domain `key` of `Sampler<Sobol>`.
 #[cfg(any(feature = "all", feature = "probe-sampler-sobol"))]
 #[unsafe(no_mangle)]
 pub extern "C" fn sampler_sobol(x: u32, y: u32, index: u32, key: u32, k: u32) -> f32 {
-    use warpcore::sampler::{Sampler, Sobol};
-    Sampler::<Sobol>::new([x, y], 0, index, 0)
-        .domain(key)
-        .draw::<4>()[k as usize & 3]
+    sampler_draw::<warpcore::sampler::Sobol>(x, y, index, key, k)
 }
 
 /// Dimension `k` (0..3) of a 4D draw from domain `key` of `Sampler<Pmj02bn>`.
 #[cfg(any(feature = "all", feature = "probe-sampler-pmj02bn"))]
 #[unsafe(no_mangle)]
 pub extern "C" fn sampler_pmj02bn(x: u32, y: u32, index: u32, key: u32, k: u32) -> f32 {
-    use warpcore::sampler::{Pmj02bn, Sampler};
-    Sampler::<Pmj02bn>::new([x, y], 0, index, 0)
-        .domain(key)
-        .draw::<4>()[k as usize & 3]
+    sampler_draw::<warpcore::sampler::Pmj02bn>(x, y, index, key, k)
 }
 
 /// Dimension `k` (0..3) of a 4D draw from domain `key` of `Sampler<Blue<Sobol>>`.
 #[cfg(any(feature = "all", feature = "probe-sampler-blue"))]
 #[unsafe(no_mangle)]
 pub extern "C" fn sampler_blue_sobol(x: u32, y: u32, index: u32, key: u32, k: u32) -> f32 {
-    use warpcore::sampler::{Blue, Sampler, Sobol};
-    Sampler::<Blue<Sobol>>::new([x, y], 0, index, 0)
-        .domain(key)
-        .draw::<4>()[k as usize & 3]
+    use warpcore::sampler::{Blue, Sobol};
+    sampler_draw::<Blue<Sobol>>(x, y, index, key, k)
 }
 
 /// Coordinate `k` (0..2 barycentrics, 3 the density) of a point sampled by solid angle on the

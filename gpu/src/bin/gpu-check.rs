@@ -17,8 +17,8 @@
 //! solid-angle lights on `N / 16` points: coordinates absolute, densities relative).
 
 use warpcore_gpu::{
-    FUNCTIONS, Gpu, SPHERICAL_FUNCTIONS, compare, compare_words, cpu_outputs, envmaps, inputs,
-    tables, typical_inputs,
+    Gpu, compare, compare_words, cpu_outputs, envmaps, inputs, lights, tables, typical_inputs,
+    warps,
 };
 
 fn main() {
@@ -56,13 +56,7 @@ fn main() {
         run_model(random.unwrap_or(1 << 16), trials);
         return;
     }
-    let gpu = match Gpu::default_adapter() {
-        Ok(g) => g,
-        Err(e) => {
-            eprintln!("gpu-check: {e}");
-            std::process::exit(1)
-        }
-    };
+    let gpu = or_exit(Gpu::default_adapter());
     println!(
         "adapter: {} ({:?}, {:?} backend, driver {} {})",
         gpu.info.name,
@@ -76,48 +70,20 @@ fn main() {
         "function", "points", "mismatches", "max abs", "max ulp"
     );
     let mut any = false;
-    for (k, func) in FUNCTIONS.iter().enumerate() {
-        let input = inputs(
-            func.domain,
-            random.unwrap_or(1 << 16),
-            0x5eed_0000 + k as u64,
-        );
-        let want = cpu_outputs(func, &input);
-        let got = match gpu.run(func, &input) {
-            Ok(g) => g,
-            Err(e) => {
-                eprintln!("gpu-check: {e}");
-                std::process::exit(1)
-            }
-        };
-        let d = compare(func, &got, &want);
-        any |= d.mismatches > 0;
-        println!(
-            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
-            func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
-        );
-    }
-    // The solid-angle lights of shaders/warpcore.wgsl (the points of tests/lavapipe_spherical.rs).
-    for (k, func) in SPHERICAL_FUNCTIONS.iter().enumerate() {
-        let input = inputs(
-            func.domain,
-            random.unwrap_or(1 << 16),
-            0x5fe0_0000 + k as u64,
-        );
-        let want = cpu_outputs(func, &input);
-        let got = match gpu.run(func, &input) {
-            Ok(g) => g,
-            Err(e) => {
-                eprintln!("gpu-check: {e}");
-                std::process::exit(1)
-            }
-        };
-        let d = compare(func, &got, &want);
-        any |= d.mismatches > 0;
-        println!(
-            "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
-            func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
-        );
+    // The warps, then the solid-angle lights (the points of tests/lavapipe.rs and
+    // tests/lavapipe_spherical.rs).
+    for (funcs, seed) in [(warps(), 0x5eed_0000), (lights(), 0x5fe0_0000)] {
+        for (k, func) in funcs.iter().enumerate() {
+            let input = inputs(func.domain, random.unwrap_or(1 << 16), seed + k as u64);
+            let want = cpu_outputs(func, &input);
+            let got = or_exit(gpu.run(func, &input));
+            let d = compare(func, &got, &want);
+            any |= d.mismatches > 0;
+            println!(
+                "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
+                func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
+            );
+        }
     }
     // shaders/warpcore_tables.wgsl: integer arithmetic and an exact conversion only, so any
     // conforming device should give the crate's bits; mismatches are counted per check.
@@ -129,13 +95,7 @@ fn main() {
             0x7ab1_0000 + k as u64,
         );
         let want = tables::cpu_outputs(func, &input);
-        let got = match tables::run(&gpu, func, &input, &table_words) {
-            Ok(g) => g,
-            Err(e) => {
-                eprintln!("gpu-check: {e}");
-                std::process::exit(1)
-            }
-        };
+        let got = or_exit(tables::run(&gpu, func, &input, &table_words));
         let d = compare_words(func.out_words, |_| true, &got, &want);
         any |= d.mismatches > 0;
         println!(
@@ -147,13 +107,12 @@ fn main() {
     for (k, func) in envmaps::ENV_FUNCTIONS.iter().enumerate() {
         let input = envmaps::env_inputs(func, random.unwrap_or(1 << 16) / 16, 0xe0 + k as u64);
         let want = envmaps::cpu_outputs(func, &input);
-        let got = match envmaps::run(&gpu, func, &envmaps::shader_source(func), &input) {
-            Ok(g) => g,
-            Err(e) => {
-                eprintln!("gpu-check: {e}");
-                std::process::exit(1)
-            }
-        };
+        let got = or_exit(envmaps::run(
+            &gpu,
+            func,
+            &envmaps::shader_source(func),
+            &input,
+        ));
         let d = compare_words(func.out_words(), |w| func.is_integer_output(w), &got, &want);
         any |= d.mismatches > 0;
         println!(
@@ -171,9 +130,17 @@ fn main() {
     }
 }
 
+/// The value, or exits with the error.
+fn or_exit<T>(r: Result<T, String>) -> T {
+    r.unwrap_or_else(|e| {
+        eprintln!("gpu-check: {e}");
+        std::process::exit(1)
+    })
+}
+
 /// The CPU model of the WGSL accuracy rules: the largest deviation from the crate per function.
 fn run_model(random: usize, trials: u32) {
-    use warpcore_gpu::model::{Deviations, deviation};
+    use warpcore_gpu::model::{Deviations, Interpreter, deviation};
     let module = naga::front::wgsl::parse_str(warpcore_gpu::WGSL).expect("warpcore.wgsl parses");
     println!(
         "CPU model of the WGSL accuracy rules ({:?}), {trials} trials per point",
@@ -183,7 +150,7 @@ fn run_model(random: usize, trials: u32) {
         "{:<42} {:>9} {:>10} {:>12} {:>8}",
         "function", "points", "moved", "max abs", "max ulp"
     );
-    for (k, func) in FUNCTIONS.iter().enumerate() {
+    for (k, func) in warps().iter().enumerate() {
         let input = typical_inputs(func.domain, random, 0x0de1_0000 + k as u64);
         let d = deviation(
             &module,
@@ -196,13 +163,13 @@ fn run_model(random: usize, trials: u32) {
         if std::env::var("WARPCORE_MODEL_WORST").is_ok()
             && let Some(p) = d.worst
         {
-            let w = func.cpu.in_words();
+            let w = func.in_words();
             let pt: Vec<String> = input[p * w..(p + 1) * w]
                 .iter()
                 .map(|x| format!("{:e}", f32::from_bits(*x)))
                 .collect();
-            let mut want = vec![0; func.cpu.out_words()];
-            func.cpu.eval(&input[p * w..(p + 1) * w], &mut want);
+            let mut want = vec![0; func.out_words()];
+            func.eval(&input[p * w..(p + 1) * w], &mut want);
             let want: Vec<String> = want
                 .iter()
                 .map(|x| format!("{:e}", f32::from_bits(*x)))
@@ -221,24 +188,17 @@ fn run_model(random: usize, trials: u32) {
         "{:<42} {:>9} {:>10} {:>12} {:>12}",
         "function", "points", "moved", "coord abs", "density rel"
     );
-    for (k, func) in warpcore_gpu::SPHERICAL_FUNCTIONS.iter().enumerate() {
+    for (k, func) in lights().iter().enumerate() {
         let input = typical_inputs(func.domain, (random / 16).max(1), 0x0de1_0000 + k as u64);
         let want = cpu_outputs(func, &input);
-        let outw = func.cpu.out_words();
-        let scalar = matches!(
-            func.cpu,
-            warpcore_gpu::Cpu::SphTriSolidAngle(_) | warpcore_gpu::Cpu::SphRectSolidAngle(_)
-        );
+        let outw = func.out_words();
+        // The solid angles: one word, the density.
+        let scalar = outw == 1;
         let has_density = scalar || outw >= 3;
         let (mut moved, mut coord, mut rel) = (0usize, 0f64, 0f64);
         for t in 0..trials {
-            let got = warpcore_gpu::model::outputs(
-                &module,
-                func,
-                &input,
-                Deviations::WGSL,
-                0x5151 + k as u64 + 1000 * t as u64,
-            );
+            let seed = 0x5151 + k as u64 + 1000 * t as u64;
+            let got = Interpreter::new(&module, Deviations::WGSL, seed).outputs(func, &input);
             for (g, w) in got.chunks_exact(outw).zip(want.chunks_exact(outw)) {
                 moved += usize::from(g != w);
                 for j in 0..outw {
