@@ -3,6 +3,9 @@
 //! each a one-line forward to the body. [`lane_forms!`] writes those three wrappers from one
 //! signature, so the forms cannot drift apart.
 
+// A build without the `spherical` family uses neither macro.
+#![allow(unused_macros)]
+
 /// A signature shape with `L` read as the float lane and `U` as the integer lane: `L`, `U`,
 /// arrays `[shape; N]` and tuples `(shape, ...)` of them.
 macro_rules! lane_ty {
