@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{BATCH, peer_fill, peer_scalar, warp_group};
+use common::{BATCH, bench_indexed, bench_out, peer_fill, peer_scalar, warp_group};
 use rand::SeedableRng;
 use rand_distr::{Distribution, UnitDisc};
 use rand_xoshiro::Xoshiro128PlusPlus;
@@ -81,65 +81,40 @@ fn quadrant_group(
     textbook: impl Fn([f32; 2], u32) -> [f32; 2],
 ) {
     let points = common::uniform_points(BATCH / 4, 3);
-    let mut g = c.benchmark_group(name);
-    g.throughput(criterion::Throughput::Elements(BATCH as u64));
+    let mut g = common::group(c, name);
     let mut out = vec![[0.0f32; 2]; BATCH];
-    g.bench_function("warpcore scalar loop", |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                *o = scalar(points[i / 4], i as u32 % 4);
-            }
-            black_box(&mut out);
-        })
+    bench_indexed(&mut g, "warpcore scalar loop", &mut out, |i| {
+        scalar(points[i / 4], i as u32 % 4)
     });
+    // Each group of lanes takes its points once and the four quadrants in turn.
     let soa = common::to_soa(&points);
-    let mut out8 = vec![[f32x8::ZERO; 2]; BATCH / 8];
-    g.bench_function("warpcore x8", |b| {
-        let q: [u32x8; 4] = std::array::from_fn(|j| u32x8::splat(j as u32));
-        b.iter(|| {
-            for (k, o) in out8.chunks_exact_mut(4).enumerate() {
-                let p = soa[k];
-                for (j, oo) in o.iter_mut().enumerate() {
-                    *oo = x8(p, q[j]);
-                }
-            }
-            black_box(&mut out8);
-        })
-    });
+    let q8: [u32x8; 4] = std::array::from_fn(|j| u32x8::splat(j as u32));
+    bench_indexed(
+        &mut g,
+        "warpcore x8",
+        &mut vec![[f32x8::ZERO; 2]; BATCH / 8],
+        |k| x8(soa[k / 4], q8[k % 4]),
+    );
     let soa16 = common::to_soa16(&points);
-    let mut out16 = vec![[f32x16::ZERO; 2]; BATCH / 16];
-    g.bench_function("warpcore x16", |b| {
-        let q: [u32x16; 4] = std::array::from_fn(|j| u32x16::splat(j as u32));
-        b.iter(|| {
-            for (k, o) in out16.chunks_exact_mut(4).enumerate() {
-                let p = soa16[k];
-                for (j, oo) in o.iter_mut().enumerate() {
-                    *oo = x16(p, q[j]);
-                }
-            }
-            black_box(&mut out16);
-        })
+    let q16: [u32x16; 4] = std::array::from_fn(|j| u32x16::splat(j as u32));
+    bench_indexed(
+        &mut g,
+        "warpcore x16",
+        &mut vec![[f32x16::ZERO; 2]; BATCH / 16],
+        |k| x16(soa16[k / 4], q16[k % 4]),
+    );
+    bench_out(&mut g, "warpcore slice", &mut out, |out| {
+        slice(black_box(&points), out);
     });
-    g.bench_function("warpcore slice", |b| {
-        b.iter(|| {
-            slice(black_box(&points), &mut out);
-            black_box(&mut out);
-        })
+    bench_indexed(&mut g, "libm textbook (scalar)", &mut out, |i| {
+        textbook(points[i / 4], i as u32 % 4)
     });
-    g.bench_function("libm textbook (scalar)", |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                *o = textbook(points[i / 4], i as u32 % 4);
-            }
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("rand_distr::UnitDisc (Xoshiro128++)", |b| {
-        b.iter(|| {
-            unit_disc(&mut out);
-            black_box(&mut out);
-        })
-    });
+    bench_out(
+        &mut g,
+        "rand_distr::UnitDisc (Xoshiro128++)",
+        &mut out,
+        unit_disc,
+    );
     g.finish();
 }
 

@@ -7,14 +7,15 @@
 
 mod common;
 
-use common::{BATCH, peer_fill, peer_scalar, to_soa, to_soa16, uniform_points, warp_group};
+use common::{
+    BATCH, peer_fill, peer_scalar, peer_scalar_on, uniform_points, warp_group, warp_group_on,
+};
 use criterion::measurement::WallTime;
-use criterion::{BenchmarkGroup, Criterion, Throughput};
+use criterion::{BenchmarkGroup, Criterion};
 use rand::SeedableRng;
 use rand_distr::{Distribution, UnitSphere};
 use rand_xoshiro::Xoshiro128PlusPlus;
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
-use std::hint::black_box;
 use warpcore::{f32x8, f32x16, sphere};
 
 // ----------------------------------------------------------------------------------------
@@ -127,59 +128,8 @@ fn inverse_group<'c>(
     peer: impl Fn([f32; 3]) -> [f32; 2],
 ) -> BenchmarkGroup<'c, WallTime> {
     let input = unit_directions(BATCH);
-    let soa = to_soa(&input);
-    let soa16 = to_soa16(&input);
-    let mut out = vec![[0.0f32; 2]; BATCH];
-    let mut out8 = vec![[f32x8::ZERO; 2]; BATCH / 8];
-    let mut out16 = vec![[f32x16::ZERO; 2]; BATCH / 16];
-    let mut g = c.benchmark_group(name);
-    g.throughput(Throughput::Elements(BATCH as u64));
-    g.bench_function("warpcore scalar loop", |b| {
-        b.iter(|| {
-            for (o, d) in out.iter_mut().zip(black_box(&input)) {
-                *o = scalar(*d);
-            }
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("warpcore scalar, one call at a time", |b| {
-        b.iter(|| {
-            for (o, d) in out.iter_mut().zip(&input) {
-                *o = scalar(black_box(*d));
-            }
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("warpcore x8", |b| {
-        b.iter(|| {
-            for (o, d) in out8.iter_mut().zip(black_box(&soa)) {
-                *o = x8(*d);
-            }
-            black_box(&mut out8);
-        })
-    });
-    g.bench_function("warpcore x16", |b| {
-        b.iter(|| {
-            for (o, d) in out16.iter_mut().zip(black_box(&soa16)) {
-                *o = x16(*d);
-            }
-            black_box(&mut out16);
-        })
-    });
-    g.bench_function("warpcore slice", |b| {
-        b.iter(|| {
-            slice(black_box(&input), &mut out);
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("libm textbook (scalar)", |b| {
-        b.iter(|| {
-            for (o, d) in out.iter_mut().zip(black_box(&input)) {
-                *o = peer(*d);
-            }
-            black_box(&mut out);
-        })
-    });
+    let mut g = warp_group_on(c, name, &input, scalar, x8, x16, slice);
+    peer_scalar_on(&mut g, "libm textbook (scalar)", &input, peer);
     g
 }
 

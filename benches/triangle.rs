@@ -6,8 +6,7 @@
 
 mod common;
 
-use common::{BATCH, peer_scalar, warp_group};
-use criterion::Throughput;
+use common::{BATCH, bench_indexed, bench_out, peer_scalar, warp_group};
 use std::hint::black_box;
 use warpcore::triangle;
 use warpcore::{f32x8, f32x16, u32x8, u32x16};
@@ -71,79 +70,61 @@ fn basu_owen_group(
 ) {
     const SEED: u32 = 0x2545_f491;
     const START: u32 = 1000;
-    let mut g = c.benchmark_group(name);
-    g.throughput(Throughput::Elements(BATCH as u64));
+    let mut g = common::group(c, name);
     let mut out = vec![[0.0f32; 3]; BATCH];
     let mut out8 = vec![[f32x8::ZERO; 3]; BATCH / 8];
     let lane = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
-    g.bench_function("warpcore scalar loop", |b| {
-        b.iter(|| {
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = scalar(START + k as u32, black_box(SEED));
-            }
-            black_box(&mut out);
-        })
+    bench_indexed(&mut g, "warpcore scalar loop", &mut out, |k| {
+        scalar(START + k as u32, black_box(SEED))
     });
-    g.bench_function("warpcore scalar, one call at a time", |b| {
-        b.iter(|| {
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = scalar(black_box(START + k as u32), black_box(SEED));
-            }
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("warpcore x8", |b| {
-        b.iter(|| {
-            let seed = u32x8::splat(black_box(SEED));
-            for (k, o) in out8.iter_mut().enumerate() {
-                let index = u32x8::splat(START + 8 * k as u32) + lane;
-                *o = x8(index, seed);
-            }
-            black_box(&mut out8);
-        })
+    bench_indexed(
+        &mut g,
+        "warpcore scalar, one call at a time",
+        &mut out,
+        |k| scalar(black_box(START + k as u32), black_box(SEED)),
+    );
+    bench_out(&mut g, "warpcore x8", &mut out8, |out| {
+        let seed = u32x8::splat(black_box(SEED));
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = x8(u32x8::splat(START + 8 * k as u32) + lane, seed);
+        }
     });
     // Eight pixels per call at one sample index, new pixels every call: the seeds change
     // with every call, so the per-seed work cannot be hoisted out of the loop.
-    g.bench_function("warpcore x8, new seeds every call", |b| {
-        b.iter(|| {
+    bench_out(
+        &mut g,
+        "warpcore x8, new seeds every call",
+        &mut out8,
+        |out| {
             let base = u32x8::splat(black_box(SEED)) + lane;
-            for (k, o) in out8.iter_mut().enumerate() {
+            for (k, o) in out.iter_mut().enumerate() {
                 *o = x8(u32x8::splat(START), base + u32x8::splat(8 * k as u32));
             }
-            black_box(&mut out8);
-        })
-    });
-    let mut out16 = vec![[f32x16::ZERO; 3]; BATCH / 16];
+        },
+    );
     let lane16 = u32x16::new(std::array::from_fn(|j| j as u32));
-    g.bench_function("warpcore x16", |b| {
-        b.iter(|| {
+    bench_out(
+        &mut g,
+        "warpcore x16",
+        &mut vec![[f32x16::ZERO; 3]; BATCH / 16],
+        |out| {
             let seed = u32x16::splat(black_box(SEED));
-            for (k, o) in out16.iter_mut().enumerate() {
-                let index = u32x16::splat(START + 16 * k as u32) + lane16;
-                *o = x16(index, seed);
-            }
-            black_box(&mut out16);
-        })
-    });
-    g.bench_function("warpcore slice", |b| {
-        b.iter(|| {
-            slice(black_box(START), black_box(SEED), &mut out);
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("warpcore slice, seed 0 (unscrambled)", |b| {
-        b.iter(|| {
-            slice(black_box(START), black_box(0), &mut out);
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("textbook digit loop (scalar, f32, unscrambled)", |b| {
-        b.iter(|| {
             for (k, o) in out.iter_mut().enumerate() {
-                *o = basu_owen_textbook(black_box(START + k as u32));
+                *o = x16(u32x16::splat(START + 16 * k as u32) + lane16, seed);
             }
-            black_box(&mut out);
-        })
+        },
+    );
+    for (label, seed) in [
+        ("warpcore slice", SEED),
+        ("warpcore slice, seed 0 (unscrambled)", 0),
+    ] {
+        bench_out(&mut g, label, &mut out, |out| {
+            slice(black_box(START), black_box(seed), out);
+        });
+    }
+    let label = "textbook digit loop (scalar, f32, unscrambled)";
+    bench_indexed(&mut g, label, &mut out, |k| {
+        basu_owen_textbook(black_box(START + k as u32))
     });
     g.finish();
 }
