@@ -635,14 +635,98 @@ fn compact_strata_stay_compact() {
     assert!(worst[0] < 0.5 && worst[1] < 0.3, "{worst:?}");
 }
 
-fn lane8<const N: usize>(v: [f32x8; N], j: usize) -> [f32; N] {
-    std::array::from_fn(|k| v[k].to_array()[j])
-}
-fn lane16<const N: usize>(v: [f32x16; N], j: usize) -> [f32; N] {
-    std::array::from_fn(|k| v[k].to_array()[j])
-}
 fn bits<const N: usize>(a: [f32; N]) -> [u32; N] {
     a.map(f32::to_bits)
+}
+
+/// A result's bits: the scalar form's, or lane `j` of a wide form's.
+trait Bits {
+    fn lane_bits(&self, j: usize) -> Vec<u32>;
+}
+impl Bits for f32 {
+    fn lane_bits(&self, _: usize) -> Vec<u32> {
+        vec![self.to_bits()]
+    }
+}
+impl Bits for f32x8 {
+    fn lane_bits(&self, j: usize) -> Vec<u32> {
+        vec![self.to_array()[j].to_bits()]
+    }
+}
+impl Bits for f32x16 {
+    fn lane_bits(&self, j: usize) -> Vec<u32> {
+        vec![self.to_array()[j].to_bits()]
+    }
+}
+impl<T: Bits, const N: usize> Bits for [T; N] {
+    fn lane_bits(&self, j: usize) -> Vec<u32> {
+        self.iter().flat_map(|x| x.lane_bits(j)).collect()
+    }
+}
+impl<A: Bits, B: Bits> Bits for (A, B) {
+    fn lane_bits(&self, j: usize) -> Vec<u32> {
+        [self.0.lane_bits(j), self.1.lane_bits(j)].concat()
+    }
+}
+
+/// `scalar(j)` equals lane `j` of `x16` for the 16 lanes, and of `x8` for the first 8.
+fn assert_lanes(scalar: impl Fn(usize) -> Box<dyn Bits>, x8: &dyn Bits, x16: &dyn Bits) {
+    for j in 0..16 {
+        let s = scalar(j).lane_bits(0);
+        assert_eq!(s, x16.lane_bits(j), "x16 lane {j}");
+        if j < 8 {
+            assert_eq!(s, x8.lane_bits(j), "x8 lane {j}");
+        }
+    }
+}
+
+/// The first 8 and all 16 of `rows` as 8- and 16-lane structure of arrays.
+fn soa<const N: usize>(rows: &[[f32; N]]) -> ([f32x8; N], [f32x16; N]) {
+    (
+        std::array::from_fn(|k| f32x8::new(std::array::from_fn(|j| rows[j][k]))),
+        std::array::from_fn(|k| f32x16::new(std::array::from_fn(|j| rows[j][k]))),
+    )
+}
+
+/// [`soa`] of each of `K` vectors (a light's vertices or corner and edges).
+type Wide<const K: usize> = ([[f32x8; 3]; K], [[f32x16; 3]; K]);
+fn soa_k<const K: usize>(rows: &[[[f32; 3]; K]]) -> Wide<K> {
+    let parts: [_; K] =
+        std::array::from_fn(|i| soa(&rows.iter().map(|r| r[i]).collect::<Vec<_>>()));
+    (parts.map(|p| p.0), parts.map(|p| p.1))
+}
+
+/// Lane `j`'s `u` in round `round`: every third a stiff one, else random; and a light's size
+/// and distance (`1e-3 .. 1e3`).
+fn lane_u_and_scale(
+    r: &mut Xoshiro256PlusPlus,
+    us: &[[f32; 2]],
+    round: usize,
+    j: usize,
+) -> ([f32; 2], f64, f64) {
+    let u = if j % 3 == 0 {
+        us[(round * 16 + j) % us.len()]
+    } else {
+        unit2(r)
+    };
+    let dist = 10f64.powf(-3.0 + 6.0 * r.random::<f64>());
+    let size = dist * r.random::<f64>();
+    (u, size, dist)
+}
+
+/// The `u` of round `round`'s slice check (lengths around the lane widths; every fifth a
+/// stiff one).
+fn slice_us(r: &mut Xoshiro256PlusPlus, us: &[[f32; 2]], round: usize) -> Vec<[f32; 2]> {
+    let len = [0usize, 1, 7, 8, 9, 15, 16, 17, 33][round % 9];
+    (0..len)
+        .map(|k| {
+            if k % 5 == 0 {
+                us[(round + k) % us.len()]
+            } else {
+                unit2(r)
+            }
+        })
+        .collect()
 }
 
 /// scalar == x8 == x16 == slice, bit for bit, over random lights (every lane its own light)
@@ -657,13 +741,7 @@ fn widths_agree_bit_for_bit() {
         let mut tv = vec![];
         let mut rv = vec![];
         for j in 0..16 {
-            let u = if j % 3 == 0 {
-                us[(round * 16 + j) % us.len()]
-            } else {
-                unit2(&mut r)
-            };
-            let dist = 10f64.powf(-3.0 + 6.0 * r.random::<f64>());
-            let size = dist * r.random::<f64>();
+            let (u, size, dist) = lane_u_and_scale(&mut r, &us, round, j);
             let (v, p) = if j % 4 == 1 {
                 tris[(round * 7 + j) % tris.len()]
             } else {
@@ -677,90 +755,59 @@ fn widths_agree_bit_for_bit() {
             tv.push((v, p, u));
             rv.push((rc, u));
         }
-        let t8 = |g: &dyn Fn(usize) -> f32| f32x8::new(std::array::from_fn(g));
-        let t16 = |g: &dyn Fn(usize) -> f32| f32x16::new(std::array::from_fn(g));
-        macro_rules! soa {
-            ($mk:ident, $f:expr) => {
-                $mk(&$f)
-            };
-        }
         // Triangles.
-        let v8: [[f32x8; 3]; 3] =
-            std::array::from_fn(|i| std::array::from_fn(|k| soa!(t8, |j| tv[j].0[i][k])));
-        let p8: [f32x8; 3] = std::array::from_fn(|k| soa!(t8, |j| tv[j].1[k]));
-        let u8_: [f32x8; 2] = std::array::from_fn(|k| soa!(t8, |j| tv[j].2[k]));
-        let v16: [[f32x16; 3]; 3] =
-            std::array::from_fn(|i| std::array::from_fn(|k| soa!(t16, |j| tv[j].0[i][k])));
-        let p16: [f32x16; 3] = std::array::from_fn(|k| soa!(t16, |j| tv[j].1[k]));
-        let u16_: [f32x16; 2] = std::array::from_fn(|k| soa!(t16, |j| tv[j].2[k]));
-        let (b8, d8) = spherical::triangle_x8(v8, p8, u8_);
-        let (b16, d16) = spherical::triangle_x16(v16, p16, u16_);
-        let i8 = spherical::triangle_inverse_x8(v8, p8, b8);
-        let i16 = spherical::triangle_inverse_x16(v16, p16, b16);
-        let o8 = spherical::triangle_solid_angle_x8(v8, p8).to_array();
-        let o16 = spherical::triangle_solid_angle_x16(v16, p16).to_array();
-        for j in 0..16 {
-            let (v, p, u) = tv[j];
-            let (b, d) = spherical::triangle(v, p, u);
-            let w = spherical::triangle_inverse(v, p, b);
-            let o = spherical::triangle_solid_angle(v, p);
-            assert_eq!(bits(b), bits(lane16(b16, j)));
-            assert_eq!(d.to_bits(), d16.to_array()[j].to_bits());
-            assert_eq!(bits(w), bits(lane16(i16, j)));
-            assert_eq!(o.to_bits(), o16[j].to_bits());
-            if j < 8 {
-                assert_eq!(bits(b), bits(lane8(b8, j)));
-                assert_eq!(d.to_bits(), d8.to_array()[j].to_bits());
-                assert_eq!(bits(w), bits(lane8(i8, j)));
-                assert_eq!(o.to_bits(), o8[j].to_bits());
-            }
-        }
+        let (v8, v16) = soa_k(&tv.iter().map(|t| t.0).collect::<Vec<_>>());
+        let ([p8], [p16]) = soa_k(&tv.iter().map(|t| [t.1]).collect::<Vec<_>>());
+        let (u8_, u16_) = soa(&tv.iter().map(|t| t.2).collect::<Vec<_>>());
+        let s8 = spherical::triangle_x8(v8, p8, u8_);
+        let s16 = spherical::triangle_x16(v16, p16, u16_);
+        let scalar = |j: usize| spherical::triangle(tv[j].0, tv[j].1, tv[j].2);
+        assert_lanes(|j| Box::new(scalar(j)), &s8, &s16);
+        assert_lanes(
+            |j| Box::new(spherical::triangle_inverse(tv[j].0, tv[j].1, scalar(j).0)),
+            &spherical::triangle_inverse_x8(v8, p8, s8.0),
+            &spherical::triangle_inverse_x16(v16, p16, s16.0),
+        );
+        assert_lanes(
+            |j| Box::new(spherical::triangle_solid_angle(tv[j].0, tv[j].1)),
+            &spherical::triangle_solid_angle_x8(v8, p8),
+            &spherical::triangle_solid_angle_x16(v16, p16),
+        );
         // Rectangles.
-        let g = |k: usize, i: usize| -> [f32; 3] {
-            let ((c, ex, ey, p), _) = rv[k];
-            [c, ex, ey, p][i]
-        };
-        let a8: [[f32x8; 3]; 4] =
-            std::array::from_fn(|i| std::array::from_fn(|k| soa!(t8, |j| g(j, i)[k])));
-        let a16: [[f32x16; 3]; 4] =
-            std::array::from_fn(|i| std::array::from_fn(|k| soa!(t16, |j| g(j, i)[k])));
-        let ru8: [f32x8; 2] = std::array::from_fn(|k| soa!(t8, |j| rv[j].1[k]));
-        let ru16: [f32x16; 2] = std::array::from_fn(|k| soa!(t16, |j| rv[j].1[k]));
-        let (s8, e8) = spherical::rectangle_x8(a8[0], a8[1], a8[2], a8[3], ru8);
-        let (s16, e16) = spherical::rectangle_x16(a16[0], a16[1], a16[2], a16[3], ru16);
-        let j8 = spherical::rectangle_inverse_x8(a8[0], a8[1], a8[2], a8[3], s8);
-        let j16 = spherical::rectangle_inverse_x16(a16[0], a16[1], a16[2], a16[3], s16);
-        let q8 = spherical::rectangle_solid_angle_x8(a8[0], a8[1], a8[2], a8[3]).to_array();
-        let q16 = spherical::rectangle_solid_angle_x16(a16[0], a16[1], a16[2], a16[3]).to_array();
-        for j in 0..16 {
+        let (a8, a16) = soa_k(
+            &rv.iter()
+                .map(|((c, ex, ey, p), _)| [*c, *ex, *ey, *p])
+                .collect::<Vec<_>>(),
+        );
+        let (ru8, ru16) = soa(&rv.iter().map(|t| t.1).collect::<Vec<_>>());
+        let s8 = spherical::rectangle_x8(a8[0], a8[1], a8[2], a8[3], ru8);
+        let s16 = spherical::rectangle_x16(a16[0], a16[1], a16[2], a16[3], ru16);
+        let scalar = |j: usize| {
             let ((c, ex, ey, p), u) = rv[j];
-            let (st, d) = spherical::rectangle(c, ex, ey, p, u);
-            let w = spherical::rectangle_inverse(c, ex, ey, p, st);
-            let o = spherical::rectangle_solid_angle(c, ex, ey, p);
-            assert_eq!(bits(st), bits(lane16(s16, j)));
-            assert_eq!(d.to_bits(), e16.to_array()[j].to_bits());
-            assert_eq!(bits(w), bits(lane16(j16, j)));
-            assert_eq!(o.to_bits(), q16[j].to_bits());
-            if j < 8 {
-                assert_eq!(bits(st), bits(lane8(s8, j)));
-                assert_eq!(d.to_bits(), e8.to_array()[j].to_bits());
-                assert_eq!(bits(w), bits(lane8(j8, j)));
-                assert_eq!(o.to_bits(), q8[j].to_bits());
-            }
-        }
+            spherical::rectangle(c, ex, ey, p, u)
+        };
+        assert_lanes(|j| Box::new(scalar(j)), &s8, &s16);
+        assert_lanes(
+            |j| {
+                let ((c, ex, ey, p), _) = rv[j];
+                Box::new(spherical::rectangle_inverse(c, ex, ey, p, scalar(j).0))
+            },
+            &spherical::rectangle_inverse_x8(a8[0], a8[1], a8[2], a8[3], s8.0),
+            &spherical::rectangle_inverse_x16(a16[0], a16[1], a16[2], a16[3], s16.0),
+        );
+        assert_lanes(
+            |j| {
+                let ((c, ex, ey, p), _) = rv[j];
+                Box::new(spherical::rectangle_solid_angle(c, ex, ey, p))
+            },
+            &spherical::rectangle_solid_angle_x8(a8[0], a8[1], a8[2], a8[3]),
+            &spherical::rectangle_solid_angle_x16(a16[0], a16[1], a16[2], a16[3]),
+        );
         // Slices: one light, many u (lengths around the lane widths).
         let (v, p, _) = tv[round % 16];
         let ((c, ex, ey, rp), _) = rv[round % 16];
-        let n = [0usize, 1, 7, 8, 9, 15, 16, 17, 33][round % 9];
-        let uu: Vec<[f32; 2]> = (0..n)
-            .map(|k| {
-                if k % 5 == 0 {
-                    us[(round + k) % us.len()]
-                } else {
-                    unit2(&mut r)
-                }
-            })
-            .collect();
+        let uu = slice_us(&mut r, &us, round);
+        let n = uu.len();
         let mut out4 = vec![[0.0f32; 4]; n + 2];
         assert_eq!(spherical::triangle_slice(v, p, &uu, &mut out4), n);
         let mut out3 = vec![[0.0f32; 3]; n];
@@ -1188,77 +1235,41 @@ fn cosine_widths_agree_bit_for_bit() {
         let mut tv = vec![];
         let mut rv = vec![];
         for j in 0..16 {
-            let u = if j % 3 == 0 {
-                us[(round * 16 + j) % us.len()]
-            } else {
-                unit2(&mut r)
-            };
-            let dist = 10f64.powf(-3.0 + 6.0 * r.random::<f64>());
-            let size = dist * r.random::<f64>();
+            let (u, size, dist) = lane_u_and_scale(&mut r, &us, round, j);
             let n = f3(dir(&mut r));
             let (v, p) = random_triangle(&mut r, size, dist, dist);
             tv.push((v, p, n, u));
             rv.push((random_rect(&mut r, size, dist, dist), n, u));
         }
-        let t8 = |g: &dyn Fn(usize) -> f32| f32x8::new(std::array::from_fn(g));
-        let t16 = |g: &dyn Fn(usize) -> f32| f32x16::new(std::array::from_fn(g));
-        let v8: [[f32x8; 3]; 3] =
-            std::array::from_fn(|i| std::array::from_fn(|k| t8(&|j| tv[j].0[i][k])));
-        let v16: [[f32x16; 3]; 3] =
-            std::array::from_fn(|i| std::array::from_fn(|k| t16(&|j| tv[j].0[i][k])));
-        let p8: [f32x8; 3] = std::array::from_fn(|k| t8(&|j| tv[j].1[k]));
-        let p16: [f32x16; 3] = std::array::from_fn(|k| t16(&|j| tv[j].1[k]));
-        let n8: [f32x8; 3] = std::array::from_fn(|k| t8(&|j| tv[j].2[k]));
-        let n16: [f32x16; 3] = std::array::from_fn(|k| t16(&|j| tv[j].2[k]));
-        let u8_: [f32x8; 2] = std::array::from_fn(|k| t8(&|j| tv[j].3[k]));
-        let u16_: [f32x16; 2] = std::array::from_fn(|k| t16(&|j| tv[j].3[k]));
-        let (b8, d8) = spherical::triangle_cosine_x8(v8, p8, n8, u8_);
-        let (b16, d16) = spherical::triangle_cosine_x16(v16, p16, n16, u16_);
-        for j in 0..16 {
-            let (v, p, n, u) = tv[j];
-            let (b, d) = spherical::triangle_cosine(v, p, n, u);
-            assert_eq!(bits(b), bits(lane16(b16, j)));
-            assert_eq!(d.to_bits(), d16.to_array()[j].to_bits());
-            if j < 8 {
-                assert_eq!(bits(b), bits(lane8(b8, j)));
-                assert_eq!(d.to_bits(), d8.to_array()[j].to_bits());
-            }
-        }
-        let g = |k: usize, i: usize| -> [f32; 3] {
-            let ((c, ex, ey, p), n, _) = rv[k];
-            [c, ex, ey, p, n][i]
-        };
-        let a8: [[f32x8; 3]; 5] =
-            std::array::from_fn(|i| std::array::from_fn(|k| t8(&|j| g(j, i)[k])));
-        let a16: [[f32x16; 3]; 5] =
-            std::array::from_fn(|i| std::array::from_fn(|k| t16(&|j| g(j, i)[k])));
-        let ru8: [f32x8; 2] = std::array::from_fn(|k| t8(&|j| rv[j].2[k]));
-        let ru16: [f32x16; 2] = std::array::from_fn(|k| t16(&|j| rv[j].2[k]));
-        let (s8, e8) = spherical::rectangle_cosine_x8(a8[0], a8[1], a8[2], a8[3], a8[4], ru8);
-        let (s16, e16) =
-            spherical::rectangle_cosine_x16(a16[0], a16[1], a16[2], a16[3], a16[4], ru16);
-        for j in 0..16 {
-            let ((c, ex, ey, p), n, u) = rv[j];
-            let (st, d) = spherical::rectangle_cosine(c, ex, ey, p, n, u);
-            assert_eq!(bits(st), bits(lane16(s16, j)));
-            assert_eq!(d.to_bits(), e16.to_array()[j].to_bits());
-            if j < 8 {
-                assert_eq!(bits(st), bits(lane8(s8, j)));
-                assert_eq!(d.to_bits(), e8.to_array()[j].to_bits());
-            }
-        }
+        let (v8, v16) = soa_k(&tv.iter().map(|t| t.0).collect::<Vec<_>>());
+        let ([p8, n8], [p16, n16]) = soa_k(&tv.iter().map(|t| [t.1, t.2]).collect::<Vec<_>>());
+        let (u8_, u16_) = soa(&tv.iter().map(|t| t.3).collect::<Vec<_>>());
+        assert_lanes(
+            |j| {
+                let (v, p, n, u) = tv[j];
+                Box::new(spherical::triangle_cosine(v, p, n, u))
+            },
+            &spherical::triangle_cosine_x8(v8, p8, n8, u8_),
+            &spherical::triangle_cosine_x16(v16, p16, n16, u16_),
+        );
+        let lights: Vec<_> = rv
+            .iter()
+            .map(|((c, ex, ey, p), n, _)| [*c, *ex, *ey, *p, *n])
+            .collect();
+        let (a8, a16) = soa_k(&lights);
+        let (ru8, ru16) = soa(&rv.iter().map(|t| t.2).collect::<Vec<_>>());
+        assert_lanes(
+            |j| {
+                let ((c, ex, ey, p), n, u) = rv[j];
+                Box::new(spherical::rectangle_cosine(c, ex, ey, p, n, u))
+            },
+            &spherical::rectangle_cosine_x8(a8[0], a8[1], a8[2], a8[3], a8[4], ru8),
+            &spherical::rectangle_cosine_x16(a16[0], a16[1], a16[2], a16[3], a16[4], ru16),
+        );
         let (v, p, n, _) = tv[round % 16];
         let ((c, ex, ey, rp), rn, _) = rv[round % 16];
-        let len = [0usize, 1, 7, 8, 9, 15, 16, 17, 33][round % 9];
-        let uu: Vec<[f32; 2]> = (0..len)
-            .map(|k| {
-                if k % 5 == 0 {
-                    us[(round + k) % us.len()]
-                } else {
-                    unit2(&mut r)
-                }
-            })
-            .collect();
+        let uu = slice_us(&mut r, &us, round);
+        let len = uu.len();
         let mut out4 = vec![[0.0f32; 4]; len + 1];
         assert_eq!(
             spherical::triangle_cosine_slice(v, p, n, &uu, &mut out4),

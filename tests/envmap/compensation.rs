@@ -18,16 +18,7 @@ use warpcore::envmap::{
 /// Weights `1 + 10^(3 r)` with a quarter zeros; no weight within 1e-3 relative of the
 /// compensation threshold `t` (so `f32` row factors cannot move a texel across it).
 fn weights(w: usize, h: usize, seed: u64) -> Vec<f32> {
-    let mut r = rng(seed);
-    (0..w * h)
-        .map(|_| {
-            if r.random::<u32>() % 4 == 0 {
-                0.0
-            } else {
-                1.0 + 10f32.powf(3.0 * r.random::<f32>())
-            }
-        })
-        .collect()
+    super::random_weights(w, h, seed, |x| 1.0 + 10f32.powf(3.0 * x))
 }
 
 /// The compensated weights, in `f64`, from the definition (not the library's code).
