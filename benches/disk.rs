@@ -11,22 +11,14 @@ use common::{BATCH, bench_indexed, bench_out, peer_fill, peer_scalar, warp_group
 use rand::SeedableRng;
 use rand_distr::{Distribution, UnitDisc};
 use rand_xoshiro::Xoshiro128PlusPlus;
-use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
+use std::f32::consts::{FRAC_PI_2, TAU};
 use std::hint::black_box;
 use warpcore::{disk, f32x8, f32x16, u32x8, u32x16};
+use warpcore_testkit::textbook;
 
 /// Shirley-Chiu as published, two branches, libm sin/cos.
 fn concentric_libm(u: [f32; 2]) -> [f32; 2] {
-    let a = 2.0 * u[0] - 1.0;
-    let b = 2.0 * u[1] - 1.0;
-    if a == 0.0 && b == 0.0 {
-        return [0.0, 0.0];
-    }
-    let (r, phi) = if a.abs() > b.abs() {
-        (a, FRAC_PI_4 * (b / a))
-    } else {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    };
+    let (r, phi) = textbook::concentric_polar(2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
     [r * libm::cosf(phi), r * libm::sinf(phi)]
 }
 
@@ -43,14 +35,7 @@ fn polar4_libm(u: [f32; 2], q: u32) -> [f32; 2] {
 /// Concentric4 as specified (Shirley-Chiu on the quarter disk, then the quarter turns), two
 /// branches, libm sin/cos.
 fn concentric4_libm(u: [f32; 2], q: u32) -> [f32; 2] {
-    let (a, b) = (u[0], u[1]);
-    let (r, phi) = if a > b {
-        (a, FRAC_PI_4 * (b / a))
-    } else if b > 0.0 {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    } else {
-        return [0.0, 0.0];
-    };
+    let (r, phi) = textbook::concentric_polar(u[0], u[1]);
     let (x, y) = (r * libm::cosf(phi), r * libm::sinf(phi));
     match q % 4 {
         0 => [x, y],

@@ -15,8 +15,9 @@ use criterion::{BenchmarkGroup, Criterion};
 use rand::SeedableRng;
 use rand_distr::{Distribution, UnitSphere};
 use rand_xoshiro::Xoshiro128PlusPlus;
-use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
+use std::f32::consts::{FRAC_PI_2, PI, TAU};
 use warpcore::{f32x8, f32x16, sphere};
+use warpcore_testkit::textbook;
 
 // ----------------------------------------------------------------------------------------
 // Textbook peers: the published formulas, branches and libm calls, in f32.
@@ -24,14 +25,7 @@ use warpcore::{f32x8, f32x16, sphere};
 /// Clarberg's equal-area map as written in the paper.
 fn equal_area_libm(u: [f32; 2]) -> [f32; 3] {
     let (a, b) = (2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
-    let (ua, ub) = (a.abs(), b.abs());
-    let sd = 1.0 - (ua + ub);
-    let r = 1.0 - sd.abs();
-    let phi = if r == 0.0 {
-        FRAC_PI_4
-    } else {
-        ((ub - ua) / r + 1.0) * FRAC_PI_4
-    };
+    let (r, phi, sd) = textbook::equal_area_fold(a, b);
     let z = libm::copysignf(1.0 - r * r, sd);
     let s = r * libm::sqrtf(2.0 - r * r);
     [
@@ -80,15 +74,7 @@ fn uniform_libm(u: [f32; 2]) -> [f32; 3] {
 
 /// Shirley-Chiu concentric disk (two branches) lifted by Malley's method.
 fn cosine_hemisphere_libm(u: [f32; 2]) -> [f32; 3] {
-    let (a, b) = (2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
-    if a == 0.0 && b == 0.0 {
-        return [0.0, 0.0, 1.0];
-    }
-    let (r, phi) = if a.abs() > b.abs() {
-        (a, FRAC_PI_4 * (b / a))
-    } else {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    };
+    let (r, phi) = textbook::concentric_polar(2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
     let (x, y) = (r * libm::cosf(phi), r * libm::sinf(phi));
     [x, y, libm::sqrtf((1.0 - x * x - y * y).max(0.0))]
 }

@@ -20,27 +20,9 @@ mod common;
 use common::{BATCH, bench_indexed, bench_map, bench_out, group, uniform_points};
 use std::hint::black_box;
 use warpcore::spherical;
+use warpcore_testkit::textbook::{add, cross, dot, scale, sub};
 
 type V = [f32; 3];
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: V, b: V) -> f32 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V, b: V) -> V {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn scale(a: V, k: f32) -> V {
-    [a[0] * k, a[1] * k, a[2] * k]
-}
-fn add(a: V, b: V) -> V {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
 fn normalize(a: V) -> V {
     scale(a, 1.0 / libm::sqrtf(dot(a, a)))
 }

@@ -10,6 +10,7 @@ use common::{BATCH, bench_indexed, bench_out, peer_scalar, warp_group};
 use std::hint::black_box;
 use warpcore::triangle;
 use warpcore::{f32x8, f32x16, u32x8, u32x16};
+use warpcore_testkit::textbook;
 
 /// Heitz 2019 as published (one branch), `b2 = 1 - b0 - b1`.
 fn uniform_textbook(u: [f32; 2]) -> [f32; 3] {
@@ -35,26 +36,6 @@ fn sqrt_map_libm(u: [f32; 2]) -> [f32; 3] {
     let s = libm::sqrtf(u[0]);
     let (b0, b1) = (1.0 - s, u[1] * s);
     [b0, b1, 1.0 - b0 - b1]
-}
-
-/// The Basu-Owen walk as usually written: a loop over the 16 base-4 digits with branches,
-/// in f32, unscrambled.
-fn basu_owen_textbook(index: u32) -> [f32; 3] {
-    let (mut cx, mut cy, mut w) = (0.0f32, 0.0f32, 0.5f32);
-    let mut i = index;
-    for _ in 0..16 {
-        let d = i & 3;
-        i >>= 2;
-        if d & 1 == 0 {
-            cy += w;
-        }
-        if d & 2 == 0 {
-            cx += w;
-        }
-        w *= if d == 0 { -0.5 } else { 0.5 };
-    }
-    let (x, y) = (cx + 2.0 * w / 3.0, cy + 2.0 * w / 3.0);
-    [x, y, 1.0 - x - y]
 }
 
 /// An index-driven Basu-Owen randomization: BATCH consecutive indices from a fixed start, one
@@ -124,7 +105,7 @@ fn basu_owen_group(
     }
     let label = "textbook digit loop (scalar, f32, unscrambled)";
     bench_indexed(&mut g, label, &mut out, |k| {
-        basu_owen_textbook(black_box(START + k as u32))
+        textbook::basu_owen::<f32>(black_box(START + k as u32))
     });
     g.finish();
 }

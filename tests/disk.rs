@@ -6,11 +6,13 @@
 
 use warpcore_testkit as common;
 
+use common::textbook;
+
 use common::{
     ONE_MINUS_EPS, chi2, in_unit_square, lane, rng, same_bits, soa, special_pairs, unit2,
 };
 use proptest::prelude::*;
-use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
+use std::f64::consts::{FRAC_PI_2, TAU};
 use warpcore::disk::{self, PDF};
 use warpcore::{f32x8, u32x8};
 
@@ -32,30 +34,14 @@ fn polar4_ref(u: [f32; 2], q: u32) -> [f64; 2] {
 
 /// Shirley and Chiu's concentric map exactly as published.
 fn concentric_ref(u: [f32; 2]) -> [f64; 2] {
-    let a = 2.0 * u[0] as f64 - 1.0;
-    let b = 2.0 * u[1] as f64 - 1.0;
-    if a == 0.0 && b == 0.0 {
-        return [0.0, 0.0];
-    }
-    let (r, phi) = if a.abs() > b.abs() {
-        (a, FRAC_PI_4 * (b / a))
-    } else {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    };
+    let (r, phi) = textbook::concentric_polar(2.0 * u[0] as f64 - 1.0, 2.0 * u[1] as f64 - 1.0);
     [r * phi.cos(), r * phi.sin()]
 }
 
 /// Concentric4 as specified: Shirley-Chiu on the quarter disk (`a = u0`, `b = u1`), then
 /// turned by `q % 4` quarter turns, in f64 with the textbook branches.
 fn concentric4_ref(u: [f32; 2], q: u32) -> [f64; 2] {
-    let (a, b) = (u[0] as f64, u[1] as f64);
-    let (r, phi) = if a > b {
-        (a, FRAC_PI_4 * (b / a))
-    } else if b > 0.0 {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    } else {
-        (0.0, 0.0)
-    };
+    let (r, phi) = textbook::concentric_polar(u[0] as f64, u[1] as f64);
     let phi = phi + FRAC_PI_2 * (q % 4) as f64;
     [r * phi.cos(), r * phi.sin()]
 }
@@ -166,48 +152,47 @@ fn check_widths(pts: &[[f32; 2]; 8], q: u32) {
     for (name, scalar, wide8, slice) in families {
         common::check_widths(name, pts, scalar, wide8, slice);
     }
-    let v = disk::polar4_x8(x8, quads);
-    let (vi, vq) = disk::polar4_inverse_x8(x8);
-    let mut expanded = [[0.0f32; 2]; 32];
-    assert_eq!(disk::polar4_slice(pts, &mut expanded), 32);
-    let c4 = disk::concentric4_x8(x8, quads);
-    let (ci, cq) = disk::concentric4_inverse_x8(x8);
-    let mut c4_expanded = [[0.0f32; 2]; 32];
-    assert_eq!(disk::concentric4_slice(pts, &mut c4_expanded), 32);
-    for j in 0..8 {
-        let qj = quads.to_array()[j];
-        assert!(
-            same_bits(disk::concentric4(pts[j], qj), lane(c4, j)),
-            "concentric4 lane {j}"
-        );
-        let (si, sq) = disk::concentric4_inverse(pts[j]);
-        assert!(
-            same_bits(si, lane(ci, j)) && sq == cq.to_array()[j],
-            "concentric4_inverse lane {j}"
-        );
-        for k in 0..4 {
+    type Q = fn([f32; 2], u32) -> [f32; 2];
+    type Q8 = fn([f32x8; 2], u32x8) -> [f32x8; 2];
+    type Inv = fn([f32; 2]) -> ([f32; 2], u32);
+    type Inv8 = fn([f32x8; 2]) -> ([f32x8; 2], u32x8);
+    let quadrant_warps: [(&str, Q, Q8, Inv, Inv8, S); 2] = [
+        (
+            "concentric4",
+            disk::concentric4,
+            disk::concentric4_x8,
+            disk::concentric4_inverse,
+            disk::concentric4_inverse_x8,
+            disk::concentric4_slice,
+        ),
+        (
+            "polar4",
+            disk::polar4,
+            disk::polar4_x8,
+            disk::polar4_inverse,
+            disk::polar4_inverse_x8,
+            disk::polar4_slice,
+        ),
+    ];
+    for (name, warp, warp8, inverse, inverse8, slice) in quadrant_warps {
+        let v = warp8(x8, quads);
+        let (vi, vq) = inverse8(x8);
+        let mut expanded = [[0.0f32; 2]; 32];
+        assert_eq!(slice(pts, &mut expanded), 32);
+        for j in 0..8 {
+            let qj = quads.to_array()[j];
+            assert!(same_bits(warp(pts[j], qj), lane(v, j)), "{name} lane {j}");
+            let (si, sq) = inverse(pts[j]);
             assert!(
-                same_bits(disk::concentric4(pts[j], k as u32), c4_expanded[4 * j + k]),
-                "concentric4_slice {j} {k}"
+                same_bits(si, lane(vi, j)) && sq == vq.to_array()[j],
+                "{name}_inverse lane {j}"
             );
-        }
-    }
-    for j in 0..8 {
-        let qj = quads.to_array()[j];
-        assert!(
-            same_bits(disk::polar4(pts[j], qj), lane(v, j)),
-            "polar4 lane {j}"
-        );
-        let (si, sq) = disk::polar4_inverse(pts[j]);
-        assert!(
-            same_bits(si, lane(vi, j)) && sq == vq.to_array()[j],
-            "polar4_inverse lane {j}"
-        );
-        for k in 0..4 {
-            assert!(
-                same_bits(disk::polar4(pts[j], k as u32), expanded[4 * j + k]),
-                "polar4_slice {j} {k}"
-            );
+            for k in 0..4 {
+                assert!(
+                    same_bits(warp(pts[j], k as u32), expanded[4 * j + k]),
+                    "{name}_slice {j} {k}"
+                );
+            }
         }
     }
 }

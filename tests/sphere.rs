@@ -8,12 +8,14 @@
 
 use warpcore_testkit as common;
 
+use common::textbook;
+
 use common::{
     ONE_MINUS_EPS, chi2, in_unit_square, lane, rng, same_bits, soa, special_pairs, special_triples,
     unit, unit2,
 };
 use proptest::prelude::*;
-use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use warpcore::f32x8;
 use warpcore::sphere;
 
@@ -28,14 +30,7 @@ fn ab(u: [f32; 2]) -> (f64, f64) {
 /// Clarberg's equal-area map as written in the paper / DESIGN.md.
 fn equal_area_ref(u: [f32; 2]) -> [f64; 3] {
     let (a, b) = ab(u);
-    let (ua, ub) = (a.abs(), b.abs());
-    let sd = 1.0 - (ua + ub);
-    let r = 1.0 - sd.abs();
-    let phi = if r == 0.0 {
-        FRAC_PI_4
-    } else {
-        ((ub - ua) / r + 1.0) * FRAC_PI_4
-    };
+    let (r, phi, sd) = textbook::equal_area_fold(a, b);
     let z = if sd >= 0.0 {
         1.0 - r * r
     } else {
@@ -79,14 +74,7 @@ fn uniform_ref(u: [f32; 2]) -> [f64; 3] {
 /// Shirley and Chiu's concentric map exactly as published, with the disk warps' radius clamp.
 fn concentric_ref(u: [f32; 2]) -> [f64; 2] {
     let (a, b) = ab(u);
-    if a == 0.0 && b == 0.0 {
-        return [0.0, 0.0];
-    }
-    let (r, phi) = if a.abs() > b.abs() {
-        (a, FRAC_PI_4 * (b / a))
-    } else {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    };
+    let (r, phi) = textbook::concentric_polar(a, b);
     let max = 1.0 - 2f64.powi(-23);
     let r = r.clamp(-max, max);
     [r * phi.cos(), r * phi.sin()]

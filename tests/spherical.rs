@@ -6,6 +6,7 @@
 
 use warpcore_testkit as common;
 
+use common::textbook::{add, cross, dot, scale, sub};
 use common::{chi2, rng, specials, unit2};
 use rand::RngExt;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -16,25 +17,6 @@ type V3 = [f64; 3];
 
 fn d3(v: [f32; 3]) -> V3 {
     [v[0] as f64, v[1] as f64, v[2] as f64]
-}
-fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn add(a: V3, b: V3) -> V3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-fn mul(a: V3, k: f64) -> V3 {
-    [a[0] * k, a[1] * k, a[2] * k]
-}
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 fn norm(a: V3) -> f64 {
     dot(a, a).sqrt()
@@ -94,7 +76,7 @@ fn dir(r: &mut Xoshiro256PlusPlus) -> V3 {
         ];
         let n = norm(v);
         if n > 0.1 && n <= 1.0 {
-            return mul(v, 1.0 / n);
+            return scale(v, 1.0 / n);
         }
     }
 }
@@ -111,10 +93,10 @@ fn random_triangle(
     dist: f64,
     offset: f64,
 ) -> ([[f32; 3]; 3], [f32; 3]) {
-    let p = mul(dir(r), offset * r.random::<f64>());
-    let centre = add(p, mul(dir(r), dist));
+    let p = scale(dir(r), offset * r.random::<f64>());
+    let centre = add(p, scale(dir(r), dist));
     let v: [[f32; 3]; 3] =
-        std::array::from_fn(|_| f3(add(centre, mul(dir(r), size * (0.2 + r.random::<f64>())))));
+        std::array::from_fn(|_| f3(add(centre, scale(dir(r), size * (0.2 + r.random::<f64>())))));
     (v, f3(p))
 }
 
@@ -127,8 +109,8 @@ fn random_rect(
     dist: f64,
     offset: f64,
 ) -> ([f32; 3], [f32; 3], [f32; 3], [f32; 3]) {
-    let p = mul(dir(r), offset * r.random::<f64>());
-    let centre = add(p, mul(dir(r), dist));
+    let p = scale(dir(r), offset * r.random::<f64>());
+    let centre = add(p, scale(dir(r), dist));
     let w = size * (0.25 + r.random::<f64>());
     let h = w / (1.0 + 15.0 * r.random::<f64>());
     let axis = r.random_range(0..3usize);
@@ -140,7 +122,7 @@ fn random_rect(
     if r.random::<bool>() {
         std::mem::swap(&mut ex, &mut ey);
     }
-    let corner = sub(centre, mul(add(ex, ey), 0.5));
+    let corner = sub(centre, scale(add(ex, ey), 0.5));
     (f3(corner), f3(ex), f3(ey), f3(p))
 }
 
@@ -485,7 +467,7 @@ fn chi2_triangle_uniform_in_solid_angle() {
     for (li, (v, p)) in lights.into_iter().enumerate() {
         // Sub-triangle k of the grid: up triangles (i, j) with i + j < n and down ones.
         let (v0, v1, v2, pp) = (d3(v[0]), d3(v[1]), d3(v[2]), d3(p));
-        let at = |b1: f64, b2: f64| add(v0, add(mul(sub(v1, v0), b1), mul(sub(v2, v0), b2)));
+        let at = |b1: f64, b2: f64| add(v0, add(scale(sub(v1, v0), b1), scale(sub(v2, v0), b2)));
         let mut expected = vec![];
         let h = 1.0 / n as f64;
         for i in 0..n {
@@ -559,14 +541,14 @@ fn chi2_rectangle_uniform_in_solid_angle() {
                 let corner = add(
                     cc,
                     add(
-                        mul(ex64, i as f64 / n as f64),
-                        mul(ey64, j as f64 / n as f64),
+                        scale(ex64, i as f64 / n as f64),
+                        scale(ey64, j as f64 / n as f64),
                     ),
                 );
                 let (a, ux, uy) = (
                     sub(corner, d3(p)),
-                    mul(ex64, 1.0 / n as f64),
-                    mul(ey64, 1.0 / n as f64),
+                    scale(ex64, 1.0 / n as f64),
+                    scale(ey64, 1.0 / n as f64),
                 );
                 expected[j * n + i] = vos(a, ux, add(ux, uy)) + vos(a, add(ux, uy), uy);
             }
@@ -704,7 +686,7 @@ fn lane_u_and_scale(
     round: usize,
     j: usize,
 ) -> ([f32; 2], f64, f64) {
-    let u = if j % 3 == 0 {
+    let u = if j.is_multiple_of(3) {
         us[(round * 16 + j) % us.len()]
     } else {
         unit2(r)
@@ -720,7 +702,7 @@ fn slice_us(r: &mut Xoshiro256PlusPlus, us: &[[f32; 2]], round: usize) -> Vec<[f
     let len = [0usize, 1, 7, 8, 9, 15, 16, 17, 33][round % 9];
     (0..len)
         .map(|k| {
-            if k % 5 == 0 {
+            if k.is_multiple_of(5) {
                 us[(round + k) % us.len()]
             } else {
                 unit2(r)
@@ -944,7 +926,7 @@ fn bilinear_warp_inverts_its_cdfs() {
 /// the cosine-weighted solid angle `int max(0, n . w) dw` of the clipped polygon by
 /// Lambert's formula `1/2 |sum_i angle(a_i, a_i+1) n . unit(a_i x a_i+1)|`.
 fn projected_solid_angle(poly: &[V3], n: V3) -> f64 {
-    let n = mul(n, 1.0 / norm(n));
+    let n = scale(n, 1.0 / norm(n));
     let mut clipped = vec![];
     for i in 0..poly.len() {
         let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
@@ -953,7 +935,7 @@ fn projected_solid_angle(poly: &[V3], n: V3) -> f64 {
             clipped.push(a);
         }
         if (da >= 0.0) != (db >= 0.0) {
-            clipped.push(add(a, mul(sub(b, a), da / (da - db))));
+            clipped.push(add(a, scale(sub(b, a), da / (da - db))));
         }
     }
     let mut s = 0.0;
@@ -1056,7 +1038,7 @@ fn cosine_estimator_is_unbiased() {
             exact,
             Box::new(move |u| {
                 let (b, pdf) = spherical::triangle_cosine(v, p, n, u);
-                let x = (0..3).fold([0.0; 3], |acc, k| add(acc, mul(d3(v[k]), b[k] as f64)));
+                let x = (0..3).fold([0.0; 3], |acc, k| add(acc, scale(d3(v[k]), b[k] as f64)));
                 (sub(x, d3(p)), pdf as f64)
             }),
             n,
@@ -1076,7 +1058,7 @@ fn cosine_estimator_is_unbiased() {
             exact,
             Box::new(move |u| {
                 let ([s, t], pdf) = spherical::rectangle_cosine(c, ex, ey, p, n, u);
-                let x = add(o, add(mul(d3(ex), s as f64), mul(d3(ey), t as f64)));
+                let x = add(o, add(scale(d3(ex), s as f64), scale(d3(ey), t as f64)));
                 (x, pdf as f64)
             }),
             n,
@@ -1094,10 +1076,10 @@ fn cosine_density_and_chi2() {
     // Density identity over random lights and normals facing them.
     for _ in 0..20_000 {
         let (v, p) = random_triangle(&mut r, 1.0, 1.5, 1.0);
-        let centre = mul(add(add(d3(v[0]), d3(v[1])), d3(v[2])), 1.0 / 3.0);
+        let centre = scale(add(add(d3(v[0]), d3(v[1])), d3(v[2])), 1.0 / 3.0);
         let n = f3(add(
             sub(centre, d3(p)),
-            mul(dir(&mut r), 0.8 * norm(sub(centre, d3(p)))),
+            scale(dir(&mut r), 0.8 * norm(sub(centre, d3(p)))),
         ));
         let u = unit2(&mut r);
         let (b, pdf) = spherical::triangle_cosine(v, p, n, u);
@@ -1111,10 +1093,10 @@ fn cosine_density_and_chi2() {
             );
         }
         let (c, ex, ey, p) = random_rect(&mut r, 1.0, 1.5, 1.0);
-        let centre = add(d3(c), mul(add(d3(ex), d3(ey)), 0.5));
+        let centre = add(d3(c), scale(add(d3(ex), d3(ey)), 0.5));
         let n = f3(add(
             sub(centre, d3(p)),
-            mul(dir(&mut r), 0.8 * norm(sub(centre, d3(p)))),
+            scale(dir(&mut r), 0.8 * norm(sub(centre, d3(p)))),
         ));
         let (st, pdf) = spherical::rectangle_cosine(c, ex, ey, p, n, u);
         let w = rect_weights(c, ex, ey, p, n);

@@ -7,6 +7,8 @@
 
 use warpcore_testkit as common;
 
+use common::textbook;
+
 use common::{
     ONE_MINUS_EPS, chi2, in_unit_square, lane, rng, same_bits, special_pairs, special_triples,
     unit, unit2,
@@ -37,22 +39,9 @@ fn sqrt_ref(u: [f32; 2]) -> [f64; 3] {
     [1.0 - s, u[1] as f64 * s, (1.0 - u[1] as f64) * s]
 }
 
-/// The Basu-Owen walk of DESIGN.md section 4, one digit at a time with branches, in f64
-/// (exact: every c and w is dyadic), returning `[x, y, 1 - x - y]` of the centroid.
+/// The Basu-Owen walk of DESIGN.md section 4 in f64 (exact).
 fn basu_owen_ref(index: u32) -> [f64; 3] {
-    let (mut cx, mut cy, mut w) = (0.0f64, 0.0f64, 0.5f64);
-    for j in 0..16 {
-        let d = (index >> (2 * j)) & 3;
-        if d & 1 == 0 {
-            cy += w;
-        }
-        if d & 2 == 0 {
-            cx += w;
-        }
-        w *= if d == 0 { -0.5 } else { 0.5 };
-    }
-    let (x, y) = (cx + 2.0 * w / 3.0, cy + 2.0 * w / 3.0);
-    [x, y, 1.0 - x - y]
+    textbook::basu_owen(index)
 }
 
 fn err3(b: [f32; 3], r: [f64; 3]) -> f64 {

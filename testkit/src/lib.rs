@@ -1,6 +1,8 @@
 //! Helpers shared by warpcore's integration tests: the chi-square module, a seeded generator,
-//! the special `f32` inputs every warp must survive, and bit-identity checks.
+//! the special `f32` inputs every warp must survive, bit-identity checks, and the textbook
+//! formulas (the tests' `f64` references and the benchmarks' `f32` peers).
 pub mod chi2;
+pub mod textbook;
 
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
