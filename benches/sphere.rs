@@ -40,17 +40,7 @@ fn equal_area_inverse_libm(d: [f32; 3]) -> [f32; 2] {
     let (x, y, z) = (d[0].abs(), d[1].abs(), d[2].abs());
     let r = libm::sqrtf(1.0 - z);
     let phi = libm::atan2f(y, x) / FRAC_PI_2;
-    let q = r * phi;
-    let p = r - q;
-    let (ua, ub) = if d[2] < 0.0 {
-        (1.0 - q, 1.0 - p)
-    } else {
-        (p, q)
-    };
-    [
-        0.5 * (libm::copysignf(ua, d[0]) + 1.0),
-        0.5 * (libm::copysignf(ub, d[1]) + 1.0),
-    ]
+    textbook::equal_area_unfold(r, r * phi, d)
 }
 
 fn equirect_libm(u: [f32; 2]) -> [f32; 3] {

@@ -47,12 +47,7 @@ fn equal_area_inverse_ref(d: [f32; 3]) -> [f64; 2] {
     let (x, y, z) = (d[0] as f64 / n, d[1] as f64 / n, d[2] as f64 / n);
     let r = (1.0 - z.abs()).max(0.0).sqrt();
     let phi = y.abs().atan2(x.abs()); // [0, pi/2]
-    let q = r * phi / FRAC_PI_2;
-    let p = r - q;
-    let (ua, ub) = if z < 0.0 { (1.0 - q, 1.0 - p) } else { (p, q) };
-    let a = if d[0].is_sign_negative() { -ua } else { ua };
-    let b = if d[1].is_sign_negative() { -ub } else { ub };
-    [(a + 1.0) / 2.0, (b + 1.0) / 2.0]
+    textbook::equal_area_unfold(r, r * phi / FRAC_PI_2, [x, y, z])
 }
 
 fn equirect_ref(u: [f32; 2]) -> [f64; 3] {
@@ -649,10 +644,7 @@ fn inverses_are_scale_free() {
 fn textbook_f32_round_trip_for_comparison() {
     fn fwd(u: [f32; 2]) -> [f32; 3] {
         let (a, b) = (2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
-        let (ua, ub) = (a.abs(), b.abs());
-        let sd = 1.0 - (ua + ub);
-        let r = 1.0 - sd.abs();
-        let phi = if r == 0.0 { 1.0 } else { (ub - ua) / r + 1.0 } * std::f32::consts::FRAC_PI_4;
+        let (r, phi, sd) = textbook::equal_area_fold(a, b);
         let z = (1.0 - r * r).copysign(sd);
         let s = r * (2.0 - r * r).max(0.0).sqrt();
         [s * phi.cos().copysign(a), s * phi.sin().copysign(b), z]
@@ -665,17 +657,7 @@ fn textbook_f32_round_trip_for_comparison() {
         if x < y {
             phi = 1.0 - phi;
         }
-        let v = phi * r;
-        let u = r - v;
-        let (u, v) = if d[2] < 0.0 {
-            (1.0 - v, 1.0 - u)
-        } else {
-            (u, v)
-        };
-        [
-            0.5 * (u.copysign(d[0]) + 1.0),
-            0.5 * (v.copysign(d[1]) + 1.0),
-        ]
+        textbook::equal_area_unfold(r, phi * r, d)
     }
     let inputs = accuracy_inputs();
     let (mut ours, mut textbook, mut textbook_pole) = (0.0f64, 0.0f64, 0.0f64);

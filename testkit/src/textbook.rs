@@ -20,53 +20,43 @@ pub trait Real:
     fn sqrt(self) -> Self;
     fn sin(self) -> Self;
     fn cos(self) -> Self;
+    fn copysign(self, sign: Self) -> Self;
 }
 
-impl Real for f32 {
-    #[inline(always)]
-    fn of(x: f64) -> Self {
-        x as f32
-    }
-    #[inline(always)]
-    fn abs(self) -> Self {
-        f32::abs(self)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        libm::sqrtf(self)
-    }
-    #[inline(always)]
-    fn sin(self) -> Self {
-        libm::sinf(self)
-    }
-    #[inline(always)]
-    fn cos(self) -> Self {
-        libm::cosf(self)
-    }
+/// `Real` for a float type: `sqrt`, `sin`, `cos` and `copysign` by the given functions.
+macro_rules! real {
+    ($t:ty, $sqrt:path, $sin:path, $cos:path, $copysign:path) => {
+        impl Real for $t {
+            #[inline(always)]
+            fn of(x: f64) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                <$t>::abs(self)
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                $sqrt(self)
+            }
+            #[inline(always)]
+            fn sin(self) -> Self {
+                $sin(self)
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                $cos(self)
+            }
+            #[inline(always)]
+            fn copysign(self, sign: Self) -> Self {
+                $copysign(self, sign)
+            }
+        }
+    };
 }
 
-impl Real for f64 {
-    #[inline(always)]
-    fn of(x: f64) -> Self {
-        x
-    }
-    #[inline(always)]
-    fn abs(self) -> Self {
-        f64::abs(self)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        f64::sqrt(self)
-    }
-    #[inline(always)]
-    fn sin(self) -> Self {
-        f64::sin(self)
-    }
-    #[inline(always)]
-    fn cos(self) -> Self {
-        f64::cos(self)
-    }
-}
+real!(f32, libm::sqrtf, libm::sinf, libm::cosf, libm::copysignf);
+real!(f64, f64::sqrt, f64::sin, f64::cos, f64::copysign);
 
 /// Shirley and Chiu's concentric map of `(a, b) = (2 u0 - 1, 2 u1 - 1)` as published: the
 /// signed radius and the angle `(r, phi)` of the point `(r cos phi, r sin phi)`, by the two
@@ -102,6 +92,25 @@ pub fn equal_area_fold<F: Real>(a: F, b: F) -> (F, F, F) {
         ((ub - ua) / r + one) * F::of(FRAC_PI_4)
     };
     (r, phi, sd)
+}
+
+/// Clarberg's inverse unfolding as published: from `r = sqrt(1 - |z|)` and `q = r phi /
+/// (pi/2)` (`phi` the first-quadrant azimuth of `d`), the point of the unit square, with
+/// `(p, q) = (r - q, q)` folded onto the corner triangles for `d[2] < 0` and the signs of
+/// `d[0]`, `d[1]` (of `-0.0` too) picking the quadrant.
+#[inline(always)]
+pub fn equal_area_unfold<F: Real>(r: F, q: F, d: [F; 3]) -> [F; 2] {
+    let (one, half) = (F::of(1.0), F::of(0.5));
+    let p = r - q;
+    let (ua, ub) = if d[2] < F::of(0.0) {
+        (one - q, one - p)
+    } else {
+        (p, q)
+    };
+    [
+        half * (ua.copysign(d[0]) + one),
+        half * (ub.copysign(d[1]) + one),
+    ]
 }
 
 /// The Basu-Owen walk as usually written (DESIGN.md section 4): the 16 base-4 digits of
