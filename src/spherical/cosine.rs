@@ -96,11 +96,18 @@ pub(super) fn rectangle_weights<L: Lane>(r: &Rect<L>, n: V<L>) -> [L; 4] {
     clamped_cosines(n, [r.c, c10, add(r.c, r.eyp), add(c10, r.eyp)])
 }
 
-/// The solid-angle density times the bilinear factor, kept finite.
+/// `u` warped by the bilinear weights `w`, then mapped by `sample` (a prepared light's map):
+/// the point, and the solid-angle density times the bilinear factor, kept finite.
 #[inline(always)]
-fn product<L: Lane>(pdf: L, factor: L) -> L {
-    let d = pdf * factor;
-    L::select(d.simd_lt(L::splat(f32::MAX)), d, L::splat(f32::MAX))
+fn warped<L: Lane, P, const N: usize>(
+    pr: &P,
+    w: [L; 4],
+    u: [L; 2],
+    sample: impl Fn(&P, [L; 2]) -> ([L; N], L),
+) -> ([L; N], L) {
+    let (u, factor) = bilinear_body(u, w);
+    let (x, pdf) = sample(pr, u);
+    (x, below_max(pdf * factor))
 }
 
 #[inline(always)]
@@ -109,9 +116,7 @@ pub(super) fn triangle_prepared<L: Lane>(
     w: [L; 4],
     u: [L; 2],
 ) -> ([L; 3], L) {
-    let (u, factor) = bilinear_body(u, w);
-    let (b, pdf) = triangle::sample_prepared(pr, u);
-    (b, product(pdf, factor))
+    warped(pr, w, u, triangle::sample_prepared)
 }
 
 #[inline(always)]
@@ -127,9 +132,7 @@ pub(super) fn rectangle_prepared<L: Lane>(
     w: [L; 4],
     u: [L; 2],
 ) -> ([L; 2], L) {
-    let (u, factor) = bilinear_body(u, w);
-    let (st, pdf) = rectangle::sample_prepared(pr, u);
-    (st, product(pdf, factor))
+    warped(pr, w, u, rectangle::sample_prepared)
 }
 
 #[inline(always)]
