@@ -126,14 +126,20 @@ fn random_rect(
     (f3(corner), f3(ex), f3(ey), f3(p))
 }
 
-fn assert_total_tri(v: [[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) {
-    let (b, pdf) = spherical::triangle(v, p, u);
+/// Barycentrics in the closed simplex: each in `[0, 1]`, their sum within 3e-7 of 1.
+fn assert_barycentric(b: [f32; 3], context: impl Fn() -> String) {
     assert!(
         b.iter().all(|x| (0.0..=1.0).contains(x)),
-        "{v:?} {p:?} {u:?}: {b:?}"
+        "{}: {b:?}",
+        context()
     );
     let s = b[0] as f64 + b[1] as f64 + b[2] as f64;
-    assert!((s - 1.0).abs() <= 3e-7, "{v:?} {p:?} {u:?}: sum {s}");
+    assert!((s - 1.0).abs() <= 3e-7, "{}: sum {s}", context());
+}
+
+fn assert_total_tri(v: [[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) {
+    let (b, pdf) = spherical::triangle(v, p, u);
+    assert_barycentric(b, || format!("{v:?} {p:?} {u:?}"));
     assert!(
         (0.0..f32::MAX).contains(&pdf),
         "{v:?} {p:?} {u:?}: pdf {pdf}"
@@ -1163,12 +1169,7 @@ fn cosine_total_and_falls_back() {
         for (k, &u) in us.iter().enumerate() {
             let n = normals[k % normals.len()];
             let (b, pdf) = spherical::triangle_cosine(v, p, n, u);
-            assert!(
-                b.iter().all(|x| (0.0..=1.0).contains(x)),
-                "{v:?} {p:?} {n:?} {u:?}: {b:?}"
-            );
-            let s = b[0] as f64 + b[1] as f64 + b[2] as f64;
-            assert!((s - 1.0).abs() <= 3e-7, "sum {s}");
+            assert_barycentric(b, || format!("{v:?} {p:?} {n:?} {u:?}"));
             assert!(
                 pdf.is_finite() && pdf >= 0.0,
                 "{v:?} {p:?} {n:?} {u:?}: {pdf}"

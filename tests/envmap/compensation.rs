@@ -21,6 +21,20 @@ fn weights(w: usize, h: usize, seed: u64) -> Vec<f32> {
     super::random_weights(w, h, seed, |x| 1.0 + 10f32.powf(3.0 * x))
 }
 
+/// A distribution's `sample` (with `pdf` at the sampled point) and `pdf`, as closures.
+fn sample_and_pdf<D: Distribution>(
+    d: &D,
+) -> (
+    impl Fn([f32; 2]) -> (Sample, f32) + '_,
+    impl Fn([f32; 2]) -> f32 + '_,
+) {
+    let sample = move |u| {
+        let s = d.sample(u);
+        (s, d.pdf(s.uv))
+    };
+    (sample, move |uv| d.pdf(uv))
+}
+
 /// The compensated weights, in `f64`, from the definition (not the library's code).
 fn reference(wts: &[f32], w: usize, h: usize, how: Compensation) -> Vec<f64> {
     signed_reference(wts, w, h, how)
@@ -370,22 +384,10 @@ fn subnormal_maps_agree_between_distributions() {
                     assert_eq!(s.pdf.to_bits(), at.to_bits(), "{name}: pdf(uv), {label}");
                 }
             };
-        check(
-            &|u| {
-                let s = hier.sample(u);
-                (s, hier.pdf(s.uv))
-            },
-            &|uv| hier.pdf(uv),
-            true,
-        );
-        check(
-            &|u| {
-                let s = marg.sample(u);
-                (s, marg.pdf(s.uv))
-            },
-            &|uv| marg.pdf(uv),
-            false,
-        );
+        let (sample, pdf) = sample_and_pdf(&hier);
+        check(&sample, &pdf, true);
+        let (sample, pdf) = sample_and_pdf(&marg);
+        check(&sample, &pdf, false);
     }
     eprintln!(
         "{cases} maps checked ({compensated} compensated, not the fallback), {skipped} skipped"
