@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{BATCH, bench_indexed, bench_out};
+use common::{BATCH, bench_hoisted, bench_indexed, bench_out};
 use std::hint::black_box;
 use warpcore::{f32x8, f32x16, pmj02bn, sequence, u32x8, u32x16};
 
@@ -33,24 +33,20 @@ fn main() {
         ("warpcore sample_x8", u32x8::ZERO),
         ("warpcore sample_x8, a seed per lane", lane),
     ] {
-        bench_out(&mut g, label, &mut out8, |out| {
-            let seed = u32x8::splat(black_box(SEED)) + per_lane;
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = pmj02bn::sample_x8(u32x8::splat(8 * k as u32) + lane, seed);
-            }
+        let seed = || u32x8::splat(black_box(SEED)) + per_lane;
+        bench_hoisted(&mut g, label, &mut out8, seed, |k, seed| {
+            pmj02bn::sample_x8(u32x8::splat(8 * k as u32) + lane, seed)
         });
     }
     let lane16 = u32x16::new(std::array::from_fn(|j| j as u32));
-    bench_out(
+    let mut out16 = vec![[f32x16::ZERO; 2]; BATCH / 16];
+    let seed = || u32x16::splat(black_box(SEED));
+    bench_hoisted(
         &mut g,
         "warpcore sample_x16",
-        &mut vec![[f32x16::ZERO; 2]; BATCH / 16],
-        |out| {
-            let seed = u32x16::splat(black_box(SEED));
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = pmj02bn::sample_x16(u32x16::splat(16 * k as u32) + lane16, seed);
-            }
-        },
+        &mut out16,
+        seed,
+        |k, seed| pmj02bn::sample_x16(u32x16::splat(16 * k as u32) + lane16, seed),
     );
     bench_out(&mut g, "warpcore sample_slice", &mut out, |out| {
         pmj02bn::sample_slice(0, black_box(SEED), out);
@@ -76,24 +72,19 @@ fn main() {
             [0, 1].map(|d| sobol_burley::sample(i, d, seed))
         },
     );
-    bench_out(&mut g, "sobol_burley::sample (2 dims)", &mut out, |out| {
-        let seed = black_box(SEED);
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = [0, 1].map(|d| sobol_burley::sample(i as u32, d, seed));
-        }
-    });
-    bench_out(
+    let seed = || black_box(SEED);
+    bench_hoisted(
         &mut g,
-        "sobol_burley::sample_4d (2 of 4 dims)",
+        "sobol_burley::sample (2 dims)",
         &mut out,
-        |out| {
-            let seed = black_box(SEED);
-            for (i, o) in out.iter_mut().enumerate() {
-                let s = sobol_burley::sample_4d(i as u32, 0, seed);
-                *o = [s[0], s[1]];
-            }
-        },
+        seed,
+        |i, seed| [0, 1].map(|d| sobol_burley::sample(i as u32, d, seed)),
     );
+    let label = "sobol_burley::sample_4d (2 of 4 dims)";
+    bench_hoisted(&mut g, label, &mut out, seed, |i, seed| {
+        let s = sobol_burley::sample_4d(i as u32, 0, seed);
+        [s[0], s[1]]
+    });
     g.finish();
     c.final_summary();
 }

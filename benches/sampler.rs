@@ -22,7 +22,7 @@
 
 mod common;
 
-use common::{BATCH, bench_indexed, bench_out};
+use common::{BATCH, bench_hoisted, bench_indexed, bench_out};
 use criterion::BenchmarkGroup;
 use criterion::measurement::WallTime;
 use openqmc::{LatticeSampler, PmjBnSampler, PmjSampler, SobolBnSampler, SobolSampler};
@@ -51,13 +51,16 @@ fn ours<P: Pattern>(g: &mut BenchmarkGroup<'_, WallTime>, name: &str, pixel_loop
     );
     if pixel_loop {
         let label = format!("warpcore Sampler<{name}> scalar, pixel loop");
-        bench_out(g, &label, &mut out, |out| {
-            let pixel = black_box(PIXEL);
-            for (i, o) in out.iter_mut().enumerate() {
+        bench_hoisted(
+            g,
+            &label,
+            &mut out,
+            || black_box(PIXEL),
+            |i, pixel| {
                 let s = Sampler::<P>::new(pixel, FRAME, i as u32, SEED);
-                *o = s.domain(DOMAIN).draw::<4>();
-            }
-        });
+                s.domain(DOMAIN).draw::<4>()
+            },
+        );
     }
     let lane = u32x8::new(std::array::from_fn(|j| j as u32));
     let mut out8 = vec![[f32x8::ZERO; 4]; BATCH / 8];
@@ -105,17 +108,11 @@ fn openqmc(
         draw(x, y, FRAME as i32, i as i32)
     });
     if pixel_loop {
-        bench_out(
-            g,
-            &format!("openqmc-rs {name}, pixel loop"),
-            &mut out,
-            |out| {
-                let [x, y] = black_box(PIXEL).map(|c| c as i32);
-                for (i, o) in out.iter_mut().enumerate() {
-                    *o = draw(x, y, FRAME as i32, i as i32);
-                }
-            },
-        );
+        let label = format!("openqmc-rs {name}, pixel loop");
+        let pixel = || black_box(PIXEL).map(|c| c as i32);
+        bench_hoisted(g, &label, &mut out, pixel, |i, [x, y]| {
+            draw(x, y, FRAME as i32, i as i32)
+        });
     }
 }
 

@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{BATCH, bench_indexed, bench_out, peer_scalar, warp_group};
+use common::{BATCH, bench_hoisted, bench_indexed, bench_out, peer_scalar, warp_group};
 use std::hint::black_box;
 use warpcore::triangle;
 use warpcore::{f32x8, f32x16, u32x8, u32x16};
@@ -64,37 +64,23 @@ fn basu_owen_group(
         &mut out,
         |k| scalar(black_box(START + k as u32), black_box(SEED)),
     );
-    bench_out(&mut g, "warpcore x8", &mut out8, |out| {
-        let seed = u32x8::splat(black_box(SEED));
-        for (k, o) in out.iter_mut().enumerate() {
-            *o = x8(u32x8::splat(START + 8 * k as u32) + lane, seed);
-        }
+    let seed = || u32x8::splat(black_box(SEED));
+    bench_hoisted(&mut g, "warpcore x8", &mut out8, seed, |k, seed| {
+        x8(u32x8::splat(START + 8 * k as u32) + lane, seed)
     });
     // Eight pixels per call at one sample index, new pixels every call: the seeds change
     // with every call, so the per-seed work cannot be hoisted out of the loop.
-    bench_out(
-        &mut g,
-        "warpcore x8, new seeds every call",
-        &mut out8,
-        |out| {
-            let base = u32x8::splat(black_box(SEED)) + lane;
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = x8(u32x8::splat(START), base + u32x8::splat(8 * k as u32));
-            }
-        },
-    );
+    let label = "warpcore x8, new seeds every call";
+    let base = || u32x8::splat(black_box(SEED)) + lane;
+    bench_hoisted(&mut g, label, &mut out8, base, |k, base| {
+        x8(u32x8::splat(START), base + u32x8::splat(8 * k as u32))
+    });
     let lane16 = u32x16::new(std::array::from_fn(|j| j as u32));
-    bench_out(
-        &mut g,
-        "warpcore x16",
-        &mut vec![[f32x16::ZERO; 3]; BATCH / 16],
-        |out| {
-            let seed = u32x16::splat(black_box(SEED));
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = x16(u32x16::splat(START + 16 * k as u32) + lane16, seed);
-            }
-        },
-    );
+    let mut out16 = vec![[f32x16::ZERO; 3]; BATCH / 16];
+    let seed = || u32x16::splat(black_box(SEED));
+    bench_hoisted(&mut g, "warpcore x16", &mut out16, seed, |k, seed| {
+        x16(u32x16::splat(START + 16 * k as u32) + lane16, seed)
+    });
     for (label, seed) in [
         ("warpcore slice", SEED),
         ("warpcore slice, seed 0 (unscrambled)", 0),

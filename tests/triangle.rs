@@ -954,21 +954,26 @@ fn chi2_basu_owen_random_seeds() {
     });
 }
 
-/// Stratified sets: 512 seeds x the first 4096 points. Each set is "too uniform" (one point
-/// per level-6 cell), which only lowers the statistic; what this catches is a density error.
-#[test]
-fn chi2_basu_owen_stratified_sets() {
-    let mut r = rng(104);
+/// Stratified sets of an index-driven slice form: `seed` (a random odd seed per set) x the
+/// first 4096 points, 512 sets. Each set is "too uniform" (one point per level-6 cell), which
+/// only lowers the statistic; what this catches is a density error.
+fn chi2_stratified_sets(name: &str, seed: u64, slice: impl Fn(u32, u32, &mut [[f32; 3]]) -> usize) {
+    let mut r = rng(seed);
     let mut buf = vec![[0.0f32; 3]; 4096];
     let mut at = buf.len();
-    chi2_triangle("triangle::basu_owen (512 seeds x 4096 points)", || {
+    chi2_triangle(&format!("{name} (512 seeds x 4096 points)"), || {
         if at == buf.len() {
-            triangle::basu_owen_slice(0, r.random::<u32>() | 1, &mut buf);
+            slice(0, r.random::<u32>() | 1, &mut buf);
             at = 0;
         }
         at += 1;
         buf[at - 1]
     });
+}
+
+#[test]
+fn chi2_basu_owen_stratified_sets() {
+    chi2_stratified_sets("triangle::basu_owen", 104, triangle::basu_owen_slice);
 }
 
 /// Independent samples of the per-level permutation: random seed and index per point.
@@ -981,22 +986,13 @@ fn chi2_basu_owen_permuted_random_seeds() {
     );
 }
 
-/// Stratified sets of the per-level permutation: 512 seeds x the first 4096 points.
+/// The per-level permutation's stratified sets.
 #[test]
 fn chi2_basu_owen_permuted_stratified_sets() {
-    let mut r = rng(106);
-    let mut buf = vec![[0.0f32; 3]; 4096];
-    let mut at = buf.len();
-    chi2_triangle(
-        "triangle::basu_owen_permuted (512 seeds x 4096 points)",
-        || {
-            if at == buf.len() {
-                triangle::basu_owen_permuted_slice(0, r.random::<u32>() | 1, &mut buf);
-                at = 0;
-            }
-            at += 1;
-            buf[at - 1]
-        },
+    chi2_stratified_sets(
+        "triangle::basu_owen_permuted",
+        106,
+        triangle::basu_owen_permuted_slice,
     );
 }
 

@@ -98,6 +98,24 @@ pub fn bench_indexed<O>(
     });
 }
 
+/// Times `out[k] = f(k, v)` over the whole output, with `v = once()` made once per iteration
+/// (a seed or pixel behind `black_box`, whose per-value work the compiler may hoist out of the
+/// loop, as in a renderer's loop over one pixel's samples).
+pub fn bench_hoisted<V: Copy, O>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    label: &str,
+    out: &mut [O],
+    once: impl Fn() -> V,
+    f: impl Fn(usize, V) -> O,
+) {
+    bench_out(g, label, out, |out| {
+        let v = once();
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = f(k, v);
+        }
+    });
+}
+
 /// Output buffers for the forms of one map: `BATCH` scalar outputs, `BATCH / 8` and
 /// `BATCH / 16` lane groups.
 pub struct Outputs<O, O8, O16> {

@@ -21,20 +21,6 @@ fn weights(w: usize, h: usize, seed: u64) -> Vec<f32> {
     super::random_weights(w, h, seed, |x| 1.0 + 10f32.powf(3.0 * x))
 }
 
-/// A distribution's `sample` (with `pdf` at the sampled point) and `pdf`, as closures.
-fn sample_and_pdf<D: Distribution>(
-    d: &D,
-) -> (
-    impl Fn([f32; 2]) -> (Sample, f32) + '_,
-    impl Fn([f32; 2]) -> f32 + '_,
-) {
-    let sample = move |u| {
-        let s = d.sample(u);
-        (s, d.pdf(s.uv))
-    };
-    (sample, move |uv| d.pdf(uv))
-}
-
 /// The compensated weights, in `f64`, from the definition (not the library's code).
 fn reference(wts: &[f32], w: usize, h: usize, how: Compensation) -> Vec<f64> {
     signed_reference(wts, w, h, how)
@@ -339,55 +325,53 @@ fn subnormal_maps_agree_between_distributions() {
         let hier = Hierarchical::new_compensated(&wts, w, h, how, &mut hs).unwrap();
         let mut ms = vec![0 as Word; MarginalConditional::storage_len(w, h)];
         let marg = MarginalConditional::new_compensated(&wts, w, h, how, &mut ms).unwrap();
-        let check =
-            |d: &dyn Fn([f32; 2]) -> (Sample, f32), pdf: &dyn Fn([f32; 2]) -> f32, hier: bool| {
-                let name = if hier { "hierarchical" } else { "marginal" };
-                let mut sum = 0.0;
-                for r in 0..h {
-                    for c in 0..w {
-                        let p = pdf(centre(c, r, w, h)) as f64 / (w * h) as f64;
-                        sum += p;
-                        let x = want[r * w + c] / total;
-                        if x == 0.0 {
-                            assert_eq!(p, 0.0, "{name} [{c}, {r}] zero weight, {label}");
-                        } else if !hier || x >= 1.0 / (1u64 << 20) as f64 {
-                            assert!(p > 0.0, "{name} [{c}, {r}] unreachable, {label}");
-                        }
-                        if x >= 1.0 / (16 * w * h) as f64 {
-                            assert!(
-                                (p / x - 1.0).abs() < 1e-4,
-                                "{name} [{c}, {r}]: {p} vs {x}, {label}"
-                            );
-                        }
+        let check = |d: &dyn super::Dist, hier: bool| {
+            let name = if hier { "hierarchical" } else { "marginal" };
+            let mut sum = 0.0;
+            for r in 0..h {
+                for c in 0..w {
+                    let p = d.pdf(centre(c, r, w, h)) as f64 / (w * h) as f64;
+                    sum += p;
+                    let x = want[r * w + c] / total;
+                    if x == 0.0 {
+                        assert_eq!(p, 0.0, "{name} [{c}, {r}] zero weight, {label}");
+                    } else if !hier || x >= 1.0 / (1u64 << 20) as f64 {
+                        assert!(p > 0.0, "{name} [{c}, {r}] unreachable, {label}");
+                    }
+                    if x >= 1.0 / (16 * w * h) as f64 {
+                        assert!(
+                            (p / x - 1.0).abs() < 1e-4,
+                            "{name} [{c}, {r}]: {p} vs {x}, {label}"
+                        );
                     }
                 }
-                assert!((sum - 1.0).abs() < 1e-6, "{name}: sum {sum}, {label}");
-                let mut u = rng(i as u64);
-                for k in 0..64 {
-                    let u = match k {
-                        0 => [0.0, 0.0],
-                        1 => [ONE_MINUS_EPS; 2],
-                        _ => unit2(&mut u),
-                    };
-                    let (s, at) = d(u);
-                    let t = s.texel[1] as usize * w + s.texel[0] as usize;
-                    assert!(
-                        want[t] > 0.0,
-                        "{name} {u:?}: zero-weight texel {:?}, {label}",
-                        s.texel
-                    );
-                    assert!(
-                        s.pdf.is_finite() && s.pdf > 0.0,
-                        "{name}: pdf {}, {label}",
-                        s.pdf
-                    );
-                    assert_eq!(s.pdf.to_bits(), at.to_bits(), "{name}: pdf(uv), {label}");
-                }
-            };
-        let (sample, pdf) = sample_and_pdf(&hier);
-        check(&sample, &pdf, true);
-        let (sample, pdf) = sample_and_pdf(&marg);
-        check(&sample, &pdf, false);
+            }
+            assert!((sum - 1.0).abs() < 1e-6, "{name}: sum {sum}, {label}");
+            let mut u = rng(i as u64);
+            for k in 0..64 {
+                let u = match k {
+                    0 => [0.0, 0.0],
+                    1 => [ONE_MINUS_EPS; 2],
+                    _ => unit2(&mut u),
+                };
+                let s = d.sample(u);
+                let at = d.pdf(s.uv);
+                let t = s.texel[1] as usize * w + s.texel[0] as usize;
+                assert!(
+                    want[t] > 0.0,
+                    "{name} {u:?}: zero-weight texel {:?}, {label}",
+                    s.texel
+                );
+                assert!(
+                    s.pdf.is_finite() && s.pdf > 0.0,
+                    "{name}: pdf {}, {label}",
+                    s.pdf
+                );
+                assert_eq!(s.pdf.to_bits(), at.to_bits(), "{name}: pdf(uv), {label}");
+            }
+        };
+        check(&hier, true);
+        check(&marg, false);
     }
     eprintln!(
         "{cases} maps checked ({compensated} compensated, not the fallback), {skipped} skipped"
