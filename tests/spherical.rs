@@ -726,23 +726,23 @@ fn widths_agree_bit_for_bit() {
     let rects = stiff_rects();
     let us = stiff_us();
     for round in 0..400 {
-        let mut tv = vec![];
-        let mut rv = vec![];
-        for j in 0..16 {
-            let (u, size, dist) = lane_u_and_scale(&mut r, &us, round, j);
-            let (v, p) = if j % 4 == 1 {
-                tris[(round * 7 + j) % tris.len()]
-            } else {
-                random_triangle(&mut r, size, dist, dist)
-            };
-            let rc = if j % 4 == 1 {
-                rects[(round * 7 + j) % rects.len()]
-            } else {
-                random_rect(&mut r, size, dist, dist)
-            };
-            tv.push((v, p, u));
-            rv.push((rc, u));
-        }
+        // Every lane its own light: every fourth a stiff one.
+        let (tv, rv): (Vec<_>, Vec<_>) = (0..16)
+            .map(|j| {
+                let (u, size, dist) = lane_u_and_scale(&mut r, &us, round, j);
+                let (v, p) = if j % 4 == 1 {
+                    tris[(round * 7 + j) % tris.len()]
+                } else {
+                    random_triangle(&mut r, size, dist, dist)
+                };
+                let rc = if j % 4 == 1 {
+                    rects[(round * 7 + j) % rects.len()]
+                } else {
+                    random_rect(&mut r, size, dist, dist)
+                };
+                ((v, p, u), (rc, u))
+            })
+            .unzip();
         // Triangles.
         let (v8, v16) = soa_k(&tv.iter().map(|t| t.0).collect::<Vec<_>>());
         let ([p8], [p16]) = soa_k(&tv.iter().map(|t| [t.1]).collect::<Vec<_>>());
@@ -1215,15 +1215,15 @@ fn cosine_widths_agree_bit_for_bit() {
     let mut r = rng(53);
     let us = stiff_us();
     for round in 0..200 {
-        let mut tv = vec![];
-        let mut rv = vec![];
-        for j in 0..16 {
-            let (u, size, dist) = lane_u_and_scale(&mut r, &us, round, j);
-            let n = f3(dir(&mut r));
-            let (v, p) = random_triangle(&mut r, size, dist, dist);
-            tv.push((v, p, n, u));
-            rv.push((random_rect(&mut r, size, dist, dist), n, u));
-        }
+        // Every lane its own light and normal.
+        let (tv, rv): (Vec<_>, Vec<_>) = (0..16)
+            .map(|j| {
+                let (u, size, dist) = lane_u_and_scale(&mut r, &us, round, j);
+                let n = f3(dir(&mut r));
+                let (v, p) = random_triangle(&mut r, size, dist, dist);
+                ((v, p, n, u), (random_rect(&mut r, size, dist, dist), n, u))
+            })
+            .unzip();
         let (v8, v16) = soa_k(&tv.iter().map(|t| t.0).collect::<Vec<_>>());
         let ([p8, n8], [p16, n16]) = soa_k(&tv.iter().map(|t| [t.1, t.2]).collect::<Vec<_>>());
         let (u8_, u16_) = soa(&tv.iter().map(|t| t.3).collect::<Vec<_>>());
