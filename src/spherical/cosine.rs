@@ -99,7 +99,7 @@ pub(super) fn rectangle_weights<L: Lane>(r: &Rect<L>, n: V<L>) -> [L; 4] {
 /// `u` warped by the bilinear weights `w`, then mapped by `sample` (a prepared light's map):
 /// the point, and the solid-angle density times the bilinear factor, kept finite.
 #[inline(always)]
-fn warped<L: Lane, P, const N: usize>(
+pub(super) fn warped<L: Lane, P, const N: usize>(
     pr: &P,
     w: [L; 4],
     u: [L; 2],
@@ -111,28 +111,10 @@ fn warped<L: Lane, P, const N: usize>(
 }
 
 #[inline(always)]
-pub(super) fn triangle_prepared<L: Lane>(
-    pr: &triangle::Prepared<L>,
-    w: [L; 4],
-    u: [L; 2],
-) -> ([L; 3], L) {
-    warped(pr, w, u, triangle::sample_prepared)
-}
-
-#[inline(always)]
 pub(super) fn triangle_body<L: Lane>(v: [V<L>; 3], p: V<L>, n: V<L>, u: [L; 2]) -> ([L; 3], L) {
     let pr = triangle::prepare(v, p);
     let w = triangle_weights(&pr.t, n);
-    triangle_prepared(&pr, w, u)
-}
-
-#[inline(always)]
-pub(super) fn rectangle_prepared<L: Lane>(
-    pr: &rectangle::Prepared<L>,
-    w: [L; 4],
-    u: [L; 2],
-) -> ([L; 2], L) {
-    warped(pr, w, u, rectangle::sample_prepared)
+    warped(&pr, w, u, triangle::sample_prepared)
 }
 
 #[inline(always)]
@@ -146,5 +128,5 @@ pub(super) fn rectangle_body<L: Lane>(
 ) -> ([L; 2], L) {
     let pr = rectangle::prepare(corner, ex, ey, p);
     let w = rectangle_weights(&pr.r, n);
-    rectangle_prepared(&pr, w, u)
+    warped(&pr, w, u, rectangle::sample_prepared)
 }

@@ -331,7 +331,7 @@ pub fn triangle_cosine_slice(
     let prep = triangle::prepare::<slices::Widest>(splat33(v), splat3(p));
     let w = cosine::triangle_weights(&prep.t, splat3(n));
     slices::map_lanes(u, out, |u: [slices::Widest; 2]| {
-        let (b, d) = cosine::triangle_prepared(&prep, w, u);
+        let (b, d) = cosine::warped(&prep, w, u, triangle::sample_prepared);
         [b[0], b[1], b[2], d]
     })
 }
@@ -364,7 +364,7 @@ pub fn rectangle_cosine_slice(
         rectangle::prepare::<slices::Widest>(splat3(corner), splat3(ex), splat3(ey), splat3(p));
     let w = cosine::rectangle_weights(&prep.r, splat3(n));
     slices::map_lanes(u, out, |u: [slices::Widest; 2]| {
-        let (st, d) = cosine::rectangle_prepared(&prep, w, u);
+        let (st, d) = cosine::warped(&prep, w, u, rectangle::sample_prepared);
         [st[0], st[1], d]
     })
 }
