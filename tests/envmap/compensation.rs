@@ -21,6 +21,22 @@ fn weights(w: usize, h: usize, seed: u64) -> Vec<f32> {
     super::random_weights(w, h, seed, |x| 1.0 + 10f32.powf(3.0 * x))
 }
 
+/// Per texel, row-major: `(column, row, pdf(centre) / (w h), want / sum(want))`, the
+/// reported and the wanted probability.
+fn shares<'a>(
+    pdf: impl Fn([f32; 2]) -> f32 + 'a,
+    w: usize,
+    h: usize,
+    want: &'a [f64],
+) -> impl Iterator<Item = (usize, usize, f64, f64)> + 'a {
+    let total: f64 = want.iter().sum();
+    (0..w * h).map(move |t| {
+        let (c, r) = (t % w, t / w);
+        let p = pdf(centre(c, r, w, h)) as f64 / (w * h) as f64;
+        (c, r, p, want[t] / total)
+    })
+}
+
 /// The compensated weights, in `f64`, from the definition (not the library's code).
 fn reference(wts: &[f32], w: usize, h: usize, how: Compensation) -> Vec<f64> {
     signed_reference(wts, w, h, how)
@@ -41,21 +57,16 @@ fn centre(c: usize, r: usize, w: usize, h: usize) -> [f32; 2] {
 /// sixteenth of the average (both distributions' documented precision at these sizes).
 fn check_against_reference<D: Distribution>(d: &D, want: &[f64], label: &str) {
     let (w, h) = (d.width(), d.height());
-    let total: f64 = want.iter().sum();
     let avg = 1.0 / (w * h) as f64;
     let mut sum = 0.0;
     let mut removed = 0;
-    for r in 0..h {
-        for c in 0..w {
-            let p = d.pdf(centre(c, r, w, h)) as f64 / (w * h) as f64;
-            sum += p;
-            let x = want[r * w + c] / total;
-            if x == 0.0 {
-                assert_eq!(p, 0.0, "{label} [{c}, {r}] removed");
-                removed += 1;
-            } else if x >= avg / 16.0 {
-                assert!((p / x - 1.0).abs() < 1e-4, "{label} [{c}, {r}]: {p} vs {x}");
-            }
+    for (c, r, p, x) in shares(|uv| d.pdf(uv), w, h, want) {
+        sum += p;
+        if x == 0.0 {
+            assert_eq!(p, 0.0, "{label} [{c}, {r}] removed");
+            removed += 1;
+        } else if x >= avg / 16.0 {
+            assert!((p / x - 1.0).abs() < 1e-4, "{label} [{c}, {r}]: {p} vs {x}");
         }
     }
     assert!((sum - 1.0).abs() < 1e-6, "{label}: sum {sum}");
@@ -319,7 +330,6 @@ fn subnormal_maps_agree_between_distributions() {
         }
         cases += 1;
         compensated += usize::from(want != raw);
-        let total: f64 = want.iter().sum();
         let label = format!("{w}x{h} {how:?} {wts:?}");
         let mut hs = vec![0 as Word; Hierarchical::storage_len(w, h)];
         let hier = Hierarchical::new_compensated(&wts, w, h, how, &mut hs).unwrap();
@@ -328,22 +338,18 @@ fn subnormal_maps_agree_between_distributions() {
         let check = |d: &dyn super::Dist, hier: bool| {
             let name = if hier { "hierarchical" } else { "marginal" };
             let mut sum = 0.0;
-            for r in 0..h {
-                for c in 0..w {
-                    let p = d.pdf(centre(c, r, w, h)) as f64 / (w * h) as f64;
-                    sum += p;
-                    let x = want[r * w + c] / total;
-                    if x == 0.0 {
-                        assert_eq!(p, 0.0, "{name} [{c}, {r}] zero weight, {label}");
-                    } else if !hier || x >= 1.0 / (1u64 << 20) as f64 {
-                        assert!(p > 0.0, "{name} [{c}, {r}] unreachable, {label}");
-                    }
-                    if x >= 1.0 / (16 * w * h) as f64 {
-                        assert!(
-                            (p / x - 1.0).abs() < 1e-4,
-                            "{name} [{c}, {r}]: {p} vs {x}, {label}"
-                        );
-                    }
+            for (c, r, p, x) in shares(|uv| d.pdf(uv), w, h, &want) {
+                sum += p;
+                if x == 0.0 {
+                    assert_eq!(p, 0.0, "{name} [{c}, {r}] zero weight, {label}");
+                } else if !hier || x >= 1.0 / (1u64 << 20) as f64 {
+                    assert!(p > 0.0, "{name} [{c}, {r}] unreachable, {label}");
+                }
+                if x >= 1.0 / (16 * w * h) as f64 {
+                    assert!(
+                        (p / x - 1.0).abs() < 1e-4,
+                        "{name} [{c}, {r}]: {p} vs {x}, {label}"
+                    );
                 }
             }
             assert!((sum - 1.0).abs() < 1e-6, "{name}: sum {sum}, {label}");
