@@ -72,22 +72,19 @@ fn quadrant_group(
         scalar(points[i / 4], i as u32 % 4)
     });
     // Each group of lanes takes its points once and the four quadrants in turn.
-    let soa = common::to_soa(&points);
+    let (soa, soa16) = (common::to_soa(&points), common::to_soa16(&points));
     let q8: [u32x8; 4] = std::array::from_fn(|j| u32x8::splat(j as u32));
-    bench_indexed(
-        &mut g,
-        "warpcore x8",
-        &mut vec![[f32x8::ZERO; 2]; BATCH / 8],
-        |k| x8(soa[k / 4], q8[k % 4]),
-    );
-    let soa16 = common::to_soa16(&points);
     let q16: [u32x16; 4] = std::array::from_fn(|j| u32x16::splat(j as u32));
-    bench_indexed(
-        &mut g,
-        "warpcore x16",
-        &mut vec![[f32x16::ZERO; 2]; BATCH / 16],
-        |k| x16(soa16[k / 4], q16[k % 4]),
+    let (mut out8, mut out16) = (
+        vec![[f32x8::ZERO; 2]; BATCH / 8],
+        vec![[f32x16::ZERO; 2]; BATCH / 16],
     );
+    bench_indexed(&mut g, "warpcore x8", &mut out8, |k| {
+        x8(soa[k / 4], q8[k % 4])
+    });
+    bench_indexed(&mut g, "warpcore x16", &mut out16, |k| {
+        x16(soa16[k / 4], q16[k % 4])
+    });
     bench_out(&mut g, "warpcore slice", &mut out, |out| {
         slice(black_box(&points), out);
     });
