@@ -7,26 +7,18 @@
 
 mod common;
 
-use common::{BATCH, peer_fill, peer_scalar, warp_group};
+use common::{BATCH, bench_indexed, bench_out, peer_fill, peer_scalar, warp_group};
 use rand::SeedableRng;
 use rand_distr::{Distribution, UnitDisc};
 use rand_xoshiro::Xoshiro128PlusPlus;
-use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
+use std::f32::consts::{FRAC_PI_2, TAU};
 use std::hint::black_box;
 use warpcore::{disk, f32x8, f32x16, u32x8, u32x16};
+use warpcore_testkit::textbook;
 
 /// Shirley-Chiu as published, two branches, libm sin/cos.
 fn concentric_libm(u: [f32; 2]) -> [f32; 2] {
-    let a = 2.0 * u[0] - 1.0;
-    let b = 2.0 * u[1] - 1.0;
-    if a == 0.0 && b == 0.0 {
-        return [0.0, 0.0];
-    }
-    let (r, phi) = if a.abs() > b.abs() {
-        (a, FRAC_PI_4 * (b / a))
-    } else {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    };
+    let (r, phi) = textbook::concentric_polar(2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
     [r * libm::cosf(phi), r * libm::sinf(phi)]
 }
 
@@ -43,14 +35,7 @@ fn polar4_libm(u: [f32; 2], q: u32) -> [f32; 2] {
 /// Concentric4 as specified (Shirley-Chiu on the quarter disk, then the quarter turns), two
 /// branches, libm sin/cos.
 fn concentric4_libm(u: [f32; 2], q: u32) -> [f32; 2] {
-    let (a, b) = (u[0], u[1]);
-    let (r, phi) = if a > b {
-        (a, FRAC_PI_4 * (b / a))
-    } else if b > 0.0 {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    } else {
-        return [0.0, 0.0];
-    };
+    let (r, phi) = textbook::concentric_polar(u[0], u[1]);
     let (x, y) = (r * libm::cosf(phi), r * libm::sinf(phi));
     match q % 4 {
         0 => [x, y],
@@ -81,65 +66,37 @@ fn quadrant_group(
     textbook: impl Fn([f32; 2], u32) -> [f32; 2],
 ) {
     let points = common::uniform_points(BATCH / 4, 3);
-    let mut g = c.benchmark_group(name);
-    g.throughput(criterion::Throughput::Elements(BATCH as u64));
+    let mut g = common::group(c, name);
     let mut out = vec![[0.0f32; 2]; BATCH];
-    g.bench_function("warpcore scalar loop", |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                *o = scalar(points[i / 4], i as u32 % 4);
-            }
-            black_box(&mut out);
-        })
+    bench_indexed(&mut g, "warpcore scalar loop", &mut out, |i| {
+        scalar(points[i / 4], i as u32 % 4)
     });
-    let soa = common::to_soa(&points);
-    let mut out8 = vec![[f32x8::ZERO; 2]; BATCH / 8];
-    g.bench_function("warpcore x8", |b| {
-        let q: [u32x8; 4] = std::array::from_fn(|j| u32x8::splat(j as u32));
-        b.iter(|| {
-            for (k, o) in out8.chunks_exact_mut(4).enumerate() {
-                let p = soa[k];
-                for (j, oo) in o.iter_mut().enumerate() {
-                    *oo = x8(p, q[j]);
-                }
-            }
-            black_box(&mut out8);
-        })
+    // Each group of lanes takes its points once and the four quadrants in turn.
+    let (soa, soa16) = (common::to_soa(&points), common::to_soa16(&points));
+    let q8: [u32x8; 4] = std::array::from_fn(|j| u32x8::splat(j as u32));
+    let q16: [u32x16; 4] = std::array::from_fn(|j| u32x16::splat(j as u32));
+    let (mut out8, mut out16) = (
+        vec![[f32x8::ZERO; 2]; BATCH / 8],
+        vec![[f32x16::ZERO; 2]; BATCH / 16],
+    );
+    bench_indexed(&mut g, "warpcore x8", &mut out8, |k| {
+        x8(soa[k / 4], q8[k % 4])
     });
-    let soa16 = common::to_soa16(&points);
-    let mut out16 = vec![[f32x16::ZERO; 2]; BATCH / 16];
-    g.bench_function("warpcore x16", |b| {
-        let q: [u32x16; 4] = std::array::from_fn(|j| u32x16::splat(j as u32));
-        b.iter(|| {
-            for (k, o) in out16.chunks_exact_mut(4).enumerate() {
-                let p = soa16[k];
-                for (j, oo) in o.iter_mut().enumerate() {
-                    *oo = x16(p, q[j]);
-                }
-            }
-            black_box(&mut out16);
-        })
+    bench_indexed(&mut g, "warpcore x16", &mut out16, |k| {
+        x16(soa16[k / 4], q16[k % 4])
     });
-    g.bench_function("warpcore slice", |b| {
-        b.iter(|| {
-            slice(black_box(&points), &mut out);
-            black_box(&mut out);
-        })
+    bench_out(&mut g, "warpcore slice", &mut out, |out| {
+        slice(black_box(&points), out);
     });
-    g.bench_function("libm textbook (scalar)", |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                *o = textbook(points[i / 4], i as u32 % 4);
-            }
-            black_box(&mut out);
-        })
+    bench_indexed(&mut g, "libm textbook (scalar)", &mut out, |i| {
+        textbook(points[i / 4], i as u32 % 4)
     });
-    g.bench_function("rand_distr::UnitDisc (Xoshiro128++)", |b| {
-        b.iter(|| {
-            unit_disc(&mut out);
-            black_box(&mut out);
-        })
-    });
+    bench_out(
+        &mut g,
+        "rand_distr::UnitDisc (Xoshiro128++)",
+        &mut out,
+        unit_disc,
+    );
     g.finish();
 }
 

@@ -8,13 +8,13 @@
 
 mod common;
 
-use common::{BATCH, to_soa, to_soa16, uniform_points};
+use common::{BATCH, Outputs, bench_map, forms, uniform_points};
 use criterion::{BenchmarkGroup, Criterion, Throughput, measurement::WallTime};
 use std::hint::black_box;
 use warpcore::envmap::{
-    Hierarchical, MarginalConditional, Sample, SampleX8, SampleX16, Word, image,
+    Distribution, Hierarchical, MarginalConditional, Sample, SampleX8, SampleX16, Word, image,
 };
-use warpcore::{f32x8, f32x16};
+use warpcore::{f32x8, f32x16, u32x8, u32x16};
 
 /// Lat-long luminance weights of the `park` map.
 fn park() -> (Vec<f32>, usize, usize) {
@@ -24,29 +24,6 @@ fn park() -> (Vec<f32>, usize, usize) {
     image::luminance_slice(&img.rgb, &mut l);
     image::equirect_solid_angle_weights(&mut l, w, h).unwrap();
     (l, w, h)
-}
-
-/// Bilinear upsampling by an integer factor (texel centres aligned).
-fn upsample(src: &[f32], w: usize, h: usize, k: usize) -> Vec<f32> {
-    let (nw, nh) = (w * k, h * k);
-    let at = |x: isize, y: isize| {
-        let x = x.rem_euclid(w as isize) as usize; // wraps around in longitude
-        let y = y.clamp(0, h as isize - 1) as usize;
-        src[y * w + x].max(0.0)
-    };
-    let mut out = vec![0.0f32; nw * nh];
-    for y in 0..nh {
-        let fy = (y as f32 + 0.5) / k as f32 - 0.5;
-        let (y0, ty) = (fy.floor() as isize, fy - fy.floor());
-        for x in 0..nw {
-            let fx = (x as f32 + 0.5) / k as f32 - 0.5;
-            let (x0, tx) = (fx.floor() as isize, fx - fx.floor());
-            let top = at(x0, y0) * (1.0 - tx) + at(x0 + 1, y0) * tx;
-            let bottom = at(x0, y0 + 1) * (1.0 - tx) + at(x0 + 1, y0 + 1) * tx;
-            out[y * nw + x] = top * (1.0 - ty) + bottom * ty;
-        }
-    }
-    out
 }
 
 /// The textbook peer: `f32` CDFs (normalized running sums), binary search with
@@ -119,6 +96,28 @@ impl F32Cdf {
     }
 }
 
+/// The warpcore forms of one distribution's `sample`, labelled "`name`, scalar loop" and so on.
+fn variants<D: Distribution>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    name: &str,
+    d: &D,
+    input: &[[f32; 2]],
+    outs: &mut Outputs<Sample, SampleX8, SampleX16>,
+) {
+    let label = |v: &str| format!("{name}, {v}");
+    let (x8, x16) = (|u| d.sample_x8(u), |u| d.sample_x16(u));
+    forms(
+        g,
+        label,
+        input,
+        outs,
+        |u| d.sample(u),
+        x8,
+        x16,
+        |u, o| d.sample_slice(u, o),
+    );
+}
+
 fn sample_group<'c>(
     c: &'c mut Criterion,
     name: &str,
@@ -127,93 +126,43 @@ fn sample_group<'c>(
     h: usize,
 ) -> BenchmarkGroup<'c, WallTime> {
     let input = uniform_points::<2>(BATCH, 7);
-    let soa = to_soa(&input);
-    let soa16 = to_soa16(&input);
-    let mut out = vec![
-        Sample {
-            uv: [0.0; 2],
-            pdf: 0.0,
-            texel: [0; 2]
-        };
-        BATCH
-    ];
-    let mut out8 = vec![
-        SampleX8 {
-            uv: [f32x8::ZERO; 2],
-            pdf: f32x8::ZERO,
-            texel: [warpcore::u32x8::ZERO; 2]
-        };
-        BATCH / 8
-    ];
-    let mut out16 = vec![
-        SampleX16 {
-            uv: [f32x16::ZERO; 2],
-            pdf: f32x16::ZERO,
-            texel: [warpcore::u32x16::ZERO; 2]
-        };
-        BATCH / 16
-    ];
-    let mut g = c.benchmark_group(name);
-    g.throughput(Throughput::Elements(BATCH as u64));
+    let texel = [0; 2];
+    let zero = Sample {
+        uv: [0.0; 2],
+        pdf: 0.0,
+        texel,
+    };
+    let (z8, u8) = (f32x8::ZERO, [u32x8::ZERO; 2]);
+    let (z16, u16) = (f32x16::ZERO, [u32x16::ZERO; 2]);
+    let zero8 = SampleX8 {
+        uv: [z8; 2],
+        pdf: z8,
+        texel: u8,
+    };
+    let zero16 = SampleX16 {
+        uv: [z16; 2],
+        pdf: z16,
+        texel: u16,
+    };
+    let mut outs = Outputs::new(zero, zero8, zero16);
+    let mut g = common::group(c, name);
 
-    let mut sm = vec![0 as Word; MarginalConditional::storage_len(w, h)];
-    let m = MarginalConditional::new(weights, w, h, &mut sm).unwrap();
     let mut sh = vec![0 as Word; Hierarchical::storage_len(w, h)];
     let hd = Hierarchical::new(weights, w, h, &mut sh).unwrap();
-    macro_rules! variants {
-        ($d:expr, $label:literal) => {
-            g.bench_function(concat!($label, ", scalar loop"), |b| {
-                b.iter(|| {
-                    for (o, u) in out.iter_mut().zip(black_box(&input)) {
-                        *o = $d.sample(*u);
-                    }
-                    black_box(&mut out);
-                })
-            });
-            g.bench_function(concat!($label, ", scalar, one call at a time"), |b| {
-                b.iter(|| {
-                    for (o, u) in out.iter_mut().zip(&input) {
-                        *o = $d.sample(black_box(*u));
-                    }
-                    black_box(&mut out);
-                })
-            });
-            g.bench_function(concat!($label, ", x8"), |b| {
-                b.iter(|| {
-                    for (o, u) in out8.iter_mut().zip(black_box(&soa)) {
-                        *o = $d.sample_x8(*u);
-                    }
-                    black_box(&mut out8);
-                })
-            });
-            g.bench_function(concat!($label, ", x16"), |b| {
-                b.iter(|| {
-                    for (o, u) in out16.iter_mut().zip(black_box(&soa16)) {
-                        *o = $d.sample_x16(*u);
-                    }
-                    black_box(&mut out16);
-                })
-            });
-            g.bench_function(concat!($label, ", slice"), |b| {
-                b.iter(|| {
-                    $d.sample_slice(black_box(&input), &mut out);
-                    black_box(&mut out);
-                })
-            });
-        };
-    }
-    variants!(hd, "warpcore hierarchical");
-    variants!(m, "warpcore marginal-conditional");
+    variants(&mut g, "warpcore hierarchical", &hd, &input, &mut outs);
+    let mut sm = vec![0 as Word; MarginalConditional::storage_len(w, h)];
+    let m = MarginalConditional::new(weights, w, h, &mut sm).unwrap();
+    variants(
+        &mut g,
+        "warpcore marginal-conditional",
+        &m,
+        &input,
+        &mut outs,
+    );
     let peer = F32Cdf::new(weights, w, h);
+    let label = "f32-CDF marginal-conditional (textbook), scalar";
     let mut pout = vec![([0.0f32; 2], 0.0f32); BATCH];
-    g.bench_function("f32-CDF marginal-conditional (textbook), scalar", |b| {
-        b.iter(|| {
-            for (o, u) in pout.iter_mut().zip(black_box(&input)) {
-                *o = peer.sample(*u);
-            }
-            black_box(&mut pout);
-        })
-    });
+    bench_map(&mut g, label, &input, &mut pout, |u| peer.sample(u));
     g
 }
 
@@ -250,7 +199,7 @@ fn build_group(c: &mut Criterion, name: &str, weights: &[f32], w: usize, h: usiz
 fn main() {
     let mut c = common::criterion();
     let (small, w, h) = park();
-    let big = upsample(&small, w, h, 8);
+    let big = pfm::upsample(&small, w, h, 8);
     let (bw, bh) = (w * 8, h * 8);
 
     sample_group(&mut c, "envmap/sample park 512x256", &small, w, h).finish();

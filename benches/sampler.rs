@@ -22,9 +22,9 @@
 
 mod common;
 
-use common::BATCH;
+use common::{BATCH, bench_hoisted, bench_indexed, bench_out};
+use criterion::BenchmarkGroup;
 use criterion::measurement::WallTime;
-use criterion::{BenchmarkGroup, Throughput};
 use openqmc::{LatticeSampler, PmjBnSampler, PmjSampler, SobolBnSampler, SobolSampler};
 use std::hint::black_box;
 use warpcore::sampler::{Blue, Pattern, Pmj02bn, Sampler, SamplerX8, SamplerX16, Sobol};
@@ -40,64 +40,58 @@ const DOMAIN: u32 = 5;
 /// pixel's samples, where the compiler may hoist what does not depend on the index).
 fn ours<P: Pattern>(g: &mut BenchmarkGroup<'_, WallTime>, name: &str, pixel_loop: bool) {
     let mut out = vec![[0.0f32; 4]; BATCH];
-    g.bench_function(format!("warpcore Sampler<{name}> scalar"), |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                let s = Sampler::<P>::new(black_box(PIXEL), FRAME, i as u32, SEED);
-                *o = s.domain(DOMAIN).draw::<4>();
-            }
-            black_box(&mut out);
-        })
-    });
+    bench_indexed(
+        g,
+        &format!("warpcore Sampler<{name}> scalar"),
+        &mut out,
+        |i| {
+            let s = Sampler::<P>::new(black_box(PIXEL), FRAME, i as u32, SEED);
+            s.domain(DOMAIN).draw::<4>()
+        },
+    );
     if pixel_loop {
-        g.bench_function(
-            format!("warpcore Sampler<{name}> scalar, pixel loop"),
-            |b| {
-                b.iter(|| {
-                    let pixel = black_box(PIXEL);
-                    for (i, o) in out.iter_mut().enumerate() {
-                        let s = Sampler::<P>::new(pixel, FRAME, i as u32, SEED);
-                        *o = s.domain(DOMAIN).draw::<4>();
-                    }
-                    black_box(&mut out);
-                })
+        let label = format!("warpcore Sampler<{name}> scalar, pixel loop");
+        bench_hoisted(
+            g,
+            &label,
+            &mut out,
+            || black_box(PIXEL),
+            |i, pixel| {
+                let s = Sampler::<P>::new(pixel, FRAME, i as u32, SEED);
+                s.domain(DOMAIN).draw::<4>()
             },
         );
     }
+    let lane = u32x8::new(std::array::from_fn(|j| j as u32));
     let mut out8 = vec![[f32x8::ZERO; 4]; BATCH / 8];
-    g.bench_function(format!("warpcore Sampler<{name}> x8"), |b| {
-        let lane = u32x8::new(std::array::from_fn(|j| j as u32));
-        b.iter(|| {
-            for (k, o) in out8.iter_mut().enumerate() {
-                let [x, y] = black_box(PIXEL).map(u32x8::splat);
-                let index = u32x8::splat(8 * k as u32) + lane;
-                let s = SamplerX8::<P>::new([x, y], u32x8::splat(FRAME), index, u32x8::splat(SEED));
-                *o = s.domain(DOMAIN).draw::<4>();
-            }
-            black_box(&mut out8);
-        })
+    bench_indexed(g, &format!("warpcore Sampler<{name}> x8"), &mut out8, |k| {
+        let [x, y] = black_box(PIXEL).map(u32x8::splat);
+        let index = u32x8::splat(8 * k as u32) + lane;
+        let s = SamplerX8::<P>::new([x, y], u32x8::splat(FRAME), index, u32x8::splat(SEED));
+        s.domain(DOMAIN).draw::<4>()
     });
+    let lane = u32x16::new(std::array::from_fn(|j| j as u32));
     let mut out16 = vec![[f32x16::ZERO; 4]; BATCH / 16];
-    g.bench_function(format!("warpcore Sampler<{name}> x16"), |b| {
-        let lane = u32x16::new(std::array::from_fn(|j| j as u32));
-        b.iter(|| {
-            for (k, o) in out16.iter_mut().enumerate() {
-                let [x, y] = black_box(PIXEL).map(u32x16::splat);
-                let index = u32x16::splat(16 * k as u32) + lane;
-                let s =
-                    SamplerX16::<P>::new([x, y], u32x16::splat(FRAME), index, u32x16::splat(SEED));
-                *o = s.domain(DOMAIN).draw::<4>();
-            }
-            black_box(&mut out16);
-        })
-    });
-    g.bench_function(format!("warpcore Sampler<{name}> draw_slice"), |b| {
-        b.iter(|| {
+    bench_indexed(
+        g,
+        &format!("warpcore Sampler<{name}> x16"),
+        &mut out16,
+        |k| {
+            let [x, y] = black_box(PIXEL).map(u32x16::splat);
+            let index = u32x16::splat(16 * k as u32) + lane;
+            let s = SamplerX16::<P>::new([x, y], u32x16::splat(FRAME), index, u32x16::splat(SEED));
+            s.domain(DOMAIN).draw::<4>()
+        },
+    );
+    bench_out(
+        g,
+        &format!("warpcore Sampler<{name}> draw_slice"),
+        &mut out,
+        |out| {
             let s = Sampler::<P>::new(black_box(PIXEL), FRAME, 0, SEED).domain(DOMAIN);
-            s.draw_slice(&mut out);
-            black_box(&mut out);
-        })
-    });
+            s.draw_slice(out);
+        },
+    );
 }
 
 /// An openqmc-rs sampler, scalar (its only form): `draw(x, y, frame, index)` builds the
@@ -109,24 +103,15 @@ fn openqmc(
     draw: impl Fn(i32, i32, i32, i32) -> [f32; 4],
 ) {
     let mut out = vec![[0.0f32; 4]; BATCH];
-    g.bench_function(format!("openqmc-rs {name}"), |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                let [x, y] = black_box(PIXEL).map(|c| c as i32);
-                *o = draw(x, y, FRAME as i32, i as i32);
-            }
-            black_box(&mut out);
-        })
+    bench_indexed(g, &format!("openqmc-rs {name}"), &mut out, |i| {
+        let [x, y] = black_box(PIXEL).map(|c| c as i32);
+        draw(x, y, FRAME as i32, i as i32)
     });
     if pixel_loop {
-        g.bench_function(format!("openqmc-rs {name}, pixel loop"), |b| {
-            b.iter(|| {
-                let [x, y] = black_box(PIXEL).map(|c| c as i32);
-                for (i, o) in out.iter_mut().enumerate() {
-                    *o = draw(x, y, FRAME as i32, i as i32);
-                }
-                black_box(&mut out);
-            })
+        let label = format!("openqmc-rs {name}, pixel loop");
+        let pixel = || black_box(PIXEL).map(|c| c as i32);
+        bench_hoisted(g, &label, &mut out, pixel, |i, [x, y]| {
+            draw(x, y, FRAME as i32, i as i32)
         });
     }
 }
@@ -157,22 +142,16 @@ fn random_pixels() -> Vec<[u32; 2]> {
 fn per_call(c: &mut criterion::Criterion) {
     let pixels = random_pixels();
     let mut out = vec![[0.0f32; 4]; BATCH];
-    let mut g = c.benchmark_group("sampler, per call");
-    g.throughput(Throughput::Elements(BATCH as u64));
+    let mut g = common::group(c, "sampler, per call");
     fn ours<P: Pattern>(
         g: &mut BenchmarkGroup<'_, WallTime>,
         name: &str,
         pixels: &[[u32; 2]],
         out: &mut [[f32; 4]],
     ) {
-        g.bench_function(format!("warpcore Sampler<{name}>"), |b| {
-            b.iter(|| {
-                for (i, (o, px)) in out.iter_mut().zip(pixels).enumerate() {
-                    let s = Sampler::<P>::new(black_box(*px), FRAME, black_box(i as u32), SEED);
-                    *o = s.domain(1).draw::<4>();
-                }
-                black_box(&mut *out);
-            })
+        bench_indexed(g, &format!("warpcore Sampler<{name}>"), out, |i| {
+            let s = Sampler::<P>::new(black_box(pixels[i]), FRAME, black_box(i as u32), SEED);
+            s.domain(1).draw::<4>()
         });
     }
     ours::<Sobol>(&mut g, "Sobol", &pixels, &mut out);
@@ -180,18 +159,18 @@ fn per_call(c: &mut criterion::Criterion) {
     macro_rules! peer {
         ($x:ident) => {{
             $x::warm_cache();
-            g.bench_function(concat!("openqmc-rs ", stringify!($x)), |b| {
-                b.iter(|| {
-                    for (i, (o, px)) in out.iter_mut().zip(&pixels).enumerate() {
-                        let [x, y] = black_box(*px).map(|c| c as i32);
-                        let i = black_box(i as i32);
-                        *o = $x::new(x, y, FRAME as i32, i)
-                            .new_domain(1)
-                            .draw_sample_f32::<4>();
-                    }
-                    black_box(&mut out);
-                })
-            });
+            bench_indexed(
+                &mut g,
+                concat!("openqmc-rs ", stringify!($x)),
+                &mut out,
+                |i| {
+                    let [x, y] = black_box(pixels[i]).map(|c| c as i32);
+                    let i = black_box(i as i32);
+                    $x::new(x, y, FRAME as i32, i)
+                        .new_domain(1)
+                        .draw_sample_f32::<4>()
+                },
+            );
         }};
     }
     peer!(SobolSampler);
@@ -202,8 +181,7 @@ fn per_call(c: &mut criterion::Criterion) {
 fn main() {
     let mut c = common::criterion();
     per_call(&mut c);
-    let mut g = c.benchmark_group("sampler");
-    g.throughput(Throughput::Elements(BATCH as u64));
+    let mut g = common::group(&mut c, "sampler");
     ours::<Sobol>(&mut g, "Sobol", true);
     ours::<Pmj02bn>(&mut g, "Pmj02bn", true);
     ours::<Blue<Sobol>>(&mut g, "Blue<Sobol>", false);
@@ -214,15 +192,10 @@ fn main() {
     openqmc!(&mut g, PmjBnSampler, false);
     openqmc!(&mut g, LatticeSampler, false);
     let mut out = vec![[0.0f32; 4]; BATCH];
-    g.bench_function("sobol_burley::sample_4d", |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                // The seed a renderer would hash from its pixel and domain.
-                let seed = black_box(SEED ^ PIXEL[0]);
-                *o = sobol_burley::sample_4d(i as u32, DOMAIN, seed);
-            }
-            black_box(&mut out);
-        })
+    bench_indexed(&mut g, "sobol_burley::sample_4d", &mut out, |i| {
+        // The seed a renderer would hash from its pixel and domain.
+        let seed = black_box(SEED ^ PIXEL[0]);
+        sobol_burley::sample_4d(i as u32, DOMAIN, seed)
     });
     g.finish();
     c.final_summary();

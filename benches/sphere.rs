@@ -7,15 +7,17 @@
 
 mod common;
 
-use common::{BATCH, peer_fill, peer_scalar, to_soa, to_soa16, uniform_points, warp_group};
+use common::{
+    BATCH, peer_fill, peer_scalar, peer_scalar_on, uniform_points, warp_group, warp_group_on,
+};
 use criterion::measurement::WallTime;
-use criterion::{BenchmarkGroup, Criterion, Throughput};
+use criterion::{BenchmarkGroup, Criterion};
 use rand::SeedableRng;
 use rand_distr::{Distribution, UnitSphere};
 use rand_xoshiro::Xoshiro128PlusPlus;
-use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
-use std::hint::black_box;
+use std::f32::consts::{FRAC_PI_2, PI, TAU};
 use warpcore::{f32x8, f32x16, sphere};
+use warpcore_testkit::textbook;
 
 // ----------------------------------------------------------------------------------------
 // Textbook peers: the published formulas, branches and libm calls, in f32.
@@ -23,14 +25,7 @@ use warpcore::{f32x8, f32x16, sphere};
 /// Clarberg's equal-area map as written in the paper.
 fn equal_area_libm(u: [f32; 2]) -> [f32; 3] {
     let (a, b) = (2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
-    let (ua, ub) = (a.abs(), b.abs());
-    let sd = 1.0 - (ua + ub);
-    let r = 1.0 - sd.abs();
-    let phi = if r == 0.0 {
-        FRAC_PI_4
-    } else {
-        ((ub - ua) / r + 1.0) * FRAC_PI_4
-    };
+    let (r, phi, sd) = textbook::equal_area_fold(a, b);
     let z = libm::copysignf(1.0 - r * r, sd);
     let s = r * libm::sqrtf(2.0 - r * r);
     [
@@ -45,17 +40,7 @@ fn equal_area_inverse_libm(d: [f32; 3]) -> [f32; 2] {
     let (x, y, z) = (d[0].abs(), d[1].abs(), d[2].abs());
     let r = libm::sqrtf(1.0 - z);
     let phi = libm::atan2f(y, x) / FRAC_PI_2;
-    let q = r * phi;
-    let p = r - q;
-    let (ua, ub) = if d[2] < 0.0 {
-        (1.0 - q, 1.0 - p)
-    } else {
-        (p, q)
-    };
-    [
-        0.5 * (libm::copysignf(ua, d[0]) + 1.0),
-        0.5 * (libm::copysignf(ub, d[1]) + 1.0),
-    ]
+    textbook::equal_area_unfold(r, r * phi, d)
 }
 
 fn equirect_libm(u: [f32; 2]) -> [f32; 3] {
@@ -79,15 +64,7 @@ fn uniform_libm(u: [f32; 2]) -> [f32; 3] {
 
 /// Shirley-Chiu concentric disk (two branches) lifted by Malley's method.
 fn cosine_hemisphere_libm(u: [f32; 2]) -> [f32; 3] {
-    let (a, b) = (2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
-    if a == 0.0 && b == 0.0 {
-        return [0.0, 0.0, 1.0];
-    }
-    let (r, phi) = if a.abs() > b.abs() {
-        (a, FRAC_PI_4 * (b / a))
-    } else {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    };
+    let (r, phi) = textbook::concentric_polar(2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
     let (x, y) = (r * libm::cosf(phi), r * libm::sinf(phi));
     [x, y, libm::sqrtf((1.0 - x * x - y * y).max(0.0))]
 }
@@ -127,59 +104,8 @@ fn inverse_group<'c>(
     peer: impl Fn([f32; 3]) -> [f32; 2],
 ) -> BenchmarkGroup<'c, WallTime> {
     let input = unit_directions(BATCH);
-    let soa = to_soa(&input);
-    let soa16 = to_soa16(&input);
-    let mut out = vec![[0.0f32; 2]; BATCH];
-    let mut out8 = vec![[f32x8::ZERO; 2]; BATCH / 8];
-    let mut out16 = vec![[f32x16::ZERO; 2]; BATCH / 16];
-    let mut g = c.benchmark_group(name);
-    g.throughput(Throughput::Elements(BATCH as u64));
-    g.bench_function("warpcore scalar loop", |b| {
-        b.iter(|| {
-            for (o, d) in out.iter_mut().zip(black_box(&input)) {
-                *o = scalar(*d);
-            }
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("warpcore scalar, one call at a time", |b| {
-        b.iter(|| {
-            for (o, d) in out.iter_mut().zip(&input) {
-                *o = scalar(black_box(*d));
-            }
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("warpcore x8", |b| {
-        b.iter(|| {
-            for (o, d) in out8.iter_mut().zip(black_box(&soa)) {
-                *o = x8(*d);
-            }
-            black_box(&mut out8);
-        })
-    });
-    g.bench_function("warpcore x16", |b| {
-        b.iter(|| {
-            for (o, d) in out16.iter_mut().zip(black_box(&soa16)) {
-                *o = x16(*d);
-            }
-            black_box(&mut out16);
-        })
-    });
-    g.bench_function("warpcore slice", |b| {
-        b.iter(|| {
-            slice(black_box(&input), &mut out);
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("libm textbook (scalar)", |b| {
-        b.iter(|| {
-            for (o, d) in out.iter_mut().zip(black_box(&input)) {
-                *o = peer(*d);
-            }
-            black_box(&mut out);
-        })
-    });
+    let mut g = warp_group_on(c, name, &input, scalar, x8, x16, slice);
+    peer_scalar_on(&mut g, "libm textbook (scalar)", &input, peer);
     g
 }
 

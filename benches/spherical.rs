@@ -17,31 +17,12 @@
 
 mod common;
 
-use common::{BATCH, uniform_points};
-use criterion::Throughput;
+use common::{BATCH, bench_indexed, bench_map, bench_out, group, uniform_points};
 use std::hint::black_box;
 use warpcore::spherical;
+use warpcore_testkit::textbook::{add, cross, dot, scale, sub};
 
 type V = [f32; 3];
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: V, b: V) -> f32 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V, b: V) -> V {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn scale(a: V, k: f32) -> V {
-    [a[0] * k, a[1] * k, a[2] * k]
-}
-fn add(a: V, b: V) -> V {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
 fn normalize(a: V) -> V {
     scale(a, 1.0 / libm::sqrtf(dot(a, a)))
 }
@@ -166,48 +147,26 @@ fn random_lights() -> (Vec<TriCall>, Vec<RectCall>) {
 /// A new light, shading point and `u` per call.
 fn per_call(c: &mut criterion::Criterion) {
     let (tris, rects) = random_lights();
-    let mut g = c.benchmark_group("spherical triangle, a light per call");
-    g.throughput(Throughput::Elements(BATCH as u64));
+    let mut g = group(c, "spherical triangle, a light per call");
     let mut out = vec![([0.0f32; 3], 0.0f32); BATCH];
-    g.bench_function("warpcore scalar", |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                let (v, p, u) = tris[black_box(i)];
-                *o = spherical::triangle(v, p, u);
-            }
-            black_box(&mut out);
-        })
+    bench_indexed(&mut g, "warpcore scalar", &mut out, |i| {
+        let (v, p, u) = tris[black_box(i)];
+        spherical::triangle(v, p, u)
     });
-    g.bench_function("Arvo textbook f32 scalar", |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                let (v, p, u) = tris[black_box(i)];
-                *o = arvo_textbook(v, p, u);
-            }
-            black_box(&mut out);
-        })
+    bench_indexed(&mut g, "Arvo textbook f32 scalar", &mut out, |i| {
+        let (v, p, u) = tris[black_box(i)];
+        arvo_textbook(v, p, u)
     });
     g.finish();
-    let mut g = c.benchmark_group("spherical rectangle, a light per call");
-    g.throughput(Throughput::Elements(BATCH as u64));
+    let mut g = group(c, "spherical rectangle, a light per call");
     let mut out = vec![([0.0f32; 2], 0.0f32); BATCH];
-    g.bench_function("warpcore scalar", |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                let (corner, ex, ey, p, u) = rects[black_box(i)];
-                *o = spherical::rectangle(corner, ex, ey, p, u);
-            }
-            black_box(&mut out);
-        })
+    bench_indexed(&mut g, "warpcore scalar", &mut out, |i| {
+        let (corner, ex, ey, p, u) = rects[black_box(i)];
+        spherical::rectangle(corner, ex, ey, p, u)
     });
-    g.bench_function("Urena textbook f32 scalar", |b| {
-        b.iter(|| {
-            for (i, o) in out.iter_mut().enumerate() {
-                let (corner, ex, ey, p, u) = rects[black_box(i)];
-                *o = urena_textbook(corner, ex, ey, p, u);
-            }
-            black_box(&mut out);
-        })
+    bench_indexed(&mut g, "Urena textbook f32 scalar", &mut out, |i| {
+        let (corner, ex, ey, p, u) = rects[black_box(i)];
+        urena_textbook(corner, ex, ey, p, u)
     });
     g.finish();
 }
@@ -226,84 +185,44 @@ fn main() {
         [0.3f32, 0.2, 0.0],
     );
     {
-        let mut g = c.benchmark_group("spherical triangle");
-        g.throughput(Throughput::Elements(BATCH as u64));
+        let mut g = group(&mut c, "spherical triangle");
         let mut out = vec![([0.0f32; 3], 0.0f32); BATCH];
-        g.bench_function("warpcore scalar, light black-boxed per call", |b| {
-            b.iter(|| {
-                for (o, u) in out.iter_mut().zip(black_box(&input)) {
-                    *o = spherical::triangle(black_box(tri), black_box(tp), *u);
-                }
-                black_box(&mut out);
-            })
+        let label = "warpcore scalar, light black-boxed per call";
+        bench_map(&mut g, label, &input, &mut out, |u| {
+            spherical::triangle(black_box(tri), black_box(tp), u)
         });
         let mut out4 = vec![[0.0f32; 4]; BATCH];
-        g.bench_function("warpcore slice", |b| {
-            b.iter(|| {
-                spherical::triangle_slice(tri, tp, black_box(&input), &mut out4);
-                black_box(&mut out4);
-            })
+        bench_out(&mut g, "warpcore slice", &mut out4, |out| {
+            spherical::triangle_slice(tri, tp, black_box(&input), out);
         });
         let n = [0.2f32, 0.1, 1.0];
-        g.bench_function("warpcore cosine slice", |b| {
-            b.iter(|| {
-                spherical::triangle_cosine_slice(tri, tp, n, black_box(&input), &mut out4);
-                black_box(&mut out4);
-            })
+        bench_out(&mut g, "warpcore cosine slice", &mut out4, |out| {
+            spherical::triangle_cosine_slice(tri, tp, n, black_box(&input), out);
         });
-        g.bench_function("Arvo textbook f32 scalar", |b| {
-            b.iter(|| {
-                for (o, u) in out.iter_mut().zip(black_box(&input)) {
-                    *o = arvo_textbook(black_box(tri), black_box(tp), *u);
-                }
-                black_box(&mut out);
-            })
+        bench_map(&mut g, "Arvo textbook f32 scalar", &input, &mut out, |u| {
+            arvo_textbook(black_box(tri), black_box(tp), u)
         });
         g.finish();
     }
     {
-        let mut g = c.benchmark_group("spherical rectangle");
-        g.throughput(Throughput::Elements(BATCH as u64));
+        let mut g = group(&mut c, "spherical rectangle");
         let mut out = vec![([0.0f32; 2], 0.0f32); BATCH];
-        g.bench_function("warpcore scalar, light black-boxed per call", |b| {
-            b.iter(|| {
-                for (o, u) in out.iter_mut().zip(black_box(&input)) {
-                    let [c, x, y, p] = black_box([corner, ex, ey, rp]);
-                    *o = spherical::rectangle(c, x, y, p, *u);
-                }
-                black_box(&mut out);
-            })
+        let label = "warpcore scalar, light black-boxed per call";
+        bench_map(&mut g, label, &input, &mut out, |u| {
+            let [c, x, y, p] = black_box([corner, ex, ey, rp]);
+            spherical::rectangle(c, x, y, p, u)
         });
         let mut out3 = vec![[0.0f32; 3]; BATCH];
-        g.bench_function("warpcore slice", |b| {
-            b.iter(|| {
-                spherical::rectangle_slice(corner, ex, ey, rp, black_box(&input), &mut out3);
-                black_box(&mut out3);
-            })
+        bench_out(&mut g, "warpcore slice", &mut out3, |out| {
+            spherical::rectangle_slice(corner, ex, ey, rp, black_box(&input), out);
         });
         let n = [0.1f32, -0.3, 1.0];
-        g.bench_function("warpcore cosine slice", |b| {
-            b.iter(|| {
-                spherical::rectangle_cosine_slice(
-                    corner,
-                    ex,
-                    ey,
-                    rp,
-                    n,
-                    black_box(&input),
-                    &mut out3,
-                );
-                black_box(&mut out3);
-            })
+        bench_out(&mut g, "warpcore cosine slice", &mut out3, |out| {
+            spherical::rectangle_cosine_slice(corner, ex, ey, rp, n, black_box(&input), out);
         });
-        g.bench_function("Urena textbook f32 scalar", |b| {
-            b.iter(|| {
-                for (o, u) in out.iter_mut().zip(black_box(&input)) {
-                    let [c, x, y, p] = black_box([corner, ex, ey, rp]);
-                    *o = urena_textbook(c, x, y, p, *u);
-                }
-                black_box(&mut out);
-            })
+        bench_map(&mut g, "Urena textbook f32 scalar", &input, &mut out, |u| {
+            let [c, x, y, p] = black_box([corner, ex, ey, rp]);
+            urena_textbook(c, x, y, p, u)
         });
         g.finish();
     }

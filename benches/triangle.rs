@@ -6,11 +6,11 @@
 
 mod common;
 
-use common::{BATCH, peer_scalar, warp_group};
-use criterion::Throughput;
+use common::{BATCH, bench_hoisted, bench_indexed, bench_out, peer_scalar, warp_group};
 use std::hint::black_box;
 use warpcore::triangle;
 use warpcore::{f32x8, f32x16, u32x8, u32x16};
+use warpcore_testkit::textbook;
 
 /// Heitz 2019 as published (one branch), `b2 = 1 - b0 - b1`.
 fn uniform_textbook(u: [f32; 2]) -> [f32; 3] {
@@ -38,26 +38,6 @@ fn sqrt_map_libm(u: [f32; 2]) -> [f32; 3] {
     [b0, b1, 1.0 - b0 - b1]
 }
 
-/// The Basu-Owen walk as usually written: a loop over the 16 base-4 digits with branches,
-/// in f32, unscrambled.
-fn basu_owen_textbook(index: u32) -> [f32; 3] {
-    let (mut cx, mut cy, mut w) = (0.0f32, 0.0f32, 0.5f32);
-    let mut i = index;
-    for _ in 0..16 {
-        let d = i & 3;
-        i >>= 2;
-        if d & 1 == 0 {
-            cy += w;
-        }
-        if d & 2 == 0 {
-            cx += w;
-        }
-        w *= if d == 0 { -0.5 } else { 0.5 };
-    }
-    let (x, y) = (cx + 2.0 * w / 3.0, cy + 2.0 * w / 3.0);
-    [x, y, 1.0 - x - y]
-}
-
 /// An index-driven Basu-Owen randomization: BATCH consecutive indices from a fixed start, one
 /// seed (the slice's use: one pixel's stream), and for `x8` also eight different seeds (eight
 /// pixels at the same sample index), against the textbook digit loop (unscrambled).
@@ -71,79 +51,47 @@ fn basu_owen_group(
 ) {
     const SEED: u32 = 0x2545_f491;
     const START: u32 = 1000;
-    let mut g = c.benchmark_group(name);
-    g.throughput(Throughput::Elements(BATCH as u64));
+    let mut g = common::group(c, name);
     let mut out = vec![[0.0f32; 3]; BATCH];
     let mut out8 = vec![[f32x8::ZERO; 3]; BATCH / 8];
     let lane = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
-    g.bench_function("warpcore scalar loop", |b| {
-        b.iter(|| {
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = scalar(START + k as u32, black_box(SEED));
-            }
-            black_box(&mut out);
-        })
+    bench_indexed(&mut g, "warpcore scalar loop", &mut out, |k| {
+        scalar(START + k as u32, black_box(SEED))
     });
-    g.bench_function("warpcore scalar, one call at a time", |b| {
-        b.iter(|| {
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = scalar(black_box(START + k as u32), black_box(SEED));
-            }
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("warpcore x8", |b| {
-        b.iter(|| {
-            let seed = u32x8::splat(black_box(SEED));
-            for (k, o) in out8.iter_mut().enumerate() {
-                let index = u32x8::splat(START + 8 * k as u32) + lane;
-                *o = x8(index, seed);
-            }
-            black_box(&mut out8);
-        })
+    bench_indexed(
+        &mut g,
+        "warpcore scalar, one call at a time",
+        &mut out,
+        |k| scalar(black_box(START + k as u32), black_box(SEED)),
+    );
+    let seed = || u32x8::splat(black_box(SEED));
+    bench_hoisted(&mut g, "warpcore x8", &mut out8, seed, |k, seed| {
+        x8(u32x8::splat(START + 8 * k as u32) + lane, seed)
     });
     // Eight pixels per call at one sample index, new pixels every call: the seeds change
     // with every call, so the per-seed work cannot be hoisted out of the loop.
-    g.bench_function("warpcore x8, new seeds every call", |b| {
-        b.iter(|| {
-            let base = u32x8::splat(black_box(SEED)) + lane;
-            for (k, o) in out8.iter_mut().enumerate() {
-                *o = x8(u32x8::splat(START), base + u32x8::splat(8 * k as u32));
-            }
-            black_box(&mut out8);
-        })
+    let label = "warpcore x8, new seeds every call";
+    let base = || u32x8::splat(black_box(SEED)) + lane;
+    bench_hoisted(&mut g, label, &mut out8, base, |k, base| {
+        x8(u32x8::splat(START), base + u32x8::splat(8 * k as u32))
     });
-    let mut out16 = vec![[f32x16::ZERO; 3]; BATCH / 16];
     let lane16 = u32x16::new(std::array::from_fn(|j| j as u32));
-    g.bench_function("warpcore x16", |b| {
-        b.iter(|| {
-            let seed = u32x16::splat(black_box(SEED));
-            for (k, o) in out16.iter_mut().enumerate() {
-                let index = u32x16::splat(START + 16 * k as u32) + lane16;
-                *o = x16(index, seed);
-            }
-            black_box(&mut out16);
-        })
+    let mut out16 = vec![[f32x16::ZERO; 3]; BATCH / 16];
+    let seed = || u32x16::splat(black_box(SEED));
+    bench_hoisted(&mut g, "warpcore x16", &mut out16, seed, |k, seed| {
+        x16(u32x16::splat(START + 16 * k as u32) + lane16, seed)
     });
-    g.bench_function("warpcore slice", |b| {
-        b.iter(|| {
-            slice(black_box(START), black_box(SEED), &mut out);
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("warpcore slice, seed 0 (unscrambled)", |b| {
-        b.iter(|| {
-            slice(black_box(START), black_box(0), &mut out);
-            black_box(&mut out);
-        })
-    });
-    g.bench_function("textbook digit loop (scalar, f32, unscrambled)", |b| {
-        b.iter(|| {
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = basu_owen_textbook(black_box(START + k as u32));
-            }
-            black_box(&mut out);
-        })
+    for (label, seed) in [
+        ("warpcore slice", SEED),
+        ("warpcore slice, seed 0 (unscrambled)", 0),
+    ] {
+        bench_out(&mut g, label, &mut out, |out| {
+            slice(black_box(START), black_box(seed), out);
+        });
+    }
+    let label = "textbook digit loop (scalar, f32, unscrambled)";
+    bench_indexed(&mut g, label, &mut out, |k| {
+        textbook::basu_owen::<f32>(black_box(START + k as u32))
     });
     g.finish();
 }

@@ -55,17 +55,17 @@ pub(crate) trait Kernel4: Copy {
     fn run<U: UintLane>(self, word: U, key: U) -> U;
 }
 
+/// What both lane kinds share: a `Copy` value with `+`, `-` and `*`.
+pub(crate) trait Ring:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self>
+{
+}
+impl<T: Copy + Add<Output = T> + Sub<Output = T> + Mul<Output = T>> Ring for T {}
+
 /// The unsigned-integer lane paired with a [`Lane`]: `Wrapping<u32>` or [`u32x8`].
 /// Arithmetic wraps (it never panics); shifts take the count modulo 32.
 pub(crate) trait UintLane:
-    Copy
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + BitAnd<Output = Self>
-    + BitOr<Output = Self>
-    + BitXor<Output = Self>
-    + Not<Output = Self>
+    Ring + BitAnd<Output = Self> + BitOr<Output = Self> + BitXor<Output = Self> + Not<Output = Self>
 {
     type Mask: Mask;
     fn splat(x: u32) -> Self;
@@ -129,14 +129,7 @@ pub(crate) trait UintLane:
 }
 
 /// The float lane: `f32` or [`f32x8`]. See the module docs for what it may and may not hold.
-pub(crate) trait Lane:
-    Copy
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + Div<Output = Self>
-    + Neg<Output = Self>
-{
+pub(crate) trait Lane: Ring + Div<Output = Self> + Neg<Output = Self> {
     type Mask: Mask;
     type U: UintLane<Mask = Self::Mask>;
 

@@ -85,7 +85,9 @@
 
 pub use wide::{f32x8, f32x16, u32x8, u32x16};
 
-// Shared internals: lanes, kernels, slice machinery, hashes.
+// Shared internals: the forms' macro, lanes, kernels, slice machinery, hashes.
+#[macro_use]
+mod forms;
 #[cfg(any(feature = "pmj02bn", feature = "sequence", feature = "envmap"))]
 mod hash;
 mod lanes;

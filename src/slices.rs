@@ -58,49 +58,59 @@ pub(crate) trait Vector<const N: usize>: Lane {
     fn select_words(mask: Self::U, a: Self::U, b: Self::U) -> Self::U;
 }
 
-impl Vector<8> for f32x8 {
-    #[inline(always)]
-    fn words(w: [u32; 8]) -> u32x8 {
-        u32x8::new(w)
-    }
-    #[inline(always)]
-    fn to_words(v: u32x8) -> [u32; 8] {
-        v.to_array()
-    }
-    #[inline(always)]
-    fn shuffle(v: u32x8, index: u32x8) -> u32x8 {
-        v.shuffle(index)
-    }
-    #[inline(always)]
-    fn shuffle2(a: u32x8, b: u32x8, index: u32x8) -> u32x8 {
-        [a, b].shuffle(index)
-    }
-    #[inline(always)]
-    fn select_words(mask: u32x8, a: u32x8, b: u32x8) -> u32x8 {
-        mask.select(a, b)
-    }
+/// [`Vector`] (and [`Rows`]) for `f32x8` and `f32x16`: each operation is `wide`'s of the same
+/// name (`$w` is the integer vector of `$n / 2` 64-bit lanes).
+macro_rules! vector {
+    ($f:ident, $u:ident, $n:literal, $w:ident) => {
+        impl Vector<$n> for $f {
+            #[inline(always)]
+            fn words(w: [u32; $n]) -> $u {
+                $u::new(w)
+            }
+            #[inline(always)]
+            fn to_words(v: $u) -> [u32; $n] {
+                v.to_array()
+            }
+            #[inline(always)]
+            fn shuffle(v: $u, index: $u) -> $u {
+                v.shuffle(index)
+            }
+            #[inline(always)]
+            fn shuffle2(a: $u, b: $u, index: $u) -> $u {
+                [a, b].shuffle(index)
+            }
+            #[inline(always)]
+            fn select_words(mask: $u, a: $u, b: $u) -> $u {
+                mask.select(a, b)
+            }
+        }
+
+        #[cfg(feature = "sampler")]
+        impl Rows<$n> for $f {
+            #[inline(always)]
+            fn zip32(a: $u, b: $u) -> [$u; 2] {
+                [a.unpack_lo(b), a.unpack_hi(b)]
+            }
+            #[inline(always)]
+            fn zip64(a: $u, b: $u) -> [$u; 2] {
+                let (a, b): ($w, $w) = (bytemuck::cast(a), bytemuck::cast(b));
+                [
+                    bytemuck::cast(a.unpack_lo(b)),
+                    bytemuck::cast(a.unpack_hi(b)),
+                ]
+            }
+        }
+    };
 }
 
-impl Vector<16> for f32x16 {
-    #[inline(always)]
-    fn words(w: [u32; 16]) -> u32x16 {
-        u32x16::new(w)
-    }
-    #[inline(always)]
-    fn to_words(v: u32x16) -> [u32; 16] {
-        v.to_array()
-    }
-    #[inline(always)]
-    fn shuffle(v: u32x16, index: u32x16) -> u32x16 {
-        v.shuffle(index)
-    }
-    #[inline(always)]
-    fn shuffle2(a: u32x16, b: u32x16, index: u32x16) -> u32x16 {
-        [a, b].shuffle(index)
-    }
-    #[inline(always)]
-    fn select_words(mask: u32x16, a: u32x16, b: u32x16) -> u32x16 {
-        mask.select(a, b)
+vector!(f32x8, u32x8, 8, u64x4);
+vector!(f32x16, u32x16, 16, u64x8);
+
+/// Writes the first `dst.len()` elements of a padded group's results (the tail of a slice).
+#[inline(always)]
+fn write_tail<const O: usize, const N: usize>(dst: &mut [[f32; O]], res: [[f32; O]; N]) {
+    for (d, r) in dst.iter_mut().zip(res.iter()) {
+        *d = *r;
     }
 }
 
@@ -125,10 +135,7 @@ pub(crate) fn map_lanes<L: Vector<N>, const N: usize, const I: usize, const O: u
         for (p, s) in pad.iter_mut().zip(in_rest) {
             *p = *s;
         }
-        let res = store(f(load(&pad)));
-        for (d, r) in out_rest.iter_mut().zip(res.iter()) {
-            *d = *r;
-        }
+        write_tail(out_rest, store(f(load(&pad))));
     }
     n
 }
@@ -162,10 +169,7 @@ pub(crate) fn fill_indexed<L: Vector<N>, const N: usize, const O: usize>(
         index = index + <L::U as UintLane>::splat(N as u32);
     }
     if !rest.is_empty() {
-        let res = store(f(index));
-        for (d, r) in rest.iter_mut().zip(res.iter()) {
-            *d = *r;
-        }
+        write_tail(rest, store(f(index)));
     }
     output.len()
 }
@@ -364,38 +368,6 @@ pub(crate) trait Rows<const LN: usize>: Vector<LN> {
     fn zip32(a: Self::U, b: Self::U) -> [Self::U; 2];
     /// The same with pairs of lanes as the elements.
     fn zip64(a: Self::U, b: Self::U) -> [Self::U; 2];
-}
-
-#[cfg(feature = "sampler")]
-impl Rows<8> for f32x8 {
-    #[inline(always)]
-    fn zip32(a: u32x8, b: u32x8) -> [u32x8; 2] {
-        [a.unpack_lo(b), a.unpack_hi(b)]
-    }
-    #[inline(always)]
-    fn zip64(a: u32x8, b: u32x8) -> [u32x8; 2] {
-        let (a, b): (u64x4, u64x4) = (bytemuck::cast(a), bytemuck::cast(b));
-        [
-            bytemuck::cast(a.unpack_lo(b)),
-            bytemuck::cast(a.unpack_hi(b)),
-        ]
-    }
-}
-
-#[cfg(feature = "sampler")]
-impl Rows<16> for f32x16 {
-    #[inline(always)]
-    fn zip32(a: u32x16, b: u32x16) -> [u32x16; 2] {
-        [a.unpack_lo(b), a.unpack_hi(b)]
-    }
-    #[inline(always)]
-    fn zip64(a: u32x16, b: u32x16) -> [u32x16; 2] {
-        let (a, b): (u64x8, u64x8) = (bytemuck::cast(a), bytemuck::cast(b));
-        [
-            bytemuck::cast(a.unpack_lo(b)),
-            bytemuck::cast(a.unpack_hi(b)),
-        ]
-    }
 }
 
 /// `LN` points of `N` components, one vector per component, stored as an array of points:

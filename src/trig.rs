@@ -254,28 +254,28 @@ mod tests {
     const ATAN_ULP: f64 = 2.1;
     const ATAN_ABS: f64 = 1.15e-7;
 
+    /// The maxima of a kernel's sweep at `stride`, printed as `[ulp, ulp, abs, abs]` (the
+    /// order of `shown`).
+    fn sweep_and_print(
+        name: &str,
+        stride: u32,
+        errors: fn(f32) -> [f64; 4],
+        shown: [usize; 4],
+    ) -> [f64; 4] {
+        let m = sweep(stride, errors);
+        let [a, b, c, d] = shown.map(|k| m[k]);
+        std::println!("{name} stride {stride}: ulp {a:.3} {b:.3}, abs {c:.3e} {d:.3e}");
+        m
+    }
+
     fn check_sin_cos(stride: u32) {
-        let m = sweep(stride, sin_cos_errors);
-        std::println!(
-            "sin_cos_pi4 stride {stride}: ulp {:.3} {:.3}, abs {:.3e} {:.3e}",
-            m[0],
-            m[1],
-            m[2],
-            m[3]
-        );
+        let m = sweep_and_print("sin_cos_pi4", stride, sin_cos_errors, [0, 1, 2, 3]);
         assert!(m[0] <= SIN_ULP && m[1] <= COS_ULP, "{m:?}");
         assert!(m[2] <= SIN_ABS && m[3] <= COS_ABS, "{m:?}");
     }
 
     fn check_atan(stride: u32) {
-        let m = sweep(stride, atan_errors);
-        std::println!(
-            "atan_ratio_pi4 stride {stride}: ulp {:.3} {:.3}, abs {:.3e} {:.3e}",
-            m[0],
-            m[2],
-            m[1],
-            m[3]
-        );
+        let m = sweep_and_print("atan_ratio_pi4", stride, atan_errors, [0, 2, 1, 3]);
         assert!(m[0] <= ATAN_ULP && m[1] <= ATAN_ABS, "{m:?}");
         assert!(m[2] <= ATAN_ULP + 0.5 && m[3] <= ATAN_ABS, "{m:?}");
     }

@@ -6,9 +6,13 @@
 
 use warpcore_testkit as common;
 
-use common::{ONE_MINUS_EPS, chi2, lane, rng, same_bits, soa, specials, unit2};
+use common::textbook;
+
+use common::{
+    ONE_MINUS_EPS, chi2, in_unit_square, lane, rng, same_bits, soa, special_pairs, unit2,
+};
 use proptest::prelude::*;
-use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
+use std::f64::consts::{FRAC_PI_2, TAU};
 use warpcore::disk::{self, PDF};
 use warpcore::{f32x8, u32x8};
 
@@ -30,30 +34,14 @@ fn polar4_ref(u: [f32; 2], q: u32) -> [f64; 2] {
 
 /// Shirley and Chiu's concentric map exactly as published.
 fn concentric_ref(u: [f32; 2]) -> [f64; 2] {
-    let a = 2.0 * u[0] as f64 - 1.0;
-    let b = 2.0 * u[1] as f64 - 1.0;
-    if a == 0.0 && b == 0.0 {
-        return [0.0, 0.0];
-    }
-    let (r, phi) = if a.abs() > b.abs() {
-        (a, FRAC_PI_4 * (b / a))
-    } else {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    };
+    let (r, phi) = textbook::concentric_polar(2.0 * u[0] as f64 - 1.0, 2.0 * u[1] as f64 - 1.0);
     [r * phi.cos(), r * phi.sin()]
 }
 
 /// Concentric4 as specified: Shirley-Chiu on the quarter disk (`a = u0`, `b = u1`), then
 /// turned by `q % 4` quarter turns, in f64 with the textbook branches.
 fn concentric4_ref(u: [f32; 2], q: u32) -> [f64; 2] {
-    let (a, b) = (u[0] as f64, u[1] as f64);
-    let (r, phi) = if a > b {
-        (a, FRAC_PI_4 * (b / a))
-    } else if b > 0.0 {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    } else {
-        (0.0, 0.0)
-    };
+    let (r, phi) = textbook::concentric_polar(u[0] as f64, u[1] as f64);
     let phi = phi + FRAC_PI_2 * (q % 4) as f64;
     [r * phi.cos(), r * phi.sin()]
 }
@@ -65,10 +53,6 @@ fn dist(p: [f32; 2], q: [f64; 2]) -> f64 {
 /// Inside the closed unit disk in exact arithmetic (squares of f32 are exact in f64).
 fn in_disk(p: [f32; 2]) -> bool {
     p[0].is_finite() && p[1].is_finite() && (p[0] as f64).powi(2) + (p[1] as f64).powi(2) <= 1.0
-}
-
-fn in_unit_square(u: [f32; 2]) -> bool {
-    u.iter().all(|&x| (0.0..1.0).contains(&x))
 }
 
 // ----------------------------------------------------------------------------------------
@@ -168,61 +152,54 @@ fn check_widths(pts: &[[f32; 2]; 8], q: u32) {
     for (name, scalar, wide8, slice) in families {
         common::check_widths(name, pts, scalar, wide8, slice);
     }
-    let v = disk::polar4_x8(x8, quads);
-    let (vi, vq) = disk::polar4_inverse_x8(x8);
-    let mut expanded = [[0.0f32; 2]; 32];
-    assert_eq!(disk::polar4_slice(pts, &mut expanded), 32);
-    let c4 = disk::concentric4_x8(x8, quads);
-    let (ci, cq) = disk::concentric4_inverse_x8(x8);
-    let mut c4_expanded = [[0.0f32; 2]; 32];
-    assert_eq!(disk::concentric4_slice(pts, &mut c4_expanded), 32);
-    for j in 0..8 {
-        let qj = quads.to_array()[j];
-        assert!(
-            same_bits(disk::concentric4(pts[j], qj), lane(c4, j)),
-            "concentric4 lane {j}"
-        );
-        let (si, sq) = disk::concentric4_inverse(pts[j]);
-        assert!(
-            same_bits(si, lane(ci, j)) && sq == cq.to_array()[j],
-            "concentric4_inverse lane {j}"
-        );
-        for k in 0..4 {
+    type Q = fn([f32; 2], u32) -> [f32; 2];
+    type Q8 = fn([f32x8; 2], u32x8) -> [f32x8; 2];
+    type Inv = fn([f32; 2]) -> ([f32; 2], u32);
+    type Inv8 = fn([f32x8; 2]) -> ([f32x8; 2], u32x8);
+    let quadrant_warps: [(&str, Q, Q8, Inv, Inv8, S); 2] = [
+        (
+            "concentric4",
+            disk::concentric4,
+            disk::concentric4_x8,
+            disk::concentric4_inverse,
+            disk::concentric4_inverse_x8,
+            disk::concentric4_slice,
+        ),
+        (
+            "polar4",
+            disk::polar4,
+            disk::polar4_x8,
+            disk::polar4_inverse,
+            disk::polar4_inverse_x8,
+            disk::polar4_slice,
+        ),
+    ];
+    for (name, warp, warp8, inverse, inverse8, slice) in quadrant_warps {
+        let v = warp8(x8, quads);
+        let (vi, vq) = inverse8(x8);
+        let mut expanded = [[0.0f32; 2]; 32];
+        assert_eq!(slice(pts, &mut expanded), 32);
+        for j in 0..8 {
+            let qj = quads.to_array()[j];
+            assert!(same_bits(warp(pts[j], qj), lane(v, j)), "{name} lane {j}");
+            let (si, sq) = inverse(pts[j]);
             assert!(
-                same_bits(disk::concentric4(pts[j], k as u32), c4_expanded[4 * j + k]),
-                "concentric4_slice {j} {k}"
+                same_bits(si, lane(vi, j)) && sq == vq.to_array()[j],
+                "{name}_inverse lane {j}"
             );
-        }
-    }
-    for j in 0..8 {
-        let qj = quads.to_array()[j];
-        assert!(
-            same_bits(disk::polar4(pts[j], qj), lane(v, j)),
-            "polar4 lane {j}"
-        );
-        let (si, sq) = disk::polar4_inverse(pts[j]);
-        assert!(
-            same_bits(si, lane(vi, j)) && sq == vq.to_array()[j],
-            "polar4_inverse lane {j}"
-        );
-        for k in 0..4 {
-            assert!(
-                same_bits(disk::polar4(pts[j], k as u32), expanded[4 * j + k]),
-                "polar4_slice {j} {k}"
-            );
+            for k in 0..4 {
+                assert!(
+                    same_bits(warp(pts[j], k as u32), expanded[4 * j + k]),
+                    "{name}_slice {j} {k}"
+                );
+            }
         }
     }
 }
 
 #[test]
 fn widths_agree_on_special_values() {
-    let sp = specials();
-    let mut pts = Vec::new();
-    for &a in &sp {
-        for &b in &sp {
-            pts.push([a, b]);
-        }
-    }
+    let pts = special_pairs();
     for group in pts.chunks_exact(8) {
         check_widths(group.try_into().unwrap(), 3);
     }
@@ -395,16 +372,11 @@ fn edge_inputs() {
         "{back:?}"
     );
     // Out-of-range input follows the documented clamp.
+    common::assert_documented_clamp("concentric", disk::concentric);
+    common::assert_documented_clamp("polar", disk::polar);
+    common::assert_documented_clamp("polar4", |u| disk::polar4(u, 2));
     assert!(same_bits(
-        disk::concentric([f32::NAN, 2.0]),
-        disk::concentric([0.0, ONE_MINUS_EPS])
-    ));
-    assert!(same_bits(
-        disk::polar([-1.0, f32::INFINITY]),
-        disk::polar([0.0, ONE_MINUS_EPS])
-    ));
-    assert!(same_bits(
-        disk::polar4([-0.0, 0.25], 6),
+        disk::polar4([0.0, 0.25], 6),
         disk::polar4([0.0, 0.25], 2)
     ));
     assert_eq!(disk::concentric_inverse([f32::NAN, f32::NAN]), [0.5, 0.5]);
@@ -452,6 +424,34 @@ fn inverses_outside_the_disk() {
     assert_eq!(disk::polar_inverse([3.0, 0.0]), [ONE_MINUS_EPS, 0.0]);
 }
 
+type Points<'a> = &'a dyn Fn(u32) -> [f32; 2];
+type PointsX8<'a> = &'a dyn Fn(u32x8) -> [f32x8; 2];
+
+/// A quadrant warp's `_indexed` forms do the bookkeeping: sample `i < 64` is
+/// `warp(points[i / 4], i % 4)`, and `_indexed_x8` agrees with it lane by lane for any
+/// indices. Returns the 64 samples.
+fn check_indexed(
+    points: &[[f32; 2]],
+    warp: impl Fn([f32; 2], u32) -> [f32; 2],
+    indexed: impl Fn(u32, Points) -> [f32; 2],
+    indexed_x8: impl Fn(u32x8, PointsX8) -> [f32x8; 2],
+) -> Vec<[f32; 2]> {
+    let point = |k: u32| points[k as usize];
+    let samples: Vec<[f32; 2]> = (0..64u32).map(|i| indexed(i, &point)).collect();
+    for (i, &got) in (0u32..).zip(&samples) {
+        assert!(same_bits(got, warp(points[i as usize / 4], i % 4)));
+    }
+    let idx = u32x8::new([5, 9, 0, 63, 17, 2, 2, 40]);
+    let got = indexed_x8(idx, &|k| {
+        let k = k.to_array();
+        soa(&std::array::from_fn(|j| points[k[j] as usize]))
+    });
+    for j in 0..8 {
+        assert!(same_bits(lane(got, j), indexed(idx.to_array()[j], &point)));
+    }
+    samples
+}
+
 /// polar == polar4 at the quarter-turn decomposition of the angle, bit for bit, and the
 /// polar4 helpers do the index bookkeeping.
 #[test]
@@ -467,27 +467,19 @@ fn polar_is_polar4_and_helpers_do_the_bookkeeping() {
         ));
     }
     let points: Vec<[f32; 2]> = (0..16).map(|_| unit2(&mut r)).collect();
-    for i in 0..64u32 {
-        let got = disk::polar4_indexed(i, |k| points[k as usize]);
-        assert!(same_bits(got, disk::polar4(points[i as usize / 4], i % 4)));
+    let samples = check_indexed(
+        &points,
+        disk::polar4,
+        |i, p| disk::polar4_indexed(i, p),
+        |i, p| disk::polar4_indexed_x8(i, p),
+    );
+    for (i, got) in (0u32..).zip(samples) {
         // Sample i lies in quadrant i % 4.
         let a = (got[1] as f64).atan2(got[0] as f64).rem_euclid(TAU) / FRAC_PI_2;
         assert!(
             a >= (i % 4) as f64 - 1e-6 && a <= (i % 4 + 1) as f64 + 1e-6,
             "{i}: {a}"
         );
-    }
-    let idx = u32x8::new([5, 9, 0, 63, 17, 2, 2, 40]);
-    let got = disk::polar4_indexed_x8(idx, |k| {
-        let k = k.to_array();
-        soa(&std::array::from_fn(|j| points[k[j] as usize]))
-    });
-    for j in 0..8 {
-        let i = idx.to_array()[j];
-        assert!(same_bits(
-            lane(got, j),
-            disk::polar4_indexed(i, |k| points[k as usize])
-        ));
     }
 }
 
@@ -604,10 +596,7 @@ fn chi2_rejects_wrong_warps() {
         }
         h.add(chi2::disk(disk::polar(u)));
     }
-    let p = chi2::statistic(&h, &chi2::expected_uniform(NR, NA))
-        .unwrap()
-        .p_value;
-    assert!(p < chi2::per_test_alpha(), "p = {p}");
+    chi2::assert_rejects_uniform(&h, NR, NA);
 }
 
 // ----------------------------------------------------------------------------------------
@@ -754,25 +743,12 @@ fn concentric4_accuracy_seams_and_helpers() {
 
     // Index bookkeeping of the helpers.
     let points: Vec<[f32; 2]> = (0..16).map(|_| unit2(&mut r)).collect();
-    for i in 0..64u32 {
-        let got = disk::concentric4_indexed(i, |k| points[k as usize]);
-        assert!(same_bits(
-            got,
-            disk::concentric4(points[i as usize / 4], i % 4)
-        ));
-    }
-    let idx = u32x8::new([5, 9, 0, 63, 17, 2, 2, 40]);
-    let got = disk::concentric4_indexed_x8(idx, |k| {
-        let k = k.to_array();
-        soa(&std::array::from_fn(|j| points[k[j] as usize]))
-    });
-    for j in 0..8 {
-        let i = idx.to_array()[j];
-        assert!(same_bits(
-            lane(got, j),
-            disk::concentric4_indexed(i, |k| points[k as usize])
-        ));
-    }
+    check_indexed(
+        &points,
+        disk::concentric4,
+        |i, p| disk::concentric4_indexed(i, p),
+        |i, p| disk::concentric4_indexed_x8(i, p),
+    );
 }
 
 #[test]

@@ -9,7 +9,7 @@ use warpcore_testkit as common;
 // The generator's algorithm, for the plain pmj02 reference of the blue-noise comparison.
 use pmjgen as pmj;
 
-use common::{lane, same_bits};
+use common::{in_unit_square, lane, same_bits};
 use proptest::prelude::*;
 use warpcore::pmj02bn::{self, POINTS, SETS};
 use warpcore::sequence;
@@ -323,10 +323,6 @@ fn different_seeds_differ() {
 
 // ----------------------------------------------------------------------------------------
 // Domain and bit identity on arbitrary arguments.
-
-fn in_unit_square(p: [f32; 2]) -> bool {
-    p.iter().all(|&c| (0.0..1.0).contains(&c))
-}
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(20_000))]

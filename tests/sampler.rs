@@ -10,7 +10,7 @@ use warpcore_testkit as common;
 use common::chi2;
 use rand::RngExt;
 use warpcore::sampler::{Blue, Pattern, Pmj02bn, Sampler, SamplerX8, SamplerX16, Sobol};
-use warpcore::{u32x8, u32x16};
+use warpcore::{f32x8, f32x16, u32x8, u32x16};
 
 /// Is `points` (0.32 fixed point, `2^m` of them) a (0,m,2)-net: one point in every cell of
 /// every `2^k x 2^(m-k)` grid?
@@ -339,6 +339,16 @@ fn rnd_is_uniform_and_keys_do_not_collide() {
     }
 }
 
+/// Lane `j` of 8-lane results, as bits.
+fn bits8<const N: usize>(v: [f32x8; N], j: usize) -> [u32; N] {
+    common::lane(v, j).map(f32::to_bits)
+}
+
+/// Lane `j` of 16-lane results, as bits.
+fn bits16<const N: usize>(v: [f32x16; N], j: usize) -> [u32; N] {
+    v.map(|x| x.to_array()[j].to_bits())
+}
+
 fn lanes_agree<P: Pattern>() {
     let mut r = common::rng(17);
     for _ in 0..200 {
@@ -364,27 +374,19 @@ fn lanes_agree<P: Pattern>() {
             let s = lanes[j].domain(key);
             let sp = s.split(key, size, subs[j]);
             let want = s.draw::<4>().map(f32::to_bits);
-            assert_eq!(want, d16.map(|v| v.to_array()[j].to_bits()));
+            let rnd = s.rnd::<2>().map(f32::to_bits);
+            let split = sp.draw::<4>().map(f32::to_bits);
             assert_eq!(
-                s.rnd::<2>().map(f32::to_bits),
-                r16.map(|v| v.to_array()[j].to_bits())
-            );
-            assert_eq!(
-                sp.draw::<4>().map(f32::to_bits),
-                s16.map(|v| v.to_array()[j].to_bits())
+                (want, rnd, split),
+                (bits16(d16, j), bits16(r16, j), bits16(s16, j))
             );
             assert_eq!(x16.lane(j), s);
             if j < 8 {
-                assert_eq!(want, d8.map(|v| v.to_array()[j].to_bits()));
+                assert_eq!(
+                    (want, rnd, split),
+                    (bits8(d8, j), bits8(r8, j), bits8(s8, j))
+                );
                 assert_eq!(s.draw_u32::<3>(), u8_.map(|v| v.to_array()[j]));
-                assert_eq!(
-                    s.rnd::<2>().map(f32::to_bits),
-                    r8.map(|v| v.to_array()[j].to_bits())
-                );
-                assert_eq!(
-                    sp.draw::<4>().map(f32::to_bits),
-                    s8.map(|v| v.to_array()[j].to_bits())
-                );
             }
         }
         // The wide constructor equals the scalar one lane by lane.

@@ -8,9 +8,14 @@
 
 use warpcore_testkit as common;
 
-use common::{ONE_MINUS_EPS, chi2, lane, rng, same_bits, soa, specials, unit, unit2};
+use common::textbook;
+
+use common::{
+    ONE_MINUS_EPS, chi2, in_unit_square, lane, rng, same_bits, soa, special_pairs, special_triples,
+    unit, unit2,
+};
 use proptest::prelude::*;
-use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use warpcore::f32x8;
 use warpcore::sphere;
 
@@ -25,14 +30,7 @@ fn ab(u: [f32; 2]) -> (f64, f64) {
 /// Clarberg's equal-area map as written in the paper / DESIGN.md.
 fn equal_area_ref(u: [f32; 2]) -> [f64; 3] {
     let (a, b) = ab(u);
-    let (ua, ub) = (a.abs(), b.abs());
-    let sd = 1.0 - (ua + ub);
-    let r = 1.0 - sd.abs();
-    let phi = if r == 0.0 {
-        FRAC_PI_4
-    } else {
-        ((ub - ua) / r + 1.0) * FRAC_PI_4
-    };
+    let (r, phi, sd) = textbook::equal_area_fold(a, b);
     let z = if sd >= 0.0 {
         1.0 - r * r
     } else {
@@ -49,12 +47,7 @@ fn equal_area_inverse_ref(d: [f32; 3]) -> [f64; 2] {
     let (x, y, z) = (d[0] as f64 / n, d[1] as f64 / n, d[2] as f64 / n);
     let r = (1.0 - z.abs()).max(0.0).sqrt();
     let phi = y.abs().atan2(x.abs()); // [0, pi/2]
-    let q = r * phi / FRAC_PI_2;
-    let p = r - q;
-    let (ua, ub) = if z < 0.0 { (1.0 - q, 1.0 - p) } else { (p, q) };
-    let a = if d[0].is_sign_negative() { -ua } else { ua };
-    let b = if d[1].is_sign_negative() { -ub } else { ub };
-    [(a + 1.0) / 2.0, (b + 1.0) / 2.0]
+    textbook::equal_area_unfold(r, r * phi / FRAC_PI_2, [x, y, z])
 }
 
 fn equirect_ref(u: [f32; 2]) -> [f64; 3] {
@@ -76,14 +69,7 @@ fn uniform_ref(u: [f32; 2]) -> [f64; 3] {
 /// Shirley and Chiu's concentric map exactly as published, with the disk warps' radius clamp.
 fn concentric_ref(u: [f32; 2]) -> [f64; 2] {
     let (a, b) = ab(u);
-    if a == 0.0 && b == 0.0 {
-        return [0.0, 0.0];
-    }
-    let (r, phi) = if a.abs() > b.abs() {
-        (a, FRAC_PI_4 * (b / a))
-    } else {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    };
+    let (r, phi) = textbook::concentric_polar(a, b);
     let max = 1.0 - 2f64.powi(-23);
     let r = r.clamp(-max, max);
     [r * phi.cos(), r * phi.sin()]
@@ -160,10 +146,6 @@ fn random_direction(r: &mut rand_xoshiro::Xoshiro256PlusPlus) -> [f32; 3] {
 
 fn is_unit(d: [f32; 3], tol: f64) -> bool {
     d.iter().all(|c| c.is_finite()) && (norm(d) - 1.0).abs() <= tol
-}
-
-fn in_unit_square(u: [f32; 2]) -> bool {
-    u.iter().all(|&x| (0.0..1.0).contains(&x))
 }
 
 // ----------------------------------------------------------------------------------------
@@ -374,21 +356,8 @@ fn check_widths(pts: &[[f32; 2]; 8], dirs: &[[f32; 3]; 8]) {
 
 #[test]
 fn widths_agree_on_special_values() {
-    let sp = specials();
-    let mut pts = Vec::new();
-    for &a in &sp {
-        for &b in &sp {
-            pts.push([a, b]);
-        }
-    }
-    let mut dirs = Vec::new();
-    for &a in &sp {
-        for &b in &sp {
-            for &c in [0.0f32, -0.0, 1.0, -1.0, f32::NAN, 0.3, f32::INFINITY, 1e-30].iter() {
-                dirs.push([a, b, c]);
-            }
-        }
-    }
+    let pts = special_pairs();
+    let dirs = special_triples(&[0.0, -0.0, 1.0, -1.0, f32::NAN, 0.3, f32::INFINITY, 1e-30]);
     for (k, group) in pts.chunks_exact(8).enumerate() {
         let d: Vec<[f32; 3]> = (0..8).map(|j| dirs[(8 * k + j) * 7 % dirs.len()]).collect();
         check_widths(group.try_into().unwrap(), d.as_slice().try_into().unwrap());
@@ -675,10 +644,7 @@ fn inverses_are_scale_free() {
 fn textbook_f32_round_trip_for_comparison() {
     fn fwd(u: [f32; 2]) -> [f32; 3] {
         let (a, b) = (2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
-        let (ua, ub) = (a.abs(), b.abs());
-        let sd = 1.0 - (ua + ub);
-        let r = 1.0 - sd.abs();
-        let phi = if r == 0.0 { 1.0 } else { (ub - ua) / r + 1.0 } * std::f32::consts::FRAC_PI_4;
+        let (r, phi, sd) = textbook::equal_area_fold(a, b);
         let z = (1.0 - r * r).copysign(sd);
         let s = r * (2.0 - r * r).max(0.0).sqrt();
         [s * phi.cos().copysign(a), s * phi.sin().copysign(b), z]
@@ -691,17 +657,7 @@ fn textbook_f32_round_trip_for_comparison() {
         if x < y {
             phi = 1.0 - phi;
         }
-        let v = phi * r;
-        let u = r - v;
-        let (u, v) = if d[2] < 0.0 {
-            (1.0 - v, 1.0 - u)
-        } else {
-            (u, v)
-        };
-        [
-            0.5 * (u.copysign(d[0]) + 1.0),
-            0.5 * (v.copysign(d[1]) + 1.0),
-        ]
+        textbook::equal_area_unfold(r, phi * r, d)
     }
     let inputs = accuracy_inputs();
     let (mut ours, mut textbook, mut textbook_pole) = (0.0f64, 0.0f64, 0.0f64);
@@ -803,14 +759,8 @@ fn poles_seams_and_signed_zeros() {
         assert_eq!(sphere::cosine_hemisphere_inverse(d), [0.5, 0.5]);
     }
     // Out-of-range input follows the documented clamp.
-    assert!(same_bits(
-        sphere::equal_area([f32::NAN, 2.0]),
-        sphere::equal_area([0.0, ONE_MINUS_EPS])
-    ));
-    assert!(same_bits(
-        sphere::equirect([-1.0, f32::INFINITY]),
-        sphere::equirect([0.0, ONE_MINUS_EPS])
-    ));
+    common::assert_documented_clamp("equal_area", sphere::equal_area);
+    common::assert_documented_clamp("equirect", sphere::equirect);
     // Lat-long conventions: v = 0 is +z, the seam y = -0.0 is u0 = 0.
     assert_eq!(sphere::equirect([0.0, 0.0]), [0.0, 0.0, 1.0]);
     assert_eq!(sphere::equirect([0.25, 0.5]), [0.0, 1.0, 0.0]);
@@ -1200,10 +1150,7 @@ fn chi2_rejects_wrong_warps() {
         }
         h.add(chi2::sphere(d));
     }
-    let p = chi2::statistic(&h, &chi2::expected_uniform(NZ, NPHI))
-        .unwrap()
-        .p_value;
-    assert!(p < chi2::per_test_alpha(), "{p}");
+    chi2::assert_rejects_uniform(&h, NZ, NPHI);
 }
 
 /// Found by the `sphere` fuzz target: the smallest negative subnormal halves to -0.0 in the

@@ -6,6 +6,7 @@
 
 use warpcore_testkit as common;
 
+use common::textbook::{add, cross, dot, scale, sub};
 use common::{chi2, rng, specials, unit2};
 use rand::RngExt;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -16,25 +17,6 @@ type V3 = [f64; 3];
 
 fn d3(v: [f32; 3]) -> V3 {
     [v[0] as f64, v[1] as f64, v[2] as f64]
-}
-fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn add(a: V3, b: V3) -> V3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-fn mul(a: V3, k: f64) -> V3 {
-    [a[0] * k, a[1] * k, a[2] * k]
-}
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 fn norm(a: V3) -> f64 {
     dot(a, a).sqrt()
@@ -94,7 +76,7 @@ fn dir(r: &mut Xoshiro256PlusPlus) -> V3 {
         ];
         let n = norm(v);
         if n > 0.1 && n <= 1.0 {
-            return mul(v, 1.0 / n);
+            return scale(v, 1.0 / n);
         }
     }
 }
@@ -111,10 +93,10 @@ fn random_triangle(
     dist: f64,
     offset: f64,
 ) -> ([[f32; 3]; 3], [f32; 3]) {
-    let p = mul(dir(r), offset * r.random::<f64>());
-    let centre = add(p, mul(dir(r), dist));
+    let p = scale(dir(r), offset * r.random::<f64>());
+    let centre = add(p, scale(dir(r), dist));
     let v: [[f32; 3]; 3] =
-        std::array::from_fn(|_| f3(add(centre, mul(dir(r), size * (0.2 + r.random::<f64>())))));
+        std::array::from_fn(|_| f3(add(centre, scale(dir(r), size * (0.2 + r.random::<f64>())))));
     (v, f3(p))
 }
 
@@ -127,8 +109,8 @@ fn random_rect(
     dist: f64,
     offset: f64,
 ) -> ([f32; 3], [f32; 3], [f32; 3], [f32; 3]) {
-    let p = mul(dir(r), offset * r.random::<f64>());
-    let centre = add(p, mul(dir(r), dist));
+    let p = scale(dir(r), offset * r.random::<f64>());
+    let centre = add(p, scale(dir(r), dist));
     let w = size * (0.25 + r.random::<f64>());
     let h = w / (1.0 + 15.0 * r.random::<f64>());
     let axis = r.random_range(0..3usize);
@@ -140,18 +122,24 @@ fn random_rect(
     if r.random::<bool>() {
         std::mem::swap(&mut ex, &mut ey);
     }
-    let corner = sub(centre, mul(add(ex, ey), 0.5));
+    let corner = sub(centre, scale(add(ex, ey), 0.5));
     (f3(corner), f3(ex), f3(ey), f3(p))
+}
+
+/// Barycentrics in the closed simplex: each in `[0, 1]`, their sum within 3e-7 of 1.
+fn assert_barycentric(b: [f32; 3], context: impl Fn() -> String) {
+    assert!(
+        b.iter().all(|x| (0.0..=1.0).contains(x)),
+        "{}: {b:?}",
+        context()
+    );
+    let s = b[0] as f64 + b[1] as f64 + b[2] as f64;
+    assert!((s - 1.0).abs() <= 3e-7, "{}: sum {s}", context());
 }
 
 fn assert_total_tri(v: [[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) {
     let (b, pdf) = spherical::triangle(v, p, u);
-    assert!(
-        b.iter().all(|x| (0.0..=1.0).contains(x)),
-        "{v:?} {p:?} {u:?}: {b:?}"
-    );
-    let s = b[0] as f64 + b[1] as f64 + b[2] as f64;
-    assert!((s - 1.0).abs() <= 3e-7, "{v:?} {p:?} {u:?}: sum {s}");
+    assert_barycentric(b, || format!("{v:?} {p:?} {u:?}"));
     assert!(
         (0.0..f32::MAX).contains(&pdf),
         "{v:?} {p:?} {u:?}: pdf {pdf}"
@@ -485,7 +473,7 @@ fn chi2_triangle_uniform_in_solid_angle() {
     for (li, (v, p)) in lights.into_iter().enumerate() {
         // Sub-triangle k of the grid: up triangles (i, j) with i + j < n and down ones.
         let (v0, v1, v2, pp) = (d3(v[0]), d3(v[1]), d3(v[2]), d3(p));
-        let at = |b1: f64, b2: f64| add(v0, add(mul(sub(v1, v0), b1), mul(sub(v2, v0), b2)));
+        let at = |b1: f64, b2: f64| add(v0, add(scale(sub(v1, v0), b1), scale(sub(v2, v0), b2)));
         let mut expected = vec![];
         let h = 1.0 / n as f64;
         for i in 0..n {
@@ -559,14 +547,14 @@ fn chi2_rectangle_uniform_in_solid_angle() {
                 let corner = add(
                     cc,
                     add(
-                        mul(ex64, i as f64 / n as f64),
-                        mul(ey64, j as f64 / n as f64),
+                        scale(ex64, i as f64 / n as f64),
+                        scale(ey64, j as f64 / n as f64),
                     ),
                 );
                 let (a, ux, uy) = (
                     sub(corner, d3(p)),
-                    mul(ex64, 1.0 / n as f64),
-                    mul(ey64, 1.0 / n as f64),
+                    scale(ex64, 1.0 / n as f64),
+                    scale(ey64, 1.0 / n as f64),
                 );
                 expected[j * n + i] = vos(a, ux, add(ux, uy)) + vos(a, add(ux, uy), uy);
             }
@@ -635,14 +623,98 @@ fn compact_strata_stay_compact() {
     assert!(worst[0] < 0.5 && worst[1] < 0.3, "{worst:?}");
 }
 
-fn lane8<const N: usize>(v: [f32x8; N], j: usize) -> [f32; N] {
-    std::array::from_fn(|k| v[k].to_array()[j])
-}
-fn lane16<const N: usize>(v: [f32x16; N], j: usize) -> [f32; N] {
-    std::array::from_fn(|k| v[k].to_array()[j])
-}
 fn bits<const N: usize>(a: [f32; N]) -> [u32; N] {
     a.map(f32::to_bits)
+}
+
+/// A result's bits: the scalar form's, or lane `j` of a wide form's.
+trait Bits {
+    fn lane_bits(&self, j: usize) -> Vec<u32>;
+}
+impl Bits for f32 {
+    fn lane_bits(&self, _: usize) -> Vec<u32> {
+        vec![self.to_bits()]
+    }
+}
+impl Bits for f32x8 {
+    fn lane_bits(&self, j: usize) -> Vec<u32> {
+        vec![self.to_array()[j].to_bits()]
+    }
+}
+impl Bits for f32x16 {
+    fn lane_bits(&self, j: usize) -> Vec<u32> {
+        vec![self.to_array()[j].to_bits()]
+    }
+}
+impl<T: Bits, const N: usize> Bits for [T; N] {
+    fn lane_bits(&self, j: usize) -> Vec<u32> {
+        self.iter().flat_map(|x| x.lane_bits(j)).collect()
+    }
+}
+impl<A: Bits, B: Bits> Bits for (A, B) {
+    fn lane_bits(&self, j: usize) -> Vec<u32> {
+        [self.0.lane_bits(j), self.1.lane_bits(j)].concat()
+    }
+}
+
+/// `scalar(j)` equals lane `j` of `x16` for the 16 lanes, and of `x8` for the first 8.
+fn assert_lanes(scalar: impl Fn(usize) -> Box<dyn Bits>, x8: &dyn Bits, x16: &dyn Bits) {
+    for j in 0..16 {
+        let s = scalar(j).lane_bits(0);
+        assert_eq!(s, x16.lane_bits(j), "x16 lane {j}");
+        if j < 8 {
+            assert_eq!(s, x8.lane_bits(j), "x8 lane {j}");
+        }
+    }
+}
+
+/// The first 8 and all 16 of `rows` as 8- and 16-lane structure of arrays.
+fn soa<const N: usize>(rows: &[[f32; N]]) -> ([f32x8; N], [f32x16; N]) {
+    (
+        std::array::from_fn(|k| f32x8::new(std::array::from_fn(|j| rows[j][k]))),
+        std::array::from_fn(|k| f32x16::new(std::array::from_fn(|j| rows[j][k]))),
+    )
+}
+
+/// [`soa`] of each of `K` vectors (a light's vertices or corner and edges).
+type Wide<const K: usize> = ([[f32x8; 3]; K], [[f32x16; 3]; K]);
+fn soa_k<const K: usize>(rows: &[[[f32; 3]; K]]) -> Wide<K> {
+    let parts: [_; K] =
+        std::array::from_fn(|i| soa(&rows.iter().map(|r| r[i]).collect::<Vec<_>>()));
+    (parts.map(|p| p.0), parts.map(|p| p.1))
+}
+
+/// Lane `j`'s `u` in round `round`: every third a stiff one, else random; and a light's size
+/// and distance (`1e-3 .. 1e3`).
+fn lane_u_and_scale(
+    r: &mut Xoshiro256PlusPlus,
+    us: &[[f32; 2]],
+    round: usize,
+    j: usize,
+) -> ([f32; 2], f64, f64) {
+    let u = if j.is_multiple_of(3) {
+        us[(round * 16 + j) % us.len()]
+    } else {
+        unit2(r)
+    };
+    let dist = 10f64.powf(-3.0 + 6.0 * r.random::<f64>());
+    let size = dist * r.random::<f64>();
+    (u, size, dist)
+}
+
+/// The `u` of round `round`'s slice check (lengths around the lane widths; every fifth a
+/// stiff one).
+fn slice_us(r: &mut Xoshiro256PlusPlus, us: &[[f32; 2]], round: usize) -> Vec<[f32; 2]> {
+    let len = [0usize, 1, 7, 8, 9, 15, 16, 17, 33][round % 9];
+    (0..len)
+        .map(|k| {
+            if k.is_multiple_of(5) {
+                us[(round + k) % us.len()]
+            } else {
+                unit2(r)
+            }
+        })
+        .collect()
 }
 
 /// scalar == x8 == x16 == slice, bit for bit, over random lights (every lane its own light)
@@ -654,113 +726,76 @@ fn widths_agree_bit_for_bit() {
     let rects = stiff_rects();
     let us = stiff_us();
     for round in 0..400 {
-        let mut tv = vec![];
-        let mut rv = vec![];
-        for j in 0..16 {
-            let u = if j % 3 == 0 {
-                us[(round * 16 + j) % us.len()]
-            } else {
-                unit2(&mut r)
-            };
-            let dist = 10f64.powf(-3.0 + 6.0 * r.random::<f64>());
-            let size = dist * r.random::<f64>();
-            let (v, p) = if j % 4 == 1 {
-                tris[(round * 7 + j) % tris.len()]
-            } else {
-                random_triangle(&mut r, size, dist, dist)
-            };
-            let rc = if j % 4 == 1 {
-                rects[(round * 7 + j) % rects.len()]
-            } else {
-                random_rect(&mut r, size, dist, dist)
-            };
-            tv.push((v, p, u));
-            rv.push((rc, u));
-        }
-        let t8 = |g: &dyn Fn(usize) -> f32| f32x8::new(std::array::from_fn(g));
-        let t16 = |g: &dyn Fn(usize) -> f32| f32x16::new(std::array::from_fn(g));
-        macro_rules! soa {
-            ($mk:ident, $f:expr) => {
-                $mk(&$f)
-            };
-        }
+        // Every lane its own light: every fourth a stiff one.
+        let (tv, rv): (Vec<_>, Vec<_>) = (0..16)
+            .map(|j| {
+                let (u, size, dist) = lane_u_and_scale(&mut r, &us, round, j);
+                let (v, p) = if j % 4 == 1 {
+                    tris[(round * 7 + j) % tris.len()]
+                } else {
+                    random_triangle(&mut r, size, dist, dist)
+                };
+                let rc = if j % 4 == 1 {
+                    rects[(round * 7 + j) % rects.len()]
+                } else {
+                    random_rect(&mut r, size, dist, dist)
+                };
+                ((v, p, u), (rc, u))
+            })
+            .unzip();
         // Triangles.
-        let v8: [[f32x8; 3]; 3] =
-            std::array::from_fn(|i| std::array::from_fn(|k| soa!(t8, |j| tv[j].0[i][k])));
-        let p8: [f32x8; 3] = std::array::from_fn(|k| soa!(t8, |j| tv[j].1[k]));
-        let u8_: [f32x8; 2] = std::array::from_fn(|k| soa!(t8, |j| tv[j].2[k]));
-        let v16: [[f32x16; 3]; 3] =
-            std::array::from_fn(|i| std::array::from_fn(|k| soa!(t16, |j| tv[j].0[i][k])));
-        let p16: [f32x16; 3] = std::array::from_fn(|k| soa!(t16, |j| tv[j].1[k]));
-        let u16_: [f32x16; 2] = std::array::from_fn(|k| soa!(t16, |j| tv[j].2[k]));
-        let (b8, d8) = spherical::triangle_x8(v8, p8, u8_);
-        let (b16, d16) = spherical::triangle_x16(v16, p16, u16_);
-        let i8 = spherical::triangle_inverse_x8(v8, p8, b8);
-        let i16 = spherical::triangle_inverse_x16(v16, p16, b16);
-        let o8 = spherical::triangle_solid_angle_x8(v8, p8).to_array();
-        let o16 = spherical::triangle_solid_angle_x16(v16, p16).to_array();
-        for j in 0..16 {
-            let (v, p, u) = tv[j];
-            let (b, d) = spherical::triangle(v, p, u);
-            let w = spherical::triangle_inverse(v, p, b);
-            let o = spherical::triangle_solid_angle(v, p);
-            assert_eq!(bits(b), bits(lane16(b16, j)));
-            assert_eq!(d.to_bits(), d16.to_array()[j].to_bits());
-            assert_eq!(bits(w), bits(lane16(i16, j)));
-            assert_eq!(o.to_bits(), o16[j].to_bits());
-            if j < 8 {
-                assert_eq!(bits(b), bits(lane8(b8, j)));
-                assert_eq!(d.to_bits(), d8.to_array()[j].to_bits());
-                assert_eq!(bits(w), bits(lane8(i8, j)));
-                assert_eq!(o.to_bits(), o8[j].to_bits());
-            }
-        }
+        let (v8, v16) = soa_k(&tv.iter().map(|t| t.0).collect::<Vec<_>>());
+        let ([p8], [p16]) = soa_k(&tv.iter().map(|t| [t.1]).collect::<Vec<_>>());
+        let (u8_, u16_) = soa(&tv.iter().map(|t| t.2).collect::<Vec<_>>());
+        let s8 = spherical::triangle_x8(v8, p8, u8_);
+        let s16 = spherical::triangle_x16(v16, p16, u16_);
+        let scalar = |j: usize| spherical::triangle(tv[j].0, tv[j].1, tv[j].2);
+        assert_lanes(|j| Box::new(scalar(j)), &s8, &s16);
+        assert_lanes(
+            |j| Box::new(spherical::triangle_inverse(tv[j].0, tv[j].1, scalar(j).0)),
+            &spherical::triangle_inverse_x8(v8, p8, s8.0),
+            &spherical::triangle_inverse_x16(v16, p16, s16.0),
+        );
+        assert_lanes(
+            |j| Box::new(spherical::triangle_solid_angle(tv[j].0, tv[j].1)),
+            &spherical::triangle_solid_angle_x8(v8, p8),
+            &spherical::triangle_solid_angle_x16(v16, p16),
+        );
         // Rectangles.
-        let g = |k: usize, i: usize| -> [f32; 3] {
-            let ((c, ex, ey, p), _) = rv[k];
-            [c, ex, ey, p][i]
-        };
-        let a8: [[f32x8; 3]; 4] =
-            std::array::from_fn(|i| std::array::from_fn(|k| soa!(t8, |j| g(j, i)[k])));
-        let a16: [[f32x16; 3]; 4] =
-            std::array::from_fn(|i| std::array::from_fn(|k| soa!(t16, |j| g(j, i)[k])));
-        let ru8: [f32x8; 2] = std::array::from_fn(|k| soa!(t8, |j| rv[j].1[k]));
-        let ru16: [f32x16; 2] = std::array::from_fn(|k| soa!(t16, |j| rv[j].1[k]));
-        let (s8, e8) = spherical::rectangle_x8(a8[0], a8[1], a8[2], a8[3], ru8);
-        let (s16, e16) = spherical::rectangle_x16(a16[0], a16[1], a16[2], a16[3], ru16);
-        let j8 = spherical::rectangle_inverse_x8(a8[0], a8[1], a8[2], a8[3], s8);
-        let j16 = spherical::rectangle_inverse_x16(a16[0], a16[1], a16[2], a16[3], s16);
-        let q8 = spherical::rectangle_solid_angle_x8(a8[0], a8[1], a8[2], a8[3]).to_array();
-        let q16 = spherical::rectangle_solid_angle_x16(a16[0], a16[1], a16[2], a16[3]).to_array();
-        for j in 0..16 {
+        let (a8, a16) = soa_k(
+            &rv.iter()
+                .map(|((c, ex, ey, p), _)| [*c, *ex, *ey, *p])
+                .collect::<Vec<_>>(),
+        );
+        let (ru8, ru16) = soa(&rv.iter().map(|t| t.1).collect::<Vec<_>>());
+        let s8 = spherical::rectangle_x8(a8[0], a8[1], a8[2], a8[3], ru8);
+        let s16 = spherical::rectangle_x16(a16[0], a16[1], a16[2], a16[3], ru16);
+        let scalar = |j: usize| {
             let ((c, ex, ey, p), u) = rv[j];
-            let (st, d) = spherical::rectangle(c, ex, ey, p, u);
-            let w = spherical::rectangle_inverse(c, ex, ey, p, st);
-            let o = spherical::rectangle_solid_angle(c, ex, ey, p);
-            assert_eq!(bits(st), bits(lane16(s16, j)));
-            assert_eq!(d.to_bits(), e16.to_array()[j].to_bits());
-            assert_eq!(bits(w), bits(lane16(j16, j)));
-            assert_eq!(o.to_bits(), q16[j].to_bits());
-            if j < 8 {
-                assert_eq!(bits(st), bits(lane8(s8, j)));
-                assert_eq!(d.to_bits(), e8.to_array()[j].to_bits());
-                assert_eq!(bits(w), bits(lane8(j8, j)));
-                assert_eq!(o.to_bits(), q8[j].to_bits());
-            }
-        }
+            spherical::rectangle(c, ex, ey, p, u)
+        };
+        assert_lanes(|j| Box::new(scalar(j)), &s8, &s16);
+        assert_lanes(
+            |j| {
+                let ((c, ex, ey, p), _) = rv[j];
+                Box::new(spherical::rectangle_inverse(c, ex, ey, p, scalar(j).0))
+            },
+            &spherical::rectangle_inverse_x8(a8[0], a8[1], a8[2], a8[3], s8.0),
+            &spherical::rectangle_inverse_x16(a16[0], a16[1], a16[2], a16[3], s16.0),
+        );
+        assert_lanes(
+            |j| {
+                let ((c, ex, ey, p), _) = rv[j];
+                Box::new(spherical::rectangle_solid_angle(c, ex, ey, p))
+            },
+            &spherical::rectangle_solid_angle_x8(a8[0], a8[1], a8[2], a8[3]),
+            &spherical::rectangle_solid_angle_x16(a16[0], a16[1], a16[2], a16[3]),
+        );
         // Slices: one light, many u (lengths around the lane widths).
         let (v, p, _) = tv[round % 16];
         let ((c, ex, ey, rp), _) = rv[round % 16];
-        let n = [0usize, 1, 7, 8, 9, 15, 16, 17, 33][round % 9];
-        let uu: Vec<[f32; 2]> = (0..n)
-            .map(|k| {
-                if k % 5 == 0 {
-                    us[(round + k) % us.len()]
-                } else {
-                    unit2(&mut r)
-                }
-            })
-            .collect();
+        let uu = slice_us(&mut r, &us, round);
+        let n = uu.len();
         let mut out4 = vec![[0.0f32; 4]; n + 2];
         assert_eq!(spherical::triangle_slice(v, p, &uu, &mut out4), n);
         let mut out3 = vec![[0.0f32; 3]; n];
@@ -897,7 +932,7 @@ fn bilinear_warp_inverts_its_cdfs() {
 /// the cosine-weighted solid angle `int max(0, n . w) dw` of the clipped polygon by
 /// Lambert's formula `1/2 |sum_i angle(a_i, a_i+1) n . unit(a_i x a_i+1)|`.
 fn projected_solid_angle(poly: &[V3], n: V3) -> f64 {
-    let n = mul(n, 1.0 / norm(n));
+    let n = scale(n, 1.0 / norm(n));
     let mut clipped = vec![];
     for i in 0..poly.len() {
         let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
@@ -906,7 +941,7 @@ fn projected_solid_angle(poly: &[V3], n: V3) -> f64 {
             clipped.push(a);
         }
         if (da >= 0.0) != (db >= 0.0) {
-            clipped.push(add(a, mul(sub(b, a), da / (da - db))));
+            clipped.push(add(a, scale(sub(b, a), da / (da - db))));
         }
     }
     let mut s = 0.0;
@@ -1009,7 +1044,7 @@ fn cosine_estimator_is_unbiased() {
             exact,
             Box::new(move |u| {
                 let (b, pdf) = spherical::triangle_cosine(v, p, n, u);
-                let x = (0..3).fold([0.0; 3], |acc, k| add(acc, mul(d3(v[k]), b[k] as f64)));
+                let x = (0..3).fold([0.0; 3], |acc, k| add(acc, scale(d3(v[k]), b[k] as f64)));
                 (sub(x, d3(p)), pdf as f64)
             }),
             n,
@@ -1029,7 +1064,7 @@ fn cosine_estimator_is_unbiased() {
             exact,
             Box::new(move |u| {
                 let ([s, t], pdf) = spherical::rectangle_cosine(c, ex, ey, p, n, u);
-                let x = add(o, add(mul(d3(ex), s as f64), mul(d3(ey), t as f64)));
+                let x = add(o, add(scale(d3(ex), s as f64), scale(d3(ey), t as f64)));
                 (x, pdf as f64)
             }),
             n,
@@ -1047,10 +1082,10 @@ fn cosine_density_and_chi2() {
     // Density identity over random lights and normals facing them.
     for _ in 0..20_000 {
         let (v, p) = random_triangle(&mut r, 1.0, 1.5, 1.0);
-        let centre = mul(add(add(d3(v[0]), d3(v[1])), d3(v[2])), 1.0 / 3.0);
+        let centre = scale(add(add(d3(v[0]), d3(v[1])), d3(v[2])), 1.0 / 3.0);
         let n = f3(add(
             sub(centre, d3(p)),
-            mul(dir(&mut r), 0.8 * norm(sub(centre, d3(p)))),
+            scale(dir(&mut r), 0.8 * norm(sub(centre, d3(p)))),
         ));
         let u = unit2(&mut r);
         let (b, pdf) = spherical::triangle_cosine(v, p, n, u);
@@ -1064,10 +1099,10 @@ fn cosine_density_and_chi2() {
             );
         }
         let (c, ex, ey, p) = random_rect(&mut r, 1.0, 1.5, 1.0);
-        let centre = add(d3(c), mul(add(d3(ex), d3(ey)), 0.5));
+        let centre = add(d3(c), scale(add(d3(ex), d3(ey)), 0.5));
         let n = f3(add(
             sub(centre, d3(p)),
-            mul(dir(&mut r), 0.8 * norm(sub(centre, d3(p)))),
+            scale(dir(&mut r), 0.8 * norm(sub(centre, d3(p)))),
         ));
         let (st, pdf) = spherical::rectangle_cosine(c, ex, ey, p, n, u);
         let w = rect_weights(c, ex, ey, p, n);
@@ -1134,12 +1169,7 @@ fn cosine_total_and_falls_back() {
         for (k, &u) in us.iter().enumerate() {
             let n = normals[k % normals.len()];
             let (b, pdf) = spherical::triangle_cosine(v, p, n, u);
-            assert!(
-                b.iter().all(|x| (0.0..=1.0).contains(x)),
-                "{v:?} {p:?} {n:?} {u:?}: {b:?}"
-            );
-            let s = b[0] as f64 + b[1] as f64 + b[2] as f64;
-            assert!((s - 1.0).abs() <= 3e-7, "sum {s}");
+            assert_barycentric(b, || format!("{v:?} {p:?} {n:?} {u:?}"));
             assert!(
                 pdf.is_finite() && pdf >= 0.0,
                 "{v:?} {p:?} {n:?} {u:?}: {pdf}"
@@ -1185,80 +1215,44 @@ fn cosine_widths_agree_bit_for_bit() {
     let mut r = rng(53);
     let us = stiff_us();
     for round in 0..200 {
-        let mut tv = vec![];
-        let mut rv = vec![];
-        for j in 0..16 {
-            let u = if j % 3 == 0 {
-                us[(round * 16 + j) % us.len()]
-            } else {
-                unit2(&mut r)
-            };
-            let dist = 10f64.powf(-3.0 + 6.0 * r.random::<f64>());
-            let size = dist * r.random::<f64>();
-            let n = f3(dir(&mut r));
-            let (v, p) = random_triangle(&mut r, size, dist, dist);
-            tv.push((v, p, n, u));
-            rv.push((random_rect(&mut r, size, dist, dist), n, u));
-        }
-        let t8 = |g: &dyn Fn(usize) -> f32| f32x8::new(std::array::from_fn(g));
-        let t16 = |g: &dyn Fn(usize) -> f32| f32x16::new(std::array::from_fn(g));
-        let v8: [[f32x8; 3]; 3] =
-            std::array::from_fn(|i| std::array::from_fn(|k| t8(&|j| tv[j].0[i][k])));
-        let v16: [[f32x16; 3]; 3] =
-            std::array::from_fn(|i| std::array::from_fn(|k| t16(&|j| tv[j].0[i][k])));
-        let p8: [f32x8; 3] = std::array::from_fn(|k| t8(&|j| tv[j].1[k]));
-        let p16: [f32x16; 3] = std::array::from_fn(|k| t16(&|j| tv[j].1[k]));
-        let n8: [f32x8; 3] = std::array::from_fn(|k| t8(&|j| tv[j].2[k]));
-        let n16: [f32x16; 3] = std::array::from_fn(|k| t16(&|j| tv[j].2[k]));
-        let u8_: [f32x8; 2] = std::array::from_fn(|k| t8(&|j| tv[j].3[k]));
-        let u16_: [f32x16; 2] = std::array::from_fn(|k| t16(&|j| tv[j].3[k]));
-        let (b8, d8) = spherical::triangle_cosine_x8(v8, p8, n8, u8_);
-        let (b16, d16) = spherical::triangle_cosine_x16(v16, p16, n16, u16_);
-        for j in 0..16 {
-            let (v, p, n, u) = tv[j];
-            let (b, d) = spherical::triangle_cosine(v, p, n, u);
-            assert_eq!(bits(b), bits(lane16(b16, j)));
-            assert_eq!(d.to_bits(), d16.to_array()[j].to_bits());
-            if j < 8 {
-                assert_eq!(bits(b), bits(lane8(b8, j)));
-                assert_eq!(d.to_bits(), d8.to_array()[j].to_bits());
-            }
-        }
-        let g = |k: usize, i: usize| -> [f32; 3] {
-            let ((c, ex, ey, p), n, _) = rv[k];
-            [c, ex, ey, p, n][i]
-        };
-        let a8: [[f32x8; 3]; 5] =
-            std::array::from_fn(|i| std::array::from_fn(|k| t8(&|j| g(j, i)[k])));
-        let a16: [[f32x16; 3]; 5] =
-            std::array::from_fn(|i| std::array::from_fn(|k| t16(&|j| g(j, i)[k])));
-        let ru8: [f32x8; 2] = std::array::from_fn(|k| t8(&|j| rv[j].2[k]));
-        let ru16: [f32x16; 2] = std::array::from_fn(|k| t16(&|j| rv[j].2[k]));
-        let (s8, e8) = spherical::rectangle_cosine_x8(a8[0], a8[1], a8[2], a8[3], a8[4], ru8);
-        let (s16, e16) =
-            spherical::rectangle_cosine_x16(a16[0], a16[1], a16[2], a16[3], a16[4], ru16);
-        for j in 0..16 {
-            let ((c, ex, ey, p), n, u) = rv[j];
-            let (st, d) = spherical::rectangle_cosine(c, ex, ey, p, n, u);
-            assert_eq!(bits(st), bits(lane16(s16, j)));
-            assert_eq!(d.to_bits(), e16.to_array()[j].to_bits());
-            if j < 8 {
-                assert_eq!(bits(st), bits(lane8(s8, j)));
-                assert_eq!(d.to_bits(), e8.to_array()[j].to_bits());
-            }
-        }
+        // Every lane its own light and normal.
+        let (tv, rv): (Vec<_>, Vec<_>) = (0..16)
+            .map(|j| {
+                let (u, size, dist) = lane_u_and_scale(&mut r, &us, round, j);
+                let n = f3(dir(&mut r));
+                let (v, p) = random_triangle(&mut r, size, dist, dist);
+                ((v, p, n, u), (random_rect(&mut r, size, dist, dist), n, u))
+            })
+            .unzip();
+        let (v8, v16) = soa_k(&tv.iter().map(|t| t.0).collect::<Vec<_>>());
+        let ([p8, n8], [p16, n16]) = soa_k(&tv.iter().map(|t| [t.1, t.2]).collect::<Vec<_>>());
+        let (u8_, u16_) = soa(&tv.iter().map(|t| t.3).collect::<Vec<_>>());
+        assert_lanes(
+            |j| {
+                let (v, p, n, u) = tv[j];
+                Box::new(spherical::triangle_cosine(v, p, n, u))
+            },
+            &spherical::triangle_cosine_x8(v8, p8, n8, u8_),
+            &spherical::triangle_cosine_x16(v16, p16, n16, u16_),
+        );
+        let lights: Vec<_> = rv
+            .iter()
+            .map(|((c, ex, ey, p), n, _)| [*c, *ex, *ey, *p, *n])
+            .collect();
+        let (a8, a16) = soa_k(&lights);
+        let (ru8, ru16) = soa(&rv.iter().map(|t| t.2).collect::<Vec<_>>());
+        assert_lanes(
+            |j| {
+                let ((c, ex, ey, p), n, u) = rv[j];
+                Box::new(spherical::rectangle_cosine(c, ex, ey, p, n, u))
+            },
+            &spherical::rectangle_cosine_x8(a8[0], a8[1], a8[2], a8[3], a8[4], ru8),
+            &spherical::rectangle_cosine_x16(a16[0], a16[1], a16[2], a16[3], a16[4], ru16),
+        );
         let (v, p, n, _) = tv[round % 16];
         let ((c, ex, ey, rp), rn, _) = rv[round % 16];
-        let len = [0usize, 1, 7, 8, 9, 15, 16, 17, 33][round % 9];
-        let uu: Vec<[f32; 2]> = (0..len)
-            .map(|k| {
-                if k % 5 == 0 {
-                    us[(round + k) % us.len()]
-                } else {
-                    unit2(&mut r)
-                }
-            })
-            .collect();
+        let uu = slice_us(&mut r, &us, round);
+        let len = uu.len();
         let mut out4 = vec![[0.0f32; 4]; len + 1];
         assert_eq!(
             spherical::triangle_cosine_slice(v, p, n, &uu, &mut out4),

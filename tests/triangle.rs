@@ -7,7 +7,12 @@
 
 use warpcore_testkit as common;
 
-use common::{ONE_MINUS_EPS, chi2, lane, rng, same_bits, specials, unit, unit2};
+use common::textbook;
+
+use common::{
+    ONE_MINUS_EPS, chi2, in_unit_square, lane, rng, same_bits, special_pairs, special_triples,
+    unit, unit2,
+};
 use proptest::prelude::*;
 use rand::RngExt;
 use warpcore::triangle;
@@ -34,22 +39,9 @@ fn sqrt_ref(u: [f32; 2]) -> [f64; 3] {
     [1.0 - s, u[1] as f64 * s, (1.0 - u[1] as f64) * s]
 }
 
-/// The Basu-Owen walk of DESIGN.md section 4, one digit at a time with branches, in f64
-/// (exact: every c and w is dyadic), returning `[x, y, 1 - x - y]` of the centroid.
+/// The Basu-Owen walk of DESIGN.md section 4 in f64 (exact).
 fn basu_owen_ref(index: u32) -> [f64; 3] {
-    let (mut cx, mut cy, mut w) = (0.0f64, 0.0f64, 0.5f64);
-    for j in 0..16 {
-        let d = (index >> (2 * j)) & 3;
-        if d & 1 == 0 {
-            cy += w;
-        }
-        if d & 2 == 0 {
-            cx += w;
-        }
-        w *= if d == 0 { -0.5 } else { 0.5 };
-    }
-    let (x, y) = (cx + 2.0 * w / 3.0, cy + 2.0 * w / 3.0);
-    [x, y, 1.0 - x - y]
+    textbook::basu_owen(index)
 }
 
 fn err3(b: [f32; 3], r: [f64; 3]) -> f64 {
@@ -69,11 +61,6 @@ fn valid(b: [f32; 3]) -> bool {
     b.iter()
         .all(|&x| x.is_finite() && (0.0..=1.0).contains(&x) && x.to_bits() >> 31 == 0)
         && (sum(b) - 1.0).abs() <= ULP1
-}
-
-fn in_unit_square(u: [f32; 2]) -> bool {
-    u.iter()
-        .all(|&x| (0.0..1.0).contains(&x) && x.to_bits() >> 31 == 0)
 }
 
 /// A uniform f32 in [2^-20, 1) with a full random mantissa (not on the 2^-24 grid), so
@@ -224,17 +211,8 @@ fn check_basu_owen_widths(index: [u32; 8], seed: [u32; 8]) {
 
 #[test]
 fn widths_agree_on_special_values() {
-    let sp = specials();
-    let mut pts = Vec::new();
-    let mut bary = Vec::new();
-    for &a in &sp {
-        for &b in &sp {
-            pts.push([a, b]);
-            for &c in [0.0f32, 0.5, f32::NAN, -1.0].iter() {
-                bary.push([a, b, c]);
-            }
-        }
-    }
+    let pts = special_pairs();
+    let bary = special_triples(&[0.0, 0.5, f32::NAN, -1.0]);
     for (group, bgroup) in pts.chunks_exact(8).zip(bary.chunks_exact(8)) {
         check_widths(group.try_into().unwrap(), bgroup.try_into().unwrap());
     }
@@ -461,18 +439,8 @@ fn edge_inputs() {
         [ONE_MINUS_EPS, 0.0]
     );
     // Out-of-range input follows the documented rules.
-    assert!(same_bits(
-        triangle::uniform([f32::NAN, 2.0]),
-        triangle::uniform([0.0, ONE_MINUS_EPS])
-    ));
-    assert!(same_bits(
-        triangle::sqrt_map([-1.0, f32::INFINITY]),
-        triangle::sqrt_map([0.0, ONE_MINUS_EPS])
-    ));
-    assert!(same_bits(
-        triangle::uniform([-0.0, 0.5]),
-        triangle::uniform([0.0, 0.5])
-    ));
+    common::assert_documented_clamp("uniform", triangle::uniform);
+    common::assert_documented_clamp("sqrt_map", triangle::sqrt_map);
     assert_eq!(triangle::uniform_inverse([f32::NAN, -3.0, 7.0]), [0.0, 0.0]);
     assert_eq!(
         triangle::sqrt_map_inverse([f32::NAN, f32::NAN, f32::NAN]),
@@ -986,21 +954,26 @@ fn chi2_basu_owen_random_seeds() {
     });
 }
 
-/// Stratified sets: 512 seeds x the first 4096 points. Each set is "too uniform" (one point
-/// per level-6 cell), which only lowers the statistic; what this catches is a density error.
-#[test]
-fn chi2_basu_owen_stratified_sets() {
-    let mut r = rng(104);
+/// Stratified sets of an index-driven slice form: `seed` (a random odd seed per set) x the
+/// first 4096 points, 512 sets. Each set is "too uniform" (one point per level-6 cell), which
+/// only lowers the statistic; what this catches is a density error.
+fn chi2_stratified_sets(name: &str, seed: u64, slice: impl Fn(u32, u32, &mut [[f32; 3]]) -> usize) {
+    let mut r = rng(seed);
     let mut buf = vec![[0.0f32; 3]; 4096];
     let mut at = buf.len();
-    chi2_triangle("triangle::basu_owen (512 seeds x 4096 points)", || {
+    chi2_triangle(&format!("{name} (512 seeds x 4096 points)"), || {
         if at == buf.len() {
-            triangle::basu_owen_slice(0, r.random::<u32>() | 1, &mut buf);
+            slice(0, r.random::<u32>() | 1, &mut buf);
             at = 0;
         }
         at += 1;
         buf[at - 1]
     });
+}
+
+#[test]
+fn chi2_basu_owen_stratified_sets() {
+    chi2_stratified_sets("triangle::basu_owen", 104, triangle::basu_owen_slice);
 }
 
 /// Independent samples of the per-level permutation: random seed and index per point.
@@ -1013,22 +986,13 @@ fn chi2_basu_owen_permuted_random_seeds() {
     );
 }
 
-/// Stratified sets of the per-level permutation: 512 seeds x the first 4096 points.
+/// The per-level permutation's stratified sets.
 #[test]
 fn chi2_basu_owen_permuted_stratified_sets() {
-    let mut r = rng(106);
-    let mut buf = vec![[0.0f32; 3]; 4096];
-    let mut at = buf.len();
-    chi2_triangle(
-        "triangle::basu_owen_permuted (512 seeds x 4096 points)",
-        || {
-            if at == buf.len() {
-                triangle::basu_owen_permuted_slice(0, r.random::<u32>() | 1, &mut buf);
-                at = 0;
-            }
-            at += 1;
-            buf[at - 1]
-        },
+    chi2_stratified_sets(
+        "triangle::basu_owen_permuted",
+        106,
+        triangle::basu_owen_permuted_slice,
     );
 }
 
@@ -1056,8 +1020,5 @@ fn chi2_rejects_wrong_warps() {
         }
         h.add(chi2::triangle(triangle::uniform(u)));
     }
-    let p = chi2::statistic(&h, &chi2::expected_uniform(NA, NB))
-        .unwrap()
-        .p_value;
-    assert!(p < chi2::per_test_alpha(), "p = {p}");
+    chi2::assert_rejects_uniform(&h, NA, NB);
 }

@@ -290,30 +290,7 @@ fn put(block: &mut [u32], at: usize, fractions: [u32; 3]) {
     }
 }
 
-// Sealed supertrait of `Distribution`, generic over the crate's private lane traits.
-#[allow(private_bounds, private_interfaces)]
-impl slices::Body for Hierarchical<'_> {
-    #[inline(always)]
-    fn sample_lanes<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
-        self.sample_body(u)
-    }
-    #[inline(always)]
-    fn pdf_lanes<L: Lane>(&self, uv: [L; 2]) -> L {
-        self.pdf_body(uv)
-    }
-    #[inline(always)]
-    fn size(&self) -> [u32; 2] {
-        [self.width, self.height]
-    }
-    fn slice_sample(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
-        slices::sample::<Self, f32x8, 8, { slices::HIER }>(self, u, out)
-    }
-    fn slice_pdf(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
-        slices::pdf::<Self, f32x8, 8, { slices::HIER }>(self, uv, out)
-    }
-}
-
-impl super::Distribution for Hierarchical<'_> {}
+slices::body!(Hierarchical, HIER);
 
 impl<'a> Hierarchical<'a> {
     /// Words of storage `new` needs for a `width x height` map; `usize::MAX` when the map is

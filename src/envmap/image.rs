@@ -22,7 +22,7 @@
 //!   [`sphere::equal_area`]`(uv)` -> density [`equal_area_pdf_to_solid_angle`]`(pdf)` (or both
 //!   at once: `sample_direction(Layout::EqualArea, u)`).
 
-use super::{Error, MAX_SIDE};
+use super::{Error, MAX_SIDE, check_len};
 use crate::lanes::{Lane, unit_interval};
 use crate::sphere;
 use crate::trig::sin_cos_turns;
@@ -99,13 +99,7 @@ pub fn equirect_solid_angle_weights(
     if width == 0 || height == 0 {
         return Err(Error::ZeroSize);
     }
-    let expected = width.saturating_mul(height);
-    if weights.len() != expected {
-        return Err(Error::LengthMismatch {
-            expected,
-            got: weights.len(),
-        });
-    }
+    check_len(weights.len(), width, height)?;
     let h = height as f64;
     for (r, row) in weights.chunks_exact_mut(width.max(1)).enumerate() {
         let v = ((r as f64 + 0.5) / h) as f32;
@@ -218,21 +212,9 @@ pub fn equirect_to_equal_area<const C: usize>(
         return Err(Error::TooLarge);
     }
     // Checked: on 32-bit targets (wasm32) two sides of at most `MAX_SIDE` can overflow
-    // `usize`, and no slice can then have the length (`expected` saturates).
-    let expected = src_width.saturating_mul(src_height);
-    if src.len() != expected {
-        return Err(Error::LengthMismatch {
-            expected,
-            got: src.len(),
-        });
-    }
-    let expected = size.saturating_mul(size);
-    if dst.len() != expected {
-        return Err(Error::LengthMismatch {
-            expected,
-            got: dst.len(),
-        });
-    }
+    // `usize`, and no slice can then have the length (`check_len` saturates).
+    check_len(src.len(), src_width, src_height)?;
+    check_len(dst.len(), size, size)?;
     // Sample positions are computed in `f64` (integers below 2^31: exact, so the same bits
     // as integer arithmetic) and the source index with checked arithmetic.
     let (sw, sh) = (src_width as f64, src_height as f64);

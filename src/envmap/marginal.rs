@@ -70,30 +70,7 @@ pub struct MarginalConditional<'a> {
     pdf_scale: f32,
 }
 
-// Sealed supertrait of `Distribution`, generic over the crate's private lane traits.
-#[allow(private_bounds, private_interfaces)]
-impl slices::Body for MarginalConditional<'_> {
-    #[inline(always)]
-    fn sample_lanes<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
-        self.sample_body(u)
-    }
-    #[inline(always)]
-    fn pdf_lanes<L: Lane>(&self, uv: [L; 2]) -> L {
-        self.pdf_body(uv)
-    }
-    #[inline(always)]
-    fn size(&self) -> [u32; 2] {
-        [self.width, self.height]
-    }
-    fn slice_sample(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
-        slices::sample::<Self, f32x8, 8, { slices::MC }>(self, u, out)
-    }
-    fn slice_pdf(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
-        slices::pdf::<Self, f32x8, 8, { slices::MC }>(self, uv, out)
-    }
-}
-
-impl super::Distribution for MarginalConditional<'_> {}
+slices::body!(MarginalConditional, MC);
 
 impl<'a> MarginalConditional<'a> {
     /// Words of storage `new` needs for a `width x height` map; `usize::MAX` when the map is

@@ -196,47 +196,42 @@ pub struct Sample {
     pub texel: [u32; 2],
 }
 
-/// Eight samples in SIMD lanes (what `sample_x8` returns). Lane `j` equals the scalar
-/// `sample` of lane `j` of the input, bit for bit.
-#[derive(Clone, Copy, Debug)]
-pub struct SampleX8 {
-    /// `[u, v]` of the eight points.
-    pub uv: [f32x8; 2],
-    /// The eight densities.
-    pub pdf: f32x8,
-    /// `[column, row]` of the eight texels.
-    pub texel: [u32x8; 2],
+/// A sample type of `$n` SIMD lanes (`$Words`, `$words` in words), what `$method` returns.
+macro_rules! sample_lanes {
+    ($name:ident, $f:ident, $u:ident, $n:literal, $Words:literal, $words:literal, $method:literal) => {
+        #[doc = concat!($Words, " samples in SIMD lanes (what `", $method, "` returns). ")]
+        #[doc = "Lane `j` equals the scalar `sample` of lane `j` of the input, bit for bit."]
+        #[derive(Clone, Copy, Debug)]
+        pub struct $name {
+            #[doc = concat!("`[u, v]` of the ", $words, " points.")]
+            pub uv: [$f; 2],
+            #[doc = concat!("The ", $words, " densities.")]
+            pub pdf: $f,
+            #[doc = concat!("`[column, row]` of the ", $words, " texels.")]
+            pub texel: [$u; 2],
+        }
+
+        impl $name {
+            #[doc = concat!("The ", $words, " samples as an array of [`Sample`]s.")]
+            #[inline]
+            pub fn to_array(&self) -> [Sample; $n] {
+                let [u, v, p] = [self.uv[0], self.uv[1], self.pdf].map(|x| x.to_array());
+                samples_of(u, v, p, self.texel.map(|t| t.to_array()))
+            }
+        }
+    };
 }
 
-impl SampleX8 {
-    /// The eight samples as an array of [`Sample`]s.
-    #[inline]
-    pub fn to_array(&self) -> [Sample; 8] {
-        let [u, v, p] = [self.uv[0], self.uv[1], self.pdf].map(|x| x.to_array());
-        samples_of(u, v, p, self.texel.map(|t| t.to_array()))
-    }
-}
-
-/// Sixteen samples in SIMD lanes (what `sample_x16` returns). Lane `j` equals the scalar
-/// `sample` of lane `j` of the input, bit for bit.
-#[derive(Clone, Copy, Debug)]
-pub struct SampleX16 {
-    /// `[u, v]` of the sixteen points.
-    pub uv: [f32x16; 2],
-    /// The sixteen densities.
-    pub pdf: f32x16,
-    /// `[column, row]` of the sixteen texels.
-    pub texel: [u32x16; 2],
-}
-
-impl SampleX16 {
-    /// The sixteen samples as an array of [`Sample`]s.
-    #[inline]
-    pub fn to_array(&self) -> [Sample; 16] {
-        let [u, v, p] = [self.uv[0], self.uv[1], self.pdf].map(|x| x.to_array());
-        samples_of(u, v, p, self.texel.map(|t| t.to_array()))
-    }
-}
+sample_lanes!(SampleX8, f32x8, u32x8, 8, "Eight", "eight", "sample_x8");
+sample_lanes!(
+    SampleX16,
+    f32x16,
+    u32x16,
+    16,
+    "Sixteen",
+    "sixteen",
+    "sample_x16"
+);
 
 /// Why a distribution could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -343,6 +338,16 @@ fn clean(w: f32) -> f32 {
     if w > 0.0 { w } else { 0.0 }
 }
 
+/// [`Error::LengthMismatch`] unless `len` is `width * height` (saturating: no slice has the
+/// length of a product that overflows).
+fn check_len(len: usize, width: usize, height: usize) -> Result<(), Error> {
+    let expected = width.saturating_mul(height);
+    if len != expected {
+        return Err(Error::LengthMismatch { expected, got: len });
+    }
+    Ok(())
+}
+
 /// Checks the arguments common to both `new`s and returns `width * height`.
 fn check_size(weights: &[f32], width: usize, height: usize, needed: usize) -> Result<(), Error> {
     if width == 0 || height == 0 {
@@ -352,13 +357,7 @@ fn check_size(weights: &[f32], width: usize, height: usize, needed: usize) -> Re
         return Err(Error::TooLarge);
     }
     // Both sides are at most 2^24 here (checked by `storage_len`), so this cannot overflow.
-    let expected = width.saturating_mul(height);
-    if weights.len() != expected {
-        return Err(Error::LengthMismatch {
-            expected,
-            got: weights.len(),
-        });
-    }
+    check_len(weights.len(), width, height)?;
     Ok(())
 }
 

@@ -21,6 +21,39 @@ use super::{Sample, samples_of};
 use crate::lanes::{Interleaved, Lane, UintLane};
 use crate::slices::{self, Vector};
 
+/// The sealed [`Body`] (and [`Distribution`](super::Distribution)) impls of a distribution
+/// type with lane-generic `sample_body` and `pdf_body` methods and `width`, `height` fields,
+/// whose slices interleave `$groups` groups of eight lanes.
+macro_rules! body {
+    ($t:ident, $groups:ident) => {
+        // Sealed supertrait of `Distribution`, generic over the crate's private lane traits.
+        #[allow(private_bounds, private_interfaces)]
+        impl slices::Body for $t<'_> {
+            #[inline(always)]
+            fn sample_lanes<L: Lane>(&self, u: [L; 2]) -> ([L; 2], L, [L::U; 2]) {
+                self.sample_body(u)
+            }
+            #[inline(always)]
+            fn pdf_lanes<L: Lane>(&self, uv: [L; 2]) -> L {
+                self.pdf_body(uv)
+            }
+            #[inline(always)]
+            fn size(&self) -> [u32; 2] {
+                [self.width, self.height]
+            }
+            fn slice_sample(&self, u: &[[f32; 2]], out: &mut [Sample]) -> usize {
+                slices::sample::<Self, f32x8, 8, { slices::$groups }>(self, u, out)
+            }
+            fn slice_pdf(&self, uv: &[[f32; 2]], out: &mut [f32]) -> usize {
+                slices::pdf::<Self, f32x8, 8, { slices::$groups }>(self, uv, out)
+            }
+        }
+
+        impl super::Distribution for $t<'_> {}
+    };
+}
+pub(super) use body;
+
 /// Groups of eight lanes a hierarchical slice step interleaves: six (48 walks in flight)
 /// with AVX2 or AVX-512, two elsewhere (SSE2 and wasm `simd128`, where an eight-lane vector
 /// takes two of the 16 registers and more groups spill). Measured: see the module docs.

@@ -96,40 +96,25 @@ pub(super) fn rectangle_weights<L: Lane>(r: &Rect<L>, n: V<L>) -> [L; 4] {
     clamped_cosines(n, [r.c, c10, add(r.c, r.eyp), add(c10, r.eyp)])
 }
 
-/// The solid-angle density times the bilinear factor, kept finite.
+/// `u` warped by the bilinear weights `w`, then mapped by `sample` (a prepared light's map):
+/// the point, and the solid-angle density times the bilinear factor, kept finite.
 #[inline(always)]
-fn product<L: Lane>(pdf: L, factor: L) -> L {
-    let d = pdf * factor;
-    L::select(d.simd_lt(L::splat(f32::MAX)), d, L::splat(f32::MAX))
-}
-
-#[inline(always)]
-pub(super) fn triangle_prepared<L: Lane>(
-    pr: &triangle::Prepared<L>,
+pub(super) fn warped<L: Lane, P, const N: usize>(
+    pr: &P,
     w: [L; 4],
     u: [L; 2],
-) -> ([L; 3], L) {
+    sample: impl Fn(&P, [L; 2]) -> ([L; N], L),
+) -> ([L; N], L) {
     let (u, factor) = bilinear_body(u, w);
-    let (b, pdf) = triangle::sample_prepared(pr, u);
-    (b, product(pdf, factor))
+    let (x, pdf) = sample(pr, u);
+    (x, below_max(pdf * factor))
 }
 
 #[inline(always)]
 pub(super) fn triangle_body<L: Lane>(v: [V<L>; 3], p: V<L>, n: V<L>, u: [L; 2]) -> ([L; 3], L) {
     let pr = triangle::prepare(v, p);
     let w = triangle_weights(&pr.t, n);
-    triangle_prepared(&pr, w, u)
-}
-
-#[inline(always)]
-pub(super) fn rectangle_prepared<L: Lane>(
-    pr: &rectangle::Prepared<L>,
-    w: [L; 4],
-    u: [L; 2],
-) -> ([L; 2], L) {
-    let (u, factor) = bilinear_body(u, w);
-    let (st, pdf) = rectangle::sample_prepared(pr, u);
-    (st, product(pdf, factor))
+    warped(&pr, w, u, triangle::sample_prepared)
 }
 
 #[inline(always)]
@@ -143,5 +128,5 @@ pub(super) fn rectangle_body<L: Lane>(
 ) -> ([L; 2], L) {
     let pr = rectangle::prepare(corner, ex, ey, p);
     let w = rectangle_weights(&pr.r, n);
-    rectangle_prepared(&pr, w, u)
+    warped(&pr, w, u, rectangle::sample_prepared)
 }

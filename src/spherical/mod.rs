@@ -107,7 +107,6 @@ mod vec;
 
 use crate::lanes::Lane;
 use crate::slices;
-use wide::{f32x8, f32x16};
 
 /// Below this solid angle (steradians) [`triangle`] and [`rectangle`] sample by area (with
 /// the matching solid-angle density), and their inverses invert that.
@@ -123,33 +122,20 @@ fn splat33<L: Lane>(v: [[f32; 3]; 3]) -> [[L; 3]; 3] {
     [splat3(v[0]), splat3(v[1]), splat3(v[2])]
 }
 
-/// Uniform in solid angle over the spherical triangle that triangle `v` subtends at `p`
-/// (Arvo 1995): returns the barycentrics `b` of the point `b0 v0 + b1 v1 + b2 v2` and the
-/// density with respect to solid angle at `p`, `1 / omega`.
-///
-/// `u0` picks the sub-triangle `(v0, v1, x)`, `x` on the edge `v0 v2`, whose solid angle is
-/// `u0 omega`; `u1` a point on the arc from `v1` to `x` with `1 - cos(angle from v1) = u1
-/// (1 - cos(angle(v1, x)))`. Strata of the square become wedges at `v1` (like
-/// [`crate::triangle::sqrt_map`]'s at `v0`). See the [module docs](self) for the exact
-/// forms, the precision (density 1e-4 relative and round trip 1e-4 for `1e-4 .. 2` sr where
-/// the light is seen at more than 0.6 degrees from grazing) and
-/// the out-of-domain rule (degenerate lights: area sampling, density 0).
-#[inline]
-pub fn triangle(v: [[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) -> ([f32; 3], f32) {
-    triangle::sample_body(v, p, u)
-}
-
-/// [`triangle`] on eight (light, point, sample) triples at once; bit-identical to eight
-/// scalar calls.
-#[inline]
-pub fn triangle_x8(v: [[f32x8; 3]; 3], p: [f32x8; 3], u: [f32x8; 2]) -> ([f32x8; 3], f32x8) {
-    triangle::sample_body(v, p, u)
-}
-
-/// [`triangle`] on sixteen triples at once; bit-identical to sixteen scalar calls.
-#[inline]
-pub fn triangle_x16(v: [[f32x16; 3]; 3], p: [f32x16; 3], u: [f32x16; 2]) -> ([f32x16; 3], f32x16) {
-    triangle::sample_body(v, p, u)
+lane_forms! {
+    /// Uniform in solid angle over the spherical triangle that triangle `v` subtends at `p`
+    /// (Arvo 1995): returns the barycentrics `b` of the point `b0 v0 + b1 v1 + b2 v2` and the
+    /// density with respect to solid angle at `p`, `1 / omega`.
+    ///
+    /// `u0` picks the sub-triangle `(v0, v1, x)`, `x` on the edge `v0 v2`, whose solid angle is
+    /// `u0 omega`; `u1` a point on the arc from `v1` to `x` with `1 - cos(angle from v1) = u1
+    /// (1 - cos(angle(v1, x)))`. Strata of the square become wedges at `v1` (like
+    /// [`crate::triangle::sqrt_map`]'s at `v0`). See the [module docs](self) for the exact
+    /// forms, the precision (density 1e-4 relative and round trip 1e-4 for `1e-4 .. 2` sr where
+    /// the light is seen at more than 0.6 degrees from grazing) and
+    /// the out-of-domain rule (degenerate lights: area sampling, density 0).
+    pub fn triangle, triangle_x8, triangle_x16 ["(light, point, sample) triples"]
+        (v: [[L; 3]; 3], p: [L; 3], u: [L; 2]) -> ([L; 3], L) = triangle::sample_body;
 }
 
 /// [`triangle`] for one light and one shading point over a batch of samples: writes
@@ -172,27 +158,16 @@ pub fn triangle_slice(
     })
 }
 
-/// Inverse of [`triangle`]: the `u` that maps to barycentrics `b` (the solid angle of the
-/// sub-triangle `(v0, v1, x)` over `omega`, and the ratio of squared chords from `v1`).
-///
-/// Round trip `triangle_inverse(triangle(u))` within 1e-4 of `u` for solid angles
-/// `1e-4 .. 2` sr, except `u0` where `u1 = 0` (the apex `v1`, where `u0` is lost). Below
-/// [`AREA_FALLBACK_SR`] it inverts the area map ([`crate::triangle::uniform_inverse`]).
-#[inline]
-pub fn triangle_inverse(v: [[f32; 3]; 3], p: [f32; 3], b: [f32; 3]) -> [f32; 2] {
-    triangle::inverse_body(v, p, b)
-}
-
-/// [`triangle_inverse`] on eight triples at once; bit-identical to eight scalar calls.
-#[inline]
-pub fn triangle_inverse_x8(v: [[f32x8; 3]; 3], p: [f32x8; 3], b: [f32x8; 3]) -> [f32x8; 2] {
-    triangle::inverse_body(v, p, b)
-}
-
-/// [`triangle_inverse`] on sixteen triples at once; bit-identical to sixteen scalar calls.
-#[inline]
-pub fn triangle_inverse_x16(v: [[f32x16; 3]; 3], p: [f32x16; 3], b: [f32x16; 3]) -> [f32x16; 2] {
-    triangle::inverse_body(v, p, b)
+lane_forms! {
+    /// Inverse of [`triangle`]: the `u` that maps to barycentrics `b` (the solid angle of the
+    /// sub-triangle `(v0, v1, x)` over `omega`, and the ratio of squared chords from `v1`).
+    ///
+    /// Round trip `triangle_inverse(triangle(u))` within 1e-4 of `u` for solid angles
+    /// `1e-4 .. 2` sr, except `u0` where `u1 = 0` (the apex `v1`, where `u0` is lost). Below
+    /// [`AREA_FALLBACK_SR`] it inverts the area map ([`crate::triangle::uniform_inverse`]).
+    pub fn triangle_inverse, triangle_inverse_x8, triangle_inverse_x16
+        ["(light, point, barycentrics) triples"]
+        (v: [[L; 3]; 3], p: [L; 3], b: [L; 3]) -> [L; 2] = triangle::inverse_body;
 }
 
 /// [`triangle_inverse`] for one light and point over a batch, with the length rule of
@@ -210,50 +185,20 @@ pub fn triangle_inverse_slice(
     })
 }
 
-/// Uniform in solid angle over the spherical rectangle that the rectangle
-/// `corner + s ex + t ey` (`s, t` in `[0, 1]`, `ex` orthogonal to `ey`) subtends at `p`
-/// (Urena, Fajardo and King 2013): returns `(s, t)` and the density with respect to solid
-/// angle, `1 / omega`.
-///
-/// `u0` picks `s` so that the strip `[0, s] x [0, 1]` subtends `u0 omega` (closed-form
-/// start, two Newton steps), `u1` picks `t` uniformly in `y / sqrt(d^2 + y^2)` along that
-/// line. Compact strata of the square stay compact. See the [module docs](self) for the
-/// precision (density 1e-4 relative, round trip 1e-4 for `1e-4 .. 2` sr, away from grazing)
-/// and the out-of-domain rule.
-#[inline]
-pub fn rectangle(
-    corner: [f32; 3],
-    ex: [f32; 3],
-    ey: [f32; 3],
-    p: [f32; 3],
-    u: [f32; 2],
-) -> ([f32; 2], f32) {
-    rectangle::sample_body(corner, ex, ey, p, u)
-}
-
-/// [`rectangle`] on eight (light, point, sample) triples at once; bit-identical to eight
-/// scalar calls.
-#[inline]
-pub fn rectangle_x8(
-    corner: [f32x8; 3],
-    ex: [f32x8; 3],
-    ey: [f32x8; 3],
-    p: [f32x8; 3],
-    u: [f32x8; 2],
-) -> ([f32x8; 2], f32x8) {
-    rectangle::sample_body(corner, ex, ey, p, u)
-}
-
-/// [`rectangle`] on sixteen triples at once; bit-identical to sixteen scalar calls.
-#[inline]
-pub fn rectangle_x16(
-    corner: [f32x16; 3],
-    ex: [f32x16; 3],
-    ey: [f32x16; 3],
-    p: [f32x16; 3],
-    u: [f32x16; 2],
-) -> ([f32x16; 2], f32x16) {
-    rectangle::sample_body(corner, ex, ey, p, u)
+lane_forms! {
+    /// Uniform in solid angle over the spherical rectangle that the rectangle
+    /// `corner + s ex + t ey` (`s, t` in `[0, 1]`, `ex` orthogonal to `ey`) subtends at `p`
+    /// (Urena, Fajardo and King 2013): returns `(s, t)` and the density with respect to solid
+    /// angle, `1 / omega`.
+    ///
+    /// `u0` picks `s` so that the strip `[0, s] x [0, 1]` subtends `u0 omega` (closed-form
+    /// start, two Newton steps), `u1` picks `t` uniformly in `y / sqrt(d^2 + y^2)` along that
+    /// line. Compact strata of the square stay compact. See the [module docs](self) for the
+    /// precision (density 1e-4 relative, round trip 1e-4 for `1e-4 .. 2` sr, away from grazing)
+    /// and the out-of-domain rule.
+    pub fn rectangle, rectangle_x8, rectangle_x16 ["(light, point, sample) triples"]
+        (corner: [L; 3], ex: [L; 3], ey: [L; 3], p: [L; 3], u: [L; 2]) -> ([L; 2], L)
+            = rectangle::sample_body;
 }
 
 /// [`rectangle`] for one light and one shading point over a batch of samples: writes
@@ -277,43 +222,15 @@ pub fn rectangle_slice(
     })
 }
 
-/// Inverse of [`rectangle`]: `u0` is the solid angle of the strip `[0, s] x [0, 1]` over
-/// `omega`, `u1` the fraction of `y / sqrt(d^2 + y^2)` between the edges. Closed form (no
-/// iteration). Round trip within 1e-4 for solid angles `1e-4 .. 2` sr; below
-/// [`AREA_FALLBACK_SR`] it returns `(s, t)` clamped.
-#[inline]
-pub fn rectangle_inverse(
-    corner: [f32; 3],
-    ex: [f32; 3],
-    ey: [f32; 3],
-    p: [f32; 3],
-    st: [f32; 2],
-) -> [f32; 2] {
-    rectangle::inverse_body(corner, ex, ey, p, st)
-}
-
-/// [`rectangle_inverse`] on eight triples at once; bit-identical to eight scalar calls.
-#[inline]
-pub fn rectangle_inverse_x8(
-    corner: [f32x8; 3],
-    ex: [f32x8; 3],
-    ey: [f32x8; 3],
-    p: [f32x8; 3],
-    st: [f32x8; 2],
-) -> [f32x8; 2] {
-    rectangle::inverse_body(corner, ex, ey, p, st)
-}
-
-/// [`rectangle_inverse`] on sixteen triples at once; bit-identical to sixteen scalar calls.
-#[inline]
-pub fn rectangle_inverse_x16(
-    corner: [f32x16; 3],
-    ex: [f32x16; 3],
-    ey: [f32x16; 3],
-    p: [f32x16; 3],
-    st: [f32x16; 2],
-) -> [f32x16; 2] {
-    rectangle::inverse_body(corner, ex, ey, p, st)
+lane_forms! {
+    /// Inverse of [`rectangle`]: `u0` is the solid angle of the strip `[0, s] x [0, 1]` over
+    /// `omega`, `u1` the fraction of `y / sqrt(d^2 + y^2)` between the edges. Closed form (no
+    /// iteration). Round trip within 1e-4 for solid angles `1e-4 .. 2` sr; below
+    /// [`AREA_FALLBACK_SR`] it returns `(s, t)` clamped.
+    pub fn rectangle_inverse, rectangle_inverse_x8, rectangle_inverse_x16
+        ["(light, point, `(s, t)`) triples"]
+        (corner: [L; 3], ex: [L; 3], ey: [L; 3], p: [L; 3], st: [L; 2]) -> [L; 2]
+            = rectangle::inverse_body;
 }
 
 /// [`rectangle_inverse`] for one light and point over a batch, with the length rule of
@@ -334,57 +251,26 @@ pub fn rectangle_inverse_slice(
     })
 }
 
-/// The solid angle of triangle `v` at `p`, in `[0, 2 pi]` (Van Oosterom and Strackee 1983:
-/// `tan(omega / 2) = |a . (b x c)| / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|)`, with
-/// `a, b, c` the vertices relative to `p` and the triple product from edges). Relative
-/// error against `f64` at most `7.7e-7 kappa` measured (see the [module docs](self)). 0 for
-/// degenerate triangles, `p` at a vertex, non-finite input; `p` on the plane inside may give
-/// `2 pi`.
-#[inline]
-pub fn triangle_solid_angle(v: [[f32; 3]; 3], p: [f32; 3]) -> f32 {
-    triangle::solid_angle_body(v, p)
+lane_forms! {
+    /// The solid angle of triangle `v` at `p`, in `[0, 2 pi]` (Van Oosterom and Strackee 1983:
+    /// `tan(omega / 2) = |a . (b x c)| / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|)`, with
+    /// `a, b, c` the vertices relative to `p` and the triple product from edges). Relative
+    /// error against `f64` at most `7.7e-7 kappa` measured (see the [module docs](self)). 0 for
+    /// degenerate triangles, `p` at a vertex, non-finite input; `p` on the plane inside may give
+    /// `2 pi`.
+    pub fn triangle_solid_angle, triangle_solid_angle_x8, triangle_solid_angle_x16
+        ["(light, point) pairs"]
+        (v: [[L; 3]; 3], p: [L; 3]) -> L = triangle::solid_angle_body;
 }
 
-/// [`triangle_solid_angle`] on eight lights/points at once; bit-identical to scalar calls.
-#[inline]
-pub fn triangle_solid_angle_x8(v: [[f32x8; 3]; 3], p: [f32x8; 3]) -> f32x8 {
-    triangle::solid_angle_body(v, p)
-}
-
-/// [`triangle_solid_angle`] on sixteen lights/points at once; bit-identical to scalar calls.
-#[inline]
-pub fn triangle_solid_angle_x16(v: [[f32x16; 3]; 3], p: [f32x16; 3]) -> f32x16 {
-    triangle::solid_angle_body(v, p)
-}
-
-/// The solid angle of the rectangle `corner + s ex + t ey` at `p`, in `[0, 2 pi]`: the two
-/// triangles of the rectangle by Van Oosterom-Strackee, added in one `atan2`. Precision and
-/// degenerate cases as [`triangle_solid_angle`].
-#[inline]
-pub fn rectangle_solid_angle(corner: [f32; 3], ex: [f32; 3], ey: [f32; 3], p: [f32; 3]) -> f32 {
-    rectangle::solid_angle_body(corner, ex, ey, p)
-}
-
-/// [`rectangle_solid_angle`] on eight lights/points at once; bit-identical to scalar calls.
-#[inline]
-pub fn rectangle_solid_angle_x8(
-    corner: [f32x8; 3],
-    ex: [f32x8; 3],
-    ey: [f32x8; 3],
-    p: [f32x8; 3],
-) -> f32x8 {
-    rectangle::solid_angle_body(corner, ex, ey, p)
-}
-
-/// [`rectangle_solid_angle`] on sixteen lights/points at once; bit-identical to scalar calls.
-#[inline]
-pub fn rectangle_solid_angle_x16(
-    corner: [f32x16; 3],
-    ex: [f32x16; 3],
-    ey: [f32x16; 3],
-    p: [f32x16; 3],
-) -> f32x16 {
-    rectangle::solid_angle_body(corner, ex, ey, p)
+lane_forms! {
+    /// The solid angle of the rectangle `corner + s ex + t ey` at `p`, in `[0, 2 pi]`: the two
+    /// triangles of the rectangle by Van Oosterom-Strackee, added in one `atan2`. Precision and
+    /// degenerate cases as [`triangle_solid_angle`].
+    pub fn rectangle_solid_angle, rectangle_solid_angle_x8, rectangle_solid_angle_x16
+        ["(light, point) pairs"]
+        (corner: [L; 3], ex: [L; 3], ey: [L; 3], p: [L; 3]) -> L
+            = rectangle::solid_angle_body;
 }
 
 /// The bilinear density on the unit square with corner weights `w = [w00, w10, w01, w11]`
@@ -411,45 +297,24 @@ pub fn bilinear(u: [f32; 2], w: [f32; 4]) -> ([f32; 2], f32) {
     cosine::bilinear_body(u, w)
 }
 
-/// Cosine-aware [`triangle`]: `u` is first warped by [`bilinear`] with weights the
-/// receiver's clamped cosine `max(0, n . w_i)` towards the vertices, where the square's corners
-/// `(0, 0), (1, 0), (0, 1), (1, 1)` land under Arvo's map (`v1, v1, v0, v2`), then mapped by
-/// [`triangle`]. Returns the barycentrics and the density with respect to solid angle,
-/// `bilinear_pdf(u') / omega` (`u'` the warped point), so the estimator `f cos / pdf` has
-/// the receiver's cosine mostly divided out (Hart et al. 2020; pbrt-v4's triangle light).
-///
-/// `n` need not be unit length (only the weights' ratios matter). Where all weights are 0
-/// (the light wholly below the receiver's horizon) or `n` is zero or not finite, the result
-/// is [`triangle`]'s, bit for bit. The density is 0 where [`triangle`]'s is, and on sides of
-/// the square whose two corner weights are 0 (points where the receiver's cosine is 0 too).
-/// `docs/REPORT.md` measures when it pays: lit pixels at size / distance 1 and below;
-/// structured points lose a little to it very close to a light (ratio 4).
-#[inline]
-pub fn triangle_cosine(v: [[f32; 3]; 3], p: [f32; 3], n: [f32; 3], u: [f32; 2]) -> ([f32; 3], f32) {
-    cosine::triangle_body(v, p, n, u)
-}
-
-/// [`triangle_cosine`] on eight (light, point, normal, sample) tuples; bit-identical to eight
-/// scalar calls.
-#[inline]
-pub fn triangle_cosine_x8(
-    v: [[f32x8; 3]; 3],
-    p: [f32x8; 3],
-    n: [f32x8; 3],
-    u: [f32x8; 2],
-) -> ([f32x8; 3], f32x8) {
-    cosine::triangle_body(v, p, n, u)
-}
-
-/// [`triangle_cosine`] on sixteen tuples; bit-identical to sixteen scalar calls.
-#[inline]
-pub fn triangle_cosine_x16(
-    v: [[f32x16; 3]; 3],
-    p: [f32x16; 3],
-    n: [f32x16; 3],
-    u: [f32x16; 2],
-) -> ([f32x16; 3], f32x16) {
-    cosine::triangle_body(v, p, n, u)
+lane_forms! {
+    /// Cosine-aware [`triangle`]: `u` is first warped by [`bilinear`] with weights the
+    /// receiver's clamped cosine `max(0, n . w_i)` towards the vertices, where the square's corners
+    /// `(0, 0), (1, 0), (0, 1), (1, 1)` land under Arvo's map (`v1, v1, v0, v2`), then mapped by
+    /// [`triangle`]. Returns the barycentrics and the density with respect to solid angle,
+    /// `bilinear_pdf(u') / omega` (`u'` the warped point), so the estimator `f cos / pdf` has
+    /// the receiver's cosine mostly divided out (Hart et al. 2020; pbrt-v4's triangle light).
+    ///
+    /// `n` need not be unit length (only the weights' ratios matter). Where all weights are 0
+    /// (the light wholly below the receiver's horizon) or `n` is zero or not finite, the result
+    /// is [`triangle`]'s, bit for bit. The density is 0 where [`triangle`]'s is, and on sides of
+    /// the square whose two corner weights are 0 (points where the receiver's cosine is 0 too).
+    /// `docs/REPORT.md` measures when it pays: lit pixels at size / distance 1 and below;
+    /// structured points lose a little to it very close to a light (ratio 4).
+    pub fn triangle_cosine, triangle_cosine_x8, triangle_cosine_x16
+        ["(light, point, normal, sample) tuples"]
+        (v: [[L; 3]; 3], p: [L; 3], n: [L; 3], u: [L; 2]) -> ([L; 3], L)
+            = cosine::triangle_body;
 }
 
 /// [`triangle_cosine`] for one light, point and normal over a batch: `out[i] = [b0, b1, b2,
@@ -466,51 +331,20 @@ pub fn triangle_cosine_slice(
     let prep = triangle::prepare::<slices::Widest>(splat33(v), splat3(p));
     let w = cosine::triangle_weights(&prep.t, splat3(n));
     slices::map_lanes(u, out, |u: [slices::Widest; 2]| {
-        let (b, d) = cosine::triangle_prepared(&prep, w, u);
+        let (b, d) = cosine::warped(&prep, w, u, triangle::sample_prepared);
         [b[0], b[1], b[2], d]
     })
 }
 
-/// Cosine-aware [`rectangle`]: `u` warped by [`bilinear`] with weights `max(0, n . w_i)`
-/// towards `corner`, `corner + ex`, `corner + ey`, `corner + ex + ey` (the images of the
-/// square's corners `(0, 0), (1, 0), (0, 1), (1, 1)`), then mapped by [`rectangle`]; the
-/// density is `bilinear_pdf(u') / omega`. Rules as [`triangle_cosine`].
-#[inline]
-pub fn rectangle_cosine(
-    corner: [f32; 3],
-    ex: [f32; 3],
-    ey: [f32; 3],
-    p: [f32; 3],
-    n: [f32; 3],
-    u: [f32; 2],
-) -> ([f32; 2], f32) {
-    cosine::rectangle_body(corner, ex, ey, p, n, u)
-}
-
-/// [`rectangle_cosine`] on eight tuples; bit-identical to eight scalar calls.
-#[inline]
-pub fn rectangle_cosine_x8(
-    corner: [f32x8; 3],
-    ex: [f32x8; 3],
-    ey: [f32x8; 3],
-    p: [f32x8; 3],
-    n: [f32x8; 3],
-    u: [f32x8; 2],
-) -> ([f32x8; 2], f32x8) {
-    cosine::rectangle_body(corner, ex, ey, p, n, u)
-}
-
-/// [`rectangle_cosine`] on sixteen tuples; bit-identical to sixteen scalar calls.
-#[inline]
-pub fn rectangle_cosine_x16(
-    corner: [f32x16; 3],
-    ex: [f32x16; 3],
-    ey: [f32x16; 3],
-    p: [f32x16; 3],
-    n: [f32x16; 3],
-    u: [f32x16; 2],
-) -> ([f32x16; 2], f32x16) {
-    cosine::rectangle_body(corner, ex, ey, p, n, u)
+lane_forms! {
+    /// Cosine-aware [`rectangle`]: `u` warped by [`bilinear`] with weights `max(0, n . w_i)`
+    /// towards `corner`, `corner + ex`, `corner + ey`, `corner + ex + ey` (the images of the
+    /// square's corners `(0, 0), (1, 0), (0, 1), (1, 1)`), then mapped by [`rectangle`]; the
+    /// density is `bilinear_pdf(u') / omega`. Rules as [`triangle_cosine`].
+    pub fn rectangle_cosine, rectangle_cosine_x8, rectangle_cosine_x16
+        ["(light, point, normal, sample) tuples"]
+        (corner: [L; 3], ex: [L; 3], ey: [L; 3], p: [L; 3], n: [L; 3], u: [L; 2])
+            -> ([L; 2], L) = cosine::rectangle_body;
 }
 
 /// [`rectangle_cosine`] for one light, point and normal over a batch: `out[i] = [s, t,
@@ -530,7 +364,7 @@ pub fn rectangle_cosine_slice(
         rectangle::prepare::<slices::Widest>(splat3(corner), splat3(ex), splat3(ey), splat3(p));
     let w = cosine::rectangle_weights(&prep.r, splat3(n));
     slices::map_lanes(u, out, |u: [slices::Widest; 2]| {
-        let (st, d) = cosine::rectangle_prepared(&prep, w, u);
+        let (st, d) = cosine::warped(&prep, w, u, rectangle::sample_prepared);
         [st[0], st[1], d]
     })
 }

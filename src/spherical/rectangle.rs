@@ -267,15 +267,7 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 2], 
         ql * (ql * (ql / zwh)),
         ql * ql * ql / zwh,
     );
-    let area_pdf = L::select(
-        pr.area_ok,
-        L::select(
-            area_pdf.simd_lt(L::splat(f32::MAX)),
-            area_pdf,
-            L::splat(f32::MAX),
-        ),
-        zero,
-    );
+    let area_pdf = area_density(pr.area_ok, area_pdf);
     let pdf = L::select(exact, L::splat(INV_4PI) / r.turns, area_pdf);
     ([L::select(exact, s, u0), L::select(exact, t, u1)], pdf)
 }

@@ -238,15 +238,7 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 3], 
         ql * ((ql + ql) * (ql / t.det.abs())),
         (ql * ql * ql + ql * ql * ql) / t.det.abs(),
     );
-    let area_pdf = L::select(
-        pr.area_ok,
-        L::select(
-            area_pdf.simd_lt(L::splat(f32::MAX)),
-            area_pdf,
-            L::splat(f32::MAX),
-        ),
-        zero,
-    );
+    let area_pdf = area_density(pr.area_ok, area_pdf);
     // The density is the light's (Arvo's map or area sampling), not the sample's: where a
     // direction's numerators are all <= 0 (it left the spherical triangle by rounding), the
     // point is the area map's but the density stays 1 / omega.

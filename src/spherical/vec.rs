@@ -88,20 +88,33 @@ pub(super) fn flush_subnormal<L: Lane>(v: V<L>) -> V<L> {
     v.map(|x| L::select(x.abs().simd_lt(tiny), L::splat(0.0), x))
 }
 
+/// The largest `|x|` of `xs` (compare and select: NaN never wins).
+#[inline(always)]
+fn max_abs<L: Lane>(xs: &[L]) -> L {
+    let mut m = L::splat(0.0);
+    for x in xs {
+        let a = x.abs();
+        m = L::select(m.simd_lt(a), a, m);
+    }
+    m
+}
+
+/// The bits of the power of two `2^(127 - e)` that scales `m` (of biased exponent `e`) into
+/// `[1, 2)`, and whether `m` is a normal number of exponent below `limit`.
+#[inline(always)]
+fn pow2_bits<L: Lane>(m: L, limit: u32) -> (L::U, L::Mask) {
+    let e = m.to_bits().shr(23);
+    let ok = L::U::splat(0).simd_lt(e) & e.simd_lt(L::U::splat(limit));
+    ((L::U::splat(254) - e).shl(23), ok)
+}
+
 /// A power of two `2^k` that lifts the largest magnitude of `xs` into `[1, 2)` where it is a
 /// normal number below 1, else 1: multiplying every `x` by it is exact and changes no bits of
 /// any later product, quotient or ratio that did not underflow, while products that did
 /// underflow become exact or correctly rounded.
 #[inline(always)]
 pub(super) fn pow2_lift<L: Lane, const N: usize>(xs: [L; N]) -> L {
-    let mut m = L::splat(0.0);
-    for x in xs {
-        let a = x.abs();
-        m = L::select(m.simd_lt(a), a, m);
-    }
-    let e = m.to_bits().shr(23);
-    let ok = L::U::splat(0).simd_lt(e) & e.simd_lt(L::U::splat(127));
-    let bits = (L::U::splat(254) - e).shl(23);
+    let (bits, ok) = pow2_bits(max_abs(&xs), 127);
     L::from_bits(L::U::select(ok, bits, L::splat(1.0).to_bits()))
 }
 
@@ -112,17 +125,21 @@ pub(super) fn pow2_lift<L: Lane, const N: usize>(xs: [L; N]) -> L {
 /// of underflow.
 #[inline(always)]
 pub(super) fn pow2_scale<L: Lane, const N: usize>(vs: [V<L>; N]) -> (L, L::Mask) {
-    let mut m = L::splat(0.0);
-    for v in vs {
-        for x in v {
-            let a = x.abs();
-            m = L::select(m.simd_lt(a), a, m);
-        }
-    }
-    let e = m.to_bits().shr(23);
-    let ok = L::U::splat(0).simd_lt(e) & e.simd_lt(L::U::splat(254));
-    let bits = (L::U::splat(254) - e).shl(23);
+    let (bits, ok) = pow2_bits(max_abs(vs.as_flattened()), 254);
     (L::from_bits(L::U::select(ok, bits, L::U::splat(0))), ok)
+}
+
+/// `x` below `f32::MAX`, else (`+inf`, NaN) `f32::MAX`: a density kept finite.
+#[inline(always)]
+pub(super) fn below_max<L: Lane>(x: L) -> L {
+    L::select(x.simd_lt(L::splat(f32::MAX)), x, L::splat(f32::MAX))
+}
+
+/// The area-sampling density where area sampling is defined (`ok`), kept below `f32::MAX`;
+/// 0 elsewhere.
+#[inline(always)]
+pub(super) fn area_density<L: Lane>(ok: L::Mask, pdf: L) -> L {
+    L::select(ok, below_max(pdf), L::splat(0.0))
 }
 
 /// `1 / (4 pi)`: solid angles are carried in turns of `4 pi` (`atan2_turns` of the

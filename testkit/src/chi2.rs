@@ -196,6 +196,13 @@ pub fn check(name: &str, hist: &Histogram, expected: &[f64]) -> Outcome {
     }
 }
 
+/// The power check: a histogram of a deliberately wrong distribution must be rejected against
+/// the uniform expectation of its `nx x ny` bins at the per-test level.
+pub fn assert_rejects_uniform(hist: &Histogram, nx: usize, ny: usize) {
+    let p = statistic(hist, &expected_uniform(nx, ny)).unwrap().p_value;
+    assert!(p < per_test_alpha(), "p = {p}");
+}
+
 /// Equal-area parameters of a point of the unit disk: `(r^2, phi / 2 pi)`.
 pub fn disk(p: [f32; 2]) -> [f64; 2] {
     let (x, y) = (p[0] as f64, p[1] as f64);

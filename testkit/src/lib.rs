@@ -1,6 +1,8 @@
 //! Helpers shared by warpcore's integration tests: the chi-square module, a seeded generator,
-//! the special `f32` inputs every warp must survive, and bit-identity checks.
+//! the special `f32` inputs every warp must survive, bit-identity checks, and the textbook
+//! formulas (the tests' `f64` references and the benchmarks' `f32` peers).
 pub mod chi2;
+pub mod textbook;
 
 use rand::{RngExt, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -50,6 +52,43 @@ pub fn specials() -> Vec<f32> {
         1e-30,
         1.0 / 16_777_216.0,
     ]
+}
+
+/// Every pair `[a, b]` of [`specials`] (`a` the outer loop).
+pub fn special_pairs() -> Vec<[f32; 2]> {
+    let sp = specials();
+    sp.iter()
+        .flat_map(|&a| sp.iter().map(move |&b| [a, b]))
+        .collect()
+}
+
+/// Every `[a, b, c]` with `[a, b]` from [`special_pairs`] and `c` from `third` (innermost).
+pub fn special_triples(third: &[f32]) -> Vec<[f32; 3]> {
+    let pairs = special_pairs();
+    pairs
+        .iter()
+        .flat_map(|&[a, b]| third.iter().map(move |&c| [a, b, c]))
+        .collect()
+}
+
+/// In the half-open unit square `[0, 1)^2`, with `+0.0` for zero (no `-0.0`, no NaN).
+pub fn in_unit_square(u: [f32; 2]) -> bool {
+    u.iter()
+        .all(|&x| (0.0..1.0).contains(&x) && x.to_bits() >> 31 == 0)
+}
+
+/// The documented clamp of every forward warp's input (the same function on the clamped
+/// point): NaN and `-0.0` become 0, negatives and `-inf` 0, values `>= 1` and `+inf`
+/// `1 - 2^-24`.
+pub fn assert_documented_clamp<const N: usize>(name: &str, f: impl Fn([f32; 2]) -> [f32; N]) {
+    for (u, clamped) in [
+        ([f32::NAN, 2.0], [0.0, ONE_MINUS_EPS]),
+        ([-1.0, f32::INFINITY], [0.0, ONE_MINUS_EPS]),
+        ([-0.0, 0.25], [0.0, 0.25]),
+        ([0.5, f32::NEG_INFINITY], [0.5, 0.0]),
+    ] {
+        assert!(same_bits(f(u), f(clamped)), "{name}{u:?}");
+    }
 }
 
 /// Bit equality of float arrays (NaN-safe, sign-of-zero-sensitive).

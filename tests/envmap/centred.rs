@@ -10,7 +10,6 @@
 use warpcore_testkit as common;
 
 use common::{rng, specials, unit2};
-use rand::RngExt;
 use warpcore::envmap::{Error, FORMAT_VERSION, Hierarchical, MarginalConditional, Word};
 
 /// Sizes with odd and power-of-two sides, both orientations, one-texel-wide maps.
@@ -30,16 +29,7 @@ const SIZES: [(usize, usize); 11] = [
 
 /// Weights with about a quarter zeros and a dynamic range of `10^4`.
 fn weights(w: usize, h: usize, seed: u64) -> Vec<f32> {
-    let mut r = rng(seed);
-    (0..w * h)
-        .map(|_| {
-            if r.random::<u32>() % 4 == 0 {
-                0.0
-            } else {
-                10f32.powf(4.0 * r.random::<f32>())
-            }
-        })
-        .collect()
+    super::random_weights(w, h, seed, |x| 10f32.powf(4.0 * x))
 }
 
 fn build(wts: &[f32], w: usize, h: usize) -> Vec<Word> {
@@ -146,40 +136,42 @@ fn frequencies_follow_the_pdf() {
         let s = build(&wts, w, h);
         let map = Hierarchical::from_storage(&s).unwrap();
         let n = 1usize << 20;
-        let mut r = rng(60 + i as u64);
-        let us: Vec<[f32; 2]> = (0..n).map(|_| unit2(&mut r)).collect();
-        let mut out = vec![
-            warpcore::envmap::Sample {
-                uv: [0.0; 2],
-                pdf: 0.0,
-                texel: [0; 2]
-            };
-            n
-        ];
-        assert_eq!(map.sample_slice(&us, &mut out), n);
-        let mut counts = vec![0u64; w * h];
-        for smp in &out {
-            counts[smp.texel[1] as usize * w + smp.texel[0] as usize] += 1;
-        }
-        for row in 0..h {
-            for c in 0..w {
-                let uv = [
-                    ((c as f64 + 0.5) / w as f64) as f32,
-                    ((row as f64 + 0.5) / h as f64) as f32,
-                ];
-                let p = f64::from(map.pdf(uv)) / (w * h) as f64;
-                let k = counts[row * w + c] as f64;
-                if p == 0.0 {
-                    assert_eq!(k, 0.0, "{w}x{h} [{c}, {row}]");
-                    continue;
-                }
-                let mean = n as f64 * p;
-                if mean >= 20.0 {
-                    let z = (k - mean) / (mean * (1.0 - p)).sqrt();
-                    assert!(z.abs() < 5.5, "{w}x{h} [{c}, {row}]: {k} vs {mean}");
-                }
+        let counts = super::texel_counts(&map, w, h, n, 60 + i as u64);
+        let probs = super::reported_probabilities(&map, w, h);
+        for (t, (&k, &p)) in counts.iter().zip(&probs).enumerate() {
+            let (c, row, k) = (t % w, t / w, k as f64);
+            if p == 0.0 {
+                assert_eq!(k, 0.0, "{w}x{h} [{c}, {row}]");
+                continue;
+            }
+            let mean = n as f64 * p;
+            if mean >= 20.0 {
+                let z = (k - mean) / (mean * (1.0 - p)).sqrt();
+                assert!(z.abs() < 5.5, "{w}x{h} [{c}, {row}]: {k} vs {mean}");
             }
         }
+    }
+}
+
+/// One level of the model's walk along an axis: the node `[n0, n1)` keeps the half holding
+/// texel `t`, and the preimage `[p0, p0 + dp)` the matching part, split at the lower half's
+/// share `lower(mid) / all` of the node's weight (all of it for an empty node).
+fn halve(
+    t: usize,
+    n: &mut [usize; 2],
+    [p0, dp]: [&mut f64; 2],
+    lower: impl Fn(usize) -> f64,
+    all: f64,
+) {
+    let mid = (n[0] + n[1]) / 2;
+    let share = if all > 0.0 { lower(mid) / all } else { 1.0 };
+    if t < mid {
+        *dp *= share;
+        n[1] = mid;
+    } else {
+        *p0 += *dp * share;
+        *dp *= 1.0 - share;
+        n[0] = mid;
     }
 }
 
@@ -218,35 +210,21 @@ fn model_rectangles(wts: &[f32], w: usize, h: usize) -> Vec<[f64; 4]> {
         for c in 0..w {
             let (tx, ty) = (c + ox, row + oy);
             // The node's extent in padded texels, and the texel's preimage so far.
-            let (mut nx0, mut nx1, mut ny0, mut ny1) = (0usize, pw, 0usize, ph);
+            let (mut nx, mut ny) = ([0usize, pw], [0usize, ph]);
             let ([mut x0, mut dx], [mut y0, mut dy]) = ([0.0f64, 1.0], [0.0f64, 1.0]);
             for l in 0..levels {
                 let (sx, sy) = (l + a >= levels, l + b >= levels);
+                let ([x_lo, x_hi], [y_lo, y_hi]) = (nx, ny);
+                let all = rect(x_lo, x_hi, y_lo, y_hi);
                 if sx {
-                    let mid = (nx0 + nx1) / 2;
-                    let (left, all) = (rect(nx0, mid, ny0, ny1), rect(nx0, nx1, ny0, ny1));
-                    let share = if all > 0.0 { left / all } else { 1.0 };
-                    if tx < mid {
-                        dx *= share;
-                        nx1 = mid;
-                    } else {
-                        x0 += dx * share;
-                        dx *= 1.0 - share;
-                        nx0 = mid;
-                    }
+                    let left = |mid| rect(x_lo, mid, y_lo, y_hi);
+                    halve(tx, &mut nx, [&mut x0, &mut dx], left, all);
                 }
+                let ([x_lo, x_hi], [y_lo, y_hi]) = (nx, ny);
+                let all = rect(x_lo, x_hi, y_lo, y_hi);
                 if sy {
-                    let mid = (ny0 + ny1) / 2;
-                    let (low, all) = (rect(nx0, nx1, ny0, mid), rect(nx0, nx1, ny0, ny1));
-                    let share = if all > 0.0 { low / all } else { 1.0 };
-                    if ty < mid {
-                        dy *= share;
-                        ny1 = mid;
-                    } else {
-                        y0 += dy * share;
-                        dy *= 1.0 - share;
-                        ny0 = mid;
-                    }
+                    let low = |mid| rect(x_lo, x_hi, y_lo, mid);
+                    halve(ty, &mut ny, [&mut y0, &mut dy], low, all);
                 }
             }
             out.push([x0, dx, y0, dy]);

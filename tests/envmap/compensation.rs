@@ -18,16 +18,23 @@ use warpcore::envmap::{
 /// Weights `1 + 10^(3 r)` with a quarter zeros; no weight within 1e-3 relative of the
 /// compensation threshold `t` (so `f32` row factors cannot move a texel across it).
 fn weights(w: usize, h: usize, seed: u64) -> Vec<f32> {
-    let mut r = rng(seed);
-    (0..w * h)
-        .map(|_| {
-            if r.random::<u32>() % 4 == 0 {
-                0.0
-            } else {
-                1.0 + 10f32.powf(3.0 * r.random::<f32>())
-            }
-        })
-        .collect()
+    super::random_weights(w, h, seed, |x| 1.0 + 10f32.powf(3.0 * x))
+}
+
+/// Per texel, row-major: `(column, row, pdf(centre) / (w h), want / sum(want))`, the
+/// reported and the wanted probability.
+fn shares<'a>(
+    pdf: impl Fn([f32; 2]) -> f32 + 'a,
+    w: usize,
+    h: usize,
+    want: &'a [f64],
+) -> impl Iterator<Item = (usize, usize, f64, f64)> + 'a {
+    let total: f64 = want.iter().sum();
+    (0..w * h).map(move |t| {
+        let (c, r) = (t % w, t / w);
+        let p = pdf(centre(c, r, w, h)) as f64 / (w * h) as f64;
+        (c, r, p, want[t] / total)
+    })
 }
 
 /// The compensated weights, in `f64`, from the definition (not the library's code).
@@ -50,21 +57,16 @@ fn centre(c: usize, r: usize, w: usize, h: usize) -> [f32; 2] {
 /// sixteenth of the average (both distributions' documented precision at these sizes).
 fn check_against_reference<D: Distribution>(d: &D, want: &[f64], label: &str) {
     let (w, h) = (d.width(), d.height());
-    let total: f64 = want.iter().sum();
     let avg = 1.0 / (w * h) as f64;
     let mut sum = 0.0;
     let mut removed = 0;
-    for r in 0..h {
-        for c in 0..w {
-            let p = d.pdf(centre(c, r, w, h)) as f64 / (w * h) as f64;
-            sum += p;
-            let x = want[r * w + c] / total;
-            if x == 0.0 {
-                assert_eq!(p, 0.0, "{label} [{c}, {r}] removed");
-                removed += 1;
-            } else if x >= avg / 16.0 {
-                assert!((p / x - 1.0).abs() < 1e-4, "{label} [{c}, {r}]: {p} vs {x}");
-            }
+    for (c, r, p, x) in shares(|uv| d.pdf(uv), w, h, want) {
+        sum += p;
+        if x == 0.0 {
+            assert_eq!(p, 0.0, "{label} [{c}, {r}] removed");
+            removed += 1;
+        } else if x >= avg / 16.0 {
+            assert!((p / x - 1.0).abs() < 1e-4, "{label} [{c}, {r}]: {p} vs {x}");
         }
     }
     assert!((sum - 1.0).abs() < 1e-6, "{label}: sum {sum}");
@@ -328,73 +330,54 @@ fn subnormal_maps_agree_between_distributions() {
         }
         cases += 1;
         compensated += usize::from(want != raw);
-        let total: f64 = want.iter().sum();
         let label = format!("{w}x{h} {how:?} {wts:?}");
         let mut hs = vec![0 as Word; Hierarchical::storage_len(w, h)];
         let hier = Hierarchical::new_compensated(&wts, w, h, how, &mut hs).unwrap();
         let mut ms = vec![0 as Word; MarginalConditional::storage_len(w, h)];
         let marg = MarginalConditional::new_compensated(&wts, w, h, how, &mut ms).unwrap();
-        let check =
-            |d: &dyn Fn([f32; 2]) -> (Sample, f32), pdf: &dyn Fn([f32; 2]) -> f32, hier: bool| {
-                let name = if hier { "hierarchical" } else { "marginal" };
-                let mut sum = 0.0;
-                for r in 0..h {
-                    for c in 0..w {
-                        let p = pdf(centre(c, r, w, h)) as f64 / (w * h) as f64;
-                        sum += p;
-                        let x = want[r * w + c] / total;
-                        if x == 0.0 {
-                            assert_eq!(p, 0.0, "{name} [{c}, {r}] zero weight, {label}");
-                        } else if !hier || x >= 1.0 / (1u64 << 20) as f64 {
-                            assert!(p > 0.0, "{name} [{c}, {r}] unreachable, {label}");
-                        }
-                        if x >= 1.0 / (16 * w * h) as f64 {
-                            assert!(
-                                (p / x - 1.0).abs() < 1e-4,
-                                "{name} [{c}, {r}]: {p} vs {x}, {label}"
-                            );
-                        }
-                    }
+        let check = |d: &dyn super::Dist, hier: bool| {
+            let name = if hier { "hierarchical" } else { "marginal" };
+            let mut sum = 0.0;
+            for (c, r, p, x) in shares(|uv| d.pdf(uv), w, h, &want) {
+                sum += p;
+                if x == 0.0 {
+                    assert_eq!(p, 0.0, "{name} [{c}, {r}] zero weight, {label}");
+                } else if !hier || x >= 1.0 / (1u64 << 20) as f64 {
+                    assert!(p > 0.0, "{name} [{c}, {r}] unreachable, {label}");
                 }
-                assert!((sum - 1.0).abs() < 1e-6, "{name}: sum {sum}, {label}");
-                let mut u = rng(i as u64);
-                for k in 0..64 {
-                    let u = match k {
-                        0 => [0.0, 0.0],
-                        1 => [ONE_MINUS_EPS; 2],
-                        _ => unit2(&mut u),
-                    };
-                    let (s, at) = d(u);
-                    let t = s.texel[1] as usize * w + s.texel[0] as usize;
+                if x >= 1.0 / (16 * w * h) as f64 {
                     assert!(
-                        want[t] > 0.0,
-                        "{name} {u:?}: zero-weight texel {:?}, {label}",
-                        s.texel
+                        (p / x - 1.0).abs() < 1e-4,
+                        "{name} [{c}, {r}]: {p} vs {x}, {label}"
                     );
-                    assert!(
-                        s.pdf.is_finite() && s.pdf > 0.0,
-                        "{name}: pdf {}, {label}",
-                        s.pdf
-                    );
-                    assert_eq!(s.pdf.to_bits(), at.to_bits(), "{name}: pdf(uv), {label}");
                 }
-            };
-        check(
-            &|u| {
-                let s = hier.sample(u);
-                (s, hier.pdf(s.uv))
-            },
-            &|uv| hier.pdf(uv),
-            true,
-        );
-        check(
-            &|u| {
-                let s = marg.sample(u);
-                (s, marg.pdf(s.uv))
-            },
-            &|uv| marg.pdf(uv),
-            false,
-        );
+            }
+            assert!((sum - 1.0).abs() < 1e-6, "{name}: sum {sum}, {label}");
+            let mut u = rng(i as u64);
+            for k in 0..64 {
+                let u = match k {
+                    0 => [0.0, 0.0],
+                    1 => [ONE_MINUS_EPS; 2],
+                    _ => unit2(&mut u),
+                };
+                let s = d.sample(u);
+                let at = d.pdf(s.uv);
+                let t = s.texel[1] as usize * w + s.texel[0] as usize;
+                assert!(
+                    want[t] > 0.0,
+                    "{name} {u:?}: zero-weight texel {:?}, {label}",
+                    s.texel
+                );
+                assert!(
+                    s.pdf.is_finite() && s.pdf > 0.0,
+                    "{name}: pdf {}, {label}",
+                    s.pdf
+                );
+                assert_eq!(s.pdf.to_bits(), at.to_bits(), "{name}: pdf(uv), {label}");
+            }
+        };
+        check(&hier, true);
+        check(&marg, false);
     }
     eprintln!(
         "{cases} maps checked ({compensated} compensated, not the fallback), {skipped} skipped"

@@ -6,7 +6,7 @@
 
 use warpcore_testkit as common;
 
-use common::{rng, specials, unit, unit2};
+use common::{rng, special_pairs, unit, unit2};
 use proptest::prelude::*;
 use warpcore::envmap::{
     CHECKSUM_WORD, Error, FORMAT_VERSION, HEADER_WORDS, Hierarchical, MAX_SIDE,
@@ -33,16 +33,14 @@ trait Format {
     fn load(storage: &[Word], verified: bool) -> Result<Vec<(Sample, f32)>, Error>;
     /// `from_storage_verified(storage).sample(u)`.
     fn load_one(storage: &[Word], u: [f32; 2]) -> Sample;
+    /// The verifying loader's error, if any.
+    fn verify(storage: &[Word]) -> Option<Error>;
 }
 
-/// The fixed sample inputs: specials, then random points.
+/// The fixed sample inputs: pairs of specials, then random points.
 fn inputs() -> Vec<[f32; 2]> {
-    let s = specials();
     let mut r = rng(7);
-    let mut us: Vec<[f32; 2]> = s
-        .iter()
-        .flat_map(|&a| s.iter().map(move |&b| [a, b]))
-        .collect();
+    let mut us = special_pairs();
     us.extend((0..500).map(|_| unit2(&mut r)));
     us.truncate(us.len() / 8 * 8);
     us
@@ -70,6 +68,9 @@ macro_rules! format {
             }
             fn load_one(storage: &[Word], u: [f32; 2]) -> Sample {
                 $t::from_storage_verified(storage).unwrap().sample(u)
+            }
+            fn verify(storage: &[Word]) -> Option<Error> {
+                $t::from_storage_verified(storage).err()
             }
             fn load(storage: &[Word], verified: bool) -> Result<Vec<(Sample, f32)>, Error> {
                 let d = if verified {
@@ -364,14 +365,20 @@ fn regions(s: &[Word]) -> [std::ops::Range<usize>; 4] {
     })
 }
 
+/// A `w x h` table of `F` from `weights(w, h, seed)`, which the verifying loader accepts.
+fn verified_table<F: Format>(w: usize, h: usize, seed: u64) -> Vec<Word> {
+    let mut s = vec![0 as Word; F::storage_len(w, h)];
+    F::build(&weights(w, h, seed), w, h, &mut s).unwrap();
+    assert_eq!(F::verify(&s), None);
+    s
+}
+
 #[test]
 fn verified_marginal_names_the_first_corrupt_word() {
     let (w, h) = (13usize, 7usize);
-    let mut s = vec![0 as Word; MarginalConditional::storage_len(w, h)];
-    MarginalConditional::new(&weights(w, h, 4), w, h, &mut s).unwrap();
+    let s = verified_table::<MarginalConditional>(w, h, 4);
     let [rows, columns, ex, ey] = regions(&s);
-    let verify = |t: &[Word]| MarginalConditional::from_storage_verified(t).err();
-    assert_eq!(verify(&s), None);
+    let verify = MarginalConditional::verify;
     let cases = [
         (rows.start, 1),                      // a CDF that does not start at 0
         (rows.end - 1, (1 << 31) - 1),        // nor end at 2^31
@@ -389,7 +396,11 @@ fn verified_marginal_names_the_first_corrupt_word() {
             "word {k} = {v:#x}"
         );
         // The O(1) load accepts it and sampling stays in the map.
-        assert_in_map(&MarginalConditional::load(&t, false).unwrap(), w, h);
+        assert_in_map(
+            &<MarginalConditional as Format>::load(&t, false).unwrap(),
+            w,
+            h,
+        );
     }
     // A decrease is reported where it happens.
     let k = columns.start + 4;
@@ -401,11 +412,9 @@ fn verified_marginal_names_the_first_corrupt_word() {
 fn verified_hierarchical_names_the_first_corrupt_word() {
     // 17 x 3 pads to 32 x 4: padding on both axes, levels that split x only.
     let (w, h) = (17usize, 3usize);
-    let mut s = vec![0 as Word; Hierarchical::storage_len(w, h)];
-    Hierarchical::new(&weights(w, h, 5), w, h, &mut s).unwrap();
+    let s = verified_table::<Hierarchical>(w, h, 5);
     let [pad, blocks, ex, ey] = regions(&s);
-    let verify = |t: &[Word]| Hierarchical::from_storage_verified(t).err();
-    assert_eq!(verify(&s), None);
+    let verify = Hierarchical::verify;
     let one = 1u32 << 31;
     let word = |k: usize| u32::from_le(s[k]);
     // Every fraction above 1 is caught, and a block sum that is negative or not finite.
@@ -463,7 +472,7 @@ fn verified_hierarchical_names_the_first_corrupt_word() {
     for k in [ex.start, ex.start + 9, ey.start + 1, ey.end - 1] {
         let t = with_in(&s, k, word(k) ^ 1);
         assert_eq!(verify(&t), Some(Error::Corrupt { word: k }));
-        assert_in_map(&Hierarchical::load(&t, false).unwrap(), w, h);
+        assert_in_map(&<Hierarchical as Format>::load(&t, false).unwrap(), w, h);
     }
 }
 

@@ -95,3 +95,28 @@ pub fn envmap_path(name: &str) -> PathBuf {
 pub fn envmap(name: &str) -> Image {
     read(&envmap_path(name)).unwrap_or_else(|e| panic!("test map: {e}"))
 }
+
+/// Bilinear upsampling of a `w x h` lat-long float map by an integer factor `k` (texel centres
+/// aligned, wrapping around in longitude, clamped in latitude, negative values read as 0): a
+/// larger map with the same content, for timing the distributions at other sizes.
+pub fn upsample(src: &[f32], w: usize, h: usize, k: usize) -> Vec<f32> {
+    let (nw, nh) = (w * k, h * k);
+    let at = |x: isize, y: isize| {
+        let x = x.rem_euclid(w as isize) as usize;
+        let y = y.clamp(0, h as isize - 1) as usize;
+        src[y * w + x].max(0.0)
+    };
+    let mut out = vec![0.0f32; nw * nh];
+    for y in 0..nh {
+        let fy = (y as f32 + 0.5) / k as f32 - 0.5;
+        let (y0, ty) = (fy.floor() as isize, fy - fy.floor());
+        for x in 0..nw {
+            let fx = (x as f32 + 0.5) / k as f32 - 0.5;
+            let (x0, tx) = (fx.floor() as isize, fx - fx.floor());
+            let top = at(x0, y0) * (1.0 - tx) + at(x0 + 1, y0) * tx;
+            let bottom = at(x0, y0 + 1) * (1.0 - tx) + at(x0 + 1, y0 + 1) * tx;
+            out[y * nw + x] = top * (1.0 - ty) + bottom * ty;
+        }
+    }
+    out
+}

@@ -16,7 +16,7 @@
 
 use std::hint::black_box;
 use std::time::Instant;
-use warpcore::envmap::{Hierarchical, MarginalConditional, Sample, Word, image};
+use warpcore::envmap::{Distribution, Hierarchical, MarginalConditional, Sample, Word, image};
 use warpcore::{disk, f32x8, pmj02bn, sequence, sphere, triangle, u32x8};
 
 const BATCH: usize = 4096;
@@ -107,36 +107,9 @@ fn park() -> (Vec<f32>, usize, usize) {
     (l, w, h)
 }
 
-/// Bilinear upsampling by an integer factor (texel centres aligned), as in `benches/envmap.rs`.
-fn upsample(src: &[f32], w: usize, h: usize, k: usize) -> Vec<f32> {
-    let (nw, nh) = (w * k, h * k);
-    let at = |x: isize, y: isize| {
-        let x = x.rem_euclid(w as isize) as usize;
-        let y = y.clamp(0, h as isize - 1) as usize;
-        src[y * w + x].max(0.0)
-    };
-    let mut out = vec![0.0f32; nw * nh];
-    for y in 0..nh {
-        let fy = (y as f32 + 0.5) / k as f32 - 0.5;
-        let (y0, ty) = (fy.floor() as isize, fy - fy.floor());
-        for x in 0..nw {
-            let fx = (x as f32 + 0.5) / k as f32 - 0.5;
-            let (x0, tx) = (fx.floor() as isize, fx - fx.floor());
-            let top = at(x0, y0) * (1.0 - tx) + at(x0 + 1, y0) * tx;
-            let bottom = at(x0, y0 + 1) * (1.0 - tx) + at(x0 + 1, y0 + 1) * tx;
-            out[y * nw + x] = top * (1.0 - ty) + bottom * ty;
-        }
-    }
-    out
-}
-
-/// One env-map line: `slice` (or `x8` over structure-of-arrays groups) over `BATCH` points.
-fn envmap_line(
-    name: &str,
-    filter: &str,
-    slice: impl Fn(&[[f32; 2]], &mut [Sample]) -> usize,
-    x8: impl Fn([f32x8; 2]) -> [Sample; 8],
-) {
+/// One env-map line: `sample_slice` (or `sample_x8` over structure-of-arrays groups) of `d`
+/// over `BATCH` points.
+fn envmap_line<D: Distribution>(name: &str, filter: &str, d: &D) {
     let blank = Sample {
         uv: [0.0; 2],
         pdf: 0.0,
@@ -147,7 +120,7 @@ fn envmap_line(
     let slice_name = format!("{name} slice");
     if slice_name.contains(filter) {
         let r = rate(|| {
-            slice(black_box(&input), &mut out);
+            d.sample_slice(black_box(&input), &mut out);
             black_box(&mut out);
         });
         println!("{slice_name:<28} {r:>9.1} M/s");
@@ -160,7 +133,7 @@ fn envmap_line(
             .collect();
         let r = rate(|| {
             for (o, u) in out.chunks_exact_mut(8).zip(black_box(&soa)) {
-                o.copy_from_slice(&x8(*u));
+                o.copy_from_slice(&d.sample_x8(*u).to_array());
             }
             black_box(&mut out);
         });
@@ -174,24 +147,14 @@ fn envmaps(filter: &str) {
         return;
     }
     let (small, w, h) = park();
-    let big = upsample(&small, w, h, 8);
+    let big = pfm::upsample(&small, w, h, 8);
     for (weights, w, h) in [(&small, w, h), (&big, 8 * w, 8 * h)] {
         let mut sh = vec![0 as Word; Hierarchical::storage_len(w, h)];
         let d = Hierarchical::new(weights, w, h, &mut sh).unwrap();
-        envmap_line(
-            &format!("envmap::hier {w}x{h}"),
-            filter,
-            |u, o| d.sample_slice(u, o),
-            |u| d.sample_x8(u).to_array(),
-        );
+        envmap_line(&format!("envmap::hier {w}x{h}"), filter, &d);
         let mut sm = vec![0 as Word; MarginalConditional::storage_len(w, h)];
         let d = MarginalConditional::new(weights, w, h, &mut sm).unwrap();
-        envmap_line(
-            &format!("envmap::mc {w}x{h}"),
-            filter,
-            |u, o| d.sample_slice(u, o),
-            |u| d.sample_x8(u).to_array(),
-        );
+        envmap_line(&format!("envmap::mc {w}x{h}"), filter, &d);
     }
 }
 
