@@ -67,21 +67,8 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 // Builds with only some families leave parts of the shared internals unused; the full build
-// (every family) still reports real dead code.
-#![cfg_attr(
-    not(all(
-        feature = "disk",
-        feature = "triangle",
-        feature = "sphere",
-        feature = "pmj02bn",
-        feature = "sequence",
-        feature = "envmap",
-        feature = "sampler",
-        feature = "blue-noise",
-        feature = "spherical"
-    )),
-    allow(dead_code)
-)]
+// (feature `all`, every family) still reports real dead code.
+#![cfg_attr(not(feature = "all"), allow(dead_code))]
 
 pub use wide::{f32x8, f32x16, u32x8, u32x16};
 
@@ -113,17 +100,7 @@ pub mod triangle;
 
 // The README's and the docs pages' examples compile and run as doctests (they use every
 // default family).
-#[cfg(all(
-    doctest,
-    feature = "disk",
-    feature = "triangle",
-    feature = "sphere",
-    feature = "pmj02bn",
-    feature = "sequence",
-    feature = "blue-noise",
-    feature = "spherical",
-    feature = "envmap"
-))]
+#[cfg(all(doctest, feature = "all"))]
 #[doc = include_str!("../README.md")]
 #[doc = include_str!("../docs/quickstart.md")]
 struct ReadmeDoctests;

@@ -649,11 +649,7 @@ const ENVMAP: &[Entry] = {
         .named(&[(C, "wc_envmap_luminance"), (Js, "envmapLuminance")]),
         Entry::new(
             "envmap::image::equirect_pdf_to_solid_angle",
-            Forms {
-                x8: true,
-                x16: false,
-                slice: false,
-            },
+            Forms::of(true, false, false),
             Kind::M21(Map {
                 scalar: |[p, v]| [image::equirect_pdf_to_solid_angle(p, v)],
                 x8: Some(|[p, v]| [image::equirect_pdf_to_solid_angle_x8(p, v)]),

@@ -17,29 +17,17 @@ pub struct Forms {
 
 impl Forms {
     /// Scalar, `_x8`, `_x16` and `_slice`.
-    pub const ALL: Forms = Forms {
-        x8: true,
-        x16: true,
-        slice: true,
-    };
+    pub const ALL: Forms = Forms::of(true, true, true);
     /// Scalar, `_x8` and `_x16`.
-    pub const LANES: Forms = Forms {
-        x8: true,
-        x16: true,
-        slice: false,
-    };
+    pub const LANES: Forms = Forms::of(true, true, false);
     /// Scalar and `_slice`.
-    pub const SLICE: Forms = Forms {
-        x8: false,
-        x16: false,
-        slice: true,
-    };
+    pub const SLICE: Forms = Forms::of(false, false, true);
     /// The scalar form alone.
-    pub const SCALAR: Forms = Forms {
-        x8: false,
-        x16: false,
-        slice: false,
-    };
+    pub const SCALAR: Forms = Forms::of(false, false, false);
+    /// The forms with these flags.
+    pub const fn of(x8: bool, x16: bool, slice: bool) -> Forms {
+        Forms { x8, x16, slice }
+    }
     /// The suffixes of the forms it has, `""` (scalar) first.
     pub fn suffixes(self) -> impl Iterator<Item = &'static str> {
         [

@@ -39,7 +39,7 @@ fn ident_after<'a>(line: &'a str, key: &str) -> Option<&'a str> {
 }
 
 /// `(family, name)` of every public function of the library: the `pub fn` lines of the
-/// public modules (the families `lib.rs` declares `pub mod`), before any `#[cfg(test)]`
+/// public modules (and the names `lane_forms!` declares) (the families `lib.rs` declares `pub mod`), before any `#[cfg(test)]`
 /// module, skipping `#[doc(hidden)]` ones.
 fn public_functions() -> BTreeSet<(String, String)> {
     let src = root().join("src");
@@ -72,10 +72,17 @@ fn public_functions() -> BTreeSet<(String, String)> {
             if line.trim_start().starts_with("#[doc(hidden)]") {
                 hidden = true;
             }
-            let name = ident_after(line, "pub fn ").or_else(|| ident_after(line, "pub const fn "));
-            if let Some(name) = name {
-                if !hidden {
-                    out.insert((family.to_string(), name.to_string()));
+            // `pub fn name(`, or inside `lane_forms!` `pub fn name, name_x8, name_x16 [`.
+            let names = line
+                .trim_start()
+                .strip_prefix("pub fn ")
+                .or_else(|| line.trim_start().strip_prefix("pub const fn "));
+            if let Some(names) = names {
+                let names = names.split(['(', '[', '<']).next().unwrap_or("");
+                for name in names.split(',').filter_map(|n| ident_after(n, "")) {
+                    if !hidden {
+                        out.insert((family.to_string(), name.to_string()));
+                    }
                 }
                 hidden = false;
             }
