@@ -1,5 +1,5 @@
 //! Replays the `capi_envmap` fuzz corpus (or any files or directories given as arguments)
-//! through `fuzz/capi_checks.rs`, as `tests/fuzz_corpus.rs` does, in a plain binary: CI builds
+//! through `capi/fuzz_checks.rs`, as `tests/fuzz_corpus.rs` does, in a plain binary: CI builds
 //! it with nightly `-Zsanitizer=address` (`--features fuzz-replay`), which a test target
 //! cannot do cheaply (it would build the dev-dependencies under the sanitizer too).
 #![cfg(feature = "fuzz-replay")]
@@ -11,7 +11,7 @@ mod ffi;
 #[path = "src/envmap.rs"]
 mod envmap;
 
-#[path = "../fuzz/capi_checks.rs"]
+#[path = "fuzz_checks.rs"]
 mod capi_checks;
 
 use std::path::{Path, PathBuf};

@@ -1,5 +1,5 @@
 //! Replays the `capi_envmap` fuzz corpus (`fuzz/corpus/capi_envmap/`) through the checks the
-//! fuzz target runs (`fuzz/capi_checks.rs`), on stable, in every `cargo test`: the C ABI's
+//! fuzz target runs (`capi/fuzz_checks.rs`), on stable, in every `cargo test`: the C ABI's
 //! env-map entry points called through their Rust signatures with the storage, sizes, counts
 //! and pointers the fuzzer chose, against a model of the documented rules and the safe
 //! crate's results. CI also runs it under AddressSanitizer (nightly `-Zsanitizer=address`).
@@ -14,7 +14,7 @@ mod ffi;
 #[path = "../src/envmap.rs"]
 mod envmap;
 
-#[path = "../../fuzz/capi_checks.rs"]
+#[path = "../fuzz_checks.rs"]
 mod capi_checks;
 
 use std::path::Path;

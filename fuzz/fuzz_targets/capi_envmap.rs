@@ -1,7 +1,7 @@
 //! Fuzz the C ABI's environment-map entry points (`wc_envmap_*`, called through their Rust
 //! signatures: `capi/src/envmap.rs` and its pointer rules `capi/src/ffi.rs` compiled in as
 //! modules) with storage, sizes, counts and pointers chosen by the fuzzer; see
-//! `fuzz/capi_checks.rs`.
+//! `capi/fuzz_checks.rs`.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 
@@ -12,7 +12,7 @@ mod ffi;
 #[path = "../../capi/src/envmap.rs"]
 mod envmap;
 
-#[path = "../capi_checks.rs"]
+#[path = "../../capi/fuzz_checks.rs"]
 mod capi_checks;
 
 fuzz_target!(|data: &[u8]| capi_checks::capi_envmap(data));
