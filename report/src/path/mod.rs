@@ -15,9 +15,11 @@
 
 pub mod metrics;
 pub mod pictures;
+pub mod qmc;
 pub mod reference;
 pub mod samplers;
 pub mod scene;
+pub mod study;
 pub mod trace;
 
 use crate::run::Scale;

@@ -38,6 +38,10 @@ pub trait PathSampler: Sync {
 /// The roulette's own domain key, away from the stratified domains.
 const RND_DOMAIN: u32 = 0x100;
 
+/// The first domain of the roulette's stratified decisions (domain `ROULETTE_DOMAIN + d` at
+/// vertex `d`), away from the path's domains `0..=6` and below `sobol_burley`'s 64 sets.
+pub const ROULETTE_DOMAIN: u32 = 32;
+
 /// lowbias32 (Wellons): a well-mixed bijective 32-bit hash.
 pub fn hash32(mut x: u32) -> u32 {
     x ^= x >> 16;
@@ -257,6 +261,9 @@ pub enum Kind {
     SobolBurley,
     PbrtPmj02bn,
     Random,
+    LaineKarras,
+    SobolRds,
+    SobolEnum,
 }
 
 pub const KINDS: [Kind; 13] = [
@@ -275,6 +282,10 @@ pub const KINDS: [Kind; 13] = [
     Kind::Random,
 ];
 
+/// The samplers of Burley 2020's comparison that only the path study runs
+/// ([`super::qmc`]).
+pub const BURLEY_KINDS: [Kind; 3] = [Kind::LaineKarras, Kind::SobolRds, Kind::SobolEnum];
+
 impl Kind {
     pub fn name(self) -> &'static str {
         match self {
@@ -291,11 +302,27 @@ impl Kind {
             Kind::SobolBurley => "sobol_burley",
             Kind::PbrtPmj02bn => "pbrt_pmj02bn",
             Kind::Random => "random",
+            Kind::LaineKarras => "laine_karras",
+            Kind::SobolRds => "sobol_rds",
+            Kind::SobolEnum => "sobol_enum",
         }
     }
 
+    /// The position in [`KINDS`], then [`BURLEY_KINDS`].
     pub fn index(self) -> usize {
-        KINDS.iter().position(|&k| k == self).unwrap_or(0)
+        KINDS
+            .iter()
+            .chain(&BURLEY_KINDS)
+            .position(|&k| k == self)
+            .unwrap_or(0)
+    }
+
+    /// The sampler of CSV name `name`.
+    pub fn by_name(name: &str) -> Option<Kind> {
+        KINDS
+            .into_iter()
+            .chain(BURLEY_KINDS)
+            .find(|k| k.name() == name)
     }
 
     /// warpcore's own samplers (the others are peers).
@@ -336,6 +363,9 @@ macro_rules! with_sampler {
             SobolBurley => SobolBurley,
             PbrtPmj02bn => PbrtPmj,
             Random => Random,
+            LaineKarras => $crate::path::qmc::LaineKarras,
+            SobolRds => $crate::path::qmc::SobolRds,
+            SobolEnum => $crate::path::qmc::SobolEnum::new(),
         )
     }};
     (@match $kind:expr, $s:ident, $body:expr, $($k:ident => $v:expr,)*) => {
@@ -370,7 +400,7 @@ mod tests {
 
     #[test]
     fn every_sampler_draws_in_the_unit_interval() {
-        for kind in KINDS {
+        for kind in KINDS.into_iter().chain(BURLEY_KINDS) {
             with_sampler!(kind, s => {
                 for i in 0..64 {
                     let smp = s.sample([3, 5], i, 64, 7);
