@@ -356,13 +356,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
     if opts.orientation_only {
         #[cfg(feature = "envmap")]
         orientation_study(opts, &env_scenes(opts)?)?;
-        paste_into_page(opts)?;
-        println!(
-            "wrote the orientation study to {} in {:.1} s",
-            opts.out.display(),
-            start.elapsed().as_secs_f64()
-        );
-        return Ok(Vec::new());
+        return only_study(opts, "the orientation study", start);
     }
     if opts.path_study_only {
         let rows = crate::path::study::run(&opts.study_cases(), opts.threads, &opts.out)?;
@@ -373,13 +367,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
             &csv,
             &(replace_scenes(&old, &scenes) + &crate::path::study::results_csv_rows(&rows)),
         )?;
-        paste_into_page(opts)?;
-        println!(
-            "wrote the path study to {} in {:.1} s",
-            opts.out.display(),
-            start.elapsed().as_secs_f64()
-        );
-        return Ok(Vec::new());
+        return only_study(opts, "the path study", start);
     }
     println!(
         "warpcore report: MSE against exact references at {:?} samples per pixel; timings: {} (set RUSTFLAGS=\"-C target-cpu=native\" for this CPU's vector units), {} threads for the error runs",
@@ -530,6 +518,22 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         start.elapsed().as_secs_f64()
     );
     Ok(results)
+}
+
+/// The end of a run of one side study (`--orientation-only`, `--path-study-only`): pastes
+/// the page when the output is `docs/report`, says where `what` went.
+fn only_study(
+    opts: &Options,
+    what: &str,
+    start: Instant,
+) -> Result<Vec<SceneResult>, Box<dyn std::error::Error>> {
+    paste_into_page(opts)?;
+    println!(
+        "wrote {what} to {} in {:.1} s",
+        opts.out.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(Vec::new())
 }
 
 /// `csv` (a `results.csv`, header first) without the rows of `scenes`.

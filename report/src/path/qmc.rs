@@ -148,28 +148,39 @@ fn first_dim(domain: u32) -> usize {
     .min(DIMS - 4)
 }
 
-/// Laine-Karras: one shuffled, scrambled van der Corput sequence per dimension.
-pub struct LaineKarras;
+/// The samplers whose every pixel has its own sequence, keyed by pixel and render:
+/// Laine-Karras (`LK = true`) and Sobol'-RDS (`false`).
+pub struct PerPixel<const LK: bool>;
 
-impl LaineKarras {
-    /// The `N` dimensions of `domain`.
+/// Laine-Karras: one shuffled, scrambled van der Corput sequence per dimension.
+pub type LaineKarras = PerPixel<true>;
+
+/// Sobol'-RDS: one random-digit-scrambled Sobol' sequence per pixel, all dimensions in order.
+pub type SobolRds = PerPixel<false>;
+
+impl<const LK: bool> PerPixel<LK> {
+    /// The `N` dimensions of `domain` of sample `s` (index, key).
     fn dims<const N: usize>(s: &(u32, u32), domain: u32) -> [f32; N] {
-        let first = first_dim(domain) as u32;
+        let first = first_dim(domain);
+        if !LK {
+            return rds(s.0, first, s.1);
+        }
         std::array::from_fn(|k| {
-            let key = hash32(s.1 ^ hash32((first + k as u32).wrapping_add(0x51ed_270b)));
+            let key = hash32(s.1 ^ hash32((first + k) as u32 ^ 0x51ed_270b));
             let i = lk_scramble(s.0, hash32(key ^ 0xa511_e9b3));
             unit(lk_scramble(i.reverse_bits(), hash32(key ^ 0x63d8_3595)))
         })
     }
 }
 
-impl PathSampler for LaineKarras {
+impl<const LK: bool> PathSampler for PerPixel<LK> {
     /// (index, key of the pixel and render)
     type Sample = (u32, u32);
     fn sample(&self, pixel: [u32; 2], index: u32, _spp: u32, seed: u32) -> (u32, u32) {
+        let salt = if LK { 0x1a2b_3c4d } else { 0x0bad_5eed };
         (
             index,
-            hash32(pixel[0] ^ hash32(pixel[1] ^ hash32(seed ^ 0x1a2b_3c4d))),
+            hash32(pixel[0] ^ hash32(pixel[1] ^ hash32(seed ^ salt))),
         )
     }
     fn draw2(&self, s: &(u32, u32), domain: u32) -> [f32; 2] {
@@ -190,29 +201,6 @@ fn rds<const N: usize>(i: u32, first: usize, key: u32) -> [f32; N] {
         let d = first + k;
         unit(sobol(i, d) ^ hash32(key ^ hash32(d as u32 ^ 0x2f6b_4a17)))
     })
-}
-
-/// Sobol'-RDS: one random-digit-scrambled Sobol' sequence per pixel, all dimensions in order.
-pub struct SobolRds;
-
-impl PathSampler for SobolRds {
-    /// (index, key of the pixel and render)
-    type Sample = (u32, u32);
-    fn sample(&self, pixel: [u32; 2], index: u32, _spp: u32, seed: u32) -> (u32, u32) {
-        (
-            index,
-            hash32(pixel[0] ^ hash32(pixel[1] ^ hash32(seed ^ 0x0bad_5eed))),
-        )
-    }
-    fn draw2(&self, s: &(u32, u32), domain: u32) -> [f32; 2] {
-        rds(s.0, first_dim(domain), s.1)
-    }
-    fn draw4(&self, s: &(u32, u32), domain: u32) -> [f32; 4] {
-        rds(s.0, first_dim(domain), s.1)
-    }
-    fn rnd(&self, s: &(u32, u32), domain: u32) -> f32 {
-        unit(hash32(s.1 ^ hash32(s.0 ^ hash32(0x100 + domain))))
-    }
 }
 
 /// log2 of the grid [`SobolEnum`] enumerates over.
@@ -280,13 +268,16 @@ impl PathSampler for SobolEnum {
         rds(s.0, first_dim(domain), s.1)
     }
     fn rnd(&self, s: &(u32, u32), domain: u32) -> f32 {
-        unit(hash32(s.1 ^ hash32(s.0 ^ hash32(0x100 + domain))))
+        PerPixel::<false>.rnd(s, domain)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    const LK: LaineKarras = PerPixel;
+    const RDS: SobolRds = PerPixel;
 
     /// Whether `pts` (0.32 words) put exactly one point in every elementary interval of
     /// area `1 / pts.len()` (a `(0, m, 2)`-net for `pts.len() = 2^m`).
@@ -343,15 +334,11 @@ mod tests {
             for m in 0..=8u32 {
                 let n = 1u32 << m;
                 let rds: Vec<[u32; 2]> = (0..n)
-                    .map(|i| {
-                        SobolRds
-                            .draw2(&SobolRds.sample(pixel, i, n, seed), 0)
-                            .map(word)
-                    })
+                    .map(|i| RDS.draw2(&RDS.sample(pixel, i, n, seed), 0).map(word))
                     .collect();
                 assert!(is_02_net(&rds), "rds m {m}");
                 let lk: Vec<[f32; 4]> = (0..n)
-                    .map(|i| LaineKarras.draw4(&LaineKarras.sample(pixel, i, n, seed), 3))
+                    .map(|i| LK.draw4(&LK.sample(pixel, i, n, seed), 3))
                     .collect();
                 for d in 0..4 {
                     let mut seen = vec![false; n as usize];

@@ -3,19 +3,21 @@
 //!
 //! A path asks for its dimensions by *domain*: domain 0 the position in the pixel (2D),
 //! domain 1 the lens (2D), domain `2 + d` the light point and the BSDF direction of vertex
-//! `d` (4D), and [`PathSampler::rnd`] an unstratified number for Russian roulette. Each core
-//! maps that onto its own interface:
+//! `d` (4D), domain [`ROULETTE_DOMAIN`]` + d` the roulette's decision at vertex `d` (its first
+//! dimension), and [`PathSampler::rnd`] an unstratified number (the `/rr-rnd` variant's
+//! roulette). Each core maps that onto its own interface:
 //!
-//! * warpcore `Sampler<P>` (and `Blue<P>`): `root.domain(k).draw::<N>()`, `rnd` for roulette;
+//! * warpcore `Sampler<P>` (and `Blue<P>`): `root.domain(k).draw::<N>()`, `rnd` for `rnd`;
 //! * openqmc-rs (`X::new(x, y, frame, index).new_domain(k).draw_sample_f32::<N>()`), the frame
-//!   carrying the seed, `draw_rnd_f32` for roulette;
+//!   carrying the seed, `draw_rnd_f32` for `rnd`;
 //! * `sobol_burley::sample_4d(index, k, seed)`: domain `k` is the 4D dimension set `k`,
 //!   padded (a 2D request uses its first two dimensions); the seed hashes the pixel;
 //! * a pbrt-v4-style PMJ02BN: the 2D pair `j` of the path reads table set `j mod SETS` at a
 //!   per-pixel, per-pair random permutation of the `spp` sample indices, shifted by a
 //!   per-pixel, per-pair Cranley-Patterson rotation (as pbrt-v4's `PMJ02BNSampler` does; our
 //!   own code over warpcore's tables);
-//! * independent uniform random numbers (a counter hash).
+//! * independent uniform random numbers (a counter hash);
+//! * the path study's Laine-Karras, Sobol'-RDS and Sobol'-enum ([`super::qmc`]).
 
 use openqmc::SamplerImpl;
 use warpcore::pmj02bn;
@@ -363,8 +365,8 @@ macro_rules! with_sampler {
             SobolBurley => SobolBurley,
             PbrtPmj02bn => PbrtPmj,
             Random => Random,
-            LaineKarras => $crate::path::qmc::LaineKarras,
-            SobolRds => $crate::path::qmc::SobolRds,
+            LaineKarras => $crate::path::qmc::PerPixel::<true>,
+            SobolRds => $crate::path::qmc::PerPixel::<false>,
             SobolEnum => $crate::path::qmc::SobolEnum::new(),
         )
     }};

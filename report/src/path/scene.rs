@@ -6,6 +6,8 @@
 //!   (modified-Phong lobe, exponent 40), a 0.25 x 0.25 square light under the ceiling.
 //! * `cornell-disk`: the same box, the square light at half power and a bluish disk light
 //!   (radius 0.1) on the right wall facing into the box.
+//! * `burley-direct`, `burley-gi`, `burley-checker`: Burley 2020's three configurations (the
+//!   path study, [`Scene::by_name`]); any scene takes `/`-separated variants.
 //! * `furnace` (tests only): the empty box, every wall a diffuse emitter of radiance 1 and
 //!   albedo `rho`: a path of at most `K` scattering events sees `sum_{k=0..K} rho^k`.
 

@@ -28,19 +28,21 @@ use std::time::Instant;
 
 /// Burley 2020, Figure 1: RMSE per configuration and column (independent, Laine-Karras,
 /// Sobol'-RDS, Sobol'-enum, Owen-scrambled Sobol'), and our scene of it (the paper's detail
-/// images are crops: so are our scenes; `burley-direct/frame` is the whole frame).
-pub const PAPER: [(&str, &str, u32, [f64; 5]); 4] = [
-    (
-        "(a) direct lighting",
-        "burley-direct",
-        16,
-        [0.020, 0.0065, 0.0048, 0.0021, 0.0017],
-    ),
+/// images are crops: so are our scenes; `burley-direct/frame` is the whole frame,
+/// `burley-direct/centre` samples the pixels' centres only: no pixel dimensions).
+pub const PAPER: [(&str, &str, u32, [f64; 5]); 5] = [
+    ("(a) direct lighting", "burley-direct", 16, DIRECT),
     (
         "(a) direct lighting, whole frame",
         "burley-direct/frame",
         16,
-        [0.020, 0.0065, 0.0048, 0.0021, 0.0017],
+        DIRECT,
+    ),
+    (
+        "(a) direct lighting, pixel centres",
+        "burley-direct/centre",
+        16,
+        DIRECT,
     ),
     (
         "(b) GI, media, depth of field",
@@ -55,6 +57,9 @@ pub const PAPER: [(&str, &str, u32, [f64; 5]); 4] = [
         [0.046, 0.10, 0.14, 0.052, 0.043],
     ),
 ];
+
+/// Burley 2020, Figure 1 (a).
+const DIRECT: [f64; 5] = [0.020, 0.0065, 0.0048, 0.0021, 0.0017];
 
 /// The paper's five columns: our samplers (`sobol_burley` is the paper's Owen-Sobol', the
 /// author's crate; warpcore's `sobol` is the same construction with its own hash).
@@ -111,10 +116,14 @@ pub struct Case {
     pub frames: u32,
 }
 
-/// The study's cases at `scale` for the scenes `wants` selects.
+/// The study's cases at `scale` for the scenes `wants` selects: Burley's boxes at 64 x 64
+/// pixels, 16 frames (default 32 x 32, 4; quick 16 x 16, 4); the ablations at 32 x 32, 4
+/// frames, 4 to 1024 spp (default: 16 x 16 to 256 spp, the first four, the others'
+/// samplers on the first only; quick: 2 frames to 64 spp, the first two, `random` and
+/// `sobol`).
 pub fn cases(scale: Scale, wants: impl Fn(&str) -> bool) -> Vec<Case> {
     let mut out = Vec::new();
-    let (size, frames) = scale.pick([(16, 4), (32, 8), (64, 16)]);
+    let (size, frames) = scale.pick([(16, 4), (32, 4), (64, 16)]);
     for (_, scene, spp, _) in PAPER {
         if wants(scene) {
             out.push(Case {
@@ -132,16 +141,16 @@ pub fn cases(scale: Scale, wants: impl Fn(&str) -> bool) -> Vec<Case> {
         .filter(|&n| n <= top)
         .collect();
     let (size, frames) = scale.pick([(16, 2), (16, 4), (32, 4)]);
-    let n = scale.pick([2, ABLATIONS.len(), ABLATIONS.len()]);
-    for (scene, kinds) in ABLATIONS.iter().take(n) {
+    let n = scale.pick([2, 4, ABLATIONS.len()]);
+    for (i, (scene, kinds)) in ABLATIONS.iter().take(n).enumerate() {
         if wants(scene) {
             out.push(Case {
                 scene: scene.to_string(),
                 size,
-                kinds: if scale == Scale::Quick {
-                    SPLIT_KINDS.to_vec()
-                } else {
+                kinds: if scale == Scale::Full || (scale == Scale::Default && i == 0) {
                     kinds.to_vec()
+                } else {
+                    SPLIT_KINDS.to_vec()
                 },
                 spps: spps.clone(),
                 frames,
@@ -398,16 +407,7 @@ fn ratio(a: &Row, b: &Row) -> (f64, f64) {
 /// Rows for `results.csv` (warp `path`; the MSE is the variance over frames).
 pub fn results_csv_rows(rows: &[Row]) -> String {
     rows.iter()
-        .map(|r| {
-            crate::output::csv_line(
-                &r.scene,
-                r.kind.name(),
-                "path",
-                r.spp as usize,
-                r.mse.0,
-                r.ns_per_sample(),
-            ) + "\n"
-        })
+        .map(|r| super::csv_row(&r.scene, r.kind, r.spp, r.mse.0, r.ns_per_sample()))
         .collect()
 }
 
@@ -419,21 +419,22 @@ pub fn study_csv(rows: &[Row]) -> String {
     }
     s.push('\n');
     for r in rows {
-        let _ = write!(
-            s,
-            "{},{},{},{},{},{:.6e},{:.3e},{:.3}",
-            r.scene,
-            r.kind.name(),
-            r.spp,
-            r.frames,
-            r.pixels,
-            r.mse.0,
-            r.mse.1,
-            r.frame_s * 1e3
+        let mut cols = vec![
+            r.scene.clone(),
+            r.kind.name().to_string(),
+            r.spp.to_string(),
+            r.frames.to_string(),
+            r.pixels.to_string(),
+            format!("{:.6e}", r.mse.0),
+            format!("{:.3e}", r.mse.1),
+            format!("{:.3}", r.frame_s * 1e3),
+        ];
+        cols.extend(
+            r.by_length
+                .iter()
+                .flat_map(|(m, se)| [format!("{m:.4e}"), format!("{se:.2e}")]),
         );
-        for (m, se) in &r.by_length {
-            let _ = write!(s, ",{m:.4e},{se:.2e}");
-        }
+        s.push_str(&cols.join(","));
         s.push('\n');
     }
     s

@@ -15,6 +15,28 @@ fn pixel_values(imgs: &[Image]) -> Vec<f64> {
         .collect()
 }
 
+/// Asserts that `kinds` render `scene` (16 x 16) without bias: the mean over pixels of `n`
+/// frames at `spp` against a reference of 2 x 1024 spp of the reference stream, within 4
+/// combined standard errors.
+fn assert_unbiased(name: &str, kinds: &[Kind], spp: u32, n: u32) {
+    let scene = Scene::by_name(name, 16).unwrap();
+    let r = Reference::render(&scene, 1024, 2);
+    let rm: Vec<f64> = pixel_values(&[r.mean()]);
+    let rd: Vec<f64> = pixel_values(&[r.half_difference()]);
+    let ref_se = rd.iter().map(|d| d * d).sum::<f64>().sqrt() / rd.len() as f64;
+    let ref_mean = rm.iter().sum::<f64>() / rm.len() as f64;
+    for &kind in kinds {
+        let v = pixel_values(&frames(&scene, kind, spp, n));
+        let (m, se) = mean_se(&v);
+        let z = (m - ref_mean) / (se * se + ref_se * ref_se).sqrt();
+        assert!(
+            z.abs() < 4.0,
+            "{name} {}: mean {m} vs {ref_mean}, z = {z:.2}",
+            kind.name()
+        );
+    }
+}
+
 fn frames(scene: &Scene, kind: Kind, spp: u32, n: u32) -> Vec<Image> {
     (0..n)
         .map(|f| super::render(scene, kind, spp, 0x1234_5678 ^ f.wrapping_mul(0x9e37_79b9)).0)
@@ -77,21 +99,7 @@ fn every_roulette_form_is_unbiased() {
 #[test]
 fn burley_boxes_are_unbiased_with_every_column() {
     for name in ["burley-direct", "burley-checker"] {
-        let scene = Scene::by_name(name, 16).unwrap();
-        let r = Reference::render(&scene, 1024, 2);
-        let rm = pixel_values(&[r.mean()]);
-        let rd = pixel_values(&[r.half_difference()]);
-        let ref_se = rd.iter().map(|d| d * d).sum::<f64>().sqrt() / rd.len() as f64;
-        let ref_mean = rm.iter().sum::<f64>() / rm.len() as f64;
-        for kind in super::study::COLUMNS {
-            let (m, se) = mean_se(&pixel_values(&frames(&scene, kind, 16, 8)));
-            let z = (m - ref_mean) / (se * se + ref_se * ref_se).sqrt();
-            assert!(
-                z.abs() < 4.0,
-                "{name} {}: mean {m} vs {ref_mean}, z = {z:.2}",
-                kind.name()
-            );
-        }
+        assert_unbiased(name, &super::study::COLUMNS, 16, 8);
     }
 }
 
@@ -132,22 +140,7 @@ fn furnace_value_follows_the_albedo() {
 #[test]
 fn every_sampler_is_unbiased_at_4_spp() {
     for name in Scene::NAMES {
-        let scene = Scene::by_name(name, 16).unwrap();
-        let r = Reference::render(&scene, 1024, 2);
-        let rm: Vec<f64> = pixel_values(&[r.mean()]);
-        let rd: Vec<f64> = pixel_values(&[r.half_difference()]);
-        let ref_se = rd.iter().map(|d| d * d).sum::<f64>().sqrt() / rd.len() as f64;
-        let ref_mean = rm.iter().sum::<f64>() / rm.len() as f64;
-        for kind in KINDS {
-            let v = pixel_values(&frames(&scene, kind, 4, 24));
-            let (m, se) = mean_se(&v);
-            let z = (m - ref_mean) / (se * se + ref_se * ref_se).sqrt();
-            assert!(
-                z.abs() < 4.0,
-                "{name} {}: mean {m} vs {ref_mean}, z = {z:.2}",
-                kind.name()
-            );
-        }
+        assert_unbiased(name, &KINDS, 4, 24);
     }
 }
 
