@@ -36,6 +36,8 @@ pub struct Options {
     pub reference: bool,
     /// Run only the environment-map orientation study (`envmap_orientation.*`).
     pub orientation_only: bool,
+    /// Run only the path study (`path-study.*`, `path-rates.csv`; `path::study`).
+    pub path_study_only: bool,
 }
 
 impl Default for Options {
@@ -52,6 +54,7 @@ impl Default for Options {
             scenes: Vec::new(),
             reference: false,
             orientation_only: false,
+            path_study_only: false,
         }
     }
 }
@@ -90,6 +93,8 @@ impl Options {
             }
         }
         names.extend(crate::path::scene::Scene::NAMES.map(String::from));
+        names.extend(crate::path::study::PAPER.map(|p| p.1.to_string()));
+        names.extend(crate::path::study::ABLATIONS.map(|a| a.0.to_string()));
         names
     }
 
@@ -211,6 +216,11 @@ impl Options {
             .filter(|n| self.wants(n))
             .map(|n| n.to_string())
             .collect()
+    }
+
+    /// The path study's cases this run selects.
+    fn study_cases(&self) -> Vec<crate::path::study::Case> {
+        crate::path::study::cases(self.scale(), |n| self.wants(n))
     }
 
     fn wants(&self, scene: &str) -> bool {
@@ -346,13 +356,18 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
     if opts.orientation_only {
         #[cfg(feature = "envmap")]
         orientation_study(opts, &env_scenes(opts)?)?;
-        paste_into_page(opts)?;
-        println!(
-            "wrote the orientation study to {} in {:.1} s",
-            opts.out.display(),
-            start.elapsed().as_secs_f64()
-        );
-        return Ok(Vec::new());
+        return only_study(opts, "the orientation study", start);
+    }
+    if opts.path_study_only {
+        let rows = crate::path::study::run(&opts.study_cases(), opts.threads, &opts.out)?;
+        let csv = opts.out.join("results.csv");
+        let old = std::fs::read_to_string(&csv).unwrap_or_default();
+        let scenes: Vec<&str> = rows.iter().map(|r| r.scene.as_str()).collect();
+        output::write(
+            &csv,
+            &(replace_scenes(&old, &scenes) + &crate::path::study::results_csv_rows(&rows)),
+        )?;
+        return only_study(opts, "the path study", start);
     }
     println!(
         "warpcore report: MSE against exact references at {:?} samples per pixel; timings: {} (set RUSTFLAGS=\"-C target-cpu=native\" for this CPU's vector units), {} threads for the error runs",
@@ -456,10 +471,14 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         opts.reference,
     );
     let path_results = crate::path::run(&path_cfg, &opts.out)?;
+    // The path study (Burley 2020's boxes, the ablations, the rates): its rows join too.
+    let study = crate::path::study::run(&opts.study_cases(), opts.threads, &opts.out)?;
     let csv = opts.out.join("results.csv");
     output::write(
         &csv,
-        &(output::csv(&results) + &crate::path::results_csv_rows(&path_results)),
+        &(output::csv(&results)
+            + &crate::path::results_csv_rows(&path_results)
+            + &crate::path::study::results_csv_rows(&study)),
     )?;
     output::write(
         &opts.out.join("details.csv"),
@@ -499,6 +518,38 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         start.elapsed().as_secs_f64()
     );
     Ok(results)
+}
+
+/// The end of a run of one side study (`--orientation-only`, `--path-study-only`): pastes
+/// the page when the output is `docs/report`, says where `what` went.
+fn only_study(
+    opts: &Options,
+    what: &str,
+    start: Instant,
+) -> Result<Vec<SceneResult>, Box<dyn std::error::Error>> {
+    paste_into_page(opts)?;
+    println!(
+        "wrote {what} to {} in {:.1} s",
+        opts.out.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(Vec::new())
+}
+
+/// `csv` (a `results.csv`, header first) without the rows of `scenes`.
+pub fn replace_scenes(csv: &str, scenes: &[&str]) -> String {
+    let mut out = String::new();
+    for (i, line) in csv.lines().enumerate() {
+        let scene = line.split(',').next().unwrap_or_default();
+        if i == 0 || !scenes.contains(&scene) {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    if out.is_empty() {
+        out.push_str("scene,sampler,warp,spp,mse,ns_per_sample\n");
+    }
+    out
 }
 
 /// The repository's `docs`.
@@ -631,4 +682,18 @@ pub fn load_envmap(
         .unwrap_or_else(|| "map".into());
     EnvScene::from_latlong(&stem, img.width, img.height, lum, rotations)
         .map_err(|e| format!("{}: {e:?}", path.display()).into())
+}
+
+#[cfg(test)]
+mod tests {
+    /// A scene's old rows go, the others and the header stay.
+    #[test]
+    fn replace_scenes_keeps_the_other_scenes() {
+        let csv = "scene,sampler,warp,spp,mse,ns_per_sample\na,x,path,4,1,1\nb,x,path,4,1,1\na/v,x,path,4,1,1\n";
+        assert_eq!(
+            super::replace_scenes(csv, &["a"]),
+            "scene,sampler,warp,spp,mse,ns_per_sample\nb,x,path,4,1,1\na/v,x,path,4,1,1\n"
+        );
+        assert!(super::replace_scenes("", &["a"]).starts_with("scene,"));
+    }
 }

@@ -85,6 +85,7 @@ fn command() -> Command {
                 .help("run only scenes whose name starts with PREFIX (repeatable; see the valid names in an error message)"),
         )
         .arg(flag("orientation-only", "run only the environment-map orientation study (envmap_orientation.csv/.md: each map as authored and rotated; --scene and --env-pixels apply)"))
+        .arg(flag("path-study-only", "run only the path study (Burley 2020's Cornell boxes, the cornell ablations, the rate fits: path-study.csv/.md, path-rates.csv; its rows replace their scenes' in results.csv; --scene applies)"))
         .arg(flag("reference", "re-render the path scenes' cached references (docs/report/path-*.ref; about a minute each on 2 cores)"))
 }
 
@@ -150,6 +151,7 @@ where
     }
     opts.reference = m.get_flag("reference");
     opts.orientation_only = m.get_flag("orientation-only");
+    opts.path_study_only = m.get_flag("path-study-only");
     opts.scenes = m
         .get_many::<String>("scene")
         .map(|v| v.cloned().collect())
@@ -199,6 +201,8 @@ mod cli_tests {
             &["--scene", "envmap:sky"],
             &["--threads", "1", "--reference", "--scene", "corn"],
             &["--orientation-only", "--scene", "envmap:park"],
+            &["--path-study-only", "--scene", "burley"],
+            &["--scene", "cornell/rr-off"],
             &["--full", "--scene", "square"],
             &["--full", "--out", "target/report-full"],
         ] {

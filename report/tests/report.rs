@@ -486,9 +486,25 @@ fn quick_run_writes_a_well_formed_csv() {
     };
     let mut seen = std::collections::HashSet::new();
     let mut path_rows = std::collections::HashSet::new();
+    let mut study_rows = std::collections::HashSet::new();
     for line in lines {
         let f: Vec<&str> = line.split(',').collect();
         assert_eq!(f.len(), 6, "{line}");
+        // The path study's scenes (warp `path`, Burley 2020's boxes and the ablations): their
+        // samplers at 4 to 64 spp in the quick run, a variance (finite, positive).
+        let study = path::study::PAPER.iter().any(|p| p.1 == f[0])
+            || path::study::ABLATIONS.iter().any(|a| a.0 == f[0]);
+        if f[2] == "path" && study {
+            assert!(path::samplers::Kind::by_name(f[1]).is_some(), "{line}");
+            assert!(["4", "16", "64"].contains(&f[3]), "{line}");
+            let mse: f64 = f[4].parse().unwrap();
+            assert!(mse.is_finite() && mse > 0.0, "{line}");
+            assert!(
+                study_rows.insert((f[0].to_string(), f[1], f[3])),
+                "duplicate row {line}"
+            );
+            continue;
+        }
         // The path-traced scenes (warp `path`): 13 samplers at 1 to 16 spp in the quick run.
         if f[2] == "path" {
             assert!(path::scene::Scene::NAMES.contains(&f[0]), "{line}");
@@ -535,6 +551,8 @@ fn quick_run_writes_a_well_formed_csv() {
         .sum();
     assert_eq!(seen.len(), expected);
     assert_eq!(path_rows.len(), 2 * 13 * 5);
+    // Quick: Burley's 5 boxes x 6 columns at one count, 2 ablations x 2 samplers x 3 counts.
+    assert_eq!(study_rows.len(), 5 * 6 + 2 * 2 * 3);
     let filtered = std::fs::read_to_string(out.join("filtered.csv")).unwrap();
     assert_eq!(filtered.lines().next(), Some("scene,sampler,spp,sigma,mse"));
     assert_eq!(filtered.lines().count(), 1 + 2 * 13 * 3 * 5);

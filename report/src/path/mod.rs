@@ -15,9 +15,11 @@
 
 pub mod metrics;
 pub mod pictures;
+pub mod qmc;
 pub mod reference;
 pub mod samplers;
 pub mod scene;
+pub mod study;
 pub mod trace;
 
 use crate::run::Scale;
@@ -331,17 +333,14 @@ pub fn results_csv_rows(results: &[PathResult]) -> String {
     entries(results)
         .map(|(r, row)| {
             let ns = row.ns_per_sample(r.reference.px.len());
-            let line = crate::output::csv_line(
-                &r.scene,
-                row.kind.name(),
-                "path",
-                row.spp as usize,
-                row.mse,
-                ns,
-            );
-            line + "\n"
+            csv_row(&r.scene, row.kind, row.spp, row.mse, ns)
         })
         .collect()
+}
+
+/// One line of `results.csv` for a path scene (warp `path`), newline included.
+pub fn csv_row(scene: &str, kind: Kind, spp: u32, mse: f64, ns_per_sample: f64) -> String {
+    crate::output::csv_line(scene, kind.name(), "path", spp as usize, mse, ns_per_sample) + "\n"
 }
 
 /// `filtered.csv`.

@@ -60,6 +60,19 @@ fn save_png(path: &Path, rgb: &[u8], w: usize, h: usize) -> Result<(), Box<dyn s
     Ok(())
 }
 
+/// Writes the tone-mapped `images` (all of one size) side by side as `path`.
+pub fn save_images(path: &Path, images: &[Image]) -> Result<(), Box<dyn std::error::Error>> {
+    let Some(first) = images.first() else {
+        return Ok(());
+    };
+    let tiles: Vec<Vec<[u8; 3]>> = images
+        .iter()
+        .map(|im| im.px.iter().map(|&c| tonemap(c)).collect())
+        .collect();
+    let (buf, iw, ih) = montage(&tiles, first.width, first.height);
+    save_png(path, &buf, iw, ih)
+}
+
 /// Writes `path-<scene>.png`, `path-<scene>-error.png`, `path-<scene>-convergence.svg` and
 /// `path-<scene>-filtered.svg` into `dir`.
 pub fn write(r: &PathResult, dir: &Path) -> Result<(), Box<dyn std::error::Error>> {

@@ -3,19 +3,21 @@
 //!
 //! A path asks for its dimensions by *domain*: domain 0 the position in the pixel (2D),
 //! domain 1 the lens (2D), domain `2 + d` the light point and the BSDF direction of vertex
-//! `d` (4D), and [`PathSampler::rnd`] an unstratified number for Russian roulette. Each core
-//! maps that onto its own interface:
+//! `d` (4D), domain [`ROULETTE_DOMAIN`]` + d` the roulette's decision at vertex `d` (its first
+//! dimension), and [`PathSampler::rnd`] an unstratified number (the `/rr-rnd` variant's
+//! roulette). Each core maps that onto its own interface:
 //!
-//! * warpcore `Sampler<P>` (and `Blue<P>`): `root.domain(k).draw::<N>()`, `rnd` for roulette;
+//! * warpcore `Sampler<P>` (and `Blue<P>`): `root.domain(k).draw::<N>()`, `rnd` for `rnd`;
 //! * openqmc-rs (`X::new(x, y, frame, index).new_domain(k).draw_sample_f32::<N>()`), the frame
-//!   carrying the seed, `draw_rnd_f32` for roulette;
+//!   carrying the seed, `draw_rnd_f32` for `rnd`;
 //! * `sobol_burley::sample_4d(index, k, seed)`: domain `k` is the 4D dimension set `k`,
 //!   padded (a 2D request uses its first two dimensions); the seed hashes the pixel;
 //! * a pbrt-v4-style PMJ02BN: the 2D pair `j` of the path reads table set `j mod SETS` at a
 //!   per-pixel, per-pair random permutation of the `spp` sample indices, shifted by a
 //!   per-pixel, per-pair Cranley-Patterson rotation (as pbrt-v4's `PMJ02BNSampler` does; our
 //!   own code over warpcore's tables);
-//! * independent uniform random numbers (a counter hash).
+//! * independent uniform random numbers (a counter hash);
+//! * the path study's Laine-Karras, Sobol'-RDS and Sobol'-enum ([`super::qmc`]).
 
 use openqmc::SamplerImpl;
 use warpcore::pmj02bn;
@@ -37,6 +39,10 @@ pub trait PathSampler: Sync {
 
 /// The roulette's own domain key, away from the stratified domains.
 const RND_DOMAIN: u32 = 0x100;
+
+/// The first domain of the roulette's stratified decisions (domain `ROULETTE_DOMAIN + d` at
+/// vertex `d`), away from the path's domains `0..=6` and below `sobol_burley`'s 64 sets.
+pub const ROULETTE_DOMAIN: u32 = 32;
 
 /// lowbias32 (Wellons): a well-mixed bijective 32-bit hash.
 pub fn hash32(mut x: u32) -> u32 {
@@ -257,6 +263,9 @@ pub enum Kind {
     SobolBurley,
     PbrtPmj02bn,
     Random,
+    LaineKarras,
+    SobolRds,
+    SobolEnum,
 }
 
 pub const KINDS: [Kind; 13] = [
@@ -275,6 +284,10 @@ pub const KINDS: [Kind; 13] = [
     Kind::Random,
 ];
 
+/// The samplers of Burley 2020's comparison that only the path study runs
+/// ([`super::qmc`]).
+pub const BURLEY_KINDS: [Kind; 3] = [Kind::LaineKarras, Kind::SobolRds, Kind::SobolEnum];
+
 impl Kind {
     pub fn name(self) -> &'static str {
         match self {
@@ -291,11 +304,27 @@ impl Kind {
             Kind::SobolBurley => "sobol_burley",
             Kind::PbrtPmj02bn => "pbrt_pmj02bn",
             Kind::Random => "random",
+            Kind::LaineKarras => "laine_karras",
+            Kind::SobolRds => "sobol_rds",
+            Kind::SobolEnum => "sobol_enum",
         }
     }
 
+    /// The position in [`KINDS`], then [`BURLEY_KINDS`].
     pub fn index(self) -> usize {
-        KINDS.iter().position(|&k| k == self).unwrap_or(0)
+        KINDS
+            .iter()
+            .chain(&BURLEY_KINDS)
+            .position(|&k| k == self)
+            .unwrap_or(0)
+    }
+
+    /// The sampler of CSV name `name`.
+    pub fn by_name(name: &str) -> Option<Kind> {
+        KINDS
+            .into_iter()
+            .chain(BURLEY_KINDS)
+            .find(|k| k.name() == name)
     }
 
     /// warpcore's own samplers (the others are peers).
@@ -336,6 +365,9 @@ macro_rules! with_sampler {
             SobolBurley => SobolBurley,
             PbrtPmj02bn => PbrtPmj,
             Random => Random,
+            LaineKarras => $crate::path::qmc::PerPixel::<true>,
+            SobolRds => $crate::path::qmc::PerPixel::<false>,
+            SobolEnum => $crate::path::qmc::SobolEnum::new(),
         )
     }};
     (@match $kind:expr, $s:ident, $body:expr, $($k:ident => $v:expr,)*) => {
@@ -370,7 +402,7 @@ mod tests {
 
     #[test]
     fn every_sampler_draws_in_the_unit_interval() {
-        for kind in KINDS {
+        for kind in KINDS.into_iter().chain(BURLEY_KINDS) {
             with_sampler!(kind, s => {
                 for i in 0..64 {
                     let smp = s.sample([3, 5], i, 64, 7);

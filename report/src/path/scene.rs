@@ -6,6 +6,8 @@
 //!   (modified-Phong lobe, exponent 40), a 0.25 x 0.25 square light under the ceiling.
 //! * `cornell-disk`: the same box, the square light at half power and a bluish disk light
 //!   (radius 0.1) on the right wall facing into the box.
+//! * `burley-direct`, `burley-gi`, `burley-checker`: Burley 2020's three configurations (the
+//!   path study, [`Scene::by_name`]); any scene takes `/`-separated variants.
 //! * `furnace` (tests only): the empty box, every wall a diffuse emitter of radiance 1 and
 //!   albedo `rho`: a path of at most `K` scattering events sees `sum_{k=0..K} rho^k`.
 
@@ -41,12 +43,56 @@ pub fn luminance(c: V) -> f64 {
 }
 
 /// A surface: diffuse albedo, or a glossy lobe (`gloss = Some(exponent)`, `albedo` its
-/// specular reflectance), and a one-sided emission along the shape's normal.
+/// specular reflectance), and a one-sided emission along the shape's normal. `checker =
+/// Some(f)`: a checkerboard of `f` checks per unit length in the plane of the surface, the
+/// dark checks reflecting a tenth of `albedo` (Burley 2020's case (c)).
 #[derive(Clone, Copy, Debug)]
 pub struct Material {
     pub albedo: V,
     pub emission: V,
     pub gloss: Option<f64>,
+    pub checker: Option<f64>,
+}
+
+impl Material {
+    /// The material at the point `x` of a surface with normal `n` (the checkerboard's albedo
+    /// there; itself without a checkerboard).
+    pub fn at(&self, x: V, n: V) -> Material {
+        let Some(f) = self.checker else {
+            return *self;
+        };
+        // The two coordinates across the surface: the axes other than the normal's largest.
+        let a = (0..3)
+            .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+            .unwrap_or(2);
+        let parity: i64 = (0..3)
+            .filter(|&i| i != a)
+            .map(|i| (x[i] * f).floor() as i64)
+            .sum();
+        let mut m = *self;
+        if parity.rem_euclid(2) == 1 {
+            m.albedo = mul(m.albedo, 0.1);
+        }
+        m
+    }
+}
+
+/// How a path is ended early (Russian roulette from the third vertex on; the continuation
+/// probability `q` from the throughput `beta`, which is divided by `q` on survival).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Roulette {
+    /// `q = min(0.95, max beta)`, decided by an unstratified number ([`PathSampler::rnd`]):
+    /// the tracer's first form (`rr-rnd`).
+    ///
+    /// [`PathSampler::rnd`]: super::samplers::PathSampler::rnd
+    Rnd,
+    /// The same `q`, decided by a stratified sampler dimension (`rr-sampler`).
+    Sampler,
+    /// pbrt-v4's and Cycles' form: `q = min(1, max beta)` (no roulette while the throughput
+    /// is at least 1), decided by a stratified sampler dimension (`rr-production`).
+    Production,
+    /// No roulette: every path runs to `max_bounces` (`rr-off`).
+    Off,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -173,6 +219,11 @@ pub struct Camera {
     pub tan_half: f64,
     pub aperture: f64,
     pub focus: f64,
+    /// The part of the frame the image shows: `[x0, y0, side]` as fractions of the frame
+    /// (`y` down); `[0, 0, 1]` the whole frame.
+    pub crop: [f64; 3],
+    /// Every sample at the pixel's centre (no pixel filter: a diagnostic variant).
+    pub centre: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -184,6 +235,11 @@ pub struct Scene {
     pub light_cdf: Vec<f64>,
     pub camera: Camera,
     pub max_bounces: usize,
+    /// The roulette's form.
+    pub roulette: Roulette,
+    /// Diagnostic only (biased): each contribution of a path with two or more scattering
+    /// events is clamped to this maximum channel value (Cycles' "clamp indirect").
+    pub clamp: Option<f64>,
     pub width: usize,
     pub height: usize,
     /// Groups of objects behind a bounding box (the blocks): `(lo, hi, first..end)`.
@@ -226,6 +282,7 @@ fn diffuse(albedo: V) -> Material {
         albedo,
         emission: BLACK,
         gloss: None,
+        checker: None,
     }
 }
 
@@ -234,6 +291,7 @@ fn emitter(emission: V) -> Material {
         albedo: BLACK,
         emission,
         gloss: None,
+        checker: None,
     }
 }
 
@@ -294,6 +352,8 @@ fn camera() -> Camera {
         tan_half: (20.0f64).to_radians().tan(),
         aperture: 0.02,
         focus: 1.4,
+        crop: [0.0, 0.0, 1.0],
+        centre: false,
     }
 }
 
@@ -301,52 +361,103 @@ impl Scene {
     /// The scene names `--scene` accepts (tests use a white furnace scene besides).
     pub const NAMES: [&'static str; 2] = ["cornell", "cornell-disk"];
 
+    /// A scene by name: `cornell`, `cornell-disk`, Burley 2020's configurations
+    /// (`burley-direct`, `burley-gi`, `burley-checker`), each optionally followed by
+    /// `/`-separated variants: `diffuse` (the glossy block made diffuse), `rr-rnd`,
+    /// `rr-sampler`, `rr-production`, `rr-off` (the [`Roulette`]), `clamp` (indirect
+    /// contributions clamped to 1, diagnostic), `centre` (a pinhole and every sample at the
+    /// pixel's centre: no pixel or lens dimensions, diagnostic).
     pub fn by_name(name: &str, size: usize) -> Option<Scene> {
-        match name {
-            "cornell" => Some(Scene::cornell(false, size)),
-            "cornell-disk" => Some(Scene::cornell(true, size)),
-            _ => None,
+        let mut parts = name.split('/');
+        let base = parts.next()?;
+        let variants: Vec<&str> = parts.collect();
+        let glossy = !base.starts_with("burley") && !variants.contains(&"diffuse");
+        let mut s = Scene::cornell(base, glossy, size)?;
+        for v in variants {
+            match v {
+                "diffuse" => {}
+                "rr-rnd" => s.roulette = Roulette::Rnd,
+                "rr-sampler" => s.roulette = Roulette::Sampler,
+                "rr-production" => s.roulette = Roulette::Production,
+                "rr-off" => s.roulette = Roulette::Off,
+                "clamp" => s.clamp = Some(1.0),
+                "frame" => s.camera.crop = [0.0, 0.0, 1.0],
+                "centre" => {
+                    s.camera.centre = true;
+                    s.camera.aperture = 0.0;
+                }
+                _ => return None,
+            }
         }
+        s.name = name.to_string();
+        Some(s)
     }
 
-    fn cornell(disk: bool, size: usize) -> Scene {
+    /// The box of `base` (see [`Scene::by_name`]); `glossy`: the tall block glossy.
+    ///
+    /// Burley's configurations use the box with both blocks diffuse: `burley-direct` a
+    /// pinhole camera and one scattering event (emission seen directly, and at the first
+    /// vertex next-event estimation and BSDF sampling combined by MIS: direct lighting);
+    /// `burley-gi` 5 scattering events and a wider lens (aperture 0.06, focus on the tall
+    /// block); `burley-checker` a pinhole, 5 events, and a checkerboard of 600 checks per unit
+    /// on the floor and the back wall. Like the paper's detail images, each shows a quarter
+    /// of the frame's side (at 64 x 64 pixels, the pixels of a 256 x 256 frame): the back
+    /// wall beside the tall block's top edge (direct, GI), the floor and back wall between
+    /// the blocks (checkerboard, about 3 checks per pixel side there); none shows the light
+    /// itself. The variant `frame` shows the whole frame instead.
+    fn cornell(base: &str, glossy: bool, size: usize) -> Option<Scene> {
+        if ![
+            "cornell",
+            "cornell-disk",
+            "burley-direct",
+            "burley-gi",
+            "burley-checker",
+        ]
+        .contains(&base)
+        {
+            return None;
+        }
+        let disk = base == "cornell-disk";
+        let checker = (base == "burley-checker").then_some(600.0);
         let w = walls();
         let mut objects: Vec<Object> = w
             .iter()
             .enumerate()
-            .map(|(i, &shape)| Object {
-                shape,
-                material: diffuse(match i {
+            .map(|(i, &shape)| {
+                let mut material = diffuse(match i {
                     0 => RED,
                     1 => GREEN,
                     _ => WHITE,
-                }),
-                light: None,
+                });
+                if i == 2 || i == 4 {
+                    material.checker = checker;
+                }
+                Object {
+                    shape,
+                    material,
+                    light: None,
+                }
             })
             .collect();
         let mut groups = Vec::new();
-        let first = objects.len();
-        for shape in block(0.68, 0.35, 0.15, 0.3, -0.3) {
-            objects.push(Object {
+        let tall = Material {
+            albedo: [0.8, 0.75, 0.6],
+            emission: BLACK,
+            gloss: glossy.then_some(40.0),
+            checker: None,
+        };
+        for (faces, material) in [
+            (block(0.68, 0.35, 0.15, 0.3, -0.3), diffuse(WHITE)),
+            (block(0.32, 0.68, 0.15, 0.6, 0.3), tall),
+        ] {
+            let first = objects.len();
+            objects.extend(faces.into_iter().map(|shape| Object {
                 shape,
-                material: diffuse(WHITE),
+                material,
                 light: None,
-            });
+            }));
+            groups.push(first..objects.len());
         }
-        groups.push(first..objects.len());
-        let first = objects.len();
-        for shape in block(0.32, 0.68, 0.15, 0.6, 0.3) {
-            objects.push(Object {
-                shape,
-                material: Material {
-                    albedo: [0.8, 0.75, 0.6],
-                    emission: BLACK,
-                    gloss: Some(40.0),
-                },
-                light: None,
-            });
-        }
-        groups.push(first..objects.len());
         let power = if disk { 0.5 } else { 1.0 };
         objects.push(Object {
             shape: Shape::quad(
@@ -365,8 +476,25 @@ impl Scene {
                 light: None,
             });
         }
-        let name = if disk { "cornell-disk" } else { "cornell" };
-        Scene::finish(name, objects, groups, 5, size)
+        let bounces = if base == "burley-direct" { 1 } else { 5 };
+        let mut scene = Scene::finish(base, objects, groups, bounces, size);
+        match base {
+            "burley-direct" => {
+                scene.camera.aperture = 0.0;
+                scene.camera.crop = [0.45, 0.3, 0.25];
+            }
+            "burley-gi" => {
+                scene.camera.aperture = 0.06;
+                scene.camera.focus = 1.55;
+                scene.camera.crop = [0.45, 0.3, 0.25];
+            }
+            "burley-checker" => {
+                scene.camera.aperture = 0.0;
+                scene.camera.crop = [0.4, 0.72, 0.25];
+            }
+            _ => {}
+        }
+        Some(scene)
     }
 
     /// The white furnace: every wall emits 1 and reflects `rho` (diffuse).
@@ -380,6 +508,7 @@ impl Scene {
                     albedo: [rho; 3],
                     emission: [1.0; 3],
                     gloss: None,
+                    checker: None,
                 },
                 light: None,
             })
@@ -439,6 +568,8 @@ impl Scene {
             light_cdf,
             camera: camera(),
             max_bounces,
+            roulette: Roulette::Production,
+            clamp: None,
             width: size,
             height: size,
             groups,

@@ -1,6 +1,7 @@
 //! The path tracer: a thin-lens camera with a box pixel filter, next-event estimation and
 //! BSDF sampling combined by multiple importance sampling (power heuristic), Russian roulette
-//! from the third vertex on, at most `max_bounces` scattering events.
+//! from the third vertex on (the scene's [`Roulette`]), at most `max_bounces` scattering
+//! events.
 //!
 //! Dimensions (all through [`PathSampler`] domains): domain 0 the position in the pixel,
 //! domain 1 the lens (warpcore's concentric disk), domain `2 + d` at vertex `d` four: the
@@ -8,11 +9,12 @@
 //! stays stratified; a disk light's point goes through warpcore's concentric map) and the
 //! BSDF direction (warpcore's cosine hemisphere for diffuse surfaces; the concentric disk
 //! lifted to the modified-Phong lobe `cos^e` about the mirror direction for the glossy one).
-//! Five vertices: `2 + 2 + 5 x 4 = 24` stratified dimensions, and one unstratified number per
-//! roulette decision.
+//! Five vertices: `2 + 2 + 5 x 4 = 24` stratified dimensions, and one number per roulette
+//! decision: the first dimension of domain [`ROULETTE_DOMAIN`]` + d` at vertex `d` (pbrt-v4
+//! and Cycles draw it from the sampler), or under [`Roulette::Rnd`] an unstratified one.
 
-use super::samplers::PathSampler;
-use super::scene::{Material, Scene, V, add, basis, dot, had, mul, norm, sub};
+use super::samplers::{PathSampler, ROULETTE_DOMAIN};
+use super::scene::{Material, Roulette, Scene, V, add, basis, dot, had, mul, norm, sub};
 use std::f64::consts::FRAC_1_PI;
 
 const EPS: f64 = 1e-7;
@@ -108,19 +110,47 @@ fn power2(a: f64, b: f64) -> f64 {
     if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
 }
 
-/// The radiance of one path sample through `pixel`.
-pub fn radiance<S: PathSampler>(scene: &Scene, s: &S, smp: &S::Sample, pixel: [u32; 2]) -> V {
+/// The most scattering events [`radiance_by_length`] splits by.
+pub const MAX_LENGTH: usize = 5;
+
+/// The radiance of one path sample through `pixel`, added into `out` by path length (the
+/// number of scattering events: 0 the emitter seen directly, 1 direct lighting, ...; lengths
+/// past `out`'s end into its last entry).
+pub fn radiance_by_length<S: PathSampler>(
+    scene: &Scene,
+    s: &S,
+    smp: &S::Sample,
+    pixel: [u32; 2],
+    out: &mut [V],
+) {
+    let mut add_at = |len: usize, c: V| {
+        let c = match scene.clamp {
+            Some(m) if len >= 2 => {
+                let top = c.iter().cloned().fold(0.0, f64::max);
+                if top > m { mul(c, m / top) } else { c }
+            }
+            _ => c,
+        };
+        let k = len.min(out.len() - 1);
+        out[k] = add(out[k], c);
+    };
     let cam = &scene.camera;
-    let [px, py] = s.draw2(smp, 0);
+    let [px, py] = if cam.centre {
+        [0.5, 0.5]
+    } else {
+        s.draw2(smp, 0)
+    };
     let (w, h) = (scene.width as f64, scene.height as f64);
-    let sx = (2.0 * (pixel[0] as f64 + px as f64) / w - 1.0) * cam.tan_half;
-    let sy = (1.0 - 2.0 * (pixel[1] as f64 + py as f64) / h) * cam.tan_half * h / w;
+    let [cx, cy, side] = cam.crop;
+    let fx = cx + side * (pixel[0] as f64 + px as f64) / w;
+    let fy = cy + side * (pixel[1] as f64 + py as f64) / h;
+    let sx = (2.0 * fx - 1.0) * cam.tan_half;
+    let sy = (1.0 - 2.0 * fy) * cam.tan_half * h / w;
     let focus = add(cam.eye, mul([sx, sy, 1.0], cam.focus));
     let [lx, ly] = warpcore::disk::concentric(s.draw2(smp, 1)).map(f64::from);
     let mut o = add(cam.eye, [cam.aperture * lx, cam.aperture * ly, 0.0]);
     let mut d = norm(sub(focus, o));
     let mut beta = [1.0; 3];
-    let mut l = [0.0; 3];
     let mut pdf_prev = 0.0;
     for depth in 0..=scene.max_bounces {
         let Some((i, t)) = scene.intersect(o, d, EPS, f64::INFINITY) else {
@@ -136,12 +166,12 @@ pub fn radiance<S: PathSampler>(scene: &Scene, s: &S, smp: &S::Sample, pixel: [u
             } else {
                 power2(pdf_prev, light_pdf(scene, i, t, cos_o))
             };
-            l = add(l, mul(had(beta, ob.material.emission), wgt));
+            add_at(depth, mul(had(beta, ob.material.emission), wgt));
         }
         if depth == scene.max_bounces {
             break;
         }
-        let m = &ob.material;
+        let m = &ob.material.at(x, ng);
         if m.albedo.iter().all(|&a| a == 0.0) {
             break;
         }
@@ -174,7 +204,7 @@ pub fn radiance<S: PathSampler>(scene: &Scene, s: &S, smp: &S::Sample, pixel: [u
                     let pl = p * dist2 / (cos_l * lshape.area());
                     let le = scene.objects[lobj].material.emission;
                     let g = dot(n, wi) / pl * power2(pl, pb);
-                    l = add(l, mul(had(had(beta, f), le), g));
+                    add_at(depth + 1, mul(had(had(beta, f), le), g));
                 }
             }
         }
@@ -184,17 +214,47 @@ pub fn radiance<S: PathSampler>(scene: &Scene, s: &S, smp: &S::Sample, pixel: [u
         };
         beta = had(beta, weight);
         pdf_prev = pdf;
-        if depth >= 2 {
-            let q = beta.iter().cloned().fold(0.0, f64::max).min(0.95);
-            if (s.rnd(smp, depth as u32) as f64) >= q {
-                break;
+        if depth >= 2 && scene.roulette != Roulette::Off {
+            let top = beta.iter().cloned().fold(0.0, f64::max);
+            let (q, u) = match scene.roulette {
+                Roulette::Rnd => (top.min(0.95), s.rnd(smp, depth as u32)),
+                Roulette::Sampler => (
+                    top.min(0.95),
+                    s.draw2(smp, ROULETTE_DOMAIN + depth as u32)[0],
+                ),
+                _ => (
+                    top.min(1.0),
+                    s.draw2(smp, ROULETTE_DOMAIN + depth as u32)[0],
+                ),
+            };
+            if q < 1.0 {
+                if (u as f64) >= q {
+                    break;
+                }
+                beta = mul(beta, 1.0 / q);
             }
-            beta = mul(beta, 1.0 / q);
         }
         o = xo;
         d = wi;
     }
-    l
+}
+
+/// The mean over samples `first..first + spp` of `pixel`, by path length (see
+/// [`radiance_by_length`]).
+pub fn pixel_by_length<S: PathSampler>(
+    scene: &Scene,
+    s: &S,
+    spp: u32,
+    first: u32,
+    seed: u32,
+    pixel: [u32; 2],
+) -> [V; MAX_LENGTH + 1] {
+    let mut acc = [[0.0; 3]; MAX_LENGTH + 1];
+    for i in 0..spp {
+        let smp = s.sample(pixel, first + i, spp, seed);
+        radiance_by_length(scene, s, &smp, pixel, &mut acc);
+    }
+    acc.map(|c| mul(c, 1.0 / spp as f64))
 }
 
 /// The pixels of rows `y0..y1` at `spp` samples (indices `first..first + spp`) into `img`.
@@ -210,15 +270,25 @@ pub fn render_rows<S: PathSampler>(
     let w = scene.width;
     for (r, y) in rows.enumerate() {
         for x in 0..w {
-            let pixel = [x as u32, y as u32];
-            let mut acc = [0.0; 3];
-            for i in 0..spp {
-                let smp = s.sample(pixel, first + i, spp, seed);
-                acc = add(acc, radiance(scene, s, &smp, pixel));
-            }
-            out[r * w + x] = mul(acc, 1.0 / spp as f64);
+            let by_length = pixel_by_length(scene, s, spp, first, seed, [x as u32, y as u32]);
+            out[r * w + x] = by_length.iter().fold([0.0; 3], |a, &b| add(a, b));
         }
     }
+}
+
+/// One frame at `spp` samples per pixel, single-threaded, one image per path length `0..=`
+/// [`MAX_LENGTH`].
+pub fn render_by_length<S: PathSampler>(scene: &Scene, s: &S, spp: u32, seed: u32) -> Vec<Image> {
+    let mut imgs = vec![Image::new(scene.width, scene.height); MAX_LENGTH + 1];
+    for y in 0..scene.height {
+        for x in 0..scene.width {
+            let by_length = pixel_by_length(scene, s, spp, 0, seed, [x as u32, y as u32]);
+            for (img, c) in imgs.iter_mut().zip(by_length) {
+                img.px[y * scene.width + x] = c;
+            }
+        }
+    }
+    imgs
 }
 
 /// One frame at `spp` samples per pixel, single-threaded.
