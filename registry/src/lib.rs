@@ -12,7 +12,7 @@
 //!   values and random bit patterns;
 //! - `tests/coverage.rs`: every public function of `src/`, every C declaration, JS method
 //!   and WGSL function has an entry, and every entry's names exist;
-//! - [`checks`] (with the `std` feature): the fuzz targets' definition of "correct on any
+//! - `checks` (with the `std` feature): the fuzz targets' definition of "correct on any
 //!   input", also replayed over the committed corpus by `tests/fuzz_corpus.rs`; the
 //!   fuzz targets (`fuzz/`, outside the workspace as cargo-fuzz expects) call them.
 //!
