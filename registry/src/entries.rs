@@ -642,7 +642,7 @@ const ENVMAP: &[Entry] = {
                 scalar: |rgb| [image::luminance(rgb)],
                 x8: None,
                 x16: None,
-                slice: Some(|rgb, out| image::luminance_slice(rgb, bytemuck::cast_slice_mut(out))),
+                slice: Some(|rgb, out| image::luminance_slice(rgb, out.as_flattened_mut())),
             }),
         )
         .golden(Golden::OwnPiece(fp::envmap_luminance))

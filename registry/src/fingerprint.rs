@@ -73,13 +73,15 @@ pub fn unit(i: u32) -> f32 {
 
 /// Input point `i` of the fixed set; dimension `d` of `D`.
 pub fn input<const D: usize>(i: usize) -> [f32; D] {
-    let s = SPECIALS.len();
+    // A constant, not a local the closure captures: where LLVM outlines the closure it must
+    // still see the divisor and the bound (the wasm demo may have no panic path).
+    const S: usize = SPECIALS.len();
     core::array::from_fn(|d| {
-        if i < s * s {
+        if i < S * S {
             SPECIALS[if d % 2 == 0 {
-                i % s
+                i % S
             } else {
-                (i / s + d / 2) % s
+                (i / S + d / 2) % S
             }]
         } else {
             unit((i * D + d) as u32)
@@ -329,9 +331,9 @@ pub fn light_map<const I: usize, const O: usize>(h: &mut Hasher, m: &LightMap<I,
         x16,
         slice,
     } = *m;
-    let l_count = lights.len();
-    for l in 0..l_count {
-        let light = points(lights[l % l_count]);
+    let light_at = cyclic(lights);
+    for (l, light) in lights.iter().enumerate() {
+        let light = points(*light);
         chunks(
             h,
             |u| scalar(light, u),
@@ -339,7 +341,7 @@ pub fn light_map<const I: usize, const O: usize>(h: &mut Hasher, m: &LightMap<I,
         );
         let mut g = 0;
         while g + 16 <= N {
-            let ls: [[f32; 12]; 16] = core::array::from_fn(|j| lights[(l + g + j) % l_count]);
+            let ls: [[f32; 12]; 16] = core::array::from_fn(|j| light_at(l + g + j));
             let us: [[f32; I]; 16] = core::array::from_fn(|j| input(g + j));
             if h.1 {
                 let v = x16(
@@ -373,6 +375,15 @@ pub fn light_map<const I: usize, const O: usize>(h: &mut Hasher, m: &LightMap<I,
     }
 }
 
+/// Light `k` of a set, cyclically (no index check, no division by zero: the fingerprint runs
+/// inside a wasm module that must have no panic path).
+fn cyclic(lights: &[[f32; 12]]) -> impl Fn(usize) -> [f32; 12] + '_ {
+    move |k| {
+        let at = k.checked_rem(lights.len()).unwrap_or(0);
+        lights.get(at).copied().unwrap_or([0.0; 12])
+    }
+}
+
 /// The piece of an [`OfLight`] (a light's solid angle): `scalar` on every light, then the lane forms on 16 lights
 /// at a time, lane `j` of group `g` holding light `(g + j) % L`, for `g` in `0..L`.
 pub fn of_light(h: &mut Hasher, m: &OfLight) {
@@ -382,12 +393,12 @@ pub fn of_light(h: &mut Hasher, m: &OfLight) {
         x8,
         x16,
     } = *m;
-    let l_count = lights.len();
+    let light_at = cyclic(lights);
     for l in lights {
         h.floats(&[scalar(points(*l))]);
     }
-    for g in 0..l_count {
-        let ls: [[f32; 12]; 16] = core::array::from_fn(|j| lights[(g + j) % l_count]);
+    for g in 0..lights.len() {
+        let ls: [[f32; 12]; 16] = core::array::from_fn(|j| light_at(g + j));
         if h.1 {
             let v = x16(points(core::array::from_fn(|c| {
                 f32x16::new(core::array::from_fn(|j| ls[j][c]))
