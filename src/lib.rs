@@ -61,6 +61,7 @@
 //! | `sampler` | [`sampler`]: the sampling core (domain tree, splitting, Owen-scrambled Sobol' and pmj02bn patterns, 8/16 lanes, slices); enables `pmj02bn` | yes |
 //! | `blue-noise` | [`sampler::Blue`]: screen-space blue-noise error, a 64 x 64 key tile per pattern (32 KiB); enables `sampler` | yes |
 //! | `spherical` | [`spherical`]: lights by solid angle, spherical triangles (Arvo) and rectangles (Urena et al.), inverses, solid angles; enables `triangle` | yes |
+//! | `lights` | [`lights`]: light selection, an alias table by power and a light tree by importance, caller-owned storage | yes |
 //! | `std` | forwards `wide/std`; the library never needs it | no |
 
 #![no_std]
@@ -75,16 +76,25 @@ pub use wide::{f32x8, f32x16, u32x8, u32x16};
 // Shared internals: the forms' macro, lanes, kernels, slice machinery, hashes.
 #[macro_use]
 mod forms;
-#[cfg(any(feature = "pmj02bn", feature = "sequence", feature = "envmap"))]
+#[cfg(any(
+    feature = "pmj02bn",
+    feature = "sequence",
+    feature = "envmap",
+    feature = "lights"
+))]
 mod hash;
 mod lanes;
 mod slices;
+#[cfg(any(feature = "envmap", feature = "lights"))]
+mod storage;
 mod trig;
 
 #[cfg(feature = "disk")]
 pub mod disk;
 #[cfg(feature = "envmap")]
 pub mod envmap;
+#[cfg(feature = "lights")]
+pub mod lights;
 #[cfg(feature = "pmj02bn")]
 pub mod pmj02bn;
 #[cfg(feature = "sampler")]

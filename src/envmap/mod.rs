@@ -159,6 +159,7 @@ pub use hierarchical::Hierarchical;
 pub use marginal::MarginalConditional;
 
 use crate::lanes::{Lane, UintLane, unit_interval};
+use crate::storage::{checksum, from_storage_order, to_storage_order};
 use core::fmt;
 use wide::{f32x8, f32x16, u32x8, u32x16};
 
@@ -429,47 +430,9 @@ fn write_header(header: &mut [Word], tag: u32, width: usize, height: usize, lens
     }
 }
 
-/// The content checksum of a storage of exactly `storage_len` words (storage byte order):
-/// every word but [`CHECKSUM_WORD`] itself, header included.
-///
-/// Eight interleaved chains `s = mix(s ^ word)` (word `i` of the sequence feeds chain
-/// `i % 8`), folded at the end by `h = mix(h ^ s)`, where `mix` is Chris Wellons'
-/// `lowbias32` (`hash::mix`), a bijection of `u32`. Because each step is a bijection of the
-/// chain's state for a fixed word *and* of the word for a fixed state, a change confined to
-/// one word — in particular **every single-bit flip** — always changes the result (a proof,
-/// not a probability); other changes go unnoticed with probability about `2^-32`. A CRC-32
-/// would give the same single-word guarantee (plus bursts), but costs a 1 KiB table or eight
-/// dependent steps per byte; the eight independent chains keep the multiplier busy and need
-/// no table (`benches/envmap.rs` measures `from_storage_verified`, checksum included).
-fn checksum(storage: &[Word]) -> u32 {
-    use crate::hash::mix;
-    use core::num::Wrapping as W;
-    let step = |s: u32, w: Word| mix(W(s ^ u32::from_le(w))).0;
-    let mut lanes: [u32; 8] = core::array::from_fn(|j| (j as u32 + 1).wrapping_mul(0x9e37_79b9));
-    let (head, tail) = storage.split_at(CHECKSUM_WORD.min(storage.len()));
-    let tail = tail.get(1..).unwrap_or(&[]);
-    for (s, &w) in lanes.iter_mut().zip(head) {
-        *s = step(*s, w);
-    }
-    // The whole groups of eight: the eight chains as the lanes of one `u32x8` (the same
-    // integer operations per lane, so the same bits as eight scalar chains).
-    let (chunks, rest) = tail.as_chunks::<8>();
-    let mut v = u32x8::new(lanes);
-    for chunk in chunks {
-        v = mix(v ^ from_storage_order(u32x8::new(*chunk)));
-    }
-    lanes = v.to_array();
-    for (s, &w) in lanes.iter_mut().zip(rest) {
-        *s = step(*s, w);
-    }
-    lanes
-        .iter()
-        .fold(storage.len() as u32, |h, &s| mix(W(h ^ s)).0)
-}
-
 /// Writes the checksum of a freshly built storage (already in storage byte order).
 fn seal(storage: &mut [Word]) {
-    let sum = checksum(storage);
+    let sum = checksum(storage, CHECKSUM_WORD);
     if let Some(w) = storage.get_mut(CHECKSUM_WORD) {
         *w = sum.to_le();
     }
@@ -480,7 +443,7 @@ fn seal(storage: &mut [Word]) {
 fn check_sum(storage: &[Word], needed: usize) -> Result<(), Error> {
     let s = storage.get(..needed).unwrap_or(storage);
     let stored = s.get(CHECKSUM_WORD).map_or(0, |&w| u32::from_le(w));
-    if checksum(s) == stored {
+    if checksum(s, CHECKSUM_WORD) == stored {
         Ok(())
     } else {
         Err(Error::Corrupt {
@@ -550,26 +513,6 @@ fn check_lens(
         return Err(Error::StorageTooSmall { needed, got });
     }
     Ok(())
-}
-
-/// Makes a freshly built storage little-endian in memory (a no-op on little-endian targets).
-fn to_storage_order(storage: &mut [Word]) {
-    if cfg!(target_endian = "big") {
-        for w in storage {
-            *w = w.to_le();
-        }
-    }
-}
-
-/// A storage word as a number (the words are little-endian in memory on every target).
-#[inline(always)]
-fn from_storage_order<U: UintLane>(x: U) -> U {
-    if cfg!(target_endian = "big") {
-        let byte = U::splat(0xff);
-        x.shr(24) | (x.shr(8) & byte.shl(8)) | (x.shl(8) & byte.shl(16)) | x.shl(24)
-    } else {
-        x
-    }
 }
 
 /// Lane-wise table read in storage byte order (zeros out of bounds, never a panic).
