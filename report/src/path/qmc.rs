@@ -3,16 +3,15 @@
 //! papers' definitions (no code copied):
 //!
 //! * [`LaineKarras`]: Laine and Karras 2011 ("Stratified sampling for stochastic
-//!   transparency"): every dimension of the path is its own van der Corput sequence (Sobol'
-//!   dimension 0), its sample index shuffled and its value scrambled by their hash (the "LK
-//!   permutation": add the seed, then four xors with even multiples, so that each bit
-//!   depends on the bits below it only) applied to the bit-reversed word, an approximation of
-//!   nested uniform (Owen) scrambling; seeds per pixel and dimension. Stratified in each
-//!   dimension alone, like Latin hypercube sampling. Burley's own method is this hash with 4D
-//!   Sobol' sets instead (his crate); our reading of the paper's "Laine-Karras" column is the
-//!   1D padding of their transparency sampler (the figure's ordering, between independent and
-//!   Sobol'-RDS, fits it; a 2D-padded variant measured 1.44x Owen-Sobol''s RMSE on
-//!   `burley-direct`, close to Owen-Sobol' itself).
+//!   transparency") as published: every dimension of the path is the pixel's van der Corput
+//!   sequence (Sobol' dimension 0) in the same sample order, its value scrambled by their
+//!   hash (the "LK permutation": add the seed, then four xors with even multiples, so that
+//!   each bit depends on the bits below it only) applied to the bit-reversed word, an
+//!   approximation of nested uniform (Owen) scrambling; seeds per pixel and dimension.
+//!   Stratified in each dimension alone, but the dimensions share one index order, so their
+//!   leading digits are coupled. [`LkShuffled`] adds Burley's index shuffle per dimension
+//!   (the same hash on the index): what the shuffle alone buys. Burley's own method is that
+//!   hash with 4D Sobol' sets (his crate, `sobol_burley`).
 //! * [`SobolRds`]: one Sobol' sequence per pixel over all the path's dimensions in order
 //!   (no padding), each dimension random-digit scrambled (xor with a random word per pixel
 //!   and dimension; Kollig and Keller 2002).
@@ -148,36 +147,56 @@ fn first_dim(domain: u32) -> usize {
     .min(DIMS - 4)
 }
 
-/// The samplers whose every pixel has its own sequence, keyed by pixel and render:
-/// Laine-Karras (`LK = true`) and Sobol'-RDS (`false`).
-pub struct PerPixel<const LK: bool>;
+/// The samplers whose every pixel has its own sequence, keyed by pixel and render, by
+/// `MODE`: [`SOBOL_RDS`], [`LAINE_KARRAS`] or [`LK_SHUFFLED`].
+pub struct PerPixel<const MODE: u8>;
 
-/// Laine-Karras: one shuffled, scrambled van der Corput sequence per dimension.
-pub type LaineKarras = PerPixel<true>;
+/// [`PerPixel`] mode: one random-digit-scrambled Sobol' sequence, all dimensions in order.
+pub const SOBOL_RDS: u8 = 0;
+/// [`PerPixel`] mode: Laine and Karras 2011 as published, every dimension the pixel's van
+/// der Corput sequence in the same sample order, scrambled by its own seed (no index shuffle).
+pub const LAINE_KARRAS: u8 = 1;
+/// [`PerPixel`] mode: as [`LAINE_KARRAS`] with each dimension's index order shuffled by the
+/// same hash (Burley 2020's shuffle applied to 1D padding).
+pub const LK_SHUFFLED: u8 = 2;
+
+/// Laine-Karras as published: scrambled van der Corput per dimension, one index order.
+pub type LaineKarras = PerPixel<LAINE_KARRAS>;
+
+/// Laine-Karras with Burley's index shuffle per dimension (1D padding).
+pub type LkShuffled = PerPixel<LK_SHUFFLED>;
 
 /// Sobol'-RDS: one random-digit-scrambled Sobol' sequence per pixel, all dimensions in order.
-pub type SobolRds = PerPixel<false>;
+pub type SobolRds = PerPixel<SOBOL_RDS>;
 
-impl<const LK: bool> PerPixel<LK> {
+impl<const MODE: u8> PerPixel<MODE> {
     /// The `N` dimensions of `domain` of sample `s` (index, key).
     fn dims<const N: usize>(s: &(u32, u32), domain: u32) -> [f32; N] {
         let first = first_dim(domain);
-        if !LK {
+        if MODE == SOBOL_RDS {
             return rds(s.0, first, s.1);
         }
         std::array::from_fn(|k| {
             let key = hash32(s.1 ^ hash32((first + k) as u32 ^ 0x51ed_270b));
-            let i = lk_scramble(s.0, hash32(key ^ 0xa511_e9b3));
+            let i = if MODE == LK_SHUFFLED {
+                lk_scramble(s.0, hash32(key ^ 0xa511_e9b3))
+            } else {
+                s.0
+            };
             unit(lk_scramble(i.reverse_bits(), hash32(key ^ 0x63d8_3595)))
         })
     }
 }
 
-impl<const LK: bool> PathSampler for PerPixel<LK> {
+impl<const MODE: u8> PathSampler for PerPixel<MODE> {
     /// (index, key of the pixel and render)
     type Sample = (u32, u32);
     fn sample(&self, pixel: [u32; 2], index: u32, _spp: u32, seed: u32) -> (u32, u32) {
-        let salt = if LK { 0x1a2b_3c4d } else { 0x0bad_5eed };
+        let salt = if MODE == SOBOL_RDS {
+            0x0bad_5eed
+        } else {
+            0x1a2b_3c4d
+        };
         (
             index,
             hash32(pixel[0] ^ hash32(pixel[1] ^ hash32(seed ^ salt))),
@@ -268,7 +287,7 @@ impl PathSampler for SobolEnum {
         rds(s.0, first_dim(domain), s.1)
     }
     fn rnd(&self, s: &(u32, u32), domain: u32) -> f32 {
-        PerPixel::<false>.rnd(s, domain)
+        PerPixel::<SOBOL_RDS>.rnd(s, domain)
     }
 }
 
@@ -276,7 +295,6 @@ impl PathSampler for SobolEnum {
 mod tests {
     use super::*;
 
-    const LK: LaineKarras = PerPixel;
     const RDS: SobolRds = PerPixel;
 
     /// Whether `pts` (0.32 words) put exactly one point in every elementary interval of
@@ -324,37 +342,65 @@ mod tests {
     }
 
     /// Sobol'-RDS's pixel dimensions are `(0, m, 2)`-nets at every power of two, for any
-    /// pixel and seed (xor scrambling keeps nets); Laine-Karras's every dimension is
-    /// stratified alone (shuffling and nested scrambling keep the van der Corput
-    /// sequence's `(0, 1)` property), and its pixel pair is not a net in general.
+    /// pixel and seed (xor scrambling keeps nets); both Laine-Karras variants stratify every
+    /// dimension alone (shuffling and nested scrambling keep the van der Corput sequence's
+    /// `(0, 1)` property), and their pixel pair is not a net in general.
     #[test]
     fn rds_and_laine_karras_keep_their_stratification() {
-        let mut lk_nets = 0;
-        for (pixel, seed) in [([0u32, 0u32], 1u32), ([5, 9], 77), ([31, 2], 0xdead)] {
-            for m in 0..=8u32 {
-                let n = 1u32 << m;
-                let rds: Vec<[u32; 2]> = (0..n)
-                    .map(|i| RDS.draw2(&RDS.sample(pixel, i, n, seed), 0).map(word))
-                    .collect();
-                assert!(is_02_net(&rds), "rds m {m}");
-                let lk: Vec<[f32; 4]> = (0..n)
-                    .map(|i| LK.draw4(&LK.sample(pixel, i, n, seed), 3))
-                    .collect();
-                for d in 0..4 {
-                    let mut seen = vec![false; n as usize];
-                    for p in &lk {
-                        let c = (p[d] * n as f32) as usize;
-                        assert!(!std::mem::replace(&mut seen[c], true), "lk dim {d}, m {m}");
+        fn check<const MODE: u8>(lk: PerPixel<MODE>) {
+            let mut lk_nets = 0;
+            for (pixel, seed) in [([0u32, 0u32], 1u32), ([5, 9], 77), ([31, 2], 0xdead)] {
+                for m in 0..=8u32 {
+                    let n = 1u32 << m;
+                    let rds: Vec<[u32; 2]> = (0..n)
+                        .map(|i| RDS.draw2(&RDS.sample(pixel, i, n, seed), 0).map(word))
+                        .collect();
+                    assert!(is_02_net(&rds), "rds m {m}");
+                    let pts: Vec<[f32; 4]> = (0..n)
+                        .map(|i| lk.draw4(&lk.sample(pixel, i, n, seed), 3))
+                        .collect();
+                    for d in 0..4 {
+                        let mut seen = vec![false; n as usize];
+                        for p in &pts {
+                            let c = (p[d] * n as f32) as usize;
+                            assert!(!std::mem::replace(&mut seen[c], true), "dim {d}, m {m}");
+                        }
                     }
+                    let pair: Vec<[u32; 2]> =
+                        pts.iter().map(|p| [word(p[0]), word(p[1])]).collect();
+                    lk_nets += is_02_net(&pair) as u32;
                 }
-                let pair: Vec<[u32; 2]> = lk.iter().map(|p| [word(p[0]), word(p[1])]).collect();
-                lk_nets += is_02_net(&pair) as u32;
+            }
+            assert!(lk_nets < 27, "mode {MODE}: every pair a net");
+        }
+        check(PerPixel::<LAINE_KARRAS>);
+        check(PerPixel::<LK_SHUFFLED>);
+    }
+
+    /// Laine-Karras as published walks every dimension in the same index order: the
+    /// leading digit of each dimension is the index's lowest bit xor a per-dimension
+    /// constant, so two dimensions' halves agree for every sample or for none. The shuffled
+    /// variant breaks that coupling.
+    #[test]
+    fn laine_karras_dimensions_share_one_index_order() {
+        let lk = PerPixel::<LAINE_KARRAS>;
+        let shuffled = PerPixel::<LK_SHUFFLED>;
+        let mut shuffled_coupled = 0;
+        for (pixel, seed) in [([0u32, 0u32], 1u32), ([5, 9], 77), ([31, 2], 0xdead)] {
+            for domain in 2..6 {
+                let agree = |p: [f32; 4]| (p[0] < 0.5) == (p[2] < 0.5);
+                let a: Vec<bool> = (0..64)
+                    .map(|i| agree(lk.draw4(&lk.sample(pixel, i, 64, seed), domain)))
+                    .collect();
+                assert!(a.iter().all(|&x| x == a[0]), "{pixel:?} {seed} {domain}");
+                let b: Vec<bool> = (0..64)
+                    .map(|i| agree(shuffled.draw4(&shuffled.sample(pixel, i, 64, seed), domain)))
+                    .collect();
+                shuffled_coupled += b.iter().all(|&x| x == b[0]) as u32;
             }
         }
-        assert!(
-            lk_nets < 27,
-            "Laine-Karras pairs are all nets: not independent dimensions"
-        );
+        // Independent shuffles couple by chance with probability about 2^-63 per case.
+        assert_eq!(shuffled_coupled, 0);
     }
 
     /// Sobol'-enum's sample `j` of a pixel is a distinct point of the image-plane sequence

@@ -264,6 +264,7 @@ pub enum Kind {
     PbrtPmj02bn,
     Random,
     LaineKarras,
+    LkShuffled,
     SobolRds,
     SobolEnum,
 }
@@ -286,7 +287,12 @@ pub const KINDS: [Kind; 13] = [
 
 /// The samplers of Burley 2020's comparison that only the path study runs
 /// ([`super::qmc`]).
-pub const BURLEY_KINDS: [Kind; 3] = [Kind::LaineKarras, Kind::SobolRds, Kind::SobolEnum];
+pub const BURLEY_KINDS: [Kind; 4] = [
+    Kind::LaineKarras,
+    Kind::SobolRds,
+    Kind::SobolEnum,
+    Kind::LkShuffled,
+];
 
 impl Kind {
     pub fn name(self) -> &'static str {
@@ -305,6 +311,7 @@ impl Kind {
             Kind::PbrtPmj02bn => "pbrt_pmj02bn",
             Kind::Random => "random",
             Kind::LaineKarras => "laine_karras",
+            Kind::LkShuffled => "lk_shuffled",
             Kind::SobolRds => "sobol_rds",
             Kind::SobolEnum => "sobol_enum",
         }
@@ -365,8 +372,9 @@ macro_rules! with_sampler {
             SobolBurley => SobolBurley,
             PbrtPmj02bn => PbrtPmj,
             Random => Random,
-            LaineKarras => $crate::path::qmc::PerPixel::<true>,
-            SobolRds => $crate::path::qmc::PerPixel::<false>,
+            LaineKarras => $crate::path::qmc::PerPixel::<{ $crate::path::qmc::LAINE_KARRAS }>,
+            LkShuffled => $crate::path::qmc::PerPixel::<{ $crate::path::qmc::LK_SHUFFLED }>,
+            SobolRds => $crate::path::qmc::PerPixel::<{ $crate::path::qmc::SOBOL_RDS }>,
             SobolEnum => $crate::path::qmc::SobolEnum::new(),
         )
     }};
