@@ -65,8 +65,10 @@ const LIGHTS: &[Entry] = {
         Entry::new(name, Forms::SCALAR, Kind::Other).golden(TESTS)
     }
     &[
-        Entry::new("lights::AliasTable::sample", Forms::ALL, Kind::Other).golden(TESTS),
-        alias("lights::AliasTable::pmf"),
+        Entry::new("lights::AliasTable::sample", Forms::ALL, Kind::Other)
+            .golden(TESTS)
+            .named(&[(Wgsl, "wc_lights_alias_sample")]),
+        alias("lights::AliasTable::pmf").named(&[(Wgsl, "wc_lights_alias_pmf")]),
         alias("lights::AliasTable::storage_len"),
         alias("lights::AliasTable::new"),
         alias("lights::AliasTable::from_storage"),
