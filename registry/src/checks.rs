@@ -862,7 +862,7 @@ pub fn lights_alias_build(data: &[u8]) {
             return;
         }
         Err(Error::AllZero) => return assert!(weights.iter().all(|&x| x == 0.0)),
-        Err(e) => panic!("unexpected {e:?}"),
+        Err(e) => unreachable!("unexpected {e:?}"),
     };
     assert_eq!(table.len(), weights.len());
     let mut sum = 0.0f64;

@@ -414,7 +414,8 @@ pub fn run(city: &City, choosers: &[&dyn LightChooser], threads: usize) -> Resul
     let mut ns = Vec::new();
     let mut light = vec![[0.0f32; 2]; 16];
     let mut tri = vec![[0.0f32; 2]; 16];
-    let inputs: Vec<(V, Vec<[f32; 2]>, Vec<[f32; 2]>)> = pixels
+    type Points = Vec<[f32; 2]>;
+    let inputs: Vec<(V, Points, Points)> = pixels
         .iter()
         .map(|&(k, p, _)| {
             Sampler::Random.fill(seed(k, 16, Sampler::Random, 0), &mut light);
