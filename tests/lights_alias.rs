@@ -58,6 +58,7 @@ fn pmf_sums_to_one_and_matches_the_weights() {
         let s = build(&weights);
         let t = AliasTable::from_storage(&s).unwrap();
         assert_eq!(t.len(), weights.len());
+        assert!(!t.is_empty());
         let n = weights.len() as f64;
         let sum: f64 = (0..t.len() as u32).map(|i| f64::from(t.pmf(i))).sum();
         assert!((sum - 1.0).abs() < 1e-5, "{name}: pmf sums to {sum}");
@@ -472,6 +473,7 @@ fn reservoir_bad_weights_and_u() {
     }
     let (_, p) = r.chosen().unwrap();
     assert!((p - 1e-3).abs() < 1e-9);
+    assert_eq!(r.weight(), f32::MAX);
     // Merging an empty reservoir never takes it.
     let mut a = Reservoir::new();
     a.update(3, 2.0, 0.5);
