@@ -112,15 +112,12 @@ pub struct City {
     pub size: [usize; 2],
 }
 
-/// SplitMix64 for the city's layout (fixed seed: the same city every run).
+/// The city's layout numbers: the report's hash of a counter (the same city every run).
 struct Rng(u64);
 impl Rng {
     fn next(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 40) as f32 / 16_777_216.0
+        self.0 += 1;
+        (crate::math::hash(&[0x011c_17e5, self.0]) >> 40) as f32 / 16_777_216.0
     }
 }
 
