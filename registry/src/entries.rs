@@ -67,12 +67,17 @@ const LIGHTS: &[Entry] = {
     &[
         Entry::new("lights::AliasTable::sample", Forms::ALL, Kind::Other)
             .golden(TESTS)
-            .named(&[(Wgsl, "wc_lights_alias_sample")]),
-        alias("lights::AliasTable::pmf").named(&[(Wgsl, "wc_lights_alias_pmf")]),
-        alias("lights::AliasTable::storage_len"),
-        alias("lights::AliasTable::new"),
-        alias("lights::AliasTable::from_storage"),
-        alias("lights::AliasTable::from_storage_verified"),
+            .named(&[
+                (C, "wc_lights_alias_sample"),
+                (Wgsl, "wc_lights_alias_sample"),
+            ]),
+        alias("lights::AliasTable::pmf")
+            .named(&[(C, "wc_lights_alias_pmf"), (Wgsl, "wc_lights_alias_pmf")]),
+        alias("lights::AliasTable::storage_len").named(&[(C, "wc_lights_alias_storage_len")]),
+        alias("lights::AliasTable::new").named(&[(C, "wc_lights_alias_build")]),
+        alias("lights::AliasTable::from_storage").named(&[(C, "wc_lights_alias_from_storage")]),
+        alias("lights::AliasTable::from_storage_verified")
+            .named(&[(C, "wc_lights_alias_from_storage_verified")]),
         alias("lights::AliasTable::len"),
         alias("lights::AliasTable::is_empty"),
         alias("lights::AliasTable::storage"),
