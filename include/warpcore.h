@@ -482,17 +482,12 @@ size_t wc_lights_alias_storage_len(size_t lights);
 
 // Builds the alias table of `n` weights (usually each light's power; any finite value
 // `>= 0`) into `storage` (Vose's method on exact integer masses, O(n), no allocation).
-// Returns `WC_OK` (0) or the first failed check, in this order:
-//
-// * `WC_ERR_ZERO_SIZE`: `n` is 0;
-// * `WC_ERR_TOO_LARGE`: more than 2^26 lights (`wc_lights_alias_storage_len` is
-//   `SIZE_MAX`), or arrays larger than `PTRDIFF_MAX` bytes;
-// * `WC_ERR_STORAGE_TOO_SMALL`: `storage_len < wc_lights_alias_storage_len(n)`;
-// * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or weights overlapping the
-//   storage's first `wc_lights_alias_storage_len(n)` words;
-// * `WC_ERR_INVALID_WEIGHT`: a weight is NaN, infinite or negative (`-0.0` is zero);
-// * `WC_ERR_ALL_ZERO`: every weight is zero.
-//
+// Returns `WC_OK` (0) or the first failed check, in this order: `WC_ERR_ZERO_SIZE` (`n` is
+// 0), `WC_ERR_TOO_LARGE` (more than 2^26 lights, or arrays larger than `PTRDIFF_MAX`
+// bytes), `WC_ERR_STORAGE_TOO_SMALL` (`storage_len < wc_lights_alias_storage_len(n)`),
+// `WC_ERR_INVALID_ARGUMENT` (a null or misaligned pointer, or weights overlapping the
+// storage's first `wc_lights_alias_storage_len(n)` words), `WC_ERR_INVALID_WEIGHT` (a weight
+// is NaN, infinite or negative; `-0.0` is zero), `WC_ERR_ALL_ZERO` (every weight is zero).
 // On the first four errors nothing is written; otherwise exactly the first
 // `wc_lights_alias_storage_len(n)` words are (zeroed on the last two errors). The storage's
 // bytes are the file format, the same as the Rust crate's.

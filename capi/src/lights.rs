@@ -44,17 +44,12 @@ pub extern "C" fn wc_lights_alias_storage_len(lights: usize) -> usize {
 
 /// Builds the alias table of `n` weights (usually each light's power; any finite value
 /// `>= 0`) into `storage` (Vose's method on exact integer masses, O(n), no allocation).
-/// Returns `WC_OK` (0) or the first failed check, in this order:
-///
-/// * `WC_ERR_ZERO_SIZE`: `n` is 0;
-/// * `WC_ERR_TOO_LARGE`: more than 2^26 lights (`wc_lights_alias_storage_len` is
-///   `SIZE_MAX`), or arrays larger than `PTRDIFF_MAX` bytes;
-/// * `WC_ERR_STORAGE_TOO_SMALL`: `storage_len < wc_lights_alias_storage_len(n)`;
-/// * `WC_ERR_INVALID_ARGUMENT`: a null or misaligned pointer, or weights overlapping the
-///   storage's first `wc_lights_alias_storage_len(n)` words;
-/// * `WC_ERR_INVALID_WEIGHT`: a weight is NaN, infinite or negative (`-0.0` is zero);
-/// * `WC_ERR_ALL_ZERO`: every weight is zero.
-///
+/// Returns `WC_OK` (0) or the first failed check, in this order: `WC_ERR_ZERO_SIZE` (`n` is
+/// 0), `WC_ERR_TOO_LARGE` (more than 2^26 lights, or arrays larger than `PTRDIFF_MAX`
+/// bytes), `WC_ERR_STORAGE_TOO_SMALL` (`storage_len < wc_lights_alias_storage_len(n)`),
+/// `WC_ERR_INVALID_ARGUMENT` (a null or misaligned pointer, or weights overlapping the
+/// storage's first `wc_lights_alias_storage_len(n)` words), `WC_ERR_INVALID_WEIGHT` (a weight
+/// is NaN, infinite or negative; `-0.0` is zero), `WC_ERR_ALL_ZERO` (every weight is zero).
 /// On the first four errors nothing is written; otherwise exactly the first
 /// `wc_lights_alias_storage_len(n)` words are (zeroed on the last two errors). The storage's
 /// bytes are the file format, the same as the Rust crate's.
@@ -111,6 +106,22 @@ unsafe fn load<'a>(
     t.map_err(code)
 }
 
+/// The table a batch of `n > 0` outputs at `out` reads: `None` for `n == 0`, an `out` that
+/// breaks the pointer rules or overlaps the storage, or a storage that fails the O(1) check.
+///
+/// # Safety
+/// `storage` must be readable for `storage_len` words, unchanged during the borrow.
+unsafe fn for_batch<'a, O>(
+    storage: *const u32,
+    storage_len: usize,
+    out: *mut O,
+    n: usize,
+) -> Option<AliasTable<'a>> {
+    let writes = span(out.cast_const(), n).filter(|_| n > 0)?;
+    // SAFETY: the caller's contract; `load` checks that `out` does not overlap the storage.
+    unsafe { load(storage, storage_len, Some(writes), false) }.ok()
+}
+
 /// Checks an alias table's header in O(1) (the crate's `from_storage`): `WC_OK`, or
 /// `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0` and `storage` null or misaligned),
 /// `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT` (word 0 is not `"wcAL"`),
@@ -162,11 +173,8 @@ pub unsafe extern "C" fn wc_lights_alias_sample(
     out: *mut WcLightChoice,
     n: usize,
 ) -> usize {
-    let Some(writes) = span(out.cast_const(), n).filter(|_| n > 0) else {
-        return 0;
-    };
-    // SAFETY: the caller's contract; `load` checks that `out` does not overlap the storage.
-    let Ok(t) = (unsafe { load(storage, storage_len, Some(writes), false) }) else {
+    // SAFETY: the caller's contract.
+    let Some(t) = (unsafe { for_batch(storage, storage_len, out, n) }) else {
         return 0;
     };
     // SAFETY: the caller's contract; `map` checks null, alignment, size and that `out` does
@@ -200,13 +208,8 @@ pub unsafe extern "C" fn wc_lights_alias_pmf(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    let Some(writes) = span(out.cast_const(), n).filter(|_| n > 0) else {
-        return 0;
-    };
-    // SAFETY: the caller's contract; `load` checks that `out` does not overlap the storage.
-    let Ok(t) = (unsafe { load(storage, storage_len, Some(writes), false) }) else {
-        return 0;
-    };
     // SAFETY: the caller's contract; `map_each` checks the pointers and their overlap.
-    unsafe { map_each::<u32, f32, 1, 1>(index, out, n, |[i]| [t.pmf(i)]) }
+    unsafe { for_batch(storage, storage_len, out, n) }.map_or(0, |t| unsafe {
+        map_each::<u32, f32, 1, 1>(index, out, n, |[i]| [t.pmf(i)])
+    })
 }

@@ -716,6 +716,28 @@ static size_t built_len[2];
 #define BW 13
 #define BH 7
 
+/* The arrays of a build: weights (`placed_w` bytes) and storage (`placed_s`), flush against
+   guard pages; then, in half the calls, one hostile change: a null or misaligned pointer,
+   or the weights overlapping the storage or ending just before it. */
+static void hostile_build_arrays(size_t placed_w, size_t placed_s, float **weights, uint32_t **storage) {
+    int end = rnd() & 1;
+    *weights = place(0, placed_w, end, 0);
+    *storage = place(1, placed_s, !end, 0);
+    switch (rnd() % 8) {
+    case 0: *weights = NULL; break;
+    case 1: *storage = NULL; break;
+    case 2: *weights = place(0, placed_w, end, 1 + below(3)); break;
+    case 3: *storage = place(1, placed_s, !end, 1 + below(3)); break;
+    case 4: {
+        float *base = place(2, 2 * placed_w + placed_s, 1, 0);
+        *storage = (uint32_t *)(void *)(base + placed_w / 4);
+        *weights = base + below(placed_w / 4 + placed_s / 4);
+        break;
+    }
+    default: break;
+    }
+}
+
 static void one_build(const struct dist *D) {
     uint32_t w = hostile_side(), h = hostile_side(), kind = hostile_kind(D);
     size_t need = wc_envmap_storage_len(kind, w, h);
@@ -732,22 +754,9 @@ static void one_build(const struct dist *D) {
     size_t placed_w = small ? (size_t)texels * 4 : 64, placed_s = small ? need * 4 : 64;
     int slack = small && len > need && len - need <= 8; /* words the call must not write */
     if (slack) placed_s = len * 4;
-    int end = rnd() & 1;
-    float *weights = place(0, placed_w, end, 0);
-    uint32_t *storage = place(1, placed_s, !end, 0);
-    switch (rnd() % 8) {
-    case 0: weights = NULL; break;
-    case 1: storage = NULL; break;
-    case 2: weights = place(0, placed_w, end, 1 + below(3)); break;
-    case 3: storage = place(1, placed_s, !end, 1 + below(3)); break;
-    case 4: { /* the weights overlapping the storage, or ending just before it */
-        float *base = place(2, 2 * placed_w + placed_s, 1, 0);
-        storage = (uint32_t *)(void *)(base + placed_w / 4);
-        weights = base + below(placed_w / 4 + placed_s / 4);
-        break;
-    }
-    default: break;
-    }
+    float *weights;
+    uint32_t *storage;
+    hostile_build_arrays(placed_w, placed_s, &weights, &storage);
     int inf_at = -1;
     if (weights && aligned(weights) && small) {
         fill_floats(weights, (size_t)texels);
@@ -895,6 +904,41 @@ static void one_check(const struct dist *D, const struct dist *other, int verify
     reset();
 }
 
+/* The arrays of a batch call that reads a storage: a copy `*s` of `need` words of `src`
+   (`header` of them the header), the input `*in` and the output `*out` (`in_bytes` and
+   `out_bytes`), flush against guard pages; then, in most calls, one hostile change: a null
+   or misaligned pointer, `out == in` (in place), overlapping arrays, `out` over the
+   storage, a truncated length, a flipped header bit, a garbage word after the first 8. */
+static void hostile_arrays(const uint32_t *src, size_t need, size_t header, size_t in_bytes, size_t out_bytes,
+                           uint32_t **s, size_t *len, void **in, void **out) {
+    int end = rnd() & 1;
+    *s = place(0, need * 4, end, 0);
+    memcpy(*s, src, need * 4);
+    *len = need;
+    *in = place(1, in_bytes, !end, 0);
+    *out = place(3, out_bytes, end, 0);
+    float *base = place(2, in_bytes + out_bytes + need * 4 + 64, 1, 0);
+    switch (rnd() % 14) {
+    case 0: *s = NULL; break;
+    case 1: *in = NULL; break;
+    case 2: *out = NULL; break;
+    case 3: *s = place(0, need * 4, end, 1 + below(3)); break;
+    case 4: *in = place(1, in_bytes, !end, 1 + below(3)); break;
+    case 5: *out = place(3, out_bytes, end, 1 + below(3)); break;
+    case 6: *out = *in; break; /* in place: allowed for some functions only */
+    case 7: *in = base; *out = base + below(in_bytes / 4 + 2); break;
+    case 8: /* out over the storage */
+        *s = (uint32_t *)(void *)base;
+        memcpy(*s, src, need * 4);
+        *out = base + below(need + 1);
+        break;
+    case 9: *len = below(need); break;                                  /* truncated */
+    case 10: (*s)[below(header)] ^= 1u << (rnd() % 32); break;          /* bad header (usually) */
+    case 11: (*s)[8 + below(need - 8)] = rnd(); break; /* a garbage checksum, reserved or table word */
+    default: break;
+    }
+}
+
 static WcEnvSample ref_samples[4096];
 static WcEnvDirection ref_dirs[4096];
 
@@ -908,32 +952,11 @@ static void one_sample(const struct dist *D, int mode) {
     uint32_t layout = rnd() % 8 == 0 ? 2 + rnd() % 1000 : rnd() % 2;
     size_t n = hostile_count(elem > in_elem ? elem : in_elem, 300);
     size_t small = n <= 4096 ? n : 0;
-    int end = rnd() & 1;
-    uint32_t *s = place(0, need * 4, end, 0);
-    memcpy(s, built[k], need * 4);
-    size_t len = need;
-    float *u = place(1, small * in_elem, !end, 0);
-    void *out = place(3, small * elem, end, 0);
-    float *base = place(2, small * (in_elem + elem) + need * 4 + 64, 1, 0);
-    switch (rnd() % 14) {
-    case 0: s = NULL; break;
-    case 1: u = NULL; break;
-    case 2: out = NULL; break;
-    case 3: s = place(0, need * 4, end, 1 + below(3)); break;
-    case 4: u = place(1, small * in_elem, !end, 1 + below(3)); break;
-    case 5: out = place(3, small * elem, end, 1 + below(3)); break;
-    case 6: out = u; break; /* in place: pdf only */
-    case 7: u = base; out = base + below(in_floats * small + 2); break;
-    case 8: /* out over the storage */
-        s = (uint32_t *)(void *)base;
-        memcpy(s, built[k], need * 4);
-        out = base + below(need + 1);
-        break;
-    case 9: len = below(need); break;                         /* truncated */
-    case 10: s[below(WC_ENVMAP_HEADER_WORDS)] ^= 1u << (rnd() % 32); break; /* bad header (usually) */
-    case 11: s[8 + below(need - 8)] = rnd(); break; /* garbage checksum, reserved or table word */
-    default: break;
-    }
+    uint32_t *s;
+    size_t len;
+    void *in, *out;
+    hostile_arrays(built[k], need, WC_ENVMAP_HEADER_WORDS, small * in_elem, small * elem, &s, &len, &in, &out);
+    float *u = in;
     if (u && aligned(u) && small) fill_floats(u, small * in_floats);
     int storage_ok = s && aligned(s) && wc_envmap_from_storage(s, len) == WC_OK;
     const char *outcome;
@@ -1370,23 +1393,10 @@ static void one_lights_build(void) {
     default: len = need; break;
     }
     int small = n <= 60;
-    size_t placed_w = small ? n * 4 + 4 : 64, placed_s = small ? need * 4 + 20 : 64;
-    int end = rnd() & 1;
-    float *weights = place(0, placed_w, end, 0);
-    uint32_t *storage = place(1, placed_s, !end, 0);
-    switch (rnd() % 8) {
-    case 0: weights = NULL; break;
-    case 1: storage = NULL; break;
-    case 2: weights = place(0, placed_w, end, 1 + below(3)); break;
-    case 3: storage = place(1, placed_s, !end, 1 + below(3)); break;
-    case 4: { /* the weights overlapping the storage, or next to it */
-        float *base = place(2, 2 * placed_w + placed_s, 1, 0);
-        storage = (uint32_t *)(void *)(base + placed_w / 4);
-        weights = base + below(placed_w / 4 + placed_s / 4);
-        break;
-    }
-    default: break;
-    }
+    size_t placed_w = small && n ? n * 4 : 64, placed_s = small ? need * 4 + 20 : 64;
+    float *weights;
+    uint32_t *storage;
+    hostile_build_arrays(placed_w, placed_s, &weights, &storage);
     int bad = -1, zero = 1;
     if (weights && aligned(weights) && small) {
         for (size_t i = 0; i < n; i++) weights[i] = rnd() % 3 ? (float)(rnd() % 1000) * 0.01f : 0.0f;
@@ -1468,27 +1478,10 @@ static void one_lights_sample(int mode) {
     size_t elem = mode ? 4 : sizeof(WcLightChoice), in_elem = 4;
     size_t n = hostile_count(elem, 300);
     size_t small = n <= 4096 ? n : 0;
-    int end = rnd() & 1;
-    uint32_t *s = place(0, need * 4, end, 0);
-    memcpy(s, lights_built, need * 4);
-    size_t len = need;
-    void *in = place(1, small * in_elem, !end, 0);
-    void *out = place(3, small * elem, end, 0);
-    float *base = place(2, small * (in_elem + elem) + need * 4 + 64, 1, 0);
-    switch (rnd() % 12) {
-    case 0: s = NULL; break;
-    case 1: in = NULL; break;
-    case 2: out = NULL; break;
-    case 3: s = place(0, need * 4, end, 1 + below(3)); break;
-    case 4: in = place(1, small * in_elem, !end, 1 + below(3)); break;
-    case 5: out = place(3, small * elem, end, 1 + below(3)); break;
-    case 6: out = in; break; /* in place: pmf only */
-    case 7: in = base; out = base + below(small + 2); break;
-    case 8: s = (uint32_t *)(void *)base; memcpy(s, lights_built, need * 4); out = base + below(need + 1); break;
-    case 9: len = below(need); break;
-    case 10: s[below(8)] ^= 1u << (rnd() % 32); break;
-    default: break;
-    }
+    uint32_t *s;
+    size_t len;
+    void *in, *out;
+    hostile_arrays(lights_built, need, 8, small * in_elem, small * elem, &s, &len, &in, &out);
     if (in && aligned(in) && small) {
         if (mode) {
             uint32_t *idx = in;
@@ -1534,7 +1527,7 @@ static void one_lights_sample(int mode) {
                 ok &= p >= 0.0f && p <= 1.0f;
             } else {
                 WcLightChoice c = ((const WcLightChoice *)out)[i];
-                ok &= c.index < NL && c.prob > 0.0f && c.prob <= 1.0f;
+                ok &= c.index < NL && c.prob >= 0.0f && c.prob <= 1.0f;
             }
         }
         CHECK(ok);
