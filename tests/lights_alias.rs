@@ -71,7 +71,7 @@ fn pmf_sums_to_one_and_matches_the_weights() {
             }
             assert!(p > 0.0, "{name}: positive light {i} has pmf 0");
             // Documented bound: 2^-32 (1 + 1/n) absolute plus 2^-24 relative.
-            let bound = 2f64.powi(-32) * (1.0 + 1.0 / n) + share * 2f64.powi(-23);
+            let bound = 2f64.powi(-32) * (1.0 + 1.0 / n) + share * 2f64.powi(-24);
             worst = worst.max((p - share).abs() / bound);
             assert!(
                 (p - share).abs() <= bound,
