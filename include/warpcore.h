@@ -63,6 +63,12 @@
 // An error this version of the header has no name for.
 #define WC_ERR_OTHER (-10)
 
+// A light's weight is NaN, infinite or negative (`wc_lights_alias_build`).
+#define WC_ERR_INVALID_WEIGHT (-11)
+
+// Every light's weight is zero: no light can be chosen (`wc_lights_alias_build`).
+#define WC_ERR_ALL_ZERO (-12)
+
 // Words of the header at the start of every storage (64 bytes: the tables after it sit on
 // cache lines when the storage is 64-byte aligned, e.g. from `aligned_alloc(64, ...)`).
 #define WC_ENVMAP_HEADER_WORDS 16
@@ -136,6 +142,14 @@ typedef struct {
   // `[column, row]` of the texel.
   uint32_t texel[2];
 } WcEnvDirection;
+
+// A chosen light and the probability of choosing it.
+typedef struct {
+  // Index of the light, below the table's light count.
+  uint32_t index;
+  // The probability of that choice, equal bit for bit to `wc_lights_alias_pmf` of `index`.
+  float prob;
+} WcLightChoice;
 
 // One sample's sampler: a pattern, a pixel, a domain path and a sample index, in 16 bytes.
 // A plain value: copy it, derive children from it, draw from it, from any thread.
@@ -460,6 +474,81 @@ int32_t wc_envmap_equirect_to_equal_area(const float *src,
                                          float *dst,
                                          uint32_t size,
                                          uint32_t supersample);
+
+// Words of storage `wc_lights_alias_build` needs for `lights` lights: `8 + 4 lights` (16
+// bytes per light and a 32-byte header); `SIZE_MAX` above 2^26 lights. Any argument; reads
+// and writes no memory.
+size_t wc_lights_alias_storage_len(size_t lights);
+
+// Builds the alias table of `n` weights (usually each light's power; any finite value
+// `>= 0`) into `storage` (Vose's method on exact integer masses, O(n), no allocation).
+// Returns `WC_OK` (0) or the first failed check, in this order: `WC_ERR_ZERO_SIZE` (`n` is
+// 0), `WC_ERR_TOO_LARGE` (more than 2^26 lights, or arrays larger than `PTRDIFF_MAX`
+// bytes), `WC_ERR_STORAGE_TOO_SMALL` (`storage_len < wc_lights_alias_storage_len(n)`),
+// `WC_ERR_INVALID_ARGUMENT` (a null or misaligned pointer, or weights overlapping the
+// storage's first `wc_lights_alias_storage_len(n)` words), `WC_ERR_INVALID_WEIGHT` (a weight
+// is NaN, infinite or negative; `-0.0` is zero), `WC_ERR_ALL_ZERO` (every weight is zero).
+// On the first four errors nothing is written; otherwise exactly the first
+// `wc_lights_alias_storage_len(n)` words are (zeroed on the last two errors). The storage's
+// bytes are the file format, the same as the Rust crate's.
+//
+// # Safety
+// `weights` must be readable for `n` floats and `storage` writable for `storage_len` words
+// (only when the checks before `WC_ERR_INVALID_ARGUMENT` pass).
+int32_t wc_lights_alias_build(const float *weights,
+                              size_t n,
+                              uint32_t *storage,
+                              size_t storage_len);
+
+// Checks an alias table's header in O(1) (the crate's `from_storage`): `WC_OK`, or
+// `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0` and `storage` null or misaligned),
+// `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT` (word 0 is not `"wcAL"`),
+// `WC_ERR_UNSUPPORTED_VERSION`, `WC_ERR_CORRUPT` (a light count or reserved word a build
+// never writes). Sampling a storage that passes never leaves it: indices below the light
+// count, probabilities in `[0, 1]`. Reads only.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words.
+int32_t wc_lights_alias_from_storage(const uint32_t *storage, size_t storage_len);
+
+// `wc_lights_alias_from_storage`, then every column's invariants and the content checksum
+// (the crate's `from_storage_verified`): every single-bit flip of a storage is caught
+// (`WC_ERR_CORRUPT`). For loaders of files. Reads only.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words.
+int32_t wc_lights_alias_from_storage_verified(const uint32_t *storage, size_t storage_len);
+
+// Chooses `n` lights, one per float of `u` (any values; NaN and negatives act as 0, values
+// `>= 1` as `1 - 2^-24`), each with probability proportional to its weight, never one of
+// weight 0; `out[i]` holds the light and the exact probability of choosing it. Returns `n`,
+// or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count whose byte size
+// overflows, an `out` overlapping `u` or the storage, or a storage that fails
+// `wc_lights_alias_from_storage`. Bit-identical to the crate's `AliasTable::sample`.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `u` for `n` floats and `out` writable
+// for `n` choices.
+size_t wc_lights_alias_sample(const uint32_t *storage,
+                              size_t storage_len,
+                              const float *u,
+                              WcLightChoice *out,
+                              size_t n);
+
+// The probability that `wc_lights_alias_sample` chooses each of `n` light indices (0 for
+// an index at or above the light count). Returns `n`, or 0 (writing nothing) for `n == 0`,
+// a null or misaligned pointer, a count whose byte size overflows, an `out` overlapping the
+// storage or overlapping `index` other than exactly in place (`out == index`), or a storage
+// that fails `wc_lights_alias_from_storage`.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `index` for `n` values and `out`
+// writable for `n` floats.
+size_t wc_lights_alias_pmf(const uint32_t *storage,
+                           size_t storage_len,
+                           const uint32_t *index,
+                           float *out,
+                           size_t n);
 
 // Points `start, start + 1, ..., start + n - 1` (indices wrap after `UINT32_MAX`) of
 // `seed`'s Owen-scrambled pmj02bn sequence, in `[0, 1)^2`: `2n` floats. Every power-of-two

@@ -36,6 +36,10 @@ pub const WC_ERR_CORRUPT: i32 = -8;
 pub const WC_ERR_INVALID_ARGUMENT: i32 = -9;
 /// An error this version of the header has no name for.
 pub const WC_ERR_OTHER: i32 = -10;
+/// A light's weight is NaN, infinite or negative (`wc_lights_alias_build`).
+pub const WC_ERR_INVALID_WEIGHT: i32 = -11;
+/// Every light's weight is zero: no light can be chosen (`wc_lights_alias_build`).
+pub const WC_ERR_ALL_ZERO: i32 = -12;
 
 /// Words of the header at the start of every storage (64 bytes: the tables after it sit on
 /// cache lines when the storage is 64-byte aligned, e.g. from `aligned_alloc(64, ...)`).
@@ -128,6 +132,8 @@ pub extern "C" fn wc_error_string(code: i32) -> *const core::ffi::c_char {
             c"invalid argument: a null or misaligned pointer, overlapping arrays, or a bad option"
         }
         WC_ERR_OTHER => c"an error this version of the header has no name for",
+        WC_ERR_INVALID_WEIGHT => c"a light's weight is NaN, infinite or negative",
+        WC_ERR_ALL_ZERO => c"every light's weight is zero",
         _ => c"unknown warpcore error code",
     };
     s.as_ptr()

@@ -617,6 +617,23 @@ const TABLE: &[(&str, &[&str])] = {
         ("wc_envmap_equirect_solid_angle_weights", IMAGE),
         ("wc_envmap_equirect_pdf_to_solid_angle", MAP_IN_PLACE),
         ("wc_envmap_equirect_to_equal_area", IMAGE),
+        ("wc_lights_alias_storage_len", &["words", "SIZE_MAX"]),
+        (
+            "wc_lights_alias_build",
+            &[
+                "WC_OK",
+                "WC_ERR_ZERO_SIZE",
+                "WC_ERR_TOO_LARGE",
+                "WC_ERR_STORAGE_TOO_SMALL",
+                "WC_ERR_INVALID_ARGUMENT",
+                "WC_ERR_INVALID_WEIGHT",
+                "WC_ERR_ALL_ZERO",
+            ],
+        ),
+        ("wc_lights_alias_from_storage", CHECK),
+        ("wc_lights_alias_from_storage_verified", CHECK),
+        ("wc_lights_alias_sample", SAMPLE),
+        ("wc_lights_alias_pmf", PDF),
         ("wc_error_string", &["string"]),
     ]
 };

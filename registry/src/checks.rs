@@ -825,3 +825,158 @@ pub fn spherical(data: &[u8]) {
         "rectangle omega {om}"
     );
 }
+
+/// The alias table's build: the words as weights (any `f32`, NaN and negatives included), the
+/// first byte choosing a dynamic-range transform. A build either fails with the documented
+/// error or gives a table whose pmf sums to 1 (within 1e-5), gives zero weights pmf 0 and
+/// positive ones a positive pmf, and whose samples (scalar, x8, x16, slice; the special
+/// values of `u` and every weight word reused as a `u`) are one light of positive weight with
+/// exactly its pmf; the storage passes `from_storage_verified` and samples the same.
+#[cfg(feature = "lights")]
+pub fn lights_alias_build(data: &[u8]) {
+    use warpcore::f32x16;
+    use warpcore::lights::{AliasTable, Error};
+    let w = words(data);
+    let mode = w.first().copied().unwrap_or(0) & 3;
+    let weights: Vec<f32> = w
+        .iter()
+        .skip(1)
+        .take(4096)
+        .map(|&b| match mode {
+            // Raw bits; small non-negative floats; bits masked to [0, 2^24) (subnormals and
+            // tiny normals); the top of the range.
+            0 => f32::from_bits(b),
+            1 => (b >> 8) as f32 * (1.0 / 16_777_216.0),
+            2 => f32::from_bits(b & 0x00ff_ffff),
+            _ => f32::from_bits(0x7e00_0000 | (b & 0x00ff_ffff)),
+        })
+        .collect();
+    let mut storage = vec![0u32; AliasTable::storage_len(weights.len()).min(1 << 20)];
+    let table = match AliasTable::new(&weights, &mut storage) {
+        Ok(t) => t,
+        Err(Error::Empty) => return assert!(weights.is_empty()),
+        Err(Error::InvalidWeight { index }) => {
+            let bad = weights[index];
+            assert!(!(bad >= 0.0 && bad.is_finite()), "refused {bad}");
+            assert!(weights[..index].iter().all(|&x| x >= 0.0 && x.is_finite()));
+            return;
+        }
+        Err(Error::AllZero) => return assert!(weights.iter().all(|&x| x == 0.0)),
+        Err(e) => unreachable!("unexpected {e:?}"),
+    };
+    assert_eq!(table.len(), weights.len());
+    let mut sum = 0.0f64;
+    for (i, &x) in weights.iter().enumerate() {
+        let p = table.pmf(i as u32);
+        assert_eq!(p > 0.0, x > 0.0, "light {i}: weight {x}, pmf {p}");
+        sum += f64::from(p);
+    }
+    assert!((sum - 1.0).abs() < 1e-5, "pmf sums to {sum}");
+    let mut us: Vec<f32> = [
+        0.0,
+        -0.0,
+        0.5,
+        1.0,
+        -1.0,
+        f32::NAN,
+        f32::INFINITY,
+        1.0 - 1.0 / 16_777_216.0,
+    ]
+    .to_vec();
+    us.extend(w.iter().take(64).map(|&b| f32::from_bits(b)));
+    us.extend(
+        w.iter()
+            .take(64)
+            .map(|&b| (b >> 8) as f32 * (1.0 / 16_777_216.0)),
+    );
+    us.resize(us.len().div_ceil(16) * 16, 0.25);
+    let (mut idx, mut prob) = (vec![0u32; us.len()], vec![0.0f32; us.len()]);
+    assert_eq!(table.sample_slice(&us, &mut idx, &mut prob), us.len());
+    for (k, g) in us.chunks_exact(16).enumerate() {
+        let (i16, p16) = table.sample_x16(f32x16::new(g.try_into().unwrap()));
+        let (i8, p8) = table.sample_x8(f32x8::new(g[..8].try_into().unwrap()));
+        for (j, &u) in g.iter().enumerate() {
+            let (i, p) = table.sample(u);
+            assert!(
+                weights[i as usize] > 0.0,
+                "zero weight {i} chosen at u = {u}"
+            );
+            assert_eq!(p.to_bits(), table.pmf(i).to_bits());
+            assert_eq!(
+                (i16.to_array()[j], p16.to_array()[j].to_bits()),
+                (i, p.to_bits())
+            );
+            assert_eq!(
+                (idx[16 * k + j], prob[16 * k + j].to_bits()),
+                (i, p.to_bits())
+            );
+            if j < 8 {
+                assert_eq!(
+                    (i8.to_array()[j], p8.to_array()[j].to_bits()),
+                    (i, p.to_bits())
+                );
+            }
+        }
+    }
+    let again = AliasTable::from_storage_verified(table.storage()).expect("own storage verifies");
+    assert_eq!(again.sample(0.3), table.sample(0.3));
+}
+
+/// Loading alias-table storage: arbitrary words (the first byte's low bit choosing whether
+/// a valid header for the word count is written over them, the second whether a real table's
+/// storage is corrupted in one word instead). Never a panic; a storage `from_storage` accepts
+/// samples lights below `len()` with probabilities in `[0, 1]`; a single changed word of a
+/// real storage is rejected by `from_storage_verified`.
+#[cfg(feature = "lights")]
+pub fn lights_alias_storage(data: &[u8]) {
+    use warpcore::lights::AliasTable;
+    let mut w = words(data);
+    let mode = w.first().copied().unwrap_or(0);
+    if mode & 2 != 0 && w.len() >= 3 {
+        // A real table of up to 64 lights from the words, one word of it replaced.
+        let weights: Vec<f32> = w
+            .iter()
+            .skip(3)
+            .take(64)
+            .map(|&b| (b >> 8) as f32 + 0.0)
+            .collect();
+        let weights = if weights.iter().any(|&x| x > 0.0) {
+            weights
+        } else {
+            vec![1.0]
+        };
+        let mut s = vec![0u32; AliasTable::storage_len(weights.len())];
+        let t = AliasTable::new(&weights, &mut s).map(|t| t.len());
+        if t.is_ok() {
+            let at = w[1] as usize % s.len();
+            let before = s[at];
+            s[at] = w[2];
+            let verified = AliasTable::from_storage_verified(&s);
+            assert!(
+                before == w[2] || verified.is_err(),
+                "word {at} changed, accepted"
+            );
+        }
+        w = s;
+    } else if mode & 1 != 0 && w.len() >= 8 {
+        let n = ((w.len() - 8) / 4) as u32;
+        w[0] = u32::from_le_bytes(*b"wcAL");
+        w[1] = 1;
+        w[2] = n;
+        w[4..8].fill(0);
+    }
+    let _ = AliasTable::from_storage_verified(&w);
+    let Ok(t) = AliasTable::from_storage(&w) else {
+        return;
+    };
+    for k in 0..64 {
+        let u = w.get(k).map_or(k as f32 / 64.0, |&b| f32::from_bits(b));
+        for u in [u, k as f32 / 64.0] {
+            let (i, p) = t.sample(u);
+            assert!((i as usize) < t.len(), "index {i} of {}", t.len());
+            assert!((0.0..=1.0).contains(&p), "probability {p}");
+        }
+        let q = t.pmf(w.get(k + 64).copied().unwrap_or(k as u32));
+        assert!((0.0..=1.0).contains(&q));
+    }
+}

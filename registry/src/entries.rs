@@ -30,7 +30,7 @@ macro_rules! all {
 /// Every entry of the families compiled in, in fingerprint order.
 pub fn entries() -> impl Iterator<Item = &'static Entry> {
     [
-        DISK, PMJ02BN, SAMPLER, SEQUENCE, TRIANGLE, SPHERE, ENVMAP, SPHERICAL,
+        DISK, PMJ02BN, SAMPLER, SEQUENCE, TRIANGLE, SPHERE, ENVMAP, SPHERICAL, LIGHTS,
     ]
     .into_iter()
     .flatten()
@@ -55,6 +55,42 @@ pub const NOT_FUNCTIONS: &[(Lang, &str, &str)] = &[
         "either distribution from storage words (header says which)",
     ),
 ];
+
+/// Light selection: the alias table and the weighted reservoir (the light tree's entries
+/// follow them).
+#[cfg(feature = "lights")]
+const LIGHTS: &[Entry] = {
+    const TESTS: Golden = Golden::Tests("tests/lights_alias.rs");
+    const fn alias(name: &'static str) -> Entry {
+        Entry::new(name, Forms::SCALAR, Kind::Other).golden(TESTS)
+    }
+    &[
+        Entry::new("lights::AliasTable::sample", Forms::ALL, Kind::Other)
+            .golden(TESTS)
+            .named(&[
+                (C, "wc_lights_alias_sample"),
+                (Wgsl, "wc_lights_alias_sample"),
+            ]),
+        alias("lights::AliasTable::pmf")
+            .named(&[(C, "wc_lights_alias_pmf"), (Wgsl, "wc_lights_alias_pmf")]),
+        alias("lights::AliasTable::storage_len").named(&[(C, "wc_lights_alias_storage_len")]),
+        alias("lights::AliasTable::new").named(&[(C, "wc_lights_alias_build")]),
+        alias("lights::AliasTable::from_storage").named(&[(C, "wc_lights_alias_from_storage")]),
+        alias("lights::AliasTable::from_storage_verified")
+            .named(&[(C, "wc_lights_alias_from_storage_verified")]),
+        alias("lights::AliasTable::len"),
+        alias("lights::AliasTable::is_empty"),
+        alias("lights::AliasTable::storage"),
+        alias("lights::Reservoir::new"),
+        alias("lights::Reservoir::update"),
+        alias("lights::Reservoir::merge"),
+        alias("lights::Reservoir::chosen"),
+        alias("lights::Reservoir::total"),
+        alias("lights::Reservoir::weight"),
+    ]
+};
+#[cfg(not(feature = "lights"))]
+const LIGHTS: &[Entry] = &[];
 
 #[cfg(feature = "disk")]
 const DISK: &[Entry] = {

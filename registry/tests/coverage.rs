@@ -212,6 +212,7 @@ fn wgsl_functions() -> BTreeSet<String> {
         "warpcore.wgsl",
         "warpcore_tables.wgsl",
         "warpcore_envmap.wgsl",
+        "warpcore_lights.wgsl",
     ]
     .iter()
     .flat_map(|f| {

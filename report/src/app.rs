@@ -92,6 +92,8 @@ impl Options {
                 names.push(format!("envmap:{}", stem.unwrap_or_else(|| "map".into())));
             }
         }
+        #[cfg(feature = "lights")]
+        names.push("many_lights".into());
         names.extend(crate::path::scene::Scene::NAMES.map(String::from));
         names.extend(crate::path::study::PAPER.map(|p| p.1.to_string()));
         names.extend(crate::path::study::ABLATIONS.map(|a| a.0.to_string()));
@@ -236,6 +238,28 @@ impl Options {
             timing_reps: self.scale().pick([2, 3, 5]),
         }
     }
+}
+
+/// The many-light scene's tables (`many_lights.md`): a street image of 48 x 48 points
+/// (quick 24 x 24, full 96 x 96), uniform choice against the alias table by power.
+#[cfg(feature = "lights")]
+fn many_lights(opts: &Options) -> std::io::Result<()> {
+    use crate::many_lights::{City, LightChooser, Uniform, run};
+    use warpcore::lights::AliasTable;
+    let side = opts.scale().pick([24, 48, 96]);
+    let t = Instant::now();
+    let city = City::new(side, side);
+    let power: Vec<f32> = city.emitters.iter().map(|e| e.power()).collect();
+    let mut storage = vec![0u32; AliasTable::storage_len(power.len())];
+    let alias = AliasTable::new(&power, &mut storage).map_err(std::io::Error::other)?;
+    let uniform = Uniform(power.len() as u32);
+    // The light tree joins here after merging: `&tree` (impl LightChooser for LightTree).
+    let choosers: [&dyn LightChooser; 2] = [&uniform, &alias];
+    let results = run(&city, &choosers, opts.threads.max(1));
+    let md = results.markdown();
+    print!("{md}");
+    println!("(many_lights: {:.1} s)", t.elapsed().as_secs_f64());
+    output::write(&opts.out.join("many_lights.md"), &md)
 }
 
 fn bar(len: u64, what: &str, name: &str) -> ProgressBar {
@@ -404,6 +428,11 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
                 results.push(p);
             }
         }
+    }
+    // Many lights (issue 33): light selection for next-event estimation in a city at night.
+    #[cfg(feature = "lights")]
+    if opts.wants("many_lights") {
+        many_lights(opts)?;
     }
     #[cfg(feature = "envmap")]
     {

@@ -11,6 +11,8 @@ pub mod bluenoise;
 pub mod env_split;
 #[cfg(feature = "envmap")]
 pub mod envscene;
+#[cfg(feature = "lights")]
+pub mod many_lights;
 pub mod math;
 #[cfg(feature = "envmap")]
 pub mod orientation;

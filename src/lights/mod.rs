@@ -6,15 +6,20 @@
 //! - [`LightTree`]: probability from each light's importance at the shading point, a bounding
 //!   volume hierarchy over [`LightBounds`] (pbrt-v4's BVH light sampler; Conty Estevez and
 //!   Kulla 2018, "Importance Sampling of Many Lights with Adaptive Tree Splitting").
+//! - [`Reservoir`]: a streaming choice of one item with probability proportional to its
+//!   weight (weighted reservoir sampling, Chao 1982), the building block of resampled
+//!   importance sampling (Bitterli et al. 2020).
 //!
 //! Both live in caller-owned `[u32]` storage with a versioned, checksummed header, as the
 //! environment maps do: `storage_len`, `new`, `from_storage` (O(1)) and
 //! `from_storage_verified` (O(n), rejects every single-bit flip).
 
 mod alias;
+mod reservoir;
 mod tree;
 
 pub use alias::AliasTable;
+pub use reservoir::Reservoir;
 pub use tree::{LightBounds, LightTree};
 
 use core::fmt;
@@ -95,3 +100,5 @@ impl fmt::Display for Error {
         }
     }
 }
+
+impl core::error::Error for Error {}

@@ -716,6 +716,28 @@ static size_t built_len[2];
 #define BW 13
 #define BH 7
 
+/* The arrays of a build: weights (`placed_w` bytes) and storage (`placed_s`), flush against
+   guard pages; then, in half the calls, one hostile change: a null or misaligned pointer,
+   or the weights overlapping the storage or ending just before it. */
+static void hostile_build_arrays(size_t placed_w, size_t placed_s, float **weights, uint32_t **storage) {
+    int end = rnd() & 1;
+    *weights = place(0, placed_w, end, 0);
+    *storage = place(1, placed_s, !end, 0);
+    switch (rnd() % 8) {
+    case 0: *weights = NULL; break;
+    case 1: *storage = NULL; break;
+    case 2: *weights = place(0, placed_w, end, 1 + below(3)); break;
+    case 3: *storage = place(1, placed_s, !end, 1 + below(3)); break;
+    case 4: {
+        float *base = place(2, 2 * placed_w + placed_s, 1, 0);
+        *storage = (uint32_t *)(void *)(base + placed_w / 4);
+        *weights = base + below(placed_w / 4 + placed_s / 4);
+        break;
+    }
+    default: break;
+    }
+}
+
 static void one_build(const struct dist *D) {
     uint32_t w = hostile_side(), h = hostile_side(), kind = hostile_kind(D);
     size_t need = wc_envmap_storage_len(kind, w, h);
@@ -732,22 +754,9 @@ static void one_build(const struct dist *D) {
     size_t placed_w = small ? (size_t)texels * 4 : 64, placed_s = small ? need * 4 : 64;
     int slack = small && len > need && len - need <= 8; /* words the call must not write */
     if (slack) placed_s = len * 4;
-    int end = rnd() & 1;
-    float *weights = place(0, placed_w, end, 0);
-    uint32_t *storage = place(1, placed_s, !end, 0);
-    switch (rnd() % 8) {
-    case 0: weights = NULL; break;
-    case 1: storage = NULL; break;
-    case 2: weights = place(0, placed_w, end, 1 + below(3)); break;
-    case 3: storage = place(1, placed_s, !end, 1 + below(3)); break;
-    case 4: { /* the weights overlapping the storage, or ending just before it */
-        float *base = place(2, 2 * placed_w + placed_s, 1, 0);
-        storage = (uint32_t *)(void *)(base + placed_w / 4);
-        weights = base + below(placed_w / 4 + placed_s / 4);
-        break;
-    }
-    default: break;
-    }
+    float *weights;
+    uint32_t *storage;
+    hostile_build_arrays(placed_w, placed_s, &weights, &storage);
     int inf_at = -1;
     if (weights && aligned(weights) && small) {
         fill_floats(weights, (size_t)texels);
@@ -895,6 +904,41 @@ static void one_check(const struct dist *D, const struct dist *other, int verify
     reset();
 }
 
+/* The arrays of a batch call that reads a storage: a copy `*s` of `need` words of `src`
+   (`header` of them the header), the input `*in` and the output `*out` (`in_bytes` and
+   `out_bytes`), flush against guard pages; then, in most calls, one hostile change: a null
+   or misaligned pointer, `out == in` (in place), overlapping arrays, `out` over the
+   storage, a truncated length, a flipped header bit, a garbage word after the first 8. */
+static void hostile_arrays(const uint32_t *src, size_t need, size_t header, size_t in_bytes, size_t out_bytes,
+                           uint32_t **s, size_t *len, void **in, void **out) {
+    int end = rnd() & 1;
+    *s = place(0, need * 4, end, 0);
+    memcpy(*s, src, need * 4);
+    *len = need;
+    *in = place(1, in_bytes, !end, 0);
+    *out = place(3, out_bytes, end, 0);
+    float *base = place(2, in_bytes + out_bytes + need * 4 + 64, 1, 0);
+    switch (rnd() % 14) {
+    case 0: *s = NULL; break;
+    case 1: *in = NULL; break;
+    case 2: *out = NULL; break;
+    case 3: *s = place(0, need * 4, end, 1 + below(3)); break;
+    case 4: *in = place(1, in_bytes, !end, 1 + below(3)); break;
+    case 5: *out = place(3, out_bytes, end, 1 + below(3)); break;
+    case 6: *out = *in; break; /* in place: allowed for some functions only */
+    case 7: *in = base; *out = base + below(in_bytes / 4 + 2); break;
+    case 8: /* out over the storage */
+        *s = (uint32_t *)(void *)base;
+        memcpy(*s, src, need * 4);
+        *out = base + below(need + 1);
+        break;
+    case 9: *len = below(need); break;                                  /* truncated */
+    case 10: (*s)[below(header)] ^= 1u << (rnd() % 32); break;          /* bad header (usually) */
+    case 11: (*s)[8 + below(need - 8)] = rnd(); break; /* a garbage checksum, reserved or table word */
+    default: break;
+    }
+}
+
 static WcEnvSample ref_samples[4096];
 static WcEnvDirection ref_dirs[4096];
 
@@ -908,32 +952,11 @@ static void one_sample(const struct dist *D, int mode) {
     uint32_t layout = rnd() % 8 == 0 ? 2 + rnd() % 1000 : rnd() % 2;
     size_t n = hostile_count(elem > in_elem ? elem : in_elem, 300);
     size_t small = n <= 4096 ? n : 0;
-    int end = rnd() & 1;
-    uint32_t *s = place(0, need * 4, end, 0);
-    memcpy(s, built[k], need * 4);
-    size_t len = need;
-    float *u = place(1, small * in_elem, !end, 0);
-    void *out = place(3, small * elem, end, 0);
-    float *base = place(2, small * (in_elem + elem) + need * 4 + 64, 1, 0);
-    switch (rnd() % 14) {
-    case 0: s = NULL; break;
-    case 1: u = NULL; break;
-    case 2: out = NULL; break;
-    case 3: s = place(0, need * 4, end, 1 + below(3)); break;
-    case 4: u = place(1, small * in_elem, !end, 1 + below(3)); break;
-    case 5: out = place(3, small * elem, end, 1 + below(3)); break;
-    case 6: out = u; break; /* in place: pdf only */
-    case 7: u = base; out = base + below(in_floats * small + 2); break;
-    case 8: /* out over the storage */
-        s = (uint32_t *)(void *)base;
-        memcpy(s, built[k], need * 4);
-        out = base + below(need + 1);
-        break;
-    case 9: len = below(need); break;                         /* truncated */
-    case 10: s[below(WC_ENVMAP_HEADER_WORDS)] ^= 1u << (rnd() % 32); break; /* bad header (usually) */
-    case 11: s[8 + below(need - 8)] = rnd(); break; /* garbage checksum, reserved or table word */
-    default: break;
-    }
+    uint32_t *s;
+    size_t len;
+    void *in, *out;
+    hostile_arrays(built[k], need, WC_ENVMAP_HEADER_WORDS, small * in_elem, small * elem, &s, &len, &in, &out);
+    float *u = in;
     if (u && aligned(u) && small) fill_floats(u, small * in_floats);
     int storage_ok = s && aligned(s) && wc_envmap_from_storage(s, len) == WC_OK;
     const char *outcome;
@@ -1105,13 +1128,13 @@ static void one_equal_area(void) {
 
 /* wc_error_string: a static, non-empty string for any code; the named codes get their own. */
 static void one_error_string(void) {
-    int32_t code = rnd() % 2 ? -(int32_t)(rnd() % 12) : (int32_t)rnd();
+    int32_t code = rnd() % 2 ? -(int32_t)(rnd() % 14) : (int32_t)rnd();
     const char *a = wc_error_string(code), *b = wc_error_string(code);
     const char *unknown = wc_error_string(INT32_MIN);
     reach("wc_error_string", "string");
     current = "wc_error_string";
     CHECK(a != NULL && a[0] != 0 && a == b);
-    if (code <= 0 && code >= WC_ERR_OTHER) CHECK(strcmp(a, unknown) != 0);
+    if (code <= 0 && code >= WC_ERR_ALL_ZERO) CHECK(strcmp(a, unknown) != 0);
     else CHECK(strcmp(a, unknown) == 0);
 }
 
@@ -1337,6 +1360,182 @@ static void constants(void) {
     reach("wc_pmj02bn_sets", "value");
 }
 
+/* ---- light selection: the alias table ---- */
+
+#define NL 37
+static uint32_t lights_built[8 + 4 * NL];
+static size_t lights_len;
+static const char *LIGHT_CODES[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "", "WC_ERR_STORAGE_TOO_SMALL",
+                                    "", "WC_ERR_WRONG_FORMAT", "WC_ERR_UNSUPPORTED_VERSION", "WC_ERR_CORRUPT",
+                                    "WC_ERR_INVALID_ARGUMENT", "", "WC_ERR_INVALID_WEIGHT", "WC_ERR_ALL_ZERO"};
+
+static void one_lights_len(void) {
+    size_t n = rnd() % 4 ? below(100) : (rnd() % 2 ? ((size_t)1 << 26) + below(3) : SIZE_MAX - below(3));
+    size_t got = wc_lights_alias_storage_len(n);
+    const char *name = "wc_lights_alias_storage_len";
+    current = name;
+    if (n > ((size_t)1 << 26)) {
+        reach(name, "SIZE_MAX");
+        CHECK(got == SIZE_MAX);
+    } else {
+        reach(name, "words");
+        CHECK(got == 8 + 4 * n);
+    }
+}
+
+static void one_lights_build(void) {
+    size_t n = rnd() % 8 ? below(60) : (rnd() % 2 ? ((size_t)1 << 26) + 1 : (size_t)PTRDIFF_MAX);
+    size_t need = wc_lights_alias_storage_len(n);
+    size_t len;
+    switch (rnd() % 5) {
+    case 0: len = need - 1; break;
+    case 1: len = need + below(5); break;
+    default: len = need; break;
+    }
+    int small = n <= 60;
+    size_t placed_w = small && n ? n * 4 : 64, placed_s = small ? need * 4 + 20 : 64;
+    float *weights;
+    uint32_t *storage;
+    hostile_build_arrays(placed_w, placed_s, &weights, &storage);
+    int bad = -1, zero = 1;
+    if (weights && aligned(weights) && small) {
+        for (size_t i = 0; i < n; i++) weights[i] = rnd() % 3 ? (float)(rnd() % 1000) * 0.01f : 0.0f;
+        if (rnd() % 4 == 0) {
+            for (size_t i = 0; i < n; i++) weights[i] = 0.0f;
+        }
+        if (n && rnd() % 4 == 0) {
+            const float bads[] = {NAN, INFINITY, -INFINITY, -1.0f, -1e-30f};
+            bad = (int)below(n);
+            weights[bad] = bads[rnd() % 5];
+        }
+        for (size_t i = 0; i < n; i++) zero &= weights[i] == 0.0f;
+    }
+    int32_t want;
+    int access = 0;
+    if (n == 0) want = WC_ERR_ZERO_SIZE;
+    else if (need == SIZE_MAX || !fits(n, 4) || !fits(need, 4)) want = WC_ERR_TOO_LARGE;
+    else if (len < need) want = WC_ERR_STORAGE_TOO_SMALL;
+    else if (!weights || !storage || !aligned(weights) || !aligned(storage)) want = WC_ERR_INVALID_ARGUMENT;
+    else if (overlaps(weights, n * 4, storage, need * 4)) want = WC_ERR_INVALID_ARGUMENT;
+    else {
+        access = 1;
+        want = bad >= 0 ? WC_ERR_INVALID_WEIGHT : zero ? WC_ERR_ALL_ZERO : WC_OK;
+    }
+    if (access && !small) return;
+    snapshot(0, weights, placed_w);
+    if (!access) snapshot(1, storage, placed_s);
+    else if (len > need) snapshot(1, storage + need, (len - need) * 4);
+    int32_t got = wc_lights_alias_build(weights, n, storage, len);
+    const char *name = "wc_lights_alias_build";
+    reach(name, LIGHT_CODES[-want]);
+    current = name;
+    CHECK(got == want);
+    CHECK(unchanged());
+    if (want == WC_OK)
+        CHECK(wc_lights_alias_from_storage(storage, need) == WC_OK &&
+              wc_lights_alias_from_storage_verified(storage, need) == WC_OK);
+    reset();
+}
+
+static void one_lights_check(int verify) {
+    size_t need = lights_len, len = need;
+    int end = rnd() & 1;
+    uint32_t *s = place(0, need * 4, end, 0);
+    memcpy(s, lights_built, need * 4);
+    int32_t want = WC_OK;
+    switch (rnd() % 11) {
+    case 0: s = NULL; want = WC_ERR_INVALID_ARGUMENT; break;
+    case 1: s = place(0, need * 4, end, 1 + below(3)); want = WC_ERR_INVALID_ARGUMENT; break;
+    case 2: len = SIZE_MAX; want = WC_ERR_INVALID_ARGUMENT; break;
+    case 3: len = below(8); s = place(0, len * 4, 1, 0); memcpy(s, lights_built, len * 4);
+        want = WC_ERR_STORAGE_TOO_SMALL; break;
+    case 4: len = 8 + below(need - 8); s = place(0, len * 4, 1, 0); memcpy(s, lights_built, len * 4);
+        want = WC_ERR_STORAGE_TOO_SMALL; break;
+    case 5: s[0] ^= 1u << (rnd() % 32); want = WC_ERR_WRONG_FORMAT; break;
+    case 6: s[1] = 2 + rnd() % 100; want = WC_ERR_UNSUPPORTED_VERSION; break;
+    case 7: if (rnd() % 2) s[2] = rnd() % 2 ? 0 : (1u << 26) + 1 + rnd() % 100;
+        else s[4 + rnd() % 4] = 1 + rnd() % 1000;
+        want = WC_ERR_CORRUPT; break;
+    case 8: /* one bit of a column or of the checksum: only verify sees it */
+        s[rnd() % 4 ? 8 + below(need - 8) : 3] ^= 1u << (rnd() % 32);
+        want = verify ? WC_ERR_CORRUPT : WC_OK;
+        break;
+    default: break;
+    }
+    snapshot(0, s, len < need + 64 ? len * 4 : need * 4);
+    int32_t got = verify ? wc_lights_alias_from_storage_verified(s, len) : wc_lights_alias_from_storage(s, len);
+    const char *name = verify ? "wc_lights_alias_from_storage_verified" : "wc_lights_alias_from_storage";
+    reach(name, LIGHT_CODES[-want]);
+    current = name;
+    CHECK(got == want);
+    CHECK(unchanged());
+    reset();
+}
+
+/* mode 0: sample (float u -> WcLightChoice), 1: pmf (uint32 index -> float, in place allowed). */
+static void one_lights_sample(int mode) {
+    size_t need = lights_len;
+    size_t elem = mode ? 4 : sizeof(WcLightChoice), in_elem = 4;
+    size_t n = hostile_count(elem, 300);
+    size_t small = n <= 4096 ? n : 0;
+    uint32_t *s;
+    size_t len;
+    void *in, *out;
+    hostile_arrays(lights_built, need, 8, small * in_elem, small * elem, &s, &len, &in, &out);
+    if (in && aligned(in) && small) {
+        if (mode) {
+            uint32_t *idx = in;
+            for (size_t i = 0; i < small; i++) idx[i] = rnd() % 4 ? rnd() % (NL + 3) : rnd();
+        } else {
+            fill_floats(in, small);
+        }
+    }
+    int storage_ok = s && aligned(s) && wc_lights_alias_from_storage(s, len) == WC_OK;
+    const char *outcome;
+    size_t want = 0;
+    static WcLightChoice ref_choices[4096];
+    if (n == 0) outcome = "0:n=0";
+    else if (!s || !in || !out) outcome = "0:null";
+    else if (!aligned(s) || !aligned(in) || !aligned(out)) outcome = "0:misaligned";
+    else if (!fits(n, in_elem) || !fits(n, elem)) outcome = "0:size";
+    else if ((overlaps(in, n * in_elem, out, n * elem) && !(mode && in == out)) || overlaps(s, len * 4, out, n * elem))
+        outcome = "0:overlap";
+    else if (!storage_ok) outcome = "0:invalid-storage";
+    else {
+        outcome = in == out ? "in-place" : "n";
+        want = n;
+        static uint32_t rin[4096], rs[8 + 4 * NL];
+        memcpy(rin, in, n * 4);
+        memcpy(rs, s, need * 4);
+        if (mode) wc_lights_alias_pmf(rs, len, rin, ref_out, n);
+        else wc_lights_alias_sample(rs, len, (const float *)(void *)rin, ref_choices, n);
+    }
+    if (!want) snapshot(0, out, small * elem);
+    if (!want || in != out) snapshot(1, in, small * in_elem);
+    snapshot(2, s, len < need ? len * 4 : need * 4);
+    const char *name = mode ? "wc_lights_alias_pmf" : "wc_lights_alias_sample";
+    size_t got = mode ? wc_lights_alias_pmf(s, len, in, out, n) : wc_lights_alias_sample(s, len, in, out, n);
+    reach(name, outcome);
+    current = name;
+    CHECK(got == want);
+    if (want) {
+        CHECK(memcmp(out, mode ? (const void *)ref_out : (const void *)ref_choices, n * elem) == 0);
+        int ok = 1;
+        for (size_t i = 0; i < n; i++) {
+            if (mode) {
+                float p = ((const float *)out)[i];
+                ok &= p >= 0.0f && p <= 1.0f;
+            } else {
+                WcLightChoice c = ((const WcLightChoice *)out)[i];
+                ok &= c.index < NL && c.prob >= 0.0f && c.prob <= 1.0f;
+            }
+        }
+        CHECK(ok);
+    }
+    CHECK(unchanged());
+    reset();
+}
+
 int main(int argc, char **argv) {
     unsigned long rounds = argc > 1 ? strtoul(argv[1], NULL, 10) : 400;
     guard_pages();
@@ -1347,6 +1546,15 @@ int main(int argc, char **argv) {
         built_len[k] = wc_envmap_storage_len(DISTS[k].kind, BW, BH);
         if (built_len[k] > 8192 || wc_envmap_build(DISTS[k].kind, w, BW, BH, built[k], built_len[k]) != WC_OK) {
             fprintf(stderr, "cannot build the reference storage\n");
+            return 2;
+        }
+    }
+    {
+        float w[NL];
+        for (int i = 0; i < NL; i++) w[i] = i % 4 == 1 ? 0.0f : (float)(i % 9) + 0.25f;
+        lights_len = wc_lights_alias_storage_len(NL);
+        if (wc_lights_alias_build(w, NL, lights_built, lights_len) != WC_OK) {
+            fprintf(stderr, "cannot build the reference alias table\n");
             return 2;
         }
     }
@@ -1375,6 +1583,12 @@ int main(int argc, char **argv) {
         for (int i = 0; i < 3; i++) one_sampler_draw(i);
         one_sampler_slice();
         for (int i = 0; i < 8; i++) one_light(i);
+        one_lights_len();
+        one_lights_build();
+        one_lights_check(0);
+        one_lights_check(1);
+        one_lights_sample(0);
+        one_lights_sample(1);
     }
     for (int i = 0; i < nrows; i++) printf("row %s %s %lu\n", rows[i].fn, rows[i].outcome, rows[i].calls);
     printf("%lu hostile calls, %lu passed, %lu failed\n", calls, passed, failed);
