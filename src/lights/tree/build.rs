@@ -1,0 +1,315 @@
+//! Building a [`LightTree`](super::LightTree): validation, a balanced median-split hierarchy
+//! built with the storage as its only scratch, node encoding, bit trails, the header.
+
+use super::{
+    CHECKSUM_WORD, HEADER_WORDS, INDEX_MASK, LEAF, LightBounds, MAX_LIGHTS, NODE_WORDS, PAIR_WORDS,
+    TAG, TWO_SIDED, VERSION, levels_for, oct_decode,
+};
+use crate::lights::Error;
+use crate::storage::{checksum, to_storage_order};
+use core::f64::consts::PI;
+use core::num::Wrapping;
+
+/// The bounds of a subtree during the build, in `f64` where unions need it.
+#[derive(Clone, Copy)]
+struct Bounds {
+    min: [f32; 3],
+    max: [f32; 3],
+    phi: f64,
+    /// Unit axis of the normal cone.
+    w: [f64; 3],
+    /// `theta_o`, radians.
+    theta_o: f64,
+    cos_e: f64,
+    two_sided: bool,
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The angle between two unit vectors, accurate near 0 and pi (the `atan2` of the cross and
+/// dot products).
+fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let c = cross(a, b);
+    libm::atan2(libm::sqrt(dot(c, c)), dot(a, b))
+}
+
+/// The smallest cone (of this construction) holding both normal cones: pbrt-v4's
+/// `DirectionCone` union, our transcription.
+fn cone_union(a: ([f64; 3], f64), b: ([f64; 3], f64)) -> ([f64; 3], f64) {
+    let ((wa, ta), (wb, tb)) = (a, b);
+    let td = angle(wa, wb);
+    if (td + tb).min(PI) <= ta {
+        return a;
+    }
+    if (td + ta).min(PI) <= tb {
+        return b;
+    }
+    let to = (ta + td + tb) / 2.0;
+    if to >= PI {
+        return (wa, PI);
+    }
+    // Rotate wa towards wb by to - ta about their common normal (Rodrigues).
+    let axis = cross(wa, wb);
+    let len = libm::sqrt(dot(axis, axis));
+    if len == 0.0 {
+        return (wa, PI);
+    }
+    let k = axis.map(|x| x / len);
+    let (s, c) = (libm::sin(to - ta), libm::cos(to - ta));
+    let kxw = cross(k, wa);
+    let kw = dot(k, wa);
+    let w: [f64; 3] = core::array::from_fn(|i| wa[i] * c + kxw[i] * s + k[i] * kw * (1.0 - c));
+    let l = libm::sqrt(dot(w, w));
+    // A margin for the rounding of the rotation.
+    ((w.map(|x| x / l)), (to + 1e-9).min(PI))
+}
+
+impl Bounds {
+    fn of(l: &LightBounds) -> Self {
+        let a = l.axis.map(f64::from);
+        let len = libm::sqrt(dot(a, a));
+        Bounds {
+            min: l.min,
+            max: l.max,
+            phi: f64::from(l.power),
+            w: a.map(|x| x / len),
+            theta_o: libm::acos(f64::from(l.cos_theta_o)),
+            cos_e: f64::from(l.cos_theta_e),
+            two_sided: l.two_sided,
+        }
+    }
+
+    fn union(&self, o: &Self) -> Self {
+        let (w, theta_o) = cone_union((self.w, self.theta_o), (o.w, o.theta_o));
+        Bounds {
+            min: core::array::from_fn(|i| self.min[i].min(o.min[i])),
+            max: core::array::from_fn(|i| self.max[i].max(o.max[i])),
+            phi: self.phi + o.phi,
+            w,
+            theta_o,
+            cos_e: self.cos_e.min(o.cos_e),
+            two_sided: self.two_sided || o.two_sided,
+        }
+    }
+
+    /// The node record (native byte order): centre, radius (rounded up to contain the box
+    /// around the rounded centre), power, octahedral axis, 16-bit cosines rounded down (the
+    /// axis's rounding error added to `theta_o`), and `info` with the two-sided flag.
+    fn record(&self, info: u32) -> [u32; NODE_WORDS] {
+        let centre: [f32; 3] = core::array::from_fn(|i| self.min[i] / 2.0 + self.max[i] / 2.0);
+        let mut r2 = 0.0f64;
+        for (i, &c) in centre.iter().enumerate() {
+            let far = (f64::from(c) - f64::from(self.min[i]))
+                .abs()
+                .max((f64::from(self.max[i]) - f64::from(c)).abs());
+            r2 += far * far;
+        }
+        let r = libm::sqrt(r2);
+        let mut r32 = r as f32;
+        if f64::from(r32) < r {
+            r32 = r32.next_up();
+        }
+        let phi = self.phi.min(f64::from(f32::MAX)) as f32;
+        let oct = oct_encode(self.w);
+        let decoded = oct_decode::<f32>(Wrapping(oct)).map(f64::from);
+        let theta = self.theta_o + angle(decoded, self.w) + 1e-6;
+        let cos_o = if theta >= PI { -1.0 } else { libm::cos(theta) };
+        let q = |c: f64| libm::floor((c + 1.0) * 32768.0).clamp(0.0, 65535.0) as u32;
+        let info = info | if self.two_sided { TWO_SIDED } else { 0 };
+        [
+            centre[0].to_bits(),
+            centre[1].to_bits(),
+            centre[2].to_bits(),
+            r32.to_bits(),
+            phi.to_bits(),
+            oct,
+            q(cos_o) | q(self.cos_e) << 16,
+            info,
+        ]
+    }
+}
+
+/// A unit vector as two 16-bit fixed-point octahedral coordinates (rounded to nearest).
+fn oct_encode(w: [f64; 3]) -> u32 {
+    let s = w[0].abs() + w[1].abs() + w[2].abs();
+    let (mut x, mut y) = (w[0] / s, w[1] / s);
+    if w[2] < 0.0 {
+        let (ax, ay) = (x.abs(), y.abs());
+        x = (1.0 - ay).copysign(x);
+        y = (1.0 - ax).copysign(y);
+    }
+    let q = |v: f64| libm::round((v + 1.0) * 32768.0).clamp(0.0, 65535.0) as u32;
+    q(x) | q(y) << 16
+}
+
+/// Checks one light (see `LightTree::new`'s errors).
+fn check(index: usize, l: &LightBounds) -> Result<(), Error> {
+    if !(l.power.is_finite() && l.power >= 0.0) {
+        return Err(Error::InvalidWeight { index });
+    }
+    let bad = Err(Error::InvalidBounds { index });
+    let coords_ok = l.min.iter().chain(&l.max).all(|c| c.is_finite())
+        && (0..3).all(|i| l.min.get(i) <= l.max.get(i));
+    let a = l.axis.map(f64::from);
+    let axis_ok = l.axis.iter().all(|c| c.is_finite()) && dot(a, a) > 0.0;
+    let cos_ok = [l.cos_theta_o, l.cos_theta_e]
+        .iter()
+        .all(|c| (-1.0..=1.0).contains(c));
+    if coords_ok && axis_ok && cos_ok {
+        Ok(())
+    } else {
+        bad
+    }
+}
+
+struct Builder<'s, 'l> {
+    pairs: &'s mut [[u32; PAIR_WORDS]],
+    lights: &'l [LightBounds],
+    next: usize,
+}
+
+impl Builder<'_, '_> {
+    fn light(&self, i: u32) -> LightBounds {
+        self.lights.get(i as usize).copied().unwrap_or_default()
+    }
+
+    /// Builds the subtree over `perm` (light indices, reordered in place) and returns its
+    /// bounds and record.
+    fn node(&mut self, perm: &mut [u32]) -> (Bounds, [u32; NODE_WORDS]) {
+        if let [i] = *perm {
+            let b = Bounds::of(&self.light(i));
+            return (b, b.record(LEAF | (i & INDEX_MASK)));
+        }
+        // The longest axis of the centroids' box; median split along it.
+        let centroid = |l: &LightBounds, k: usize| {
+            l.min.get(k).copied().unwrap_or(0.0) / 2.0 + l.max.get(k).copied().unwrap_or(0.0) / 2.0
+        };
+        let mut lo = [f32::INFINITY; 3];
+        let mut hi = [f32::NEG_INFINITY; 3];
+        for &i in perm.iter() {
+            let l = self.light(i);
+            for k in 0..3 {
+                let c = centroid(&l, k);
+                lo[k] = lo[k].min(c);
+                hi[k] = hi[k].max(c);
+            }
+        }
+        let ext = |k: usize| f64::from(hi[k]) - f64::from(lo[k]);
+        let axis = if ext(0) >= ext(1) && ext(0) >= ext(2) {
+            0
+        } else if ext(1) >= ext(2) {
+            1
+        } else {
+            2
+        };
+        let mid = perm.len() / 2;
+        let lights = self.lights;
+        let key = |i: &u32| lights.get(*i as usize).map_or(0.0, |l| centroid(l, axis));
+        perm.select_nth_unstable_by(mid, |a, b| key(a).total_cmp(&key(b)).then(a.cmp(b)));
+        let k = self.next;
+        self.next += 1;
+        let (left, right) = perm.split_at_mut(mid);
+        let (bl, rl) = self.node(left);
+        let (br, rr) = self.node(right);
+        if let Some(pair) = self.pairs.get_mut(k) {
+            pair[..NODE_WORDS].copy_from_slice(&rl);
+            pair[NODE_WORDS..].copy_from_slice(&rr);
+        }
+        let b = bl.union(&br);
+        (b, b.record(k as u32 & INDEX_MASK))
+    }
+}
+
+/// Writes every light's bit trail (the sides taken from pair 0 to its leaf).
+fn trails(pairs: &[[u32; PAIR_WORDS]], trails: &mut [u32], pair: u32, level: u32, bits: u32) {
+    let Some(rec) = pairs.get(pair as usize) else {
+        return;
+    };
+    for side in 0..2u32 {
+        let info = rec
+            .get(NODE_WORDS * side as usize + NODE_WORDS - 1)
+            .copied()
+            .unwrap_or(0);
+        let bits = bits | side << level;
+        let target = info & INDEX_MASK;
+        if info & LEAF != 0 {
+            if let Some(t) = trails.get_mut(target as usize) {
+                *t = bits;
+            }
+        } else if target != 0 && level < 31 {
+            self::trails(pairs, trails, target, level + 1, bits);
+        }
+    }
+}
+
+/// `LightTree::new`'s work: validate, build, encode, seal.
+pub(super) fn build(lights: &[LightBounds], storage: &mut [u32]) -> Result<(), Error> {
+    let n = lights.len();
+    if n == 0 {
+        return Err(Error::Empty);
+    }
+    if n > MAX_LIGHTS {
+        return Err(Error::TooLarge);
+    }
+    let needed = super::LightTree::storage_len(n);
+    let got = storage.len();
+    let storage = storage
+        .get_mut(..needed)
+        .ok_or(Error::StorageTooSmall { needed, got })?;
+    for (i, l) in lights.iter().enumerate() {
+        check(i, l)?;
+    }
+    let (header, rest) = storage.split_at_mut(HEADER_WORDS);
+    let (pairs, trail) = rest.split_at_mut(PAIR_WORDS * n);
+    let pairs = pairs.as_chunks_mut::<PAIR_WORDS>().0;
+    // The permutation of the lights of positive power, in the trails' place.
+    let mut m = 0;
+    for (i, l) in lights.iter().enumerate() {
+        if l.power > 0.0
+            && let Some(t) = trail.get_mut(m)
+        {
+            *t = i as u32;
+            m += 1;
+        }
+    }
+    if m == 0 {
+        return Err(Error::AllZero);
+    }
+    for p in pairs.iter_mut() {
+        *p = [0; PAIR_WORDS];
+    }
+    let mut b = Builder {
+        pairs,
+        lights,
+        next: 1,
+    };
+    let (_, root) = b.node(trail.get_mut(..m).unwrap_or(&mut []));
+    if let Some(p) = b.pairs.get_mut(0) {
+        p[..NODE_WORDS].copy_from_slice(&root);
+    }
+    trail.fill(0);
+    trails(b.pairs, trail, 0, 0, 0);
+    header.fill(0);
+    for (h, v) in header
+        .iter_mut()
+        .zip([TAG, VERSION, n as u32, m as u32, levels_for(m)])
+    {
+        *h = v;
+    }
+    to_storage_order(storage);
+    let sum = checksum(storage, CHECKSUM_WORD);
+    if let Some(w) = storage.get_mut(CHECKSUM_WORD) {
+        *w = sum.to_le();
+    }
+    Ok(())
+}
