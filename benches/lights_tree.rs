@@ -33,7 +33,11 @@ fn scene(r: &mut R, n: usize) -> Vec<LightBounds> {
                 min: std::array::from_fn(|i| c[i] - h[i]),
                 max: std::array::from_fn(|i| c[i] + h[i]),
                 power: r.random::<f32>() * 10.0 + 0.01,
-                axis: if a.iter().all(|&x| x == 0.0) { [0.0, 0.0, 1.0] } else { a },
+                axis: if a.iter().all(|&x| x == 0.0) {
+                    [0.0, 0.0, 1.0]
+                } else {
+                    a
+                },
                 cos_theta_o: cos_o,
                 cos_theta_e: cos_e,
                 two_sided,
@@ -47,9 +51,8 @@ fn queries(r: &mut R, n: usize, count: usize) -> Vec<([f32; 3], [f32; 3], f32)> 
     let side = (n as f32).cbrt();
     (0..count)
         .map(|_| {
-            let p = std::array::from_fn(|i| {
-                r.random::<f32>() * side * if i == 0 { 4.75 } else { 1.0 }
-            });
+            let p =
+                std::array::from_fn(|i| r.random::<f32>() * side * if i == 0 { 4.75 } else { 1.0 });
             let nn = if r.random::<f32>() < 0.3 {
                 [0.0; 3]
             } else {
@@ -95,10 +98,18 @@ fn safe_sqrt(x: f32) -> f32 {
     x.max(0.0).sqrt()
 }
 fn cos_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b { 1.0 } else { cos_a * cos_b + sin_a * sin_b }
+    if cos_a > cos_b {
+        1.0
+    } else {
+        cos_a * cos_b + sin_a * sin_b
+    }
 }
 fn sin_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b { 0.0 } else { sin_a * cos_b - cos_a * sin_b }
+    if cos_a > cos_b {
+        0.0
+    } else {
+        sin_a * cos_b - cos_a * sin_b
+    }
 }
 
 impl PBounds {
@@ -109,7 +120,11 @@ impl PBounds {
         d2 = d2.max(dot3(diag, diag).sqrt() / 2.0);
         let v = sub3(p, pc);
         let len = dot3(v, v).sqrt();
-        let wi = if len > 0.0 { v.map(|x| x / len) } else { [0.0; 3] };
+        let wi = if len > 0.0 {
+            v.map(|x| x / len)
+        } else {
+            [0.0; 3]
+        };
         let mut cos_w = dot3(self.w, wi);
         if self.two_sided {
             cos_w = cos_w.abs();
@@ -118,7 +133,11 @@ impl PBounds {
         // The bounding sphere's subtended cone.
         let r2 = dot3(sub3(self.max, pc), sub3(self.max, pc));
         let dist2 = dot3(v, v);
-        let cos_b = if dist2 < r2 { -1.0 } else { safe_sqrt(1.0 - r2 / dist2) };
+        let cos_b = if dist2 < r2 {
+            -1.0
+        } else {
+            safe_sqrt(1.0 - r2 / dist2)
+        };
         let sin_b = safe_sqrt(1.0 - cos_b * cos_b);
         let sin_o = safe_sqrt(1.0 - self.cos_o * self.cos_o);
         let cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, self.cos_o);
@@ -151,7 +170,10 @@ impl PBounds {
 
     fn union(&self, o: &Self) -> Self {
         // pbrt-v4's DirectionCone union, in f32.
-        let (ta, tb) = (self.cos_o.clamp(-1.0, 1.0).acos(), o.cos_o.clamp(-1.0, 1.0).acos());
+        let (ta, tb) = (
+            self.cos_o.clamp(-1.0, 1.0).acos(),
+            o.cos_o.clamp(-1.0, 1.0).acos(),
+        );
         let td = dot3(self.w, o.w).clamp(-1.0, 1.0).acos();
         let (w, cos_o) = if (td + tb).min(std::f32::consts::PI) <= ta {
             (self.w, self.cos_o)
@@ -208,7 +230,11 @@ impl Peer {
     fn build(lights: &[LightBounds], idx: &mut [u32], nodes: &mut Vec<PNode>) -> PBounds {
         if idx.len() == 1 {
             let b = PBounds::of(&lights[idx[0] as usize]);
-            nodes.push(PNode { b, child_or_light: idx[0], leaf: true });
+            nodes.push(PNode {
+                b,
+                child_or_light: idx[0],
+                leaf: true,
+            });
             return b;
         }
         let c = |i: u32, k: usize| (lights[i as usize].min[k] + lights[i as usize].max[k]) / 2.0;
@@ -219,17 +245,27 @@ impl Peer {
                 hi[k] = hi[k].max(c(i, k));
             }
         }
-        let axis = (0..3).max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b]))).unwrap();
+        let axis = (0..3)
+            .max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b])))
+            .unwrap();
         let mid = idx.len() / 2;
         idx.select_nth_unstable_by(mid, |&a, &b| c(a, axis).total_cmp(&c(b, axis)));
         let me = nodes.len();
-        nodes.push(PNode { b: PBounds::of(&lights[0]), child_or_light: 0, leaf: false });
+        nodes.push(PNode {
+            b: PBounds::of(&lights[0]),
+            child_or_light: 0,
+            leaf: false,
+        });
         let (l, r) = idx.split_at_mut(mid);
         let bl = Self::build(lights, l, nodes);
         let second = nodes.len() as u32;
         let br = Self::build(lights, r, nodes);
         let b = bl.union(&br);
-        nodes[me] = PNode { b, child_or_light: second, leaf: false };
+        nodes[me] = PNode {
+            b,
+            child_or_light: second,
+            leaf: false,
+        };
         b
     }
 
@@ -245,7 +281,10 @@ impl Peer {
                 return None;
             }
             let (c0, c1) = (k + 1, node.child_or_light as usize);
-            let ci = [self.nodes[c0].b.importance(p, n), self.nodes[c1].b.importance(p, n)];
+            let ci = [
+                self.nodes[c0].b.importance(p, n),
+                self.nodes[c1].b.importance(p, n),
+            ];
             if ci[0] == 0.0 && ci[1] == 0.0 {
                 return None;
             }

@@ -11,7 +11,7 @@ use super::Error;
 use crate::lanes::{Lane, ONE_MINUS_EPSILON, UintLane, unit_interval};
 use crate::storage::{checksum, from_storage_order};
 use core::num::Wrapping;
-use wide::{f32x8, f32x16, u32x8, u32x16};
+use wide::{f32x4, f32x8, f32x16, u32x4, u32x8, u32x16};
 
 /// A light's bounds for the tree's importance: where it is, how much it emits and in which
 /// directions (pbrt-v4's `LightBounds`).
@@ -49,8 +49,6 @@ const HEADER_WORDS: usize = 16;
 const CHECKSUM_WORD: usize = 8;
 /// Words of one node record.
 const NODE_WORDS: usize = 8;
-/// Words of one sibling pair (64 bytes: one cache line when the storage is 64-byte aligned).
-const PAIR_WORDS: usize = 2 * NODE_WORDS;
 /// Flag of a node's last word: the node is a leaf, the low bits are the light's index.
 const LEAF: u32 = 1 << 31;
 /// Flag of a node's last word: some light below emits on both sides.
@@ -58,8 +56,8 @@ const TWO_SIDED: u32 = 1 << 30;
 /// The index bits of a node's last word (a child pair or a light).
 const INDEX_MASK: u32 = (1 << 30) - 1;
 /// Most levels a walk takes (the root pair's level included); a balanced tree of
-/// `MAX_LIGHTS` lights needs 25.
-const MAX_LEVELS: u32 = 32;
+/// `MAX_LIGHTS` lights needs 12; a trail holds 2 bits per level.
+const MAX_LEVELS: u32 = 16;
 /// Importances are clamped to this (`2^126`), so a sum of two stays finite.
 const BIG: f32 = 8.507_059e37;
 
@@ -228,7 +226,7 @@ fn cos16<L: Lane>(q: L::U) -> L {
 /// The shading point as the walk sees it: `p`, the unit normal (or zeros), whether there is
 /// one, and whether `p` is finite.
 #[derive(Clone, Copy)]
-struct Point<L: Lane> {
+pub(super) struct Point<L: Lane> {
     p: [L; 3],
     n: [L; 3],
     has_n: L::Mask,
@@ -253,7 +251,7 @@ fn point<L: Lane>(p: [L; 3], n: [L; 3]) -> Point<L> {
 /// `[0, 2^126]`, whatever the words hold.
 #[inline(always)]
 fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
-    let word = |k: usize| w.get(k).map_or(L::U::splat(0), |&x| from_storage_order(x));
+    let word = |k: usize| w.get(k).copied().unwrap_or(L::U::splat(0));
     let f = |k: usize| L::from_bits(word(k));
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
@@ -267,7 +265,7 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
     let inv = L::select(zero.simd_lt(d2), one / dist, zero);
     let wi = d.map(|x| x * inv);
     let axis = oct_decode::<L>(word(5));
-    let cos_w = axis[0] * wi[0] + axis[1] * wi[1] + axis[2] * wi[2];
+    let cos_w = (axis[0] * d[0] + axis[1] * d[1] + axis[2] * d[2]) * inv;
     let info = word(7);
     let two_sided = !(info & L::U::splat(TWO_SIDED)).simd_eq(L::U::splat(0));
     let cos_w = L::select(two_sided, cos_w.abs(), cos_w);
@@ -292,7 +290,7 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
         dc,
         L::splat(f32::MIN_POSITIVE),
     );
-    let imp = phi * cos_p / dc * cos_pi;
+    let imp = phi * cos_p * (one / dc) * cos_pi;
     let alive = cos_e.simd_lt(cos_p) & pt.valid;
     let imp = L::select(alive, imp, zero);
     L::select(
@@ -302,12 +300,63 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
     )
 }
 
-/// The walk: `levels` steps from pair 0, each side picked by `choose`. Returns the light
-/// reached (`u32::MAX` if none) and its probability (0 if none): the product of the sides'
-/// probabilities in root-to-leaf order.
+/// Words of one quad: the four children of an inner node (128 bytes, two cache lines),
+/// field-major: word `k` of child `c` at `4 k + c`, so that a scalar walk loads each field
+/// of the four children as one `u32x4`.
+const QUAD_WORDS: usize = 4 * NODE_WORDS;
+
+/// The importances of a quad's four children. One lane-generic body ([`importance`]); a
+/// scalar walk evaluates the four children as the four lanes of one `f32x4` (the same IEEE
+/// operations lane by lane, so the same bits as four scalar evaluations), a SIMD walk
+/// evaluates them one after the other.
+pub(super) trait Children: Lane {
+    fn importance4(pt: &Point<Self>, rec: &[Self::U; QUAD_WORDS]) -> [Self; 4];
+}
+
+impl Children for f32 {
+    #[inline(always)]
+    fn importance4(pt: &Point<f32>, rec: &[Wrapping<u32>; QUAD_WORDS]) -> [f32; 4] {
+        let mask = |b: bool| UintLane::simd_eq(u32x4::splat(u32::from(b)), u32x4::splat(1));
+        let wide_pt = Point {
+            p: pt.p.map(f32x4::splat),
+            n: pt.n.map(f32x4::splat),
+            has_n: mask(pt.has_n),
+            valid: mask(pt.valid),
+        };
+        let words: [u32x4; NODE_WORDS] = core::array::from_fn(|k| {
+            u32x4::new(core::array::from_fn(|c| {
+                rec.get(4 * k + c).map_or(0, |w| w.0)
+            }))
+        });
+        importance::<f32x4>(&wide_pt, &words).to_array()
+    }
+}
+
+macro_rules! children_one_by_one {
+    ($($l:ty),*) => {$(
+        impl Children for $l {
+            #[inline(always)]
+            fn importance4(pt: &Point<$l>, rec: &[<$l as Lane>::U; QUAD_WORDS]) -> [$l; 4] {
+                core::array::from_fn(|c| {
+                    let w: [_; NODE_WORDS] = core::array::from_fn(|k| {
+                        rec.get(4 * k + c).copied().unwrap_or(<$l as Lane>::U::splat(0))
+                    });
+                    importance::<$l>(pt, &w)
+                })
+            }
+        }
+    )*};
+}
+children_one_by_one!(f32x8, f32x16);
+
+/// The walk: `levels` steps from quad 0, each picking one of four children by two binary
+/// choices (`choose`): the pair `{0, 1}` or `{2, 3}` with probability `(I0 + I1) / S`, then
+/// a child of the pair with probability `I0 / (I0 + I1)` (or `I2 / (I2 + I3)`). Returns the
+/// light reached (`u32::MAX` if none) and its probability (0 if none): the product of the
+/// choices' probabilities in root-to-leaf order.
 #[inline(always)]
-fn walk<L: Lane, C: Chooser<L>>(
-    pairs: &[[u32; PAIR_WORDS]],
+fn walk<L: Children, C: Chooser<L>>(
+    quads: &[[u32; QUAD_WORDS]],
     len: u32,
     levels: u32,
     pt: &Point<L>,
@@ -316,37 +365,41 @@ fn walk<L: Lane, C: Chooser<L>>(
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
     let uzero = L::U::splat(0);
-    let mut pair = uzero;
+    let mut quad = uzero;
     let mut prob = one;
     let mut index = L::U::splat(u32::MAX);
-    // `done`: reached a leaf; `dead`: stopped at a node whose children have importance 0.
+    // `done`: reached a leaf; `dead`: stopped where the children have importance 0.
     let mut done = uzero.simd_eq(L::U::splat(1));
     let mut dead = !pt.valid;
     for level in 0..levels.min(MAX_LEVELS) {
-        let rec = L::U::gather(pairs, pair);
-        let (left, right) = rec.split_at(NODE_WORDS);
-        let il = importance(pt, left);
-        let ir = importance(pt, right);
-        let sum = il + ir;
+        let rec = L::U::gather(quads, quad).map(from_storage_order);
+        let [i0, i1, i2, i3] = L::importance4(pt, &rec);
+        let (s01, s23) = (i0 + i1, i2 + i3);
+        let sum = s01 + s23;
         let live = zero.simd_lt(sum);
-        let p_left = L::select(live, il / sum, zero);
-        let go_right = choose.right(level, p_left);
-        let p_side = L::select(go_right, one - p_left, p_left);
+        let p_low = L::select(live, s01 / sum, zero);
+        let high = choose.right(2 * level, p_low);
+        let p_pair = L::select(high, one - p_low, p_low);
+        // Both pairs' splits, computed before the pair is known (off the critical path).
+        let split = |a: L, s: L| L::select(zero.simd_lt(s), a / s, zero);
+        let p_first = L::select(high, split(i2, s23), split(i0, s01));
+        let second = choose.right(2 * level + 1, p_first);
+        let p_child = L::select(second, one - p_first, p_first);
         let active = !(done | dead);
         dead = dead | (active & !live);
         let active = active & live;
-        prob = L::select(active, prob * p_side, prob);
-        let info = from_storage_order(L::U::select(
-            go_right,
-            rec[PAIR_WORDS - 1],
-            rec[NODE_WORDS - 1],
-        ));
+        prob = L::select(active, prob * p_pair * p_child, prob);
+        let info = {
+            let pick = |a: usize, b: usize| L::U::select(second, rec[b], rec[a]);
+            let info = 4 * (NODE_WORDS - 1);
+            L::U::select(high, pick(info + 2, info + 3), pick(info, info + 1))
+        };
         let target = info & L::U::splat(INDEX_MASK);
         let leaf = !(info & L::U::splat(LEAF)).simd_eq(uzero);
         let reached = active & leaf;
         index = L::U::select(reached, target, index);
         done = done | reached;
-        pair = L::U::select(active & !leaf, target, pair);
+        quad = L::U::select(active & !leaf, target, quad);
     }
     // A leaf naming a light past the end (only in a corrupt storage), a walk cut short, a
     // dead end or a probability that underflowed: no light.
@@ -365,7 +418,7 @@ impl<'a> LightTree<'a> {
         if n > MAX_LIGHTS {
             usize::MAX
         } else {
-            HEADER_WORDS + (PAIR_WORDS + 1) * n
+            HEADER_WORDS + QUAD_WORDS * quads_bound(n) + n
         }
     }
 
@@ -460,34 +513,34 @@ impl<'a> LightTree<'a> {
         self.storage
     }
 
-    fn pairs(&self) -> &'a [[u32; PAIR_WORDS]] {
-        let end = HEADER_WORDS + PAIR_WORDS * self.len;
+    fn quads(&self) -> &'a [[u32; QUAD_WORDS]] {
+        let end = HEADER_WORDS + QUAD_WORDS * quads_bound(self.len);
         self.storage
             .get(HEADER_WORDS..end)
             .unwrap_or(&[])
-            .as_chunks::<PAIR_WORDS>()
+            .as_chunks::<QUAD_WORDS>()
             .0
     }
 
     fn trails(&self) -> &'a [[u32; 1]] {
-        let start = HEADER_WORDS + PAIR_WORDS * self.len;
+        let start = HEADER_WORDS + QUAD_WORDS * quads_bound(self.len);
         self.storage.get(start..).unwrap_or(&[]).as_chunks::<1>().0
     }
 
     #[inline(always)]
-    fn sample_lanes<L: Lane>(&self, p: [L; 3], n: [L; 3], u: L) -> (L::U, L) {
+    fn sample_lanes<L: Children>(&self, p: [L; 3], n: [L; 3], u: L) -> (L::U, L) {
         let pt = point(p, n);
         let mut by_u = ByU(unit_interval(u));
-        walk(self.pairs(), self.len as u32, self.levels, &pt, &mut by_u)
+        walk(self.quads(), self.len as u32, self.levels, &pt, &mut by_u)
     }
 
     #[inline(always)]
-    fn pmf_lanes<L: Lane>(&self, p: [L; 3], n: [L; 3], index: L::U) -> L {
+    fn pmf_lanes<L: Children>(&self, p: [L; 3], n: [L; 3], index: L::U) -> L {
         let pt = point(p, n);
         let [trail] = L::U::gather(self.trails(), index);
         let mut by_trail = ByTrail(from_storage_order(trail));
         let (reached, prob) = walk(
-            self.pairs(),
+            self.quads(),
             self.len as u32,
             self.levels,
             &pt,
@@ -582,12 +635,17 @@ impl<'a> LightTree<'a> {
     }
 }
 
-/// Levels of the walk over a balanced tree of `m` leaves: the root pair's, then
-/// `ceil(log2 m)`.
+/// Levels of the walk over the tree of `m` leaves: `ceil(log4 m)`, at least 1.
 const fn levels_for(m: usize) -> u32 {
     if m <= 1 {
         1
     } else {
-        1 + (usize::BITS - (m - 1).leading_zeros())
+        (usize::BITS - (m - 1).leading_zeros()).div_ceil(2)
     }
+}
+
+/// Quads the storage holds for `n` lights: at least what the build of any `m <= n` lights
+/// uses (`(m - 1) / 3` in its full subtrees, plus one partial quad per level).
+const fn quads_bound(n: usize) -> usize {
+    n / 3 + 14
 }

@@ -2,8 +2,8 @@
 //! built with the storage as its only scratch, node encoding, bit trails, the header.
 
 use super::{
-    CHECKSUM_WORD, HEADER_WORDS, INDEX_MASK, LEAF, LightBounds, MAX_LIGHTS, NODE_WORDS, PAIR_WORDS,
-    TAG, TWO_SIDED, VERSION, levels_for, oct_decode,
+    CHECKSUM_WORD, HEADER_WORDS, INDEX_MASK, LEAF, LightBounds, MAX_LIGHTS, NODE_WORDS, QUAD_WORDS,
+    TAG, TWO_SIDED, VERSION, levels_for, oct_decode, quads_bound,
 };
 use crate::lights::Error;
 use crate::storage::{checksum, to_storage_order};
@@ -173,7 +173,7 @@ fn check(index: usize, l: &LightBounds) -> Result<(), Error> {
 }
 
 struct Builder<'s, 'l> {
-    pairs: &'s mut [[u32; PAIR_WORDS]],
+    quads: &'s mut [[u32; QUAD_WORDS]],
     lights: &'l [LightBounds],
     next: usize,
 }
@@ -183,14 +183,12 @@ impl Builder<'_, '_> {
         self.lights.get(i as usize).copied().unwrap_or_default()
     }
 
-    /// Builds the subtree over `perm` (light indices, reordered in place) and returns its
-    /// bounds and record.
-    fn node(&mut self, perm: &mut [u32]) -> (Bounds, [u32; NODE_WORDS]) {
-        if let [i] = *perm {
-            let b = Bounds::of(&self.light(i));
-            return (b, b.record(LEAF | (i & INDEX_MASK)));
+    /// Reorders `perm` so that its first `at` lights lie below the rest along the longest
+    /// axis of their centroids' box (`select_nth_unstable`, O(len)).
+    fn split(&self, perm: &mut [u32], at: usize) {
+        if at == 0 || at >= perm.len() {
+            return;
         }
-        // The longest axis of the centroids' box; median split along it.
         let centroid = |l: &LightBounds, k: usize| {
             l.min.get(k).copied().unwrap_or(0.0) / 2.0 + l.max.get(k).copied().unwrap_or(0.0) / 2.0
         };
@@ -198,10 +196,10 @@ impl Builder<'_, '_> {
         let mut hi = [f32::NEG_INFINITY; 3];
         for &i in perm.iter() {
             let l = self.light(i);
-            for k in 0..3 {
+            for (k, (lo, hi)) in lo.iter_mut().zip(hi.iter_mut()).enumerate() {
                 let c = centroid(&l, k);
-                lo[k] = lo[k].min(c);
-                hi[k] = hi[k].max(c);
+                *lo = lo.min(c);
+                *hi = hi.max(c);
             }
         }
         let ext = |k: usize| f64::from(hi[k]) - f64::from(lo[k]);
@@ -212,42 +210,72 @@ impl Builder<'_, '_> {
         } else {
             2
         };
-        let mid = perm.len() / 2;
         let lights = self.lights;
         let key = |i: &u32| lights.get(*i as usize).map_or(0.0, |l| centroid(l, axis));
-        perm.select_nth_unstable_by(mid, |a, b| key(a).total_cmp(&key(b)).then(a.cmp(b)));
-        let k = self.next;
-        self.next += 1;
-        let (left, right) = perm.split_at_mut(mid);
-        let (bl, rl) = self.node(left);
-        let (br, rr) = self.node(right);
-        if let Some(pair) = self.pairs.get_mut(k) {
-            pair[..NODE_WORDS].copy_from_slice(&rl);
-            pair[NODE_WORDS..].copy_from_slice(&rr);
+        perm.select_nth_unstable_by(at, |a, b| key(a).total_cmp(&key(b)).then(a.cmp(b)));
+    }
+
+    /// Writes the children of the subtree over `perm` (at least one light) into quad `q`
+    /// and returns the subtree's bounds. The children hold `4^(levels - 1)` lights each,
+    /// filled in order (full subtrees but one), split in two along one axis and each half
+    /// in two along its own.
+    fn quad(&mut self, q: usize, perm: &mut [u32]) -> Bounds {
+        let m = perm.len();
+        let cap = 1usize << (2 * (levels_for(m) - 1));
+        let size = |i: usize| m.saturating_sub(i * cap).min(cap);
+        let (c0, c1, c2) = (size(0), size(1), size(2));
+        self.split(perm, c0 + c1);
+        let (low, high) = perm.split_at_mut(c0 + c1);
+        self.split(low, c0);
+        self.split(high, c2);
+        let (g0, g1) = low.split_at_mut(c0);
+        let (g2, g3) = high.split_at_mut(c2);
+        let mut total: Option<Bounds> = None;
+        for (slot, group) in [g0, g1, g2, g3].into_iter().enumerate() {
+            let (b, rec) = match *group {
+                [] => continue,
+                [i] => {
+                    let b = Bounds::of(&self.light(i));
+                    (b, b.record(LEAF | (i & INDEX_MASK)))
+                }
+                _ => {
+                    let child = self.next;
+                    self.next += 1;
+                    let b = self.quad(child, group);
+                    (b, b.record(child as u32 & INDEX_MASK))
+                }
+            };
+            if let Some(dst) = self.quads.get_mut(q) {
+                for (k, &w) in rec.iter().enumerate() {
+                    if let Some(d) = dst.get_mut(4 * k + slot) {
+                        *d = w;
+                    }
+                }
+            }
+            total = Some(total.map_or(b, |t| t.union(&b)));
         }
-        let b = bl.union(&br);
-        (b, b.record(k as u32 & INDEX_MASK))
+        total.unwrap_or(Bounds::of(&LightBounds::default()))
     }
 }
 
-/// Writes every light's bit trail (the sides taken from pair 0 to its leaf).
-fn trails(pairs: &[[u32; PAIR_WORDS]], trails: &mut [u32], pair: u32, level: u32, bits: u32) {
-    let Some(rec) = pairs.get(pair as usize) else {
+/// Writes every light's bit trail (2 bits per level: the child's slot in its quad).
+fn trails(quads: &[[u32; QUAD_WORDS]], trails: &mut [u32], quad: u32, level: u32, bits: u32) {
+    let Some(rec) = quads.get(quad as usize) else {
         return;
     };
-    for side in 0..2u32 {
+    for slot in 0..4u32 {
         let info = rec
-            .get(NODE_WORDS * side as usize + NODE_WORDS - 1)
+            .get(4 * (NODE_WORDS - 1) + slot as usize)
             .copied()
             .unwrap_or(0);
-        let bits = bits | side << level;
+        let bits = bits | ((slot >> 1) | (slot & 1) << 1) << (2 * level);
         let target = info & INDEX_MASK;
         if info & LEAF != 0 {
             if let Some(t) = trails.get_mut(target as usize) {
                 *t = bits;
             }
-        } else if target != 0 && level < 31 {
-            self::trails(pairs, trails, target, level + 1, bits);
+        } else if target != 0 && level < 15 {
+            self::trails(quads, trails, target, level + 1, bits);
         }
     }
 }
@@ -270,8 +298,8 @@ pub(super) fn build(lights: &[LightBounds], storage: &mut [u32]) -> Result<(), E
         check(i, l)?;
     }
     let (header, rest) = storage.split_at_mut(HEADER_WORDS);
-    let (pairs, trail) = rest.split_at_mut(PAIR_WORDS * n);
-    let pairs = pairs.as_chunks_mut::<PAIR_WORDS>().0;
+    let (quads, trail) = rest.split_at_mut(QUAD_WORDS * quads_bound(n));
+    let quads = quads.as_chunks_mut::<QUAD_WORDS>().0;
     // The permutation of the lights of positive power, in the trails' place.
     let mut m = 0;
     for (i, l) in lights.iter().enumerate() {
@@ -285,20 +313,17 @@ pub(super) fn build(lights: &[LightBounds], storage: &mut [u32]) -> Result<(), E
     if m == 0 {
         return Err(Error::AllZero);
     }
-    for p in pairs.iter_mut() {
-        *p = [0; PAIR_WORDS];
+    for q in quads.iter_mut() {
+        *q = [0; QUAD_WORDS];
     }
     let mut b = Builder {
-        pairs,
+        quads,
         lights,
         next: 1,
     };
-    let (_, root) = b.node(trail.get_mut(..m).unwrap_or(&mut []));
-    if let Some(p) = b.pairs.get_mut(0) {
-        p[..NODE_WORDS].copy_from_slice(&root);
-    }
+    b.quad(0, trail.get_mut(..m).unwrap_or(&mut []));
     trail.fill(0);
-    trails(b.pairs, trail, 0, 0, 0);
+    trails(b.quads, trail, 0, 0, 0);
     header.fill(0);
     for (h, v) in header
         .iter_mut()
