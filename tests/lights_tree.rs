@@ -111,6 +111,12 @@ fn pmf_sum_plus_dead_ends_is_one_and_sample_matches_pmf() {
         let s = build(&lights);
         let t = LightTree::from_storage_verified(&s).unwrap();
         assert_eq!(t.len(), n);
+        assert!(!t.is_empty());
+        // The storage round trip: the words read back give the same tree.
+        let words = t.storage().to_vec();
+        assert_eq!(words, s);
+        let back = LightTree::from_storage_verified(&words).unwrap();
+        assert_eq!(back.sample([0.1, 0.2, 0.3], [0.0; 3], 0.4), t.sample([0.1, 0.2, 0.3], [0.0; 3], 0.4));
         for _ in 0..100 {
             let (p, nn) = point(&mut r);
             let sum: f64 = (0..n as u32).map(|i| f64::from(t.pmf(p, nn, i))).sum();
