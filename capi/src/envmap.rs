@@ -128,6 +128,12 @@ pub extern "C" fn wc_error_string(code: i32) -> *const core::ffi::c_char {
             c"invalid argument: a null or misaligned pointer, overlapping arrays, or a bad option"
         }
         WC_ERR_OTHER => c"an error this version of the header has no name for",
+        -11 => c"no lights",
+        -12 => c"a light's power is NaN, infinite or negative",
+        -13 => {
+            c"a light's bounds are invalid (NaN or infinite coordinate, min > max, zero or non-finite axis, cosine outside [-1, 1])"
+        }
+        -14 => c"every light has power 0",
         _ => c"unknown warpcore error code",
     };
     s.as_ptr()

@@ -434,7 +434,21 @@ impl<'a> LightTree<'a> {
     /// Non-unit axes are normalised. Coordinates beyond about `1e18` make distances overflow:
     /// such lights get importance 0 (they are never chosen).
     pub fn new(lights: &[LightBounds], storage: &'a mut [u32]) -> Result<Self, Error> {
-        build::build(lights, storage)?;
+        let light = |i: usize| lights.get(i).copied().unwrap_or_default();
+        Self::new_from_fn(lights.len(), light, storage)
+    }
+
+    /// [`new`](Self::new) over `n` lights given by `light(i)` for `i` in `0..n`, called
+    /// O(n log n) times (keep it cheap): builds from any representation without collecting
+    /// the bounds in memory first (the C ABI's `WcLightBounds` array, a mesh's triangles).
+    /// The same tree, words and errors as `new` over `[light(0), ..., light(n - 1)]` (with
+    /// `n = 0` as the empty slice).
+    pub fn new_from_fn(
+        n: usize,
+        light: impl Fn(usize) -> LightBounds,
+        storage: &'a mut [u32],
+    ) -> Result<Self, Error> {
+        build::build(n, light, storage)?;
         Self::from_storage(storage)
     }
 

@@ -172,15 +172,15 @@ fn check(index: usize, l: &LightBounds) -> Result<(), Error> {
     }
 }
 
-struct Builder<'s, 'l> {
+struct Builder<'s, 'l, F> {
     quads: &'s mut [[u32; QUAD_WORDS]],
-    lights: &'l [LightBounds],
+    lights: &'l F,
     next: usize,
 }
 
-impl Builder<'_, '_> {
+impl<F: Fn(usize) -> LightBounds> Builder<'_, '_, F> {
     fn light(&self, i: u32) -> LightBounds {
-        self.lights.get(i as usize).copied().unwrap_or_default()
+        (self.lights)(i as usize)
     }
 
     /// Reorders `perm` so that its first `at` lights lie below the rest along the longest
@@ -211,7 +211,7 @@ impl Builder<'_, '_> {
             2
         };
         let lights = self.lights;
-        let key = |i: &u32| lights.get(*i as usize).map_or(0.0, |l| centroid(l, axis));
+        let key = |i: &u32| centroid(&lights(*i as usize), axis);
         perm.select_nth_unstable_by(at, |a, b| key(a).total_cmp(&key(b)).then(a.cmp(b)));
     }
 
@@ -281,8 +281,11 @@ fn trails(quads: &[[u32; QUAD_WORDS]], trails: &mut [u32], quad: u32, level: u32
 }
 
 /// `LightTree::new`'s work: validate, build, encode, seal.
-pub(super) fn build(lights: &[LightBounds], storage: &mut [u32]) -> Result<(), Error> {
-    let n = lights.len();
+pub(super) fn build(
+    n: usize,
+    lights: impl Fn(usize) -> LightBounds,
+    storage: &mut [u32],
+) -> Result<(), Error> {
     if n == 0 {
         return Err(Error::Empty);
     }
@@ -294,16 +297,16 @@ pub(super) fn build(lights: &[LightBounds], storage: &mut [u32]) -> Result<(), E
     let storage = storage
         .get_mut(..needed)
         .ok_or(Error::StorageTooSmall { needed, got })?;
-    for (i, l) in lights.iter().enumerate() {
-        check(i, l)?;
+    for i in 0..n {
+        check(i, &lights(i))?;
     }
     let (header, rest) = storage.split_at_mut(HEADER_WORDS);
     let (quads, trail) = rest.split_at_mut(QUAD_WORDS * quads_bound(n));
     let quads = quads.as_chunks_mut::<QUAD_WORDS>().0;
     // The permutation of the lights of positive power, in the trails' place.
     let mut m = 0;
-    for (i, l) in lights.iter().enumerate() {
-        if l.power > 0.0
+    for i in 0..n {
+        if lights(i).power > 0.0
             && let Some(t) = trail.get_mut(m)
         {
             *t = i as u32;
@@ -318,7 +321,7 @@ pub(super) fn build(lights: &[LightBounds], storage: &mut [u32]) -> Result<(), E
     }
     let mut b = Builder {
         quads,
-        lights,
+        lights: &lights,
         next: 1,
     };
     b.quad(0, trail.get_mut(..m).unwrap_or(&mut []));
