@@ -876,10 +876,10 @@ const SPHERICAL: &[Entry] = &[];
 
 /// The light tree (`lights::LightTree`): built objects, so `Kind::Other`; the bits are pinned
 /// by [`fp::lights_tree`] (a fixed light set's storage, samples and pmfs) and proved by
-/// `tests/lights_tree.rs` (lanes and slices bit-identical, hostile inputs, storage).
+/// `tests/lights/tree.rs` (lanes and slices bit-identical, hostile inputs, storage).
 #[cfg(feature = "lights")]
 const LIGHT_TREE: &[Entry] = {
-    const TESTS: Golden = Golden::Tests("tests/lights_tree.rs");
+    const TESTS: Golden = Golden::Tests("tests/lights/tree.rs");
     const SAMPLE: Golden = Golden::With("lights::LightTree::sample");
     &[
         Entry::new("lights::LightTree::sample", Forms::ALL, Kind::Other)

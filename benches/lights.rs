@@ -4,7 +4,7 @@
 //! same importance function, the same median-split topology). Inputs (`p`, `n`, `u`) vary
 //! per call and go through `black_box`.
 //!
-//! Run: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench lights_tree`
+//! Run: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench lights`
 
 use criterion::{Criterion, Throughput};
 use rand::{RngExt, SeedableRng};

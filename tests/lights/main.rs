@@ -1,0 +1,3 @@
+//! Light selection (`warpcore::lights`): one test target, one module per table.
+
+mod tree;
