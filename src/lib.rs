@@ -123,6 +123,10 @@ struct Pmj02bnDocDoctests;
 #[doc = include_str!("../docs/envmaps.md")]
 struct EnvmapsDocDoctests;
 
+#[cfg(all(doctest, feature = "lights"))]
+#[doc = include_str!("../docs/lights.md")]
+struct LightsDocDoctests;
+
 #[cfg(all(
     doctest,
     feature = "blue-noise",
