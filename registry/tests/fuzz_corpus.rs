@@ -27,7 +27,7 @@ fn replay(target: &str, check: fn(&[u8])) {
 #[test]
 fn every_corpus_replays() {
     type Check = fn(&[u8]);
-    let targets: [(&str, Check); 8] = [
+    let targets: [(&str, Check); 10] = [
         ("disk", checks::disk),
         ("pmj02bn", checks::pmj02bn),
         ("triangle", checks::triangle),
@@ -36,6 +36,8 @@ fn every_corpus_replays() {
         ("envmap", checks::envmap),
         ("envmap_storage", checks::envmap_storage),
         ("sampler", checks::sampler),
+        ("lights_tree_build", checks::lights_tree_build),
+        ("lights_tree_storage", checks::lights_tree_storage),
     ];
     for (target, check) in targets {
         replay(target, check);
