@@ -492,10 +492,10 @@ int32_t wc_envmap_equirect_to_equal_area(const float *src,
                                          uint32_t size,
                                          uint32_t supersample);
 
-// Words of storage `wc_lights_tree_build` needs for `n` lights (`16 + 32 (n / 3 + 14) + n`,
-// about 47 bytes per light), `SIZE_MAX` above 2^24 lights. Any argument; reads and writes
-// no memory.
-size_t wc_lights_tree_storage_len(size_t n);
+// Words of storage `wc_lights_tree_build` needs for `lights` lights
+// (`16 + 32 (lights / 3 + 14) + lights`, about 47 bytes per light), `SIZE_MAX` above 2^24
+// lights. Any argument; reads and writes no memory.
+size_t wc_lights_tree_storage_len(size_t lights);
 
 // Builds the light tree of `n` lights into `storage`. Returns `WC_OK` (0) or the first
 // failed check, in this order: `WC_ERR_EMPTY` (`n == 0`), `WC_ERR_TOO_LARGE` (above 2^24

@@ -68,12 +68,12 @@ pub(crate) fn code(e: Error) -> i32 {
     }
 }
 
-/// Words of storage `wc_lights_tree_build` needs for `n` lights (`16 + 32 (n / 3 + 14) + n`,
-/// about 47 bytes per light), `SIZE_MAX` above 2^24 lights. Any argument; reads and writes
-/// no memory.
+/// Words of storage `wc_lights_tree_build` needs for `lights` lights
+/// (`16 + 32 (lights / 3 + 14) + lights`, about 47 bytes per light), `SIZE_MAX` above 2^24
+/// lights. Any argument; reads and writes no memory.
 #[unsafe(no_mangle)]
-pub extern "C" fn wc_lights_tree_storage_len(n: usize) -> usize {
-    LightTree::storage_len(n)
+pub extern "C" fn wc_lights_tree_storage_len(lights: usize) -> usize {
+    LightTree::storage_len(lights)
 }
 
 /// Builds the light tree of `n` lights into `storage`. Returns `WC_OK` (0) or the first

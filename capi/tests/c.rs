@@ -460,6 +460,15 @@ const TABLE: &[(&str, &[&str])] = {
         "WC_ERR_INVALID_ARGUMENT",
         "WC_ERR_INFINITE_WEIGHT",
     ];
+    const TREE_SAMPLE: &[&str] = &[
+        "n",
+        "0:n=0",
+        "0:null",
+        "0:misaligned",
+        "0:size",
+        "0:overlap",
+        "0:invalid-storage",
+    ];
     const CHECK: &[&str] = &[
         "WC_OK",
         "WC_ERR_INVALID_ARGUMENT",
@@ -618,6 +627,24 @@ const TABLE: &[(&str, &[&str])] = {
         ("wc_envmap_equirect_pdf_to_solid_angle", MAP_IN_PLACE),
         ("wc_envmap_equirect_to_equal_area", IMAGE),
         ("wc_error_string", &["string"]),
+        ("wc_lights_tree_storage_len", &["words", "SIZE_MAX"]),
+        (
+            "wc_lights_tree_build",
+            &[
+                "WC_OK",
+                "WC_ERR_EMPTY",
+                "WC_ERR_TOO_LARGE",
+                "WC_ERR_STORAGE_TOO_SMALL",
+                "WC_ERR_INVALID_ARGUMENT",
+                "WC_ERR_INVALID_WEIGHT",
+                "WC_ERR_INVALID_BOUNDS",
+                "WC_ERR_ALL_ZERO",
+            ],
+        ),
+        ("wc_lights_tree_from_storage", CHECK),
+        ("wc_lights_tree_from_storage_verified", CHECK),
+        ("wc_lights_tree_sample", TREE_SAMPLE),
+        ("wc_lights_tree_pmf", TREE_SAMPLE),
     ]
 };
 
