@@ -132,7 +132,10 @@ pub unsafe extern "C" fn wc_lights_tree_build(
 /// # Safety
 /// `storage` must be readable for `storage_len` words.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn wc_lights_tree_from_storage(storage: *const u32, storage_len: usize) -> i32 {
+pub unsafe extern "C" fn wc_lights_tree_from_storage(
+    storage: *const u32,
+    storage_len: usize,
+) -> i32 {
     // SAFETY: the caller's contract above.
     unsafe { check(storage, storage_len, false) }
 }
@@ -184,6 +187,9 @@ unsafe fn input<'a, T>(ptr: *const T, count: usize, writes: &[(usize, usize)]) -
     Some(s)
 }
 
+/// A sampling call's tree, shading points and normals.
+type Inputs<'a> = (LightTree<'a>, &'a [[f32; 3]], &'a [[f32; 3]]);
+
 /// The tree and the shading points (`3n` floats each of `p` and `normal`) of a sampling call,
 /// if every pointer passes and no input overlaps `writes`.
 ///
@@ -196,7 +202,7 @@ unsafe fn inputs<'a>(
     normal: *const f32,
     n: usize,
     writes: &[(usize, usize)],
-) -> Option<(LightTree<'a>, &'a [[f32; 3]], &'a [[f32; 3]])> {
+) -> Option<Inputs<'a>> {
     let count = n.checked_mul(3)?;
     // SAFETY: the caller's contract.
     let (p, normal, s) = unsafe {

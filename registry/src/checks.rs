@@ -830,12 +830,25 @@ pub fn spherical(data: &[u8]) {
 /// non-unit normals.
 #[cfg(feature = "lights")]
 fn light_queries() -> Vec<([f32; 3], [f32; 3], f32)> {
-    let specials = [0.0f32, -0.0, 0.5, -3.0, 1e30, f32::NAN, f32::INFINITY, 1e-40];
+    let specials = [
+        0.0f32,
+        -0.0,
+        0.5,
+        -3.0,
+        1e30,
+        f32::NAN,
+        f32::INFINITY,
+        1e-40,
+    ];
     let h = |x: u32| (x.wrapping_mul(0x2c1b_3c6d) ^ (x >> 12)).wrapping_mul(0x297a_2d39);
     let f = |x: u32| (h(x) >> 8) as f32 / 16_777_216.0;
     let mut q: Vec<([f32; 3], [f32; 3], f32)> = specials
         .iter()
-        .flat_map(|&a| specials.iter().map(move |&b| ([a, 1.0, b], [b, 0.0, 1.0], a)))
+        .flat_map(|&a| {
+            specials
+                .iter()
+                .map(move |&b| ([a, 1.0, b], [b, 0.0, 1.0], a))
+        })
         .collect();
     q.extend((0..64u32).map(|i| {
         let k = 8 * i;
@@ -917,13 +930,22 @@ pub fn lights_tree_build(data: &[u8]) {
                 let coords = l.min.iter().chain(&l.max).all(|c| c.is_finite())
                     && (0..3).all(|k| l.min[k] <= l.max[k]);
                 let axis = l.axis.iter().all(|c| c.is_finite())
-                    && l.axis.iter().map(|&c| f64::from(c) * f64::from(c)).sum::<f64>() > 0.0;
+                    && l.axis
+                        .iter()
+                        .map(|&c| f64::from(c) * f64::from(c))
+                        .sum::<f64>()
+                        > 0.0;
                 let cos = [l.cos_theta_o, l.cos_theta_e]
                     .iter()
                     .all(|c| (-1.0..=1.0).contains(c));
                 (!(coords && axis && cos)).then_some(Error::InvalidBounds { index })
             })
-            .or_else(|| lights.iter().all(|l| l.power == 0.0).then_some(Error::AllZero))
+            .or_else(|| {
+                lights
+                    .iter()
+                    .all(|l| l.power == 0.0)
+                    .then_some(Error::AllZero)
+            })
     };
     let mut s = vec![0u32; LightTree::storage_len(lights.len())];
     match (LightTree::new(&lights, &mut s), expected) {
@@ -934,7 +956,7 @@ pub fn lights_tree_build(data: &[u8]) {
             assert!(LightTree::from_storage_verified(&s).is_ok());
         }
         (Err(e), Some(x)) => assert_eq!(e, x),
-        (r, x) => panic!("new gave {:?}, expected {x:?}", r.map(|t| t.len())),
+        (r, x) => core::panic!("new gave {:?}, expected {x:?}", r.map(|t| t.len())),
     }
 }
 
@@ -963,7 +985,11 @@ pub fn lights_tree_storage(data: &[u8]) {
                 LightBounds {
                     min: c,
                     max: [c[0] + 0.1, c[1] + 0.1, c[2]],
-                    power: if i % 5 == 2 { 0.0 } else { h(8 * i + 3) * 4.0 + 0.01 },
+                    power: if i % 5 == 2 {
+                        0.0
+                    } else {
+                        h(8 * i + 3) * 4.0 + 0.01
+                    },
                     axis: [h(8 * i + 4) - 0.5, h(8 * i + 5) - 0.5, h(8 * i + 6) - 0.25],
                     cos_theta_o: if i % 2 == 0 { 1.0 } else { -1.0 },
                     cos_theta_e: 0.0,

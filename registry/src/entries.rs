@@ -894,9 +894,13 @@ const LIGHT_TREE: &[Entry] = {
         Entry::new("lights::LightTree::storage_len", Forms::SCALAR, Kind::Other)
             .golden(SAMPLE)
             .named(&[(C, "wc_lights_tree_storage_len")]),
-        Entry::new("lights::LightTree::from_storage", Forms::SCALAR, Kind::Other)
-            .golden(TESTS)
-            .named(&[(C, "wc_lights_tree_from_storage")]),
+        Entry::new(
+            "lights::LightTree::from_storage",
+            Forms::SCALAR,
+            Kind::Other,
+        )
+        .golden(TESTS)
+        .named(&[(C, "wc_lights_tree_from_storage")]),
         Entry::new(
             "lights::LightTree::from_storage_verified",
             Forms::SCALAR,

@@ -829,7 +829,11 @@ pub fn lights_tree(h: &mut Hasher) {
     for k in 0..64usize {
         let [x, y, z, nx, ny, nz, u] = input::<7>(2000 + k);
         let p = [x * 10.0 - 5.0, y * 6.0 - 3.0, z * 4.0 - 1.0];
-        let nrm = if k % 3 == 0 { [0.0; 3] } else { [nx - 0.5, ny - 0.5, nz - 0.5] };
+        let nrm = if k % 3 == 0 {
+            [0.0; 3]
+        } else {
+            [nx - 0.5, ny - 0.5, nz - 0.5]
+        };
         let (i, q) = tree.sample(p, nrm, u).unwrap_or((u32::MAX, 0.0));
         h.word(i);
         h.floats(&[q, tree.pmf(p, nrm, (k % 25) as u32)]);

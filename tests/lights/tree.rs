@@ -116,7 +116,10 @@ fn pmf_sum_plus_dead_ends_is_one_and_sample_matches_pmf() {
         let words = t.storage().to_vec();
         assert_eq!(words, s);
         let back = LightTree::from_storage_verified(&words).unwrap();
-        assert_eq!(back.sample([0.1, 0.2, 0.3], [0.0; 3], 0.4), t.sample([0.1, 0.2, 0.3], [0.0; 3], 0.4));
+        assert_eq!(
+            back.sample([0.1, 0.2, 0.3], [0.0; 3], 0.4),
+            t.sample([0.1, 0.2, 0.3], [0.0; 3], 0.4)
+        );
         for _ in 0..100 {
             let (p, nn) = point(&mut r);
             let sum: f64 = (0..n as u32).map(|i| f64::from(t.pmf(p, nn, i))).sum();
@@ -289,19 +292,19 @@ fn hostile_inputs_to_new() {
             Error::InvalidWeight { index: 1 }
         );
     }
-    let cases: Vec<Box<dyn Fn(&mut LightBounds)>> = vec![
-        Box::new(|l| l.min[0] = f32::NAN),
-        Box::new(|l| l.max[2] = f32::INFINITY),
-        Box::new(|l| l.min[1] = 2.0),
-        Box::new(|l| l.axis = [0.0; 3]),
-        Box::new(|l| l.axis = [f32::NAN, 0.0, 1.0]),
-        Box::new(|l| l.axis = [f32::INFINITY, 0.0, 1.0]),
-        Box::new(|l| l.cos_theta_o = 1.5),
-        Box::new(|l| l.cos_theta_e = -1.0001),
-        Box::new(|l| l.cos_theta_e = f32::NAN),
+    let cases: [fn(&mut LightBounds); 9] = [
+        |l| l.min[0] = f32::NAN,
+        |l| l.max[2] = f32::INFINITY,
+        |l| l.min[1] = 2.0,
+        |l| l.axis = [0.0; 3],
+        |l| l.axis = [f32::NAN, 0.0, 1.0],
+        |l| l.axis = [f32::INFINITY, 0.0, 1.0],
+        |l| l.cos_theta_o = 1.5,
+        |l| l.cos_theta_e = -1.0001,
+        |l| l.cos_theta_e = f32::NAN,
     ];
-    for f in &cases {
-        let l = with(f.as_ref());
+    for f in cases {
+        let l = with(&f);
         let mut s = vec![0u32; LightTree::storage_len(3)];
         assert_eq!(
             LightTree::new(&l, &mut s).unwrap_err(),
@@ -354,12 +357,9 @@ fn hostile_points_and_u() {
             let p = [a, b, 1.0];
             let n = [b, 0.0, a];
             for &u in &sp {
-                match t.sample(p, n, u) {
-                    Some((i, q)) => {
-                        assert!((i as usize) < lights.len() && q > 0.0 && q <= 1.0);
-                        assert_eq!(q.to_bits(), t.pmf(p, n, i).to_bits());
-                    }
-                    None => {}
+                if let Some((i, q)) = t.sample(p, n, u) {
+                    assert!((i as usize) < lights.len() && q > 0.0 && q <= 1.0);
+                    assert_eq!(q.to_bits(), t.pmf(p, n, i).to_bits());
                 }
             }
             let q = t.pmf(p, n, 3);
