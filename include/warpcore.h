@@ -150,21 +150,17 @@ typedef struct {
   uint32_t texel[2];
 } WcEnvDirection;
 
-// One light's bounds for the tree (the crate's `LightBounds`).
+// One light's bounds for the tree: the fields of the crate's `LightBounds`, in its order
+// (box corners, power >= 0, emission axis, then the cosines of the normal spread and of the
+// falloff beyond it, each in `[-1, 1]`), with `two_sided` as a word (nonzero: true), so that
+// any bytes a C caller writes are a valid value.
 typedef struct {
-  // Lower corner of the box around the emitter.
   float min[3];
-  // Upper corner of the box around the emitter.
   float max[3];
-  // Emitted power (>= 0; 0: never chosen).
   float power;
-  // Principal emission direction (normalised by the build; not zero).
   float axis[3];
-  // Cosine of the spread of normals around the axis, in `[-1, 1]`.
   float cos_theta_o;
-  // Cosine of the emission falloff beyond `theta_o`, in `[-1, 1]`.
   float cos_theta_e;
-  // Nonzero: the emitter emits on both sides.
   uint32_t two_sided;
 } WcLightBounds;
 

@@ -19,23 +19,20 @@ pub const WC_ERR_INVALID_BOUNDS: i32 = -13;
 /// Every light has power 0.
 pub const WC_ERR_ALL_ZERO: i32 = -14;
 
-/// One light's bounds for the tree (the crate's `LightBounds`).
+/// One light's bounds for the tree: the fields of the crate's `LightBounds`, in its order
+/// (box corners, power >= 0, emission axis, then the cosines of the normal spread and of the
+/// falloff beyond it, each in `[-1, 1]`), with `two_sided` as a word (nonzero: true), so that
+/// any bytes a C caller writes are a valid value.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[allow(missing_docs)] // the fields are documented together above
 pub struct WcLightBounds {
-    /// Lower corner of the box around the emitter.
     pub min: [f32; 3],
-    /// Upper corner of the box around the emitter.
     pub max: [f32; 3],
-    /// Emitted power (>= 0; 0: never chosen).
     pub power: f32,
-    /// Principal emission direction (normalised by the build; not zero).
     pub axis: [f32; 3],
-    /// Cosine of the spread of normals around the axis, in `[-1, 1]`.
     pub cos_theta_o: f32,
-    /// Cosine of the emission falloff beyond `theta_o`, in `[-1, 1]`.
     pub cos_theta_e: f32,
-    /// Nonzero: the emitter emits on both sides.
     pub two_sided: u32,
 }
 

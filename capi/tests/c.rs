@@ -460,15 +460,6 @@ const TABLE: &[(&str, &[&str])] = {
         "WC_ERR_INVALID_ARGUMENT",
         "WC_ERR_INFINITE_WEIGHT",
     ];
-    const TREE_SAMPLE: &[&str] = &[
-        "n",
-        "0:n=0",
-        "0:null",
-        "0:misaligned",
-        "0:size",
-        "0:overlap",
-        "0:invalid-storage",
-    ];
     const CHECK: &[&str] = &[
         "WC_OK",
         "WC_ERR_INVALID_ARGUMENT",
@@ -643,8 +634,8 @@ const TABLE: &[(&str, &[&str])] = {
         ),
         ("wc_lights_tree_from_storage", CHECK),
         ("wc_lights_tree_from_storage_verified", CHECK),
-        ("wc_lights_tree_sample", TREE_SAMPLE),
-        ("wc_lights_tree_pmf", TREE_SAMPLE),
+        ("wc_lights_tree_sample", SAMPLE),
+        ("wc_lights_tree_pmf", SAMPLE),
     ]
 };
 

@@ -95,3 +95,7 @@ impl fmt::Display for Error {
         }
     }
 }
+
+impl core::error::Error for Error {}
+
+crate::storage::from_header_fault!(Error);

@@ -9,7 +9,7 @@ mod build;
 
 use super::Error;
 use crate::lanes::{Lane, ONE_MINUS_EPSILON, UintLane, unit_interval};
-use crate::storage::{checksum, from_storage_order};
+use crate::storage::{from_storage_order, header, sealed};
 use core::num::Wrapping;
 use wide::{f32x4, f32x8, f32x16, u32x4, u32x8, u32x16};
 
@@ -459,17 +459,8 @@ impl<'a> LightTree<'a> {
     /// [`Error::UnsupportedVersion`], [`Error::Corrupt`] (a header word `new` never writes).
     pub fn from_storage(storage: &'a [u32]) -> Result<Self, Error> {
         let got = storage.len();
-        let header = storage.get(..HEADER_WORDS).ok_or(Error::StorageTooSmall {
-            needed: HEADER_WORDS,
-            got,
-        })?;
-        let word = |k: usize| header.get(k).map_or(0, |&w| u32::from_le(w));
-        if word(0) != TAG {
-            return Err(Error::WrongFormat { found: word(0) });
-        }
-        if word(1) != VERSION {
-            return Err(Error::UnsupportedVersion { found: word(1) });
-        }
+        let header: [u32; HEADER_WORDS] = header(storage, TAG, VERSION)?;
+        let word = |k: usize| header.get(k).copied().unwrap_or(0);
         let n = word(2) as usize;
         if n == 0 || n > MAX_LIGHTS {
             return Err(Error::Corrupt { word: 2 });
@@ -499,11 +490,7 @@ impl<'a> LightTree<'a> {
     /// (O(n)): every single-bit flip is rejected ([`Error::Corrupt`] naming word 8).
     pub fn from_storage_verified(storage: &'a [u32]) -> Result<Self, Error> {
         let tree = Self::from_storage(storage)?;
-        let stored = tree
-            .storage
-            .get(CHECKSUM_WORD)
-            .map_or(0, |&w| u32::from_le(w));
-        if checksum(tree.storage, CHECKSUM_WORD) != stored {
+        if !sealed(tree.storage, CHECKSUM_WORD) {
             return Err(Error::Corrupt {
                 word: CHECKSUM_WORD,
             });

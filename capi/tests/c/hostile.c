@@ -209,6 +209,18 @@ static size_t hostile_count(size_t elem, size_t small) {
     return 1 + below(small);
 }
 
+/* A storage length for a build needing `need` words: none, one short, SIZE_MAX, a few words
+   more, or exactly `need`. */
+static size_t hostile_len(size_t need) {
+    switch (rnd() % 6) {
+    case 0: return 0;
+    case 1: return need - 1;
+    case 2: return SIZE_MAX;
+    case 3: return need + below(9);
+    default: return need;
+    }
+}
+
 static int overlaps(const void *a, size_t an, const void *b, size_t bn) {
     uintptr_t x = (uintptr_t)a, y = (uintptr_t)b;
     return an && bn && x < y + bn && y < x + an;
@@ -719,14 +731,7 @@ static size_t built_len[2];
 static void one_build(const struct dist *D) {
     uint32_t w = hostile_side(), h = hostile_side(), kind = hostile_kind(D);
     size_t need = wc_envmap_storage_len(kind, w, h);
-    size_t len;
-    switch (rnd() % 6) {
-    case 0: len = 0; break;
-    case 1: len = need - 1; break;
-    case 2: len = SIZE_MAX; break;
-    case 3: len = need + below(9); break;
-    default: len = need; break;
-    }
+    size_t len = hostile_len(need);
     uint64_t texels = (uint64_t)w * h;
     int small = w && h && texels <= 4096 && need <= 60000; /* arrays can be placed */
     size_t placed_w = small ? (size_t)texels * 4 : 64, placed_s = small ? need * 4 : 64;
@@ -1367,14 +1372,7 @@ static void one_tree_build(void) {
     static const size_t huge[] = {SIZE_MAX, ((size_t)1 << 24) + 1, (size_t)PTRDIFF_MAX / 8 + 1};
     size_t n = rnd() % 8 == 0 ? 0 : rnd() % 8 == 1 ? huge[rnd() % 3] : 1 + below(TREE_LIGHTS);
     int small = n >= 1 && n <= TREE_LIGHTS;
-    size_t need = wc_lights_tree_storage_len(n), len;
-    switch (rnd() % 6) {
-    case 0: len = 0; break;
-    case 1: len = need - 1; break;
-    case 2: len = SIZE_MAX; break;
-    case 3: len = need + below(9); break;
-    default: len = need; break;
-    }
+    size_t need = wc_lights_tree_storage_len(n), len = hostile_len(need);
     size_t lb = small ? n * sizeof(WcLightBounds) : 64, sb = small ? need * 4 : 64;
     int end = rnd() & 1;
     WcLightBounds *lights = place(0, lb, end, 0);

@@ -6,7 +6,7 @@ use super::{
     TAG, TWO_SIDED, VERSION, levels_for, oct_decode, quads_bound,
 };
 use crate::lights::Error;
-use crate::storage::{checksum, to_storage_order};
+use crate::storage::{seal, to_storage_order};
 use core::f64::consts::PI;
 use core::num::Wrapping;
 
@@ -335,9 +335,6 @@ pub(super) fn build(
         *h = v;
     }
     to_storage_order(storage);
-    let sum = checksum(storage, CHECKSUM_WORD);
-    if let Some(w) = storage.get_mut(CHECKSUM_WORD) {
-        *w = sum.to_le();
-    }
+    seal(storage, CHECKSUM_WORD);
     Ok(())
 }
