@@ -891,6 +891,7 @@ const LIGHT_TREE: &[Entry] = {
         Entry::new("lights::LightTree::new", Forms::SCALAR, Kind::Other)
             .golden(SAMPLE)
             .named(&[(C, "wc_lights_tree_build")]),
+        Entry::new("lights::LightTree::new_from_fn", Forms::SCALAR, Kind::Other).golden(TESTS),
         Entry::new("lights::LightTree::storage_len", Forms::SCALAR, Kind::Other)
             .golden(SAMPLE)
             .named(&[(C, "wc_lights_tree_storage_len")]),

@@ -320,6 +320,17 @@ fn hostile_inputs_to_new() {
         Error::StorageTooSmall { .. }
     ));
     assert_eq!(LightTree::storage_len((1 << 24) + 1), usize::MAX);
+    // `new_from_fn` builds the same words as `new`, errors included.
+    let mut r = rng(11);
+    let lights = scene(&mut r, 77, true);
+    let mut s2 = vec![0u32; LightTree::storage_len(77)];
+    LightTree::new_from_fn(77, |i| lights[i], &mut s2).unwrap();
+    assert_eq!(s2, build(&lights));
+    let mut s3 = vec![0u32; LightTree::storage_len(3)];
+    assert_eq!(
+        LightTree::new_from_fn(3, |i| with(&|l| l.power = -1.0)[i], &mut s3).unwrap_err(),
+        Error::InvalidWeight { index: 1 }
+    );
     // A non-unit axis is normalised: the same tree as the unit one.
     let a = build(&[good; 3]);
     let b = build(
