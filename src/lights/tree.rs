@@ -616,6 +616,12 @@ impl<'a> LightTree<'a> {
     /// The probability that [`sample`](Self::sample) at `(p, n)` returns light `index`, for
     /// MIS: the product of the sides' probabilities along the light's stored path, O(depth).
     /// 0 for an index `>= len`, a light of power 0, and a light of importance 0 at `p`.
+    ///
+    /// Error against the same walk in `f64` (measured, `tests/lights/tree.rs`, 600,000
+    /// probabilities of a 300-light scene): at most `7.3e-8` absolute, `5e-5` relative where
+    /// the probability is at least `1e-3` (a side's `1 - P` near `P = 1` carries the `f32`
+    /// spacing of 1 as its absolute error). The probability is exact for what `sample` does:
+    /// it is the product `sample` reports.
     #[inline]
     pub fn pmf(&self, p: [f32; 3], n: [f32; 3], index: u32) -> f32 {
         self.pmf_lanes(p, n, Wrapping(index))
