@@ -20,6 +20,8 @@ struct Bounds {
     w: [f64; 3],
     /// `theta_o`, radians.
     theta_o: f64,
+    /// `cos(theta_o)`.
+    cos_o: f64,
     cos_e: f64,
     two_sided: bool,
 }
@@ -45,8 +47,8 @@ fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
 
 /// The smallest cone (of this construction) holding both normal cones: pbrt-v4's
 /// `DirectionCone` union, our transcription.
-fn cone_union(a: ([f64; 3], f64), b: ([f64; 3], f64)) -> ([f64; 3], f64) {
-    let ((wa, ta), (wb, tb)) = (a, b);
+fn cone_union(a: ([f64; 3], f64, f64), b: ([f64; 3], f64, f64)) -> ([f64; 3], f64, f64) {
+    let ((wa, ta, _), (wb, tb, _)) = (a, b);
     let td = angle(wa, wb);
     if (td + tb).min(PI) <= ta {
         return a;
@@ -56,13 +58,13 @@ fn cone_union(a: ([f64; 3], f64), b: ([f64; 3], f64)) -> ([f64; 3], f64) {
     }
     let to = (ta + td + tb) / 2.0;
     if to >= PI {
-        return (wa, PI);
+        return (wa, PI, -1.0);
     }
     // Rotate wa towards wb by to - ta about their common normal (Rodrigues).
     let axis = cross(wa, wb);
     let len = libm::sqrt(dot(axis, axis));
     if len == 0.0 {
-        return (wa, PI);
+        return (wa, PI, -1.0);
     }
     let k = axis.map(|x| x / len);
     let (s, c) = (libm::sin(to - ta), libm::cos(to - ta));
@@ -71,7 +73,8 @@ fn cone_union(a: ([f64; 3], f64), b: ([f64; 3], f64)) -> ([f64; 3], f64) {
     let w: [f64; 3] = core::array::from_fn(|i| wa[i] * c + kxw[i] * s + k[i] * kw * (1.0 - c));
     let l = libm::sqrt(dot(w, w));
     // A margin for the rounding of the rotation.
-    ((w.map(|x| x / l)), (to + 1e-9).min(PI))
+    let to = (to + 1e-9).min(PI);
+    ((w.map(|x| x / l)), to, libm::cos(to))
 }
 
 impl Bounds {
@@ -84,19 +87,24 @@ impl Bounds {
             phi: f64::from(l.power),
             w: a.map(|x| x / len),
             theta_o: libm::acos(f64::from(l.cos_theta_o)),
+            cos_o: f64::from(l.cos_theta_o),
             cos_e: f64::from(l.cos_theta_e),
             two_sided: l.two_sided,
         }
     }
 
     fn union(&self, o: &Self) -> Self {
-        let (w, theta_o) = cone_union((self.w, self.theta_o), (o.w, o.theta_o));
+        let (w, theta_o, cos_o) = cone_union(
+            (self.w, self.theta_o, self.cos_o),
+            (o.w, o.theta_o, o.cos_o),
+        );
         Bounds {
             min: core::array::from_fn(|i| self.min[i].min(o.min[i])),
             max: core::array::from_fn(|i| self.max[i].max(o.max[i])),
             phi: self.phi + o.phi,
             w,
             theta_o,
+            cos_o,
             cos_e: self.cos_e.min(o.cos_e),
             two_sided: self.two_sided || o.two_sided,
         }
@@ -122,8 +130,28 @@ impl Bounds {
         let phi = self.phi.min(f64::from(f32::MAX)) as f32;
         let oct = oct_encode(self.w);
         let decoded = oct_decode::<f32>(Wrapping(oct)).map(f64::from);
-        let theta = self.theta_o + angle(decoded, self.w) + 1e-6;
-        let cos_o = if theta >= PI { -1.0 } else { libm::cos(theta) };
+        // The axis's rounding error `err` (about 1e-4) widens the cone: a lower bound of
+        // `cos(theta_o + err)` from `cos(err) >= 1 - err^2 / 2` and `sin(err) <= err`, without
+        // a transcendental function (`asin(s) <= 1.0001 s` for the sine `s < 0.02` of the
+        // error; `atan2` otherwise).
+        let c = cross(decoded, self.w);
+        let sin_err = libm::sqrt(dot(c, c));
+        let err = if dot(decoded, self.w) > 0.0 && sin_err < 0.02 {
+            sin_err * 1.0001
+        } else {
+            angle(decoded, self.w)
+        } + 1e-6;
+        let (co, so) = (
+            self.cos_o,
+            libm::sqrt((1.0 - self.cos_o * self.cos_o).max(0.0)),
+        );
+        let cos_o = if self.theta_o + err >= PI {
+            -1.0
+        } else if co >= 0.0 {
+            co * (1.0 - err * err / 2.0) - so * err
+        } else {
+            co - so * err
+        };
         let q = |c: f64| libm::floor((c + 1.0) * 32768.0).clamp(0.0, 65535.0) as u32;
         let info = info | if self.two_sided { TWO_SIDED } else { 0 };
         [
