@@ -240,7 +240,7 @@ impl<F: Fn(usize) -> LightBounds> Builder<'_, '_, F> {
         };
         let lights = self.lights;
         let key = |i: &u32| centroid(&lights(*i as usize), axis);
-        perm.select_nth_unstable_by(at, |a, b| key(a).total_cmp(&key(b)).then(a.cmp(b)));
+        select(perm, at, |i| key(&i));
     }
 
     /// Writes the children of the subtree over `perm` (at least one light) into quad `q`
@@ -253,11 +253,13 @@ impl<F: Fn(usize) -> LightBounds> Builder<'_, '_, F> {
         let size = |i: usize| m.saturating_sub(i * cap).min(cap);
         let (c0, c1, c2) = (size(0), size(1), size(2));
         self.split(perm, c0 + c1);
-        let (low, high) = perm.split_at_mut(c0 + c1);
+        let (low, high) = perm
+            .split_at_mut_checked(c0 + c1)
+            .unwrap_or((&mut [], &mut []));
         self.split(low, c0);
         self.split(high, c2);
-        let (g0, g1) = low.split_at_mut(c0);
-        let (g2, g3) = high.split_at_mut(c2);
+        let (g0, g1) = low.split_at_mut_checked(c0).unwrap_or((&mut [], &mut []));
+        let (g2, g3) = high.split_at_mut_checked(c2).unwrap_or((&mut [], &mut []));
         let mut total: Option<Bounds> = None;
         for (slot, group) in [g0, g1, g2, g3].into_iter().enumerate() {
             let (b, rec) = match *group {
@@ -283,6 +285,97 @@ impl<F: Fn(usize) -> LightBounds> Builder<'_, '_, F> {
             total = Some(total.map_or(b, |t| t.union(&b)));
         }
         total.unwrap_or(Bounds::of(&LightBounds::default()))
+    }
+}
+
+/// Swaps `v[i]` and `v[j]` (nothing out of range: no panic path).
+fn swap(v: &mut [u32], i: usize, j: usize) {
+    if let (Some(&a), Some(&b)) = (v.get(i), v.get(j)) {
+        if let Some(x) = v.get_mut(i) {
+            *x = b;
+        }
+        if let Some(y) = v.get_mut(j) {
+            *y = a;
+        }
+    }
+}
+
+/// Reorders `v` so that `v[k]` is the element a sort by `less` (a strict total order) would
+/// put there, with the smaller ones before it: quickselect with a median-of-three pivot and
+/// Lomuto partitions, O(len) expected; after `2 log2(len) + 8` rounds the rest is
+/// heap-sorted, so O(len log len) at worst. Our own (`select_nth_unstable` keeps panic paths
+/// the no-panic wasm build cannot have).
+fn select(v: &mut [u32], k: usize, key: impl Fn(u32) -> f32) {
+    let at = |v: &[u32], i: usize| v.get(i).copied().unwrap_or(0);
+    // By key, ties by index: a strict total order, so the groups do not depend on the
+    // algorithm.
+    let lt = |a: (f32, u32), b: (f32, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).is_lt();
+    let less = |a: u32, b: u32| lt((key(a), a), (key(b), b));
+    let (mut lo, mut hi) = (0, v.len());
+    let mut budget = 2 * (usize::BITS - v.len().leading_zeros()) + 8;
+    while hi - lo > 1 && (lo..hi).contains(&k) {
+        if budget == 0 {
+            heapsort(v.get_mut(lo..hi).unwrap_or(&mut []), &less);
+            return;
+        }
+        budget -= 1;
+        let (mid, last) = (lo + (hi - lo) / 2, hi - 1);
+        // The median of v[lo], v[mid], v[last] into v[last].
+        if less(at(v, mid), at(v, lo)) {
+            swap(v, mid, lo);
+        }
+        if less(at(v, last), at(v, lo)) {
+            swap(v, last, lo);
+        }
+        if less(at(v, mid), at(v, last)) {
+            swap(v, mid, last);
+        }
+        let pivot = at(v, last);
+        let pk = (key(pivot), pivot);
+        let mut store = lo;
+        for i in lo..last {
+            let x = at(v, i);
+            if lt((key(x), x), pk) {
+                swap(v, i, store);
+                store += 1;
+            }
+        }
+        swap(v, store, last);
+        if k == store {
+            return;
+        }
+        if k < store {
+            hi = store;
+        } else {
+            lo = store + 1;
+        }
+    }
+}
+
+/// Sorts `v` by `less` in place (heapsort; no panic path).
+fn heapsort(v: &mut [u32], less: &impl Fn(u32, u32) -> bool) {
+    let at = |v: &[u32], i: usize| v.get(i).copied().unwrap_or(0);
+    let sift = |v: &mut [u32], mut root: usize, end: usize| loop {
+        let mut child = 2 * root + 1;
+        if child >= end {
+            break;
+        }
+        if child + 1 < end && less(at(v, child), at(v, child + 1)) {
+            child += 1;
+        }
+        if !less(at(v, root), at(v, child)) {
+            break;
+        }
+        swap(v, root, child);
+        root = child;
+    };
+    let n = v.len();
+    for start in (0..n / 2).rev() {
+        sift(v, start, n);
+    }
+    for end in (1..n).rev() {
+        swap(v, 0, end);
+        sift(v, 0, end);
     }
 }
 
@@ -328,8 +421,12 @@ pub(super) fn build(
     for i in 0..n {
         check(i, &lights(i))?;
     }
-    let (header, rest) = storage.split_at_mut(HEADER_WORDS);
-    let (quads, trail) = rest.split_at_mut(QUAD_WORDS * quads_bound(n));
+    let (header, rest) = storage
+        .split_at_mut_checked(HEADER_WORDS)
+        .ok_or(Error::StorageTooSmall { needed, got })?;
+    let (quads, trail) = rest
+        .split_at_mut_checked(QUAD_WORDS * quads_bound(n))
+        .ok_or(Error::StorageTooSmall { needed, got })?;
     let quads = quads.as_chunks_mut::<QUAD_WORDS>().0;
     // The permutation of the lights of positive power, in the trails' place.
     let mut m = 0;
