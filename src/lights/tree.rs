@@ -67,13 +67,15 @@ const BIG: f32 = 8.507_059e37;
 ///
 /// # Sampling
 ///
-/// A walk from the root: at each inner node the two children's importances `I_l`, `I_r` at
-/// `(p, n)` give `P(left) = I_l / (I_l + I_r)`; `u` picks a side and is rescaled into it
-/// (`u / P` or `(u - P) / (1 - P)`, clamped below 1), so a stratified `u` stays stratified
-/// across the leaves as far as the tree's order allows. The probability returned is the
-/// product of the chosen sides' probabilities, in root-to-leaf order. [`pmf`](Self::pmf)
-/// walks the light's stored path (its *bit trail*, one word per light, O(depth), no hash map)
-/// through the same code, so `sample(p, n, u) == Some((i, pmf(p, n, i)))` bit for bit.
+/// A walk from the root of a 4-ary tree: at each inner node the four children's importances
+/// `I_0..I_3` at `(p, n)` make two binary choices, the pair `{0, 1}` with probability
+/// `(I_0 + I_1) / S`, then a child of the pair (`I_0 / (I_0 + I_1)`, or `I_2 / (I_2 + I_3)`).
+/// At each choice `u` picks a side and is rescaled into it (`u / P` or `(u - P) / (1 - P)`,
+/// clamped below 1), so a stratified `u` stays stratified across the leaves as far as the
+/// tree's order allows. The probability returned is the product of the choices'
+/// probabilities, in root-to-leaf order. [`pmf`](Self::pmf) walks the light's stored path
+/// (its *bit trail*: one word per light, 2 bits per level; O(depth), no hash map) through
+/// the same code, so `sample(p, n, u) == Some((i, pmf(p, n, i)))` bit for bit.
 ///
 /// **Importance** (our transcription of the bound of pbrt-v4's `LightBounds::Importance`,
 /// after Conty Estevez and Kulla 2018): for a node with bounding sphere (centre `c`, radius
@@ -104,12 +106,14 @@ const BIG: f32 = 8.507_059e37;
 ///
 /// # Build
 ///
-/// [`new`](Self::new) validates the lights, then builds a balanced binary tree over the lights
-/// of positive power by median splits along the longest axis of the centroids' box
-/// (`select_nth_unstable`, O(n log n), depth `ceil(log2 n)`), with the storage as its only
-/// scratch (no allocator). The bounds of an inner node are the union of its children's: the
-/// boxes, the power sums (in `f64`), the normal cones (pbrt-v4's `DirectionCone` union) and
-/// the widest falloff.
+/// [`new`](Self::new) validates the lights, then builds a 4-ary tree over the lights of
+/// positive power: each inner node's lights are split in two along the longest axis of their
+/// centroids' box and each half in two along its own (our own panic-free quickselect, O(n)
+/// expected per level, a heapsort fallback bounds it by O(n log n)), into groups of
+/// `4^(levels - 1)` lights filled in order. Depth `ceil(log4 m)`; O(n log n); the storage is
+/// the only scratch space (no allocator). The bounds of an inner node are the union of its
+/// children's: the boxes, the power sums (in `f64`), the normal cones (pbrt-v4's
+/// `DirectionCone` union, in `f64`) and the widest falloff.
 ///
 /// # Storage layout (32-bit words, little-endian on every target)
 ///
@@ -119,19 +123,20 @@ const BIG: f32 = 8.507_059e37;
 /// | 1 | format version (1) |
 /// | 2 | `n`, the number of lights |
 /// | 3 | `m`, the lights of positive power (the tree's leaves) |
-/// | 4 | levels of the walk (`1 + ceil(log2 m)`) |
+/// | 4 | levels of the walk (`ceil(log4 m)`, at least 1) |
 /// | 8 | content checksum of every other word |
 /// | 5..8, 9..16 | 0 |
-/// | 16.. | `n` sibling pairs of 16 words (pair 0: the root and an empty node) |
-/// | 16 + 16 n.. | `n` bit trails (bit `l`: the side taken at level `l`) |
+/// | 16.. | `n / 3 + 14` quads of 32 words: the four children of an inner node (quad 0: the root's) |
+/// | then | `n` bit trails (bits `2l`, `2l + 1`: the pair and the child taken at level `l`) |
 ///
 /// A node is 8 words: its bounding sphere's centre (3 `f32`) and radius, its power, its
 /// axis (octahedral, 2 x 16 bits), `cos_theta_o` and `cos_theta_e` (16 bits each, rounded
 /// down: the stored cone is never narrower), and a word holding a leaf flag, a two-sided
-/// flag and a child pair's or a light's index. The axis's rounding error is added to
-/// `theta_o`, and the radius is rounded up, so the stored bounds contain the given ones.
-/// **68 bytes per light** (two 32-byte nodes and a 4-byte trail); the two children read at
-/// each level share one 64-byte line.
+/// flag and a child quad's or a light's index. The axis's rounding error is added to
+/// `theta_o`, and the radius is rounded up, so the stored bounds contain the given ones. A
+/// quad is field-major (word `k` of child `c` at `4 k + c`): a scalar walk evaluates the
+/// four children as one `f32x4`. **About 47 bytes per light**
+/// (`storage_len(n) = 16 + 32 (n / 3 + 14) + n` words).
 ///
 /// `from_storage` (O(1)) checks the header; sampling any storage that passed it never panics
 /// and returns valid outputs (an index below `n`, a probability in `[0, 1]`), whatever the
@@ -411,9 +416,10 @@ fn walk<L: Children, C: Chooser<L>>(
 }
 
 impl<'a> LightTree<'a> {
-    /// Words of storage `new` needs for `n` lights: `16 + 17 n` (68 bytes per light after a
-    /// 64-byte header); `usize::MAX` above `2^24` lights (the format's limit, see
-    /// [`Error::TooLarge`]), and the header alone for `n = 0`.
+    /// Words of storage `new` needs for `n` lights: `16 + 32 (n / 3 + 14) + n` (about 47
+    /// bytes per light, after a 64-byte header and 1,792 bytes of slack for the partial
+    /// quads); `usize::MAX` above `2^24` lights (the format's limit, see
+    /// [`Error::TooLarge`]).
     pub const fn storage_len(n: usize) -> usize {
         if n > MAX_LIGHTS {
             usize::MAX

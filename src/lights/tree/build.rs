@@ -212,7 +212,7 @@ impl<F: Fn(usize) -> LightBounds> Builder<'_, '_, F> {
     }
 
     /// Reorders `perm` so that its first `at` lights lie below the rest along the longest
-    /// axis of their centroids' box (`select_nth_unstable`, O(len)).
+    /// axis of their centroids' box ([`select`], O(len) expected).
     fn split(&self, perm: &mut [u32], at: usize) {
         if at == 0 || at >= perm.len() {
             return;
