@@ -63,11 +63,18 @@
 // An error this version of the header has no name for.
 #define WC_ERR_OTHER (-10)
 
-// A light's weight is NaN, infinite or negative (`wc_lights_alias_build`).
-#define WC_ERR_INVALID_WEIGHT (-11)
+// No lights (`n == 0`; the light-selection builders).
+#define WC_ERR_EMPTY (-11)
 
-// Every light's weight is zero: no light can be chosen (`wc_lights_alias_build`).
-#define WC_ERR_ALL_ZERO (-12)
+// A light's weight or power is NaN, infinite or negative (the light-selection builders).
+#define WC_ERR_INVALID_WEIGHT (-12)
+
+// A light's bounds are unusable (`wc_lights_tree_build`): a NaN or infinite coordinate,
+// `min > max`, a zero, NaN or infinite axis, or a cosine outside `[-1, 1]`.
+#define WC_ERR_INVALID_BOUNDS (-13)
+
+// Every light's weight or power is zero: no light can be chosen.
+#define WC_ERR_ALL_ZERO (-14)
 
 // Words of the header at the start of every storage (64 bytes: the tables after it sit on
 // cache lines when the storage is 64-byte aligned, e.g. from `aligned_alloc(64, ...)`).
@@ -150,6 +157,20 @@ typedef struct {
   // The probability of that choice, equal bit for bit to `wc_lights_alias_pmf` of `index`.
   float prob;
 } WcLightChoice;
+
+// One light's bounds for the tree: the fields of the crate's `LightBounds`, in its order
+// (box corners, power >= 0, emission axis, then the cosines of the normal spread and of the
+// falloff beyond it, each in `[-1, 1]`), with `two_sided` as a word (nonzero: true), so that
+// any bytes a C caller writes are a valid value.
+typedef struct {
+  float min[3];
+  float max[3];
+  float power;
+  float axis[3];
+  float cos_theta_o;
+  float cos_theta_e;
+  uint32_t two_sided;
+} WcLightBounds;
 
 // One sample's sampler: a pattern, a pixel, a domain path and a sample index, in 16 bytes.
 // A plain value: copy it, derive children from it, draw from it, from any thread.
@@ -482,7 +503,7 @@ size_t wc_lights_alias_storage_len(size_t lights);
 
 // Builds the alias table of `n` weights (usually each light's power; any finite value
 // `>= 0`) into `storage` (Vose's method on exact integer masses, O(n), no allocation).
-// Returns `WC_OK` (0) or the first failed check, in this order: `WC_ERR_ZERO_SIZE` (`n` is
+// Returns `WC_OK` (0) or the first failed check, in this order: `WC_ERR_EMPTY` (`n` is
 // 0), `WC_ERR_TOO_LARGE` (more than 2^26 lights, or arrays larger than `PTRDIFF_MAX`
 // bytes), `WC_ERR_STORAGE_TOO_SMALL` (`storage_len < wc_lights_alias_storage_len(n)`),
 // `WC_ERR_INVALID_ARGUMENT` (a null or misaligned pointer, or weights overlapping the
@@ -549,6 +570,82 @@ size_t wc_lights_alias_pmf(const uint32_t *storage,
                            const uint32_t *index,
                            float *out,
                            size_t n);
+
+// Words of storage `wc_lights_tree_build` needs for `lights` lights
+// (`16 + 32 (lights / 3 + 14) + lights`, about 47 bytes per light), `SIZE_MAX` above 2^24
+// lights. Any argument; reads and writes no memory.
+size_t wc_lights_tree_storage_len(size_t lights);
+
+// Builds the light tree of `n` lights into `storage`. Returns `WC_OK` (0) or the first
+// failed check, in this order: `WC_ERR_EMPTY` (`n == 0`), `WC_ERR_TOO_LARGE` (above 2^24
+// lights, or arrays above `PTRDIFF_MAX` bytes), `WC_ERR_STORAGE_TOO_SMALL` (`storage_len`
+// below `wc_lights_tree_storage_len(n)`), `WC_ERR_INVALID_ARGUMENT` (a null or misaligned
+// pointer, or `lights` overlapping the storage's first `wc_lights_tree_storage_len(n)`
+// words), then the lights' checks (`WC_ERR_INVALID_WEIGHT`, `WC_ERR_INVALID_BOUNDS`,
+// `WC_ERR_ALL_ZERO`). The storage is written only after the pointer checks pass (exactly its
+// first `wc_lights_tree_storage_len(n)` words); its bytes are the file format.
+//
+// # Safety
+// `lights` must be readable for `n` elements and `storage` writable for `storage_len`
+// words (only when the checks before the lights' pass).
+int32_t wc_lights_tree_build(const WcLightBounds *lights,
+                             size_t n,
+                             uint32_t *storage,
+                             size_t storage_len);
+
+// Checks a storage's header in O(1) (the crate's `from_storage`). Returns `WC_OK` or
+// `WC_ERR_INVALID_ARGUMENT` (`storage_len > 0` with a null or misaligned `storage`),
+// `WC_ERR_STORAGE_TOO_SMALL`, `WC_ERR_WRONG_FORMAT`, `WC_ERR_UNSUPPORTED_VERSION`,
+// `WC_ERR_CORRUPT`. Sampling a storage that passes is safe whatever its other words hold;
+// the sampling functions run this check on every call. Reads only.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words.
+int32_t wc_lights_tree_from_storage(const uint32_t *storage, size_t storage_len);
+
+// `wc_lights_tree_from_storage` plus the content checksum (the crate's
+// `from_storage_verified`): every single-bit flip is rejected (`WC_ERR_CORRUPT`). O(n).
+//
+// # Safety
+// `storage` must be readable for `storage_len` words.
+int32_t wc_lights_tree_from_storage_verified(const uint32_t *storage, size_t storage_len);
+
+// Picks a light at each of `n` shading points: `p` and `normal` hold `3n` floats (a normal
+// of zeros: a point in a medium), `u` `n` floats (any values; clamped to `[0, 1)`). Writes
+// `index[i]` and `prob[i]`: the light and its probability, equal bit for bit to
+// `wc_lights_tree_pmf` of that light, or `UINT32_MAX` and 0 where no light contributes.
+// Returns `n`, or 0 (writing nothing) for `n == 0`, a null or misaligned pointer, a count
+// whose byte size overflows, outputs that overlap each other or an input, or a storage that
+// fails `wc_lights_tree_from_storage`.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `p` and `normal` for `3n` floats, `u`
+// for `n` floats, `index` and `prob` writable for `n` elements.
+size_t wc_lights_tree_sample(const uint32_t *storage,
+                             size_t storage_len,
+                             const float *p,
+                             const float *normal,
+                             const float *u,
+                             uint32_t *index,
+                             float *prob,
+                             size_t n);
+
+// The probability that `wc_lights_tree_sample` at shading point `i` (`p`, `normal`: `3n`
+// floats) returns light `index[i]`, into `out[i]` (0 for an index past the end, a light of
+// power 0 or of importance 0 there). Returns `n`, or 0 (writing nothing) for `n == 0`, a
+// null or misaligned pointer, a count whose byte size overflows, an `out` overlapping an
+// input, or a storage that fails `wc_lights_tree_from_storage`.
+//
+// # Safety
+// `storage` must be readable for `storage_len` words, `p` and `normal` for `3n` floats,
+// `index` for `n` words, `out` writable for `n` floats.
+size_t wc_lights_tree_pmf(const uint32_t *storage,
+                          size_t storage_len,
+                          const float *p,
+                          const float *normal,
+                          const uint32_t *index,
+                          float *out,
+                          size_t n);
 
 // Points `start, start + 1, ..., start + n - 1` (indices wrap after `UINT32_MAX`) of
 // `seed`'s Owen-scrambled pmj02bn sequence, in `[0, 1)^2`: `2n` floats. Every power-of-two

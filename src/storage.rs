@@ -62,3 +62,70 @@ pub(crate) fn from_storage_order<U: UintLane>(x: U) -> U {
         x
     }
 }
+
+/// Why a storage header was refused before its family-specific words were read: each family
+/// maps this onto its own `Error` (`StorageTooSmall`, `WrongFormat`, `UnsupportedVersion`).
+pub(crate) enum HeaderFault {
+    /// Fewer words than the header (`needed`).
+    TooSmall { needed: usize, got: usize },
+    /// Word 0 is not the expected format tag.
+    WrongFormat { found: u32 },
+    /// Word 1 is not the version this build reads.
+    UnsupportedVersion { found: u32 },
+}
+
+/// `impl From<HeaderFault> for $error`, for a family's `Error` with the variants
+/// `StorageTooSmall { needed, got }`, `WrongFormat { found }` and
+/// `UnsupportedVersion { found }`.
+macro_rules! from_header_fault {
+    ($error:ty) => {
+        impl From<crate::storage::HeaderFault> for $error {
+            fn from(f: crate::storage::HeaderFault) -> Self {
+                use crate::storage::HeaderFault as F;
+                match f {
+                    F::TooSmall { needed, got } => Self::StorageTooSmall { needed, got },
+                    F::WrongFormat { found } => Self::WrongFormat { found },
+                    F::UnsupportedVersion { found } => Self::UnsupportedVersion { found },
+                }
+            }
+        }
+    };
+}
+pub(crate) use from_header_fault;
+
+/// The first `N` words of a storage as numbers, once word 0 is `tag` and word 1 is `version`
+/// (the O(1) checks every `from_storage` starts with).
+pub(crate) fn header<const N: usize>(
+    storage: &[u32],
+    tag: u32,
+    version: u32,
+) -> Result<[u32; N], HeaderFault> {
+    let got = storage.len();
+    let words: &[u32; N] = storage
+        .first_chunk::<N>()
+        .ok_or(HeaderFault::TooSmall { needed: N, got })?;
+    let words = words.map(u32::from_le);
+    let [found, v] = [0, 1].map(|k| words.get(k).copied().unwrap_or(0));
+    if found != tag {
+        return Err(HeaderFault::WrongFormat { found });
+    }
+    if v != version {
+        return Err(HeaderFault::UnsupportedVersion { found: v });
+    }
+    Ok(words)
+}
+
+/// Writes the checksum of a freshly built storage (already in storage byte order) into word
+/// `checksum_word`.
+pub(crate) fn seal(storage: &mut [u32], checksum_word: usize) {
+    let sum = checksum(storage, checksum_word);
+    if let Some(w) = storage.get_mut(checksum_word) {
+        *w = sum.to_le();
+    }
+}
+
+/// Whether a storage matches the checksum in its word `checksum_word`.
+pub(crate) fn sealed(storage: &[u32], checksum_word: usize) -> bool {
+    let stored = storage.get(checksum_word).map_or(0, |&w| u32::from_le(w));
+    checksum(storage, checksum_word) == stored
+}

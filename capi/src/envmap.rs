@@ -36,10 +36,15 @@ pub const WC_ERR_CORRUPT: i32 = -8;
 pub const WC_ERR_INVALID_ARGUMENT: i32 = -9;
 /// An error this version of the header has no name for.
 pub const WC_ERR_OTHER: i32 = -10;
-/// A light's weight is NaN, infinite or negative (`wc_lights_alias_build`).
-pub const WC_ERR_INVALID_WEIGHT: i32 = -11;
-/// Every light's weight is zero: no light can be chosen (`wc_lights_alias_build`).
-pub const WC_ERR_ALL_ZERO: i32 = -12;
+/// No lights (`n == 0`; the light-selection builders).
+pub const WC_ERR_EMPTY: i32 = -11;
+/// A light's weight or power is NaN, infinite or negative (the light-selection builders).
+pub const WC_ERR_INVALID_WEIGHT: i32 = -12;
+/// A light's bounds are unusable (`wc_lights_tree_build`): a NaN or infinite coordinate,
+/// `min > max`, a zero, NaN or infinite axis, or a cosine outside `[-1, 1]`.
+pub const WC_ERR_INVALID_BOUNDS: i32 = -13;
+/// Every light's weight or power is zero: no light can be chosen.
+pub const WC_ERR_ALL_ZERO: i32 = -14;
 
 /// Words of the header at the start of every storage (64 bytes: the tables after it sit on
 /// cache lines when the storage is 64-byte aligned, e.g. from `aligned_alloc(64, ...)`).
@@ -132,8 +137,12 @@ pub extern "C" fn wc_error_string(code: i32) -> *const core::ffi::c_char {
             c"invalid argument: a null or misaligned pointer, overlapping arrays, or a bad option"
         }
         WC_ERR_OTHER => c"an error this version of the header has no name for",
-        WC_ERR_INVALID_WEIGHT => c"a light's weight is NaN, infinite or negative",
-        WC_ERR_ALL_ZERO => c"every light's weight is zero",
+        WC_ERR_EMPTY => c"no lights",
+        WC_ERR_INVALID_WEIGHT => c"a light's weight or power is NaN, infinite or negative",
+        WC_ERR_INVALID_BOUNDS => {
+            c"a light's bounds are invalid (NaN or infinite coordinate, min > max, zero or non-finite axis, cosine outside [-1, 1])"
+        }
+        WC_ERR_ALL_ZERO => c"every light's weight or power is zero",
         _ => c"unknown warpcore error code",
     };
     s.as_ptr()

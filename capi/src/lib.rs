@@ -44,6 +44,8 @@ pub mod disk;
 pub mod envmap;
 #[cfg(feature = "lights")]
 pub mod lights;
+#[cfg(all(feature = "lights", feature = "envmap"))]
+pub mod lights_tree;
 #[cfg(feature = "pmj02bn")]
 pub mod pmj02bn;
 #[cfg(feature = "sampler")]

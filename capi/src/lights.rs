@@ -2,9 +2,9 @@
 //! to its power, O(1) per sample, with the exact probability of the choice).
 
 use crate::envmap::{
-    WC_ERR_ALL_ZERO, WC_ERR_CORRUPT, WC_ERR_INVALID_ARGUMENT, WC_ERR_INVALID_WEIGHT, WC_ERR_OTHER,
-    WC_ERR_STORAGE_TOO_SMALL, WC_ERR_TOO_LARGE, WC_ERR_UNSUPPORTED_VERSION, WC_ERR_WRONG_FORMAT,
-    WC_ERR_ZERO_SIZE, WC_OK,
+    WC_ERR_ALL_ZERO, WC_ERR_CORRUPT, WC_ERR_EMPTY, WC_ERR_INVALID_ARGUMENT, WC_ERR_INVALID_WEIGHT,
+    WC_ERR_OTHER, WC_ERR_STORAGE_TOO_SMALL, WC_ERR_TOO_LARGE, WC_ERR_UNSUPPORTED_VERSION,
+    WC_ERR_WRONG_FORMAT, WC_OK,
 };
 use crate::ffi::{fits, map, map_each, read_and_fill, slice, span};
 use warpcore::lights::{AliasTable, Error};
@@ -22,7 +22,7 @@ pub struct WcLightChoice {
 /// The `WC_ERR_*` code of a crate error.
 fn code(e: Error) -> i32 {
     match e {
-        Error::Empty => WC_ERR_ZERO_SIZE,
+        Error::Empty => WC_ERR_EMPTY,
         Error::TooLarge => WC_ERR_TOO_LARGE,
         Error::StorageTooSmall { .. } => WC_ERR_STORAGE_TOO_SMALL,
         Error::InvalidWeight { .. } => WC_ERR_INVALID_WEIGHT,
@@ -44,7 +44,7 @@ pub extern "C" fn wc_lights_alias_storage_len(lights: usize) -> usize {
 
 /// Builds the alias table of `n` weights (usually each light's power; any finite value
 /// `>= 0`) into `storage` (Vose's method on exact integer masses, O(n), no allocation).
-/// Returns `WC_OK` (0) or the first failed check, in this order: `WC_ERR_ZERO_SIZE` (`n` is
+/// Returns `WC_OK` (0) or the first failed check, in this order: `WC_ERR_EMPTY` (`n` is
 /// 0), `WC_ERR_TOO_LARGE` (more than 2^26 lights, or arrays larger than `PTRDIFF_MAX`
 /// bytes), `WC_ERR_STORAGE_TOO_SMALL` (`storage_len < wc_lights_alias_storage_len(n)`),
 /// `WC_ERR_INVALID_ARGUMENT` (a null or misaligned pointer, or weights overlapping the
@@ -65,7 +65,7 @@ pub unsafe extern "C" fn wc_lights_alias_build(
     storage_len: usize,
 ) -> i32 {
     if n == 0 {
-        return WC_ERR_ZERO_SIZE;
+        return WC_ERR_EMPTY;
     }
     let needed = AliasTable::storage_len(n);
     if needed == usize::MAX || !fits::<f32>(n) || !fits::<u32>(needed) {

@@ -622,7 +622,7 @@ const TABLE: &[(&str, &[&str])] = {
             "wc_lights_alias_build",
             &[
                 "WC_OK",
-                "WC_ERR_ZERO_SIZE",
+                "WC_ERR_EMPTY",
                 "WC_ERR_TOO_LARGE",
                 "WC_ERR_STORAGE_TOO_SMALL",
                 "WC_ERR_INVALID_ARGUMENT",
@@ -635,6 +635,24 @@ const TABLE: &[(&str, &[&str])] = {
         ("wc_lights_alias_sample", SAMPLE),
         ("wc_lights_alias_pmf", PDF),
         ("wc_error_string", &["string"]),
+        ("wc_lights_tree_storage_len", &["words", "SIZE_MAX"]),
+        (
+            "wc_lights_tree_build",
+            &[
+                "WC_OK",
+                "WC_ERR_EMPTY",
+                "WC_ERR_TOO_LARGE",
+                "WC_ERR_STORAGE_TOO_SMALL",
+                "WC_ERR_INVALID_ARGUMENT",
+                "WC_ERR_INVALID_WEIGHT",
+                "WC_ERR_INVALID_BOUNDS",
+                "WC_ERR_ALL_ZERO",
+            ],
+        ),
+        ("wc_lights_tree_from_storage", CHECK),
+        ("wc_lights_tree_from_storage_verified", CHECK),
+        ("wc_lights_tree_sample", SAMPLE),
+        ("wc_lights_tree_pmf", SAMPLE),
     ]
 };
 

@@ -980,3 +980,194 @@ pub fn lights_alias_storage(data: &[u8]) {
         assert!((0.0..=1.0).contains(&q));
     }
 }
+
+/// Shading points for the light-tree checks: specials crossed with ordinary points, media and
+/// non-unit normals.
+#[cfg(feature = "lights")]
+fn light_queries() -> Vec<([f32; 3], [f32; 3], f32)> {
+    let specials = [
+        0.0f32,
+        -0.0,
+        0.5,
+        -3.0,
+        1e30,
+        f32::NAN,
+        f32::INFINITY,
+        1e-40,
+    ];
+    let h = |x: u32| (x.wrapping_mul(0x2c1b_3c6d) ^ (x >> 12)).wrapping_mul(0x297a_2d39);
+    let f = |x: u32| (h(x) >> 8) as f32 / 16_777_216.0;
+    let mut q: Vec<([f32; 3], [f32; 3], f32)> = specials
+        .iter()
+        .flat_map(|&a| {
+            specials
+                .iter()
+                .map(move |&b| ([a, 1.0, b], [b, 0.0, 1.0], a))
+        })
+        .collect();
+    q.extend((0..64u32).map(|i| {
+        let k = 8 * i;
+        let p = [f(k) * 8.0 - 4.0, f(k + 1) * 8.0 - 4.0, f(k + 2) * 8.0 - 4.0];
+        let n = if i % 3 == 0 {
+            [0.0; 3]
+        } else {
+            [f(k + 3) - 0.5, f(k + 4) - 0.5, f(k + 5) - 0.5]
+        };
+        (p, n, f(k + 6))
+    }));
+    q
+}
+
+/// What every light tree that loaded must do at `queries`: `sample` gives an index below
+/// `len` and a probability in `(0, 1]`; `pmf` is in `[0, 1]`; with `exact` (a tree `new`
+/// built, unaltered) `sample` equals `pmf` bit for bit, never returns a light of power 0
+/// (`zero_power`) and the pmfs sum to at most `1 + 1e-4`.
+#[cfg(feature = "lights")]
+fn light_tree_outputs(
+    t: &warpcore::lights::LightTree,
+    exact: bool,
+    zero_power: &dyn Fn(u32) -> bool,
+) {
+    let len = t.len() as u32;
+    for (p, n, u) in light_queries() {
+        if let Some((i, q)) = t.sample(p, n, u) {
+            assert!(i < len && q > 0.0 && q <= 1.0, "sample ({i}, {q}) of {len}");
+            if exact {
+                assert_eq!(q.to_bits(), t.pmf(p, n, i).to_bits(), "sample != pmf");
+                assert!(!zero_power(i), "light {i} of power 0 chosen");
+            }
+        }
+        let mut sum = 0.0f64;
+        for i in 0..len.min(80) + 2 {
+            let q = t.pmf(p, n, i);
+            assert!((0.0..=1.0).contains(&q), "pmf {q}");
+            sum += f64::from(q);
+        }
+        if exact && len <= 80 {
+            assert!(sum <= 1.0 + 1e-4, "pmfs sum to {sum}");
+        }
+    }
+}
+
+/// Fuzz the light tree's build: the words are lights of 15 words each (min, max, power, axis,
+/// cos_theta_o, cos_theta_e as `f32` bits, then a two-sided word), up to 64 lights. `new`
+/// must return the first error an independent reading of the rules predicts (or succeed),
+/// never panic, and a built tree must keep [`light_tree_outputs`]' promises.
+#[cfg(feature = "lights")]
+pub fn lights_tree_build(data: &[u8]) {
+    use warpcore::lights::{Error, LightBounds, LightTree};
+    let w = words(data);
+    let f = |k: usize| f32::from_bits(w.get(k).copied().unwrap_or(0));
+    let lights: Vec<LightBounds> = (0..(w.len() / 15).min(64))
+        .map(|i| {
+            let b = 15 * i;
+            LightBounds {
+                min: [f(b), f(b + 1), f(b + 2)],
+                max: [f(b + 3), f(b + 4), f(b + 5)],
+                power: f(b + 6),
+                axis: [f(b + 7), f(b + 8), f(b + 9)],
+                cos_theta_o: f(b + 10),
+                cos_theta_e: f(b + 11),
+                two_sided: w.get(b + 12).is_some_and(|x| x & 1 != 0),
+            }
+        })
+        .collect();
+    let expected = if lights.is_empty() {
+        Some(Error::Empty)
+    } else {
+        lights
+            .iter()
+            .enumerate()
+            .find_map(|(index, l)| {
+                if !(l.power >= 0.0 && l.power.is_finite()) {
+                    return Some(Error::InvalidWeight { index });
+                }
+                let coords = l.min.iter().chain(&l.max).all(|c| c.is_finite())
+                    && (0..3).all(|k| l.min[k] <= l.max[k]);
+                let axis = l.axis.iter().all(|c| c.is_finite())
+                    && l.axis
+                        .iter()
+                        .map(|&c| f64::from(c) * f64::from(c))
+                        .sum::<f64>()
+                        > 0.0;
+                let cos = [l.cos_theta_o, l.cos_theta_e]
+                    .iter()
+                    .all(|c| (-1.0..=1.0).contains(c));
+                (!(coords && axis && cos)).then_some(Error::InvalidBounds { index })
+            })
+            .or_else(|| {
+                lights
+                    .iter()
+                    .all(|l| l.power == 0.0)
+                    .then_some(Error::AllZero)
+            })
+    };
+    let mut s = vec![0u32; LightTree::storage_len(lights.len())];
+    match (LightTree::new(&lights, &mut s), expected) {
+        (Ok(t), None) => {
+            assert_eq!(t.len(), lights.len());
+            let zero = |i: u32| lights.get(i as usize).is_none_or(|l| l.power == 0.0);
+            light_tree_outputs(&t, true, &zero);
+            assert!(LightTree::from_storage_verified(&s).is_ok());
+        }
+        (Err(e), Some(x)) => assert_eq!(e, x),
+        (r, x) => core::panic!("new gave {:?}, expected {x:?}", r.map(|t| t.len())),
+    }
+}
+
+/// Fuzz loading light-tree storage. Byte 0: bit 0 picks edit mode. Raw mode: the words after
+/// byte 4 are the storage. Edit mode: word 1 gives the light count (`% 50 + 1`) and word 2 a
+/// seed; the tree is built, then each following pair of words `(position, value)` overwrites
+/// one word (positions modulo the length). Whatever loads must keep
+/// [`light_tree_outputs`]' validity promises; `from_storage_verified` must accept an
+/// unaltered storage and reject one in which exactly one word changed (the checksum's
+/// guarantee).
+#[cfg(feature = "lights")]
+pub fn lights_tree_storage(data: &[u8]) {
+    use warpcore::lights::{LightBounds, LightTree};
+    let flags = data.first().copied().unwrap_or(0);
+    let w = words(data.get(4..).unwrap_or(&[]));
+    let get = |k: usize| w.get(k).copied().unwrap_or(0);
+    let (storage, changed) = if flags & 1 == 0 {
+        (w.clone(), None)
+    } else {
+        let n = (get(0) % 50 + 1) as usize;
+        let seed = get(1);
+        let h = |x: u32| ((x ^ seed).wrapping_mul(0x9e37_79b9) >> 8) as f32 / 16_777_216.0;
+        let lights: Vec<LightBounds> = (0..n as u32)
+            .map(|i| {
+                let c = [h(8 * i) * 6.0, h(8 * i + 1) * 6.0, h(8 * i + 2)];
+                LightBounds {
+                    min: c,
+                    max: [c[0] + 0.1, c[1] + 0.1, c[2]],
+                    power: if i % 5 == 2 {
+                        0.0
+                    } else {
+                        h(8 * i + 3) * 4.0 + 0.01
+                    },
+                    axis: [h(8 * i + 4) - 0.5, h(8 * i + 5) - 0.5, h(8 * i + 6) - 0.25],
+                    cos_theta_o: if i % 2 == 0 { 1.0 } else { -1.0 },
+                    cos_theta_e: 0.0,
+                    two_sided: i % 3 == 0,
+                }
+            })
+            .collect();
+        let mut s = vec![0u32; LightTree::storage_len(n)];
+        LightTree::new(&lights, &mut s).expect("valid build");
+        let original = s.clone();
+        let len = s.len();
+        for pair in w.get(2..).unwrap_or(&[]).chunks_exact(2) {
+            s[pair[0] as usize % len] = pair[1];
+        }
+        let diff = s.iter().zip(&original).filter(|(a, b)| a != b).count();
+        (s, Some(diff))
+    };
+    match changed {
+        Some(0) => assert!(LightTree::from_storage_verified(&storage).is_ok()),
+        Some(1) => assert!(LightTree::from_storage_verified(&storage).is_err()),
+        _ => {}
+    }
+    if let Ok(t) = LightTree::from_storage(&storage) {
+        light_tree_outputs(&t, changed == Some(0), &|_| false);
+    }
+}

@@ -30,7 +30,7 @@ macro_rules! all {
 /// Every entry of the families compiled in, in fingerprint order.
 pub fn entries() -> impl Iterator<Item = &'static Entry> {
     [
-        DISK, PMJ02BN, SAMPLER, SEQUENCE, TRIANGLE, SPHERE, ENVMAP, SPHERICAL, LIGHTS,
+        DISK, PMJ02BN, SAMPLER, SEQUENCE, TRIANGLE, SPHERE, ENVMAP, SPHERICAL, LIGHTS, LIGHT_TREE,
     ]
     .into_iter()
     .flatten()
@@ -60,7 +60,7 @@ pub const NOT_FUNCTIONS: &[(Lang, &str, &str)] = &[
 /// follow them).
 #[cfg(feature = "lights")]
 const LIGHTS: &[Entry] = {
-    const TESTS: Golden = Golden::Tests("tests/lights_alias.rs");
+    const TESTS: Golden = Golden::Tests("tests/lights/alias.rs");
     const fn alias(name: &'static str) -> Entry {
         Entry::new(name, Forms::SCALAR, Kind::Other).golden(TESTS)
     }
@@ -909,3 +909,46 @@ fn normal_x16(l: Light<warpcore::f32x16>) -> [warpcore::f32x16; 3] {
 
 #[cfg(not(feature = "spherical"))]
 const SPHERICAL: &[Entry] = &[];
+
+/// The light tree (`lights::LightTree`): built objects, so `Kind::Other`; the bits are pinned
+/// by [`fp::lights_tree`] (a fixed light set's storage, samples and pmfs) and proved by
+/// `tests/lights/tree.rs` (lanes and slices bit-identical, hostile inputs, storage).
+#[cfg(feature = "lights")]
+const LIGHT_TREE: &[Entry] = {
+    const TESTS: Golden = Golden::Tests("tests/lights/tree.rs");
+    const SAMPLE: Golden = Golden::With("lights::LightTree::sample");
+    &[
+        Entry::new("lights::LightTree::sample", Forms::ALL, Kind::Other)
+            .golden(Golden::OwnPiece(fp::lights_tree))
+            .named(&[(C, "wc_lights_tree_sample")]),
+        Entry::new("lights::LightTree::pmf", Forms::LANES, Kind::Other)
+            .golden(SAMPLE)
+            .named(&[(C, "wc_lights_tree_pmf")]),
+        Entry::new("lights::LightTree::new", Forms::SCALAR, Kind::Other)
+            .golden(SAMPLE)
+            .named(&[(C, "wc_lights_tree_build")]),
+        Entry::new("lights::LightTree::new_from_fn", Forms::SCALAR, Kind::Other).golden(TESTS),
+        Entry::new("lights::LightTree::storage_len", Forms::SCALAR, Kind::Other)
+            .golden(SAMPLE)
+            .named(&[(C, "wc_lights_tree_storage_len")]),
+        Entry::new(
+            "lights::LightTree::from_storage",
+            Forms::SCALAR,
+            Kind::Other,
+        )
+        .golden(TESTS)
+        .named(&[(C, "wc_lights_tree_from_storage")]),
+        Entry::new(
+            "lights::LightTree::from_storage_verified",
+            Forms::SCALAR,
+            Kind::Other,
+        )
+        .golden(TESTS)
+        .named(&[(C, "wc_lights_tree_from_storage_verified")]),
+        Entry::new("lights::LightTree::len", Forms::SCALAR, Kind::Other).golden(TESTS),
+        Entry::new("lights::LightTree::is_empty", Forms::SCALAR, Kind::Other).golden(TESTS),
+        Entry::new("lights::LightTree::storage", Forms::SCALAR, Kind::Other).golden(TESTS),
+    ]
+};
+#[cfg(not(feature = "lights"))]
+const LIGHT_TREE: &[Entry] = &[];

@@ -782,3 +782,60 @@ pub fn envmap_storage_lens(h: &mut Hasher) {
     h.word(Hierarchical::storage_len(13, 7) as u32);
     h.word(Hierarchical::storage_len(4096, 2048) as u32);
 }
+
+/// A fixed set of 24 lights for the light tree: one- and two-sided area lights, spots and
+/// points of different power (two of power 0), spread over a few units.
+#[cfg(feature = "lights")]
+pub fn light_set() -> [warpcore::lights::LightBounds; 24] {
+    core::array::from_fn(|k| {
+        let [x, y, z, s, a0, a1, a2, q] = input::<8>(1000 + k);
+        let c = [x * 8.0 - 4.0, y * 4.0 - 2.0, z * 2.0];
+        let h = s * 0.25;
+        let (cos_theta_o, cos_theta_e, two_sided) = match k % 4 {
+            0 => (1.0, 0.0, false),
+            1 => (1.0, 0.0, true),
+            2 => (0.8, 0.6, false),
+            _ => (-1.0, 0.0, false),
+        };
+        warpcore::lights::LightBounds {
+            min: [c[0] - h, c[1] - h, c[2]],
+            max: [c[0] + h, c[1] + h, c[2] + h],
+            power: if k % 11 == 5 { 0.0 } else { 0.1 + q * 10.0 },
+            axis: [a0 - 0.5, a1 - 0.5, a2 - 0.25],
+            cos_theta_o,
+            cos_theta_e,
+            two_sided,
+        }
+    })
+}
+
+/// `lights::LightTree`: the storage words of [`light_set`], then `sample` and `pmf` at 64
+/// shading points (normals, media and special values among them).
+#[cfg(feature = "lights")]
+pub fn lights_tree(h: &mut Hasher) {
+    use warpcore::lights::LightTree;
+    let lights = light_set();
+    let n = LightTree::storage_len(lights.len());
+    h.word(n as u32);
+    let mut s = [0u32; 1024];
+    let s = s.get_mut(..n).unwrap_or(&mut []);
+    let Ok(tree) = LightTree::new(&lights, s) else {
+        h.word(0xbad);
+        return;
+    };
+    for w in tree.storage() {
+        h.word(u32::from_le(*w));
+    }
+    for k in 0..64usize {
+        let [x, y, z, nx, ny, nz, u] = input::<7>(2000 + k);
+        let p = [x * 10.0 - 5.0, y * 6.0 - 3.0, z * 4.0 - 1.0];
+        let nrm = if k % 3 == 0 {
+            [0.0; 3]
+        } else {
+            [nx - 0.5, ny - 0.5, nz - 0.5]
+        };
+        let (i, q) = tree.sample(p, nrm, u).unwrap_or((u32::MAX, 0.0));
+        h.word(i);
+        h.floats(&[q, tree.pmf(p, nrm, (k % 25) as u32)]);
+    }
+}

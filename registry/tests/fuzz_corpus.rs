@@ -27,7 +27,7 @@ fn replay(target: &str, check: fn(&[u8])) {
 #[test]
 fn every_corpus_replays() {
     type Check = fn(&[u8]);
-    let targets: [(&str, Check); 10] = [
+    let targets: [(&str, Check); 12] = [
         ("disk", checks::disk),
         ("pmj02bn", checks::pmj02bn),
         ("triangle", checks::triangle),
@@ -38,6 +38,8 @@ fn every_corpus_replays() {
         ("sampler", checks::sampler),
         ("lights_alias_build", checks::lights_alias_build),
         ("lights_alias_storage", checks::lights_alias_storage),
+        ("lights_tree_build", checks::lights_tree_build),
+        ("lights_tree_storage", checks::lights_tree_storage),
     ];
     for (target, check) in targets {
         replay(target, check);

@@ -159,7 +159,7 @@ pub use hierarchical::Hierarchical;
 pub use marginal::MarginalConditional;
 
 use crate::lanes::{Lane, UintLane, unit_interval};
-use crate::storage::{checksum, from_storage_order, to_storage_order};
+use crate::storage::{from_storage_order, header, to_storage_order};
 use core::fmt;
 use wide::{f32x8, f32x16, u32x8, u32x16};
 
@@ -329,6 +329,8 @@ impl fmt::Display for Error {
 
 impl core::error::Error for Error {}
 
+crate::storage::from_header_fault!(Error);
+
 // ---------------------------------------------------------------------------------------
 // Shared by both distributions.
 
@@ -432,18 +434,14 @@ fn write_header(header: &mut [Word], tag: u32, width: usize, height: usize, lens
 
 /// Writes the checksum of a freshly built storage (already in storage byte order).
 fn seal(storage: &mut [Word]) {
-    let sum = checksum(storage, CHECKSUM_WORD);
-    if let Some(w) = storage.get_mut(CHECKSUM_WORD) {
-        *w = sum.to_le();
-    }
+    crate::storage::seal(storage, CHECKSUM_WORD);
 }
 
 /// [`Error::Corrupt`] naming [`CHECKSUM_WORD`] unless the first `needed` words match their
 /// checksum (what `from_storage_verified` checks last, after the tables' invariants).
 fn check_sum(storage: &[Word], needed: usize) -> Result<(), Error> {
     let s = storage.get(..needed).unwrap_or(storage);
-    let stored = s.get(CHECKSUM_WORD).map_or(0, |&w| u32::from_le(w));
-    if checksum(s, CHECKSUM_WORD) == stored {
+    if crate::storage::sealed(s, CHECKSUM_WORD) {
         Ok(())
     } else {
         Err(Error::Corrupt {
@@ -462,18 +460,8 @@ fn read_header(
     expected_tag: u32,
     len: impl FnOnce(usize, usize) -> usize,
 ) -> Result<(usize, usize, usize, [usize; 4]), Error> {
-    let got = storage.len();
-    let header = storage.get(..HEADER_WORDS).ok_or(Error::StorageTooSmall {
-        needed: HEADER_WORDS,
-        got,
-    })?;
-    let word = |k: usize| header.get(k).map_or(0, |&w| u32::from_le(w));
-    if word(0) != expected_tag {
-        return Err(Error::WrongFormat { found: word(0) });
-    }
-    if word(1) != FORMAT_VERSION {
-        return Err(Error::UnsupportedVersion { found: word(1) });
-    }
+    let header: [Word; HEADER_WORDS] = header(storage, expected_tag, FORMAT_VERSION)?;
+    let word = |k: usize| header.get(k).copied().unwrap_or(0);
     let side = |k: usize| {
         let n = word(k) as usize;
         if (1..=MAX_SIDE).contains(&n) {

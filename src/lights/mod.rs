@@ -102,3 +102,5 @@ impl fmt::Display for Error {
 }
 
 impl core::error::Error for Error {}
+
+crate::storage::from_header_fault!(Error);

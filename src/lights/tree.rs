@@ -1,27 +1,664 @@
-//! The light tree (to be written).
+//! The light tree: a bounding-volume hierarchy over [`LightBounds`] that picks a light with
+//! probability proportional to a conservative estimate of its contribution at the shading
+//! point (pbrt-v4's BVH light sampler; Conty Estevez and Kulla 2018, "Importance Sampling of
+//! Many Lights with Adaptive Tree Splitting"), in caller-owned `[u32]` storage.
+//!
+//! See [`LightTree`] for the promises, the importance function and the storage layout.
 
-/// A light's bounds for the tree's importance (to be written).
-#[derive(Clone, Copy, Debug)]
+mod build;
+
+use super::Error;
+use crate::lanes::{Lane, ONE_MINUS_EPSILON, UintLane, unit_interval};
+use crate::storage::{from_storage_order, header, sealed};
+use core::num::Wrapping;
+use wide::{f32x4, f32x8, f32x16, u32x4, u32x8, u32x16};
+
+/// A light's bounds for the tree's importance: where it is, how much it emits and in which
+/// directions (pbrt-v4's `LightBounds`).
+///
+/// A one-sided area light: its triangle's box, `axis` its normal, `cos_theta_o = 1`,
+/// `cos_theta_e = 0` (cosine falloff to 90 degrees). A point light: a degenerate box,
+/// `cos_theta_o = -1` (every direction), `cos_theta_e = 0`. A spot light: `cos_theta_o` the
+/// cosine of the full-intensity angle, `cos_theta_e` the cosine of the falloff angle beyond it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LightBounds {
     /// Lower corner of the box around the emitter.
     pub min: [f32; 3],
     /// Upper corner of the box around the emitter.
     pub max: [f32; 3],
-    /// Emitted power (>= 0).
+    /// Emitted power (>= 0). A light of power 0 is never chosen (its `pmf` is 0).
     pub power: f32,
-    /// Principal emission direction (unit).
+    /// Principal emission direction. Need not be unit: [`LightTree::new`] normalises it
+    /// (a zero, NaN or infinite axis is [`Error::InvalidBounds`]).
     pub axis: [f32; 3],
-    /// Cosine of the spread of normals around the axis.
+    /// Cosine of the spread of normals around the axis (`theta_o`), in `[-1, 1]`.
     pub cos_theta_o: f32,
-    /// Cosine of the emission falloff beyond `theta_o`.
+    /// Cosine of the emission falloff beyond `theta_o` (`theta_e`), in `[-1, 1]`.
     pub cos_theta_e: f32,
-    /// Whether the emitter emits on both sides.
+    /// Whether the emitter emits on both sides (the cone and its mirror image).
     pub two_sided: bool,
 }
 
-/// A bounding-volume tree over [`LightBounds`] (to be written).
+/// Format tag of a light tree's storage: the bytes `wcLT`.
+const TAG: u32 = u32::from_le_bytes(*b"wcLT");
+/// The storage format version this build writes and reads.
+const VERSION: u32 = 1;
+/// Header words (64 bytes), as the environment maps.
+const HEADER_WORDS: usize = 16;
+/// The header word holding the content checksum.
+const CHECKSUM_WORD: usize = 8;
+/// Words of one node record.
+const NODE_WORDS: usize = 8;
+/// Flag of a node's last word: the node is a leaf, the low bits are the light's index.
+const LEAF: u32 = 1 << 31;
+/// Flag of a node's last word: some light below emits on both sides.
+const TWO_SIDED: u32 = 1 << 30;
+/// The index bits of a node's last word (a child pair or a light).
+const INDEX_MASK: u32 = (1 << 30) - 1;
+/// Most levels a walk takes (the root pair's level included); a balanced tree of
+/// `MAX_LIGHTS` lights needs 12; a trail holds 2 bits per level.
+const MAX_LEVELS: u32 = 16;
+/// Importances are clamped to this (`2^126`), so a sum of two stays finite.
+const BIG: f32 = 8.507_059e37;
+
+/// A bounding-volume tree over [`LightBounds`]: picks one of `n` lights with probability
+/// proportional to each subtree's *importance* at the shading point, with the exact
+/// probability of the light picked (for next-event estimation and its MIS weight).
+///
+/// # Sampling
+///
+/// A walk from the root of a 4-ary tree: at each inner node the four children's importances
+/// `I_0..I_3` at `(p, n)` make two binary choices, the pair `{0, 1}` with probability
+/// `(I_0 + I_1) / S`, then a child of the pair (`I_0 / (I_0 + I_1)`, or `I_2 / (I_2 + I_3)`).
+/// At each choice `u` picks a side and is rescaled into it (`u / P` or `(u - P) / (1 - P)`,
+/// clamped below 1), so a stratified `u` stays stratified across the leaves as far as the
+/// tree's order allows. The probability returned is the product of the choices'
+/// probabilities, in root-to-leaf order. [`pmf`](Self::pmf) walks the light's stored path
+/// (its *bit trail*: one word per light, 2 bits per level; O(depth), no hash map) through
+/// the same code, so `sample(p, n, u) == Some((i, pmf(p, n, i)))` bit for bit.
+///
+/// **Importance** (our transcription of the bound of pbrt-v4's `LightBounds::Importance`,
+/// after Conty Estevez and Kulla 2018): for a node with bounding sphere (centre `c`, radius
+/// `r`), total power `phi`, normal cone (axis `w`, `theta_o`) and falloff `theta_e`, with
+/// `d = |p - c|`, `theta_w` the angle between `w` and `p - c` (its mirror for two-sided
+/// nodes), `theta_b = asin(r / d)` (`pi` inside the sphere),
+/// `theta' = max(0, theta_w - theta_o - theta_b)`:
+/// `I = phi cos(theta') / max(d^2, r^2) * cos(max(0, theta_i - theta_b))` if
+/// `cos(theta') > cos(theta_e)`, else 0, where `theta_i` is the angle between `n` and `p - c`
+/// folded onto `[0, 90]` degrees (both sides of a surface: transmission), and the last factor
+/// is 1 for `n = [0, 0, 0]` (a point in a medium). Angles are never formed: the cosines and
+/// sines of differences come from products and `sqrt` only (no libm transcendental). pbrt-v4
+/// clamps `d^2` below by the box's half *diagonal length*; we use the bounding radius
+/// *squared* (the same units as `d^2`). `n` need not be unit (it is normalised; NaN, infinite
+/// or zero means a medium). A non-finite `p` gives no light.
+///
+/// **What sums to 1.** A walk can reach a node whose two children both have importance 0 at
+/// `p` although the node itself had some (its bounds are looser than its lights'): the walk
+/// stops there and `sample` returns `None`. So `sum_i pmf(p, n, i) = 1 - P(None)`: exactly 1
+/// (within rounding, 1e-5) where no such dead end is reachable, and the missing mass is
+/// exactly the probability of `None` elsewhere. An estimator `f(i) / pmf(i)` stays unbiased
+/// (`None` contributes 0, and every light that contributes has `pmf > 0`). pbrt-v4 behaves
+/// the same way.
+///
+/// **Never a light with probability 0**: a light of power 0, or whose importance at `p` is
+/// 0, is never returned; `sample` returns `Some((i, q))` only with `q > 0`, and `q` is
+/// `pmf(p, n, i)`. Where nothing contributes, `sample` is `None` and every `pmf` is 0.
+///
+/// # Build
+///
+/// [`new`](Self::new) validates the lights, then builds a 4-ary tree over the lights of
+/// positive power: each inner node's lights are split in two along the longest axis of their
+/// centroids' box and each half in two along its own (our own panic-free quickselect, O(n)
+/// expected per level, a heapsort fallback bounds it by O(n log n)), into groups of
+/// `4^(levels - 1)` lights filled in order. Depth `ceil(log4 m)`; O(n log n); the storage is
+/// the only scratch space (no allocator). The bounds of an inner node are the union of its
+/// children's: the boxes, the power sums (in `f64`), the normal cones (pbrt-v4's
+/// `DirectionCone` union, in `f64`) and the widest falloff.
+///
+/// # Storage layout (32-bit words, little-endian on every target)
+///
+/// | words | contents |
+/// |---|---|
+/// | 0 | format tag, the bytes `wcLT` |
+/// | 1 | format version (1) |
+/// | 2 | `n`, the number of lights |
+/// | 3 | `m`, the lights of positive power (the tree's leaves) |
+/// | 4 | levels of the walk (`ceil(log4 m)`, at least 1) |
+/// | 8 | content checksum of every other word |
+/// | 5..8, 9..16 | 0 |
+/// | 16.. | `n / 3 + 14` quads of 32 words: the four children of an inner node (quad 0: the root's) |
+/// | then | `n` bit trails (bits `2l`, `2l + 1`: the pair and the child taken at level `l`) |
+///
+/// A node is 8 words: its bounding sphere's centre (3 `f32`) and radius, its power, its
+/// axis (octahedral, 2 x 16 bits), `cos_theta_o` and `cos_theta_e` (16 bits each, rounded
+/// down: the stored cone is never narrower), and a word holding a leaf flag, a two-sided
+/// flag and a child quad's or a light's index. The axis's rounding error is added to
+/// `theta_o`, and the radius is rounded up, so the stored bounds contain the given ones. A
+/// quad is field-major (word `k` of child `c` at `4 k + c`): a scalar walk evaluates the
+/// four children as one `f32x4`. **About 47 bytes per light**
+/// (`storage_len(n) = 16 + 32 (n / 3 + 14) + n` words).
+///
+/// `from_storage` (O(1)) checks the header; sampling any storage that passed it never panics
+/// and returns valid outputs (an index below `n`, a probability in `[0, 1]`), whatever the
+/// node words hold. `from_storage_verified` also checks the content checksum, which changes
+/// with every single-bit flip (see the environment maps' module docs).
 #[derive(Clone, Copy, Debug)]
 pub struct LightTree<'a> {
-    #[allow(dead_code)] // read by the sampling methods still to be written
     storage: &'a [u32],
+    len: usize,
+    levels: u32,
+}
+
+/// The tree's largest number of lights: `2^24` (indices, trails and 32-bit word offsets fit).
+const MAX_LIGHTS: usize = 1 << 24;
+
+/// How a walk picks a side at each level: by `u` (sampling) or by a light's trail (pmf).
+trait Chooser<L: Lane> {
+    /// Whether to take the right child, given `P(left)`.
+    fn right(&mut self, level: u32, p_left: L) -> L::Mask;
+}
+
+/// Picks by `u`, rescaling it into the side taken.
+struct ByU<L>(L);
+
+impl<L: Lane> Chooser<L> for ByU<L> {
+    #[inline(always)]
+    fn right(&mut self, _level: u32, p_left: L) -> L::Mask {
+        let u = self.0;
+        let right = !u.simd_lt(p_left);
+        let one = L::splat(1.0);
+        // `u / P` or `(u - P) / (1 - P)`; a zero denominator (a side never taken) gives
+        // inf or NaN, replaced by the clamp below.
+        let v = L::select(right, (u - p_left) / (one - p_left), u / p_left);
+        let top = L::splat(ONE_MINUS_EPSILON);
+        let zero = L::splat(0.0);
+        self.0 = L::select(zero.simd_lt(v), L::select(v.simd_lt(top), v, top), zero);
+        right
+    }
+}
+
+/// Picks by a light's bit trail.
+struct ByTrail<U>(U);
+
+impl<L: Lane> Chooser<L> for ByTrail<L::U> {
+    #[inline(always)]
+    fn right(&mut self, level: u32, _p_left: L) -> L::Mask {
+        let one = L::U::splat(1);
+        !(self.0.shr(level) & one).simd_eq(L::U::splat(0))
+    }
+}
+
+/// `x` if `0 < x`, else 0 (NaN too).
+#[inline(always)]
+fn pos<L: Lane>(x: L) -> L {
+    L::select(L::splat(0.0).simd_lt(x), x, L::splat(0.0))
+}
+
+/// `cos(max(0, a - b))` from the cosines and sines of `a` and `b` in `[0, pi]`.
+#[inline(always)]
+fn cos_sub<L: Lane>(cos_a: L, sin_a: L, cos_b: L, sin_b: L) -> L {
+    L::select(
+        cos_b.simd_lt(cos_a),
+        L::splat(1.0),
+        cos_a * cos_b + sin_a * sin_b,
+    )
+}
+
+/// The unit axis stored in a node word (octahedral, two 16-bit fixed-point coordinates
+/// `q / 2^15 - 1`, exact).
+#[inline(always)]
+pub(super) fn oct_decode<L: Lane>(w: L::U) -> [L; 3] {
+    let k = L::splat(1.0 / 32768.0);
+    let one = L::splat(1.0);
+    let x = L::from_uint(w & L::U::splat(0xffff)) * k - one;
+    let y = L::from_uint(w.shr(16)) * k - one;
+    let z = one - x.abs() - y.abs();
+    let lower = z.simd_lt(L::splat(0.0));
+    let fx = (one - y.abs()).flip_sign(x.sign_bit());
+    let fy = (one - x.abs()).flip_sign(y.sign_bit());
+    let x = L::select(lower, fx, x);
+    let y = L::select(lower, fy, y);
+    let inv = one / (x * x + y * y + z * z).sqrt();
+    [x * inv, y * inv, z * inv]
+}
+
+/// A 16-bit fixed-point cosine `q / 2^15 - 1` (exact).
+#[inline(always)]
+fn cos16<L: Lane>(q: L::U) -> L {
+    L::from_uint(q & L::U::splat(0xffff)) * L::splat(1.0 / 32768.0) - L::splat(1.0)
+}
+
+/// The shading point as the walk sees it: `p`, the unit normal (or zeros), whether there is
+/// one, and whether `p` is finite.
+#[derive(Clone, Copy)]
+pub(super) struct Point<L: Lane> {
+    p: [L; 3],
+    n: [L; 3],
+    has_n: L::Mask,
+    valid: L::Mask,
+}
+
+#[inline(always)]
+fn point<L: Lane>(p: [L; 3], n: [L; 3]) -> Point<L> {
+    let big = L::splat(f32::MAX);
+    let finite = |x: L| x.abs().simd_le(big);
+    let valid = finite(p[0]) & finite(p[1]) & finite(p[2]);
+    let zero = L::splat(0.0);
+    let p = p.map(|x| L::select(valid, x, zero));
+    let len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    let has_n = zero.simd_lt(len2) & len2.simd_le(big);
+    let inv = L::select(has_n, L::splat(1.0) / len2.sqrt(), zero);
+    let n = n.map(|x| L::select(has_n, x * inv, zero));
+    Point { p, n, has_n, valid }
+}
+
+/// The importance of one stored node at the point (see [`LightTree`]): finite, in
+/// `[0, 2^126]`, whatever the words hold.
+#[inline(always)]
+fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
+    let word = |k: usize| w.get(k).copied().unwrap_or(L::U::splat(0));
+    let f = |k: usize| L::from_bits(word(k));
+    let zero = L::splat(0.0);
+    let one = L::splat(1.0);
+    let d = [pt.p[0] - f(0), pt.p[1] - f(1), pt.p[2] - f(2)];
+    let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    let r = f(3);
+    let r2 = r * r;
+    let phi = f(4);
+    let inside = d2.simd_lt(r2);
+    let dist = d2.sqrt();
+    let inv = L::select(zero.simd_lt(d2), one / dist, zero);
+    let wi = d.map(|x| x * inv);
+    let axis = oct_decode::<L>(word(5));
+    let cos_w = (axis[0] * d[0] + axis[1] * d[1] + axis[2] * d[2]) * inv;
+    let info = word(7);
+    let two_sided = !(info & L::U::splat(TWO_SIDED)).simd_eq(L::U::splat(0));
+    let cos_w = L::select(two_sided, cos_w.abs(), cos_w);
+    let sin_w = pos(one - cos_w * cos_w).sqrt();
+    let oe = word(6);
+    let cos_o = cos16::<L>(oe);
+    let cos_e = cos16::<L>(oe.shr(16));
+    let sin_o = pos(one - cos_o * cos_o).sqrt();
+    // The cone the sphere subtends: sin = r / d (the whole sphere inside).
+    let sin_b = pos(r * inv);
+    let cos_b = L::select(inside, -one, pos(one - sin_b * sin_b).sqrt());
+    let sin_b = L::select(inside, zero, sin_b);
+    let cos_x = cos_sub(cos_w, sin_w, cos_o, sin_o);
+    let sin_x = L::select(cos_o.simd_lt(cos_w), zero, sin_w * cos_o - cos_w * sin_o);
+    let cos_p = cos_sub(cos_x, sin_x, cos_b, sin_b);
+    let cos_i = (wi[0] * pt.n[0] + wi[1] * pt.n[1] + wi[2] * pt.n[2]).abs();
+    let sin_i = pos(one - cos_i * cos_i).sqrt();
+    let cos_pi = L::select(pt.has_n, cos_sub(cos_i, sin_i, cos_b, sin_b), one);
+    let dc = L::select(inside, r2, d2);
+    let dc = L::select(
+        L::splat(f32::MIN_POSITIVE).simd_lt(dc),
+        dc,
+        L::splat(f32::MIN_POSITIVE),
+    );
+    let imp = phi * cos_p * (one / dc) * cos_pi;
+    let alive = cos_e.simd_lt(cos_p) & pt.valid;
+    let imp = L::select(alive, imp, zero);
+    L::select(
+        zero.simd_lt(imp),
+        L::select(imp.simd_lt(L::splat(BIG)), imp, L::splat(BIG)),
+        zero,
+    )
+}
+
+/// Words of one quad: the four children of an inner node (128 bytes, two cache lines),
+/// field-major: word `k` of child `c` at `4 k + c`, so that a scalar walk loads each field
+/// of the four children as one `u32x4`.
+const QUAD_WORDS: usize = 4 * NODE_WORDS;
+
+/// The importances of a quad's four children. One lane-generic body ([`importance`]); a
+/// scalar walk evaluates the four children as the four lanes of one `f32x4` (the same IEEE
+/// operations lane by lane, so the same bits as four scalar evaluations), a SIMD walk
+/// evaluates them one after the other.
+pub(super) trait Children: Lane {
+    fn importance4(pt: &Point<Self>, rec: &[Self::U; QUAD_WORDS]) -> [Self; 4];
+}
+
+impl Children for f32 {
+    #[inline(always)]
+    fn importance4(pt: &Point<f32>, rec: &[Wrapping<u32>; QUAD_WORDS]) -> [f32; 4] {
+        let mask = |b: bool| UintLane::simd_eq(u32x4::splat(u32::from(b)), u32x4::splat(1));
+        let wide_pt = Point {
+            p: pt.p.map(f32x4::splat),
+            n: pt.n.map(f32x4::splat),
+            has_n: mask(pt.has_n),
+            valid: mask(pt.valid),
+        };
+        let words: [u32x4; NODE_WORDS] = core::array::from_fn(|k| {
+            u32x4::new(core::array::from_fn(|c| {
+                rec.get(4 * k + c).map_or(0, |w| w.0)
+            }))
+        });
+        importance::<f32x4>(&wide_pt, &words).to_array()
+    }
+}
+
+macro_rules! children_one_by_one {
+    ($($l:ty),*) => {$(
+        impl Children for $l {
+            #[inline(always)]
+            fn importance4(pt: &Point<$l>, rec: &[<$l as Lane>::U; QUAD_WORDS]) -> [$l; 4] {
+                core::array::from_fn(|c| {
+                    let w: [_; NODE_WORDS] = core::array::from_fn(|k| {
+                        rec.get(4 * k + c).copied().unwrap_or(<$l as Lane>::U::splat(0))
+                    });
+                    importance::<$l>(pt, &w)
+                })
+            }
+        }
+    )*};
+}
+children_one_by_one!(f32x8, f32x16);
+
+/// The walk: `levels` steps from quad 0, each picking one of four children by two binary
+/// choices (`choose`): the pair `{0, 1}` or `{2, 3}` with probability `(I0 + I1) / S`, then
+/// a child of the pair with probability `I0 / (I0 + I1)` (or `I2 / (I2 + I3)`). Returns the
+/// light reached (`u32::MAX` if none) and its probability (0 if none): the product of the
+/// choices' probabilities in root-to-leaf order.
+#[inline(always)]
+fn walk<L: Children, C: Chooser<L>>(
+    quads: &[[u32; QUAD_WORDS]],
+    len: u32,
+    levels: u32,
+    pt: &Point<L>,
+    choose: &mut C,
+) -> (L::U, L) {
+    let zero = L::splat(0.0);
+    let one = L::splat(1.0);
+    let uzero = L::U::splat(0);
+    let mut quad = uzero;
+    let mut prob = one;
+    let mut index = L::U::splat(u32::MAX);
+    // `done`: reached a leaf; `dead`: stopped where the children have importance 0.
+    let mut done = uzero.simd_eq(L::U::splat(1));
+    let mut dead = !pt.valid;
+    for level in 0..levels.min(MAX_LEVELS) {
+        let rec = L::U::gather(quads, quad).map(from_storage_order);
+        let [i0, i1, i2, i3] = L::importance4(pt, &rec);
+        let (s01, s23) = (i0 + i1, i2 + i3);
+        let sum = s01 + s23;
+        let live = zero.simd_lt(sum);
+        let p_low = L::select(live, s01 / sum, zero);
+        let high = choose.right(2 * level, p_low);
+        let p_pair = L::select(high, one - p_low, p_low);
+        // Both pairs' splits, computed before the pair is known (off the critical path).
+        let split = |a: L, s: L| L::select(zero.simd_lt(s), a / s, zero);
+        let p_first = L::select(high, split(i2, s23), split(i0, s01));
+        let second = choose.right(2 * level + 1, p_first);
+        let p_child = L::select(second, one - p_first, p_first);
+        let active = !(done | dead);
+        dead = dead | (active & !live);
+        let active = active & live;
+        prob = L::select(active, prob * p_pair * p_child, prob);
+        let info = {
+            let pick = |a: usize, b: usize| L::U::select(second, rec[b], rec[a]);
+            let info = 4 * (NODE_WORDS - 1);
+            L::U::select(high, pick(info + 2, info + 3), pick(info, info + 1))
+        };
+        let target = info & L::U::splat(INDEX_MASK);
+        let leaf = !(info & L::U::splat(LEAF)).simd_eq(uzero);
+        let reached = active & leaf;
+        index = L::U::select(reached, target, index);
+        done = done | reached;
+        quad = L::U::select(active & !leaf, target, quad);
+    }
+    // A leaf naming a light past the end (only in a corrupt storage), a walk cut short, a
+    // dead end or a probability that underflowed: no light.
+    let ok = done & !dead & index.simd_lt(L::U::splat(len)) & zero.simd_lt(prob);
+    (
+        L::U::select(ok, index, L::U::splat(u32::MAX)),
+        L::select(ok, prob, zero),
+    )
+}
+
+impl<'a> LightTree<'a> {
+    /// Words of storage `new` needs for `n` lights: `16 + 32 (n / 3 + 14) + n` (about 47
+    /// bytes per light, after a 64-byte header and 1,792 bytes of slack for the partial
+    /// quads); `usize::MAX` above `2^24` lights (the format's limit, see
+    /// [`Error::TooLarge`]).
+    pub const fn storage_len(n: usize) -> usize {
+        if n > MAX_LIGHTS {
+            usize::MAX
+        } else {
+            HEADER_WORDS + QUAD_WORDS * quads_bound(n) + n
+        }
+    }
+
+    /// Builds the tree over `lights` into `storage` (at least [`storage_len`](Self::storage_len)
+    /// words, any contents; the storage is also the build's only scratch space).
+    /// O(n log n), no allocation.
+    ///
+    /// Errors: [`Error::Empty`] for no lights, [`Error::TooLarge`] above `2^24`,
+    /// [`Error::StorageTooSmall`], [`Error::InvalidWeight`] for a NaN, infinite or negative
+    /// power, [`Error::InvalidBounds`] for a NaN or infinite coordinate, `min > max` on some
+    /// axis, a zero, NaN or infinite axis, or a cosine outside `[-1, 1]` or NaN (the first
+    /// offending light is named), [`Error::AllZero`] if every power is 0. Never panics.
+    /// Non-unit axes are normalised. Coordinates beyond about `1e18` make distances overflow:
+    /// such lights get importance 0 (they are never chosen).
+    pub fn new(lights: &[LightBounds], storage: &'a mut [u32]) -> Result<Self, Error> {
+        let light = |i: usize| lights.get(i).copied().unwrap_or_default();
+        Self::new_from_fn(lights.len(), light, storage)
+    }
+
+    /// [`new`](Self::new) over `n` lights given by `light(i)` for `i` in `0..n`, called
+    /// O(n log n) times (keep it cheap): builds from any representation without collecting
+    /// the bounds in memory first (the C ABI's `WcLightBounds` array, a mesh's triangles).
+    /// The same tree, words and errors as `new` over `[light(0), ..., light(n - 1)]` (with
+    /// `n = 0` as the empty slice).
+    pub fn new_from_fn(
+        n: usize,
+        light: impl Fn(usize) -> LightBounds,
+        storage: &'a mut [u32],
+    ) -> Result<Self, Error> {
+        build::build(n, light, storage)?;
+        Self::from_storage(storage)
+    }
+
+    /// Reads a storage `new` wrote (O(1): the header only). Sampling a storage that passed
+    /// never panics and gives valid outputs whatever its other words hold.
+    ///
+    /// Errors: [`Error::StorageTooSmall`], [`Error::WrongFormat`],
+    /// [`Error::UnsupportedVersion`], [`Error::Corrupt`] (a header word `new` never writes).
+    pub fn from_storage(storage: &'a [u32]) -> Result<Self, Error> {
+        let got = storage.len();
+        let header: [u32; HEADER_WORDS] = header(storage, TAG, VERSION)?;
+        let word = |k: usize| header.get(k).copied().unwrap_or(0);
+        let n = word(2) as usize;
+        if n == 0 || n > MAX_LIGHTS {
+            return Err(Error::Corrupt { word: 2 });
+        }
+        let m = word(3) as usize;
+        if m == 0 || m > n {
+            return Err(Error::Corrupt { word: 3 });
+        }
+        if word(4) != levels_for(m) {
+            return Err(Error::Corrupt { word: 4 });
+        }
+        if let Some(k) = (5..HEADER_WORDS).find(|&k| k != CHECKSUM_WORD && word(k) != 0) {
+            return Err(Error::Corrupt { word: k });
+        }
+        let needed = Self::storage_len(n);
+        if got < needed {
+            return Err(Error::StorageTooSmall { needed, got });
+        }
+        Ok(Self {
+            storage: storage.get(..needed).unwrap_or(storage),
+            len: n,
+            levels: word(4),
+        })
+    }
+
+    /// [`from_storage`](Self::from_storage), then the content checksum over every word
+    /// (O(n)): every single-bit flip is rejected ([`Error::Corrupt`] naming word 8).
+    pub fn from_storage_verified(storage: &'a [u32]) -> Result<Self, Error> {
+        let tree = Self::from_storage(storage)?;
+        if !sealed(tree.storage, CHECKSUM_WORD) {
+            return Err(Error::Corrupt {
+                word: CHECKSUM_WORD,
+            });
+        }
+        Ok(tree)
+    }
+
+    /// The number of lights `n` (those of power 0 included).
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Always false: a tree holds at least one light.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The storage words (little-endian bytes on every target): write them to a file and
+    /// read them back with [`from_storage_verified`](Self::from_storage_verified).
+    pub fn storage(&self) -> &'a [u32] {
+        self.storage
+    }
+
+    fn quads(&self) -> &'a [[u32; QUAD_WORDS]] {
+        let end = HEADER_WORDS + QUAD_WORDS * quads_bound(self.len);
+        self.storage
+            .get(HEADER_WORDS..end)
+            .unwrap_or(&[])
+            .as_chunks::<QUAD_WORDS>()
+            .0
+    }
+
+    fn trails(&self) -> &'a [[u32; 1]] {
+        let start = HEADER_WORDS + QUAD_WORDS * quads_bound(self.len);
+        self.storage.get(start..).unwrap_or(&[]).as_chunks::<1>().0
+    }
+
+    #[inline(always)]
+    fn sample_lanes<L: Children>(&self, p: [L; 3], n: [L; 3], u: L) -> (L::U, L) {
+        let pt = point(p, n);
+        let mut by_u = ByU(unit_interval(u));
+        walk(self.quads(), self.len as u32, self.levels, &pt, &mut by_u)
+    }
+
+    #[inline(always)]
+    fn pmf_lanes<L: Children>(&self, p: [L; 3], n: [L; 3], index: L::U) -> L {
+        let pt = point(p, n);
+        let [trail] = L::U::gather(self.trails(), index);
+        let mut by_trail = ByTrail(from_storage_order(trail));
+        let (reached, prob) = walk(
+            self.quads(),
+            self.len as u32,
+            self.levels,
+            &pt,
+            &mut by_trail,
+        );
+        L::select(reached.simd_eq(index), prob, L::splat(0.0))
+    }
+
+    /// Picks a light for the shading point `p` with unit normal `n` (`[0, 0, 0]` for a point
+    /// in a medium) from `u`: `Some((index, probability))`, the probability being exactly
+    /// [`pmf(p, n, index)`](Self::pmf) and positive; `None` where no light contributes (or
+    /// the walk meets a dead end, see the type's docs). `u` goes through the crate's forward
+    /// rule (NaN and negatives -> 0, `>= 1` -> `1 - 2^-24`). O(depth).
+    #[inline]
+    pub fn sample(&self, p: [f32; 3], n: [f32; 3], u: f32) -> Option<(u32, f32)> {
+        let (i, q) = self.sample_lanes(p, n, u);
+        if q > 0.0 { Some((i.0, q)) } else { None }
+    }
+
+    /// [`sample`](Self::sample) on eight points at once, bit-identical to eight scalar calls:
+    /// `(indices, probabilities)`, where lane `j` is `(u32::MAX, 0.0)` for a scalar `None`.
+    #[inline]
+    pub fn sample_x8(&self, p: [f32x8; 3], n: [f32x8; 3], u: f32x8) -> (u32x8, f32x8) {
+        self.sample_lanes(p, n, u)
+    }
+
+    /// [`sample`](Self::sample) on sixteen points at once (see [`sample_x8`](Self::sample_x8)).
+    #[inline]
+    pub fn sample_x16(&self, p: [f32x16; 3], n: [f32x16; 3], u: f32x16) -> (u32x16, f32x16) {
+        self.sample_lanes(p, n, u)
+    }
+
+    /// [`sample`](Self::sample) over a batch: `out[i] = sample(p[i], n[i], u[i])` for `i`
+    /// below the shortest length, which it returns. Runs groups of eight lanes; bit-identical
+    /// to the scalar form.
+    pub fn sample_slice(
+        &self,
+        p: &[[f32; 3]],
+        n: &[[f32; 3]],
+        u: &[f32],
+        out: &mut [Option<(u32, f32)>],
+    ) -> usize {
+        let count = p.len().min(n.len()).min(u.len()).min(out.len());
+        let mut start = 0;
+        while start < count {
+            let get3 = |s: &[[f32; 3]], k: usize| {
+                f32x8::new(core::array::from_fn(|j| {
+                    s.get(start + j)
+                        .filter(|_| start + j < count)
+                        .map_or(0.0, |v| v[k])
+                }))
+            };
+            let pp = [0, 1, 2].map(|k| get3(p, k));
+            let nn = [0, 1, 2].map(|k| get3(n, k));
+            let uu = f32x8::new(core::array::from_fn(|j| {
+                u.get(start + j).copied().unwrap_or(0.0)
+            }));
+            let (i, q) = self.sample_x8(pp, nn, uu);
+            let (i, q) = (i.to_array(), q.to_array());
+            for j in 0..8 {
+                if start + j < count
+                    && let Some(o) = out.get_mut(start + j)
+                {
+                    *o = if q[j] > 0.0 { Some((i[j], q[j])) } else { None };
+                }
+            }
+            start += 8;
+        }
+        count
+    }
+
+    /// The probability that [`sample`](Self::sample) at `(p, n)` returns light `index`, for
+    /// MIS: the product of the sides' probabilities along the light's stored path, O(depth).
+    /// 0 for an index `>= len`, a light of power 0, and a light of importance 0 at `p`.
+    ///
+    /// Error against the same walk in `f64` (measured, `tests/lights/tree.rs`, 600,000
+    /// probabilities of a 300-light scene): at most `7.3e-8` absolute, `5e-5` relative where
+    /// the probability is at least `1e-3` (a side's `1 - P` near `P = 1` carries the `f32`
+    /// spacing of 1 as its absolute error). The probability is exact for what `sample` does:
+    /// it is the product `sample` reports.
+    #[inline]
+    pub fn pmf(&self, p: [f32; 3], n: [f32; 3], index: u32) -> f32 {
+        self.pmf_lanes(p, n, Wrapping(index))
+    }
+
+    /// [`pmf`](Self::pmf) on eight points and indices at once; bit-identical to eight scalar
+    /// calls.
+    #[inline]
+    pub fn pmf_x8(&self, p: [f32x8; 3], n: [f32x8; 3], index: u32x8) -> f32x8 {
+        self.pmf_lanes(p, n, index)
+    }
+
+    /// [`pmf`](Self::pmf) on sixteen points and indices at once; bit-identical to sixteen
+    /// scalar calls.
+    #[inline]
+    pub fn pmf_x16(&self, p: [f32x16; 3], n: [f32x16; 3], index: u32x16) -> f32x16 {
+        self.pmf_lanes(p, n, index)
+    }
+}
+
+/// Levels of the walk over the tree of `m` leaves: `ceil(log4 m)`, at least 1.
+const fn levels_for(m: usize) -> u32 {
+    if m <= 1 {
+        1
+    } else {
+        (usize::BITS - (m - 1).leading_zeros()).div_ceil(2)
+    }
+}
+
+/// Quads the storage holds for `n` lights: at least what the build of any `m <= n` lights
+/// uses (`(m - 1) / 3` in its full subtrees, plus one partial quad per level).
+const fn quads_bound(n: usize) -> usize {
+    n / 3 + 14
 }

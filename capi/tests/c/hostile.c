@@ -209,6 +209,18 @@ static size_t hostile_count(size_t elem, size_t small) {
     return 1 + below(small);
 }
 
+/* A storage length for a build needing `need` words: none, one short, SIZE_MAX, a few words
+   more, or exactly `need`. */
+static size_t hostile_len(size_t need) {
+    switch (rnd() % 6) {
+    case 0: return 0;
+    case 1: return need - 1;
+    case 2: return SIZE_MAX;
+    case 3: return need + below(9);
+    default: return need;
+    }
+}
+
 static int overlaps(const void *a, size_t an, const void *b, size_t bn) {
     uintptr_t x = (uintptr_t)a, y = (uintptr_t)b;
     return an && bn && x < y + bn && y < x + an;
@@ -741,14 +753,7 @@ static void hostile_build_arrays(size_t placed_w, size_t placed_s, float **weigh
 static void one_build(const struct dist *D) {
     uint32_t w = hostile_side(), h = hostile_side(), kind = hostile_kind(D);
     size_t need = wc_envmap_storage_len(kind, w, h);
-    size_t len;
-    switch (rnd() % 6) {
-    case 0: len = 0; break;
-    case 1: len = need - 1; break;
-    case 2: len = SIZE_MAX; break;
-    case 3: len = need + below(9); break;
-    default: len = need; break;
-    }
+    size_t len = hostile_len(need);
     uint64_t texels = (uint64_t)w * h;
     int small = w && h && texels <= 4096 && need <= 60000; /* arrays can be placed */
     size_t placed_w = small ? (size_t)texels * 4 : 64, placed_s = small ? need * 4 : 64;
@@ -1128,13 +1133,14 @@ static void one_equal_area(void) {
 
 /* wc_error_string: a static, non-empty string for any code; the named codes get their own. */
 static void one_error_string(void) {
-    int32_t code = rnd() % 2 ? -(int32_t)(rnd() % 14) : (int32_t)rnd();
+    int32_t code = rnd() % 2 ? -(int32_t)(rnd() % 16) : (int32_t)rnd();
     const char *a = wc_error_string(code), *b = wc_error_string(code);
     const char *unknown = wc_error_string(INT32_MIN);
     reach("wc_error_string", "string");
     current = "wc_error_string";
     CHECK(a != NULL && a[0] != 0 && a == b);
-    if (code <= 0 && code >= WC_ERR_ALL_ZERO) CHECK(strcmp(a, unknown) != 0);
+    if ((code <= 0 && code >= WC_ERR_OTHER) || (code <= WC_ERR_EMPTY && code >= WC_ERR_ALL_ZERO))
+        CHECK(strcmp(a, unknown) != 0);
     else CHECK(strcmp(a, unknown) == 0);
 }
 
@@ -1351,6 +1357,244 @@ static void one_sampler_slice(void) {
     reset();
 }
 
+
+/* ---- the light tree ---- */
+
+#define TREE_LIGHTS 40
+static uint32_t tree_built[4096];
+static size_t tree_len;
+
+static void tree_light(WcLightBounds *l, int i) {
+    float x = (float)(i % 7), y = (float)(i % 5), z = (float)(i % 3);
+    WcLightBounds v = {{x, y, z}, {x + 0.5f, y + 0.25f, z}, 1.0f + (float)(i % 4),
+                       {0.0f, (float)(i % 2) - 0.5f, 1.0f}, i % 2 ? 1.0f : -1.0f, 0.0f,
+                       (uint32_t)(i % 3 == 0)};
+    *l = v;
+}
+
+static const char *TREE_CODES[] = {"WC_OK", "", "WC_ERR_TOO_LARGE", "", "WC_ERR_STORAGE_TOO_SMALL", "",
+                                   "WC_ERR_WRONG_FORMAT", "WC_ERR_UNSUPPORTED_VERSION", "WC_ERR_CORRUPT",
+                                   "WC_ERR_INVALID_ARGUMENT", "", "WC_ERR_EMPTY", "WC_ERR_INVALID_WEIGHT",
+                                   "WC_ERR_INVALID_BOUNDS", "WC_ERR_ALL_ZERO"};
+
+static void one_tree_storage_len(void) {
+    static const size_t odd[] = {SIZE_MAX, ((size_t)1 << 24) + 1, (size_t)1 << 24, 0};
+    size_t n = rnd() % 4 == 0 ? odd[rnd() % 4] : below(1000);
+    size_t got = wc_lights_tree_storage_len(n);
+    current = "wc_lights_tree_storage_len";
+    if (n > ((size_t)1 << 24)) {
+        reach(current, "SIZE_MAX");
+        CHECK(got == SIZE_MAX);
+    } else {
+        reach(current, "words");
+        CHECK(got == 16 + 32 * (n / 3 + 14) + n);
+    }
+}
+
+static void one_tree_build(void) {
+    static const size_t huge[] = {SIZE_MAX, ((size_t)1 << 24) + 1, (size_t)PTRDIFF_MAX / 8 + 1};
+    size_t n = rnd() % 8 == 0 ? 0 : rnd() % 8 == 1 ? huge[rnd() % 3] : 1 + below(TREE_LIGHTS);
+    int small = n >= 1 && n <= TREE_LIGHTS;
+    size_t need = wc_lights_tree_storage_len(n), len = hostile_len(need);
+    size_t lb = small ? n * sizeof(WcLightBounds) : 64, sb = small ? need * 4 : 64;
+    int end = rnd() & 1;
+    WcLightBounds *lights = place(0, lb, end, 0);
+    uint32_t *storage = place(1, small && len > need && len - need <= 8 ? len * 4 : sb, !end, 0);
+    switch (rnd() % 8) {
+    case 0: lights = NULL; break;
+    case 1: storage = NULL; break;
+    case 2: lights = (WcLightBounds *)(void *)((unsigned char *)place(0, lb + 4, end, 0) + 1 + below(3)); break;
+    case 3: storage = (uint32_t *)(void *)((unsigned char *)place(1, sb + 4, !end, 0) + 1 + below(3)); break;
+    case 4: { /* the lights overlapping the storage */
+        unsigned char *base = place(2, 2 * lb + sb, 1, 0);
+        storage = (uint32_t *)(void *)(base + (lb & ~(size_t)3));
+        lights = (WcLightBounds *)(void *)(base + 4 * below((lb + sb) / 4));
+        break;
+    }
+    default: break;
+    }
+    int bad = -1; /* 0: NaN power, 1: min > max, 2: all zero */
+    if (lights && aligned(lights) && small) {
+        for (size_t i = 0; i < n; i++) tree_light(&lights[i], (int)i);
+        if (rnd() % 3 == 0) {
+            bad = (int)(rnd() % 3);
+            size_t at = below(n);
+            if (bad == 0) lights[at].power = rnd() & 1 ? NAN : -1.0f;
+            if (bad == 1) lights[at].min[rnd() % 3] = 100.0f;
+            if (bad == 2)
+                for (size_t i = 0; i < n; i++) lights[i].power = 0.0f;
+        }
+    }
+    int32_t want;
+    int access = 0;
+    if (n == 0) want = WC_ERR_EMPTY;
+    else if (need == SIZE_MAX || !fits(n, sizeof(WcLightBounds)) || !fits(need, 4)) want = WC_ERR_TOO_LARGE;
+    else if (len < need) want = WC_ERR_STORAGE_TOO_SMALL;
+    else if (!lights || !storage || !aligned(lights) || !aligned(storage)) want = WC_ERR_INVALID_ARGUMENT;
+    else if (overlaps(lights, n * sizeof(WcLightBounds), storage, need * 4)) want = WC_ERR_INVALID_ARGUMENT;
+    else {
+        access = 1;
+        want = bad == 0 ? WC_ERR_INVALID_WEIGHT : bad == 1 ? WC_ERR_INVALID_BOUNDS : bad == 2 ? WC_ERR_ALL_ZERO : WC_OK;
+    }
+    if (access && !small) return;
+    snapshot(0, lights, lb);
+    if (!access) snapshot(1, storage, sb);
+    else if (len > need && len - need <= 8) snapshot(1, storage + need, (len - need) * 4);
+    int32_t got = wc_lights_tree_build(lights, n, storage, len);
+    current = "wc_lights_tree_build";
+    reach(current, TREE_CODES[-want]);
+    CHECK(got == want);
+    CHECK(unchanged());
+    if (want == WC_OK)
+        CHECK(wc_lights_tree_from_storage(storage, need) == WC_OK &&
+              wc_lights_tree_from_storage_verified(storage, need) == WC_OK);
+    reset();
+}
+
+static void one_tree_check(int verify) {
+    size_t need = tree_len, len = need;
+    int end = rnd() & 1;
+    uint32_t *s = place(0, need * 4, end, 0);
+    memcpy(s, tree_built, need * 4);
+    int32_t want = WC_OK;
+    switch (rnd() % 13) {
+    case 0: s = NULL; want = WC_ERR_INVALID_ARGUMENT; break;
+    case 1: s = NULL; len = 0; want = WC_ERR_STORAGE_TOO_SMALL; break;
+    case 2:
+        s = (uint32_t *)(void *)((unsigned char *)place(0, need * 4 + 4, end, 0) + 1 + below(3));
+        want = WC_ERR_INVALID_ARGUMENT;
+        break;
+    case 3: len = (size_t)PTRDIFF_MAX / 4 + 1 + below(3); want = WC_ERR_INVALID_ARGUMENT; break;
+    case 4: /* shorter than the header, or than the header says, flush against the guard */
+        len = below(need);
+        s = place(0, len * 4, 1, 0);
+        memcpy(s, tree_built, len * 4);
+        want = WC_ERR_STORAGE_TOO_SMALL;
+        break;
+    case 5: s[0] ^= 1u << (rnd() % 32); want = WC_ERR_WRONG_FORMAT; break;
+    case 6: s[1] = 2 + rnd() % 100; want = WC_ERR_UNSUPPORTED_VERSION; break;
+    case 7: { /* n, m, levels or a reserved header word */
+        static const uint32_t words[] = {2, 3, 4, 5, 6, 7, 9, 15};
+        uint32_t k = words[rnd() % 8];
+        s[k] = k == 2 || k == 3 ? 0 : s[k] + 1 + rnd() % 1000;
+        want = WC_ERR_CORRUPT;
+        break;
+    }
+    case 8: /* longer than needed: fine */
+        len = need + 1 + below(30);
+        s = place(0, len * 4, end, 0);
+        memcpy(s, tree_built, need * 4);
+        break;
+    default: /* one bit of a body word or of the checksum: verify catches it */
+        s[rnd() % 4 ? 16 + below(need - 16) : 8] ^= 1u << (rnd() % 32);
+        want = verify ? WC_ERR_CORRUPT : WC_OK;
+        break;
+    }
+    snapshot(0, s, len < need + 64 ? len * 4 : need * 4);
+    int32_t got = verify ? wc_lights_tree_from_storage_verified(s, len) : wc_lights_tree_from_storage(s, len);
+    current = verify ? "wc_lights_tree_from_storage_verified" : "wc_lights_tree_from_storage";
+    reach(current, TREE_CODES[-want]);
+    CHECK(got == want);
+    CHECK(unchanged());
+    reset();
+}
+
+/* mode 0: sample (outputs index, prob), 1: pmf (inputs index, output out). */
+static void one_tree_sample(int mode) {
+    size_t need = tree_len, len = need;
+    size_t n = hostile_count(12, 300);
+    size_t small = n <= 300 ? n : 0;
+    int end = rnd() & 1;
+    uint32_t *s = place(0, need * 4, end, 0);
+    memcpy(s, tree_built, need * 4);
+    float *p = place(1, small * 12, !end, 0);
+    float *nrm = place(2, small * 12, end, 0);
+    void *a = place(3, small * 4, !end, 0); /* sample: u; pmf: index */
+    void *b = place(4, small * 4, end, 0);  /* sample: index; pmf: out */
+    void *c = place(5, small * 4, !end, 0); /* sample: prob */
+    switch (rnd() % 14) {
+    case 0: s = NULL; break;
+    case 1: p = NULL; break;
+    case 2: nrm = NULL; break;
+    case 3: a = NULL; break;
+    case 4: b = NULL; break;
+    case 5: c = mode == 0 ? NULL : c; break;
+    case 6: p = (float *)(void *)((unsigned char *)place(1, small * 12 + 4, !end, 0) + 1 + below(3)); break;
+    case 7: b = (unsigned char *)place(4, small * 4 + 4, end, 0) + 1 + below(3); break;
+    case 8: { /* an output over p, or just after it */
+        unsigned char *base = place(1, small * 16 + 16, end, 0);
+        p = (float *)(void *)base;
+        b = base + 4 * below(3 * small + 1);
+        break;
+    }
+    case 9: if (mode == 0) c = b; else b = a; break; /* outputs over each other / over index */
+    case 10: b = (unsigned char *)s + 4 * below(need); break; /* an output over the storage */
+    case 11: len = below(need); break;
+    case 12: s[below(16)] ^= 1u << (rnd() % 32); break;
+    default: break;
+    }
+    if (p && aligned(p) && small) fill_floats(p, 3 * small);
+    if (nrm && aligned(nrm) && small) fill_floats(nrm, 3 * small);
+    if (a && aligned(a) && small) {
+        if (mode == 0) fill_floats(a, small);
+        else for (size_t i = 0; i < small; i++) ((uint32_t *)a)[i] = rnd() % (TREE_LIGHTS + 3);
+    }
+    int storage_ok = s && aligned(s) && wc_lights_tree_from_storage(s, len) == WC_OK;
+    size_t outs = mode == 0 ? 2 : 1;
+    void *out[2] = {b, c};
+    int any_null = !s || !p || !nrm || !a || !b || (mode == 0 && !c);
+    int any_mis = !aligned(s) || !aligned(p) || !aligned(nrm) || !aligned(a) || !aligned(b) || (mode == 0 && !aligned(c));
+    int ov = 0;
+    for (size_t k = 0; k < outs; k++) {
+        ov |= overlaps(out[k], n * 4, p, n * 12) || overlaps(out[k], n * 4, nrm, n * 12) ||
+              overlaps(out[k], n * 4, a, n * 4) || overlaps(out[k], n * 4, s, len * 4);
+    }
+    if (mode == 0) ov |= overlaps(b, n * 4, c, n * 4);
+    const char *outcome;
+    size_t want = 0;
+    if (n == 0) outcome = "0:n=0";
+    else if (any_null) outcome = "0:null";
+    else if (any_mis) outcome = "0:misaligned";
+    else if (!fits(n, 12)) outcome = "0:size";
+    else if (ov) outcome = "0:overlap";
+    else if (!storage_ok) outcome = "0:invalid-storage";
+    else {
+        outcome = "n";
+        want = n;
+    }
+    if (want && !small) return;
+    if (!want) {
+        snapshot(0, b, small * 4);
+        if (mode == 0) snapshot(1, c, small * 4);
+    }
+    snapshot(2, p, small * 12);
+    snapshot(3, s, len < need ? len * 4 : need * 4);
+    size_t got = mode == 0 ? wc_lights_tree_sample(s, len, p, nrm, a, b, c, n)
+                           : wc_lights_tree_pmf(s, len, p, nrm, a, b, n);
+    current = mode == 0 ? "wc_lights_tree_sample" : "wc_lights_tree_pmf";
+    reach(current, outcome);
+    CHECK(got == want);
+    if (want) {
+        int ok = 1;
+        for (size_t i = 0; i < n; i++) {
+            float q = mode == 0 ? ((float *)c)[i] : ((float *)b)[i];
+            ok &= q >= 0.0f && q <= 1.0f;
+            if (mode == 0) {
+                uint32_t idx = ((uint32_t *)b)[i];
+                ok &= q > 0.0f ? idx < TREE_LIGHTS : idx == UINT32_MAX;
+                if (q > 0.0f) {
+                    float back;
+                    ok &= wc_lights_tree_pmf(s, len, p + 3 * i, nrm + 3 * i, &idx, &back, 1) == 1 &&
+                          memcmp(&back, &q, 4) == 0;
+                }
+            }
+        }
+        CHECK(ok);
+    }
+    CHECK(unchanged());
+    reset();
+}
+
 /* Calls with no arguments to get wrong. */
 static void constants(void) {
     current = "constants";
@@ -1367,7 +1611,8 @@ static uint32_t lights_built[8 + 4 * NL];
 static size_t lights_len;
 static const char *LIGHT_CODES[] = {"WC_OK", "WC_ERR_ZERO_SIZE", "WC_ERR_TOO_LARGE", "", "WC_ERR_STORAGE_TOO_SMALL",
                                     "", "WC_ERR_WRONG_FORMAT", "WC_ERR_UNSUPPORTED_VERSION", "WC_ERR_CORRUPT",
-                                    "WC_ERR_INVALID_ARGUMENT", "", "WC_ERR_INVALID_WEIGHT", "WC_ERR_ALL_ZERO"};
+                                    "WC_ERR_INVALID_ARGUMENT", "", "WC_ERR_EMPTY", "WC_ERR_INVALID_WEIGHT",
+                                    "", "WC_ERR_ALL_ZERO"};
 
 static void one_lights_len(void) {
     size_t n = rnd() % 4 ? below(100) : (rnd() % 2 ? ((size_t)1 << 26) + below(3) : SIZE_MAX - below(3));
@@ -1412,7 +1657,7 @@ static void one_lights_build(void) {
     }
     int32_t want;
     int access = 0;
-    if (n == 0) want = WC_ERR_ZERO_SIZE;
+    if (n == 0) want = WC_ERR_EMPTY;
     else if (need == SIZE_MAX || !fits(n, 4) || !fits(need, 4)) want = WC_ERR_TOO_LARGE;
     else if (len < need) want = WC_ERR_STORAGE_TOO_SMALL;
     else if (!weights || !storage || !aligned(weights) || !aligned(storage)) want = WC_ERR_INVALID_ARGUMENT;
@@ -1558,6 +1803,17 @@ int main(int argc, char **argv) {
             return 2;
         }
     }
+    for (int i = 0; i < TREE_LIGHTS; i++) {
+        static WcLightBounds tl[TREE_LIGHTS];
+        tree_light(&tl[i], i);
+        if (i == TREE_LIGHTS - 1) {
+            tree_len = wc_lights_tree_storage_len(TREE_LIGHTS);
+            if (tree_len > 4096 || wc_lights_tree_build(tl, TREE_LIGHTS, tree_built, tree_len) != WC_OK) {
+                fprintf(stderr, "cannot build the reference light tree\n");
+                return 2;
+            }
+        }
+    }
     constants();
     /* The blue-noise patterns are both of this build, or neither (the `blue-noise` feature). */
     blue = wc_sampler_pattern_supported(WC_PATTERN_BLUE_PMJ02BN) != 0;
@@ -1589,6 +1845,12 @@ int main(int argc, char **argv) {
         one_lights_check(1);
         one_lights_sample(0);
         one_lights_sample(1);
+        one_tree_storage_len();
+        one_tree_build();
+        one_tree_check(0);
+        one_tree_check(1);
+        one_tree_sample(0);
+        one_tree_sample(1);
     }
     for (int i = 0; i < nrows; i++) printf("row %s %s %lu\n", rows[i].fn, rows[i].outcome, rows[i].calls);
     printf("%lu hostile calls, %lu passed, %lu failed\n", calls, passed, failed);
