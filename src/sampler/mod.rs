@@ -427,11 +427,44 @@ impl<P: Pattern> Sampler<P> {
     ///
     /// Every pixel gets independent scrambles, except under [`Blue`], where pixels share a
     /// key tile (positions modulo the tile; `x` and `y` are read modulo 2^16). Frames and
-    /// seeds decorrelate like domains.
+    /// seeds decorrelate like domains: **each frame is a fresh randomisation** of the
+    /// pattern (frames independent). A renderer that accumulates frames and wants their mean
+    /// to converge like one longer net calls [`new_frame`](Self::new_frame), or passes its
+    /// own running sample number as `index` with `frame = 0` (the same points: `new_frame`
+    /// is `new` of the 64-bit sample number `frame * spp + index`, high word as `frame`).
     #[inline]
     pub fn new(pixel: [u32; 2], frame: u32, index: u32, seed: u32) -> Self {
         let w = Wrapping;
         Self::from_state(State::new(P::ID, pixel.map(w), w(frame), w(index), w(seed)))
+    }
+
+    /// The root sampler of sample `index` (in `0..spp`) of `pixel` in `frame` of a render
+    /// that draws `spp` samples per pixel per frame and accumulates frames: **the frames
+    /// continue one sequence**. Frame `t` draws the pixel's points `t spp .. (t + 1) spp`,
+    /// so the running mean of frames `0..F` is the estimate of the first `F spp` points of
+    /// the pattern (a (0,m,2)-net when `F spp = 2^m`), each frame alone is a block of the
+    /// sequence (an aligned net when `spp` is a power of two; a run of `spp` consecutive
+    /// points otherwise), and consecutive frames draw different points (no static noise).
+    ///
+    /// The sample's number in the pixel's sequence is the 64-bit `n = frame * spp + index`
+    /// (`spp = 0` acts as 1; `index >= spp` reaches a later frame's sample, documented, not
+    /// an error): it is [`new`](Self::new)`(pixel, (n >> 32) as u32, n as u32, seed)`, so
+    /// frame 0 is `new`'s frame 0 bit for bit, and after `2^32` samples per pixel (`2^32 /
+    /// spp` frames) the sequence continues in a fresh randomisation (`new`'s next frame),
+    /// which keeps the mean converging. A render whose `spp` changes between frames passes
+    /// the pixel's running sample count as `frame` and `spp = 1`: `new_frame(pixel, count,
+    /// 1, index, seed)`. Under [`Blue`] each pixel keeps its tile key across frames (its
+    /// randomisation depends on `n >> 32` only), so the running mean at 1, 2, 4, 8 and 16
+    /// samples is what the tile was optimised for.
+    ///
+    /// [`new`](Self::new) with `index` in `0..spp` and a new `frame` each frame is the other
+    /// choice, named in its docs: a fresh randomisation per frame (frames independent, their
+    /// mean converging like independent randomised nets, not like one longer net). Why `new`
+    /// cannot continue the sequence by itself: `docs/design.md`, "Frames".
+    #[inline]
+    pub fn new_frame(pixel: [u32; 2], frame: u32, spp: u32, index: u32, seed: u32) -> Self {
+        let [epoch, index] = frame_sample(frame, spp, index);
+        Self::new(pixel, epoch, index, seed)
     }
 
     #[inline(always)]
@@ -545,6 +578,14 @@ impl<P: Base> Sampler<P> {
             index: w(index),
         })
     }
+}
+
+/// The `(frame, index)` of [`Sampler::new`] that [`Sampler::new_frame`] builds: the high and
+/// low words of `frame * max(spp, 1) + index` (at most `2^64 - 2^32`, exact in `u64`).
+#[inline(always)]
+fn frame_sample(frame: u32, spp: u32, index: u32) -> [u32; 2] {
+    let n = u64::from(frame) * u64::from(spp.max(1)) + u64::from(index);
+    [(n >> 32) as u32, n as u32]
 }
 
 /// `to_unit` over any lane type (the conversion of [`Sampler::draw`]).
