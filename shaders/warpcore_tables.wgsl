@@ -151,6 +151,24 @@ fn wc_sampler_new(pattern: u32, pixel: vec2<u32>, frame: u32, index: u32, seed: 
     return WcSampler(pattern, packed, domain, index);
 }
 
+// The root sampler of sample `index` (in `0..spp`) of `pixel` in `frame` of a render that
+// accumulates frames: the frames continue one sequence per pixel (`Sampler::new_frame`). It is
+// `wc_sampler_new` of the 64-bit sample number `frame * max(spp, 1) + index`, high word as
+// `frame`, low word as `index` (the product from 16-bit halves: WGSL has no u64).
+fn wc_sampler_new_frame(pattern: u32, pixel: vec2<u32>, frame: u32, spp: u32, index: u32, seed: u32) -> WcSampler {
+    let m = max(spp, 1u);
+    let a = vec2<u32>(frame & 0xffffu, frame >> 16u);
+    let c = vec2<u32>(m & 0xffffu, m >> 16u);
+    let p00 = a.x * c.x;
+    let p01 = a.x * c.y;
+    let p10 = a.y * c.x;
+    let mid = (p00 >> 16u) + (p01 & 0xffffu) + (p10 & 0xffffu);
+    let lo = (p00 & 0xffffu) | (mid << 16u);
+    let hi = a.y * c.y + (p01 >> 16u) + (p10 >> 16u) + (mid >> 16u);
+    let n = lo + index;
+    return wc_sampler_new(pattern, pixel, hi + select(0u, 1u, n < lo), n, seed);
+}
+
 // An independent child pattern for `key`, same index (`Sampler::domain`).
 fn wc_sampler_domain(s: WcSampler, key: u32) -> WcSampler {
     if (!wcti_known(s.pattern)) {
