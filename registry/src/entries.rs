@@ -197,7 +197,7 @@ const SAMPLER: &[Entry] = {
             .golden(DRAW)
             .named(&[(C, "wc_sampler_new"), (Wgsl, "wc_sampler_new")]),
         Entry::new("sampler::Sampler::new_frame", Forms::SCALAR, Kind::Other)
-            .golden(Golden::Tests("tests/sampler_frames.rs"))
+            .golden(TESTS)
             .named(&[(C, "wc_sampler_new_frame"), (Wgsl, "wc_sampler_new_frame")]),
         Entry::new("sampler::Sampler::domain", Forms::LANES, Kind::Other)
             .golden(DRAW)
