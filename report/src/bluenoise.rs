@@ -102,9 +102,14 @@ pub fn error_images(draw: Draw, frame: u32) -> Vec<Vec<f64>> {
 /// The image blurred by a Gaussian of sigma [`SIGMA`] (separable, truncated at 4 sigma,
 /// weights renormalised where the kernel leaves the image).
 pub fn blur(img: &[f64]) -> Vec<f64> {
-    let r = (4.0 * SIGMA).ceil() as isize;
+    blur_sigma(img, SIGMA)
+}
+
+/// [`blur`] with another standard deviation (pixels).
+pub fn blur_sigma(img: &[f64], sigma: f64) -> Vec<f64> {
+    let r = (4.0 * sigma).ceil() as isize;
     let w: Vec<f64> = (-r..=r)
-        .map(|d| (-((d * d) as f64) / (2.0 * SIGMA * SIGMA)).exp())
+        .map(|d| (-((d * d) as f64) / (2.0 * sigma * sigma)).exp())
         .collect();
     let pass = |src: &[f64], horizontal: bool| {
         let mut dst = vec![0.0; SIZE * SIZE];
@@ -202,4 +207,73 @@ pub fn picture(path: &Path) -> std::io::Result<()> {
         .write_image_data(&px)
         .map_err(std::io::Error::other)?;
     writer.finish().map_err(std::io::Error::other)
+}
+
+/// Frames of 1 sample per pixel, accumulated (issue 34): a frame's 2D point for pixel `(x,
+/// y)` at frame `t` (sample index 0 of the frame).
+pub type FrameDraw = fn(u32, u32, u32) -> [f32; 2];
+
+/// `Sampler<P>` with the frames continuing one sequence (`new_frame(pixel, t, 1, 0, 0)`).
+pub fn continued<P: Pattern>(x: u32, y: u32, t: u32) -> [f32; 2] {
+    Sampler::<P>::new_frame([x, y], t, 1, 0, 0)
+        .domain(0)
+        .draw::<2>()
+}
+
+/// `Sampler<P>` with a fresh randomisation per frame (`new(pixel, t, 0, 0)`).
+pub fn fresh<P: Pattern>(x: u32, y: u32, t: u32) -> [f32; 2] {
+    ours::<P>(x, y, t, 0)
+}
+
+/// White noise: a counter hash per pixel and frame (`rnd` of `Sampler<Sobol>`).
+pub fn white(x: u32, y: u32, t: u32) -> [f32; 2] {
+    Sampler::<Sobol>::new([x, y], t, 0, 0).domain(0).rnd::<2>()
+}
+
+/// An OpenQMC blue-noise sampler as its docs use it for progressive rendering: the sample
+/// index counts on across frames (seed 0).
+pub fn openqmc_continued<T>(x: u32, y: u32, t: u32) -> [f32; 2]
+where
+    OpenQmc<T>: PathSampler,
+{
+    openqmc::<T>(x, y, 0, t)
+}
+
+/// What accumulating `frames` frames of 1 spp leaves, for one sampler: `[mean per-frame RMS
+/// after the sigma-1.5 blur, the worst frame's, running mean's RMS after the blur, running
+/// mean's unblurred per-pixel RMS, EMA (alpha 0.1) RMS after a sigma-1 blur]`.
+pub fn frame_errors(draw: FrameDraw, frames: u32) -> [f64; 5] {
+    let n = SIZE * SIZE;
+    let exact: Vec<f64> = (0..n).map(|k| area(&edge(k % SIZE, k / SIZE))).collect();
+    let (mut sum, mut ema) = (vec![0.0; n], vec![0.0; n]);
+    let (mut per_frame, mut worst) = (0.0, 0.0f64);
+    let rms = |img: &[f64]| (img.iter().map(|e| e * e).sum::<f64>() / n as f64).sqrt();
+    for t in 0..frames {
+        let err: Vec<f64> = (0..n)
+            .map(|k| {
+                let (x, y) = (k % SIZE, k / SIZE);
+                let hit = inside(&edge(x, y), draw(x as u32, y as u32, t)) as u32 as f64;
+                hit - exact[k]
+            })
+            .collect();
+        let r = rms(&blur(&err));
+        per_frame += r / frames as f64;
+        worst = worst.max(r);
+        for k in 0..n {
+            sum[k] += err[k];
+            ema[k] = if t == 0 {
+                err[k]
+            } else {
+                0.9 * ema[k] + 0.1 * err[k]
+            };
+        }
+    }
+    let mean: Vec<f64> = sum.iter().map(|e| e / frames as f64).collect();
+    [
+        per_frame,
+        worst,
+        rms(&blur(&mean)),
+        rms(&mean),
+        rms(&blur_sigma(&ema, 1.0)),
+    ]
 }
