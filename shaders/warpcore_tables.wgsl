@@ -58,6 +58,12 @@ fn wcti_mix(x0: u32) -> u32 {
     return x2 ^ (x2 >> 16u);
 }
 
+// One round of the mixer (`hash::mix1`): the sampler's domain tree.
+fn wcti_mix1(x0: u32) -> u32 {
+    let x1 = (x0 ^ (x0 >> 16u)) * 0x7feb352du;
+    return x1 ^ (x1 >> 15u);
+}
+
 // The Laine-Karras hash with Vegdahl's constants (`hash::lk_hash`).
 fn wcti_lk_hash(x0: u32, seed: u32) -> u32 {
     let x1 = x0 ^ (x0 * 0x3d20adeau);
@@ -145,8 +151,7 @@ fn wc_sampler_new(pattern: u32, pixel: vec2<u32>, frame: u32, index: u32, seed: 
     }
     let root = wcti_mix(wcti_mix(seed ^ 0x3c6ef372u) ^ (frame * 0x9e3779b9u));
     let packed = (pixel.x & 0xffffu) | (pixel.y << 16u);
-    let high = (pixel.x >> 16u) | (pixel.y & 0xffff0000u);
-    let pixel_domain = wcti_mix(root ^ packed ^ (high * 0x85ebca6bu));
+    let pixel_domain = wcti_mix1(root ^ pixel.x ^ ((pixel.y << 16u) | (pixel.y >> 16u)));
     let domain = select(pixel_domain, root, wcti_is_blue(pattern));
     return WcSampler(pattern, packed, domain, index);
 }
@@ -174,7 +179,7 @@ fn wc_sampler_domain(s: WcSampler, key: u32) -> WcSampler {
     if (!wcti_known(s.pattern)) {
         return s;
     }
-    return WcSampler(s.pattern, s.pixel, wcti_mix(s.domain + key * 0xc2b2ae35u), s.index);
+    return WcSampler(s.pattern, s.pixel, wcti_mix1(s.domain + key * 0xc2b2ae35u), s.index);
 }
 
 // Sub-sample `sub` of `size` per sample: child index `index * size + sub` (wrapping) in a

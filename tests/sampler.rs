@@ -689,7 +689,7 @@ const PIXELS: u32 = 4096;
 /// about 2% per MSE would allow 1.25 by chance only at > 10 sigma for different points
 /// of the same quality). The fresh randomisation per frame (`new` with `frame = t`) is the
 /// control: independent 1-point estimates converge like `1 / F`, the nets like `F^-1.5`, so
-/// it is far above 1.25 (measured 6.1-6.4x at 16 and 14.3-14.4x at 64 frames) and a wrong `new_frame` that
+/// it is far above 1.25 (measured 6.1-6.4x at 16 and 14.3-14.6x at 64 frames) and a wrong `new_frame` that
 /// re-randomised frames would fail.
 fn running_mean_converges_like_one_frame<P: Pattern>(name: &str) {
     for frames in [16u32, 64] {

@@ -69,18 +69,20 @@
 //! A [`Sampler`] is three words (12 bytes): the pixel (`x` and `y`, 16 bits each), a 32-bit
 //! domain hash and the sample index. [`new`](Sampler::new) hashes the seed and the frame into
 //! a root (two mixes a renderer's loop hoists), then — except for [`Blue`], whose pixels must
-//! share one key tile — folds in the pixel with one more mix: the pixel enters one-to-one
-//! below `2^16` per coordinate, so every pixel of any real image gets its own domain hash
-//! (larger coordinates are folded in too, by an odd multiple of their high halves);
-//! [`domain`](Sampler::domain) and [`split`](Sampler::split) re-hash it with a bijective
-//! mixer (Wellons' `lowbias32`). A draw derives its shuffle and scramble keys from the domain
+//! share one key tile — folds in the pixel `x ^ rotl(y, 16)` with one round of a bijective
+//! mixer (the first half of Wellons' `lowbias32`): the pixel enters one-to-one below `2^16`
+//! per coordinate, so every pixel of any real image gets its own domain hash (larger
+//! coordinates are folded in too, their high halves onto the low ones);
+//! [`domain`](Sampler::domain) re-hashes it with the same one-round mixer and
+//! [`split`](Sampler::split) with the full `lowbias32` (the draw's Laine-Karras keys mix
+//! again, so the tree's hashes need not be outputs-grade). A draw derives its shuffle and scramble keys from the domain
 //! hash by **rotations**, not by more hashing (the low bits of a Laine-Karras key drive the
 //! top levels of its scramble, so rotations give each key its own bits there; OpenQMC
 //! rotates bytes the same way): a draw is one shuffle, a table product and the scrambles,
 //! which is what makes the scalar form as fast as OpenQMC's (`docs/sampler-performance.md`).
 //! Nothing is stored, nothing is shared between threads.
 
-use crate::hash::{lk_hash, mix, nested_shuffle, owen_scramble, to_unit};
+use crate::hash::{lk_hash, mix, mix1, nested_shuffle, owen_scramble, to_unit};
 use crate::lanes::{Lane, UintLane};
 use crate::pmj02bn::{LOG2_POINTS, POINTS, SETS};
 use core::marker::PhantomData;
@@ -176,15 +178,16 @@ impl<U: UintLane> State<U> {
     #[inline(always)]
     fn new(id: u8, pixel: [U; 2], frame: U, index: U, seed: U) -> Self {
         let root = mix(mix(seed ^ U::splat(K_SEED)) ^ (frame * U::splat(K_FRAME)));
-        // The pixel packed in one word (16 bits per coordinate, what the blue-noise tile
-        // position reads), plus the coordinates' high halves times an odd constant: one-to-one
-        // for pixels below 2^16, so one mix separates every pixel of any real image.
+        // The pixel packed in one word (16 bits per coordinate), what the blue-noise tile
+        // position reads. The other patterns hash `x ^ rotl(y, 16)`: the same word for pixels
+        // below 2^16 (one-to-one there, so every pixel of any real image gets its own domain
+        // hash), the high halves folded onto the low ones above; one round of the mixer
+        // (the draw's Laine-Karras keys mix again).
         let packed = (pixel[0] & U::splat(0xffff)) | pixel[1].shl(16);
-        let high = pixel[0].shr(16) | (pixel[1] & U::splat(0xffff_0000));
         let domain = if id & BLUE != 0 {
             root
         } else {
-            mix(root ^ packed ^ (high * U::splat(K_PIXEL)))
+            mix1(root ^ pixel[0] ^ pixel[1].rotr(16))
         };
         let pixel = packed;
         State {
@@ -197,7 +200,7 @@ impl<U: UintLane> State<U> {
     #[inline(always)]
     fn domain(self, key: u32) -> Self {
         State {
-            domain: mix(self.domain + U::splat(key.wrapping_mul(K_DOMAIN))),
+            domain: mix1(self.domain + U::splat(key.wrapping_mul(K_DOMAIN))),
             ..self
         }
     }
