@@ -277,3 +277,95 @@ pub fn frame_errors(draw: FrameDraw, frames: u32) -> [f64; 5] {
         rms(&blur_sigma(&ema, 1.0)),
     ]
 }
+
+/// A Morton-ordered Sobol' sampler in the manner of pbrt-v4's `ZSobolSampler` (Ahmed and Wonka,
+/// "Screen-space blue-noise diffusion of Monte Carlo sampling error via hierarchical ordering
+/// of pixels", SIGGRAPH Asia 2020), our own code: sample `index` of `2^log2_spp` of pixel
+/// `(x, y)` is the global index `morton(x, y) * 2^log2_spp + index` (coordinates modulo
+/// `2^10`), whose base-4 digits are each permuted, from the most significant down, by one of
+/// the 24 permutations of `0..4` chosen by a hash of the digits above and of `dim` (with an
+/// odd `log2_spp` the lowest digit is binary and is flipped by one hash bit); the point is
+/// dimensions 0-1 of Owen-scrambled Sobol' (`sobol_burley`, seeded by `dim`) at that index.
+/// So each pixel's samples are an aligned block of one sequence (a net), and the pixels of
+/// every aligned Morton quad take 4 blocks that together form a net: neighbouring pixels'
+/// errors cancel. Needs the sample count in advance (not progressive). A report peer, not a
+/// `Pattern`: its points depend on `spp`, which `Sampler::new` does not take.
+pub fn zsobol(x: u32, y: u32, log2_spp: u32, index: u32, dim: u32) -> [f32; 2] {
+    const LOG2_RES: u32 = 10;
+    const PERMS: [[u32; 4]; 24] = {
+        let mut out = [[0u32; 4]; 24];
+        let (mut n, mut a) = (0, 0);
+        while a < 4 {
+            let mut b = 0;
+            while b < 4 {
+                let mut c = 0;
+                while c < 4 {
+                    if a != b && b != c && a != c {
+                        out[n] = [a, b, c, 6 - a - b - c];
+                        n += 1;
+                    }
+                    c += 1;
+                }
+                b += 1;
+            }
+            a += 1;
+        }
+        out
+    };
+    let spread = |v: u32| (0..LOG2_RES).fold(0u64, |m, b| m | ((((v >> b) & 1) as u64) << (2 * b)));
+    let morton = spread(x & ((1 << LOG2_RES) - 1)) | (spread(y & ((1 << LOG2_RES) - 1)) << 1);
+    let g = (morton << log2_spp) | u64::from(index & ((1u32 << log2_spp) - 1));
+    let bits = 2 * LOG2_RES + log2_spp;
+    let key = crate::path::samplers::hash32(dim ^ 0x5a17_0b01);
+    let mut out = 0u64;
+    let mut done = 0;
+    while done < bits {
+        let width = if bits - done >= 2 { 2 } else { 1 };
+        let shift = bits - done - width;
+        let above = g >> (shift + width);
+        let h = crate::path::samplers::hash32(
+            (above as u32) ^ crate::path::samplers::hash32((above >> 32) as u32 ^ key ^ done),
+        );
+        let digit = ((g >> shift) & ((1 << width) - 1)) as u32;
+        let permuted = if width == 2 {
+            PERMS[(h % 24) as usize][digit as usize]
+        } else {
+            digit ^ (h & 1)
+        };
+        out |= u64::from(permuted) << shift;
+        done += width;
+    }
+    let i = out as u32;
+    let seed = key;
+    [
+        sobol_burley::sample(i, 0, seed),
+        sobol_burley::sample(i, 1, seed),
+    ]
+}
+
+/// RMS of the blurred error of [`zsobol`] at `spp` samples per pixel over `frames` frames
+/// (frame `t` is `dim = t`: an independent randomisation per frame).
+pub fn zsobol_rms_after_blur(spp: u32, frames: u32) -> f64 {
+    let k = spp.trailing_zeros();
+    let mut sum = 0.0;
+    for t in 0..frames {
+        let err: Vec<f64> = (0..SIZE * SIZE)
+            .map(|p| {
+                let (x, y) = (p % SIZE, p / SIZE);
+                let e = edge(x, y);
+                let hits = (0..spp)
+                    .filter(|&i| inside(&e, zsobol(x as u32, y as u32, k, i, t)))
+                    .count();
+                hits as f64 / f64::from(spp) - area(&e)
+            })
+            .collect();
+        sum += blur(&err).iter().map(|e| e * e).sum::<f64>();
+    }
+    (sum / (frames as usize * SIZE * SIZE) as f64).sqrt()
+}
+
+/// [`zsobol`] as 1 spp frames: frame `t < 32` is sample `t` of a 32-sample ZSobol' pixel (the
+/// frames continue it, as `new_frame` does), for [`frame_errors`].
+pub fn zsobol_frames(x: u32, y: u32, t: u32) -> [f32; 2] {
+    zsobol(x, y, 5, t % 32, t / 32)
+}

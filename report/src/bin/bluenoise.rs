@@ -10,7 +10,7 @@ use std::path::Path;
 use warpcore::sampler::{Blue, Pmj02bn, Sobol};
 use warpcore_report::bluenoise::{
     FRAMES, FrameDraw, SIGMA, SIZE, SPP, continued, frame_errors, fresh, openqmc_continued,
-    patterns, picture, rms_after_blur, white,
+    patterns, picture, rms_after_blur, white, zsobol_frames, zsobol_rms_after_blur,
 };
 
 fn main() {
@@ -47,6 +47,7 @@ fn main() {
             );
         }
     }
+    zsobol_table();
     frames_table();
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/bluenoise.png");
     match picture(&path) {
@@ -57,7 +58,7 @@ fn main() {
 
 /// Issue 34: 1 spp per frame, accumulated over 32 and 64 frames.
 fn frames_table() {
-    let rows: [(&str, FrameDraw); 12] = [
+    let rows: [(&str, FrameDraw); 13] = [
         ("white noise", white),
         ("Sobol, frames continued", continued::<Sobol>),
         ("Sobol, fresh per frame", fresh::<Sobol>),
@@ -78,6 +79,7 @@ fn frames_table() {
             "openqmc PmjBn, index continued",
             openqmc_continued::<PmjBnSampler>,
         ),
+        ("ZSobol, 32-sample pixels over the frames", zsobol_frames),
         ("white noise (again, other seed)", |x, y, t| {
             white(x, y, t ^ 0x8000_0000)
         }),
@@ -111,5 +113,28 @@ fn frames_table() {
                 cell(4)
             );
         }
+    }
+}
+
+/// The Morton-ordered Sobol' peer (`zsobol`) at each sample count, against `Sobol` and
+/// `Blue<Sobol>` (same table as above).
+fn zsobol_table() {
+    println!();
+    println!("Morton-ordered Sobol' (ZSobol, sample count known in advance), same measure");
+    let (sobol, blue) = (
+        rms_after_blur(patterns()[0].1, 0..FRAMES),
+        rms_after_blur(patterns()[0].2, 0..FRAMES),
+    );
+    println!(
+        "{:>4} | {:>10} | {:>12} | {:>14}",
+        "spp", "ZSobol", "/ Sobol", "/ Blue<Sobol>"
+    );
+    for (k, spp) in SPP.iter().enumerate() {
+        let z = zsobol_rms_after_blur(*spp, FRAMES);
+        println!(
+            "{spp:>4} | {z:>10.5} | {:>12.3} | {:>14.3}",
+            z / sobol[k],
+            z / blue[k]
+        );
     }
 }
