@@ -514,6 +514,16 @@ fn blue_key_collisions_are_rare() {
 // per-pixel MSE of one frame at `F` spp, while a fresh randomisation per frame (`new` with a
 // new `frame`) does not.
 
+/// Runs `$f::<P>(name)` for the four patterns.
+macro_rules! every_pattern {
+    ($f:ident) => {
+        $f::<Pmj02bn>("Pmj02bn");
+        $f::<Sobol>("Sobol");
+        $f::<Blue<Pmj02bn>>("Blue<Pmj02bn>");
+        $f::<Blue<Sobol>>("Blue<Sobol>");
+    };
+}
+
 /// The dimension pairs of `P` that are (0,2)-sequences.
 fn net_pairs<P: Pattern>(sobol: bool) -> &'static [[usize; 2]] {
     let _ = P::default();
@@ -539,8 +549,8 @@ fn along<P: Pattern>(s: Sampler<P>, path: usize) -> [u32; 4] {
     }
 }
 
-fn frames_are_one_sequence<P: Pattern>(name: &str, sobol: bool) {
-    let pairs = net_pairs::<P>(sobol);
+fn frames_are_one_sequence<P: Pattern>(name: &str) {
+    let pairs = net_pairs::<P>(name.contains("Sobol"));
     let mut r = common::rng(34);
     for trial in 0..6 {
         let pixel = [r.random::<u32>() % 2048, r.random::<u32>() % 2048];
@@ -583,10 +593,7 @@ fn frames_are_one_sequence<P: Pattern>(name: &str, sobol: bool) {
 
 #[test]
 fn frames_continue_one_sequence_as_nets() {
-    frames_are_one_sequence::<Pmj02bn>("Pmj02bn", false);
-    frames_are_one_sequence::<Sobol>("Sobol", true);
-    frames_are_one_sequence::<Blue<Pmj02bn>>("Blue<Pmj02bn>", false);
-    frames_are_one_sequence::<Blue<Sobol>>("Blue<Sobol>", true);
+    every_pattern!(frames_are_one_sequence);
 }
 
 /// The documented numbering, from 128-bit arithmetic: `new_frame(pixel, frame, spp, index,
@@ -594,7 +601,7 @@ fn frames_continue_one_sequence_as_nets() {
 /// including past `2^32` samples, `spp = 0`, `spp` not a power of two and `index >= spp`.
 #[test]
 fn frames_number_the_samples_in_64_bits() {
-    fn check<P: Pattern>() {
+    fn check<P: Pattern>(_: &str) {
         let mut r = common::rng(35);
         let edge = [0u32, 1, 2, 3, 255, 0xffff, 0x1_0000, u32::MAX - 1, u32::MAX];
         for k in 0..4000 {
@@ -625,10 +632,7 @@ fn frames_number_the_samples_in_64_bits() {
             }
         }
     }
-    check::<Pmj02bn>();
-    check::<Sobol>();
-    check::<Blue<Pmj02bn>>();
-    check::<Blue<Sobol>>();
+    every_pattern!(check);
 }
 
 /// Consecutive frames draw different points (no static noise), for every pattern: over
@@ -656,10 +660,7 @@ fn consecutive_frames_differ() {
             }
         }
     }
-    check::<Pmj02bn>("Pmj02bn");
-    check::<Sobol>("Sobol");
-    check::<Blue<Pmj02bn>>("Blue<Pmj02bn>");
-    check::<Blue<Sobol>>("Blue<Sobol>");
+    every_pattern!(check);
 }
 
 /// The test integrand: the area under `y = 0.3 + 0.4 x^2` (an edge across the pixel), whose
@@ -731,8 +732,5 @@ fn running_mean_converges_like_one_frame<P: Pattern>(name: &str) {
 
 #[test]
 fn running_mean_of_frames_converges_like_one_long_frame() {
-    running_mean_converges_like_one_frame::<Pmj02bn>("Pmj02bn");
-    running_mean_converges_like_one_frame::<Sobol>("Sobol");
-    running_mean_converges_like_one_frame::<Blue<Pmj02bn>>("Blue<Pmj02bn>");
-    running_mean_converges_like_one_frame::<Blue<Sobol>>("Blue<Sobol>");
+    every_pattern!(running_mean_converges_like_one_frame);
 }
