@@ -694,6 +694,20 @@ WcSampler wc_sampler_new(uint32_t pattern,
                          uint32_t index,
                          uint32_t seed);
 
+// The root sampler of sample `index` (in `0..spp`) of pixel `(x, y)` in `frame` of a render
+// that accumulates frames of `spp` samples per pixel: the frames continue one sequence per
+// pixel (`Sampler::new_frame`). It is `wc_sampler_new` of the 64-bit sample number `n =
+// frame * spp + index` (`spp = 0` acts as 1), with `n >> 32` as `frame` and the low word as
+// `index`: frame 0 is `wc_sampler_new`'s frame 0. Every `uint32_t` is valid. An unknown
+// `pattern` gives `{pattern, 0, 0, 0}`, a sampler every draw refuses.
+WcSampler wc_sampler_new_frame(uint32_t pattern,
+                               uint32_t x,
+                               uint32_t y,
+                               uint32_t frame,
+                               uint32_t spp,
+                               uint32_t index,
+                               uint32_t seed);
+
 // An independent child pattern for `key` (same index): one per decision of a path (lens,
 // light, BSDF, one per bounce ...). Different keys never give the same child. An unknown
 // pattern is returned unchanged.

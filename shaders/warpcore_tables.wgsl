@@ -58,6 +58,12 @@ fn wcti_mix(x0: u32) -> u32 {
     return x2 ^ (x2 >> 16u);
 }
 
+// One round of the mixer (`hash::mix1`): the sampler's domain tree.
+fn wcti_mix1(x0: u32) -> u32 {
+    let x1 = (x0 ^ (x0 >> 16u)) * 0x7feb352du;
+    return x1 ^ (x1 >> 15u);
+}
+
 // The Laine-Karras hash with Vegdahl's constants (`hash::lk_hash`).
 fn wcti_lk_hash(x0: u32, seed: u32) -> u32 {
     let x1 = x0 ^ (x0 * 0x3d20adeau);
@@ -145,10 +151,27 @@ fn wc_sampler_new(pattern: u32, pixel: vec2<u32>, frame: u32, index: u32, seed: 
     }
     let root = wcti_mix(wcti_mix(seed ^ 0x3c6ef372u) ^ (frame * 0x9e3779b9u));
     let packed = (pixel.x & 0xffffu) | (pixel.y << 16u);
-    let high = (pixel.x >> 16u) | (pixel.y & 0xffff0000u);
-    let pixel_domain = wcti_mix(root ^ packed ^ (high * 0x85ebca6bu));
+    let pixel_domain = wcti_mix1(root ^ pixel.x ^ ((pixel.y << 16u) | (pixel.y >> 16u)));
     let domain = select(pixel_domain, root, wcti_is_blue(pattern));
     return WcSampler(pattern, packed, domain, index);
+}
+
+// The root sampler of sample `index` (in `0..spp`) of `pixel` in `frame` of a render that
+// accumulates frames: the frames continue one sequence per pixel (`Sampler::new_frame`). It is
+// `wc_sampler_new` of the 64-bit sample number `frame * max(spp, 1) + index`, high word as
+// `frame`, low word as `index` (the product from 16-bit halves: WGSL has no u64).
+fn wc_sampler_new_frame(pattern: u32, pixel: vec2<u32>, frame: u32, spp: u32, index: u32, seed: u32) -> WcSampler {
+    let m = max(spp, 1u);
+    let a = vec2<u32>(frame & 0xffffu, frame >> 16u);
+    let c = vec2<u32>(m & 0xffffu, m >> 16u);
+    let p00 = a.x * c.x;
+    let p01 = a.x * c.y;
+    let p10 = a.y * c.x;
+    let mid = (p00 >> 16u) + (p01 & 0xffffu) + (p10 & 0xffffu);
+    let lo = (p00 & 0xffffu) | (mid << 16u);
+    let hi = a.y * c.y + (p01 >> 16u) + (p10 >> 16u) + (mid >> 16u);
+    let n = lo + index;
+    return wc_sampler_new(pattern, pixel, hi + select(0u, 1u, n < lo), n, seed);
 }
 
 // An independent child pattern for `key`, same index (`Sampler::domain`).
@@ -156,7 +179,7 @@ fn wc_sampler_domain(s: WcSampler, key: u32) -> WcSampler {
     if (!wcti_known(s.pattern)) {
         return s;
     }
-    return WcSampler(s.pattern, s.pixel, wcti_mix(s.domain + key * 0xc2b2ae35u), s.index);
+    return WcSampler(s.pattern, s.pixel, wcti_mix1(s.domain + key * 0xc2b2ae35u), s.index);
 }
 
 // Sub-sample `sub` of `size` per sample: child index `index * size + sub` (wrapping) in a

@@ -17,6 +17,17 @@ pub(crate) fn mix<U: UintLane>(x: U) -> U {
     x ^ x.shr(16)
 }
 
+/// One round of [`mix`] (xorshift, multiply, xorshift: the first half of Wellons'
+/// `lowbias32`): bijective, `mix1(0) = 0`, half the cost. For the sampler's domain tree, whose
+/// hashes feed the Laine-Karras keys of [`lk_hash`] (which mix again) rather than outputs.
+#[cfg(feature = "sampler")]
+#[inline(always)]
+pub(crate) fn mix1<U: UintLane>(x: U) -> U {
+    let x = x ^ x.shr(16);
+    let x = x * U::splat(0x7feb_352d);
+    x ^ x.shr(15)
+}
+
 /// A hash of bit-reversed values in which output bit `j` depends only on input bits `<= j`
 /// (each step is `+`, `*` by an odd number, or `^= x * even`, which carry upwards only),
 /// keyed by `seed`. Laine and Karras (2011) proposed the form; these constants are Vegdahl's

@@ -113,6 +113,29 @@ pub extern "C" fn wc_sampler_new(
     )
 }
 
+/// The root sampler of sample `index` (in `0..spp`) of pixel `(x, y)` in `frame` of a render
+/// that accumulates frames of `spp` samples per pixel: the frames continue one sequence per
+/// pixel (`Sampler::new_frame`). It is `wc_sampler_new` of the 64-bit sample number `n =
+/// frame * spp + index` (`spp = 0` acts as 1), with `n >> 32` as `frame` and the low word as
+/// `index`: frame 0 is `wc_sampler_new`'s frame 0. Every `uint32_t` is valid. An unknown
+/// `pattern` gives `{pattern, 0, 0, 0}`, a sampler every draw refuses.
+#[unsafe(no_mangle)]
+pub extern "C" fn wc_sampler_new_frame(
+    pattern: u32,
+    x: u32,
+    y: u32,
+    frame: u32,
+    spp: u32,
+    index: u32,
+    seed: u32,
+) -> WcSampler {
+    with_pattern!(
+        pattern,
+        P => WcSampler::of(pattern, Sampler::<P>::new_frame([x, y], frame, spp, index, seed)),
+        _ => WcSampler { pattern, ..WcSampler::default() }
+    )
+}
+
 /// An independent child pattern for `key` (same index): one per decision of a path (lens,
 /// light, BSDF, one per bounce ...). Different keys never give the same child. An unknown
 /// pattern is returned unchanged.

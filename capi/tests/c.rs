@@ -585,6 +585,7 @@ const TABLE: &[(&str, &[&str])] = {
         ("wc_pmj02bn_sets", &["value"]),
         ("wc_sampler_pattern_supported", &["1", "0"]),
         ("wc_sampler_new", SAMPLER),
+        ("wc_sampler_new_frame", SAMPLER),
         ("wc_sampler_domain", SAMPLER),
         ("wc_sampler_split", SAMPLER),
         ("wc_sampler_draw", DRAW),

@@ -125,6 +125,7 @@ pub struct TableFunc {
 
 const SAMPLER_FUNCTIONS: &[&str] = &[
     "wc_sampler_new",
+    "wc_sampler_new_frame",
     "wc_sampler_domain",
     "wc_sampler_split",
     "wc_sampler_draw2",
@@ -134,7 +135,7 @@ const SAMPLER_FUNCTIONS: &[&str] = &[
 ];
 
 /// Words per sampler path (see the `wc_sampler_*` checks of [`TABLE_FUNCTIONS`]).
-pub const SAMPLER_OUT: usize = 40;
+pub const SAMPLER_OUT: usize = 44;
 
 /// Every check of `shaders/warpcore_tables.wgsl`.
 pub const TABLE_FUNCTIONS: &[TableFunc] = &[
@@ -216,14 +217,17 @@ pub const TABLE_FUNCTIONS: &[TableFunc] = &[
 /// sub]`: the root `s`, `s1 = domain(s, k1)`, `s2 = split(s1, k2, size, sub)`, `s3 =
 /// domain(s2, k1 ^ k2)`; out: the words of `s`, `draw4_u32(s)`, `draw2(s)`, `draw4(s)`,
 /// `rnd4(s)`, `draw4_u32(s1)`, the words of `s2`, `draw4(s2)`, `draw2(s2)`, `draw4_u32(s3)`,
-/// `rnd4(s3)` (40 words).
+/// `rnd4(s3)`, the words of `wc_sampler_new_frame(pattern, pixel, frame, size, index, seed)`
+/// (44 words).
 fn sampler_wgsl() -> String {
     let mut s = String::from(
         "let s = wc_sampler_new(wc_in[b], vec2<u32>(wc_in[b + 1u], wc_in[b + 2u]), \
          wc_in[b + 3u], wc_in[b + 4u], wc_in[b + 5u]);\n\
          let s1 = wc_sampler_domain(s, wc_in[b + 6u]);\n\
          let s2 = wc_sampler_split(s1, wc_in[b + 7u], wc_in[b + 8u], wc_in[b + 9u]);\n\
-         let s3 = wc_sampler_domain(s2, wc_in[b + 6u] ^ wc_in[b + 7u]);\n",
+         let s3 = wc_sampler_domain(s2, wc_in[b + 6u] ^ wc_in[b + 7u]);\n\
+         let sf = wc_sampler_new_frame(wc_in[b], vec2<u32>(wc_in[b + 1u], wc_in[b + 2u]), \
+         wc_in[b + 3u], wc_in[b + 8u], wc_in[b + 4u], wc_in[b + 5u]);\n",
     );
     let mut k = 0;
     let mut put = |s: &mut String, e: String| {
@@ -255,6 +259,7 @@ fn sampler_wgsl() -> String {
     all.extend(f("wc_sampler_draw2(s2)", 2));
     all.extend(u("wc_sampler_draw4_u32(s3)", 4));
     all.extend(f("wc_sampler_rnd4(s3)", 4));
+    all.extend(words("sf"));
     assert_eq!(all.len(), SAMPLER_OUT);
     for e in all {
         put(&mut s, e);
@@ -274,6 +279,7 @@ fn sampler_cpu(i: &[u32], o: &mut [u32]) {
             o.fill(0);
             o[0] = p;
             o[22] = p; // the words of s2
+            o[40] = p; // the words of new_frame's root
         }
     }
 }
@@ -301,6 +307,13 @@ fn sampler_path<P: Pattern>(i: &[u32], o: &mut [u32]) {
     w.extend(bits(&s2.draw::<2>()));
     w.extend(s3.draw_u32::<4>());
     w.extend(bits(&s3.rnd::<4>()));
+    w.extend(words(Sampler::<P>::new_frame(
+        [i[1], i[2]],
+        i[3],
+        i[8],
+        i[4],
+        i[5],
+    )));
     o.copy_from_slice(&w);
 }
 

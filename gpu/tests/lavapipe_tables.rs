@@ -107,6 +107,7 @@ fn the_tables_file_is_a_library_with_one_binding() {
     let signatures = [
         "fn wc_pmj02bn_sample(index: u32, seed: u32) -> vec2<f32>",
         "fn wc_sampler_new(pattern: u32, pixel: vec2<u32>, frame: u32, index: u32, seed: u32) -> WcSampler",
+        "fn wc_sampler_new_frame(pattern: u32, pixel: vec2<u32>, frame: u32, spp: u32, index: u32, seed: u32) -> WcSampler",
         "fn wc_sampler_domain(s: WcSampler, key: u32) -> WcSampler",
         "fn wc_sampler_split(s: WcSampler, key: u32, size: u32, sub: u32) -> WcSampler",
         "fn wc_sampler_draw2(s: WcSampler) -> vec2<f32>",
@@ -125,7 +126,7 @@ fn the_tables_file_is_a_library_with_one_binding() {
             "{name} is not checked by TABLE_FUNCTIONS"
         );
     }
-    assert_eq!(public.len(), 9, "{public:?}");
+    assert_eq!(public.len(), 10, "{public:?}");
     // The two files together: no name is shared.
     let both = format!("{}\n{}", warpcore_gpu::WGSL, TABLES_WGSL);
     naga::front::wgsl::parse_str(&both).expect("warpcore.wgsl + warpcore_tables.wgsl parse");

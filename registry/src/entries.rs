@@ -232,6 +232,9 @@ const SAMPLER: &[Entry] = {
         Entry::new("sampler::Sampler::new", Forms::LANES, Kind::Other)
             .golden(DRAW)
             .named(&[(C, "wc_sampler_new"), (Wgsl, "wc_sampler_new")]),
+        Entry::new("sampler::Sampler::new_frame", Forms::SCALAR, Kind::Other)
+            .golden(TESTS)
+            .named(&[(C, "wc_sampler_new_frame"), (Wgsl, "wc_sampler_new_frame")]),
         Entry::new("sampler::Sampler::domain", Forms::LANES, Kind::Other)
             .golden(DRAW)
             .named(&[(C, "wc_sampler_domain"), (Wgsl, "wc_sampler_domain")]),

@@ -102,9 +102,14 @@ pub fn error_images(draw: Draw, frame: u32) -> Vec<Vec<f64>> {
 /// The image blurred by a Gaussian of sigma [`SIGMA`] (separable, truncated at 4 sigma,
 /// weights renormalised where the kernel leaves the image).
 pub fn blur(img: &[f64]) -> Vec<f64> {
-    let r = (4.0 * SIGMA).ceil() as isize;
+    blur_sigma(img, SIGMA)
+}
+
+/// [`blur`] with another standard deviation (pixels).
+pub fn blur_sigma(img: &[f64], sigma: f64) -> Vec<f64> {
+    let r = (4.0 * sigma).ceil() as isize;
     let w: Vec<f64> = (-r..=r)
-        .map(|d| (-((d * d) as f64) / (2.0 * SIGMA * SIGMA)).exp())
+        .map(|d| (-((d * d) as f64) / (2.0 * sigma * sigma)).exp())
         .collect();
     let pass = |src: &[f64], horizontal: bool| {
         let mut dst = vec![0.0; SIZE * SIZE];
@@ -202,4 +207,165 @@ pub fn picture(path: &Path) -> std::io::Result<()> {
         .write_image_data(&px)
         .map_err(std::io::Error::other)?;
     writer.finish().map_err(std::io::Error::other)
+}
+
+/// Frames of 1 sample per pixel, accumulated (issue 34): a frame's 2D point for pixel `(x,
+/// y)` at frame `t` (sample index 0 of the frame).
+pub type FrameDraw = fn(u32, u32, u32) -> [f32; 2];
+
+/// `Sampler<P>` with the frames continuing one sequence (`new_frame(pixel, t, 1, 0, 0)`).
+pub fn continued<P: Pattern>(x: u32, y: u32, t: u32) -> [f32; 2] {
+    Sampler::<P>::new_frame([x, y], t, 1, 0, 0)
+        .domain(0)
+        .draw::<2>()
+}
+
+/// `Sampler<P>` with a fresh randomisation per frame (`new(pixel, t, 0, 0)`).
+pub fn fresh<P: Pattern>(x: u32, y: u32, t: u32) -> [f32; 2] {
+    ours::<P>(x, y, t, 0)
+}
+
+/// White noise: a counter hash per pixel and frame (`rnd` of `Sampler<Sobol>`).
+pub fn white(x: u32, y: u32, t: u32) -> [f32; 2] {
+    Sampler::<Sobol>::new([x, y], t, 0, 0).domain(0).rnd::<2>()
+}
+
+/// An OpenQMC blue-noise sampler as its docs use it for progressive rendering: the sample
+/// index counts on across frames (seed 0).
+pub fn openqmc_continued<T>(x: u32, y: u32, t: u32) -> [f32; 2]
+where
+    OpenQmc<T>: PathSampler,
+{
+    openqmc::<T>(x, y, 0, t)
+}
+
+/// What accumulating `frames` frames of 1 spp leaves, for one sampler: `[mean per-frame RMS
+/// after the sigma-1.5 blur, the worst frame's, running mean's RMS after the blur, running
+/// mean's unblurred per-pixel RMS, EMA (alpha 0.1) RMS after a sigma-1 blur]`.
+pub fn frame_errors(draw: FrameDraw, frames: u32) -> [f64; 5] {
+    let n = SIZE * SIZE;
+    let exact: Vec<f64> = (0..n).map(|k| area(&edge(k % SIZE, k / SIZE))).collect();
+    let (mut sum, mut ema) = (vec![0.0; n], vec![0.0; n]);
+    let (mut per_frame, mut worst) = (0.0, 0.0f64);
+    let rms = |img: &[f64]| (img.iter().map(|e| e * e).sum::<f64>() / n as f64).sqrt();
+    for t in 0..frames {
+        let err: Vec<f64> = (0..n)
+            .map(|k| {
+                let (x, y) = (k % SIZE, k / SIZE);
+                let hit = inside(&edge(x, y), draw(x as u32, y as u32, t)) as u32 as f64;
+                hit - exact[k]
+            })
+            .collect();
+        let r = rms(&blur(&err));
+        per_frame += r / frames as f64;
+        worst = worst.max(r);
+        for k in 0..n {
+            sum[k] += err[k];
+            ema[k] = if t == 0 {
+                err[k]
+            } else {
+                0.9 * ema[k] + 0.1 * err[k]
+            };
+        }
+    }
+    let mean: Vec<f64> = sum.iter().map(|e| e / frames as f64).collect();
+    [
+        per_frame,
+        worst,
+        rms(&blur(&mean)),
+        rms(&mean),
+        rms(&blur_sigma(&ema, 1.0)),
+    ]
+}
+
+/// A Morton-ordered Sobol' sampler in the manner of pbrt-v4's `ZSobolSampler` (Ahmed and Wonka,
+/// "Screen-space blue-noise diffusion of Monte Carlo sampling error via hierarchical ordering
+/// of pixels", SIGGRAPH Asia 2020), our own code: sample `index` of `2^log2_spp` of pixel
+/// `(x, y)` is the global index `morton(x, y) * 2^log2_spp + index` (coordinates modulo
+/// `2^10`), whose base-4 digits are each permuted, from the most significant down, by one of
+/// the 24 permutations of `0..4` chosen by a hash of the digits above and of `dim` (with an
+/// odd `log2_spp` the lowest digit is binary and is flipped by one hash bit); the point is
+/// dimensions 0-1 of Owen-scrambled Sobol' (`sobol_burley`, seeded by `dim`) at that index.
+/// So each pixel's samples are an aligned block of one sequence (a net), and the pixels of
+/// every aligned Morton quad take 4 blocks that together form a net: neighbouring pixels'
+/// errors cancel. Needs the sample count in advance (not progressive). A report peer, not a
+/// `Pattern`: its points depend on `spp`, which `Sampler::new` does not take.
+pub fn zsobol(x: u32, y: u32, log2_spp: u32, index: u32, dim: u32) -> [f32; 2] {
+    const LOG2_RES: u32 = 10;
+    const PERMS: [[u32; 4]; 24] = {
+        let mut out = [[0u32; 4]; 24];
+        let (mut n, mut a) = (0, 0);
+        while a < 4 {
+            let mut b = 0;
+            while b < 4 {
+                let mut c = 0;
+                while c < 4 {
+                    if a != b && b != c && a != c {
+                        out[n] = [a, b, c, 6 - a - b - c];
+                        n += 1;
+                    }
+                    c += 1;
+                }
+                b += 1;
+            }
+            a += 1;
+        }
+        out
+    };
+    let spread = |v: u32| (0..LOG2_RES).fold(0u64, |m, b| m | ((((v >> b) & 1) as u64) << (2 * b)));
+    let morton = spread(x & ((1 << LOG2_RES) - 1)) | (spread(y & ((1 << LOG2_RES) - 1)) << 1);
+    let g = (morton << log2_spp) | u64::from(index & ((1u32 << log2_spp) - 1));
+    let bits = 2 * LOG2_RES + log2_spp;
+    let key = crate::path::samplers::hash32(dim ^ 0x5a17_0b01);
+    let mut out = 0u64;
+    let mut done = 0;
+    while done < bits {
+        let width = if bits - done >= 2 { 2 } else { 1 };
+        let shift = bits - done - width;
+        let above = g >> (shift + width);
+        let h = crate::path::samplers::hash32(
+            (above as u32) ^ crate::path::samplers::hash32((above >> 32) as u32 ^ key ^ done),
+        );
+        let digit = ((g >> shift) & ((1 << width) - 1)) as u32;
+        let permuted = if width == 2 {
+            PERMS[(h % 24) as usize][digit as usize]
+        } else {
+            digit ^ (h & 1)
+        };
+        out |= u64::from(permuted) << shift;
+        done += width;
+    }
+    let i = out as u32;
+    let seed = key;
+    [
+        sobol_burley::sample(i, 0, seed),
+        sobol_burley::sample(i, 1, seed),
+    ]
+}
+
+/// RMS of the blurred error of [`zsobol`] at `spp` samples per pixel over `frames` frames
+/// (frame `t` is `dim = t`: an independent randomisation per frame).
+pub fn zsobol_rms_after_blur(spp: u32, frames: u32) -> f64 {
+    let k = spp.trailing_zeros();
+    let mut sum = 0.0;
+    for t in 0..frames {
+        let err: Vec<f64> = (0..SIZE * SIZE)
+            .map(|p| {
+                let (x, y) = (p % SIZE, p / SIZE);
+                let e = edge(x, y);
+                let hits = (0..spp)
+                    .filter(|&i| inside(&e, zsobol(x as u32, y as u32, k, i, t)))
+                    .count();
+                hits as f64 / f64::from(spp) - area(&e)
+            })
+            .collect();
+        sum += blur(&err).iter().map(|e| e * e).sum::<f64>();
+    }
+    (sum / (frames as usize * SIZE * SIZE) as f64).sqrt()
+}
+
+/// [`zsobol`] as 1 spp frames: frame `t < 32` is sample `t` of a 32-sample ZSobol' pixel (the
+/// frames continue it, as `new_frame` does), for [`frame_errors`].
+pub fn zsobol_frames(x: u32, y: u32, t: u32) -> [f32; 2] {
+    zsobol(x, y, 5, t % 32, t / 32)
 }

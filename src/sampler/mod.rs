@@ -69,18 +69,20 @@
 //! A [`Sampler`] is three words (12 bytes): the pixel (`x` and `y`, 16 bits each), a 32-bit
 //! domain hash and the sample index. [`new`](Sampler::new) hashes the seed and the frame into
 //! a root (two mixes a renderer's loop hoists), then — except for [`Blue`], whose pixels must
-//! share one key tile — folds in the pixel with one more mix: the pixel enters one-to-one
-//! below `2^16` per coordinate, so every pixel of any real image gets its own domain hash
-//! (larger coordinates are folded in too, by an odd multiple of their high halves);
-//! [`domain`](Sampler::domain) and [`split`](Sampler::split) re-hash it with a bijective
-//! mixer (Wellons' `lowbias32`). A draw derives its shuffle and scramble keys from the domain
+//! share one key tile — folds in the pixel `x ^ rotl(y, 16)` with one round of a bijective
+//! mixer (the first half of Wellons' `lowbias32`): the pixel enters one-to-one below `2^16`
+//! per coordinate, so every pixel of any real image gets its own domain hash (larger
+//! coordinates are folded in too, their high halves onto the low ones);
+//! [`domain`](Sampler::domain) re-hashes it with the same one-round mixer and
+//! [`split`](Sampler::split) with the full `lowbias32` (the draw's Laine-Karras keys mix
+//! again, so the tree's hashes need not be outputs-grade). A draw derives its shuffle and scramble keys from the domain
 //! hash by **rotations**, not by more hashing (the low bits of a Laine-Karras key drive the
 //! top levels of its scramble, so rotations give each key its own bits there; OpenQMC
 //! rotates bytes the same way): a draw is one shuffle, a table product and the scrambles,
 //! which is what makes the scalar form as fast as OpenQMC's (`docs/sampler-performance.md`).
 //! Nothing is stored, nothing is shared between threads.
 
-use crate::hash::{lk_hash, mix, nested_shuffle, owen_scramble, to_unit};
+use crate::hash::{lk_hash, mix, mix1, nested_shuffle, owen_scramble, to_unit};
 use crate::lanes::{Lane, UintLane};
 use crate::pmj02bn::{LOG2_POINTS, POINTS, SETS};
 use core::marker::PhantomData;
@@ -176,15 +178,16 @@ impl<U: UintLane> State<U> {
     #[inline(always)]
     fn new(id: u8, pixel: [U; 2], frame: U, index: U, seed: U) -> Self {
         let root = mix(mix(seed ^ U::splat(K_SEED)) ^ (frame * U::splat(K_FRAME)));
-        // The pixel packed in one word (16 bits per coordinate, what the blue-noise tile
-        // position reads), plus the coordinates' high halves times an odd constant: one-to-one
-        // for pixels below 2^16, so one mix separates every pixel of any real image.
+        // The pixel packed in one word (16 bits per coordinate), what the blue-noise tile
+        // position reads. The other patterns hash `x ^ rotl(y, 16)`: the same word for pixels
+        // below 2^16 (one-to-one there, so every pixel of any real image gets its own domain
+        // hash), the high halves folded onto the low ones above; one round of the mixer
+        // (the draw's Laine-Karras keys mix again).
         let packed = (pixel[0] & U::splat(0xffff)) | pixel[1].shl(16);
-        let high = pixel[0].shr(16) | (pixel[1] & U::splat(0xffff_0000));
         let domain = if id & BLUE != 0 {
             root
         } else {
-            mix(root ^ packed ^ (high * U::splat(K_PIXEL)))
+            mix1(root ^ pixel[0] ^ pixel[1].rotr(16))
         };
         let pixel = packed;
         State {
@@ -197,7 +200,7 @@ impl<U: UintLane> State<U> {
     #[inline(always)]
     fn domain(self, key: u32) -> Self {
         State {
-            domain: mix(self.domain + U::splat(key.wrapping_mul(K_DOMAIN))),
+            domain: mix1(self.domain + U::splat(key.wrapping_mul(K_DOMAIN))),
             ..self
         }
     }
@@ -427,11 +430,44 @@ impl<P: Pattern> Sampler<P> {
     ///
     /// Every pixel gets independent scrambles, except under [`Blue`], where pixels share a
     /// key tile (positions modulo the tile; `x` and `y` are read modulo 2^16). Frames and
-    /// seeds decorrelate like domains.
+    /// seeds decorrelate like domains: **each frame is a fresh randomisation** of the
+    /// pattern (frames independent). A renderer that accumulates frames and wants their mean
+    /// to converge like one longer net calls [`new_frame`](Self::new_frame), or passes its
+    /// own running sample number as `index` with `frame = 0` (the same points: `new_frame`
+    /// is `new` of the 64-bit sample number `frame * spp + index`, high word as `frame`).
     #[inline]
     pub fn new(pixel: [u32; 2], frame: u32, index: u32, seed: u32) -> Self {
         let w = Wrapping;
         Self::from_state(State::new(P::ID, pixel.map(w), w(frame), w(index), w(seed)))
+    }
+
+    /// The root sampler of sample `index` (in `0..spp`) of `pixel` in `frame` of a render
+    /// that draws `spp` samples per pixel per frame and accumulates frames: **the frames
+    /// continue one sequence**. Frame `t` draws the pixel's points `t spp .. (t + 1) spp`,
+    /// so the running mean of frames `0..F` is the estimate of the first `F spp` points of
+    /// the pattern (a (0,m,2)-net when `F spp = 2^m`), each frame alone is a block of the
+    /// sequence (an aligned net when `spp` is a power of two; a run of `spp` consecutive
+    /// points otherwise), and consecutive frames draw different points (no static noise).
+    ///
+    /// The sample's number in the pixel's sequence is the 64-bit `n = frame * spp + index`
+    /// (`spp = 0` acts as 1; `index >= spp` reaches a later frame's sample, documented, not
+    /// an error): it is [`new`](Self::new)`(pixel, (n >> 32) as u32, n as u32, seed)`, so
+    /// frame 0 is `new`'s frame 0 bit for bit, and after `2^32` samples per pixel (`2^32 /
+    /// spp` frames) the sequence continues in a fresh randomisation (`new`'s next frame),
+    /// which keeps the mean converging. A render whose `spp` changes between frames passes
+    /// the pixel's running sample count as `frame` and `spp = 1`: `new_frame(pixel, count,
+    /// 1, index, seed)`. Under [`Blue`] each pixel keeps its tile key across frames (its
+    /// randomisation depends on `n >> 32` only), so the running mean at 1, 2, 4, 8 and 16
+    /// samples is what the tile was optimised for.
+    ///
+    /// [`new`](Self::new) with `index` in `0..spp` and a new `frame` each frame is the other
+    /// choice, named in its docs: a fresh randomisation per frame (frames independent, their
+    /// mean converging like independent randomised nets, not like one longer net). Why `new`
+    /// cannot continue the sequence by itself: `docs/design.md`, "Frames".
+    #[inline]
+    pub fn new_frame(pixel: [u32; 2], frame: u32, spp: u32, index: u32, seed: u32) -> Self {
+        let [epoch, index] = frame_sample(frame, spp, index);
+        Self::new(pixel, epoch, index, seed)
     }
 
     #[inline(always)]
@@ -545,6 +581,14 @@ impl<P: Base> Sampler<P> {
             index: w(index),
         })
     }
+}
+
+/// The `(frame, index)` of [`Sampler::new`] that [`Sampler::new_frame`] builds: the high and
+/// low words of `frame * max(spp, 1) + index` (at most `2^64 - 2^32`, exact in `u64`).
+#[inline(always)]
+fn frame_sample(frame: u32, spp: u32, index: u32) -> [u32; 2] {
+    let n = u64::from(frame) * u64::from(spp.max(1)) + u64::from(index);
+    [(n >> 32) as u32, n as u32]
 }
 
 /// `to_unit` over any lane type (the conversion of [`Sampler::draw`]).

@@ -123,6 +123,15 @@ fn lane_args(root: [u32; 5], j: u32) -> [u32; 5] {
 
 fn run<P: Pattern>(root: [u32; 5], steps: &[Step]) {
     let [x, y, frame, index, seed] = root;
+    // `new_frame` is `new` of the 64-bit sample number `frame * max(spp, 1) + index` (high
+    // word as `frame`), worked here in 128 bits, for an arbitrary `spp` from the input.
+    let spp = seed.rotate_left(7) ^ frame;
+    let n = u128::from(frame) * u128::from(spp.max(1)) + u128::from(index);
+    assert_eq!(
+        Sampler::<P>::new_frame([x, y], frame, spp, index, seed),
+        Sampler::<P>::new([x, y], (n >> 32) as u32, n as u32, seed),
+        "new_frame numbering"
+    );
     let mut s = Sampler::<P>::new([x, y], frame, index, seed);
     let args8: [[u32; 5]; 8] = std::array::from_fn(|j| lane_args(root, j as u32));
     let args16: [[u32; 5]; 16] = std::array::from_fn(|j| lane_args(root, j as u32));
