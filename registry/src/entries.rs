@@ -829,7 +829,8 @@ const SPHERICAL: &[Entry] = {
                 slice: |l, u, o| sp::cone_slice(l[0], l[1][0], l[3], u, o),
             }),
         )
-        .golden(Golden::Own),
+        .golden(Golden::Own)
+        .bound(CJW),
         Entry::new(
             "spherical::cone_inverse",
             Forms::ALL,
@@ -841,7 +842,8 @@ const SPHERICAL: &[Entry] = {
                 slice: |l, d, o| sp::cone_inverse_slice(l[0], l[1][0], l[3], d, o),
             }),
         )
-        .golden(Golden::Own),
+        .golden(Golden::Own)
+        .bound(CJW),
         Entry::new(
             "spherical::cone_solid_angle",
             Forms::LANES,
@@ -852,7 +854,8 @@ const SPHERICAL: &[Entry] = {
                 x16: |l| sp::cone_solid_angle_x16(l[0], l[1][0], l[3]),
             }),
         )
-        .golden(Golden::Own),
+        .golden(Golden::Own)
+        .bound(CJW),
         Entry::new(
             "spherical::bilinear",
             Forms::SCALAR,

@@ -312,9 +312,9 @@ pub const SPHERICAL_RECTANGLES: [[f32; 12]; 17] = {
 /// Sphere lights with a shading point for `spherical::cone`, 12 floats each: `centre,
 /// [radius, 0, 0], [0, 0, 0], p` (so the point is the fourth, as for the other lights).
 /// Ordinary, small (`1e-6` sr), `1e-9` sr, nearly `2 pi`, `p` on the surface, inside, at the
-/// centre, radius 0 (a point), negative radius, a point-like `1e-25` ratio, coordinates
+/// centre, radius 0 (a point), negative radius, a point-like `1e-25` ratio, far away (`1e6`), coordinates
 /// near `1e30` and `1e-30`, a huge radius, NaN, inf.
-pub const SPHERICAL_CONES: [[f32; 12]; 16] = {
+pub const SPHERICAL_CONES: [[f32; 12]; 17] = {
     const I: f32 = f32::INFINITY;
     const NAN: f32 = f32::NAN;
     #[rustfmt::skip]
@@ -329,6 +329,7 @@ pub const SPHERICAL_CONES: [[f32; 12]; 16] = {
         [0.0, 3.0, 4.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
         [-1.0, 0.5, -2.0, -0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
         [0.0, 3.0, 4.0, 5e-25, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [3e5, -2e5, 1e6, 10.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
         [1e30, 2e30, -1e30, 5e29, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
         [1e-30, 2e-30, -1e-30, 5e-31, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
         [0.0, 0.0, 1.0, 1e30, 0.0, 0.0, 0.0, 0.0, 0.0, 1e29, -3e29, 0.0],
