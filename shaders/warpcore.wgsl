@@ -1136,8 +1136,7 @@ fn wci_rect_sample(pr: WciRectPrepared, u: vec2<f32>) -> vec3<f32> {
     let k = (a.x + a.x) * bb.x;
     let xu = z * sg / sqrt(k * (k + pr.b01 + pr.b01));
     let dx0 = wci_clamp0(xu - x0, w);
-    let dx1 = wci_rect_newton(r, z2, goal, dx0);
-    let dx = wci_rect_newton(r, z2, goal, dx1);
+    let dx = wci_rect_newton(r, z2, goal, dx0);
     // The height: uniform in y / sqrt(d^2 + y^2) between its values at y0 and y1.
     let x = x0 + dx;
     let d2 = x * x + z2;

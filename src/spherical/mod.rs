@@ -28,7 +28,7 @@
 //! crate's own `atan` kernel; chords between directions come from edges (`|x| - |y| =
 //! -(y - x).(x + y) / (|x| + |y|)`); Arvo's first step is solved in closed form for the
 //! point on the chord (a quadratic with no `acos`), his second by chord lengths; the
-//! rectangle's `x` starts from a closed form and takes two Newton steps on the strip's
+//! rectangle's `x` starts from a closed form and takes one Newton step on the strip's
 //! solid angle computed by Van Oosterom-Strackee (relative, not absolute, accuracy), its
 //! `y` uses `1 -+ y/r` forms. Every square root and inverse sine/cosine argument is clamped,
 //! every `0/0` selected away.
@@ -194,7 +194,7 @@ lane_forms! {
     /// angle, `1 / omega`.
     ///
     /// `u0` picks `s` so that the strip `[0, s] x [0, 1]` subtends `u0 omega` (closed-form
-    /// start, two Newton steps), `u1` picks `t` uniformly in `y / sqrt(d^2 + y^2)` along that
+    /// start, one Newton step), `u1` picks `t` uniformly in `y / sqrt(d^2 + y^2)` along that
     /// line. Compact strata of the square stay compact. See the [module docs](self) for the
     /// precision (density 1e-4 relative, round trip 1e-4 for `1e-4 .. 2` sr, away from grazing)
     /// and the out-of-domain rule.
