@@ -1658,7 +1658,8 @@ fn cone_accuracy_against_f64() {
     let mut omega_kappa = 0.0f64;
     let mut tiny_dir_rel = 0.0f64;
     for k in 0..20_000 {
-        let omega = 10f64.powf(-8.0 + (6.283f64.log10() + 8.0) * (k as f64 / 19_999.0));
+        let omega =
+            10f64.powf(-8.0 + (std::f64::consts::TAU.log10() + 8.0) * (k as f64 / 19_999.0));
         let (c, rad, p) = random_cone(&mut r, omega);
         let want = cone_omega(c, rad, p);
         let got = spherical::cone_solid_angle(c, rad, p) as f64;
@@ -1824,7 +1825,7 @@ fn cone_total_on_hostile_input() {
         let (w, pdf) = spherical::cone(c, rad, p, u);
         let l = (w[0] as f64).hypot(w[1] as f64).hypot(w[2] as f64);
         assert!((l - 1.0).abs() < 1e-6, "{c:?} {rad} {p:?} {u:?}: {w:?}");
-        assert!(pdf.is_finite() && pdf >= 0.0 && pdf < f32::MAX, "{pdf}");
+        assert!((0.0..f32::MAX).contains(&pdf), "{pdf}");
         let om = spherical::cone_solid_angle(c, rad, p);
         assert!(
             (0.0..=4.0 * std::f32::consts::PI + 1e-6).contains(&om),

@@ -246,6 +246,24 @@ unsafe fn read_sphere(light: *const f32) -> Option<([f32; 3], f32, [f32; 3])> {
     Some(([l[0], l[1], l[2]], l[3], [l[4], l[5], l[6]]))
 }
 
+/// [`lit`] for a sphere light (7 floats) and a slice form `f(centre, radius, p, input, out)`.
+///
+/// # Safety
+/// `light` must be readable for 7 floats, `input` for `I n` and `out` writable for `O n`.
+unsafe fn sphere_lit<const I: usize, const O: usize>(
+    light: *const f32,
+    input: *const f32,
+    out: *mut f32,
+    n: usize,
+    f: fn([f32; 3], f32, [f32; 3], &[[f32; I]], &mut [[f32; O]]) -> usize,
+) -> usize {
+    // SAFETY: the caller's contract; `read_sphere` checks `light`, `map` the arrays.
+    unsafe {
+        let l = read_sphere(light);
+        lit_read(l, input, out, n, |(c, r, p), i, o| f(c, r, p, i, o))
+    }
+}
+
 /// Uniform in solid angle over the cone that the sphere `light[0..3]` (centre), `light[3]`
 /// (radius) subtends at `light[4..7]`: `n` points `u` (`2n` floats) to `n` records `x, y, z,
 /// density` (`4n` floats; a unit direction from the shading point, density with respect to
@@ -261,12 +279,8 @@ pub unsafe extern "C" fn wc_spherical_cone(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above; `read_sphere` checks `light`, `map` the arrays.
-    unsafe {
-        lit_read(read_sphere(light), u, out, n, |(c, r, p), u, o| {
-            spherical::cone_slice(c, r, p, u, o)
-        })
-    }
+    // SAFETY: the caller's contract above, passed on.
+    unsafe { sphere_lit(light, u, out, n, spherical::cone_slice) }
 }
 
 /// Inverse of `wc_spherical_cone`: `n` directions (`3n` floats, any length) to `n` points of
@@ -281,12 +295,8 @@ pub unsafe extern "C" fn wc_spherical_cone_inverse(
     out: *mut f32,
     n: usize,
 ) -> usize {
-    // SAFETY: the caller's contract above; `read_sphere` checks `light`, `map` the arrays.
-    unsafe {
-        lit_read(read_sphere(light), dir, out, n, |(c, r, p), d, o| {
-            spherical::cone_inverse_slice(c, r, p, d, o)
-        })
-    }
+    // SAFETY: the caller's contract above, passed on.
+    unsafe { sphere_lit(light, dir, out, n, spherical::cone_inverse_slice) }
 }
 
 /// The solid angle of the sphere `light[0..4]` (centre, radius) at `light[4..7]`: in `[0, 2

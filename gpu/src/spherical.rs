@@ -240,6 +240,56 @@ pub fn random_sphere(k: usize, rng: &mut Rng) -> [f32; 7] {
     l
 }
 
+/// The light `l` and 15 copies seen from moved shading points (the point at `l[at..at + 3]`
+/// moved by up to `1e-6 .. 10` per coordinate).
+fn moved<const N: usize>(l: &[f32; N], at: usize, rng: &mut Rng) -> Vec<[f32; N]> {
+    let mut v = vec![*l];
+    for _ in 0..15 {
+        let mut m = *l;
+        let s = [1e-6f32, 1e-3, 0.1, 1.0, 10.0][rng.next_u32() as usize % 5];
+        for x in &mut m[at..at + 3] {
+            *x += s * rng.range(-1.0, 1.0);
+        }
+        v.push(m);
+    }
+    v
+}
+
+/// Samples of the square per light: a grid, random points (2^-24 grid, any f32 in [0, 1),
+/// bit patterns), edge pairs (all of them for the fingerprint lights, `fp`).
+fn samples(fp: bool, rng: &mut Rng) -> Vec<[f32; 2]> {
+    let edges = square_edges();
+    let g = if fp { 32 } else { 8 };
+    let mut s: Vec<[f32; 2]> = Vec::new();
+    for i in 0..g {
+        for j in 0..g {
+            s.push([(i as f32 + 0.5) / g as f32, (j as f32 + 0.37) / g as f32]);
+        }
+    }
+    for k in 0..(if fp { 256 } else { 32 }) {
+        s.push(match k % 3 {
+            0 => [rng.grid24(), rng.grid24()],
+            1 => [rng.unit_any(), rng.unit_any()],
+            _ => [rng.bits(), rng.bits()],
+        });
+    }
+    if fp {
+        for &a in &edges {
+            for &b in &edges {
+                s.push([a, b]);
+            }
+        }
+    } else {
+        for _ in 0..16 {
+            let a = edges[rng.next_u32() as usize % edges.len()];
+            let b = edges[rng.next_u32() as usize % edges.len()];
+            s.push([a, rng.unit_any()]);
+            s.push([rng.unit_any(), b]);
+        }
+    }
+    s
+}
+
 /// The test points of the sphere layouts (`centre, radius, p` and what follows).
 fn sphere_inputs(layout: Layout, random: usize, rng: &mut Rng) -> Vec<u32> {
     let mut lights: Vec<([f32; 7], bool)> = FINGERPRINT_CONES
@@ -253,39 +303,12 @@ fn sphere_inputs(layout: Layout, random: usize, rng: &mut Rng) -> Vec<u32> {
     let mut push = |light: &[f32; 7], extra: &[f32]| {
         v.extend(light.iter().chain(extra).map(|x| x.to_bits()));
     };
-    let edges = square_edges();
     for (l, fp) in &lights {
         let (c, r, p) = ([l[0], l[1], l[2]], l[3], [l[4], l[5], l[6]]);
-        let g = if *fp { 32 } else { 8 };
-        let mut us: Vec<[f32; 2]> = (0..g * g)
-            .map(|i| {
-                [
-                    ((i % g) as f32 + 0.5) / g as f32,
-                    ((i / g) as f32 + 0.37) / g as f32,
-                ]
-            })
-            .collect();
-        for k in 0..(if *fp { 256 } else { 32 }) {
-            us.push(match k % 3 {
-                0 => [rng.grid24(), rng.grid24()],
-                1 => [rng.unit_any(), rng.unit_any()],
-                _ => [rng.bits(), rng.bits()],
-            });
-        }
-        for _ in 0..(if *fp { 64 } else { 8 }) {
-            let a = edges[rng.next_u32() as usize % edges.len()];
-            let b = edges[rng.next_u32() as usize % edges.len()];
-            us.push([a, b]);
-        }
+        let us = samples(*fp, rng);
         match layout {
             Layout::Sphere => {
-                push(l, &[]);
-                for _ in 0..15 {
-                    let mut m = *l;
-                    let s = [1e-6f32, 1e-3, 0.1, 1.0, 10.0][rng.next_u32() as usize % 5];
-                    for x in &mut m[4..7] {
-                        *x += s * rng.range(-1.0, 1.0);
-                    }
+                for m in moved(l, 4, rng) {
                     push(&m, &[]);
                 }
             }
@@ -344,51 +367,12 @@ pub fn inputs(layout: Layout, random: usize, rng: &mut Rng) -> Vec<u32> {
     if matches!(layout, Layout::Triangle | Layout::Rectangle) {
         // Each light, and the light seen from moved shading points.
         for (l, _) in &lights {
-            push(l, &[]);
-            for _ in 0..15 {
-                let mut m = *l;
-                let s = [1e-6f32, 1e-3, 0.1, 1.0, 10.0][rng.next_u32() as usize % 5];
-                for x in &mut m[9..12] {
-                    *x += s * rng.range(-1.0, 1.0);
-                }
+            for m in moved(l, 9, rng) {
                 push(&m, &[]);
             }
         }
         return v;
     }
-    // Samples of the square per light: a grid, random points (2^-24 grid, any f32 in [0, 1),
-    // bit patterns), edge pairs (all of them for the fingerprint lights).
-    let samples = |fp: bool, rng: &mut Rng| -> Vec<[f32; 2]> {
-        let g = if fp { 32 } else { 8 };
-        let mut s: Vec<[f32; 2]> = Vec::new();
-        for i in 0..g {
-            for j in 0..g {
-                s.push([(i as f32 + 0.5) / g as f32, (j as f32 + 0.37) / g as f32]);
-            }
-        }
-        for k in 0..(if fp { 256 } else { 32 }) {
-            s.push(match k % 3 {
-                0 => [rng.grid24(), rng.grid24()],
-                1 => [rng.unit_any(), rng.unit_any()],
-                _ => [rng.bits(), rng.bits()],
-            });
-        }
-        if fp {
-            for &a in &edges {
-                for &b in &edges {
-                    s.push([a, b]);
-                }
-            }
-        } else {
-            for _ in 0..16 {
-                let a = edges[rng.next_u32() as usize % edges.len()];
-                let b = edges[rng.next_u32() as usize % edges.len()];
-                s.push([a, rng.unit_any()]);
-                s.push([rng.unit_any(), b]);
-            }
-        }
-        s
-    };
     for (l, fp) in &lights {
         let (v0, v1, v2, p) = (pt(l, 0), pt(l, 1), pt(l, 2), pt(l, 3));
         match layout {
