@@ -293,10 +293,10 @@ lane_forms! {
     ///
     /// **Precision** (`tests/spherical.rs`, 20 000 random spheres against `f64` on the same
     /// `f32` input, cones from `1e-8` sr to the whole sphere): solid angle and density within
-    /// `5e-7 kappa` relative (measured `4.4e-7 kappa`), `kappa = 1 / cos theta_max` the
+    /// `6e-7 kappa` relative (measured `5.0e-7 kappa`), `kappa = 1 / cos theta_max` the
     /// condition number of the solid angle for relative changes of `d` and `r` (large only for
     /// `p` within a small fraction of the radius above the surface); the polar angle of the
-    /// direction within `3e-7` rad of the `f64` map's (measured `2.0e-7`: at `1e-8` sr that
+    /// direction within `3e-7` rad of the `f64` map's (measured `2.4e-7`: at `1e-8` sr that
     /// is `2e-3` of `theta_max`, the resolution of `f32` directions); round trip
     /// [`cone_inverse`]`(cone(u))` within `1e-4` of `u` for cones of at least `1e-4` sr
     /// (measured `2.5e-5`).
@@ -306,8 +306,8 @@ lane_forms! {
     /// uniform sphere, density `1 / (4 pi)` (`omega = 4 pi`); `p` on the surface sees a
     /// hemisphere (`2 pi`). A zero radius, or one below `2^-60` of the distance (a point
     /// light, `omega < 2.9e-36` sr), gives every `u` the axis and density 0; NaN or inf
-    /// anywhere, coordinate differences of `2^127` or more, or a zero radius at `p = centre`
-    /// give `+z` and density 0. Coordinates and differences below `2^-126` count as zero (as in
+    /// anywhere, a radius or coordinate differences of `2^127` or more, or a zero radius at
+    /// `p = centre` give `+z` and density 0. Coordinates and differences below `2^-126` count as zero (as in
     /// the other lights). The density is never NaN, infinite or `FLT_MAX`.
     pub fn cone, cone_x8, cone_x16 ["(sphere, point, sample) triples"]
         (centre: [L; 3], radius: L, p: [L; 3], u: [L; 2]) -> ([L; 3], L) = cone::sample_body;
