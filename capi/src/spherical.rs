@@ -246,6 +246,10 @@ unsafe fn read_sphere(light: *const f32) -> Option<([f32; 3], f32, [f32; 3])> {
     Some(([l[0], l[1], l[2]], l[3], [l[4], l[5], l[6]]))
 }
 
+/// A sphere light's slice form: `(centre, radius, p, input, out) -> count`.
+type SphereSlice<const I: usize, const O: usize> =
+    fn([f32; 3], f32, [f32; 3], &[[f32; I]], &mut [[f32; O]]) -> usize;
+
 /// [`lit`] for a sphere light (7 floats) and a slice form `f(centre, radius, p, input, out)`.
 ///
 /// # Safety
@@ -255,7 +259,7 @@ unsafe fn sphere_lit<const I: usize, const O: usize>(
     input: *const f32,
     out: *mut f32,
     n: usize,
-    f: fn([f32; 3], f32, [f32; 3], &[[f32; I]], &mut [[f32; O]]) -> usize,
+    f: SphereSlice<I, O>,
 ) -> usize {
     // SAFETY: the caller's contract; `read_sphere` checks `light`, `map` the arrays.
     unsafe {
