@@ -13,6 +13,9 @@
 //! one-light groups the scalar rows pass the light and the point through `black_box` per
 //! call too (a fixed light would let the compiler hoist the whole set-up out of the loop).
 //!
+//! Sphere lights (`spherical::cone`) against a textbook transcription of pbrt-v4's cone
+//! sampling, per call and over a slice.
+//!
 //! Run: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench spherical`
 
 mod common;
@@ -109,6 +112,44 @@ fn urena_textbook(corner: V, ex: V, ey: V, p: V, u: [f32; 2]) -> ([f32; 2], f32)
     ([(xu - x0) / w, (yv - y0) / h], 1.0 / s)
 }
 
+/// pbrt-v4's sphere-light sampling as a textbook transcription (Pharr, Jakob and Humphreys,
+/// "Physically Based Rendering", 4th ed., `SampleUniformCone` with the sphere's
+/// `sin^2 theta_max = r^2 / d^2`): `cos theta = (1 - u0) + u0 cos theta_max`, `phi = 2 pi
+/// u1`, the frame from `d / |d|` (Duff et al. 2017); `1 - cos` cancels below about 1e-4 sr.
+fn cone_textbook(c: V, r: f32, p: V, u: [f32; 2]) -> ([f32; 3], f32) {
+    let d = sub(c, p);
+    let d2 = dot(d, d);
+    let n = scale(d, 1.0 / libm::sqrtf(d2));
+    let sin2 = r * r / d2;
+    let cos_max = libm::sqrtf((1.0 - sin2).max(0.0));
+    let cos = (1.0 - u[0]) + u[0] * cos_max;
+    let sin = libm::sqrtf((1.0 - cos * cos).max(0.0));
+    let phi = u[1] * core::f32::consts::TAU;
+    let sign = 1.0f32.copysign(n[2]);
+    let a = -1.0 / (sign + n[2]);
+    let b = n[0] * n[1] * a;
+    let t = [1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0]];
+    let bb = [b, sign + n[1] * n[1] * a, -n[1]];
+    let (sp, cp) = (libm::sinf(phi), libm::cosf(phi));
+    let dir = add(add(scale(t, sin * cp), scale(bb, sin * sp)), scale(n, cos));
+    (dir, 1.0 / (core::f32::consts::TAU * (1.0 - cos_max)))
+}
+
+/// A sphere light (centre, radius), a shading point and `u`.
+type ConeCall = (V, f32, V, [f32; 2]);
+
+/// `BATCH` random spheres of radius 0.05 .. 0.5 at distance 1 .. 3 (about 1e-3 .. 0.8 sr).
+fn random_spheres() -> Vec<ConeCall> {
+    uniform_points::<8>(BATCH, 5)
+        .iter()
+        .map(|x| {
+            let c = [x[0] * 2.0 - 1.0, x[1] * 2.0 - 1.0, 1.0 + 2.0 * x[2]];
+            let p = [x[3] * 0.6 - 0.3, x[4] * 0.6 - 0.3, 0.0];
+            (c, 0.05 + 0.45 * x[5], p, [x[6], x[7]])
+        })
+        .collect()
+}
+
 /// A triangle light, a shading point and `u`.
 type TriCall = ([V; 3], V, [f32; 2]);
 /// A rectangle light (corner, ex, ey), a shading point and `u`.
@@ -169,6 +210,18 @@ fn per_call(c: &mut criterion::Criterion) {
         urena_textbook(corner, ex, ey, p, u)
     });
     g.finish();
+    let spheres = random_spheres();
+    let mut g = group(c, "spherical cone, a light per call");
+    let mut out = vec![([0.0f32; 3], 0.0f32); BATCH];
+    bench_indexed(&mut g, "warpcore scalar", &mut out, |i| {
+        let (c, r, p, u) = spheres[black_box(i)];
+        spherical::cone(c, r, p, u)
+    });
+    bench_indexed(&mut g, "pbrt-v4 textbook cone f32 scalar", &mut out, |i| {
+        let (c, r, p, u) = spheres[black_box(i)];
+        cone_textbook(c, r, p, u)
+    });
+    g.finish();
 }
 
 fn main() {
@@ -224,6 +277,27 @@ fn main() {
             let [c, x, y, p] = black_box([corner, ex, ey, rp]);
             urena_textbook(c, x, y, p, u)
         });
+        g.finish();
+    }
+    {
+        let mut g = group(&mut c, "spherical cone");
+        let (centre, r, p) = ([0.3f32, -0.2, 2.0], 0.5f32, [0.1f32, 0.0, 0.0]);
+        let mut out = vec![([0.0f32; 3], 0.0f32); BATCH];
+        let label = "warpcore scalar, light black-boxed per call";
+        bench_map(&mut g, label, &input, &mut out, |u| {
+            spherical::cone(black_box(centre), black_box(r), black_box(p), u)
+        });
+        let mut out4 = vec![[0.0f32; 4]; BATCH];
+        bench_out(&mut g, "warpcore slice", &mut out4, |out| {
+            spherical::cone_slice(centre, r, p, black_box(&input), out);
+        });
+        bench_map(
+            &mut g,
+            "pbrt-v4 textbook cone f32 scalar",
+            &input,
+            &mut out,
+            |u| cone_textbook(black_box(centre), black_box(r), black_box(p), u),
+        );
         g.finish();
     }
     c.final_summary();

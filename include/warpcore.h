@@ -975,6 +975,30 @@ size_t wc_spherical_triangle_cosine(const float *light, const float *u, float *o
 // `light` must be readable for 15 floats, `u` for `2n` and `out` writable for `3n`.
 size_t wc_spherical_rectangle_cosine(const float *light, const float *u, float *out, size_t n);
 
+// Uniform in solid angle over the cone that the sphere `light[0..3]` (centre), `light[3]`
+// (radius) subtends at `light[4..7]`: `n` points `u` (`2n` floats) to `n` records `x, y, z,
+// density` (`4n` floats; a unit direction from the shading point, density with respect to
+// solid angle: `1 / (4 pi)` inside the sphere, 0 for a point light, see
+// `warpcore::spherical::cone`). Returns `n`, or 0 as for `wc_spherical_triangle`.
+//
+// # Safety
+// `light` must be readable for 7 floats, `u` for `2n` and `out` writable for `4n`.
+size_t wc_spherical_cone(const float *light, const float *u, float *out, size_t n);
+
+// Inverse of `wc_spherical_cone`: `n` directions (`3n` floats, any length) to `n` points of
+// the square (`2n` floats). Returns `n`, or 0 as for `wc_spherical_triangle_inverse`.
+//
+// # Safety
+// `light` must be readable for 7 floats, `dir` for `3n` and `out` writable for `2n`.
+size_t wc_spherical_cone_inverse(const float *light, const float *dir, float *out, size_t n);
+
+// The solid angle of the sphere `light[0..4]` (centre, radius) at `light[4..7]`: in `[0, 2
+// pi]` outside, `4 pi` inside; 0 for a null or misaligned `light` (and for point lights).
+//
+// # Safety
+// `light` must be readable for 7 floats.
+float wc_spherical_cone_solid_angle(const float *light);
+
 // Low-distortion map (Heitz 2019): `n` points `u` (`2n` floats) to `n` barycentrics (`3n`
 // floats). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or
 // overlapping arrays.

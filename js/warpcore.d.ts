@@ -132,6 +132,12 @@ export interface Warpcore {
   sphericalRectangleCosine(light: Float32Array, u: Float32Array, out?: Float32Array): Float32Array;
   sphericalTriangleSolidAngle(light: Float32Array): number;
   sphericalRectangleSolidAngle(light: Float32Array): number;
+  /** Uniform in the cone the sphere `light` (centre, radius, p: 7 floats) subtends at p: `[x, y, z, density]` per sample (a unit direction; density 1/(4 pi) with p inside, 0 for a point light). */
+  sphericalCone(light: Float32Array, u: Float32Array, out?: Float32Array): Float32Array;
+  /** Inverse of sphericalCone: `3n` direction floats (any length) to `2n`. */
+  sphericalConeInverse(light: Float32Array, dir: Float32Array, out?: Float32Array): Float32Array;
+  /** Solid angle of the sphere `light` (centre, radius, p: 7 floats) at p: [0, 2 pi] outside, 4 pi inside. */
+  sphericalConeSolidAngle(light: Float32Array): number;
   triangleUniform(u: Float32Array, out?: Float32Array): Float32Array;
   triangleUniformInverse(b: Float32Array, out?: Float32Array): Float32Array;
   /** b0 = 1 - sqrt(u0), b1 = u1 sqrt(u0): `2n` floats to `3n`. */

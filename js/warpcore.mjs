@@ -446,9 +446,9 @@ function create(x) {
       return read(F, po, n * O, result);
     });
   };
-  const solidAngle = (f) => (light) => {
-    lightArg(light);
-    return scratch1(F, 12, light, (pl) => f(pl));
+  const solidAngle = (f, len = 12) => (light) => {
+    lightArg(light, len);
+    return scratch1(F, len, light, (pl) => f(pl));
   };
 
   const api = {
@@ -481,6 +481,9 @@ function create(x) {
     sphericalRectangleCosine: withLight(x.wc_spherical_rectangle_cosine, 2, 3, 'u', 15),
     sphericalTriangleSolidAngle: solidAngle(x.wc_spherical_triangle_solid_angle),
     sphericalRectangleSolidAngle: solidAngle(x.wc_spherical_rectangle_solid_angle),
+    sphericalCone: withLight(x.wc_spherical_cone, 2, 4, 'u', 7),
+    sphericalConeInverse: withLight(x.wc_spherical_cone_inverse, 3, 2, 'dir', 7),
+    sphericalConeSolidAngle: solidAngle(x.wc_spherical_cone_solid_angle, 7),
 
     // sphere
     sphereEqualArea: map(x.wc_sphere_equal_area, F, 2, F, 3),

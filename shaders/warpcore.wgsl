@@ -1136,8 +1136,7 @@ fn wci_rect_sample(pr: WciRectPrepared, u: vec2<f32>) -> vec3<f32> {
     let k = (a.x + a.x) * bb.x;
     let xu = z * sg / sqrt(k * (k + pr.b01 + pr.b01));
     let dx0 = wci_clamp0(xu - x0, w);
-    let dx1 = wci_rect_newton(r, z2, goal, dx0);
-    let dx = wci_rect_newton(r, z2, goal, dx1);
+    let dx = wci_rect_newton(r, z2, goal, dx0);
     // The height: uniform in y / sqrt(d^2 + y^2) between its values at y0 and y1.
     let x = x0 + dx;
     let d2 = x * x + z2;
@@ -1269,4 +1268,105 @@ fn wc_spherical_rectangle_cosine(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>
     let warped = wci_bilinear(u, w);
     let r = wci_rect_sample(pr, warped.xy);
     return vec3<f32>(r.xy, wci_product(r.z, warped.z));
+}
+
+// ---------------------------------------------------------------------------------------
+// Sphere lights by cone (src/spherical/cone.rs)
+
+const WCI_TWO_PI: f32 = 0x1.921fb6p+2f;
+
+// The cone a sphere subtends at p (`cone::Cone`): axis n, tangents t, b (Duff et al. 2017),
+// 1 - cos theta_max (2 inside; 0 where not ok).
+struct WciCone {
+    n: vec3<f32>,
+    t: vec3<f32>,
+    b: vec3<f32>,
+    omc: f32,
+    ok: bool,
+}
+
+fn wci_cone_setup(centre: vec3<f32>, radius: f32, p: vec3<f32>) -> WciCone {
+    let d0 = wci_flush3(centre - p);
+    let rv = wci_flush3(vec3<f32>(wci_abs(radius), 0.0f, 0.0f));
+    let finite = wci_finite3(d0) && wci_finite3(rv);
+    let kd = wci_pow2_scale_of(wci_max_abs3(0.0f, d0));
+    let dn = d0 * kd;
+    let inv = 1.0f / wci_norm3(dn);
+    let k = wci_pow2_scale_of(wci_max_abs3(wci_max_abs3(0.0f, d0), rv));
+    let scaled = bitcast<u32>(k) != 0u;
+    let d = d0 * k;
+    let r = rv.x * k;
+    let dist = wci_norm3(d);
+    let has_axis = finite && bitcast<u32>(kd) != 0u;
+    let outside = has_axis && r <= dist;
+    let dist_s = select(1.0f, dist, outside);
+    let s = r / dist_s;
+    let cos = select(0.0f, sqrt((dist_s - r) * (dist_s + r)) / dist_s, outside);
+    let omc = select(2.0f, s * s / (1.0f + cos), outside);
+    var c: WciCone;
+    c.ok = finite && scaled && !(outside && s < 0x1p-60f);
+    c.n = vec3<f32>(
+        select(0.0f, dn.x * inv, has_axis),
+        select(0.0f, dn.y * inv, has_axis),
+        select(1.0f, dn.z * inv, has_axis),
+    );
+    let sign = wci_flip_sign(1.0f, wci_sign_bit(c.n.z));
+    let a = -1.0f / (sign + c.n.z);
+    let bxy = c.n.x * c.n.y * a;
+    c.t = vec3<f32>(1.0f + ((sign * c.n.x) * c.n.x) * a, sign * bxy, -(sign * c.n.x));
+    c.b = vec3<f32>(bxy, sign + (c.n.y * c.n.y) * a, -c.n.y);
+    c.omc = select(0.0f, omc, c.ok);
+    return c;
+}
+
+// Uniform in the cone the sphere (centre, radius) subtends at p: (direction, density).
+fn wc_spherical_cone(centre: vec3<f32>, radius: f32, p: vec3<f32>, u: vec2<f32>) -> vec4<f32> {
+    let c = wci_cone_setup(centre, radius, p);
+    let rcs = wci_concentric_parts(u);
+    let x = rcs.x * rcs.x * c.omc;
+    let cos = 1.0f - x;
+    let sin = wci_flip_sign(sqrt(x * (2.0f - x)), wci_sign_bit(rcs.x));
+    let st = sin * rcs.y;
+    let sb = sin * rcs.z;
+    let pdf = select(0.0f, WCI_HEMISPHERE_PDF / c.omc, c.ok);
+    return vec4<f32>(
+        c.t.x * st + c.b.x * sb + c.n.x * cos,
+        c.t.y * st + c.b.y * sb + c.n.y * cos,
+        c.t.z * st + c.b.z * sb + c.n.z * cos,
+        pdf,
+    );
+}
+
+// Inverse of wc_spherical_cone: the u whose direction is dir (any length).
+fn wc_spherical_cone_inverse(centre: vec3<f32>, radius: f32, p: vec3<f32>, dir: vec3<f32>) -> vec2<f32> {
+    let c = wci_cone_setup(centre, radius, p);
+    let w0 = wci_flush3(dir);
+    let k = wci_pow2_scale_of(wci_max_abs3(0.0f, w0));
+    let valid = wci_finite3(w0) && bitcast<u32>(k) != 0u;
+    let w1 = w0 * k;
+    let l = wci_norm3(w1);
+    let inv = select(0.0f, 1.0f / l, valid);
+    let w = w1 * inv;
+    let xt = wci_dot3(w, c.t);
+    let yb = wci_dot3(w, c.b);
+    let zc = select(1.0f, wci_dot3(w, c.n), valid);
+    let sin2 = xt * xt + yb * yb;
+    let x = select(1.0f - zc, sin2 / (1.0f + zc), 0.0f < zc);
+    let omc = select(1.0f, c.omc, c.ok);
+    let within = x <= omc;
+    let den = select(sin2, omc * (2.0f - x), within);
+    let has = 0.0f < den;
+    let kd = select(0.0f, 1.0f / sqrt(select(1.0f, den, has)), has);
+    let rim = !has && 1.0f < x;
+    let disk = vec2<f32>(
+        select(0.0f, select(xt * kd, 1.0f, rim), valid),
+        select(0.0f, yb * kd, valid),
+    );
+    let uv = wc_disk_concentric_inverse(disk);
+    return vec2<f32>(select(0.5f, uv.x, c.ok), select(0.5f, uv.y, c.ok));
+}
+
+// The solid angle of the sphere (centre, radius) at p: [0, 2 pi] outside, 4 pi inside.
+fn wc_spherical_cone_solid_angle(centre: vec3<f32>, radius: f32, p: vec3<f32>) -> f32 {
+    return wci_cone_setup(centre, radius, p).omc * WCI_TWO_PI;
 }

@@ -163,6 +163,15 @@ pub(crate) trait Lane: Ring + Div<Output = Self> + Neg<Output = Self> {
     fn flip_sign(self, sign: Self::U) -> Self {
         Self::from_bits(self.to_bits() ^ sign)
     }
+    /// `t` where the lane is one value and `mask` holds, else `all()`; `all()` must equal `t`
+    /// in every lane where `mask` holds (it selects per lane). A rare path (a fallback) is then
+    /// computed by the scalar form only when it is taken, with the same bits; the wide forms
+    /// always call `all()`.
+    #[inline(always)]
+    fn unless<T>(mask: Self::Mask, t: T, all: impl FnOnce() -> T) -> T {
+        let _ = (mask, t);
+        all()
+    }
 }
 
 impl Mask for bool {}
@@ -287,6 +296,10 @@ impl Lane for f32 {
     #[inline(always)]
     fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
         if mask { if_true } else { if_false }
+    }
+    #[inline(always)]
+    fn unless<T>(mask: bool, t: T, all: impl FnOnce() -> T) -> T {
+        if mask { t } else { all() }
     }
     #[inline(always)]
     fn to_bits(self) -> Wrapping<u32> {

@@ -60,7 +60,7 @@
 //! | `envmap` | [`envmap`]: marginal-conditional and hierarchical image distributions, caller-owned storage; enables `sphere` | yes |
 //! | `sampler` | [`sampler`]: the sampling core (domain tree, splitting, Owen-scrambled Sobol' and pmj02bn patterns, 8/16 lanes, slices); enables `pmj02bn` | yes |
 //! | `blue-noise` | [`sampler::Blue`]: screen-space blue-noise error, a 64 x 64 key tile per pattern (32 KiB); enables `sampler` | yes |
-//! | `spherical` | [`spherical`]: lights by solid angle, spherical triangles (Arvo) and rectangles (Urena et al.), inverses, solid angles; enables `triangle` | yes |
+//! | `spherical` | [`spherical`]: lights by solid angle, spherical triangles (Arvo) and rectangles (Urena et al.), inverses, solid angles, sphere lights by cone; enables `triangle` and `disk` | yes |
 //! | `lights` | [`lights`]: light selection, an alias table by power and a light tree by importance, caller-owned storage | yes |
 //! | `std` | forwards `wide/std`; the library never needs it | no |
 

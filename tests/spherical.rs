@@ -1600,3 +1600,318 @@ fn total_on_hostile_lights() {
         }
     }
 }
+
+// ---- Sphere lights: `spherical::cone` -------------------------------------------------------
+
+/// The f64 solid angle of the sphere (`c`, `r`) at `p` (on the same f32 input):
+/// `2 pi s^2 / (1 + sqrt(1 - s^2))`, `s = r / |c - p|`; `4 pi` inside.
+fn cone_omega(c: [f32; 3], r: f32, p: [f32; 3]) -> f64 {
+    let d = norm(sub(d3(c), d3(p)));
+    let r = (r as f64).abs();
+    if r > d {
+        return 4.0 * std::f64::consts::PI;
+    }
+    let s2 = (r / d) * (r / d);
+    2.0 * std::f64::consts::PI * s2 / (1.0 + (1.0 - s2).sqrt())
+}
+
+/// `(1 - cos theta, azimuth in turns)` of direction `w` about the f64 axis from `p` to `c`,
+/// in any fixed f64 frame of that axis: an equal-area parameterisation of the sphere of
+/// directions around the axis.
+fn cone_coords(c: [f32; 3], p: [f32; 3], w: [f32; 3]) -> (f64, f64) {
+    let n = sub(d3(c), d3(p));
+    let n = scale(n, 1.0 / norm(n));
+    let w = scale(d3(w), 1.0 / norm(d3(w)));
+    let a = if n[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let t = cross(n, a);
+    let t = scale(t, 1.0 / norm(t));
+    let b = cross(n, t);
+    let ch = sub(w, n);
+    let x = 0.5 * dot(ch, ch); // 1 - cos theta, from the chord
+    let phi = dot(w, b).atan2(dot(w, t)) / std::f64::consts::TAU;
+    (x, phi.rem_euclid(1.0))
+}
+
+/// A random sphere light of solid angle about `omega` sr (`1e-8 .. 2 pi`) at distance
+/// `10^(-3..3)` from a random point.
+fn random_cone(r: &mut Xoshiro256PlusPlus, omega: f64) -> ([f32; 3], f32, [f32; 3]) {
+    let dist = 10f64.powf(-3.0 + 6.0 * r.random::<f64>());
+    let p = scale(dir(r), dist * 3.0 * r.random::<f64>());
+    // omega = 2 pi (1 - cos): sin^2 = 1 - cos^2.
+    let omc = (omega / std::f64::consts::TAU).min(1.0);
+    let cos = 1.0 - omc;
+    let s = (1.0 - cos * cos).sqrt();
+    let c = add(p, scale(dir(r), dist));
+    (f3(c), (s * dist) as f32, f3(p))
+}
+
+/// Solid angle, density and direction against f64 from `1e-8` sr to `2 pi`, and the round
+/// trip `cone_inverse(cone(u))` from `1e-4` sr.
+#[test]
+fn cone_accuracy_against_f64() {
+    let mut r = rng(900);
+    let (mut omega_err, mut pdf_err, mut dir_err, mut trip) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut omega_kappa = 0.0f64;
+    let mut tiny_dir_rel = 0.0f64;
+    for k in 0..20_000 {
+        let omega =
+            10f64.powf(-8.0 + (std::f64::consts::TAU.log10() + 8.0) * (k as f64 / 19_999.0));
+        let (c, rad, p) = random_cone(&mut r, omega);
+        let want = cone_omega(c, rad, p);
+        let got = spherical::cone_solid_angle(c, rad, p) as f64;
+        // The condition number for relative perturbations of d and r: 1 / cos theta_max
+        // (p near the surface).
+        let omc = want / std::f64::consts::TAU;
+        let kappa = 1.0 / (1.0 - omc).max(1e-30);
+        let e = (got / want - 1.0).abs();
+        omega_kappa = omega_kappa.max(e / kappa);
+        if kappa < 2.0 {
+            omega_err = omega_err.max(e);
+        }
+        let u = unit2(&mut r);
+        let (w, pdf) = spherical::cone(c, rad, p, u);
+        if kappa < 2.0 {
+            pdf_err = pdf_err.max((pdf as f64 * want - 1.0).abs());
+        }
+        // The f64 map of the same u: 1 - cos theta = rho^2 (1 - cos theta_max), the same
+        // azimuth as the f32 direction's (so this measures the polar angle), |w| = 1.
+        let (x, _) = cone_coords(c, p, w);
+        let (rho, _) =
+            common::textbook::concentric_polar(2.0 * u[0] as f64 - 1.0, 2.0 * u[1] as f64 - 1.0);
+        // The map's own error: the f64 map at the f32 solid angle (whose error is above).
+        let x64 = rho * rho * got / std::f64::consts::TAU;
+        let theta = |x: f64| 2.0 * (0.5 * x).sqrt().asin();
+        let e = (theta(x) - theta(x64)).abs().max((norm(d3(w)) - 1.0).abs());
+        dir_err = dir_err.max(e);
+        if omega < 1e-7 {
+            tiny_dir_rel = tiny_dir_rel.max(e / theta(want / std::f64::consts::TAU));
+        }
+        if omega >= 1e-4 {
+            let back = spherical::cone_inverse(c, rad, p, w);
+            trip = trip.max((back[0] - u[0]).abs().max((back[1] - u[1]).abs()) as f64);
+        }
+    }
+    println!(
+        "cone vs f64: solid angle {omega_err:.2e}, density {pdf_err:.2e} relative (kappa < 2), \
+         solid angle {omega_kappa:.2e} kappa overall; polar angle {dir_err:.2e} rad \
+         ({tiny_dir_rel:.2e} of theta_max below 1e-7 sr); round trip {trip:.2e}"
+    );
+    assert!(omega_err < 6e-7 && pdf_err < 6e-7, "{omega_err} {pdf_err}");
+    assert!(omega_kappa < 6e-7, "{omega_kappa}");
+    assert!(dir_err < 3e-7, "{dir_err}");
+    assert!(trip < 1e-4, "{trip}");
+}
+
+/// Uniform in solid angle: 16 x 16 cells of `(1 - cos theta) / (1 - cos theta_max)` and the
+/// azimuth (equal solid angles), 2^21 samples per sphere: 1e-6 sr, 0.01 sr, 1 sr, `p` a
+/// hair outside the surface (nearly `2 pi`) and `p` inside (the whole sphere).
+#[test]
+fn chi2_cone_uniform_in_solid_angle() {
+    let cases: [([f32; 3], f32, [f32; 3]); 5] = [
+        ([0.3, -2.0, 5.0], 5.64e-4 * 5.43, [0.0; 3]),
+        ([1.0, 1.0, 1.0], 0.0975, [0.0, 0.0, 1.0]),
+        ([0.0, 0.0, 3.0], 1.5, [0.2, 0.1, 0.0]),
+        ([0.0, 0.0, 1.0], 0.999, [0.0; 3]),
+        ([0.1, 0.2, 0.3], 2.0, [0.0; 3]),
+    ];
+    let n = 16usize;
+    for (ci, (c, rad, p)) in cases.into_iter().enumerate() {
+        let omc = cone_omega(c, rad, p) / std::f64::consts::TAU;
+        let mut hist = chi2::Histogram::new(n, n);
+        let mut r = rng(910 + ci as u64);
+        for _ in 0..chi2::SAMPLES {
+            let (w, _) = spherical::cone(c, rad, p, unit2(&mut r));
+            let (x, phi) = cone_coords(c, p, w);
+            // f32 directions sit within 6e-8 rad of the rim: 2e-4 of x at 1e-6 sr.
+            let t = x / omc;
+            hist.add([if t > 1.0 && t < 1.0 + 1e-3 { 1.0 } else { t }, phi]);
+        }
+        chi2::check(
+            &format!("spherical cone {ci}"),
+            &hist,
+            &chi2::expected_uniform(n, n),
+        );
+    }
+}
+
+/// The density is `1 / solid angle` and the special solid angles are exact: `p` on the
+/// surface sees `2 pi`, inside `4 pi` (density `1 / (4 pi)`), point lights 0.
+#[test]
+fn cone_density_and_special_spheres() {
+    let pi = std::f32::consts::PI;
+    let mut r = rng(920);
+    for _ in 0..10_000 {
+        let omega = 10f64.powf(-8.0 + 8.8 * r.random::<f64>());
+        let (c, rad, p) = random_cone(&mut r, omega);
+        let (_, pdf) = spherical::cone(c, rad, p, unit2(&mut r));
+        let om = spherical::cone_solid_angle(c, rad, p);
+        assert!(
+            (pdf * om - 1.0).abs() < 1e-6,
+            "{c:?} {rad} {p:?}: {pdf} {om}"
+        );
+    }
+    // On the surface (exactly: distance 2 = radius 2) and inside.
+    assert_eq!(
+        spherical::cone_solid_angle([0.0, 0.0, 2.0], 2.0, [0.0; 3]),
+        2.0 * pi
+    );
+    let (_, pdf) = spherical::cone([0.0, 0.0, 2.0], 2.0, [0.0; 3], [0.3, 0.7]);
+    assert!((pdf * 2.0 * pi - 1.0).abs() < 1e-6);
+    for (c, rad, p) in [
+        ([0.0f32, 0.0, 1.0], 2.0f32, [0.0f32; 3]),
+        ([5.0, 5.0, 5.0], 1.0, [5.0, 5.0, 5.0]),
+        ([0.0, 0.0, 0.0], 1e30, [1e29, -3e29, 0.0]),
+        ([0.0, 0.0, 0.0], -3.0, [1.0, 0.0, 0.0]),
+    ] {
+        let om = spherical::cone_solid_angle(c, rad, p);
+        assert!((om - 4.0 * pi).abs() < 1e-5, "{c:?} {rad} {p:?}: {om}");
+        let mut hist = [0usize; 2];
+        for _ in 0..4096 {
+            let (w, pdf) = spherical::cone(c, rad, p, unit2(&mut r));
+            assert!((pdf * 4.0 * pi - 1.0).abs() < 1e-6);
+            hist[(w[2] > 0.0) as usize] += 1;
+        }
+        // Both hemispheres about equally (binomial, 4096 draws: 6 sigma is 192).
+        assert!(hist[0].abs_diff(hist[1]) < 192, "{hist:?}");
+    }
+    // Point lights: radius 0 or below 2^-60 of the distance: the axis, density 0.
+    for rad in [0.0f32, 1e-19, -1e-20, 1e-45] {
+        let (w, pdf) = spherical::cone([0.0, 3.0, 4.0], rad, [0.0; 3], [0.2, 0.9]);
+        assert_eq!((w, pdf), ([0.0, 0.6, 0.8], 0.0), "{rad}");
+        assert_eq!(
+            spherical::cone_solid_angle([0.0, 3.0, 4.0], rad, [0.0; 3]),
+            0.0
+        );
+        assert_eq!(
+            spherical::cone_inverse([0.0, 3.0, 4.0], rad, [0.0; 3], w),
+            [0.5, 0.5]
+        );
+    }
+    // 1e-17 of the distance is still a light (solid angle 3.1e-34 sr).
+    let om = spherical::cone_solid_angle([0.0, 3.0, 4.0], 5e-17, [0.0; 3]);
+    assert!(
+        (om as f64 / (std::f64::consts::PI * 1e-34) - 1.0).abs() < 1e-5,
+        "{om}"
+    );
+}
+
+/// Totality: NaN, inf, subnormal and huge values anywhere give unit directions, finite
+/// densities `>= 0` (never `FLT_MAX`), inverses in `[0, 1)`.
+#[test]
+fn cone_total_on_hostile_input() {
+    let sp = specials();
+    let mut r = rng(930);
+    let vals: Vec<f32> = sp
+        .iter()
+        .copied()
+        .chain([1e30, -1e30, 3e38, 1e-40, -1e-44, 2.0, 0.5, 1e-20, 1e20])
+        .collect();
+    let pick = |r: &mut Xoshiro256PlusPlus| {
+        if r.random::<f32>() < 0.5 {
+            vals[r.random_range(0..vals.len())]
+        } else {
+            (r.random::<f32>() - 0.5) * 10.0
+        }
+    };
+    for _ in 0..200_000 {
+        let c = [pick(&mut r), pick(&mut r), pick(&mut r)];
+        let p = [pick(&mut r), pick(&mut r), pick(&mut r)];
+        let rad = pick(&mut r);
+        let u = [pick(&mut r), pick(&mut r)];
+        let (w, pdf) = spherical::cone(c, rad, p, u);
+        let l = (w[0] as f64).hypot(w[1] as f64).hypot(w[2] as f64);
+        assert!((l - 1.0).abs() < 1e-6, "{c:?} {rad} {p:?} {u:?}: {w:?}");
+        assert!((0.0..f32::MAX).contains(&pdf), "{pdf}");
+        let om = spherical::cone_solid_angle(c, rad, p);
+        assert!(
+            (0.0..=4.0 * std::f32::consts::PI + 1e-6).contains(&om),
+            "{om}"
+        );
+        let d = [pick(&mut r), pick(&mut r), pick(&mut r)];
+        for dd in [d, w] {
+            let back = spherical::cone_inverse(c, rad, p, dd);
+            assert!(back.iter().all(|x| (0.0..1.0).contains(x)), "{back:?}");
+        }
+    }
+}
+
+/// scalar == x8 == x16 == slice, bit for bit, every lane its own sphere (random, inside,
+/// point-like, hostile).
+#[test]
+fn cone_widths_agree_bit_for_bit() {
+    let mut r = rng(940);
+    let sp = specials();
+    for round in 0..200 {
+        let rows: Vec<[[f32; 3]; 4]> = (0..16)
+            .map(|j| {
+                let om = 10f64.powf(-9.0 + 10.0 * r.random::<f64>());
+                let (c, rad, p) = random_cone(&mut r, om);
+                let rad = match j % 5 {
+                    0 => sp[(round + j) % sp.len()],
+                    1 => rad * 50.0,
+                    _ => rad,
+                };
+                let u = unit2(&mut r);
+                let d = f3(dir(&mut r));
+                [c, [rad, u[0], u[1]], p, d]
+            })
+            .collect();
+        let (w8, w16) = soa_k(&rows);
+        let (r8, r16) = (w8[1][0], w16[1][0]);
+        let (u8, u16) = ([w8[1][1], w8[1][2]], [w16[1][1], w16[1][2]]);
+        let row = |j: usize| {
+            (
+                rows[j][0],
+                rows[j][1][0],
+                rows[j][2],
+                [rows[j][1][1], rows[j][1][2]],
+                rows[j][3],
+            )
+        };
+        assert_lanes(
+            |j| {
+                let (c, rad, p, u, _) = row(j);
+                Box::new(spherical::cone(c, rad, p, u))
+            },
+            &spherical::cone_x8(w8[0], r8, w8[2], u8),
+            &spherical::cone_x16(w16[0], r16, w16[2], u16),
+        );
+        assert_lanes(
+            |j| {
+                let (c, rad, p, _, d) = row(j);
+                Box::new(spherical::cone_inverse(c, rad, p, d))
+            },
+            &spherical::cone_inverse_x8(w8[0], r8, w8[2], w8[3]),
+            &spherical::cone_inverse_x16(w16[0], r16, w16[2], w16[3]),
+        );
+        assert_lanes(
+            |j| {
+                let (c, rad, p, _, _) = row(j);
+                Box::new(spherical::cone_solid_angle(c, rad, p))
+            },
+            &spherical::cone_solid_angle_x8(w8[0], r8, w8[2]),
+            &spherical::cone_solid_angle_x16(w16[0], r16, w16[2]),
+        );
+        let (c, rad, p, _, _) = row(round % 16);
+        let us = slice_us(&mut r, &[[0.0, 1.0], [f32::NAN, 0.5]], round);
+        let mut out = vec![[0.0f32; 4]; us.len()];
+        assert_eq!(spherical::cone_slice(c, rad, p, &us, &mut out), us.len());
+        for (u, o) in us.iter().zip(&out) {
+            let (w, pdf) = spherical::cone(c, rad, p, *u);
+            assert_eq!(bits(*o), bits([w[0], w[1], w[2], pdf]));
+        }
+        let ds: Vec<[f32; 3]> = out.iter().map(|o| [o[0], o[1], o[2]]).collect();
+        let mut back = vec![[0.0f32; 2]; ds.len()];
+        assert_eq!(
+            spherical::cone_inverse_slice(c, rad, p, &ds, &mut back),
+            ds.len()
+        );
+        for (d, b) in ds.iter().zip(&back) {
+            assert_eq!(bits(*b), bits(spherical::cone_inverse(c, rad, p, *d)));
+        }
+    }
+}

@@ -4,7 +4,8 @@
 //! `corner + s ex + t ey`), read before anything is written (so `light` may even overlap
 //! `out`); the cosine-aware variants take 15, the receiver's normal `n` after `p`. See
 //! `warpcore::spherical` for the maps, their precision and the degenerate cases (density 0
-//! where the solid angle is 0).
+//! where the solid angle is 0). Sphere lights (`wc_spherical_cone*`) take 7 floats,
+//! `centre, radius, p`.
 
 use warpcore::spherical;
 
@@ -24,7 +25,23 @@ unsafe fn lit<const K: usize, const I: usize, const O: usize>(
     f: impl Fn([[f32; 3]; K], &[[f32; I]], &mut [[f32; O]]) -> usize,
 ) -> usize {
     // SAFETY: the caller's contract, passed on.
-    let Some(l) = (unsafe { read_vectors::<K>(light) }) else {
+    let l = unsafe { read_vectors::<K>(light) };
+    // SAFETY: the caller's contract, passed on.
+    unsafe { lit_read(l, input, out, n, f) }
+}
+
+/// [`lit`] with the light already read (`None`: null or misaligned, 0 returned).
+///
+/// # Safety
+/// `input` must be readable for `I n` floats and `out` writable for `O n`.
+unsafe fn lit_read<T: Copy, const I: usize, const O: usize>(
+    light: Option<T>,
+    input: *const f32,
+    out: *mut f32,
+    n: usize,
+    f: impl Fn(T, &[[f32; I]], &mut [[f32; O]]) -> usize,
+) -> usize {
+    let Some(l) = light else {
         return 0;
     };
     // SAFETY: the caller's contract; `map` checks null, alignment, size and overlap.
@@ -212,5 +229,90 @@ pub unsafe extern "C" fn wc_spherical_rectangle_cosine(
         lit(light, u, out, n, |[c, ex, ey, p, nrm], u, o| {
             spherical::rectangle_cosine_slice(c, ex, ey, p, nrm, u, o)
         })
+    }
+}
+
+/// The 7 floats of a sphere light at `light` (`centre, radius, p`), or `None` for a null or
+/// misaligned pointer.
+///
+/// # Safety
+/// `light` must be readable for 7 floats.
+unsafe fn read_sphere(light: *const f32) -> Option<([f32; 3], f32, [f32; 3])> {
+    // SAFETY: the caller's contract; `slice` checks null, alignment and size. The slice is
+    // copied at once and dropped before anything is written.
+    let s = unsafe { crate::ffi::slice(light, 7, None)? };
+    let mut l = [0.0f32; 7];
+    l.copy_from_slice(s.get(..7)?);
+    Some(([l[0], l[1], l[2]], l[3], [l[4], l[5], l[6]]))
+}
+
+/// A sphere light's slice form: `(centre, radius, p, input, out) -> count`.
+type SphereSlice<const I: usize, const O: usize> =
+    fn([f32; 3], f32, [f32; 3], &[[f32; I]], &mut [[f32; O]]) -> usize;
+
+/// [`lit`] for a sphere light (7 floats) and a slice form `f(centre, radius, p, input, out)`.
+///
+/// # Safety
+/// `light` must be readable for 7 floats, `input` for `I n` and `out` writable for `O n`.
+unsafe fn sphere_lit<const I: usize, const O: usize>(
+    light: *const f32,
+    input: *const f32,
+    out: *mut f32,
+    n: usize,
+    f: SphereSlice<I, O>,
+) -> usize {
+    // SAFETY: the caller's contract; `read_sphere` checks `light`, `map` the arrays.
+    unsafe {
+        let l = read_sphere(light);
+        lit_read(l, input, out, n, |(c, r, p), i, o| f(c, r, p, i, o))
+    }
+}
+
+/// Uniform in solid angle over the cone that the sphere `light[0..3]` (centre), `light[3]`
+/// (radius) subtends at `light[4..7]`: `n` points `u` (`2n` floats) to `n` records `x, y, z,
+/// density` (`4n` floats; a unit direction from the shading point, density with respect to
+/// solid angle: `1 / (4 pi)` inside the sphere, 0 for a point light, see
+/// `warpcore::spherical::cone`). Returns `n`, or 0 as for `wc_spherical_triangle`.
+///
+/// # Safety
+/// `light` must be readable for 7 floats, `u` for `2n` and `out` writable for `4n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_spherical_cone(
+    light: *const f32,
+    u: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above, passed on.
+    unsafe { sphere_lit(light, u, out, n, spherical::cone_slice) }
+}
+
+/// Inverse of `wc_spherical_cone`: `n` directions (`3n` floats, any length) to `n` points of
+/// the square (`2n` floats). Returns `n`, or 0 as for `wc_spherical_triangle_inverse`.
+///
+/// # Safety
+/// `light` must be readable for 7 floats, `dir` for `3n` and `out` writable for `2n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_spherical_cone_inverse(
+    light: *const f32,
+    dir: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> usize {
+    // SAFETY: the caller's contract above, passed on.
+    unsafe { sphere_lit(light, dir, out, n, spherical::cone_inverse_slice) }
+}
+
+/// The solid angle of the sphere `light[0..4]` (centre, radius) at `light[4..7]`: in `[0, 2
+/// pi]` outside, `4 pi` inside; 0 for a null or misaligned `light` (and for point lights).
+///
+/// # Safety
+/// `light` must be readable for 7 floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn wc_spherical_cone_solid_angle(light: *const f32) -> f32 {
+    // SAFETY: the caller's contract above.
+    match unsafe { read_sphere(light) } {
+        Some((c, r, p)) => spherical::cone_solid_angle(c, r, p),
+        None => 0.0,
     }
 }

@@ -537,6 +537,12 @@ const TABLE: &[(&str, &[&str])] = {
         ("wc_spherical_rectangle_inverse", MAP_IN_PLACE),
         ("wc_spherical_triangle_cosine", MAP),
         ("wc_spherical_rectangle_cosine", MAP),
+        ("wc_spherical_cone", MAP),
+        ("wc_spherical_cone_inverse", MAP_IN_PLACE),
+        (
+            "wc_spherical_cone_solid_angle",
+            &["omega", "0:null", "0:misaligned"],
+        ),
         (
             "wc_spherical_triangle_solid_angle",
             &["omega", "0:null", "0:misaligned"],

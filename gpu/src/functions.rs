@@ -35,13 +35,28 @@ pub struct Func {
 /// A crate reference: the output words `o` of one point's input words `i`.
 pub type Reference = fn(&[u32], &mut [u32]);
 
-/// The references kept by hand. The cosine-aware lights take the receiver normal `n` as a
+/// The references kept by hand. The sphere lights take `centre, radius, p` (7 words) in WGSL,
+/// their registry bodies the 12-float light `centre, [radius, 0, 0], -, p`. The cosine-aware
+/// lights take the receiver normal `n` as a
 /// parameter in WGSL (`light, n, u`: 17 words), while their registry bodies derive the normal
 /// from the light (the golden hash has no normal input), so the registry body cannot take the
 /// checker's points. These call the same crate functions with `n` from the point's words
 /// (`tests/registry.rs` checks that they equal the registry bodies where `n` is the registry's
 /// normal).
 pub const BY_HAND: &[(&str, Reference)] = &[
+    ("wc_spherical_cone", |w, o| {
+        let (c, r, p, u) = sphere(w);
+        let (d, pdf) = sp::cone(c, r, p, floats(u));
+        put(o, &[d[0], d[1], d[2], pdf]);
+    }),
+    ("wc_spherical_cone_inverse", |w, o| {
+        let (c, r, p, d) = sphere(w);
+        put(o, &sp::cone_inverse(c, r, p, floats(d)));
+    }),
+    ("wc_spherical_cone_solid_angle", |w, o| {
+        let (c, r, p, _) = sphere(w);
+        put(o, &[sp::cone_solid_angle(c, r, p)]);
+    }),
     ("wc_spherical_triangle_cosine", |w, o| {
         let (l, n, u) = (light(w), floats(&w[12..]), floats(&w[15..]));
         let (b, d) = sp::triangle_cosine(tri(l), l[3], n, u);
@@ -232,6 +247,9 @@ pub fn domain(e: &Entry) -> Domain {
         })
     };
     match e.kind {
+        Kind::OfLight(_) if e.name.contains("cone") => Domain::Light(Layout::Sphere),
+        Kind::L24(_) if e.name.contains("cone") => Domain::Light(Layout::SphereU),
+        Kind::L32(_) if e.name.contains("cone") => Domain::Light(Layout::SphereDir),
         Kind::M22(_) if e.name == "sphere::equal_area_wrap" => Domain::Extended,
         Kind::M22(_) if inverse => Domain::Plane,
         Kind::M22(_) | Kind::M23(_) => Domain::Square,
@@ -256,6 +274,11 @@ pub fn domain(e: &Entry) -> Domain {
 /// `N` floats from words.
 pub fn floats<const N: usize>(w: &[u32]) -> [f32; N] {
     std::array::from_fn(|k| f32::from_bits(w[k]))
+}
+
+/// A sphere light `centre, radius, p` from its 7 words (and the words after them).
+fn sphere(w: &[u32]) -> ([f32; 3], f32, [f32; 3], &[u32]) {
+    (floats(w), f32::from_bits(w[3]), floats(&w[4..]), &w[7..])
 }
 
 /// A light (4 points of 3 floats) from its 12 words.

@@ -27,6 +27,12 @@ pub enum Layout {
     RectangleSt = 6,
     /// A rectangle light, a normal and `u`.
     RectangleNU = 7,
+    /// A sphere light `centre, radius, p` (7 words) alone.
+    Sphere = 8,
+    /// A sphere light and `u`.
+    SphereU = 9,
+    /// A sphere light and a direction.
+    SphereDir = 10,
 }
 
 impl Layout {
@@ -44,7 +50,8 @@ const NAN: f32 = f32::NAN;
 /// The lights of the golden fingerprint (`warpcore_registry::fingerprint`): triangles
 /// `v0, v1, v2, p` and rectangles `corner, ex, ey, p`, ordinary and extreme.
 pub use warpcore_registry::fingerprint::{
-    SPHERICAL_RECTANGLES as FINGERPRINT_RECTANGLES, SPHERICAL_TRIANGLES as FINGERPRINT_TRIANGLES,
+    SPHERICAL_CONES as FINGERPRINT_CONES, SPHERICAL_RECTANGLES as FINGERPRINT_RECTANGLES,
+    SPHERICAL_TRIANGLES as FINGERPRINT_TRIANGLES,
 };
 
 type V3 = [f32; 3];
@@ -189,9 +196,158 @@ fn normals(l: &[f32; 12], rect: bool, rng: &mut Rng) -> Vec<V3> {
     ]
 }
 
-/// The test points of `layout` (`in_words` words each, the light's 12 first). `random`
-/// (default 65536) sets the number of random lights (`random / 64`, at least 16).
+/// A fingerprint sphere light (`centre, [radius, 0, 0], -, p`) as its 7 words' floats.
+pub fn sphere7(l: &[f32; 12]) -> [f32; 7] {
+    [l[0], l[1], l[2], l[3], l[9], l[10], l[11]]
+}
+
+/// A random sphere light (`centre, radius, p`) of kind `k % 8`: 0 ordinary, 1 small (radius
+/// `1e-2 .. 1e-6` of the distance), 2 far (`1e2 .. 1e6`), 3 `p` just outside the surface, 4
+/// `p` inside, 5 a point (radius 0 or `1e-20` of the distance) or `p` at the centre, 6 one
+/// word a random bit pattern, 7 the whole light scaled by a power of two from `2^-100` to
+/// `2^100`.
+pub fn random_sphere(k: usize, rng: &mut Rng) -> [f32; 7] {
+    let n = unit(rng);
+    let kind = k % 8;
+    let dist = match kind {
+        2 => [1e2f32, 1e4, 1e6][k / 8 % 3],
+        _ => rng.range(0.3, 3.0),
+    };
+    let r = match kind {
+        1 => dist * [1e-2f32, 1e-3, 1e-4, 1e-6][k / 8 % 4],
+        3 => dist * (1.0 - [1e-3f32, 1e-5, 1e-7][k / 8 % 3]),
+        4 => dist * rng.range(1.1, 10.0),
+        5 => [0.0, dist * 1e-20, 1.0][k / 8 % 3],
+        _ => dist * rng.range(0.05, 0.9),
+    };
+    let p = [
+        rng.range(-1.0, 1.0),
+        rng.range(-1.0, 1.0),
+        rng.range(-1.0, 1.0),
+    ];
+    let mut c: V3 = core::array::from_fn(|i| p[i] + dist * n[i]);
+    if kind == 5 && k / 8 % 3 == 2 {
+        c = p;
+    }
+    let mut l = [c[0], c[1], c[2], r, p[0], p[1], p[2]];
+    if kind == 6 {
+        l[rng.next_u32() as usize % 7] = rng.bits();
+    }
+    if kind == 7 {
+        let s = 2f32.powi((rng.next_u32() % 201) as i32 - 100);
+        l = l.map(|x| x * s);
+    }
+    l
+}
+
+/// The light `l` and 15 copies seen from moved shading points (the point at `l[at..at + 3]`
+/// moved by up to `1e-6 .. 10` per coordinate).
+fn moved<const N: usize>(l: &[f32; N], at: usize, rng: &mut Rng) -> Vec<[f32; N]> {
+    let mut v = vec![*l];
+    for _ in 0..15 {
+        let mut m = *l;
+        let s = [1e-6f32, 1e-3, 0.1, 1.0, 10.0][rng.next_u32() as usize % 5];
+        for x in &mut m[at..at + 3] {
+            *x += s * rng.range(-1.0, 1.0);
+        }
+        v.push(m);
+    }
+    v
+}
+
+/// Samples of the square per light: a grid, random points (2^-24 grid, any f32 in [0, 1),
+/// bit patterns), edge pairs (all of them for the fingerprint lights, `fp`).
+fn samples(fp: bool, rng: &mut Rng) -> Vec<[f32; 2]> {
+    let edges = square_edges();
+    let g = if fp { 32 } else { 8 };
+    let mut s: Vec<[f32; 2]> = Vec::new();
+    for i in 0..g {
+        for j in 0..g {
+            s.push([(i as f32 + 0.5) / g as f32, (j as f32 + 0.37) / g as f32]);
+        }
+    }
+    for k in 0..(if fp { 256 } else { 32 }) {
+        s.push(match k % 3 {
+            0 => [rng.grid24(), rng.grid24()],
+            1 => [rng.unit_any(), rng.unit_any()],
+            _ => [rng.bits(), rng.bits()],
+        });
+    }
+    if fp {
+        for &a in &edges {
+            for &b in &edges {
+                s.push([a, b]);
+            }
+        }
+    } else {
+        for _ in 0..16 {
+            let a = edges[rng.next_u32() as usize % edges.len()];
+            let b = edges[rng.next_u32() as usize % edges.len()];
+            s.push([a, rng.unit_any()]);
+            s.push([rng.unit_any(), b]);
+        }
+    }
+    s
+}
+
+/// The test points of the sphere layouts (`centre, radius, p` and what follows).
+fn sphere_inputs(layout: Layout, random: usize, rng: &mut Rng) -> Vec<u32> {
+    let mut lights: Vec<([f32; 7], bool)> = FINGERPRINT_CONES
+        .iter()
+        .map(|l| (sphere7(l), true))
+        .collect();
+    for k in 0..(random / 64).max(16) {
+        lights.push((random_sphere(k, rng), false));
+    }
+    let mut v: Vec<u32> = Vec::new();
+    let mut push = |light: &[f32; 7], extra: &[f32]| {
+        v.extend(light.iter().chain(extra).map(|x| x.to_bits()));
+    };
+    for (l, fp) in &lights {
+        let (c, r, p) = ([l[0], l[1], l[2]], l[3], [l[4], l[5], l[6]]);
+        let us = samples(*fp, rng);
+        match layout {
+            Layout::Sphere => {
+                for m in moved(l, 4, rng) {
+                    push(&m, &[]);
+                }
+            }
+            Layout::SphereU => {
+                for u in us {
+                    push(l, &u);
+                }
+            }
+            _ => {
+                // Round trips (the crate's own directions), random directions of any
+                // length, edge and bit patterns.
+                for (k, u) in us.into_iter().enumerate() {
+                    let d = match k % 4 {
+                        0 | 1 => sp::cone(c, r, p, u).0,
+                        2 => unit(rng).map(|x| x * rng.range(1e-3, 1e3)),
+                        _ => [rng.bits(), rng.bits(), rng.bits()],
+                    };
+                    push(l, &d);
+                }
+                for d in [
+                    [0.0f32; 3],
+                    [1e-40, 0.0, -1e-41],
+                    [NAN, 0.0, 1.0],
+                    [0.0, -I, 0.0],
+                ] {
+                    push(l, &d);
+                }
+            }
+        }
+    }
+    v
+}
+
+/// The test points of `layout` (`in_words` words each, the light's 12 first; 7 for spheres).
+/// `random` (default 65536) sets the number of random lights (`random / 64`, at least 16).
 pub fn inputs(layout: Layout, random: usize, rng: &mut Rng) -> Vec<u32> {
+    if matches!(layout, Layout::Sphere | Layout::SphereU | Layout::SphereDir) {
+        return sphere_inputs(layout, random, rng);
+    }
     let rect = layout.is_rectangle();
     let fingerprint: &[[f32; 12]] = if rect {
         &FINGERPRINT_RECTANGLES
@@ -211,51 +367,12 @@ pub fn inputs(layout: Layout, random: usize, rng: &mut Rng) -> Vec<u32> {
     if matches!(layout, Layout::Triangle | Layout::Rectangle) {
         // Each light, and the light seen from moved shading points.
         for (l, _) in &lights {
-            push(l, &[]);
-            for _ in 0..15 {
-                let mut m = *l;
-                let s = [1e-6f32, 1e-3, 0.1, 1.0, 10.0][rng.next_u32() as usize % 5];
-                for x in &mut m[9..12] {
-                    *x += s * rng.range(-1.0, 1.0);
-                }
+            for m in moved(l, 9, rng) {
                 push(&m, &[]);
             }
         }
         return v;
     }
-    // Samples of the square per light: a grid, random points (2^-24 grid, any f32 in [0, 1),
-    // bit patterns), edge pairs (all of them for the fingerprint lights).
-    let samples = |fp: bool, rng: &mut Rng| -> Vec<[f32; 2]> {
-        let g = if fp { 32 } else { 8 };
-        let mut s: Vec<[f32; 2]> = Vec::new();
-        for i in 0..g {
-            for j in 0..g {
-                s.push([(i as f32 + 0.5) / g as f32, (j as f32 + 0.37) / g as f32]);
-            }
-        }
-        for k in 0..(if fp { 256 } else { 32 }) {
-            s.push(match k % 3 {
-                0 => [rng.grid24(), rng.grid24()],
-                1 => [rng.unit_any(), rng.unit_any()],
-                _ => [rng.bits(), rng.bits()],
-            });
-        }
-        if fp {
-            for &a in &edges {
-                for &b in &edges {
-                    s.push([a, b]);
-                }
-            }
-        } else {
-            for _ in 0..16 {
-                let a = edges[rng.next_u32() as usize % edges.len()];
-                let b = edges[rng.next_u32() as usize % edges.len()];
-                s.push([a, rng.unit_any()]);
-                s.push([rng.unit_any(), b]);
-            }
-        }
-        s
-    };
     for (l, fp) in &lights {
         let (v0, v1, v2, p) = (pt(l, 0), pt(l, 1), pt(l, 2), pt(l, 3));
         match layout {
@@ -316,7 +433,7 @@ pub fn inputs(layout: Layout, random: usize, rng: &mut Rng) -> Vec<u32> {
                     }
                 }
             }
-            Layout::Triangle | Layout::Rectangle => unreachable!(),
+            _ => unreachable!(),
         }
     }
     v
@@ -325,6 +442,18 @@ pub fn inputs(layout: Layout, random: usize, rng: &mut Rng) -> Vec<u32> {
 /// One typical point of `layout` (an ordinary light, the sample `u`, a normal facing the
 /// light) for the CPU model.
 pub fn typical(layout: Layout, u: [f32; 2], rng: &mut Rng) -> Vec<f32> {
+    if matches!(layout, Layout::Sphere | Layout::SphereU | Layout::SphereDir) {
+        let l = random_sphere(0, rng);
+        let mut w = l.to_vec();
+        match layout {
+            Layout::SphereU => w.extend(u),
+            Layout::SphereDir => {
+                w.extend(sp::cone([l[0], l[1], l[2]], l[3], [l[4], l[5], l[6]], u).0)
+            }
+            _ => {}
+        }
+        return w;
+    }
     let rect = layout.is_rectangle();
     let l = random_light(rect, 0, rng);
     let mut w = l.to_vec();
@@ -338,6 +467,7 @@ pub fn typical(layout: Layout, u: [f32; 2], rng: &mut Rng) -> Vec<f32> {
             w.extend(normals(&l, rect, rng)[0]);
             w.extend(u);
         }
+        _ => unreachable!(),
     }
     w
 }

@@ -21,6 +21,8 @@ const U32 = { u32: true, good: () => 7 };
 // A light and shading point of the solid-angle functions (12 floats).
 const LIGHT = { T: Float32Array, d: 12, good: () => Float32Array.of(0, 0, 1, 1, 0, 1, 0, 1, 1, 0.2, 0.2, 0) };
 // The cosine-aware ones: the receiver's normal after the point (15 floats).
+// A sphere light: centre, radius, p (7 floats).
+const SPHERE7 = { T: Float32Array, d: 7, good: () => Float32Array.of(0, 0, 3, 1, 0.1, 0.2, 0) };
 const LIGHT15 = { T: Float32Array, d: 15, good: () => Float32Array.of(0, 0, 1, 1, 0, 1, 0, 1, 1, 0.2, 0.2, 0, 0, 0, 1) };
 
 const STORAGE = (() => {
@@ -42,6 +44,9 @@ const SPEC = {
   sphericalRectangleSolidAngle: [LIGHT],
   sphericalTriangleCosine: [LIGHT15, vec(Float32Array, 2)],
   sphericalRectangleCosine: [LIGHT15, vec(Float32Array, 2)],
+  sphericalCone: [SPHERE7, vec(Float32Array, 2)],
+  sphericalConeInverse: [SPHERE7, vec(Float32Array, 3)],
+  sphericalConeSolidAngle: [SPHERE7],
   triangleBasuOwen: [U32, U32, COUNT],
   triangleBasuOwenPermuted: [U32, U32, COUNT],
   sphereEqualAreaWrapTexel: [vec(Int32Array, 2), U32],

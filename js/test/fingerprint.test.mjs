@@ -144,6 +144,8 @@ function envmap(h, build) {
 const lightsOf = (rows) => rows.map((l) => new Float32Array(Uint32Array.from(l).buffer));
 const TRIANGLES = lightsOf(data.triangles);
 const RECTANGLES = lightsOf(data.rectangles);
+// The sphere lights (centre, [radius, 0, 0], -, p) as the 7 floats the JS functions take.
+const CONES = lightsOf(data.cones).map((l) => Float32Array.of(l[0], l[1], l[2], l[3], l[9], l[10], l[11]));
 
 // fingerprint.rs's `lights`: for each light l, the slice over all inputs in chunks of 37 and
 // one call per input; then the lane forms as single calls, input i with light (l + i) % L.
@@ -321,6 +323,9 @@ function jsExtras() {
     h.word(wc.pmj02bnSets);
   });
   hash('envmap::image::luminance', (h) => h.floats(wc.envmapLuminance(inputs(0, N, 3))));
+  hash('spherical::cone', (h) => lights(h, CONES, wc.sphericalCone, 2, 4));
+  hash('spherical::cone_inverse', (h) => lights(h, CONES, wc.sphericalConeInverse, 3, 2));
+  hash('spherical::cone_solid_angle', (h) => solidAngles(h, CONES, wc.sphericalConeSolidAngle));
   hash('envmap::image::equirect_pdf_to_solid_angle', (h) => {
     const pv = inputs(0, N, 2);
     const pdf = pv.filter((_, k) => k % 2 === 0);
@@ -361,6 +366,6 @@ test('functions outside the fingerprint equal their registry hashes', () => {
   const got = jsExtras();
   const want = { hierarchical: data.envmap.hierarchical, marginalConditional: data.envmap.marginalConditional };
   for (const e of data.entries) if (e.name in got) want[e.name] = e.hash;
-  assert.equal(Object.keys(want).length, 8);
+  assert.equal(Object.keys(want).length, 11);
   assert.deepEqual(got, want);
 });

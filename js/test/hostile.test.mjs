@@ -263,6 +263,9 @@ const SPEC = {
   sphericalRectangleCosine: [FIXED(Float32Array, [...RECT, ...N]), vec(Float32Array, 2)],
   sphericalTriangleSolidAngle: [FIXED(Float32Array, TRI)],
   sphericalRectangleSolidAngle: [FIXED(Float32Array, RECT)],
+  sphericalCone: [FIXED(Float32Array, [0, 0, 3, 1, 0.1, 0.2, 0]), vec(Float32Array, 2)],
+  sphericalConeInverse: [FIXED(Float32Array, [0, 0, 3, 1, 0.1, 0.2, 0]), vec(Float32Array, 3)],
+  sphericalConeSolidAngle: [FIXED(Float32Array, [0, 0, 3, 1, 0.1, 0.2, 0])],
   samplerPath: [],
   samplerDraw: [STR('sobol'), PIXEL, NUM(1), NUM(7), NUM(9), PATH, NUM(4)],
   samplerDrawU32: [STR('pmj02bn'), PIXEL, NUM(1), NUM(7), NUM(9), PATH, NUM(3)],
@@ -276,7 +279,7 @@ const SPEC = {
 };
 // Functions whose last argument is an optional `out` of this type and length (for the good
 // arguments).
-const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapHierarchicalCompensated', 'envmapMarginalConditionalCompensated', 'envmapFromStorage', 'envmapEquirectSolidAngleWeights', 'envmapEquirectToEqualArea', 'sphericalTriangleSolidAngle', 'sphericalRectangleSolidAngle', 'samplerPath', 'memoryStats']);
+const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapHierarchicalCompensated', 'envmapMarginalConditionalCompensated', 'envmapFromStorage', 'envmapEquirectSolidAngleWeights', 'envmapEquirectToEqualArea', 'sphericalTriangleSolidAngle', 'sphericalRectangleSolidAngle', 'sphericalConeSolidAngle', 'samplerPath', 'memoryStats']);
 const OUT = {};
 for (const [name, specs] of Object.entries(SPEC)) {
   if (NO_OUT.has(name)) continue;

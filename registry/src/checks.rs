@@ -699,7 +699,9 @@ pub fn envmap_storage(data: &[u8]) {
 /// Lights by solid angle: the first 24 words are a triangle light and point (12 floats) and a
 /// rectangle light and point (12 floats), any bits; the rest are samples. Every form of every
 /// map stays in its domain (barycentrics in the closed simplex, `(s, t)` in `[0, 1]^2`,
-/// density finite and >= 0, inverses in `[0, 1)^2`) and scalar == x8 == slice.
+/// density finite and >= 0, inverses in `[0, 1)^2`) and scalar == x8 == slice. The sphere
+/// light of `cone` is the triangle's `v0` (centre), `v1[0]` (radius) and `p`: unit directions,
+/// density `1 / solid angle` (or 0 with solid angle 0), solid angle in `[0, 4 pi]`.
 #[cfg(feature = "spherical")]
 pub fn spherical(data: &[u8]) {
     use warpcore::spherical as s;
@@ -818,6 +820,46 @@ pub fn spherical(data: &[u8]) {
     assert!(
         (0.0..=core::f32::consts::TAU).contains(&om),
         "triangle omega {om}"
+    );
+    let (c, rad) = (v[0], v[1][0]);
+    let om = s::cone_solid_angle(c, rad, p);
+    assert!(
+        (0.0..=2.0 * core::f32::consts::TAU).contains(&om),
+        "cone omega {om}"
+    );
+    let cone_ok = |o: [f32; 4]| {
+        let l = (o[0] as f64).hypot(o[1] as f64).hypot(o[2] as f64);
+        let d = o[3];
+        (l - 1.0).abs() < 1e-6
+            && d.is_finite()
+            && (0.0..f32::MAX).contains(&d)
+            && if om > 0.0 {
+                (d as f64 * om as f64 - 1.0).abs() < 1e-6
+            } else {
+                d == 0.0
+            }
+    };
+    widths(
+        "spherical::cone",
+        &p2,
+        |u| {
+            let (d, pdf) = s::cone(c, rad, p, u);
+            [d[0], d[1], d[2], pdf]
+        },
+        |u| {
+            let (d, pdf) = s::cone_x8(sp(c), f32x8::splat(rad), sp(p), u);
+            [d[0], d[1], d[2], pdf]
+        },
+        |u, o| s::cone_slice(c, rad, p, u, o),
+        cone_ok,
+    );
+    widths(
+        "spherical::cone_inverse",
+        &p3,
+        |d| s::cone_inverse(c, rad, p, d),
+        |d| s::cone_inverse_x8(sp(c), f32x8::splat(rad), sp(p), d),
+        |d, o| s::cone_inverse_slice(c, rad, p, d, o),
+        in_unit_square,
     );
     let om = s::rectangle_solid_angle(r[0], r[1], r[2], r[3]);
     assert!(

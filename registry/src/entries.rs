@@ -7,7 +7,9 @@ use crate::entry::{
     Entry, Forms, Golden, Indexed, Kind, Lang, Light, LightMap, Map, OfLight, Quadrant, ToQuadrant,
 };
 #[allow(unused_imports)]
-use crate::fingerprint::{self as fp, SPHERICAL_RECTANGLES, SPHERICAL_TRIANGLES, tri};
+use crate::fingerprint::{
+    self as fp, SPHERICAL_CONES, SPHERICAL_RECTANGLES, SPHERICAL_TRIANGLES, tri,
+};
 use Lang::{C, Js, Wgsl};
 
 /// Bound in C, JS and WGSL under the regular name.
@@ -731,6 +733,7 @@ const SPHERICAL: &[Entry] = {
     use warpcore::spherical as sp;
     const TRI: &[[f32; 12]] = &SPHERICAL_TRIANGLES;
     const RECT: &[[f32; 12]] = &SPHERICAL_RECTANGLES;
+    const CONE: &[[f32; 12]] = &SPHERICAL_CONES;
     fn b4<T: Copy>((b, d): ([T; 3], T)) -> [T; 4] {
         [b[0], b[1], b[2], d]
     }
@@ -850,6 +853,44 @@ const SPHERICAL: &[Entry] = {
                 slice: |l, u, o| {
                     sp::rectangle_cosine_slice(l[0], l[1], l[2], l[3], normal(l), u, o)
                 },
+            }),
+        )
+        .golden(Golden::Own)
+        .bound(CJW),
+        Entry::new(
+            "spherical::cone",
+            Forms::ALL,
+            Kind::L24(LightMap {
+                lights: CONE,
+                scalar: |l, u| b4(sp::cone(l[0], l[1][0], l[3], u)),
+                x8: |l, u| b4(sp::cone_x8(l[0], l[1][0], l[3], u)),
+                x16: |l, u| b4(sp::cone_x16(l[0], l[1][0], l[3], u)),
+                slice: |l, u, o| sp::cone_slice(l[0], l[1][0], l[3], u, o),
+            }),
+        )
+        .golden(Golden::Own)
+        .bound(CJW),
+        Entry::new(
+            "spherical::cone_inverse",
+            Forms::ALL,
+            Kind::L32(LightMap {
+                lights: CONE,
+                scalar: |l, d| sp::cone_inverse(l[0], l[1][0], l[3], d),
+                x8: |l, d| sp::cone_inverse_x8(l[0], l[1][0], l[3], d),
+                x16: |l, d| sp::cone_inverse_x16(l[0], l[1][0], l[3], d),
+                slice: |l, d, o| sp::cone_inverse_slice(l[0], l[1][0], l[3], d, o),
+            }),
+        )
+        .golden(Golden::Own)
+        .bound(CJW),
+        Entry::new(
+            "spherical::cone_solid_angle",
+            Forms::LANES,
+            Kind::OfLight(OfLight {
+                lights: CONE,
+                scalar: |l| sp::cone_solid_angle(l[0], l[1][0], l[3]),
+                x8: |l| sp::cone_solid_angle_x8(l[0], l[1][0], l[3]),
+                x16: |l| sp::cone_solid_angle_x16(l[0], l[1][0], l[3]),
             }),
         )
         .golden(Golden::Own)

@@ -228,29 +228,32 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 3], 
         clamp0(l1 * inv, one),
         clamp0(l2b * inv, one),
     ];
-    // Area sampling: the low-distortion map, density |q|^2 / (cos area) = 2 |q|^3 / |det|.
-    let fb = uniform_body([u0, u1]);
-    let qv = add(va, add(scale(t.e1, fb[1]), scale(t.e2, fb[2])));
-    let ql = norm(qv);
-    let area_pdf = L::select(
-        ql.simd_lt(L::splat(SMALL_Q)),
-        // |q|^3 would lose bits to underflow: the same quotient in another order.
-        ql * ((ql + ql) * (ql / t.det.abs())),
-        (ql * ql * ql + ql * ql * ql) / t.det.abs(),
-    );
-    let area_pdf = area_density(pr.area_ok, area_pdf);
-    // The density is the light's (Arvo's map or area sampling), not the sample's: where a
-    // direction's numerators are all <= 0 (it left the spherical triangle by rounding), the
-    // point is the area map's but the density stays 1 / omega.
-    let pdf = L::select(pr.arvo, L::splat(INV_4PI) / t.turns, area_pdf);
-    (
-        [
-            L::select(arvo, bary[0], fb[0]),
-            L::select(arvo, bary[1], fb[1]),
-            L::select(arvo, bary[2], fb[2]),
-        ],
-        pdf,
-    )
+    let pdf = L::splat(INV_4PI) / t.turns;
+    // The area fallback only where some lane takes it (the scalar form skips it otherwise).
+    L::unless(arvo, (bary, pdf), || {
+        // Area sampling: the low-distortion map, density |q|^2 / (cos area) = 2 |q|^3 / |det|.
+        let fb = uniform_body([u0, u1]);
+        let qv = add(va, add(scale(t.e1, fb[1]), scale(t.e2, fb[2])));
+        let ql = norm(qv);
+        let area_pdf = L::select(
+            ql.simd_lt(L::splat(SMALL_Q)),
+            // |q|^3 would lose bits to underflow: the same quotient in another order.
+            ql * ((ql + ql) * (ql / t.det.abs())),
+            (ql * ql * ql + ql * ql * ql) / t.det.abs(),
+        );
+        let area_pdf = area_density(pr.area_ok, area_pdf);
+        // The density is the light's (Arvo's map or area sampling), not the sample's: where a
+        // direction's numerators are all <= 0 (it left the spherical triangle by rounding),
+        // the point is the area map's but the density stays 1 / omega.
+        (
+            [
+                L::select(arvo, bary[0], fb[0]),
+                L::select(arvo, bary[1], fb[1]),
+                L::select(arvo, bary[2], fb[2]),
+            ],
+            L::select(pr.arvo, pdf, area_pdf),
+        )
+    })
 }
 
 /// Barycentric numerators summing below this are lifted by its inverse (exact).

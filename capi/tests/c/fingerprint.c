@@ -291,6 +291,50 @@ static const float RECTANGLES[LIGHTS][12] = {
 
 typedef size_t (*light_fn)(const float *light, const float *in, float *out, size_t n);
 
+/* fingerprint.rs's SPHERICAL_CONES: centre, [radius, 0, 0], -, p (the C functions take the
+   7 floats centre, radius, p). */
+static const float CONES[LIGHTS][12] = {
+    {0.0f, 0.0f, 3.0f, 1.0f, 0, 0, 0, 0, 0, 0.1f, 0.2f, 0.0f},
+    {1.0f, -2.0f, 5.0f, 3e-3f, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+    {0.3f, 0.4f, 2.0f, 3.6e-5f, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+    {0.0f, 0.0f, 1.0f, 0.999f, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+    {0.0f, 0.0f, 2.0f, 2.0f, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+    {0.1f, 0.2f, 0.3f, 2.0f, 0, 0, 0, 0, 0, -0.5f, 0.4f, 0.0f},
+    {5.0f, 5.0f, 5.0f, 1.0f, 0, 0, 0, 0, 0, 5.0f, 5.0f, 5.0f},
+    {0.0f, 3.0f, 4.0f, 0.0f, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+    {-1.0f, 0.5f, -2.0f, -0.5f, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+    {0.0f, 3.0f, 4.0f, 5e-25f, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+    {3e5f, -2e5f, 1e6f, 10.0f, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+    {1e30f, 2e30f, -1e30f, 5e29f, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+    {1e-30f, 2e-30f, -1e-30f, 5e-31f, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+    {0.0f, 0.0f, 1.0f, 1e30f, 0, 0, 0, 0, 0, 1e29f, -3e29f, 0.0f},
+    {0.0f, 0.0f, 0.0f, 0.0f, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+    {NAN, 0.0f, 1.0f, 0.5f, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+    {0.0f, 0.0f, 1.0f, INFINITY, 0, 0, 0, 0, 0, 0.0f, 0.0f, 0.0f},
+};
+/* A 12-float cone light as the 7 floats the C functions take. */
+static void sphere7(const float *l, float *s) {
+    for (int k = 0; k < 4; k++) s[k] = l[k];
+    for (int k = 0; k < 3; k++) s[4 + k] = l[9 + k];
+}
+static size_t cone12(const float *l, const float *in, float *out, size_t n) {
+    float s[7];
+    sphere7(l, s);
+    return wc_spherical_cone(s, in, out, n);
+}
+static size_t cone_inverse12(const float *l, const float *in, float *out, size_t n) {
+    float s[7];
+    sphere7(l, s);
+    return wc_spherical_cone_inverse(s, in, out, n);
+}
+static float cone_solid_angle12(const float *l) {
+    float s[7];
+    sphere7(l, s);
+    return wc_spherical_cone_solid_angle(s);
+}
+
+
+
 /* fingerprint.rs's `lights`: for each light l, the slice over all inputs in chunks of 37 and
    one call per input; then the lane forms as single calls, input i with light (l + i) % 17. */
 static void lights(const float (*ls)[12], light_fn f, int I, int O) {
@@ -462,6 +506,16 @@ static void extras(void) {
     word((uint32_t)wc_pmj02bn_points());
     word((uint32_t)wc_pmj02bn_sets());
     line("pmj02bn::shuffle");
+
+    h = UINT64_C(0xcbf29ce484222325);
+    lights(CONES, cone12, 2, 4);
+    line("spherical::cone");
+    h = UINT64_C(0xcbf29ce484222325);
+    lights(CONES, cone_inverse12, 3, 2);
+    line("spherical::cone_inverse");
+    h = UINT64_C(0xcbf29ce484222325);
+    solid_angles(CONES, cone_solid_angle12);
+    line("spherical::cone_solid_angle");
 
     h = UINT64_C(0xcbf29ce484222325);
     inputs(in, 0, N, 3);

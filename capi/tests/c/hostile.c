@@ -274,6 +274,13 @@ static size_t sph_tri_cos(const float *in, float *out, size_t n) {
 static size_t sph_rect_cos(const float *in, float *out, size_t n) {
     return wc_spherical_rectangle_cosine(RECT_LIGHT_N, in, out, n);
 }
+static const float SPHERE_LIGHT[7] = {0.2f, -0.1f, 3.0f, 1.0f, 0.1f, 0.2f, 0};
+static size_t sph_cone(const float *in, float *out, size_t n) {
+    return wc_spherical_cone(SPHERE_LIGHT, in, out, n);
+}
+static size_t sph_cone_inv(const float *in, float *out, size_t n) {
+    return wc_spherical_cone_inverse(SPHERE_LIGHT, in, out, n);
+}
 
 static const struct map MAPS[] = {
     {"wc_disk_polar", wc_disk_polar, 2, 2, 0},
@@ -307,6 +314,8 @@ static const struct map MAPS[] = {
     {"wc_spherical_rectangle_inverse", sph_rect_inv, 2, 2, 0},
     {"wc_spherical_triangle_cosine", sph_tri_cos, 2, 4, 0},
     {"wc_spherical_rectangle_cosine", sph_rect_cos, 2, 3, 0},
+    {"wc_spherical_cone", sph_cone, 2, 4, 0},
+    {"wc_spherical_cone_inverse", sph_cone_inv, 3, 2, 0},
 };
 #define NMAPS (sizeof MAPS / sizeof MAPS[0])
 
@@ -372,17 +381,20 @@ static void one_map(const struct map *M) {
     reset();
 }
 
-/* The light pointer of the spherical functions: 12 floats (15 for the cosine-aware ones)
+/* The light pointer of the spherical functions: 12 floats (15 for the cosine-aware ones, 7
+   for the spheres)
    flush against a guard page (a read past them faults), null or misaligned (0, nothing
    written); a valid call's result equals the same call with a copy of the light. */
 static void one_light(int which) {
-    static const char *names[8] = {"wc_spherical_triangle", "wc_spherical_triangle_inverse",
-                                   "wc_spherical_rectangle", "wc_spherical_rectangle_inverse",
-                                   "wc_spherical_triangle_solid_angle",
-                                   "wc_spherical_rectangle_solid_angle",
-                                   "wc_spherical_triangle_cosine",
-                                   "wc_spherical_rectangle_cosine"};
-    size_t len = which >= 6 ? 15 : 12;
+    static const char *names[11] = {"wc_spherical_triangle", "wc_spherical_triangle_inverse",
+                                    "wc_spherical_rectangle", "wc_spherical_rectangle_inverse",
+                                    "wc_spherical_triangle_solid_angle",
+                                    "wc_spherical_rectangle_solid_angle",
+                                    "wc_spherical_triangle_cosine",
+                                    "wc_spherical_rectangle_cosine", "wc_spherical_cone",
+                                    "wc_spherical_cone_inverse",
+                                    "wc_spherical_cone_solid_angle"};
+    size_t len = which >= 8 ? 7 : which >= 6 ? 15 : 12;
     int end = rnd() & 1;
     float *light = place(0, len * 4, end, 0);
     uint32_t r = rnd() % 4;
@@ -395,7 +407,7 @@ static void one_light(int which) {
     float *u = place(1, n * 3 * 4, end, 0), *out = place(3, n * 4 * 4, !end, 0);
     fill_floats(u, n * 3);
     int ok = light && aligned(light);
-    int array = which < 4 || which >= 6;
+    int array = which < 4 || (which >= 6 && which < 10);
     const char *outcome = !light ? "0:null" : !aligned(light) ? "0:misaligned" : array ? "n" : "omega";
     static float ref[4 * 20];
     snapshot(0, out, n * 4 * 4 + 64);
@@ -410,12 +422,15 @@ static void one_light(int which) {
     case 4: if (ok) want_om = wc_spherical_triangle_solid_angle(copy); om = wc_spherical_triangle_solid_angle(light); break;
     case 5: if (ok) want_om = wc_spherical_rectangle_solid_angle(copy); om = wc_spherical_rectangle_solid_angle(light); break;
     case 6: if (ok) wc_spherical_triangle_cosine(copy, u, ref, n); got = wc_spherical_triangle_cosine(light, u, out, n); break;
-    default: if (ok) wc_spherical_rectangle_cosine(copy, u, ref, n); got = wc_spherical_rectangle_cosine(light, u, out, n); break;
+    case 7: if (ok) wc_spherical_rectangle_cosine(copy, u, ref, n); got = wc_spherical_rectangle_cosine(light, u, out, n); break;
+    case 8: if (ok) wc_spherical_cone(copy, u, ref, n); got = wc_spherical_cone(light, u, out, n); break;
+    case 9: if (ok) wc_spherical_cone_inverse(copy, u, ref, n); got = wc_spherical_cone_inverse(light, u, out, n); break;
+    default: if (ok) want_om = wc_spherical_cone_solid_angle(copy); om = wc_spherical_cone_solid_angle(light); break;
     }
     reach(names[which], outcome);
     current = names[which];
     if (array) {
-        static const size_t O[8] = {4, 2, 3, 2, 0, 0, 4, 3};
+        static const size_t O[10] = {4, 2, 3, 2, 0, 0, 4, 3, 4, 2};
         CHECK(got == want);
         if (want) {
             CHECK(memcmp(out, ref, n * O[which] * 4) == 0);
@@ -423,7 +438,7 @@ static void one_light(int which) {
         }
     } else {
         CHECK(memcmp(&om, &want_om, sizeof om) == 0);
-        CHECK(om >= 0.0f && om <= 6.2831855f);
+        CHECK(om >= 0.0f && om <= (which == 10 ? 12.566371f : 6.2831855f));
     }
     CHECK(unchanged());
     reset();
@@ -1846,7 +1861,7 @@ int main(int argc, char **argv) {
         one_sampler_value();
         for (int i = 0; i < 3; i++) one_sampler_draw(i);
         one_sampler_slice();
-        for (int i = 0; i < 8; i++) one_light(i);
+        for (int i = 0; i < 11; i++) one_light(i);
         one_lights_len();
         one_lights_build();
         one_lights_check(0);
