@@ -241,20 +241,22 @@ impl Options {
 }
 
 /// The many-light scene's tables (`many_lights.md`): a street image of 48 x 48 points
-/// (quick 24 x 24, full 96 x 96), uniform choice against the alias table by power.
+/// (quick 24 x 24, full 96 x 96): uniform choice, the alias table by power, the light tree.
 #[cfg(feature = "lights")]
 fn many_lights(opts: &Options) -> std::io::Result<()> {
     use crate::many_lights::{City, LightChooser, Uniform, run};
-    use warpcore::lights::AliasTable;
+    use warpcore::lights::{AliasTable, LightTree};
     let side = opts.scale().pick([24, 48, 96]);
     let t = Instant::now();
     let city = City::new(side, side);
     let power: Vec<f32> = city.emitters.iter().map(|e| e.power()).collect();
     let mut storage = vec![0u32; AliasTable::storage_len(power.len())];
     let alias = AliasTable::new(&power, &mut storage).map_err(std::io::Error::other)?;
+    let bounds: Vec<_> = city.emitters.iter().map(|e| e.bounds()).collect();
+    let mut tree_storage = vec![0u32; LightTree::storage_len(bounds.len())];
+    let tree = LightTree::new(&bounds, &mut tree_storage).map_err(std::io::Error::other)?;
     let uniform = Uniform(power.len() as u32);
-    // The light tree joins here after merging: `&tree` (impl LightChooser for LightTree).
-    let choosers: [&dyn LightChooser; 2] = [&uniform, &alias];
+    let choosers: [&dyn LightChooser; 3] = [&uniform, &alias, &tree];
     let results = run(&city, &choosers, opts.threads.max(1));
     let md = results.markdown();
     print!("{md}");

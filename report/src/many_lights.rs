@@ -18,9 +18,8 @@
 //! a second, independently seeded stream of the same pattern.
 //!
 //! **Rows** ([`LightChooser`]): uniform choice (`P = 1/n`), the alias table by power
-//! (`lights::AliasTable`, power `= pi * L * area`), and whatever else implements the trait
-//! (the light tree plugs in here once merged: `impl LightChooser for LightTree`, returning
-//! `tree.sample(p, n, u)`). MSE over the pixels at equal sample counts, for every sampler
+//! (`lights::AliasTable`, power `= pi * L * area`), and the light tree by importance at the
+//! shading point (`lights::LightTree` over each triangle's [`Emitter::bounds`]). MSE over the pixels at equal sample counts, for every sampler
 //! pattern of [`SAMPLERS`]; time per sample (choice, triangle sampling and shading,
 //! single-threaded, best of a few runs); MSE at equal time as `MSE x time per sample`
 //! relative to the alias table's.
@@ -29,7 +28,7 @@ use crate::samplers::{SAMPLERS, Sampler};
 use std::fmt::Write as _;
 use std::hint::black_box;
 use std::time::Instant;
-use warpcore::lights::AliasTable;
+use warpcore::lights::{AliasTable, LightBounds, LightTree};
 use warpcore::spherical;
 
 type V = [f32; 3];
@@ -64,6 +63,15 @@ impl LightChooser for AliasTable<'_> {
     }
 }
 
+impl LightChooser for LightTree<'_> {
+    fn name(&self) -> String {
+        "lights::LightTree by importance".into()
+    }
+    fn sample(&self, p: V, n: V, u: f32) -> Option<(u32, f32)> {
+        LightTree::sample(self, p, n, u)
+    }
+}
+
 /// One emissive triangle: vertices (counter-clockwise seen from the lit side), radiance.
 #[derive(Clone, Copy, Debug)]
 pub struct Emitter {
@@ -80,6 +88,22 @@ impl Emitter {
     pub fn power(&self) -> f32 {
         let n = self.normal();
         (std::f64::consts::PI * f64::from(self.radiance) * 0.5 * dot(n, n).sqrt()) as f32
+    }
+    /// The light tree's bounds: the triangle's box, its power, its normal as the axis, no
+    /// spread of normals (`cos_theta_o = 1`), cosine falloff to 90 degrees (`cos_theta_e =
+    /// 0`), one-sided.
+    pub fn bounds(&self) -> LightBounds {
+        let axis = normalize(self.normal()).map(|x| x as f32);
+        let [a, b, c] = self.v;
+        LightBounds {
+            min: core::array::from_fn(|k| a[k].min(b[k]).min(c[k])),
+            max: core::array::from_fn(|k| a[k].max(b[k]).max(c[k])),
+            power: self.power(),
+            axis,
+            cos_theta_o: 1.0,
+            cos_theta_e: 0.0,
+            two_sided: false,
+        }
     }
     /// Whether `p` sees the lit side.
     fn faces(&self, p: [f64; 3]) -> bool {
