@@ -551,8 +551,8 @@ fn quick_run_writes_a_well_formed_csv() {
         .sum();
     assert_eq!(seen.len(), expected);
     assert_eq!(path_rows.len(), 2 * 13 * 5);
-    // Quick: Burley's 5 boxes x 6 columns at one count, 2 ablations x 2 samplers x 3 counts.
-    assert_eq!(study_rows.len(), 5 * 6 + 2 * 2 * 3);
+    // Quick: Burley's 5 boxes x 7 columns at one count, 2 ablations x 2 samplers x 3 counts.
+    assert_eq!(study_rows.len(), 5 * 7 + 2 * 2 * 3);
     let filtered = std::fs::read_to_string(out.join("filtered.csv")).unwrap();
     assert_eq!(filtered.lines().next(), Some("scene,sampler,spp,sigma,mse"));
     assert_eq!(filtered.lines().count(), 1 + 2 * 13 * 3 * 5);
