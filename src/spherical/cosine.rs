@@ -6,7 +6,7 @@
 
 use super::rectangle::{self, Rect};
 use super::triangle::{self, Tri};
-use super::vec::*;
+use crate::vec3::*;
 use crate::lanes::{Lane, ONE_MINUS_EPSILON, unit_interval};
 
 /// Inverse CDF of the density `2 ((1 - x) a + x b) / (a + b)` on `[0, 1]` (`a, b` in

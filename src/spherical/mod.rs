@@ -103,7 +103,6 @@
 mod cosine;
 mod rectangle;
 mod triangle;
-mod vec;
 
 use crate::lanes::Lane;
 use crate::slices;

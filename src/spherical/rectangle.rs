@@ -3,7 +3,7 @@
 //! solid angle as two Van Oosterom-Strackee triangles joined in one `atan2`.
 
 use super::triangle::{FALLBACK_TURNS, SMALL_Q};
-use super::vec::*;
+use crate::vec3::*;
 use crate::lanes::{Lane, unit_interval};
 use crate::trig::{atan2_turns, sin_cos_turns};
 

@@ -1,7 +1,7 @@
 //! Arvo's spherical-triangle map (1995) in cancellation-free form, its inverse and the
 //! Van Oosterom-Strackee solid angle.
 
-use super::vec::*;
+use crate::vec3::*;
 use crate::lanes::{Lane, unit_interval};
 use crate::triangle::{uniform_body, uniform_inverse_body};
 use crate::trig::{atan2_turns, sin_cos_turns};
