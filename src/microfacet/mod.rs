@@ -163,14 +163,17 @@ impl<L: Lane> Rough<L> {
         [m[0] * self.inv_ax, m[1] * self.inv_ay, m[2]]
     }
     /// `D(m)` of a nonzero `m` of any length in the range [`scaled`] gives:
-    /// `(|m|^2 / |unstretch(m)|^2)^2 / (pi ax ay)`, 0 where `m.z <= 0`. Also returns
+    /// `(|m|^2 / |unstretch(m)|^2)^2 / (pi ax ay)`, 0 where `m.z <= 0` or every square underflows. Also returns
     /// `|unstretch(m)|^2` (the bounded density's cap test uses it).
     #[inline(always)]
     fn d(&self, m: V<L>) -> (L, L) {
         let q = dot(self.unstretch(m), self.unstretch(m));
         let r = dot(m, m) / q;
         let d = r * r * (self.inv_ax * self.inv_ay * L::splat(INV_PI));
-        (L::select(L::splat(0.0).simd_lt(m[2]), d, L::splat(0.0)), q)
+        // q = 0 (an `m` whose squares all underflow: the sum of a nearly opposite `wo` and
+        // `wi`) would give 0 / 0.
+        let zero = L::splat(0.0);
+        (L::select(zero.simd_lt(m[2]) & zero.simd_lt(q), d, zero), q)
     }
     /// `|stretch(w)|` of a unit `w`: `wo.z / G1(wo) * 2 - wo.z`.
     #[inline(always)]
