@@ -76,7 +76,7 @@ lane_forms! {
 slice_form! {
     /// [`ggx_d`] over a batch of packed `[mx, my, mz, ax, ay]`: `out[i] = [ggx_d(..)]`.
     /// Bit-identical to the scalar form.
-    ggx_d_slice [5 -> 1] = |x| {
+    pub fn ggx_d_slice [5 -> 1] = |x| {
         let (m, a) = split32(x);
         [d_body(m, a)]
     };
@@ -85,7 +85,7 @@ slice_form! {
 slice_form! {
     /// [`ggx_g1`] over a batch of packed `[wx, wy, wz, ax, ay]`. Bit-identical to the scalar
     /// form.
-    ggx_g1_slice [5 -> 1] = |x| {
+    pub fn ggx_g1_slice [5 -> 1] = |x| {
         let (w, a) = split32(x);
         [g1_body(w, a)]
     };
@@ -94,7 +94,7 @@ slice_form! {
 slice_form! {
     /// [`ggx_g2`] over a batch of packed `[wo, wi, alpha]` (8 floats). Bit-identical to the
     /// scalar form.
-    ggx_g2_slice [8 -> 1] = |x| {
+    pub fn ggx_g2_slice [8 -> 1] = |x| {
         let (wo, wi, a) = split332(x);
         [g2_body(wo, wi, a)]
     };

@@ -314,7 +314,7 @@ fn packed4<L: Copy>((w, p): (V<L>, L)) -> [L; 4] {
 /// The slice form of a microfacet function: `out[i] = f(packed[i])` with the arguments packed
 /// in order (see the module docs), for `i < min(input.len(), out.len())`; returns that count.
 macro_rules! slice_form {
-    ($(#[$attr:meta])* $name:ident [$i:literal -> $o:literal] = |$x:ident| $e:expr;) => {
+    ($(#[$attr:meta])* pub fn $name:ident [$i:literal -> $o:literal] = |$x:ident| $e:expr;) => {
         $(#[$attr])*
         #[inline]
         pub fn $name(input: &[[f32; $i]], out: &mut [[f32; $o]]) -> usize {

@@ -49,7 +49,7 @@ lane_forms! {
 slice_form! {
     /// [`ggx_reflect`] over a batch of packed `[wo, alpha, u]` (7 floats):
     /// `out[i] = [wi.x, wi.y, wi.z, density]`. Bit-identical to the scalar form.
-    ggx_reflect_slice [7 -> 4] = |x| {
+    pub fn ggx_reflect_slice [7 -> 4] = |x| {
         let (wo, a, u) = split322(x);
         packed4(sample_body(wo, a, u))
     };
@@ -58,7 +58,7 @@ slice_form! {
 slice_form! {
     /// [`ggx_reflect_pdf`] over a batch of packed `[wo, wi, alpha]` (8 floats).
     /// Bit-identical to the scalar form.
-    ggx_reflect_pdf_slice [8 -> 1] = |x| {
+    pub fn ggx_reflect_pdf_slice [8 -> 1] = |x| {
         let (wo, wi, a) = split332(x);
         [pdf_body(wo, wi, a)]
     };

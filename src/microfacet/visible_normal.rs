@@ -63,7 +63,7 @@ lane_forms! {
 slice_form! {
     /// [`ggx_visible_normal`] over a batch of packed `[wo, alpha, u]` (7 floats):
     /// `out[i] = m`. Bit-identical to the scalar form.
-    ggx_visible_normal_slice [7 -> 3] = |x| {
+    pub fn ggx_visible_normal_slice [7 -> 3] = |x| {
         let (wo, a, u) = split322(x);
         sample_body(wo, a, u)
     };
@@ -72,7 +72,7 @@ slice_form! {
 slice_form! {
     /// [`ggx_visible_normal_pdf`] over a batch of packed `[wo, m, alpha]` (8 floats).
     /// Bit-identical to the scalar form.
-    ggx_visible_normal_pdf_slice [8 -> 1] = |x| {
+    pub fn ggx_visible_normal_pdf_slice [8 -> 1] = |x| {
         let (wo, m, a) = split332(x);
         [pdf_body(wo, m, a)]
     };
