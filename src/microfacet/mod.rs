@@ -130,6 +130,14 @@ fn outgoing<L: Lane>(wo: V<L>) -> V<L> {
     unit([wo[0], wo[1], wo[2].abs()]).0
 }
 
+/// The outgoing direction for the visible-normal sampler, which needs only its direction:
+/// scaled by a power of two (exact), mirrored into `z >= 0`, `+z` when not a direction.
+#[inline(always)]
+fn outgoing_scaled<L: Lane>(wo: V<L>) -> V<L> {
+    let (s, ok) = scaled([wo[0], wo[1], wo[2].abs()]);
+    [s[0], s[1], L::select(ok, s[2], L::splat(1.0))]
+}
+
 /// The roughness and its reciprocals, computed once per call.
 #[derive(Clone, Copy)]
 struct Rough<L> {
@@ -197,72 +205,69 @@ fn shrink<L: Lane>(r: &Rough<L>, w: V<L>) -> (L, L) {
     ((one - a2) * s2 * inv, a2 * (s2 + z2) * inv)
 }
 
-/// The visible normal for the unit outgoing direction `w` (`z >= 0`) by a spherical cap
-/// (Dupuy and Benyoub 2023): in the standard configuration the incident direction is
-/// `i = stretch(w) / |stretch(w)|`, a point `c` uniform on the cap `z >= -b` of the unit
-/// sphere (`b = i.z` for the full visible distribution, `k i.z` for the bounded one) gives
-/// the standard normal `i + c`, which is unstretched (`(ax x, ay y, z)`) and normalised.
-/// `bounded` selects Eto and Tokuyoshi's cap.
+/// The visible normal for the outgoing direction `w` (`z >= 0`, any length for the full
+/// distribution, unit for the bounded one) by a spherical cap (Dupuy and Benyoub 2023): in
+/// the standard configuration the incident direction is `i = stretch(w) / l`,
+/// `l = |stretch(w)|`; a point `c` uniform on the cap `z >= -b` of the unit sphere (`b = i.z`
+/// for the full visible distribution, `k i.z` for the bounded one, `k` given) gives the
+/// standard normal `i + c`, which is unstretched (`(ax x, ay y, z)`) and normalised. Only the
+/// direction of `i + c` counts, so the construction is carried out multiplied by `l`: no
+/// division until the last normalisation. Returns `m` and `l`.
 #[inline(always)]
-fn cap_normal<L: Lane>(r: &Rough<L>, w: V<L>, u: [L; 2], bounded: bool) -> V<L> {
+fn cap_normal<L: Lane>(r: &Rough<L>, w: V<L>, u: [L; 2], k: Option<L>) -> (V<L>, L) {
     let one = L::splat(1.0);
     let ws = r.stretch(w);
-    let lxy2 = ws[0] * ws[0] + ws[1] * ws[1];
-    let lw = (lxy2 + ws[2] * ws[2]).sqrt();
-    let inv = one / lw;
-    let iz = ws[2] * inv;
-    // 1 - i.z = (l - z) / l = (x^2 + y^2) / (l (l + z)).
-    let omz = lxy2 / (lw * (lw + ws[2]));
-    // The cap z >= -b, with 1 - b and i.z - b (the standard normal's height at the rim).
-    let (b, omb, rim) = if bounded {
-        let (k, omk) = shrink(r, w);
-        (k * iz, omk + k * omz, iz * omk)
-    } else {
-        (iz, omz, L::splat(0.0))
-    };
+    let l = norm(ws);
+    // b l, (1 + b) l and (1 - b) l. The rounding of `l - bl` (absolute, an ulp of l) only
+    // matters where (1 - u1)(1 + b) is as small, at the top two f32 values of u1.
+    let bl = k.map_or(ws[2], |k| k * ws[2]);
+    let (p, q) = (l + bl, l - bl);
     let (u0, u1) = (unit_interval(u[0]), unit_interval(u[1]));
-    let v = one - u1;
-    let opb = one + b;
-    // c.z = v (1 + b) - b; 1 - c.z^2 = u1 (1 + b) (v (1 + b) + 1 - b): both factors free of
-    // cancellation.
-    let vb = v * opb;
-    let sin = (u1 * opb * (vb + omb)).sqrt();
+    // c.z = (1 - u1)(1 + b) - b; 1 - c.z^2 = u1 (1 + b) ((1 - u1)(1 + b) + 1 - b).
+    let vp = (one - u1) * p;
+    let sin = (u1 * p * (vp + q)).sqrt();
     let (sn, cs) = sin_cos_turns(u0);
-    let hx = sin * cs + ws[0] * inv;
-    let hy = sin * sn + ws[1] * inv;
-    // h.z = c.z + i.z = v (1 + b) + (i.z - b) >= 2^-24 > 0.
-    let hz = vb + rim;
+    // (i + c) l; its height (1 - u1)(1 + b) l + (i.z - b) l is positive.
+    let hx = sin * cs + ws[0];
+    let hy = sin * sn + ws[1];
+    let hz = k.map_or(vp, |_| vp + (ws[2] - bl));
     let m = [r.ax * hx, r.ay * hy, hz];
-    scale(m, one / norm(m))
+    (scale(m, one / norm(m)), l)
 }
 
 /// The reflection density at `wi` (any length; its direction counts) for the unit outgoing
-/// `w` (`z >= 0`): `D(h) / (2 (k w.z + |stretch(w)|))` with `h = |wi| w + wi` (`k = 1` for the
-/// full visible distribution), and for the bounded one 0 where `h` lies outside the image of
-/// the cap: the standard-space reflection of `i` about `h`'s standard normal has height below
-/// `-b`, which is `2 (w.h) h.z < (1 - k) w.z |unstretch(h)|^2`. A zero or non-finite `wi` has
-/// density 0. The samplers call it on the direction they return, so their density is the
-/// density function's at that direction, bit for bit (the scaling of `wi` is exact).
+/// `w` (`z >= 0`) with `t = |stretch(w)|`: `D(h) / (2 (k w.z + t))` with `h = |wi| w + wi`
+/// (`k = 1` for the full visible distribution), and for the bounded one 0 where `h` lies
+/// outside the image of the cap: the standard-space reflection of `i` about `h`'s standard
+/// normal has height below `-b`, which is `2 (w.h) h.z < (1 - k) w.z |unstretch(h)|^2`. A zero
+/// or non-finite `wi` has density 0. The samplers call it on the direction they return (with
+/// the same `t`), so their density is the density function's at that direction, bit for bit
+/// (the scaling of `wi` is exact).
 #[inline(always)]
-fn reflect_density<L: Lane>(r: &Rough<L>, w: V<L>, wi: V<L>, bounded: bool) -> L {
+fn reflect_density<L: Lane>(r: &Rough<L>, w: V<L>, t: L, wi: V<L>, bounded: bool) -> L {
     let zero = L::splat(0.0);
     let (wi, valid) = scaled(wi);
     let l = norm(wi);
     let h = [w[0] * l + wi[0], w[1] * l + wi[1], w[2] * l + wi[2]];
     // h is tiny where wi is nearly -w: lift it by a power of two (D is scale-free).
     let h = scale(h, pow2_lift(h));
-    let (d, q) = r.d(h);
-    let t = r.stretched_len(w);
+    let hh = dot(h, h);
+    let q = dot(r.unstretch(h), r.unstretch(h));
     let (den, inside) = if bounded {
         let (k, omk) = shrink(r, w);
         // A relative slack of 2^-16 at the rim keeps the cap's own samples inside it.
         let lhs = L::splat(2.0) * dot(w, h) * h[2];
         let rhs = w[2] * omk * q * L::splat(1.0 - 1.0 / 65536.0);
-        (k * w[2] + t, valid & rhs.simd_le(lhs))
+        (k * w[2] + t, rhs.simd_le(lhs))
     } else {
         (w[2] + t, valid)
     };
-    L::select(inside, d / (den + den), zero)
+    // D(h) / (2 den) = (hh / q)^2 / (pi ax ay 2 den), with one division; q = 0 (every square
+    // underflowed) and h.z <= 0 give 0.
+    let c = r.inv_ax * r.inv_ay * L::splat(0.5 * INV_PI);
+    let p = hh * hh * c / (q * q * den);
+    let ok = valid & inside & zero.simd_lt(h[2]) & zero.simd_lt(q);
+    L::select(ok, p, zero)
 }
 
 /// The reflection sampler: a visible normal `m` by [`cap_normal`], `wi = 2 (w.m) m - w`, and
@@ -271,17 +276,20 @@ fn reflect_density<L: Lane>(r: &Rough<L>, w: V<L>, wi: V<L>, bounded: bool) -> L
 fn reflect_sample<L: Lane>(wo: V<L>, alpha: [L; 2], u: [L; 2], bounded: bool) -> (V<L>, L) {
     let r = rough(alpha);
     let w = outgoing(wo);
-    let m = cap_normal(&r, w, u, bounded);
+    let k = if bounded { Some(shrink(&r, w).0) } else { None };
+    let (m, t) = cap_normal(&r, w, u, k);
     let wm = dot(w, m);
-    let t = wm + wm;
-    let wi = [t * m[0] - w[0], t * m[1] - w[1], t * m[2] - w[2]];
-    (wi, reflect_density(&r, w, wi, bounded))
+    let t2 = wm + wm;
+    let wi = [t2 * m[0] - w[0], t2 * m[1] - w[1], t2 * m[2] - w[2]];
+    (wi, reflect_density(&r, w, t, wi, bounded))
 }
 
 /// The reflection density function: `wo` read as the samplers read it.
 #[inline(always)]
 fn reflect_pdf<L: Lane>(wo: V<L>, wi: V<L>, alpha: [L; 2], bounded: bool) -> L {
-    reflect_density(&rough(alpha), outgoing(wo), wi, bounded)
+    let r = rough(alpha);
+    let w = outgoing(wo);
+    reflect_density(&r, w, norm(r.stretch(w)), wi, bounded)
 }
 
 /// Splits a packed `[a, b, c]` of 3, 3 and 2 floats (the densities' and `G2`'s arguments).

@@ -1,12 +1,12 @@
 //! Visible normals of GGX by spherical caps (Dupuy and Benyoub 2023), and their density.
 
-use super::{cap_normal, outgoing, rough, scaled, slice_form, split322, split332};
+use super::{cap_normal, outgoing, outgoing_scaled, rough, scaled, slice_form, split322, split332};
 use crate::lanes::Lane;
 use crate::vec3::{V, dot, norm};
 
 #[inline(always)]
 fn sample_body<L: Lane>(wo: V<L>, alpha: [L; 2], u: [L; 2]) -> V<L> {
-    cap_normal(&rough(alpha), outgoing(wo), u, false)
+    cap_normal(&rough(alpha), outgoing_scaled(wo), u, None).0
 }
 
 /// `D_wo(m) = 2 max(0, w.m) D(m) / ((w.z + |stretch(w)|) |m|)` for the unit outgoing `w`
