@@ -478,7 +478,7 @@ fn error_against_f64() {
     let (mut unit_err, mut e_d, mut e_g1, mut e_g2) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let (mut e_vn, mut e_vn_cond, mut e_rf, mut e_bd) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let (mut e_rf_cond, mut n_rf, mut n_rf_over) = (0.0f64, 0u64, 0u64);
-    let mut e_bd_cond = 0.0f64;
+    let (mut e_bd_cond, mut n_vn_over, mut n_bd_over) = (0.0f64, 0u64, 0u64);
     for z in log_sweep(1e-6, 1.0, 40) {
         for ax in log_sweep(1e-4, 1.0, 17) {
             for ratio in [1.0, 0.1, 7.0] {
@@ -505,6 +505,7 @@ fn error_against_f64() {
                     let (m64, wm) = (normalize(d3(m)), dot(wo64, normalize(d3(m))));
                     let evn = rel(mf::ggx_visible_normal_pdf(wo, m, alpha), g.vndf(wo64, m64));
                     e_vn = e_vn.max(evn);
+                    n_vn_over += (evn > 1e-5) as u64;
                     e_vn_cond = e_vn_cond.max(evn * wm);
                     let h = normalize([
                         wo64[0] + d3(wi)[0],
@@ -524,6 +525,7 @@ fn error_against_f64() {
                     ]);
                     let ebd = rel(pb, g.bounded_pdf(wo64, d3(wb)));
                     e_bd = e_bd.max(ebd);
+                    n_bd_over += (ebd > 1e-5) as u64;
                     e_bd_cond = e_bd_cond.max(ebd * amin * dot(wo64, hb));
                     e_d = e_d.max(rel(mf::ggx_d(m, alpha), g.d(m64)));
                     e_g1 = e_g1.max(rel(mf::ggx_g1(wo, alpha), g.g1(wo64)));
@@ -535,7 +537,7 @@ fn error_against_f64() {
         }
     }
     eprintln!("unit: {unit_err:.2e}; D {e_d:.2e}; G1 {e_g1:.2e}; G2 {e_g2:.2e}");
-    eprintln!("visible pdf {e_vn:.2e} (times wo.m: {e_vn_cond:.2e})");
+    eprintln!("visible pdf {e_vn:.2e} (times wo.m: {e_vn_cond:.2e}); over 1e-5: {n_vn_over}; bounded over 1e-5: {n_bd_over}");
     eprintln!(
         "reflect pdf {e_rf:.2e} (times alpha_min wo.h: {e_rf_cond:.2e}); over 1e-5: {n_rf_over} of {n_rf}; bounded {e_bd:.2e} (times alpha_min wo.h: {e_bd_cond:.2e})"
     );
