@@ -537,7 +537,9 @@ fn error_against_f64() {
         }
     }
     eprintln!("unit: {unit_err:.2e}; D {e_d:.2e}; G1 {e_g1:.2e}; G2 {e_g2:.2e}");
-    eprintln!("visible pdf {e_vn:.2e} (times wo.m: {e_vn_cond:.2e}); over 1e-5: {n_vn_over}; bounded over 1e-5: {n_bd_over}");
+    eprintln!(
+        "visible pdf {e_vn:.2e} (times wo.m: {e_vn_cond:.2e}); over 1e-5: {n_vn_over}; bounded over 1e-5: {n_bd_over}"
+    );
     eprintln!(
         "reflect pdf {e_rf:.2e} (times alpha_min wo.h: {e_rf_cond:.2e}); over 1e-5: {n_rf_over} of {n_rf}; bounded {e_bd:.2e} (times alpha_min wo.h: {e_bd_cond:.2e})"
     );

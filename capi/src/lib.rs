@@ -42,6 +42,8 @@ mod ffi;
 pub mod disk;
 #[cfg(feature = "envmap")]
 pub mod envmap;
+#[cfg(feature = "microfacet")]
+pub mod microfacet;
 #[cfg(feature = "pmj02bn")]
 pub mod pmj02bn;
 #[cfg(feature = "sampler")]

@@ -924,6 +924,7 @@ macro_rules! microfacet {
             }),
         )
         .golden(Golden::Own)
+        .bound(&[C])
     };
 }
 
