@@ -924,7 +924,7 @@ macro_rules! microfacet {
             }),
         )
         .golden(Golden::Own)
-        .bound(&[C])
+        .bound(CJ)
     };
 }
 
