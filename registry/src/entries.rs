@@ -924,7 +924,7 @@ macro_rules! microfacet {
             }),
         )
         .golden(Golden::Own)
-        .bound(CJ)
+        .bound(CJW)
     };
 }
 

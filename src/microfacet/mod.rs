@@ -118,8 +118,12 @@ fn scaled<L: Lane>(v: V<L>) -> (V<L>, L::Mask) {
 fn unit<L: Lane>(v: V<L>) -> (V<L>, L::Mask) {
     let (s, ok) = scaled(v);
     let inv = L::splat(1.0) / norm(s);
-    let z = [L::splat(0.0), L::splat(0.0), L::splat(1.0)];
-    let u = [0, 1, 2].map(|i| L::select(ok, s[i] * inv, z[i]));
+    let zero = L::splat(0.0);
+    let u = [
+        L::select(ok, s[0] * inv, zero),
+        L::select(ok, s[1] * inv, zero),
+        L::select(ok, s[2] * inv, L::splat(1.0)),
+    ];
     (u, ok)
 }
 
