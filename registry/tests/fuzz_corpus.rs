@@ -27,7 +27,7 @@ fn replay(target: &str, check: fn(&[u8])) {
 #[test]
 fn every_corpus_replays() {
     type Check = fn(&[u8]);
-    let targets: [(&str, Check); 8] = [
+    let targets: [(&str, Check); 9] = [
         ("disk", checks::disk),
         ("pmj02bn", checks::pmj02bn),
         ("triangle", checks::triangle),
@@ -36,6 +36,7 @@ fn every_corpus_replays() {
         ("envmap", checks::envmap),
         ("envmap_storage", checks::envmap_storage),
         ("sampler", checks::sampler),
+        ("microfacet", checks::microfacet),
     ];
     for (target, check) in targets {
         replay(target, check);
