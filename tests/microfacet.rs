@@ -119,7 +119,7 @@ impl Ggx {
     fn to_standard(self, m: V3) -> V3 {
         normalize([m[0] / self.ax, m[1] / self.ay, m[2]])
     }
-    fn from_standard(self, n: V3) -> (V3, f64) {
+    fn standard_to_normal(self, n: V3) -> (V3, f64) {
         let a = [self.ax * n[0], self.ay * n[1], n[2]];
         let l = dot(a, a).sqrt();
         (a.map(|x| x / l), self.ax * self.ay / (l * l * l))
@@ -237,7 +237,7 @@ fn chi2_config(which: Which, wo: [f32; 3], alpha: [f32; 2], seed: u64) -> f64 {
         hist.add(param(g.to_standard(h)));
     }
     let expected = expected_fine(|s| {
-        let (h, jac) = g.from_standard(unparam(s));
+        let (h, jac) = g.standard_to_normal(unparam(s));
         let p = match which {
             Which::Normal => g.vndf(wo64, h),
             Which::Reflect | Which::Bounded => {
@@ -362,7 +362,7 @@ fn integrals(
             for (a, wa) in gauss4() {
                 for (b, wb) in gauss4() {
                     let s = [(i as f64 + a) / cells as f64, (j as f64 + b) / cells as f64];
-                    let (h, jac) = g.from_standard(unparam(s));
+                    let (h, jac) = g.standard_to_normal(unparam(s));
                     let wh = dot(wo64, h);
                     if wh <= 0.0 {
                         continue;
@@ -447,7 +447,7 @@ fn d_and_visible_density_normalised() {
                     for (a, wa) in gauss4() {
                         for (b, wb) in gauss4() {
                             let s = [(i as f64 + a) / cells as f64, (j as f64 + b) / cells as f64];
-                            let (m, jac) = g.from_standard(unparam(s));
+                            let (m, jac) = g.standard_to_normal(unparam(s));
                             let m32 = m.map(|x| x as f32);
                             let w = jac * 4.0 * PI * wa * wb / (cells * cells) as f64;
                             dz += mf::ggx_d(m32, alpha) as f64 * m[2] * w;
@@ -567,7 +567,7 @@ fn hostile_inputs() {
         let l = dot(d3(v), d3(v)).sqrt();
         v.iter().all(|x| x.is_finite()) && (l - 1.0).abs() < 1e-6
     };
-    let dens_ok = |p: f32| p.is_finite() && p >= 0.0 && p < f32::MAX;
+    let dens_ok = |p: f32| (0.0..f32::MAX).contains(&p);
     for &wo in &triples {
         for &alpha in &alphas {
             for &u in &us {
@@ -645,7 +645,7 @@ fn widths_agree() {
     let mut r = rng(5);
     let sp = specials();
     let mut pick = |i: usize| {
-        if i % 3 == 0 {
+        if i.is_multiple_of(3) {
             sp[i % sp.len()]
         } else {
             common::unit(&mut r) * 2.0 - 0.5

@@ -18,24 +18,24 @@ fn pdf_body<L: Lane>(wo: V<L>, wi: V<L>, alpha: [L; 2]) -> L {
 lane_forms! {
     /// A reflected direction by bounded visible normals (Eto and Tokuyoshi 2023, "Bounded
     /// VNDF Sampling for Smith-GGX Reflections", SIGGRAPH Asia technical communications):
-    /// [`ggx_reflect`] with the standard-space cap `z >= -i.z` shrunk to `z >= -k i.z`,
+    /// [`ggx_reflect`](super::ggx_reflect) with the standard-space cap `z >= -i.z` shrunk to `z >= -k i.z`,
     /// `k = (1 - a^2) s^2 / (s^2 + a^2 wo.z^2)`, `a = min(ax, ay)`, `s = 1 + |wo.xy|`. The
     /// removed part of the cap holds only normals whose reflections are below the horizon, so
     /// above it the density is the caps density scaled by the ratio of the caps' areas,
     /// `(1 + i.z) / (1 + k i.z)`.
     ///
-    /// Returns `wi` and its density [`ggx_reflect_bounded_pdf`] at `wi` (bit for bit). Fewer
-    /// directions below the horizon than [`ggx_reflect`] at every `alpha` and `wo`
+    /// Returns `wi` and its density [`ggx_reflect_bounded_pdf`](super::ggx_reflect_bounded_pdf) at `wi` (bit for bit). Fewer
+    /// directions below the horizon than [`ggx_reflect`](super::ggx_reflect) at every `alpha` and `wo`
     /// (`docs/warps.md` has the table); the same directions above it, with a higher density
     /// there. `1 - k` is `a^2 (s^2 + wo.z^2) / (s^2 + a^2 wo.z^2)`, free of cancellation.
-    /// Out of domain: the [module docs](self).
+    /// Out of domain: the [module docs](super).
     pub fn ggx_reflect_bounded, ggx_reflect_bounded_x8, ggx_reflect_bounded_x16
         ["(direction, roughness, sample) triples"]
         (wo: [L; 3], alpha: [L; 2], u: [L; 2]) -> ([L; 3], L) = sample_body;
 }
 
 lane_forms! {
-    /// The exact density of [`ggx_reflect_bounded`] per steradian of `wi`:
+    /// The exact density of [`ggx_reflect_bounded`](super::ggx_reflect_bounded) per steradian of `wi`:
     /// `D(h) / (2 (k wo.z + |(ax wox, ay woy, woz)|))` where `h = wo/|wo| + wi/|wi|` is the
     /// image of a point of the shrunk cap, 0 elsewhere (and where `h.z <= 0`). Derivation: the
     /// caps density is `D(h) / (2 (wo.z + t))` (`t = |(ax wox, ay woy, woz)|`, `i.z = wo.z / t`);
@@ -46,16 +46,16 @@ lane_forms! {
     /// (tested with a relative slack of `2^-16`, so that rounding never puts one of the
     /// sampler's own directions outside). Integrates to 1 over the sphere (`f64` quadrature
     /// in `tests/microfacet.rs`); above the horizon it is positive wherever
-    /// [`ggx_reflect_pdf`] is.
+    /// [`ggx_reflect_pdf`](super::ggx_reflect_pdf) is.
     ///
-    /// Arguments as [`ggx_reflect_pdf`], with the same error against `f64`.
+    /// Arguments as [`ggx_reflect_pdf`](super::ggx_reflect_pdf), with the same error against `f64`.
     pub fn ggx_reflect_bounded_pdf, ggx_reflect_bounded_pdf_x8, ggx_reflect_bounded_pdf_x16
         ["(direction, direction, roughness) triples"]
         (wo: [L; 3], wi: [L; 3], alpha: [L; 2]) -> L = pdf_body;
 }
 
 slice_form! {
-    /// [`ggx_reflect_bounded`] over a batch of packed `[wo, alpha, u]` (7 floats):
+    /// [`ggx_reflect_bounded`](super::ggx_reflect_bounded) over a batch of packed `[wo, alpha, u]` (7 floats):
     /// `out[i] = [wi.x, wi.y, wi.z, density]`. Bit-identical to the scalar form.
     pub fn ggx_reflect_bounded_slice [7 -> 4] = |x| {
         let (wo, a, u) = split322(x);
@@ -64,7 +64,7 @@ slice_form! {
 }
 
 slice_form! {
-    /// [`ggx_reflect_bounded_pdf`] over a batch of packed `[wo, wi, alpha]` (8 floats).
+    /// [`ggx_reflect_bounded_pdf`](super::ggx_reflect_bounded_pdf) over a batch of packed `[wo, wi, alpha]` (8 floats).
     /// Bit-identical to the scalar form.
     pub fn ggx_reflect_bounded_pdf_slice [8 -> 1] = |x| {
         let (wo, wi, a) = split332(x);

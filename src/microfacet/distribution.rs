@@ -40,7 +40,7 @@ lane_forms! {
     /// Evaluated on `m` of any length as `(|m|^2 / |(mx/ax, my/ay, mz)|^2)^2 / (pi ax ay)`
     /// (only the direction of `m` counts), so nothing below `1e-8` is formed at `alpha = 1e-4`
     /// and nothing overflows. `alpha` clamped to `[1e-4, 1]`; a zero or non-finite `m` gives 0
-    /// (see the [module docs](self)). Error against `f64`: see `docs/warps.md`
+    /// (see the [module docs](super)). Error against `f64`: see `docs/warps.md`
     /// (within 1e-6 relative, measured 4.8e-7, over `alpha` in `[1e-4, 1]` and every direction).
     pub fn ggx_d, ggx_d_x8, ggx_d_x16 ["(normal, roughness) pairs"]
         (m: [L; 3], alpha: [L; 2]) -> L = d_body;
@@ -65,7 +65,7 @@ lane_forms! {
     /// `2 / (|stretch(wo)| / |wo.z| + |stretch(wi)| / |wi.z|)` with `stretch(w) = (ax wx,
     /// ay wy, wz)` of the scale-free vectors.
     ///
-    /// Both directions are read as [`ggx_g1`] reads them (mirrored; 0 where either is
+    /// Both directions are read as [`ggx_g1`](super::ggx_g1) reads them (mirrored; 0 where either is
     /// grazing; invalid ones as `+z`). It does not test that `wi` is on `wo`'s side of the
     /// surface: a reflection BSDF is 0 there anyway. Error against `f64`: within 1e-6
     /// relative (measured 4.2e-7).
@@ -74,7 +74,7 @@ lane_forms! {
 }
 
 slice_form! {
-    /// [`ggx_d`] over a batch of packed `[mx, my, mz, ax, ay]`: `out[i] = [ggx_d(..)]`.
+    /// [`ggx_d`](super::ggx_d) over a batch of packed `[mx, my, mz, ax, ay]`: `out[i] = [ggx_d(..)]`.
     /// Bit-identical to the scalar form.
     pub fn ggx_d_slice [5 -> 1] = |x| {
         let (m, a) = split32(x);
@@ -83,7 +83,7 @@ slice_form! {
 }
 
 slice_form! {
-    /// [`ggx_g1`] over a batch of packed `[wx, wy, wz, ax, ay]`. Bit-identical to the scalar
+    /// [`ggx_g1`](super::ggx_g1) over a batch of packed `[wx, wy, wz, ax, ay]`. Bit-identical to the scalar
     /// form.
     pub fn ggx_g1_slice [5 -> 1] = |x| {
         let (w, a) = split32(x);
@@ -92,7 +92,7 @@ slice_form! {
 }
 
 slice_form! {
-    /// [`ggx_g2`] over a batch of packed `[wo, wi, alpha]` (8 floats). Bit-identical to the
+    /// [`ggx_g2`](super::ggx_g2) over a batch of packed `[wo, wi, alpha]` (8 floats). Bit-identical to the
     /// scalar form.
     pub fn ggx_g2_slice [8 -> 1] = |x| {
         let (wo, wi, a) = split332(x);

@@ -25,7 +25,7 @@ fn pdf_body<L: Lane>(wo: V<L>, m: V<L>, alpha: [L; 2]) -> L {
 
 lane_forms! {
     /// A GGX normal visible from `wo`, distributed as `D_wo(m) = G1(wo) max(0, wo.m) D(m) /
-    /// wo.z` ([`ggx_visible_normal_pdf`]): Dupuy and Benyoub 2023, "Sampling Visible GGX
+    /// wo.z` ([`ggx_visible_normal_pdf`](super::ggx_visible_normal_pdf)): Dupuy and Benyoub 2023, "Sampling Visible GGX
     /// Normals with Spherical Caps" (CGF 42(8)), the same distribution as Heitz 2018,
     /// "Sampling the GGX Distribution of Visible Normals" (JCGT 7(4)), without its frame.
     ///
@@ -37,7 +37,7 @@ lane_forms! {
     /// with `1 - i.z` from the stretched components (no cancellation at normal incidence),
     /// `(i + c).z = (1 - u1)(1 + i.z) >= 2^-24`, so `m.z > 0`; sine and cosine are the crate's
     /// polynomials. `m` is unit within 1e-6 (measured 2.4e-7). Out of domain: the
-    /// [module docs](self) (`wo` mirrored into `z >= 0`, invalid `wo` read as `+z`, `alpha`
+    /// [module docs](super) (`wo` mirrored into `z >= 0`, invalid `wo` read as `+z`, `alpha`
     /// clamped to `[1e-4, 1]`, `u` to `[0, 1 - 2^-24]`).
     pub fn ggx_visible_normal, ggx_visible_normal_x8, ggx_visible_normal_x16
         ["(direction, roughness, sample) triples"]
@@ -45,12 +45,12 @@ lane_forms! {
 }
 
 lane_forms! {
-    /// The density of [`ggx_visible_normal`] per steradian of `m`:
+    /// The density of [`ggx_visible_normal`](super::ggx_visible_normal) per steradian of `m`:
     /// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo.z`, evaluated as
     /// `2 max(0, wo.m) D(m) / (wo.z + |(ax wox, ay woy, woz)|)` (finite as `wo.z -> 0`).
     ///
     /// `m` may have any length (its direction counts); a zero or non-finite `m` has density
-    /// 0, and so has `m.z <= 0`. `wo` as [`ggx_visible_normal`] reads it. Error against
+    /// 0, and so has `m.z <= 0`. `wo` as [`ggx_visible_normal`](super::ggx_visible_normal) reads it. Error against
     /// `f64` (on the same `f32` inputs): the product `wo.m` carries an absolute rounding of
     /// about `6e-8`, so the relative error is within `2.5e-7 + 1.2e-7 / (wo.m)`: 1e-5 for
     /// `wo.m >= 0.012` (every normal a sampler returns except the few per million whose
@@ -61,7 +61,7 @@ lane_forms! {
 }
 
 slice_form! {
-    /// [`ggx_visible_normal`] over a batch of packed `[wo, alpha, u]` (7 floats):
+    /// [`ggx_visible_normal`](super::ggx_visible_normal) over a batch of packed `[wo, alpha, u]` (7 floats):
     /// `out[i] = m`. Bit-identical to the scalar form.
     pub fn ggx_visible_normal_slice [7 -> 3] = |x| {
         let (wo, a, u) = split322(x);
@@ -70,7 +70,7 @@ slice_form! {
 }
 
 slice_form! {
-    /// [`ggx_visible_normal_pdf`] over a batch of packed `[wo, m, alpha]` (8 floats).
+    /// [`ggx_visible_normal_pdf`](super::ggx_visible_normal_pdf) over a batch of packed `[wo, m, alpha]` (8 floats).
     /// Bit-identical to the scalar form.
     pub fn ggx_visible_normal_pdf_slice [8 -> 1] = |x| {
         let (wo, m, a) = split332(x);

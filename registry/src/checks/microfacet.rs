@@ -15,7 +15,7 @@ fn unit(d: [f32; 3]) -> bool {
 }
 
 fn density(p: f32) -> bool {
-    p.is_finite() && p >= 0.0 && p < f32::MAX
+    (0.0..f32::MAX).contains(&p)
 }
 
 fn s7(x: [f32; 7]) -> ([f32; 3], [f32; 2], [f32; 2]) {
