@@ -95,6 +95,24 @@ fn packed((w, p): ([f32; 3], f32)) -> [f32; 4] {
     [w[0], w[1], w[2], p]
 }
 
+/// The group of a reflection sampler: its forms on the packed inputs (generic, so each is
+/// inlined as in a user's loop).
+fn reflect_group(
+    c: &mut criterion::Criterion,
+    name: &str,
+    input: &[[f32; 7]],
+    scalar: impl Fn([f32; 3], [f32; 2], [f32; 2]) -> ([f32; 3], f32),
+    x8: impl Fn([warpcore::f32x8; 7]) -> [warpcore::f32x8; 4],
+    x16: impl Fn([warpcore::f32x16; 7]) -> [warpcore::f32x16; 4],
+    slice: impl Fn(&[[f32; 7]], &mut [[f32; 4]]) -> usize,
+) {
+    let scalar = |x| {
+        let (wo, a, u) = split(x);
+        packed(scalar(wo, a, u))
+    };
+    warp_group_on(c, name, input, scalar, x8, x16, slice).finish();
+}
+
 fn main() {
     let mut c = common::criterion();
     let input = inputs();
@@ -132,33 +150,24 @@ fn main() {
     );
     g.finish();
 
-    warp_group_on(
+    reflect_group(
         &mut c,
         "microfacet/ggx_reflect",
         &input,
-        |x| {
-            let (wo, a, u) = split(x);
-            packed(mf::ggx_reflect(wo, a, u))
-        },
+        mf::ggx_reflect,
         reflect_lanes!(mf::ggx_reflect_x8),
         reflect_lanes!(mf::ggx_reflect_x16),
         mf::ggx_reflect_slice,
-    )
-    .finish();
-
-    warp_group_on(
+    );
+    reflect_group(
         &mut c,
         "microfacet/ggx_reflect_bounded",
         &input,
-        |x| {
-            let (wo, a, u) = split(x);
-            packed(mf::ggx_reflect_bounded(wo, a, u))
-        },
+        mf::ggx_reflect_bounded,
         reflect_lanes!(mf::ggx_reflect_bounded_x8),
         reflect_lanes!(mf::ggx_reflect_bounded_x16),
         mf::ggx_reflect_bounded_slice,
-    )
-    .finish();
+    );
 
     c.final_summary();
 }

@@ -80,12 +80,9 @@ impl Ggx {
     }
     /// `D_wo(h) / (4 wo.h)` with `h = normalize(wo + wi)`.
     fn reflect_pdf(self, wo: V3, wi: V3) -> f64 {
-        let (wo, wi) = (normalize(wo), normalize(wi));
-        let h = [wo[0] + wi[0], wo[1] + wi[1], wo[2] + wi[2]];
-        if dot(h, h) == 0.0 {
+        let Some((wo, h)) = half(wo, wi) else {
             return 0.0;
-        }
-        let h = normalize(h);
+        };
         let wh = dot(wo, h);
         if wh <= 0.0 {
             return 0.0;
@@ -95,12 +92,9 @@ impl Ggx {
     /// Eto and Tokuyoshi 2023: the standard-space cap `z >= -k i.z`; the reflection density
     /// is the caps one times the ratio of the caps' areas inside the cap's image, 0 outside.
     fn bounded_pdf(self, wo: V3, wi: V3) -> f64 {
-        let (wo, wi) = (normalize(wo), normalize(wi));
-        let h = [wo[0] + wi[0], wo[1] + wi[1], wo[2] + wi[2]];
-        if dot(h, h) == 0.0 {
+        let Some((wo, h)) = half(wo, wi) else {
             return 0.0;
-        }
-        let h = normalize(h);
+        };
         let i = normalize([self.ax * wo[0], self.ay * wo[1], wo[2]]);
         let n = normalize([h[0] / self.ax, h[1] / self.ay, h[2]]);
         let k = self.k(wo);
@@ -124,6 +118,13 @@ impl Ggx {
         let l = dot(a, a).sqrt();
         (a.map(|x| x / l), self.ax * self.ay / (l * l * l))
     }
+}
+
+/// The unit `wo` and the half vector `normalize(wo/|wo| + wi/|wi|)`, unless that is zero.
+fn half(wo: V3, wi: V3) -> Option<(V3, V3)> {
+    let (wo, wi) = (normalize(wo), normalize(wi));
+    let h = [wo[0] + wi[0], wo[1] + wi[1], wo[2] + wi[2]];
+    (dot(h, h) > 0.0).then(|| (wo, normalize(h)))
 }
 
 fn reflect(wo: V3, m: V3) -> V3 {
@@ -343,6 +344,24 @@ fn gauss4() -> [(f64, f64); 4] {
     ]
 }
 
+/// Gauss-Legendre over `cells x cells` cells of the equal-area square of standard-space
+/// normals (4 x 4 nodes each): calls `f(h, weight)` with the half vector (or normal) `h` of
+/// each node and its weight in steradians of `h` (the Jacobian from the standard sphere
+/// included), so that sums of `density(h) weight` integrate over the sphere of `h`.
+fn standard_quadrature(g: Ggx, cells: usize, mut f: impl FnMut(V3, f64)) {
+    for j in 0..cells {
+        for i in 0..cells {
+            for (a, wa) in gauss4() {
+                for (b, wb) in gauss4() {
+                    let s = [(i as f64 + a) / cells as f64, (j as f64 + b) / cells as f64];
+                    let (h, jac) = g.standard_to_normal(unparam(s));
+                    f(h, jac * 4.0 * PI * wa * wb / (cells * cells) as f64);
+                }
+            }
+        }
+    }
+}
+
 /// `(integral over the sphere, integral below the horizon)` of the library's reflection
 /// density (`f32` functions at `f64`-computed directions, accumulated in `f64`), by
 /// Gauss-Legendre over cells of the sphere of standard-space half vectors (256 x 256 cells,
@@ -355,42 +374,30 @@ fn integrals(
 ) -> (f64, f64) {
     let g = Ggx::new(alpha);
     let wo64 = normalize(d3(wo));
-    let cells = 256;
     let (mut total, mut below) = (0.0, 0.0);
-    for j in 0..cells {
-        for i in 0..cells {
-            for (a, wa) in gauss4() {
-                for (b, wb) in gauss4() {
-                    let s = [(i as f64 + a) / cells as f64, (j as f64 + b) / cells as f64];
-                    let (h, jac) = g.standard_to_normal(unparam(s));
-                    let wh = dot(wo64, h);
-                    if wh <= 0.0 {
-                        continue;
-                    }
-                    let wi = reflect(wo64, h);
-                    let wi32 = wi.map(|x| x as f32);
-                    let p = pdf(wo, wi32, alpha) as f64;
-                    // Where `alpha wo.h` is below 1e-3 the f32 half vector of the f32
-                    // `wi` is not accurate enough to decide (see the pdf's error bound).
-                    let amin = g.ax.min(g.ay);
-                    if wi[2] > 1e-6
-                        && amin * wh > 1e-3
-                        && mf::ggx_reflect_pdf(wo, wi32, alpha) > 0.0
-                    {
-                        assert!(
-                            mf::ggx_reflect_bounded_pdf(wo, wi32, alpha) > 0.0,
-                            "bounded 0 above the horizon: {wo:?} {wi:?} {alpha:?}"
-                        );
-                    }
-                    let v = p * 4.0 * wh * jac * 4.0 * PI * wa * wb / (cells * cells) as f64;
-                    total += v;
-                    if wi[2] <= 0.0 {
-                        below += v;
-                    }
-                }
-            }
+    standard_quadrature(g, 256, |h, weight| {
+        let wh = dot(wo64, h);
+        if wh <= 0.0 {
+            return;
         }
-    }
+        let wi = reflect(wo64, h);
+        let wi32 = wi.map(|x| x as f32);
+        let p = pdf(wo, wi32, alpha) as f64;
+        // Where `alpha wo.h` is below 1e-3 the f32 half vector of the f32
+        // `wi` is not accurate enough to decide (see the pdf's error bound).
+        let amin = g.ax.min(g.ay);
+        if wi[2] > 1e-6 && amin * wh > 1e-3 && mf::ggx_reflect_pdf(wo, wi32, alpha) > 0.0 {
+            assert!(
+                mf::ggx_reflect_bounded_pdf(wo, wi32, alpha) > 0.0,
+                "bounded 0 above the horizon: {wo:?} {wi:?} {alpha:?}"
+            );
+        }
+        let v = p * 4.0 * wh * weight;
+        total += v;
+        if wi[2] <= 0.0 {
+            below += v;
+        }
+    });
     (total, below)
 }
 
@@ -440,22 +447,12 @@ fn d_and_visible_density_normalised() {
         let g = Ggx::new(alpha);
         for z in [1.0, 0.3, 1e-4] {
             let wo = outgoing(z);
-            let cells = 128;
             let (mut dz, mut vn) = (0.0, 0.0);
-            for j in 0..cells {
-                for i in 0..cells {
-                    for (a, wa) in gauss4() {
-                        for (b, wb) in gauss4() {
-                            let s = [(i as f64 + a) / cells as f64, (j as f64 + b) / cells as f64];
-                            let (m, jac) = g.standard_to_normal(unparam(s));
-                            let m32 = m.map(|x| x as f32);
-                            let w = jac * 4.0 * PI * wa * wb / (cells * cells) as f64;
-                            dz += mf::ggx_d(m32, alpha) as f64 * m[2] * w;
-                            vn += mf::ggx_visible_normal_pdf(wo, m32, alpha) as f64 * w;
-                        }
-                    }
-                }
-            }
+            standard_quadrature(g, 128, |m, w| {
+                let m32 = m.map(|x| x as f32);
+                dz += mf::ggx_d(m32, alpha) as f64 * m[2] * w;
+                vn += mf::ggx_visible_normal_pdf(wo, m32, alpha) as f64 * w;
+            });
             assert!((dz - 1.0).abs() < 1e-4, "D m.z integral {dz} at {alpha:?}");
             assert!(
                 (vn - 1.0).abs() < 1e-4,

@@ -335,3 +335,60 @@ macro_rules! slice_form {
     };
 }
 use slice_form;
+
+/// The reflection sampler and its density function (`bounded` chooses Eto and Tokuyoshi's cap)
+/// with all their forms: the scalar, `_x8` and `_x16` forms by [`lane_forms!`], the slices by
+/// [`slice_form!`] (`[wo, alpha, u]` to `[wi, density]`, `[wo, wi, alpha]` to the density).
+macro_rules! reflection_forms {
+    (
+        bounded: $bounded:literal;
+        $(#[$sattr:meta])*
+        pub fn $f:ident, $f8:ident, $f16:ident [sampler];
+        pub fn $fs:ident [sampler];
+        $(#[$pattr:meta])*
+        pub fn $p:ident, $p8:ident, $p16:ident [density];
+        pub fn $ps:ident [density];
+    ) => {
+        #[inline(always)]
+        fn sample_body<L: crate::lanes::Lane>(wo: [L; 3], alpha: [L; 2], u: [L; 2]) -> ([L; 3], L) {
+            super::reflect_sample(wo, alpha, u, $bounded)
+        }
+
+        #[inline(always)]
+        fn pdf_body<L: crate::lanes::Lane>(wo: [L; 3], wi: [L; 3], alpha: [L; 2]) -> L {
+            super::reflect_pdf(wo, wi, alpha, $bounded)
+        }
+
+        lane_forms! {
+            $(#[$sattr])*
+            pub fn $f, $f8, $f16 ["(direction, roughness, sample) triples"]
+                (wo: [L; 3], alpha: [L; 2], u: [L; 2]) -> ([L; 3], L) = sample_body;
+        }
+
+        lane_forms! {
+            $(#[$pattr])*
+            pub fn $p, $p8, $p16 ["(direction, direction, roughness) triples"]
+                (wo: [L; 3], wi: [L; 3], alpha: [L; 2]) -> L = pdf_body;
+        }
+
+        super::slice_form! {
+            #[doc = concat!("[`", stringify!($f), "`] over a batch of packed `[wo, alpha, u]` ",
+                "(7 floats): `out[i] = [wi.x, wi.y, wi.z, density]`. Bit-identical to the ",
+                "scalar form.")]
+            pub fn $fs [7 -> 4] = |x| {
+                let (wo, a, u) = super::split322(x);
+                super::packed4(sample_body(wo, a, u))
+            };
+        }
+
+        super::slice_form! {
+            #[doc = concat!("[`", stringify!($p), "`] over a batch of packed `[wo, wi, alpha]` ",
+                "(8 floats). Bit-identical to the scalar form.")]
+            pub fn $ps [8 -> 1] = |x| {
+                let (wo, wi, a) = super::split332(x);
+                [pdf_body(wo, wi, a)]
+            };
+        }
+    };
+}
+use reflection_forms;

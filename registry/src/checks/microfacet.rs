@@ -5,6 +5,7 @@
 //! returned direction, bit for bit.
 #[allow(unused_imports)]
 use std::prelude::rust_2024::*;
+use warpcore::f32x8;
 use warpcore::microfacet as mf;
 
 use super::{points, widths, words};
@@ -24,6 +25,10 @@ fn s7(x: [f32; 7]) -> ([f32; 3], [f32; 2], [f32; 2]) {
 
 fn s8(x: [f32; 8]) -> ([f32; 3], [f32; 3], [f32; 2]) {
     ([x[0], x[1], x[2]], [x[3], x[4], x[5]], [x[6], x[7]])
+}
+
+fn packed<T: Copy>((w, p): ([T; 3], T)) -> [T; 4] {
+    [w[0], w[1], w[2], p]
 }
 
 fn s5(x: [f32; 5]) -> ([f32; 3], [f32; 2]) {
@@ -50,19 +55,28 @@ pub fn microfacet(data: &[u8]) {
         mf::ggx_visible_normal_slice,
         |m| unit(m) && m[2] > 0.0,
     );
-    let samplers: [(&str, Sampler, Pdf); 2] = [
-        ("ggx_reflect", mf::ggx_reflect, mf::ggx_reflect_pdf),
+    type SamplerX8 = fn([f32x8; 3], [f32x8; 2], [f32x8; 2]) -> ([f32x8; 3], f32x8);
+    type SamplerSlice = fn(&[[f32; 7]], &mut [[f32; 4]]) -> usize;
+    let samplers: [(&str, Sampler, SamplerX8, SamplerSlice, Pdf); 2] = [
+        (
+            "ggx_reflect",
+            mf::ggx_reflect,
+            mf::ggx_reflect_x8,
+            mf::ggx_reflect_slice,
+            mf::ggx_reflect_pdf,
+        ),
         (
             "ggx_reflect_bounded",
             mf::ggx_reflect_bounded,
+            mf::ggx_reflect_bounded_x8,
+            mf::ggx_reflect_bounded_slice,
             mf::ggx_reflect_bounded_pdf,
         ),
     ];
-    for (name, sample, pdf) in samplers {
+    for (name, sample, sample_x8, slice, pdf) in samplers {
         for &x in &p7 {
             let (wo, a, u) = s7(x);
             let (wi, p) = sample(wo, a, u);
-            assert!(unit(wi) && density(p), "{name}: {x:?} -> {wi:?} {p}");
             let q = pdf(wo, wi, a);
             assert_eq!(
                 p.to_bits(),
@@ -70,40 +84,20 @@ pub fn microfacet(data: &[u8]) {
                 "{name}: density {p} != pdf {q} at {x:?}"
             );
         }
+        widths(
+            name,
+            &p7,
+            |x| {
+                let (a, b, c) = s7(x);
+                packed(sample(a, b, c))
+            },
+            |x| packed(sample_x8([x[0], x[1], x[2]], [x[3], x[4]], [x[5], x[6]])),
+            slice,
+            |r| unit([r[0], r[1], r[2]]) && density(r[3]),
+        );
     }
-    let packed = |(w, p): ([f32; 3], f32)| [w[0], w[1], w[2], p];
-    let ok4 = |r: [f32; 4]| unit([r[0], r[1], r[2]]) && density(r[3]);
-    widths(
-        "ggx_reflect",
-        &p7,
-        |x| {
-            let (a, b, c) = s7(x);
-            packed(mf::ggx_reflect(a, b, c))
-        },
-        |x| {
-            let (w, p) = mf::ggx_reflect_x8([x[0], x[1], x[2]], [x[3], x[4]], [x[5], x[6]]);
-            [w[0], w[1], w[2], p]
-        },
-        mf::ggx_reflect_slice,
-        ok4,
-    );
-    widths(
-        "ggx_reflect_bounded",
-        &p7,
-        |x| {
-            let (a, b, c) = s7(x);
-            packed(mf::ggx_reflect_bounded(a, b, c))
-        },
-        |x| {
-            let (w, p) = mf::ggx_reflect_bounded_x8([x[0], x[1], x[2]], [x[3], x[4]], [x[5], x[6]]);
-            [w[0], w[1], w[2], p]
-        },
-        mf::ggx_reflect_bounded_slice,
-        ok4,
-    );
     type Pair = fn(&[[f32; 8]], &mut [[f32; 1]]) -> usize;
-    type PairX8 =
-        fn([warpcore::f32x8; 3], [warpcore::f32x8; 3], [warpcore::f32x8; 2]) -> warpcore::f32x8;
+    type PairX8 = fn([f32x8; 3], [f32x8; 3], [f32x8; 2]) -> f32x8;
     let pairs: [(&str, Pdf, PairX8, Pair); 4] = [
         (
             "ggx_visible_normal_pdf",
@@ -139,7 +133,7 @@ pub fn microfacet(data: &[u8]) {
         );
     }
     type One = fn([f32; 3], [f32; 2]) -> f32;
-    type OneX8 = fn([warpcore::f32x8; 3], [warpcore::f32x8; 2]) -> warpcore::f32x8;
+    type OneX8 = fn([f32x8; 3], [f32x8; 2]) -> f32x8;
     type OneSlice = fn(&[[f32; 5]], &mut [[f32; 1]]) -> usize;
     let ones: [(&str, One, OneX8, OneSlice); 2] = [
         ("ggx_d", mf::ggx_d, mf::ggx_d_x8, mf::ggx_d_slice),
