@@ -1335,33 +1335,42 @@ fn wci_ggx_d(r: WciRough, m: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(select(0.0f, d, 0.0f < m.z && 0.0f < q), q);
 }
 
-// The bounded sampler's (k, 1 - k) for a unit w.
-fn wci_shrink(r: WciRough, w: vec3<f32>) -> vec2<f32> {
+// The bounded sampler's k and 1 - k over their common denominator d: (k d, d, (1 - k) d).
+fn wci_shrink_parts(r: WciRough, w: vec3<f32>) -> vec3<f32> {
     let a = select(r.a.y, r.a.x, r.a.x < r.a.y);
     let a2 = a * a;
     let s = 1.0f + sqrt(w.x * w.x + w.y * w.y);
     let s2 = s * s;
     let z2 = w.z * w.z;
-    let inv = 1.0f / (s2 + a2 * z2);
-    return vec2<f32>((1.0f - a2) * s2 * inv, a2 * (s2 + z2) * inv);
+    return vec3<f32>((1.0f - a2) * s2, s2 + a2 * z2, a2 * (s2 + z2));
+}
+
+// The bounded sampler's (k, 1 - k) for a unit w.
+fn wci_shrink(r: WciRough, w: vec3<f32>) -> vec2<f32> {
+    let kp = wci_shrink_parts(r, w);
+    let inv = 1.0f / kp.y;
+    return vec2<f32>(kp.x * inv, kp.z * inv);
 }
 
 // The visible normal by a spherical cap (`cap_normal`): xyz the normal, w = |stretch(w)|.
-// `bounded` selects the cap z >= -k i.z.
-fn wci_cap_normal(r: WciRough, w: vec3<f32>, u: vec2<f32>, k: f32, bounded: bool) -> vec4<f32> {
+// `bounded` selects the cap z >= -k i.z (kp from wci_shrink_parts), built multiplied by d.
+fn wci_cap_normal(r: WciRough, w: vec3<f32>, u: vec2<f32>, kp: vec3<f32>, bounded: bool) -> vec4<f32> {
     let ws = wci_stretch(r, w);
     let l = wci_norm3(ws);
-    let bl = select(ws.z, k * ws.z, bounded);
-    let p = l + bl;
-    let q = l - bl;
+    let ld = select(l, l * kp.y, bounded);
+    let bl = select(ws.z, kp.x * ws.z, bounded);
+    let wd = select(ws, ws * kp.y, bounded);
+    let rim = kp.z * ws.z;
+    let p = ld + bl;
+    let q = ld - bl;
     let u0 = wci_unit_interval(u.x);
     let u1 = wci_unit_interval(u.y);
     let vp = (1.0f - u1) * p;
     let sn = sqrt(u1 * p * (vp + q));
     let sc = wci_sin_cos_turns(u0);
-    let hx = sn * sc.y + ws.x;
-    let hy = sn * sc.x + ws.y;
-    let hz = select(vp, vp + (ws.z - bl), bounded);
+    let hx = sn * sc.y + wd.x;
+    let hy = sn * sc.x + wd.y;
+    let hz = select(vp, vp + rim, bounded);
     let m = vec3<f32>(r.a.x * hx, r.a.y * hy, hz);
     return vec4<f32>(m * (1.0f / wci_norm3(m)), l);
 }
@@ -1390,8 +1399,7 @@ fn wci_reflect_density(r: WciRough, w: vec3<f32>, t: f32, wi0: vec3<f32>, bounde
 fn wci_reflect_sample(wo: vec3<f32>, alpha: vec2<f32>, u: vec2<f32>, bounded: bool) -> WcDirectionPdf {
     let r = wci_rough(alpha);
     let w = wci_outgoing(wo);
-    let k = wci_shrink(r, w).x;
-    let mt = wci_cap_normal(r, w, u, k, bounded);
+    let mt = wci_cap_normal(r, w, u, wci_shrink_parts(r, w), bounded);
     let m = mt.xyz;
     let wm = wci_dot3(w, m);
     let t2 = wm + wm;
@@ -1432,7 +1440,7 @@ fn wc_microfacet_ggx_g2(wo: vec3<f32>, wi: vec3<f32>, alpha: vec2<f32>) -> f32 {
 fn wc_microfacet_ggx_visible_normal(wo: vec3<f32>, alpha: vec2<f32>, u: vec2<f32>) -> vec3<f32> {
     let s = wci_scaled(vec3<f32>(wo.x, wo.y, wci_abs(wo.z)));
     let w = vec3<f32>(s.x, s.y, select(1.0f, s.z, s.w == 1.0f));
-    return wci_cap_normal(wci_rough(alpha), w, u, 0.0f, false).xyz;
+    return wci_cap_normal(wci_rough(alpha), w, u, vec3<f32>(0.0f), false).xyz;
 }
 
 // The density of wc_microfacet_ggx_visible_normal per steradian of m.

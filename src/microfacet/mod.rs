@@ -199,14 +199,31 @@ impl<L: Lane> Rough<L> {
 /// `1 - k = a^2 (s^2 + wo.z^2) / (s^2 + a^2 wo.z^2)` without cancellation. `w` unit, `z >= 0`.
 #[inline(always)]
 fn shrink<L: Lane>(r: &Rough<L>, w: V<L>) -> (L, L) {
+    let Shrink { k, d, omk } = shrink_parts(r, w);
+    let inv = L::splat(1.0) / d;
+    (k * inv, omk * inv)
+}
+
+/// `k` and `1 - k` over their common denominator: `k = k / d`, `1 - k = omk / d`.
+struct Shrink<L> {
+    k: L,
+    d: L,
+    omk: L,
+}
+
+#[inline(always)]
+fn shrink_parts<L: Lane>(r: &Rough<L>, w: V<L>) -> Shrink<L> {
     let one = L::splat(1.0);
     let a = L::select(r.ax.simd_lt(r.ay), r.ax, r.ay);
     let a2 = a * a;
     let s = one + (w[0] * w[0] + w[1] * w[1]).sqrt();
     let s2 = s * s;
     let z2 = w[2] * w[2];
-    let inv = one / (s2 + a2 * z2);
-    ((one - a2) * s2 * inv, a2 * (s2 + z2) * inv)
+    Shrink {
+        k: (one - a2) * s2,
+        d: s2 + a2 * z2,
+        omk: a2 * (s2 + z2),
+    }
 }
 
 /// The visible normal for the outgoing direction `w` (`z >= 0`, any length for the full
@@ -218,23 +235,28 @@ fn shrink<L: Lane>(r: &Rough<L>, w: V<L>) -> (L, L) {
 /// direction of `i + c` counts, so the construction is carried out multiplied by `l`: no
 /// division until the last normalisation. Returns `m` and `l`.
 #[inline(always)]
-fn cap_normal<L: Lane>(r: &Rough<L>, w: V<L>, u: [L; 2], k: Option<L>) -> (V<L>, L) {
+fn cap_normal<L: Lane>(r: &Rough<L>, w: V<L>, u: [L; 2], k: Option<Shrink<L>>) -> (V<L>, L) {
     let one = L::splat(1.0);
     let ws = r.stretch(w);
     let l = norm(ws);
-    // b l, (1 + b) l and (1 - b) l. The rounding of `l - bl` (absolute, an ulp of l) only
+    // The bounded cap is built multiplied by k's denominator d as well (no division): b l d
+    // = k ws.z, l d, and the rim height (i.z - b) l d = (1 - k) d ws.z without cancellation.
+    let (ld, bl, wd, rim) = match &k {
+        Some(k) => (l * k.d, k.k * ws[2], ws.map(|x| x * k.d), k.omk * ws[2]),
+        None => (l, ws[2], ws, L::splat(0.0)),
+    };
+    // (1 + b) l d and (1 - b) l d. The rounding of `ld - bl` (absolute, an ulp of ld) only
     // matters where (1 - u1)(1 + b) is as small, at the top two f32 values of u1.
-    let bl = k.map_or(ws[2], |k| k * ws[2]);
-    let (p, q) = (l + bl, l - bl);
+    let (p, q) = (ld + bl, ld - bl);
     let (u0, u1) = (unit_interval(u[0]), unit_interval(u[1]));
     // c.z = (1 - u1)(1 + b) - b; 1 - c.z^2 = u1 (1 + b) ((1 - u1)(1 + b) + 1 - b).
     let vp = (one - u1) * p;
     let sin = (u1 * p * (vp + q)).sqrt();
     let (sn, cs) = sin_cos_turns(u0);
-    // (i + c) l; its height (1 - u1)(1 + b) l + (i.z - b) l is positive.
-    let hx = sin * cs + ws[0];
-    let hy = sin * sn + ws[1];
-    let hz = k.map_or(vp, |_| vp + (ws[2] - bl));
+    // (i + c) l d; its height (1 - u1)(1 + b) l d + (i.z - b) l d is positive.
+    let hx = sin * cs + wd[0];
+    let hy = sin * sn + wd[1];
+    let hz = if k.is_some() { vp + rim } else { vp };
     let m = [r.ax * hx, r.ay * hy, hz];
     (scale(m, one / norm(m)), l)
 }
@@ -280,7 +302,11 @@ fn reflect_density<L: Lane>(r: &Rough<L>, w: V<L>, t: L, wi: V<L>, bounded: bool
 fn reflect_sample<L: Lane>(wo: V<L>, alpha: [L; 2], u: [L; 2], bounded: bool) -> (V<L>, L) {
     let r = rough(alpha);
     let w = outgoing(wo);
-    let k = if bounded { Some(shrink(&r, w).0) } else { None };
+    let k = if bounded {
+        Some(shrink_parts(&r, w))
+    } else {
+        None
+    };
     let (m, t) = cap_normal(&r, w, u, k);
     let wm = dot(w, m);
     let t2 = wm + wm;
