@@ -647,6 +647,87 @@ size_t wc_lights_tree_pmf(const uint32_t *storage,
                           float *out,
                           size_t n);
 
+// GGX distribution of normals `D(m)` per steradian: `n` records `[mx, my, mz, ax, ay]` (`5n` floats) to `n` values. 0 for `mz <= 0` or an invalid `m`; `alpha` clamped to `[1e-4, 1]`. Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or overlapping
+// arrays other than `input == out` (in place: the output is smaller).
+//
+// # Safety
+// `input` must be readable for `5n` floats and `out` writable for `1n` floats.
+size_t wc_microfacet_ggx_d(const float *input,
+                           float *out,
+                           size_t n);
+
+// Smith masking `G1(w)` of GGX: `n` records `[wx, wy, wz, ax, ay]` (`5n` floats) to `n` values (`|wz|` is used; an invalid `w` reads as +z). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or overlapping
+// arrays other than `input == out` (in place: the output is smaller).
+//
+// # Safety
+// `input` must be readable for `5n` floats and `out` writable for `1n` floats.
+size_t wc_microfacet_ggx_g1(const float *input,
+                            float *out,
+                            size_t n);
+
+// Height-correlated Smith masking-shadowing `G2(wo, wi)` of GGX: `n` records `[wo, wi, ax, ay]` (`8n` floats) to `n` values. Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or overlapping
+// arrays other than `input == out` (in place: the output is smaller).
+//
+// # Safety
+// `input` must be readable for `8n` floats and `out` writable for `1n` floats.
+size_t wc_microfacet_ggx_g2(const float *input,
+                            float *out,
+                            size_t n);
+
+// GGX visible normals by spherical caps (Dupuy and Benyoub 2023): `n` records `[wo, ax, ay, u0, u1]` (`7n` floats) to `n` unit normals `m` (`3n` floats), distributed as `G1(wo) max(0, wo.m) D(m) / wo.z`. `wo` below the horizon is mirrored, an invalid `wo` reads as +z. Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or overlapping
+// arrays other than `input == out` (in place: the output is smaller).
+//
+// # Safety
+// `input` must be readable for `7n` floats and `out` writable for `3n` floats.
+size_t wc_microfacet_ggx_visible_normal(const float *input,
+                                        float *out,
+                                        size_t n);
+
+// Density of `wc_microfacet_ggx_visible_normal` per steradian of `m`: `n` records `[wo, m, ax, ay]` (`8n` floats) to `n` densities (0 for an invalid `m`). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or overlapping
+// arrays other than `input == out` (in place: the output is smaller).
+//
+// # Safety
+// `input` must be readable for `8n` floats and `out` writable for `1n` floats.
+size_t wc_microfacet_ggx_visible_normal_pdf(const float *input,
+                                            float *out,
+                                            size_t n);
+
+// GGX reflection by visible normals: `n` records `[wo, ax, ay, u0, u1]` (`7n` floats) to `n` records `[wi, pdf]` (`4n` floats), `wi = 2 (wo.m) m - wo` (it may lie below the horizon) and its density per steradian, equal to `wc_microfacet_ggx_reflect_pdf` at `wi`. Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or overlapping
+// arrays other than `input == out` (in place: the output is smaller).
+//
+// # Safety
+// `input` must be readable for `7n` floats and `out` writable for `4n` floats.
+size_t wc_microfacet_ggx_reflect(const float *input,
+                                 float *out,
+                                 size_t n);
+
+// Density of `wc_microfacet_ggx_reflect` per steradian of `wi`: `n` records `[wo, wi, ax, ay]` (`8n` floats) to `n` densities. Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or overlapping
+// arrays other than `input == out` (in place: the output is smaller).
+//
+// # Safety
+// `input` must be readable for `8n` floats and `out` writable for `1n` floats.
+size_t wc_microfacet_ggx_reflect_pdf(const float *input,
+                                     float *out,
+                                     size_t n);
+
+// Bounded GGX reflection (Eto and Tokuyoshi 2023): as `wc_microfacet_ggx_reflect`, with fewer directions below the horizon and its own exact density. Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or overlapping
+// arrays other than `input == out` (in place: the output is smaller).
+//
+// # Safety
+// `input` must be readable for `7n` floats and `out` writable for `4n` floats.
+size_t wc_microfacet_ggx_reflect_bounded(const float *input,
+                                         float *out,
+                                         size_t n);
+
+// Density of `wc_microfacet_ggx_reflect_bounded` per steradian of `wi`: `n` records `[wo, wi, ax, ay]` (`8n` floats) to `n` densities (0 outside the image of the shrunk cap). Returns `n`, or 0 (writing nothing) for a null or misaligned pointer or overlapping
+// arrays other than `input == out` (in place: the output is smaller).
+//
+// # Safety
+// `input` must be readable for `8n` floats and `out` writable for `1n` floats.
+size_t wc_microfacet_ggx_reflect_bounded_pdf(const float *input,
+                                             float *out,
+                                             size_t n);
+
 // Points `start, start + 1, ..., start + n - 1` (indices wrap after `UINT32_MAX`) of
 // `seed`'s Owen-scrambled pmj02bn sequence, in `[0, 1)^2`: `2n` floats. Every power-of-two
 // prefix (and aligned block) is a (0,m,2)-net. Returns `n`, or 0 (writing nothing) for a

@@ -175,6 +175,26 @@ export interface Warpcore {
   /** cos(theta) / pi (0 below the horizon). */
   sphereCosineHemispherePdf(cosTheta: Float32Array, out?: Float32Array): Float32Array;
 
+  // ---- GGX microfacet reflection (records of packed arguments; alpha = r^2 of a perceptual roughness r) ----
+  /** GGX D(m): records `[mx, my, mz, ax, ay]` (`5n` floats) to `n` values. */
+  microfacetGgxD(input: Float32Array, out?: Float32Array): Float32Array;
+  /** Smith masking G1(w): records `[wx, wy, wz, ax, ay]` to `n` values. */
+  microfacetGgxG1(input: Float32Array, out?: Float32Array): Float32Array;
+  /** Height-correlated Smith G2(wo, wi): records `[wo, wi, ax, ay]` (`8n` floats) to `n` values. */
+  microfacetGgxG2(input: Float32Array, out?: Float32Array): Float32Array;
+  /** Visible normals by spherical caps: records `[wo, ax, ay, u0, u1]` (`7n` floats) to unit normals (`3n`). */
+  microfacetGgxVisibleNormal(input: Float32Array, out?: Float32Array): Float32Array;
+  /** Density of the visible normals: records `[wo, m, ax, ay]` (`8n` floats) to `n` densities. */
+  microfacetGgxVisibleNormalPdf(input: Float32Array, out?: Float32Array): Float32Array;
+  /** Reflection by visible normals: records `[wo, ax, ay, u0, u1]` to records `[wi, pdf]` (`4n`). */
+  microfacetGgxReflect(input: Float32Array, out?: Float32Array): Float32Array;
+  /** Density of the reflection: records `[wo, wi, ax, ay]` to `n` densities. */
+  microfacetGgxReflectPdf(input: Float32Array, out?: Float32Array): Float32Array;
+  /** Bounded reflection (Eto and Tokuyoshi 2023): records `[wo, ax, ay, u0, u1]` to records `[wi, pdf]`. */
+  microfacetGgxReflectBounded(input: Float32Array, out?: Float32Array): Float32Array;
+  /** Density of the bounded reflection: records `[wo, wi, ax, ay]` to `n` densities. */
+  microfacetGgxReflectBoundedPdf(input: Float32Array, out?: Float32Array): Float32Array;
+
   // ---- points of the square ----
   /** Owen-scrambled pmj02bn points `start .. start + n - 1` of `seed`: `2n` floats in [0, 1). */
   pmj02bnSample(start: number, seed: number, n: number, out?: Float32Array): Float32Array;

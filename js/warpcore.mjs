@@ -485,6 +485,17 @@ function create(x) {
     sphericalConeInverse: withLight(x.wc_spherical_cone_inverse, 3, 2, 'dir', 7),
     sphericalConeSolidAngle: solidAngle(x.wc_spherical_cone_solid_angle, 7),
 
+    // microfacet: records of packed arguments ([wo, alpha, u], [wo, wi or m, alpha], [w, alpha])
+    microfacetGgxD: map(x.wc_microfacet_ggx_d, F, 5, F, 1, 'input'),
+    microfacetGgxG1: map(x.wc_microfacet_ggx_g1, F, 5, F, 1, 'input'),
+    microfacetGgxG2: map(x.wc_microfacet_ggx_g2, F, 8, F, 1, 'input'),
+    microfacetGgxVisibleNormal: map(x.wc_microfacet_ggx_visible_normal, F, 7, F, 3, 'input'),
+    microfacetGgxVisibleNormalPdf: map(x.wc_microfacet_ggx_visible_normal_pdf, F, 8, F, 1, 'input'),
+    microfacetGgxReflect: map(x.wc_microfacet_ggx_reflect, F, 7, F, 4, 'input'),
+    microfacetGgxReflectPdf: map(x.wc_microfacet_ggx_reflect_pdf, F, 8, F, 1, 'input'),
+    microfacetGgxReflectBounded: map(x.wc_microfacet_ggx_reflect_bounded, F, 7, F, 4, 'input'),
+    microfacetGgxReflectBoundedPdf: map(x.wc_microfacet_ggx_reflect_bounded_pdf, F, 8, F, 1, 'input'),
+
     // sphere
     sphereEqualArea: map(x.wc_sphere_equal_area, F, 2, F, 3),
     sphereEqualAreaInverse: map(x.wc_sphere_equal_area_inverse, F, 3, F, 2, 'd'),

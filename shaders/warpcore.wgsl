@@ -1370,3 +1370,204 @@ fn wc_spherical_cone_inverse(centre: vec3<f32>, radius: f32, p: vec3<f32>, dir: 
 fn wc_spherical_cone_solid_angle(centre: vec3<f32>, radius: f32, p: vec3<f32>) -> f32 {
     return wci_cone_setup(centre, radius, p).omc * WCI_TWO_PI;
 }
+
+// GGX microfacet reflection (src/microfacet): D, Smith G1 and height-correlated G2, visible
+// normals by spherical caps (Dupuy and Benyoub 2023), reflection and bounded reflection (Eto
+// and Tokuyoshi 2023) with their exact densities. alpha = r^2 of a perceptual roughness r.
+
+// 1e-4 (`microfacet::ALPHA_MIN`), 1 / (2 pi), and the bounded cap test's slack 1 - 2^-16.
+const WCI_ALPHA_MIN: f32 = 0x1.a36e2ep-14f;
+const WCI_HALF_FRAC_1_PI: f32 = 0x1.45f306p-3f;
+const WCI_CAP_SLACK: f32 = 0x1.fffep-1f;
+
+// The reflection's result: the direction and its density per steradian.
+struct WcDirectionPdf {
+    wi: vec3<f32>,
+    pdf: f32,
+}
+
+// The roughness clamped to [1e-4, 1] (NaN to 1e-4) and its reciprocals (`Rough`).
+struct WciRough {
+    a: vec2<f32>,
+    inv: vec2<f32>,
+}
+
+fn wci_rough(alpha: vec2<f32>) -> WciRough {
+    let ax = select(WCI_ALPHA_MIN, select(1.0f, alpha.x, alpha.x < 1.0f), WCI_ALPHA_MIN < alpha.x);
+    let ay = select(WCI_ALPHA_MIN, select(1.0f, alpha.y, alpha.y < 1.0f), WCI_ALPHA_MIN < alpha.y);
+    return WciRough(vec2<f32>(ax, ay), vec2<f32>(1.0f / ax, 1.0f / ay));
+}
+
+fn wci_stretch(r: WciRough, w: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(r.a.x * w.x, r.a.y * w.y, w.z);
+}
+
+fn wci_unstretch(r: WciRough, m: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(m.x * r.inv.x, m.y * r.inv.y, m.z);
+}
+
+// v scaled by the power of two putting its largest component in [1, 2), or the zero vector
+// where that does not exist or v is not finite (w: 1 for valid).
+fn wci_scaled(v: vec3<f32>) -> vec4<f32> {
+    let k = wci_pow2_scale_of(wci_max_abs3(0.0f, v));
+    let ok = bitcast<u32>(k) != 0u && wci_finite3(v);
+    let s = v * k;
+    return vec4<f32>(select(vec3<f32>(0.0f), s, ok), select(0.0f, 1.0f, ok));
+}
+
+// The unit outgoing direction, mirrored into z >= 0, +z when not a direction.
+fn wci_outgoing(wo: vec3<f32>) -> vec3<f32> {
+    let s = wci_scaled(vec3<f32>(wo.x, wo.y, wci_abs(wo.z)));
+    let inv = 1.0f / wci_norm3(s.xyz);
+    return select(vec3<f32>(0.0f, 0.0f, 1.0f), s.xyz * inv, s.w == 1.0f);
+}
+
+// D(m) of a scaled m, and |unstretch(m)|^2.
+fn wci_ggx_d(r: WciRough, m: vec3<f32>) -> vec2<f32> {
+    let um = wci_unstretch(r, m);
+    let q = wci_dot3(um, um);
+    let rr = wci_dot3(m, m) / q;
+    // Fenced: the shader compiler would reorder the products with the constant.
+    let z = wci_zero_of(m.z);
+    let c = wci_fence(wci_fence(r.inv.x * r.inv.y, z) * WCI_FRAC_1_PI, z);
+    let d = wci_fence(rr * rr, z) * c;
+    return vec2<f32>(select(0.0f, d, 0.0f < m.z && 0.0f < q), q);
+}
+
+// The bounded sampler's k and 1 - k over their common denominator d: (k d, d, (1 - k) d).
+fn wci_shrink_parts(r: WciRough, w: vec3<f32>) -> vec3<f32> {
+    let a = select(r.a.y, r.a.x, r.a.x < r.a.y);
+    let a2 = a * a;
+    let s = 1.0f + sqrt(w.x * w.x + w.y * w.y);
+    let s2 = s * s;
+    let z2 = w.z * w.z;
+    return vec3<f32>((1.0f - a2) * s2, s2 + a2 * z2, a2 * (s2 + z2));
+}
+
+// The bounded sampler's (k, 1 - k) for a unit w.
+fn wci_shrink(r: WciRough, w: vec3<f32>) -> vec2<f32> {
+    let kp = wci_shrink_parts(r, w);
+    let inv = 1.0f / kp.y;
+    return vec2<f32>(kp.x * inv, kp.z * inv);
+}
+
+// The visible normal by a spherical cap (`cap_normal`): xyz the normal, w = |stretch(w)|.
+// `bounded` selects the cap z >= -k i.z (kp from wci_shrink_parts), built multiplied by d.
+fn wci_cap_normal(r: WciRough, w: vec3<f32>, u: vec2<f32>, kp: vec3<f32>, bounded: bool) -> vec4<f32> {
+    let ws = wci_stretch(r, w);
+    let l = wci_norm3(ws);
+    let ld = select(l, l * kp.y, bounded);
+    let bl = select(ws.z, kp.x * ws.z, bounded);
+    let wd = select(ws, ws * kp.y, bounded);
+    let rim = kp.z * ws.z;
+    let p = ld + bl;
+    let q = ld - bl;
+    let u0 = wci_unit_interval(u.x);
+    let u1 = wci_unit_interval(u.y);
+    let vp = (1.0f - u1) * p;
+    let sn = sqrt(u1 * p * (vp + q));
+    let sc = wci_sin_cos_turns(u0);
+    let hx = sn * sc.y + wd.x;
+    let hy = sn * sc.x + wd.y;
+    let hz = select(vp, vp + rim, bounded);
+    let m = vec3<f32>(r.a.x * hx, r.a.y * hy, hz);
+    return vec4<f32>(m * (1.0f / wci_norm3(m)), l);
+}
+
+// The reflection density at wi for the unit outgoing w with t = |stretch(w)|.
+fn wci_reflect_density(r: WciRough, w: vec3<f32>, t: f32, wi0: vec3<f32>, bounded: bool) -> f32 {
+    let s = wci_scaled(wi0);
+    let wi = s.xyz;
+    let l = wci_norm3(wi);
+    let h0 = vec3<f32>(w.x * l + wi.x, w.y * l + wi.y, w.z * l + wi.z);
+    let h = h0 * wci_pow2_lift(h0.x, h0.y, h0.z);
+    let hh = wci_dot3(h, h);
+    let uh = wci_unstretch(r, h);
+    let q = wci_dot3(uh, uh);
+    let km = wci_shrink(r, w);
+    let lhs = 2.0f * wci_dot3(w, h) * h.z;
+    let z = wci_zero_of(w.z);
+    let rhs = wci_fence(w.z * km.y * q, z) * WCI_CAP_SLACK;
+    let den = select(w.z + t, km.x * w.z + t, bounded);
+    let inside = !bounded || rhs <= lhs;
+    let c = wci_fence(wci_fence(r.inv.x * r.inv.y, z) * WCI_HALF_FRAC_1_PI, z);
+    let pdf = wci_fence(hh * hh, z) * c / (q * q * den);
+    return select(0.0f, pdf, s.w == 1.0f && inside && 0.0f < h.z && 0.0f < q);
+}
+
+fn wci_reflect_sample(wo: vec3<f32>, alpha: vec2<f32>, u: vec2<f32>, bounded: bool) -> WcDirectionPdf {
+    let r = wci_rough(alpha);
+    let w = wci_outgoing(wo);
+    let mt = wci_cap_normal(r, w, u, wci_shrink_parts(r, w), bounded);
+    let m = mt.xyz;
+    let wm = wci_dot3(w, m);
+    let t2 = wm + wm;
+    let wi = vec3<f32>(t2 * m.x - w.x, t2 * m.y - w.y, t2 * m.z - w.z);
+    return WcDirectionPdf(wi, wci_reflect_density(r, w, mt.w, wi, bounded));
+}
+
+fn wci_reflect_pdf(wo: vec3<f32>, wi: vec3<f32>, alpha: vec2<f32>, bounded: bool) -> f32 {
+    let r = wci_rough(alpha);
+    let w = wci_outgoing(wo);
+    return wci_reflect_density(r, w, wci_norm3(wci_stretch(r, w)), wi, bounded);
+}
+
+// |stretch(w)| / |w.z| of the scale-free w (inf at w.z = 0; 1 for an invalid w).
+fn wci_lambda_term(r: WciRough, w: vec3<f32>) -> f32 {
+    let s = wci_scaled(vec3<f32>(w.x, w.y, wci_abs(w.z)));
+    return select(1.0f, wci_norm3(wci_stretch(r, s.xyz)) / s.z, s.w == 1.0f);
+}
+
+// D(m) per steradian of m (0 for m.z <= 0 or an invalid m).
+fn wc_microfacet_ggx_d(m: vec3<f32>, alpha: vec2<f32>) -> f32 {
+    let s = wci_scaled(m);
+    return select(0.0f, wci_ggx_d(wci_rough(alpha), s.xyz).x, s.w == 1.0f);
+}
+
+// Smith masking G1(w) = 2 |wz| / (|wz| + |(ax wx, ay wy, wz)|).
+fn wc_microfacet_ggx_g1(w: vec3<f32>, alpha: vec2<f32>) -> f32 {
+    return 2.0f / (1.0f + wci_lambda_term(wci_rough(alpha), w));
+}
+
+// Height-correlated Smith G2(wo, wi).
+fn wc_microfacet_ggx_g2(wo: vec3<f32>, wi: vec3<f32>, alpha: vec2<f32>) -> f32 {
+    let r = wci_rough(alpha);
+    return 2.0f / (wci_lambda_term(r, wo) + wci_lambda_term(r, wi));
+}
+
+// A GGX normal visible from wo (spherical caps).
+fn wc_microfacet_ggx_visible_normal(wo: vec3<f32>, alpha: vec2<f32>, u: vec2<f32>) -> vec3<f32> {
+    let s = wci_scaled(vec3<f32>(wo.x, wo.y, wci_abs(wo.z)));
+    let w = vec3<f32>(s.x, s.y, select(1.0f, s.z, s.w == 1.0f));
+    return wci_cap_normal(wci_rough(alpha), w, u, vec3<f32>(0.0f), false).xyz;
+}
+
+// The density of wc_microfacet_ggx_visible_normal per steradian of m.
+fn wc_microfacet_ggx_visible_normal_pdf(wo: vec3<f32>, m0: vec3<f32>, alpha: vec2<f32>) -> f32 {
+    let r = wci_rough(alpha);
+    let w = wci_outgoing(wo);
+    let s = wci_scaled(m0);
+    let m = s.xyz;
+    let d = wci_ggx_d(r, m).x;
+    let wm = wci_dot3(w, m);
+    let den = (w.z + wci_norm3(wci_stretch(r, w))) * wci_norm3(m);
+    return select(0.0f, (wm + wm) * d / den, s.w == 1.0f && 0.0f < wm);
+}
+
+// Reflection by visible normals: wi and its density (that of wc_microfacet_ggx_reflect_pdf at wi).
+fn wc_microfacet_ggx_reflect(wo: vec3<f32>, alpha: vec2<f32>, u: vec2<f32>) -> WcDirectionPdf {
+    return wci_reflect_sample(wo, alpha, u, false);
+}
+
+fn wc_microfacet_ggx_reflect_pdf(wo: vec3<f32>, wi: vec3<f32>, alpha: vec2<f32>) -> f32 {
+    return wci_reflect_pdf(wo, wi, alpha, false);
+}
+
+// Bounded reflection (Eto and Tokuyoshi 2023) with its exact density.
+fn wc_microfacet_ggx_reflect_bounded(wo: vec3<f32>, alpha: vec2<f32>, u: vec2<f32>) -> WcDirectionPdf {
+    return wci_reflect_sample(wo, alpha, u, true);
+}
+
+fn wc_microfacet_ggx_reflect_bounded_pdf(wo: vec3<f32>, wi: vec3<f32>, alpha: vec2<f32>) -> f32 {
+    return wci_reflect_pdf(wo, wi, alpha, true);
+}

@@ -61,6 +61,7 @@
 //! | `sampler` | [`sampler`]: the sampling core (domain tree, splitting, Owen-scrambled Sobol' and pmj02bn patterns, 8/16 lanes, slices); enables `pmj02bn` | yes |
 //! | `blue-noise` | [`sampler::Blue`]: screen-space blue-noise error, a 64 x 64 key tile per pattern (32 KiB); enables `sampler` | yes |
 //! | `spherical` | [`spherical`]: lights by solid angle, spherical triangles (Arvo) and rectangles (Urena et al.), inverses, solid angles, sphere lights by cone; enables `triangle` and `disk` | yes |
+//! | `microfacet` | [`microfacet`]: GGX (Trowbridge-Reitz) microfacet reflection: `D`, Smith `G1` and height-correlated `G2`, visible normals by spherical caps (Dupuy and Benyoub 2023), reflection and bounded reflection (Eto and Tokuyoshi 2023) with exact densities | yes |
 //! | `lights` | [`lights`]: light selection, an alias table by power and a light tree by importance, caller-owned storage | yes |
 //! | `std` | forwards `wide/std`; the library never needs it | no |
 
@@ -88,6 +89,8 @@ mod slices;
 #[cfg(any(feature = "envmap", feature = "lights"))]
 mod storage;
 mod trig;
+#[cfg(any(feature = "spherical", feature = "microfacet"))]
+mod vec3;
 
 #[cfg(feature = "disk")]
 pub mod disk;
@@ -95,6 +98,8 @@ pub mod disk;
 pub mod envmap;
 #[cfg(feature = "lights")]
 pub mod lights;
+#[cfg(feature = "microfacet")]
+pub mod microfacet;
 #[cfg(feature = "pmj02bn")]
 pub mod pmj02bn;
 #[cfg(feature = "sampler")]

@@ -46,6 +46,8 @@ pub mod envmap;
 pub mod lights;
 #[cfg(all(feature = "lights", feature = "envmap"))]
 pub mod lights_tree;
+#[cfg(feature = "microfacet")]
+pub mod microfacet;
 #[cfg(feature = "pmj02bn")]
 pub mod pmj02bn;
 #[cfg(feature = "sampler")]

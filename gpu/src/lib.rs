@@ -51,6 +51,10 @@ pub enum Domain {
     Density,
     /// A density and a direction.
     DensityDirection,
+    /// Microfacet arguments: a direction (and any 3-vector), then a second one where `.0` is
+    /// 8 words, a roughness pair, and a sample where `.0` is 7 (`[w, alpha]`, `[wo, alpha, u]`,
+    /// `[wo, wi, alpha]`).
+    Microfacet(usize),
     /// Solid-angle lights ([`spherical::inputs`]): a light (12 words), then what the
     /// function takes after it.
     Light(spherical::Layout),
@@ -171,6 +175,7 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
         Domain::IndexSeed => 6,
         Domain::Density => 7,
         Domain::DensityDirection => 8,
+        Domain::Microfacet(words) => 9 + 1000 * words as u64,
         Domain::Light(l) => 100 + l as u64,
     };
     let mut rng = Rng::new(seed ^ tag.wrapping_mul(0x9e37_79b9));
@@ -245,34 +250,7 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
             }
         }
         Domain::Direction | Domain::DensityDirection => {
-            let e = signed_edges();
-            let mut dirs: Vec<[f32; 3]> = Vec::new();
-            for (k, &a) in e.iter().enumerate() {
-                for (j, &b) in e.iter().enumerate() {
-                    for (i, &c) in e.iter().enumerate() {
-                        if !small || (k + j + i) % 13 == 0 {
-                            dirs.push([a, b, c]);
-                        }
-                    }
-                }
-            }
-            for k in 0..random {
-                dirs.push(sphere::equal_area([rng.unit_any(), rng.unit_any()]));
-                dirs.push(sphere::uniform([rng.grid24(), rng.grid24()]));
-                let d = sphere::equal_area([rng.grid24(), rng.grid24()]);
-                let s = [0.5f32, 1e-3, 1e-20, 0.999_999_9][k % 4];
-                dirs.push(d.map(|x| x * s));
-                dirs.push([rng.bits(), rng.bits(), rng.bits()]);
-                dirs.push([
-                    rng.range(-1.5, 1.5),
-                    rng.range(-1.5, 1.5),
-                    rng.range(-1.5, 1.5),
-                ]);
-                // Near the poles and the equator, with signed zeros.
-                let t = rng.unit_any() * 1e-3;
-                let z = [1.0f32, -1.0, 0.0, -0.0][k % 4];
-                dirs.push([t, [0.0f32, -0.0][k / 4 % 2], z]);
-            }
+            let dirs = directions(random, small, &mut rng);
             for d in dirs {
                 if domain == Domain::DensityDirection {
                     let pdf = [rng.unit_any() * 8.0, rng.bits(), 0.0, -1.0, f32::INFINITY]
@@ -280,6 +258,44 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
                     push!(&[pdf, d[0], d[1], d[2]]);
                 } else {
                     push!(&d);
+                }
+            }
+        }
+        Domain::Microfacet(words) => {
+            let dirs = directions(random, small, &mut rng);
+            let mut alphas = vec![
+                0.0f32,
+                -0.0,
+                1e-4,
+                1e-3,
+                0.05,
+                0.3,
+                1.0,
+                1.5,
+                f32::NAN,
+                f32::INFINITY,
+                -1.0,
+                f32::from_bits(1),
+                1e-30,
+            ];
+            let e = square_edges();
+            let n = dirs.len();
+            for (k, d) in dirs.iter().enumerate() {
+                alphas.push(rng.unit_any());
+                let a = [alphas[k % alphas.len()], alphas[(k / 3 + 1) % alphas.len()]];
+                let a = if k % 2 == 0 { [a[0], a[0]] } else { a };
+                push!(d);
+                if words == 8 {
+                    push!(&dirs[(k * 7 + 3) % n]);
+                }
+                push!(&a);
+                if words == 7 {
+                    let u = if k % 3 == 0 {
+                        [e[k % e.len()], e[k / e.len() % e.len()]]
+                    } else {
+                        [rng.grid24(), rng.unit_any()]
+                    };
+                    push!(&u);
                 }
             }
         }
@@ -341,6 +357,41 @@ pub fn inputs(domain: Domain, random: usize, seed: u64) -> Vec<u32> {
     v
 }
 
+/// The test directions: every triple of signed edge values (thinned where `small`), then per
+/// random round unit directions, scaled ones (down to `1e-20`), bit patterns, points of the
+/// cube and directions near the poles and the equator with signed zeros.
+fn directions(random: usize, small: bool, rng: &mut Rng) -> Vec<[f32; 3]> {
+    let e = signed_edges();
+    let mut dirs: Vec<[f32; 3]> = Vec::new();
+    for (k, &a) in e.iter().enumerate() {
+        for (j, &b) in e.iter().enumerate() {
+            for (i, &c) in e.iter().enumerate() {
+                if !small || (k + j + i) % 13 == 0 {
+                    dirs.push([a, b, c]);
+                }
+            }
+        }
+    }
+    for k in 0..random {
+        dirs.push(sphere::equal_area([rng.unit_any(), rng.unit_any()]));
+        dirs.push(sphere::uniform([rng.grid24(), rng.grid24()]));
+        let d = sphere::equal_area([rng.grid24(), rng.grid24()]);
+        let s = [0.5f32, 1e-3, 1e-20, 0.999_999_9][k % 4];
+        dirs.push(d.map(|x| x * s));
+        dirs.push([rng.bits(), rng.bits(), rng.bits()]);
+        dirs.push([
+            rng.range(-1.5, 1.5),
+            rng.range(-1.5, 1.5),
+            rng.range(-1.5, 1.5),
+        ]);
+        // Near the poles and the equator, with signed zeros.
+        let t = rng.unit_any() * 1e-3;
+        let z = [1.0f32, -1.0, 0.0, -0.0][k % 4];
+        dirs.push([t, [0.0f32, -0.0][k / 4 % 2], z]);
+    }
+    dirs
+}
+
 /// Typical points of `domain` (`n` random ones, in the domain at unit scale: no edge values,
 /// no bit patterns, no tiny vectors): what a renderer passes, for the CPU model's bounds.
 pub fn typical_inputs(domain: Domain, n: usize, seed: u64) -> Vec<u32> {
@@ -381,6 +432,17 @@ pub fn typical_inputs(domain: Domain, n: usize, seed: u64) -> Vec<u32> {
             Domain::DensityDirection => {
                 let d = sphere::equal_area(u);
                 put(&[rng.unit_any() * 100.0, d[0], d[1], d[2]]);
+            }
+            Domain::Microfacet(words) => {
+                let d = sphere::cosine_hemisphere(u);
+                put(&d);
+                if words == 8 {
+                    put(&sphere::uniform([rng.unit_any(), rng.unit_any()]));
+                }
+                put(&[rng.range(0.01, 1.0), rng.range(0.01, 1.0)]);
+                if words == 7 {
+                    put(&[rng.grid24(), rng.grid24()]);
+                }
             }
             Domain::Light(layout) => put(&spherical::typical(layout, u, &mut rng)),
         }

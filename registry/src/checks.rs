@@ -9,6 +9,10 @@ use std::prelude::rust_2024::*;
 use std::{format, vec};
 use warpcore::f32x8;
 
+#[cfg(feature = "microfacet")]
+mod microfacet;
+#[cfg(feature = "microfacet")]
+pub use microfacet::microfacet;
 #[cfg(feature = "sampler")]
 mod sampler;
 #[cfg(feature = "sampler")]

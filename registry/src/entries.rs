@@ -33,6 +33,7 @@ macro_rules! all {
 pub fn entries() -> impl Iterator<Item = &'static Entry> {
     [
         DISK, PMJ02BN, SAMPLER, SEQUENCE, TRIANGLE, SPHERE, ENVMAP, SPHERICAL, LIGHTS, LIGHT_TREE,
+        MICROFACET,
     ]
     .into_iter()
     .flatten()
@@ -996,3 +997,101 @@ const LIGHT_TREE: &[Entry] = {
 };
 #[cfg(not(feature = "lights"))]
 const LIGHT_TREE: &[Entry] = &[];
+
+/// The packed arguments of the microfacet samplers (`[wo, alpha, u]`), densities and `G2`
+/// (`[wo, wi or m, alpha]`), `D` and `G1` (`[w, alpha]`), and their results, on any lane type.
+#[cfg(feature = "microfacet")]
+mod packed {
+    pub fn s7<T: Copy>(x: [T; 7]) -> ([T; 3], [T; 2], [T; 2]) {
+        ([x[0], x[1], x[2]], [x[3], x[4]], [x[5], x[6]])
+    }
+    pub fn s8<T: Copy>(x: [T; 8]) -> ([T; 3], [T; 3], [T; 2]) {
+        ([x[0], x[1], x[2]], [x[3], x[4], x[5]], [x[6], x[7]])
+    }
+    pub fn s5<T: Copy>(x: [T; 5]) -> ([T; 3], [T; 2]) {
+        ([x[0], x[1], x[2]], [x[3], x[4]])
+    }
+    pub fn dir_pdf<T: Copy>((w, p): ([T; 3], T)) -> [T; 4] {
+        [w[0], w[1], w[2], p]
+    }
+    pub fn dir<T: Copy>(w: [T; 3]) -> [T; 3] {
+        w
+    }
+    pub fn one<T: Copy>(p: T) -> [T; 1] {
+        [p]
+    }
+}
+
+/// A microfacet entry with every form: `$split` unpacks the packed input into the arguments
+/// `$arg`, `$out` packs the result; the slice form takes the packed input as it is.
+#[cfg(feature = "microfacet")]
+macro_rules! microfacet {
+    ($name:literal, $kind:ident, $split:ident($($arg:ident),+) -> $out:ident,
+        $f:ident, $x8:ident, $x16:ident, $slice:ident) => {
+        Entry::new(
+            concat!("microfacet::", $name),
+            Forms::ALL,
+            Kind::$kind(Map {
+                scalar: |x| {
+                    let ($($arg),+) = packed::$split(x);
+                    packed::$out(mf::$f($($arg),+))
+                },
+                x8: Some(|x| {
+                    let ($($arg),+) = packed::$split(x);
+                    packed::$out(mf::$x8($($arg),+))
+                }),
+                x16: Some(|x| {
+                    let ($($arg),+) = packed::$split(x);
+                    packed::$out(mf::$x16($($arg),+))
+                }),
+                slice: Some(mf::$slice),
+            }),
+        )
+        .golden(Golden::Own)
+        .bound(CJW)
+    };
+}
+
+#[cfg(feature = "microfacet")]
+const MICROFACET: &[Entry] = {
+    use warpcore::microfacet as mf;
+    &[
+        microfacet!("ggx_d", M51, s5(m, a) -> one, ggx_d, ggx_d_x8, ggx_d_x16, ggx_d_slice),
+        microfacet!("ggx_g1", M51, s5(w, a) -> one, ggx_g1, ggx_g1_x8, ggx_g1_x16, ggx_g1_slice),
+        microfacet!(
+            "ggx_g2", M81, s8(wo, wi, a) -> one,
+            ggx_g2, ggx_g2_x8, ggx_g2_x16, ggx_g2_slice
+        ),
+        microfacet!(
+            "ggx_visible_normal", M73, s7(wo, a, u) -> dir,
+            ggx_visible_normal, ggx_visible_normal_x8, ggx_visible_normal_x16,
+            ggx_visible_normal_slice
+        ),
+        microfacet!(
+            "ggx_visible_normal_pdf", M81, s8(wo, m, a) -> one,
+            ggx_visible_normal_pdf, ggx_visible_normal_pdf_x8, ggx_visible_normal_pdf_x16,
+            ggx_visible_normal_pdf_slice
+        ),
+        microfacet!(
+            "ggx_reflect", M74, s7(wo, a, u) -> dir_pdf,
+            ggx_reflect, ggx_reflect_x8, ggx_reflect_x16, ggx_reflect_slice
+        ),
+        microfacet!(
+            "ggx_reflect_pdf", M81, s8(wo, wi, a) -> one,
+            ggx_reflect_pdf, ggx_reflect_pdf_x8, ggx_reflect_pdf_x16, ggx_reflect_pdf_slice
+        ),
+        microfacet!(
+            "ggx_reflect_bounded", M74, s7(wo, a, u) -> dir_pdf,
+            ggx_reflect_bounded, ggx_reflect_bounded_x8, ggx_reflect_bounded_x16,
+            ggx_reflect_bounded_slice
+        ),
+        microfacet!(
+            "ggx_reflect_bounded_pdf", M81, s8(wo, wi, a) -> one,
+            ggx_reflect_bounded_pdf, ggx_reflect_bounded_pdf_x8, ggx_reflect_bounded_pdf_x16,
+            ggx_reflect_bounded_pdf_slice
+        ),
+    ]
+};
+
+#[cfg(not(feature = "microfacet"))]
+const MICROFACET: &[Entry] = &[];

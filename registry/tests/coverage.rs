@@ -192,6 +192,7 @@ fn js_methods() -> BTreeSet<String> {
         "pmj02bn",
         "sequence",
         "envmap",
+        "microfacet",
         "sampler",
     ];
     js.lines()

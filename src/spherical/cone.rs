@@ -2,7 +2,7 @@
 //! in cancellation-free form (`1 - cos theta_max = sin^2 / (1 + cos)`), through the
 //! concentric disk so that compact strata of the square stay compact in the cone.
 
-use super::vec::*;
+use crate::vec3::*;
 use crate::disk::{concentric_inverse_body, concentric_parts};
 use crate::lanes::Lane;
 

@@ -6,8 +6,8 @@
 
 use super::rectangle::{self, Rect};
 use super::triangle::{self, Tri};
-use super::vec::*;
 use crate::lanes::{Lane, ONE_MINUS_EPSILON, unit_interval};
+use crate::vec3::*;
 
 /// Inverse CDF of the density `2 ((1 - x) a + x b) / (a + b)` on `[0, 1]` (`a, b` in
 /// `[0, 1]`, `a + b > 0`): the root of `(b - a) x^2 + 2 a x = u (a + b)`, written without

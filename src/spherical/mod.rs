@@ -105,7 +105,6 @@ mod cone;
 mod cosine;
 mod rectangle;
 mod triangle;
-mod vec;
 
 use crate::lanes::Lane;
 use crate::slices;

@@ -3,9 +3,9 @@
 //! solid angle as two Van Oosterom-Strackee triangles joined in one `atan2`.
 
 use super::triangle::{FALLBACK_TURNS, SMALL_Q};
-use super::vec::*;
 use crate::lanes::{Lane, unit_interval};
 use crate::trig::{atan2_turns, sin_cos_turns};
+use crate::vec3::*;
 
 /// The rectangle in its own frame seen from `p` (all lengths scaled by one exact power of
 /// two): `x` along `ex` from `x0` to `x0 + w`, `y` along `ey`'s component orthogonal to `ex`

@@ -1,10 +1,10 @@
 //! Arvo's spherical-triangle map (1995) in cancellation-free form, its inverse and the
 //! Van Oosterom-Strackee solid angle.
 
-use super::vec::*;
 use crate::lanes::{Lane, unit_interval};
 use crate::triangle::{uniform_body, uniform_inverse_body};
 use crate::trig::{atan2_turns, sin_cos_turns};
+use crate::vec3::*;
 
 /// The triangle seen from `p`: vertex vectors `a[i] = 2^k (v_i - p)`, edges `e1 = v1 - v0`,
 /// `e2 = v2 - v0`, `f2 = v2 - v1` (from the caller's vertices, so they carry no cancellation

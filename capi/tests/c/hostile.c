@@ -44,7 +44,7 @@ static const char *current = "";
 
 /* ---- rows: function x outcome ---- */
 
-#define MAX_ROWS 512
+#define MAX_ROWS 1024
 static struct row {
     const char *fn, *outcome;
     unsigned long calls;
@@ -304,6 +304,15 @@ static const struct map MAPS[] = {
     {"wc_sphere_cosine_hemisphere_inverse", wc_sphere_cosine_hemisphere_inverse, 3, 2, 0},
     {"wc_sphere_equal_area_pdf_to_solid_angle", wc_sphere_equal_area_pdf_to_solid_angle, 1, 1, 0},
     {"wc_sphere_cosine_hemisphere_pdf", wc_sphere_cosine_hemisphere_pdf, 1, 1, 0},
+    {"wc_microfacet_ggx_d", wc_microfacet_ggx_d, 5, 1, 0},
+    {"wc_microfacet_ggx_g1", wc_microfacet_ggx_g1, 5, 1, 0},
+    {"wc_microfacet_ggx_g2", wc_microfacet_ggx_g2, 8, 1, 0},
+    {"wc_microfacet_ggx_visible_normal", wc_microfacet_ggx_visible_normal, 7, 3, 0},
+    {"wc_microfacet_ggx_visible_normal_pdf", wc_microfacet_ggx_visible_normal_pdf, 8, 1, 0},
+    {"wc_microfacet_ggx_reflect", wc_microfacet_ggx_reflect, 7, 4, 0},
+    {"wc_microfacet_ggx_reflect_pdf", wc_microfacet_ggx_reflect_pdf, 8, 1, 0},
+    {"wc_microfacet_ggx_reflect_bounded", wc_microfacet_ggx_reflect_bounded, 7, 4, 0},
+    {"wc_microfacet_ggx_reflect_bounded_pdf", wc_microfacet_ggx_reflect_bounded_pdf, 8, 1, 0},
     {"wc_envmap_luminance", wc_envmap_luminance, 3, 1, 0},
     {"wc_pmj02bn_shuffle", shuffle7, 1, 1, 0},
     {"wc_sphere_equal_area_wrap_texel", wrap_texel32, 2, 2, 0},

@@ -1,32 +1,33 @@
-//! Three-vectors over a [`Lane`], the light's frame (translated to the shading point and
-//! scaled by a power of two), and the small cancellation-free helpers the spherical maps share.
+//! Three-vectors over a [`Lane`], shared by the spherical lights and the microfacet warps: the
+//! light's frame (translated to the shading point and scaled by a power of two), and the small
+//! cancellation-free helpers both families use.
 
 use crate::lanes::{Lane, UintLane};
 
-pub(super) type V<L> = [L; 3];
+pub(crate) type V<L> = [L; 3];
 
 #[inline(always)]
-pub(super) fn sub<L: Lane>(a: V<L>, b: V<L>) -> V<L> {
+pub(crate) fn sub<L: Lane>(a: V<L>, b: V<L>) -> V<L> {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 #[inline(always)]
-pub(super) fn add<L: Lane>(a: V<L>, b: V<L>) -> V<L> {
+pub(crate) fn add<L: Lane>(a: V<L>, b: V<L>) -> V<L> {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
 #[inline(always)]
-pub(super) fn scale<L: Lane>(a: V<L>, k: L) -> V<L> {
+pub(crate) fn scale<L: Lane>(a: V<L>, k: L) -> V<L> {
     [a[0] * k, a[1] * k, a[2] * k]
 }
 
 #[inline(always)]
-pub(super) fn dot<L: Lane>(a: V<L>, b: V<L>) -> L {
+pub(crate) fn dot<L: Lane>(a: V<L>, b: V<L>) -> L {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 #[inline(always)]
-pub(super) fn cross<L: Lane>(a: V<L>, b: V<L>) -> V<L> {
+pub(crate) fn cross<L: Lane>(a: V<L>, b: V<L>) -> V<L> {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -35,13 +36,13 @@ pub(super) fn cross<L: Lane>(a: V<L>, b: V<L>) -> V<L> {
 }
 
 #[inline(always)]
-pub(super) fn norm<L: Lane>(a: V<L>) -> L {
+pub(crate) fn norm<L: Lane>(a: V<L>) -> L {
     dot(a, a).sqrt()
 }
 
 /// `x` clamped to `[0, hi]`; NaN and `-0.0` become `+0.0` (compare and select).
 #[inline(always)]
-pub(super) fn clamp0<L: Lane>(x: L, hi: L) -> L {
+pub(crate) fn clamp0<L: Lane>(x: L, hi: L) -> L {
     L::select(
         L::splat(0.0).simd_lt(x),
         L::select(x.simd_lt(hi), x, hi),
@@ -51,7 +52,7 @@ pub(super) fn clamp0<L: Lane>(x: L, hi: L) -> L {
 
 /// `0 < x < +inf` (false for NaN).
 #[inline(always)]
-pub(super) fn positive_finite<L: Lane>(x: L) -> L::Mask {
+pub(crate) fn positive_finite<L: Lane>(x: L) -> L::Mask {
     L::splat(0.0).simd_lt(x) & x.simd_lt(L::splat(f32::INFINITY))
 }
 
@@ -60,14 +61,14 @@ pub(super) fn positive_finite<L: Lane>(x: L) -> L::Mask {
 /// vectors): `(e - x^ (e . (x + y)) / (|x| + |y|)) / |y|`, since
 /// `|x| - |y| = -(e . (x + y)) / (|x| + |y|)`. Relative error a few ulps whatever the angle.
 #[inline(always)]
-pub(super) fn chord<L: Lane>(x: V<L>, y: V<L>, e: V<L>, lx: L, ly: L) -> V<L> {
+pub(crate) fn chord<L: Lane>(x: V<L>, y: V<L>, e: V<L>, lx: L, ly: L) -> V<L> {
     let k = dot(e, add(x, y)) / ((lx + ly) * lx);
     scale(sub(e, scale(x, k)), L::splat(1.0) / ly)
 }
 
 /// Whether every component of every vector is finite: `x * 0 == 0` fails for NaN and inf.
 #[inline(always)]
-pub(super) fn all_finite<L: Lane, const N: usize>(vs: [V<L>; N]) -> L::Mask {
+pub(crate) fn all_finite<L: Lane, const N: usize>(vs: [V<L>; N]) -> L::Mask {
     let zero = L::splat(0.0);
     let mut acc = zero;
     for v in vs {
@@ -83,7 +84,7 @@ pub(super) fn all_finite<L: Lane, const N: usize>(vs: [V<L>; N]) -> L::Mask {
 /// decide the side of the plane), and flush-proof (a device that flushes subnormals sees
 /// the same zeros).
 #[inline(always)]
-pub(super) fn flush_subnormal<L: Lane>(v: V<L>) -> V<L> {
+pub(crate) fn flush_subnormal<L: Lane>(v: V<L>) -> V<L> {
     let tiny = L::splat(f32::MIN_POSITIVE);
     v.map(|x| L::select(x.abs().simd_lt(tiny), L::splat(0.0), x))
 }
@@ -113,7 +114,7 @@ fn pow2_bits<L: Lane>(m: L, limit: u32) -> (L::U, L::Mask) {
 /// any later product, quotient or ratio that did not underflow, while products that did
 /// underflow become exact or correctly rounded.
 #[inline(always)]
-pub(super) fn pow2_lift<L: Lane, const N: usize>(xs: [L; N]) -> L {
+pub(crate) fn pow2_lift<L: Lane, const N: usize>(xs: [L; N]) -> L {
     let (bits, ok) = pow2_bits(max_abs(&xs), 127);
     L::from_bits(L::U::select(ok, bits, L::splat(1.0).to_bits()))
 }
@@ -124,26 +125,26 @@ pub(super) fn pow2_lift<L: Lane, const N: usize>(xs: [L; N]) -> L {
 /// the scaled vectors is free of overflow and (but for what the caller's data underflows)
 /// of underflow.
 #[inline(always)]
-pub(super) fn pow2_scale<L: Lane, const N: usize>(vs: [V<L>; N]) -> (L, L::Mask) {
+pub(crate) fn pow2_scale<L: Lane, const N: usize>(vs: [V<L>; N]) -> (L, L::Mask) {
     let (bits, ok) = pow2_bits(max_abs(vs.as_flattened()), 254);
     (L::from_bits(L::U::select(ok, bits, L::U::splat(0))), ok)
 }
 
 /// `x` below `f32::MAX`, else (`+inf`, NaN) `f32::MAX`: a density kept finite.
 #[inline(always)]
-pub(super) fn below_max<L: Lane>(x: L) -> L {
+pub(crate) fn below_max<L: Lane>(x: L) -> L {
     L::select(x.simd_lt(L::splat(f32::MAX)), x, L::splat(f32::MAX))
 }
 
 /// The area-sampling density where area sampling is defined (`ok`), kept below `f32::MAX`;
 /// 0 elsewhere.
 #[inline(always)]
-pub(super) fn area_density<L: Lane>(ok: L::Mask, pdf: L) -> L {
+pub(crate) fn area_density<L: Lane>(ok: L::Mask, pdf: L) -> L {
     L::select(ok, below_max(pdf), L::splat(0.0))
 }
 
 /// `1 / (4 pi)`: solid angles are carried in turns of `4 pi` (`atan2_turns` of the
 /// Van Oosterom-Strackee half angle) and the density is `INV_4PI / turns`.
-pub(super) const INV_4PI: f32 = (0.25 * core::f64::consts::FRAC_1_PI) as f32;
+pub(crate) const INV_4PI: f32 = (0.25 * core::f64::consts::FRAC_1_PI) as f32;
 /// `4 pi`.
-pub(super) const FOUR_PI: f32 = (4.0 * core::f64::consts::PI) as f32;
+pub(crate) const FOUR_PI: f32 = (4.0 * core::f64::consts::PI) as f32;
