@@ -2,9 +2,9 @@
 //! in cancellation-free form (`1 - cos theta_max = sin^2 / (1 + cos)`), through the
 //! concentric disk so that compact strata of the square stay compact in the cone.
 
-use crate::vec3::*;
 use crate::disk::{concentric_inverse_body, concentric_parts};
 use crate::lanes::Lane;
+use crate::vec3::*;
 
 /// The cone seen from `p`: its axis `n` (unit, towards the centre), a tangent frame `t`, `b`
 /// (Duff et al. 2017), and `1 - cos theta_max`.
