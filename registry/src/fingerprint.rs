@@ -839,3 +839,42 @@ pub fn lights_tree(h: &mut Hasher) {
         h.floats(&[q, tree.pmf(p, nrm, (k % 25) as u32)]);
     }
 }
+
+/// `lights::AliasTable`: the storage words of 97 weights (every seventh zero, the others over
+/// five orders of magnitude), then `sample` at the [`N`] one-dimensional inputs (special values
+/// among them: NaN, infinities, negatives, 1) and `pmf` of every index and one past the end.
+#[cfg(feature = "lights")]
+pub fn lights_alias(h: &mut Hasher) {
+    use warpcore::lights::AliasTable;
+    const LIGHTS: usize = 97;
+    let weights: [f32; LIGHTS] = core::array::from_fn(|k| {
+        let [a, b] = input::<2>(3000 + k);
+        if k % 7 == 3 {
+            0.0
+        } else if k % 5 == 0 {
+            a * 1000.0 + b
+        } else {
+            a * 0.01 + b * 0.5
+        }
+    });
+    let n = AliasTable::storage_len(LIGHTS);
+    h.word(n as u32);
+    let mut s = [0u32; 512];
+    let s = s.get_mut(..n).unwrap_or(&mut []);
+    let Ok(table) = AliasTable::new(&weights, s) else {
+        h.word(0xbad);
+        return;
+    };
+    for w in table.storage() {
+        h.word(u32::from_le(*w));
+    }
+    for i in 0..N {
+        let [u] = input::<1>(i);
+        let (k, p) = table.sample(u);
+        h.word(k);
+        h.floats(&[p]);
+    }
+    for k in 0..=LIGHTS as u32 {
+        h.floats(&[table.pmf(k)]);
+    }
+}

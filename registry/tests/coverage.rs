@@ -193,6 +193,7 @@ fn js_methods() -> BTreeSet<String> {
         "sequence",
         "envmap",
         "sampler",
+        "lights",
     ];
     js.lines()
         .filter(|l| l.starts_with("    ") && !l.starts_with("     "))
