@@ -923,10 +923,13 @@ const LIGHT_TREE: &[Entry] = {
     &[
         Entry::new("lights::LightTree::sample", Forms::ALL, Kind::Other)
             .golden(Golden::OwnPiece(fp::lights_tree))
-            .named(&[(C, "wc_lights_tree_sample")]),
+            .named(&[
+                (C, "wc_lights_tree_sample"),
+                (Wgsl, "wc_lights_tree_sample"),
+            ]),
         Entry::new("lights::LightTree::pmf", Forms::LANES, Kind::Other)
             .golden(SAMPLE)
-            .named(&[(C, "wc_lights_tree_pmf")]),
+            .named(&[(C, "wc_lights_tree_pmf"), (Wgsl, "wc_lights_tree_pmf")]),
         Entry::new("lights::LightTree::new", Forms::SCALAR, Kind::Other)
             .golden(SAMPLE)
             .named(&[(C, "wc_lights_tree_build"), (Js, "lightsTree")]),
