@@ -655,6 +655,8 @@ function create(x) {
   const own = (o, key, value) => defineProperty(o, key, { value, writable: false, enumerable: true, configurable: false });
   /** The storage address of a live `Stored` (TypeError for anything else, or once freed). */
   let liveOf;
+  /** The storage words of a `Stored` (its own, not a property a caller could shadow). */
+  let lenOf;
 
   /**
    * The common base of EnvMap, AliasTable and LightTree: one block of storage words in the
@@ -677,6 +679,7 @@ function create(x) {
         if (o.#p === 0) throw typeError(`this ${o.#name} has been freed`);
         return o.#p;
       };
+      lenOf = (o) => o.#len;
     }
 
     /** Words of the storage (header included). */
@@ -975,19 +978,34 @@ function create(x) {
     return { index: read(U, pi, n, new U32(n)), prob: read(F, pp, n, new F32(n)) };
   };
 
-  /** An alias table (Walker/Vose) over per-light weights, in the module's memory. */
-  class AliasTable extends Stored {
-    #len;
-    constructor(key, p, len) {
-      if (key !== secret) throw typeError('use lightsAlias or lightsAliasFromStorage');
-      super(key, 'AliasTable', p, len);
-      this.#len = len;
-      /** The number of lights. */
+  /** The storage address of a live AliasTable or LightTree (`kind`): TypeError for anything else. */
+  let liveAs;
+
+  /** What AliasTable and LightTree share: `count`, the number of lights (storage word 2). */
+  class Lights extends Stored {
+    #kind;
+    constructor(key, kind, maker, p, len) {
+      if (key !== secret) throw typeError(`use ${maker} or ${maker}FromStorage`);
+      super(key, kind, p, len);
+      this.#kind = kind;
       own(this, 'count', view(U, p, 3)[2]);
     }
 
-    #live() {
-      return liveOf(this);
+    static {
+      // `o.#kind` is the brand check (a TypeError for anything not made by this class).
+      liveAs = (o, kind) => {
+        if (o.#kind !== kind) throw typeError(`a ${kind} method called on a ${o.#kind}`);
+        return liveOf(o);
+      };
+    }
+  }
+  freeze(Lights.prototype);
+  freeze(Lights);
+
+  /** An alias table (Walker/Vose) over per-light weights, in the module's memory. */
+  class AliasTable extends Lights {
+    constructor(key, p, len) {
+      super(key, 'AliasTable', 'lightsAlias', p, len);
     }
 
     /**
@@ -996,13 +1014,13 @@ function create(x) {
      * Float32Array, or two numbers), `prob` bit-equal to `pmf(index)`.
      */
     sample(u) {
-      const p = this.#live();
+      const p = liveAs(this, 'AliasTable');
       const one = typeof u === 'number';
       const n = one ? 1 : elements(u, F, 1, 'u');
       if (n === 0) return { index: new U32(0), prob: new F32(0) };
       return scratch2(F, n, one ? undefined : u, U, 2 * n, undefined, (pu, po) => {
         if (one) view(F, pu, 1)[0] = u;
-        expect(x.wc_lights_alias_sample(p, this.#len, pu, po, n), n, 'sample');
+        expect(x.wc_lights_alias_sample(p, lenOf(this), pu, po, n), n, 'sample');
         // WcLightChoice { index, prob } pairs: split in place into index words and prob bits.
         const w = view(U, po, 2 * n);
         if (one) return { index: w[0], prob: view(F, po + 4, 1)[0] };
@@ -1022,7 +1040,7 @@ function create(x) {
      * or a new Float32Array; or one number, giving a number); 0 at or past `count`.
      */
     pmf(index, out) {
-      const p = this.#live();
+      const p = liveAs(this, 'AliasTable');
       const one = typeof index === 'number';
       if (one) {
         u32(index, 'index');
@@ -1033,7 +1051,7 @@ function create(x) {
       if (n === 0) return result;
       return scratch2(U, n, one ? undefined : index, F, n, undefined, (pi, po) => {
         if (one) view(U, pi, 1)[0] = index;
-        expect(x.wc_lights_alias_pmf(p, this.#len, pi, po, n), n, 'pmf');
+        expect(x.wc_lights_alias_pmf(p, lenOf(this), pi, po, n), n, 'pmf');
         return one ? view(F, po, 1)[0] : read(F, po, n, result);
       });
     }
@@ -1042,18 +1060,9 @@ function create(x) {
   freeze(AliasTable);
 
   /** A light tree (a 4-ary BVH over light bounds, pbrt-v4's importance), in the module's memory. */
-  class LightTree extends Stored {
-    #len;
+  class LightTree extends Lights {
     constructor(key, p, len) {
-      if (key !== secret) throw typeError('use lightsTree or lightsTreeFromStorage');
-      super(key, 'LightTree', p, len);
-      this.#len = len;
-      /** The number of lights. */
-      own(this, 'count', view(U, p, 3)[2]);
-    }
-
-    #live() {
-      return liveOf(this);
+      super(key, 'LightTree', 'lightsTree', p, len);
     }
 
     /**
@@ -1063,14 +1072,14 @@ function create(x) {
      * prob 0 where no light contributes.
      */
     sample(p, n, u) {
-      const s = this.#live();
+      const s = liveAs(this, 'LightTree');
       const k = points(p, n, u, F, 'u');
       const one = typeof u === 'number';
       if (k === 0) return { index: new U32(0), prob: new F32(0) };
       return scratch3(F, 3 * k, p, F, 3 * k, n, F, k, one ? undefined : u, (pp, pn, pu) => {
         if (one) view(F, pu, 1)[0] = u;
         return scratch2(U, k, undefined, F, k, undefined, (pi, pr) => {
-          expect(x.wc_lights_tree_sample(s, this.#len, pp, pn, pu, pi, pr, k), k, 'sample');
+          expect(x.wc_lights_tree_sample(s, lenOf(this), pp, pn, pu, pi, pr, k), k, 'sample');
           return choices(pi, pr, k, one);
         });
       });
@@ -1081,7 +1090,7 @@ function create(x) {
      * `index` (`k` words into `out` or a new Float32Array; or one number, giving a number).
      */
     pmf(p, n, index, out) {
-      const s = this.#live();
+      const s = liveAs(this, 'LightTree');
       const one = typeof index === 'number';
       if (one) {
         u32(index, 'index');
@@ -1093,7 +1102,7 @@ function create(x) {
       return scratch3(F, 3 * k, p, F, 3 * k, n, U, k, one ? undefined : index, (pp, pn, pi) => {
         if (one) view(U, pi, 1)[0] = index;
         return scratch1(F, k, undefined, (po) => {
-          expect(x.wc_lights_tree_pmf(s, this.#len, pp, pn, pi, po, k), k, 'pmf');
+          expect(x.wc_lights_tree_pmf(s, lenOf(this), pp, pn, pi, po, k), k, 'pmf');
           return one ? view(F, po, 1)[0] : read(F, po, k, result);
         });
       });

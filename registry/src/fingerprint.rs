@@ -809,6 +809,27 @@ pub fn light_set() -> [warpcore::lights::LightBounds; 24] {
     })
 }
 
+/// Hashes a light-selection storage of `len` words that `build` writes into a buffer of `W`
+/// words: the length, then the words (in their storage order, little-endian), or `0xbad` when
+/// the build fails (or `len > W`); returns the buffer of a build that succeeded.
+#[cfg(feature = "lights")]
+fn stored<const W: usize>(
+    h: &mut Hasher,
+    len: usize,
+    build: impl FnOnce(&mut [u32]) -> bool,
+) -> Option<[u32; W]> {
+    h.word(len as u32);
+    let mut s = [0u32; W];
+    if !s.get_mut(..len).is_some_and(build) {
+        h.word(0xbad);
+        return None;
+    }
+    for w in s.get(..len).unwrap_or(&[]) {
+        h.word(u32::from_le(*w));
+    }
+    Some(s)
+}
+
 /// `lights::LightTree`: the storage words of [`light_set`], then `sample` and `pmf` at 64
 /// shading points (normals, media and special values among them).
 #[cfg(feature = "lights")]
@@ -816,16 +837,12 @@ pub fn lights_tree(h: &mut Hasher) {
     use warpcore::lights::LightTree;
     let lights = light_set();
     let n = LightTree::storage_len(lights.len());
-    h.word(n as u32);
-    let mut s = [0u32; 1024];
-    let s = s.get_mut(..n).unwrap_or(&mut []);
-    let Ok(tree) = LightTree::new(&lights, s) else {
-        h.word(0xbad);
+    let Some(s) = stored::<1024>(h, n, |s| LightTree::new(&lights, s).is_ok()) else {
         return;
     };
-    for w in tree.storage() {
-        h.word(u32::from_le(*w));
-    }
+    let Ok(tree) = LightTree::from_storage(&s) else {
+        return;
+    };
     for k in 0..64usize {
         let [x, y, z, nx, ny, nz, u] = input::<7>(2000 + k);
         let p = [x * 10.0 - 5.0, y * 6.0 - 3.0, z * 4.0 - 1.0];
@@ -858,16 +875,12 @@ pub fn lights_alias(h: &mut Hasher) {
         }
     });
     let n = AliasTable::storage_len(LIGHTS);
-    h.word(n as u32);
-    let mut s = [0u32; 512];
-    let s = s.get_mut(..n).unwrap_or(&mut []);
-    let Ok(table) = AliasTable::new(&weights, s) else {
-        h.word(0xbad);
+    let Some(s) = stored::<512>(h, n, |s| AliasTable::new(&weights, s).is_ok()) else {
         return;
     };
-    for w in table.storage() {
-        h.word(u32::from_le(*w));
-    }
+    let Ok(table) = AliasTable::from_storage(&s) else {
+        return;
+    };
     for i in 0..N {
         let [u] = input::<1>(i);
         let (k, p) = table.sample(u);
