@@ -68,14 +68,12 @@ export interface EnvDirections {
  * `envmapHierarchical`, `envmapMarginalConditional` or `envmapFromStorage`; release with
  * `free()` (or `using`; garbage collection frees it too).
  */
-export interface EnvMap {
+export interface EnvMap extends Stored {
   readonly kind: 'hierarchical' | 'marginal-conditional';
   /** Texels per row. */
   readonly width: number;
   /** Rows. */
   readonly height: number;
-  /** Words of the storage, header included. */
-  readonly storageLength: number;
   /** One sample per point of `u` (`2n` floats; any values, clamped to [0, 1)). */
   sample(u: Float32Array): EnvSamples;
   /** Densities at `n` points (`2n` floats), bit-equal to the `pdf` of a sample there. */
@@ -88,14 +86,78 @@ export interface EnvMap {
   sampleDirection(layout: EnvLayout, u: Float32Array): EnvDirections;
   /** Densities per steradian of `n` directions (`3n` floats, any length) under `layout`. */
   pdfDirection(layout: EnvLayout, dir: Float32Array, out?: Float32Array): Float32Array;
+}
+
+/** What EnvMap, AliasTable and LightTree share: storage words in the module's memory. */
+export interface Stored {
+  /** Words of the storage, header included. */
+  readonly storageLength: number;
   /**
    * A copy of the storage words: the file format (little-endian bytes on every target; the
-   * same bytes for the same weights from JS, C and Rust).
+   * same bytes for the same inputs from JS, C and Rust).
    */
   storage(): Uint32Array;
   /** Releases the tables; later calls throw a TypeError. */
   free(): void;
   [Symbol.dispose](): void;
+}
+
+/** Error codes a light-selection function may attach to its RangeError (`error.code`). */
+export type LightsErrorCode =
+  | 'WC_ERR_EMPTY'
+  | 'WC_ERR_TOO_LARGE'
+  | 'WC_ERR_INVALID_WEIGHT'
+  | 'WC_ERR_INVALID_BOUNDS'
+  | 'WC_ERR_ALL_ZERO'
+  | 'WC_ERR_STORAGE_TOO_SMALL'
+  | 'WC_ERR_WRONG_FORMAT'
+  | 'WC_ERR_UNSUPPORTED_VERSION'
+  | 'WC_ERR_CORRUPT';
+
+/** Chosen lights: `index` (`0xffffffff` where a tree found none) and the probability of each. */
+export interface LightChoices {
+  index: Uint32Array;
+  prob: Float32Array;
+}
+/** One chosen light (the scalar forms). */
+export interface LightChoice {
+  index: number;
+  prob: number;
+}
+
+/**
+ * An alias table (Walker 1977, Vose 1991) over per-light weights: O(1) per sample, the exact
+ * probability of each choice. Create with `lightsAlias` or `lightsAliasFromStorage`.
+ */
+export interface AliasTable extends Stored {
+  /** The number of lights. */
+  readonly count: number;
+  /** A light per value of `u` (any values: NaN, negatives as 0; `>= 1` as `1 - 2^-24`); `prob` bit-equal to `pmf(index)`. */
+  sample(u: Float32Array): LightChoices;
+  sample(u: number): LightChoice;
+  /** The probability that `sample` returns each index (0 at or past `count`). */
+  pmf(index: Uint32Array, out?: Float32Array): Float32Array;
+  pmf(index: number): number;
+}
+
+/**
+ * A light tree (a 4-ary BVH over light bounds with pbrt-v4's importance): a light chosen by
+ * its estimated contribution at the shading point. Create with `lightsTree` or
+ * `lightsTreeFromStorage`.
+ */
+export interface LightTree extends Stored {
+  /** The number of lights. */
+  readonly count: number;
+  /**
+   * A light at each shading point `p` with normal `n` (`3k` floats each; a zero normal: a
+   * point in a medium) from `u` (`k` floats, or a number with one point); `prob` bit-equal to
+   * `pmf(p, n, index)`; index `0xffffffff` and prob 0 where no light contributes.
+   */
+  sample(p: Float32Array, n: Float32Array, u: Float32Array): LightChoices;
+  sample(p: Float32Array, n: Float32Array, u: number): LightChoice;
+  /** The probability that `sample` at each point returns `index` (0 past the end, for power 0 or importance 0). */
+  pmf(p: Float32Array, n: Float32Array, index: Uint32Array, out?: Float32Array): Float32Array;
+  pmf(p: Float32Array, n: Float32Array, index: number): number;
 }
 
 export interface Warpcore {
@@ -236,6 +298,24 @@ export interface Warpcore {
   envmapFromStorage(words: Uint32Array | ArrayBufferView | ArrayBuffer, options?: { verify?: boolean }): EnvMap;
   /** The EnvMap class of this instance, for `instanceof` (its constructor is not public). */
   readonly EnvMap: abstract new (...args: never[]) => EnvMap;
+
+  // ---- light selection ----
+  /** The alias table of `weights` (one finite weight >= 0 per light, usually its power). */
+  lightsAlias(weights: Float32Array): AliasTable;
+  /** An AliasTable from storage words; `options` as `envmapFromStorage`'s. */
+  lightsAliasFromStorage(words: Uint32Array | ArrayBufferView | ArrayBuffer, options?: { verify?: boolean }): AliasTable;
+  /**
+   * The light tree of `lights`: 13 floats per light, `min x y z, max x y z, power, axis x y z,
+   * cosThetaO, cosThetaE, twoSided` (the C ABI's WcLightBounds; twoSided: any value but 0 or
+   * -0 means two-sided).
+   */
+  lightsTree(lights: Float32Array): LightTree;
+  /** A LightTree from storage words; `options` as `envmapFromStorage`'s. */
+  lightsTreeFromStorage(words: Uint32Array | ArrayBufferView | ArrayBuffer, options?: { verify?: boolean }): LightTree;
+  /** The AliasTable class, for `instanceof` (its constructor is not public). */
+  readonly AliasTable: abstract new (...args: never[]) => AliasTable;
+  /** The LightTree class, for `instanceof` (its constructor is not public). */
+  readonly LightTree: abstract new (...args: never[]) => LightTree;
   /**
    * Rec. 709 luminance of RGB texels (`3n` floats) as `n` weights: 0.2126 R + 0.7152 G +
    * 0.0722 B where positive, else +0 (NaN and negatives weigh 0; +Infinity stays).

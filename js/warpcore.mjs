@@ -283,14 +283,18 @@ function makeHeap(memory, base_) {
 const CODES = {
   __proto__: null,
   '-1': ['WC_ERR_ZERO_SIZE', 'a zero width or height'],
-  '-2': ['WC_ERR_TOO_LARGE', 'a side above 2^24, or tables above 2^32 words'],
+  '-2': ['WC_ERR_TOO_LARGE', 'a side above 2^24, too many lights, or tables above 2^32 words'],
   '-3': ['WC_ERR_LENGTH_MISMATCH', 'an array length that does not match the sizes'],
   '-4': ['WC_ERR_STORAGE_TOO_SMALL', 'storage shorter than its header says'],
   '-5': ['WC_ERR_INFINITE_WEIGHT', 'a +Infinity weight'],
-  '-6': ['WC_ERR_WRONG_FORMAT', 'not an environment-map storage (or a byte-swapped one)'],
+  '-6': ['WC_ERR_WRONG_FORMAT', 'not a storage of this kind (or a byte-swapped one)'],
   '-7': ['WC_ERR_UNSUPPORTED_VERSION', 'a storage format version this build does not read (older storages: rebuild the tables from the weights)'],
   '-8': ['WC_ERR_CORRUPT', 'a header or table word a build never writes, or content that does not match its checksum'],
   '-9': ['WC_ERR_INVALID_ARGUMENT', 'an invalid argument'],
+  '-11': ['WC_ERR_EMPTY', 'no lights'],
+  '-12': ['WC_ERR_INVALID_WEIGHT', "a light's weight or power is NaN, infinite or negative"],
+  '-13': ['WC_ERR_INVALID_BOUNDS', "a light's bounds are unusable (NaN or infinite coordinates, min > max, a zero axis, a cosine outside [-1, 1])"],
+  '-14': ['WC_ERR_ALL_ZERO', "every light's weight or power is zero"],
 };
 
 function fail(code, what) {
@@ -658,15 +662,126 @@ function create(x) {
     return n;
   }
 
-  // ---- environment maps: tables in wasm memory, owned by an EnvMap ----
+  // ---- tables in wasm memory, owned by an object: env maps and light selection ----
 
   const registry = FinalizationRegistry_ ? new FinalizationRegistry_((p) => heap.free(p)) : null;
-  const secret = Symbol_('EnvMap');
+  const secret = Symbol_('Stored');
   const own = (o, key, value) => defineProperty(o, key, { value, writable: false, enumerable: true, configurable: false });
+  /** The storage address of a live `Stored` (TypeError for anything else, or once freed). */
+  let liveOf;
+  /** The storage words of a `Stored` (its own, not a property a caller could shadow). */
+  let lenOf;
+
+  /**
+   * The common base of EnvMap, AliasTable and LightTree: one block of storage words in the
+   * module's memory, its copy-out, and its release (explicit, `using`, or by the GC).
+   */
+  class Stored {
+    #p;
+    #len;
+    #name;
+    constructor(key, name, p, len) {
+      if (key !== secret) throw typeError(`${name} has no public constructor`);
+      this.#p = p;
+      this.#len = len;
+      this.#name = name;
+      if (registry !== null) REGISTER(registry, this, p, this);
+    }
+
+    static {
+      liveOf = (o) => {
+        if (o.#p === 0) throw typeError(`this ${o.#name} has been freed`);
+        return o.#p;
+      };
+      lenOf = (o) => o.#len;
+    }
+
+    /** Words of the storage (header included). */
+    get storageLength() {
+      return this.#len;
+    }
+
+    /** A copy of the storage words: the file format (little-endian bytes on every target). */
+    storage() {
+      return read(U, liveOf(this), this.#len, new U32(this.#len));
+    }
+
+    /** Releases the tables' memory (also done when the object is garbage-collected). */
+    free() {
+      if (this.#p !== 0) {
+        if (registry !== null) UNREGISTER(registry, this);
+        heap.free(this.#p);
+        this.#p = 0;
+      }
+    }
+
+    [DISPOSE]() {
+      this.free();
+    }
+  }
+  // Frozen: a caller cannot replace a method or add a setter the constructor would run.
+  freeze(Stored.prototype);
+  freeze(Stored);
+
+  /**
+   * Reserves `len` words (`len` from a C `*_storage_len`, `0xffffffff`: too large), copies
+   * the `n` elements of `T` of `input` to scratch memory and runs `build(input, storage)`
+   * (a C builder's code); returns `make(storage)`, or frees the words and throws.
+   */
+  function buildStored(len, what, T, n, input, build, make) {
+    if (len === 0xffff_ffff) throw fail(-2, what);
+    const p = heap.alloc(4 * len);
+    try {
+      scratch1(T, n, input, (pin) => {
+        const code = build(pin, p);
+        if (code !== 0) throw fail(code, what);
+      });
+    } catch (e) {
+      heap.free(p);
+      throw e;
+    }
+    return make(p);
+  }
+
+  /**
+   * Storage words read back (see `storageWords`): `kindOf(first, len)` names the kind (or
+   * throws), the words are copied into the module's memory and checked by `check(p, len)`, or
+   * `verified(p, len)` unless `options.verify` is false; returns `make(kind, p, len)`.
+   * `options.verify` (default true) is the one property of a caller's object this module
+   * reads: once, first; an exception from reading it becomes a TypeError.
+   */
+  function loadStored(words, options, what, kindOf, check, verified, make) {
+    let verify = true;
+    if (options !== undefined) {
+      if (options === null || typeof options !== 'object') {
+        throw typeError(`options must be an object, not ${describe(options)}`);
+      }
+      let v;
+      try {
+        v = options.verify;
+      } catch {
+        throw typeError('options.verify could not be read');
+      }
+      if (v !== undefined && typeof v !== 'boolean') throw typeError(`options.verify must be a boolean, not ${describe(v)}`);
+      if (v === false) verify = false;
+    }
+    const stored = storageWords(words);
+    const len = stored.len;
+    const kind = kindOf(stored.first, len);
+    const p = heap.alloc(4 * len);
+    try {
+      stored.copy(p);
+      const code = verify ? verified(p, len) : check(p, len);
+      if (code !== 0) throw fail(code, what);
+    } catch (e) {
+      heap.free(p);
+      throw e;
+    }
+    return make(kind, p, len);
+  }
 
   /** An environment-map distribution whose tables live in the module's memory. */
-  class EnvMap {
-    #p;
+  class EnvMap extends Stored {
     #len;
     #sample;
     #pdf;
@@ -674,7 +789,7 @@ function create(x) {
     #pdfDirection;
     constructor(key, kind, p, len) {
       if (key !== secret) throw typeError('use envmapHierarchical, envmapMarginalConditional or envmapFromStorage');
-      this.#p = p;
+      super(key, 'EnvMap', p, len);
       this.#len = len;
       // One set of C functions for both distributions (the storage header says which).
       this.#sample = x.wc_envmap_sample;
@@ -686,17 +801,11 @@ function create(x) {
       own(this, 'kind', kind);
       own(this, 'width', header[2]);
       own(this, 'height', header[3]);
-      if (registry !== null) REGISTER(registry, this, p, this);
     }
 
+    // A private method: calling it is the brand check (TypeError for anything but an EnvMap).
     #live() {
-      if (this.#p === 0) throw typeError('this EnvMap has been freed');
-      return this.#p;
-    }
-
-    /** Words of the storage (header included). */
-    get storageLength() {
-      return this.#len;
+      return liveOf(this);
     }
 
     /**
@@ -795,28 +904,16 @@ function create(x) {
       const f = this.#pdfDirection;
       return this.#densities(dir, 3, 'dir', out, 'pdfDirection', (p, len, pd, po, n) => f(p, len, l, pd, po, n));
     }
-
-    /** A copy of the storage words: the file format (little-endian bytes on every target). */
-    storage() {
-      return read(U, this.#live(), this.#len, new U32(this.#len));
-    }
-
-    /** Releases the tables' memory (also done when the object is garbage-collected). */
-    free() {
-      if (this.#p !== 0) {
-        if (registry !== null) UNREGISTER(registry, this);
-        heap.free(this.#p);
-        this.#p = 0;
-      }
-    }
-
-    [DISPOSE]() {
-      this.free();
-    }
   }
-  // Frozen: a caller cannot replace a method or add a setter the constructor would run.
   freeze(EnvMap.prototype);
   freeze(EnvMap);
+
+  /** The env-map kind that storage word 0 names (a RangeError for none). */
+  function envmapKind(first, len) {
+    const kind = first === KINDS.hierarchical.tag ? 'hierarchical' : first === KINDS['marginal-conditional'].tag ? 'marginal-conditional' : undefined;
+    if (kind === undefined) throw fail(len < HEADER_WORDS ? -4 : -6, 'envmapFromStorage');
+    return kind;
+  }
 
   // MIS compensation of a build: the C ABI's WC_ENVMAP_COMPENSATION_* values.
   const COMPENSATIONS = { __proto__: null, none: 0, uniform: 1, equirect: 2 };
@@ -832,20 +929,10 @@ function create(x) {
     }
     const n = size(weights, width, height, 1, 'weights');
     const len = x.wc_envmap_storage_len(k.kind, width, height) >>> 0;
-    if (len === 0xffff_ffff) throw fail(-2, `envmap ${kind}`);
-    const p = heap.alloc(4 * len);
-    try {
-      scratch1(F, n, weights, (pw) => {
-        const code = compensated
-          ? x.wc_envmap_build_compensated(k.kind, pw, width, height, c, fraction, p, len)
-          : x.wc_envmap_build(k.kind, pw, width, height, p, len);
-        if (code !== 0) throw fail(code, `envmap ${kind}`);
-      });
-    } catch (e) {
-      heap.free(p);
-      throw e;
-    }
-    return new EnvMap(secret, kind, p, len);
+    const build = compensated
+      ? (pw, p) => x.wc_envmap_build_compensated(k.kind, pw, width, height, c, fraction, p, len)
+      : (pw, p) => x.wc_envmap_build(k.kind, pw, width, height, p, len);
+    return buildStored(len, `envmap ${kind}`, F, n, weights, build, (p) => new EnvMap(secret, kind, p, len));
   }
 
   Object_.assign(api, {
@@ -871,39 +958,211 @@ function create(x) {
      * `options.verify` (default true) is the one property of a caller's object this module
      * reads: once, first; an exception from reading it becomes a TypeError.
      */
-    envmapFromStorage(words, options) {
-      let verify = true;
-      if (options !== undefined) {
-        if (options === null || typeof options !== 'object') {
-          throw typeError(`options must be an object, not ${describe(options)}`);
-        }
-        let v;
-        try {
-          v = options.verify;
-        } catch {
-          throw typeError('options.verify could not be read');
-        }
-        if (v !== undefined && typeof v !== 'boolean') throw typeError(`options.verify must be a boolean, not ${describe(v)}`);
-        if (v === false) verify = false;
-      }
-      const stored = storageWords(words);
-      const len = stored.len;
-      const first = stored.first;
-      const kind = first === KINDS.hierarchical.tag ? 'hierarchical' : first === KINDS['marginal-conditional'].tag ? 'marginal-conditional' : undefined;
-      if (kind === undefined) throw fail(len < HEADER_WORDS ? -4 : -6, 'envmapFromStorage');
-      const p = heap.alloc(4 * len);
-      try {
-        stored.copy(p);
-        const code = verify ? x.wc_envmap_from_storage_verified(p, len) : x.wc_envmap_from_storage(p, len);
-        if (code !== 0) throw fail(code, 'envmapFromStorage');
-      } catch (e) {
-        heap.free(p);
-        throw e;
-      }
-      return new EnvMap(secret, kind, p, len);
-    },
+    /**
+     * An EnvMap from storage words (`EnvMap.storage()`, or a file written by the C API);
+     * `options.verify` (default true): see `loadStored`.
+     */
+    envmapFromStorage: (words, options) =>
+      loadStored(words, options, 'envmapFromStorage', envmapKind, x.wc_envmap_from_storage, x.wc_envmap_from_storage_verified, (kind, p, len) => new EnvMap(secret, kind, p, len)),
     /** Bytes of wasm memory: total, and reserved by live env maps and calls. */
     memoryStats: () => ({ memory: AB_BYTE_LENGTH(MEMORY_BUFFER(memory)), reserved: heap.used() }),
+  });
+  // ---- light selection: an alias table and a light tree (wc_lights_*) ----
+
+  // Words of one WcLightBounds record: min[3], max[3], power, axis[3], cos_theta_o,
+  // cos_theta_e, two_sided (a word in C; a float here, nonzero meaning two-sided).
+  const BOUNDS_WORDS = 13;
+
+  /**
+   * The `n` shading points of a light-tree call: `p` and `normal` (`3n` floats each) and the
+   * per-point argument `a` (`n` elements of `T`, or a number for one point: then `p` and
+   * `normal` hold 3 floats). Returns `n`; RangeError when the lengths disagree.
+   */
+  function points(p, normal, a, T, name) {
+    const n = elements(p, F, 3, 'p');
+    if (elements(normal, F, 3, 'n') !== n) throw rangeError(`n.length must be ${3 * n} (p.length), got ${TA_LENGTH(normal)}`);
+    const m = typeof a === 'number' ? 1 : elements(a, T, 1, name);
+    if (m !== n) throw rangeError(`${name} must hold one value per point (${n}), got ${m}`);
+    return n;
+  }
+
+  /** `{ index, prob }` of `n` choices from `index` and `prob` words at `pi` and `pp`: one as numbers when `one`. */
+  const choices = (pi, pp, n, one) => {
+    if (one) return { index: view(U, pi, 1)[0], prob: view(F, pp, 1)[0] };
+    return { index: read(U, pi, n, new U32(n)), prob: read(F, pp, n, new F32(n)) };
+  };
+
+  /** The storage address of a live AliasTable or LightTree (`kind`): TypeError for anything else. */
+  let liveAs;
+
+  /** What AliasTable and LightTree share: `count`, the number of lights (storage word 2). */
+  class Lights extends Stored {
+    #kind;
+    constructor(key, kind, maker, p, len) {
+      if (key !== secret) throw typeError(`use ${maker} or ${maker}FromStorage`);
+      super(key, kind, p, len);
+      this.#kind = kind;
+      own(this, 'count', view(U, p, 3)[2]);
+    }
+
+    static {
+      // `o.#kind` is the brand check (a TypeError for anything not made by this class).
+      liveAs = (o, kind) => {
+        if (o.#kind !== kind) throw typeError(`a ${kind} method called on a ${o.#kind}`);
+        return liveOf(o);
+      };
+    }
+  }
+  freeze(Lights.prototype);
+  freeze(Lights);
+
+  /** An alias table (Walker/Vose) over per-light weights, in the module's memory. */
+  class AliasTable extends Lights {
+    constructor(key, p, len) {
+      super(key, 'AliasTable', 'lightsAlias', p, len);
+    }
+
+    /**
+     * Chooses a light per value of `u` (a Float32Array, or one number; any values, NaN and
+     * negatives as 0, `>= 1` as `1 - 2^-24`): `{ index, prob }` (a Uint32Array and a
+     * Float32Array, or two numbers), `prob` bit-equal to `pmf(index)`.
+     */
+    sample(u) {
+      const p = liveAs(this, 'AliasTable');
+      const one = typeof u === 'number';
+      const n = one ? 1 : elements(u, F, 1, 'u');
+      if (n === 0) return { index: new U32(0), prob: new F32(0) };
+      return scratch2(F, n, one ? undefined : u, U, 2 * n, undefined, (pu, po) => {
+        if (one) view(F, pu, 1)[0] = u;
+        expect(x.wc_lights_alias_sample(p, lenOf(this), pu, po, n), n, 'sample');
+        // WcLightChoice { index, prob } pairs: split in place into index words and prob bits.
+        const w = view(U, po, 2 * n);
+        if (one) return { index: w[0], prob: view(F, po + 4, 1)[0] };
+        const index = new U32(n);
+        const prob = new F32(n);
+        const probBits = new U32(TA_BUFFER(prob));
+        for (let i = 0; i < n; i++) {
+          index[i] = w[2 * i];
+          probBits[i] = w[2 * i + 1];
+        }
+        return { index, prob };
+      });
+    }
+
+    /**
+     * The probability that `sample` chooses each light of `index` (a Uint32Array, into `out`
+     * or a new Float32Array; or one number, giving a number); 0 at or past `count`.
+     */
+    pmf(index, out) {
+      const p = liveAs(this, 'AliasTable');
+      const one = typeof index === 'number';
+      if (one) {
+        u32(index, 'index');
+        if (out !== undefined) throw typeError('out is only for a Uint32Array of indices');
+      }
+      const n = one ? 1 : elements(index, U, 1, 'index');
+      const result = one ? undefined : output(out, F, n);
+      if (n === 0) return result;
+      return scratch2(U, n, one ? undefined : index, F, n, undefined, (pi, po) => {
+        if (one) view(U, pi, 1)[0] = index;
+        expect(x.wc_lights_alias_pmf(p, lenOf(this), pi, po, n), n, 'pmf');
+        return one ? view(F, po, 1)[0] : read(F, po, n, result);
+      });
+    }
+  }
+  freeze(AliasTable.prototype);
+  freeze(AliasTable);
+
+  /** A light tree (a 4-ary BVH over light bounds, pbrt-v4's importance), in the module's memory. */
+  class LightTree extends Lights {
+    constructor(key, p, len) {
+      super(key, 'LightTree', 'lightsTree', p, len);
+    }
+
+    /**
+     * Chooses a light at each shading point `p` with normal `n` (`3k` floats each; a zero
+     * normal: a point in a medium) from `u` (`k` floats, or one number with one point):
+     * `{ index, prob }`, `prob` bit-equal to `pmf(p, n, index)`; index `0xffffffff` and
+     * prob 0 where no light contributes.
+     */
+    sample(p, n, u) {
+      const s = liveAs(this, 'LightTree');
+      const k = points(p, n, u, F, 'u');
+      const one = typeof u === 'number';
+      if (k === 0) return { index: new U32(0), prob: new F32(0) };
+      return scratch3(F, 3 * k, p, F, 3 * k, n, F, k, one ? undefined : u, (pp, pn, pu) => {
+        if (one) view(F, pu, 1)[0] = u;
+        return scratch2(U, k, undefined, F, k, undefined, (pi, pr) => {
+          expect(x.wc_lights_tree_sample(s, lenOf(this), pp, pn, pu, pi, pr, k), k, 'sample');
+          return choices(pi, pr, k, one);
+        });
+      });
+    }
+
+    /**
+     * The probability that `sample` at each point (`p`, `n`: `3k` floats) returns the light
+     * `index` (`k` words into `out` or a new Float32Array; or one number, giving a number).
+     */
+    pmf(p, n, index, out) {
+      const s = liveAs(this, 'LightTree');
+      const one = typeof index === 'number';
+      if (one) {
+        u32(index, 'index');
+        if (out !== undefined) throw typeError('out is only for a Uint32Array of indices');
+      }
+      const k = points(p, n, index, U, 'index');
+      const result = one ? undefined : output(out, F, k);
+      if (k === 0) return result;
+      return scratch3(F, 3 * k, p, F, 3 * k, n, U, k, one ? undefined : index, (pp, pn, pi) => {
+        if (one) view(U, pi, 1)[0] = index;
+        return scratch1(F, k, undefined, (po) => {
+          expect(x.wc_lights_tree_pmf(s, lenOf(this), pp, pn, pi, po, k), k, 'pmf');
+          return one ? view(F, po, 1)[0] : read(F, po, k, result);
+        });
+      });
+    }
+  }
+  freeze(LightTree.prototype);
+  freeze(LightTree);
+
+  /** A light-selection storage needs no kind: the C check names a wrong tag. */
+  const anyKind = () => undefined;
+
+  Object_.assign(api, {
+    AliasTable,
+    LightTree,
+    /**
+     * The alias table of `weights` (a Float32Array, one finite weight >= 0 per light, usually
+     * its power); RangeError (`code` WC_ERR_EMPTY, _INVALID_WEIGHT, _ALL_ZERO, _TOO_LARGE).
+     */
+    lightsAlias(weights) {
+      const n = array(weights, F, 'weights');
+      const len = x.wc_lights_alias_storage_len(n) >>> 0;
+      return buildStored(len, 'lightsAlias', F, n, weights, (pw, p) => x.wc_lights_alias_build(pw, n, p, len), (p) => new AliasTable(secret, p, len));
+    },
+    /** An AliasTable from storage words (`AliasTable.storage()` or a C file); options as envmapFromStorage's. */
+    lightsAliasFromStorage: (words, options) =>
+      loadStored(words, options, 'lightsAliasFromStorage', anyKind, x.wc_lights_alias_from_storage, x.wc_lights_alias_from_storage_verified, (kind, p, len) => new AliasTable(secret, p, len)),
+    /**
+     * The light tree of `lights`: a Float32Array of 13 floats per light (min x y z, max x y z,
+     * power, axis x y z, cosThetaO, cosThetaE, twoSided: any value but 0 or -0 means two-sided);
+     * RangeError (`code` WC_ERR_EMPTY, _INVALID_WEIGHT, _INVALID_BOUNDS, _ALL_ZERO, _TOO_LARGE).
+     */
+    lightsTree(lights) {
+      const n = elements(lights, F, BOUNDS_WORDS, 'lights');
+      const len = x.wc_lights_tree_storage_len(n) >>> 0;
+      const build = (pl, p) => {
+        // The C record's last field is a word: 1 for two-sided, 0 for one-sided.
+        const f = view(F, pl, BOUNDS_WORDS * n);
+        const w = view(U, pl, BOUNDS_WORDS * n);
+        for (let i = BOUNDS_WORDS - 1; i < BOUNDS_WORDS * n; i += BOUNDS_WORDS) w[i] = f[i] !== 0 ? 1 : 0;
+        return x.wc_lights_tree_build(pl, n, p, len);
+      };
+      return buildStored(len, 'lightsTree', F, BOUNDS_WORDS * n, lights, build, (p) => new LightTree(secret, p, len));
+    },
+    /** A LightTree from storage words (`LightTree.storage()` or a C file); options as envmapFromStorage's. */
+    lightsTreeFromStorage: (words, options) =>
+      loadStored(words, options, 'lightsTreeFromStorage', anyKind, x.wc_lights_tree_from_storage, x.wc_lights_tree_from_storage_verified, (kind, p, len) => new LightTree(secret, p, len)),
   });
   Object_.assign(api, samplerApi(x, memory, heap));
   return freeze(api);

@@ -74,3 +74,210 @@ fn wc_lights_alias_pmf(base: u32, index: u32) -> f32 {
     let bits = wcli_clean(wc_lights[base + 8u + 4u * index + 2u]);
     return select(0.0f, bitcast<f32>(bits), index < n);
 }
+
+// ---- The light tree (`lights::LightTree`, format version 1) ----
+//
+// Storage: 16 header words (tag "wcLT", version, n, m, levels, 0, 0, 0, checksum, 0 ...),
+// then n / 3 + 14 quads of 32 words (the four children of an inner node, field-major: word k
+// of child c at 4 k + c; a node: bounding-sphere centre and radius, power, octahedral axis,
+// two 16-bit cosines, and a word with the leaf flag, the two-sided flag and an index), then
+// one bit trail per light. The walk is src/lights/tree.rs's, operation by operation (the
+// same IEEE operations in the same order: +, -, *, /, sqrt, compares and selects only), so
+// a GPU that rounds them as IEEE 754 says returns the crate's bits (proved on lavapipe).
+
+const WCLI_TREE_HEADER: u32 = 16u;
+const WCLI_TREE_QUAD_WORDS: u32 = 32u;
+const WCLI_TREE_LEAF: u32 = 0x80000000u;
+const WCLI_TREE_TWO_SIDED: u32 = 0x40000000u;
+const WCLI_TREE_INDEX_MASK: u32 = 0x3fffffffu;
+const WCLI_TREE_MAX_LEVELS: u32 = 16u;
+// Importances are clamped to 2^126, so a sum of two stays finite.
+const WCLI_TREE_BIG: f32 = 0x1p126f;
+const WCLI_F32_MAX: f32 = 0x1.fffffep127f;
+const WCLI_F32_MIN_POSITIVE: f32 = 0x1p-126f;
+
+// The shading point as the walk sees it (`tree::Point`): p (zeros unless finite), the unit
+// normal (zeros for a medium), whether there is a normal, whether p is finite.
+struct WcliPoint {
+    p: vec3<f32>,
+    n: vec3<f32>,
+    has_n: bool,
+    valid: bool,
+}
+
+// `x` if 0 < x, else 0 (NaN too).
+fn wcli_pos(x: f32) -> f32 {
+    return select(0.0f, x, 0.0f < x);
+}
+
+// cos(max(0, a - b)) from the cosines and sines of a and b in [0, pi].
+fn wcli_cos_sub(cos_a: f32, sin_a: f32, cos_b: f32, sin_b: f32) -> f32 {
+    return select(cos_a * cos_b + sin_a * sin_b, 1.0f, cos_b < cos_a);
+}
+
+// `a` with its sign bit xor-ed with the sign bit of `s` (`flip_sign(sign_bit)`).
+fn wcli_flip_sign(a: f32, s: f32) -> f32 {
+    return bitcast<f32>(bitcast<u32>(a) ^ (bitcast<u32>(s) & 0x80000000u));
+}
+
+// A 16-bit fixed-point cosine q / 2^15 - 1 (exact).
+fn wcli_cos16(q: u32) -> f32 {
+    return f32(q & 0xffffu) * 0x1p-15f - 1.0f;
+}
+
+// The unit axis of an octahedral node word (`tree::oct_decode`).
+fn wcli_oct_decode(w: u32) -> vec3<f32> {
+    let x0 = f32(w & 0xffffu) * 0x1p-15f - 1.0f;
+    let y0 = f32(w >> 16u) * 0x1p-15f - 1.0f;
+    let z = 1.0f - abs(x0) - abs(y0);
+    let lower = z < 0.0f;
+    let fx = wcli_flip_sign(1.0f - abs(y0), x0);
+    let fy = wcli_flip_sign(1.0f - abs(x0), y0);
+    let x = select(x0, fx, lower);
+    let y = select(y0, fy, lower);
+    let inv = 1.0f / sqrt(x * x + y * y + z * z);
+    return vec3<f32>(x * inv, y * inv, z * inv);
+}
+
+fn wcli_point(p: vec3<f32>, n: vec3<f32>) -> WcliPoint {
+    let valid = abs(p.x) <= WCLI_F32_MAX && abs(p.y) <= WCLI_F32_MAX && abs(p.z) <= WCLI_F32_MAX;
+    let q = vec3<f32>(select(0.0f, p.x, valid), select(0.0f, p.y, valid), select(0.0f, p.z, valid));
+    let len2 = n.x * n.x + n.y * n.y + n.z * n.z;
+    let has_n = 0.0f < len2 && len2 <= WCLI_F32_MAX;
+    let inv = select(0.0f, 1.0f / sqrt(len2), has_n);
+    let m = vec3<f32>(select(0.0f, n.x * inv, has_n), select(0.0f, n.y * inv, has_n), select(0.0f, n.z * inv, has_n));
+    return WcliPoint(q, m, has_n, valid);
+}
+
+// Word k of child c of quad `quad` (zeros past the storage's quads, as the crate's gather).
+fn wcli_tree_word(base: u32, quads: u32, quad: u32, k: u32, c: u32) -> u32 {
+    let at = base + WCLI_TREE_HEADER + WCLI_TREE_QUAD_WORDS * quad + 4u * k + c;
+    return select(0u, wc_lights[at], quad < quads);
+}
+
+// The importance of child c of a quad at the point (`tree::importance`): finite, in
+// [0, 2^126], whatever the words hold.
+fn wcli_tree_importance(pt: WcliPoint, base: u32, quads: u32, quad: u32, c: u32) -> f32 {
+    let d = vec3<f32>(
+        pt.p.x - bitcast<f32>(wcli_tree_word(base, quads, quad, 0u, c)),
+        pt.p.y - bitcast<f32>(wcli_tree_word(base, quads, quad, 1u, c)),
+        pt.p.z - bitcast<f32>(wcli_tree_word(base, quads, quad, 2u, c)),
+    );
+    let d2 = d.x * d.x + d.y * d.y + d.z * d.z;
+    let r = bitcast<f32>(wcli_tree_word(base, quads, quad, 3u, c));
+    let r2 = r * r;
+    let phi = bitcast<f32>(wcli_tree_word(base, quads, quad, 4u, c));
+    let inside = d2 < r2;
+    let dist = sqrt(d2);
+    let inv = select(0.0f, 1.0f / dist, 0.0f < d2);
+    let wi = vec3<f32>(d.x * inv, d.y * inv, d.z * inv);
+    let axis = wcli_oct_decode(wcli_tree_word(base, quads, quad, 5u, c));
+    let cos_w0 = (axis.x * d.x + axis.y * d.y + axis.z * d.z) * inv;
+    let info = wcli_tree_word(base, quads, quad, 7u, c);
+    let two_sided = (info & WCLI_TREE_TWO_SIDED) != 0u;
+    let cos_w = select(cos_w0, abs(cos_w0), two_sided);
+    let sin_w = sqrt(wcli_pos(1.0f - cos_w * cos_w));
+    let oe = wcli_tree_word(base, quads, quad, 6u, c);
+    let cos_o = wcli_cos16(oe);
+    let cos_e = wcli_cos16(oe >> 16u);
+    let sin_o = sqrt(wcli_pos(1.0f - cos_o * cos_o));
+    // The cone the sphere subtends: sin = r / d (the whole sphere inside).
+    let sin_b0 = wcli_pos(r * inv);
+    let cos_b = select(sqrt(wcli_pos(1.0f - sin_b0 * sin_b0)), -1.0f, inside);
+    let sin_b = select(sin_b0, 0.0f, inside);
+    let cos_x = wcli_cos_sub(cos_w, sin_w, cos_o, sin_o);
+    let sin_x = select(sin_w * cos_o - cos_w * sin_o, 0.0f, cos_o < cos_w);
+    let cos_p = wcli_cos_sub(cos_x, sin_x, cos_b, sin_b);
+    let cos_i = abs(wi.x * pt.n.x + wi.y * pt.n.y + wi.z * pt.n.z);
+    let sin_i = sqrt(wcli_pos(1.0f - cos_i * cos_i));
+    let cos_pi = select(1.0f, wcli_cos_sub(cos_i, sin_i, cos_b, sin_b), pt.has_n);
+    let dc0 = select(d2, r2, inside);
+    let dc = select(WCLI_F32_MIN_POSITIVE, dc0, WCLI_F32_MIN_POSITIVE < dc0);
+    let imp0 = phi * cos_p * (1.0f / dc) * cos_pi;
+    let alive = cos_e < cos_p && pt.valid;
+    let imp = select(0.0f, imp0, alive);
+    return select(0.0f, select(WCLI_TREE_BIG, imp, imp < WCLI_TREE_BIG), 0.0f < imp);
+}
+
+// The walk (`tree::walk`): from quad 0, `levels` steps, each two binary choices, by `u`
+// (`by_u`; rescaled into the side taken) or by the bits of `trail`.
+fn wcli_tree_walk(base: u32, pt: WcliPoint, u0: f32, trail: u32, by_u: bool) -> WcLightChoice {
+    let len = wc_lights[base + 2u];
+    let levels = min(wc_lights[base + 4u], WCLI_TREE_MAX_LEVELS);
+    let quads = len / 3u + 14u;
+    var u = u0;
+    var quad = 0u;
+    var prob = 1.0f;
+    var index = 0xffffffffu;
+    var done = false;
+    var dead = !pt.valid;
+    for (var level = 0u; level < levels; level++) {
+        let i0 = wcli_tree_importance(pt, base, quads, quad, 0u);
+        let i1 = wcli_tree_importance(pt, base, quads, quad, 1u);
+        let i2 = wcli_tree_importance(pt, base, quads, quad, 2u);
+        let i3 = wcli_tree_importance(pt, base, quads, quad, 3u);
+        let s01 = i0 + i1;
+        let s23 = i2 + i3;
+        let sum = s01 + s23;
+        let live = 0.0f < sum;
+        let p_low = select(0.0f, s01 / sum, live);
+        // The pair: by u (rescaled), or trail bit 2 level.
+        var high = !(u < p_low);
+        if by_u {
+            let v = select(u / p_low, (u - p_low) / (1.0f - p_low), high);
+            u = select(0.0f, select(WCLI_ONE_MINUS_EPSILON, v, v < WCLI_ONE_MINUS_EPSILON), 0.0f < v);
+        } else {
+            high = ((trail >> (2u * level)) & 1u) != 0u;
+        }
+        let p_pair = select(p_low, 1.0f - p_low, high);
+        let p_first = select(
+            select(0.0f, i0 / s01, 0.0f < s01),
+            select(0.0f, i2 / s23, 0.0f < s23),
+            high,
+        );
+        // The child of the pair: trail bit 2 level + 1.
+        var second = !(u < p_first);
+        if by_u {
+            let v = select(u / p_first, (u - p_first) / (1.0f - p_first), second);
+            u = select(0.0f, select(WCLI_ONE_MINUS_EPSILON, v, v < WCLI_ONE_MINUS_EPSILON), 0.0f < v);
+        } else {
+            second = ((trail >> (2u * level + 1u)) & 1u) != 0u;
+        }
+        let p_child = select(p_first, 1.0f - p_first, second);
+        let was_going = !(done || dead);
+        dead = dead || (was_going && !live);
+        let going = was_going && live;
+        prob = select(prob, prob * p_pair * p_child, going);
+        let child = select(0u, 2u, high) + select(0u, 1u, second);
+        let info = wcli_tree_word(base, quads, quad, 7u, child);
+        let next = info & WCLI_TREE_INDEX_MASK;
+        let leaf = (info & WCLI_TREE_LEAF) != 0u;
+        let reached = going && leaf;
+        index = select(index, next, reached);
+        done = done || reached;
+        quad = select(quad, next, going && !leaf);
+    }
+    // A leaf naming a light past the end, a walk cut short, a dead end or a probability
+    // that underflowed: no light.
+    let ok = done && !dead && index < len && 0.0f < prob;
+    return WcLightChoice(select(0xffffffffu, index, ok), select(0.0f, prob, ok));
+}
+
+// `LightTree::sample`: a light for the shading point `p` with normal `n` (zeros: a point in
+// a medium; need not be unit) from `u` (any value: NaN, negatives as 0, >= 1 as 1 - 2^-24);
+// `prob` = wc_lights_tree_pmf of it, bit for bit; index 0xffffffff and prob 0 where no light
+// contributes.
+fn wc_lights_tree_sample(base: u32, p: vec3<f32>, n: vec3<f32>, u: f32) -> WcLightChoice {
+    return wcli_tree_walk(base, wcli_point(p, n), wcli_unit_interval(u), 0u, true);
+}
+
+// `LightTree::pmf`: the probability that wc_lights_tree_sample at (p, n) returns `index`
+// (0 past the end, for a light of power 0 or of importance 0 at p), along its bit trail.
+fn wc_lights_tree_pmf(base: u32, p: vec3<f32>, n: vec3<f32>, index: u32) -> f32 {
+    let len = wc_lights[base + 2u];
+    let quads = len / 3u + 14u;
+    let at = base + WCLI_TREE_HEADER + WCLI_TREE_QUAD_WORDS * quads + index;
+    let trail = select(0u, wc_lights[at], index < len);
+    let r = wcli_tree_walk(base, wcli_point(p, n), 0.0f, trail, false);
+    return select(0.0f, r.prob, r.index == index);
+}

@@ -32,6 +32,34 @@ const STORAGE = (() => {
   return words;
 })();
 
+// Point lights (13 floats each: min, max, power, axis, cosThetaO, cosThetaE, twoSided) at
+// pseudo-random places, powers 1 .. 4; `bound(k, i, v, ...)`: light k's field i set to v.
+const POINT_LIGHTS = (() => {
+  const a = new Float32Array(13 * 6);
+  for (let k = 0; k < 6; k++) {
+    const c = [((k * 37) % 11) - 5, ((k * 53) % 7) - 3, ((k * 29) % 5) - 2];
+    a.set([...c, ...c, 1 + (k % 4), 0, 0, 1, -1, 0, 0], 13 * k);
+  }
+  return a;
+})();
+const bound = (k, ...fields) => {
+  const a = POINT_LIGHTS.slice(0, 26);
+  for (let j = 0; j < fields.length; j += 2) a[13 * k + fields[j]] = fields[j + 1];
+  return a;
+};
+const ALIAS_STORAGE = (() => {
+  const a = wc.lightsAlias(f32(1, 0, 2, 5));
+  const words = a.storage();
+  a.free();
+  return words;
+})();
+const TREE_STORAGE = (() => {
+  const t = wc.lightsTree(POINT_LIGHTS);
+  const words = t.storage();
+  t.free();
+  return words;
+})();
+
 const SPEC = {
   ...pointMaps((d) => vec(Float32Array, d)),
   diskPolar4: [vec(Float32Array, 2), COUNT],
@@ -83,6 +111,20 @@ const SPEC = {
       [new Float32Array(STORAGE.length), RangeError],
     ],
   }],
+  // Light selection: weights (one per light), bounds (13 floats per light), storage words.
+  lightsAlias: [{ T: Float32Array, d: 1, good: () => f32(1, 0, 2), bad: [...badValues({ T: Float32Array, d: 1, good: () => f32(1, 0, 2) }), [f32(), RangeError], [f32(1, NaN), RangeError], [f32(1, -1), RangeError], [f32(Infinity), RangeError], [f32(0, 0), RangeError]] }],
+  lightsTree: [{ T: Float32Array, d: 13, good: () => POINT_LIGHTS.slice(0, 26), bad: [...badValues({ T: Float32Array, d: 13, good: () => POINT_LIGHTS.slice(0, 26) }), [f32(), RangeError], [bound(0, 6, NaN), RangeError], [bound(0, 0, 5), RangeError], [bound(0, 11, 2), RangeError], [bound(0, 7, 0, 8, 0, 9, 0), RangeError]] }],
+  ...Object.fromEntries([['lightsAliasFromStorage', () => ALIAS_STORAGE], ['lightsTreeFromStorage', () => TREE_STORAGE]].map(([name, words]) => [name, [{
+    good: () => words().slice(),
+    bad: [
+      [Array.from(words()), TypeError], [null, TypeError], [undefined, TypeError], ['abc', TypeError], [{}, TypeError],
+      [new Uint8Array(4 * words().length + 1), RangeError],
+      [new DataView(new ArrayBuffer(4 * words().length)), RangeError],
+      [new Float32Array(words().length), RangeError],
+      [STORAGE.slice(), RangeError], // an env map's storage
+      [(name === 'lightsTreeFromStorage' ? ALIAS_STORAGE : TREE_STORAGE).slice(), RangeError],
+    ],
+  }]])),
   memoryStats: [],
   // The sampler (js/test/sampler.test.mjs tests its arguments in depth).
   samplerPath: [],
@@ -96,7 +138,7 @@ const SPEC = {
     { good: () => 2, bad: [[0, RangeError], [5, RangeError], [1.5, RangeError], ['2', TypeError], [undefined, TypeError]] },
   ]])),
 };
-const VALUES = ['pmj02bnPoints', 'pmj02bnSets', 'EnvMap'];
+const VALUES = ['pmj02bnPoints', 'pmj02bnSets', 'EnvMap', 'AliasTable', 'LightTree'];
 
 /** Calls `f` and returns the error it throws (failing if it throws none or a wasm trap). */
 function thrown(f, what) {
@@ -134,7 +176,7 @@ test('every function of the API has an argument spec, and valid calls succeed', 
     assert.equal(typeof value, 'function', name);
     assert.ok(SPEC[name], `no argument spec for ${name}`);
     const result = value(...SPEC[name].map((s) => s.good()));
-    if (result instanceof wc.EnvMap) result.free();
+    if (result instanceof wc.EnvMap || result instanceof wc.AliasTable || result instanceof wc.LightTree) result.free();
   }
   assert.deepEqual(Object.keys(wc).filter((k) => !(k in SPEC)).sort(), [...VALUES].sort());
   assert.ok(Object.isFrozen(wc));
@@ -499,4 +541,261 @@ test('the same weights give the same storage bytes, built here or in Rust (addre
   const b = wc.envmapHierarchical(w, 13, 7);
   assert.deepEqual(a.storage(), b.storage());
   for (const e of [keep, a, b]) e.free();
+});
+
+// ---- light selection ----
+
+/** A deterministic uniform stream in [0, 1) (a 32-bit LCG's high 24 bits). */
+function lcg(seed) {
+  let x = seed >>> 0;
+  return () => {
+    x = (Math.imul(x, 1664525) + 1013904223) >>> 0;
+    return (x >>> 8) * 2 ** -24;
+  };
+}
+const bits = (x) => new Uint32Array(Float32Array.of(x).buffer)[0];
+/** Pearson's chi-square of `counts` against `n * p` over the cells with p > 0. */
+function chiSquare(counts, p, n) {
+  let chi = 0;
+  let cells = 0;
+  for (let i = 0; i < p.length; i++) {
+    if (p[i] === 0) {
+      assert.equal(counts[i], 0, `cell ${i} has probability 0 but was drawn`);
+      continue;
+    }
+    chi += (counts[i] - n * p[i]) ** 2 / (n * p[i]);
+    cells++;
+  }
+  return { chi, df: cells - 1 };
+}
+// Upper 0.1% points of chi-square (Wilson-Hilferty, good to 1% here): a correct sampler fails
+// one of these tests with probability 0.001.
+const chi999 = (df) => df * (1 - 2 / (9 * df) + 3.0902 * Math.sqrt(2 / (9 * df))) ** 3;
+
+test('AliasTable: probabilities of the weights, sample == pmf bit for bit, zeros never drawn', (t) => {
+  const next = lcg(7);
+  const n = 50;
+  const w = new Float32Array(n);
+  for (let i = 0; i < n; i++) w[i] = i % 9 === 4 ? 0 : next() * 10 ** Math.floor(next() * 4);
+  const table = wc.lightsAlias(w);
+  assert.equal(table.count, n);
+  assert.equal(table.storageLength, 8 + 4 * n);
+  let total = 0;
+  for (let i = 0; i < n; i++) total += w[i];
+  const pmf = table.pmf(Uint32Array.from({ length: n + 3 }, (_, i) => i));
+  let sum = 0;
+  for (let i = 0; i < n; i++) {
+    // The documented bound: 2^-32 (1 + 1/n) absolute plus 2^-24 relative.
+    const want = w[i] / total;
+    assert.ok(Math.abs(pmf[i] - want) <= 2 ** -32 * (1 + 1 / n) + 2 ** -24 * want + 1e-12, `light ${i}: pmf ${pmf[i]}, weight share ${want}`);
+    assert.equal(pmf[i] > 0, w[i] > 0);
+    assert.equal(table.pmf(i), pmf[i], 'pmf of a number');
+    sum += pmf[i];
+  }
+  assert.ok(Math.abs(sum - 1) < 1e-6, `pmf sums to ${sum}`);
+  assert.deepEqual(Array.from(pmf.subarray(n)), [0, 0, 0], 'pmf past the end');
+  // 200,000 independent u: chi-square against pmf; every prob equals pmf(index) bitwise.
+  const N = 200_000;
+  const u = new Float32Array(N);
+  for (let i = 0; i < N; i++) u[i] = next();
+  const s = table.sample(u);
+  const counts = new Float64Array(n);
+  const again = table.pmf(s.index);
+  for (let i = 0; i < N; i++) {
+    counts[s.index[i]]++;
+    assert.equal(bits(s.prob[i]), bits(again[i]));
+  }
+  const { chi, df } = chiSquare(counts, pmf.subarray(0, n), N);
+  t.diagnostic(`alias chi-square ${chi.toFixed(1)} on ${df} df (0.1% point ${chi999(df).toFixed(1)}), ${N} samples`);
+  assert.ok(chi < chi999(df), `chi-square ${chi}`);
+  // The scalar form and out-of-range u (NaN, negatives as 0; >= 1 as 1 - 2^-24).
+  for (let i = 0; i < 64; i++) assert.deepEqual(table.sample(u[i]), { index: s.index[i], prob: s.prob[i] });
+  const odd = table.sample(f32(NaN, -1, -0, 1, 2, Infinity, -Infinity, 1e-40));
+  const zero = table.sample(0);
+  const top = table.sample(1 - 2 ** -24);
+  assert.deepEqual(Array.from(odd.index), [zero.index, zero.index, zero.index, top.index, top.index, top.index, zero.index, zero.index]);
+  assert.equal(table.sample(f32()).index.length, 0);
+  // Stratified u keep their strata through the columns and the thresholds: every light's
+  // count within 4 of M p (independent u deviate by about sqrt(M / n) = 36 here).
+  const M = 1 << 16;
+  const strat = table.sample(Float32Array.from({ length: M }, (_, i) => (i + 0.5) / M));
+  const c2 = new Float64Array(n);
+  for (let i = 0; i < M; i++) c2[strat.index[i]]++;
+  let worst = 0;
+  for (let i = 0; i < n; i++) worst = Math.max(worst, Math.abs(c2[i] - M * pmf[i]));
+  t.diagnostic(`stratified u: largest count deviation ${worst.toFixed(2)} of ${M} samples over ${n} lights`);
+  assert.ok(worst < 4, `stratified deviation ${worst}`);
+  table.free();
+});
+
+test('AliasTable: storage round trip, every single-bit flip rejected, garbage stays in range', () => {
+  const table = wc.lightsAlias(f32(3, 0, 1, 0.5, 7));
+  const words = table.storage();
+  const u = Float32Array.from({ length: 64 }, (_, i) => i / 64);
+  const want = table.sample(u);
+  const copy = wc.lightsAliasFromStorage(words);
+  assert.deepEqual(copy.sample(u), want);
+  assert.deepEqual(wc.lightsAliasFromStorage(new Uint8Array(words.buffer)).sample(u), want, 'as bytes');
+  copy.free();
+  for (let w = 0; w < words.length; w++) {
+    for (let b = 0; b < 32; b++) {
+      const flipped = words.slice();
+      flipped[w] ^= 1 << b;
+      const e = thrown(() => wc.lightsAliasFromStorage(flipped), `word ${w} bit ${b}`);
+      assert.equal(e.constructor, RangeError);
+      assert.match(e.code, /^WC_ERR_(CORRUPT|WRONG_FORMAT|UNSUPPORTED_VERSION|STORAGE_TOO_SMALL)$/);
+      // Unverified: loads when the header is intact, and samples stay valid.
+      let loose;
+      try {
+        loose = wc.lightsAliasFromStorage(flipped, { verify: false });
+      } catch {
+        continue;
+      }
+      const s = loose.sample(u);
+      for (let i = 0; i < 64; i++) assert.ok(s.index[i] < loose.count && s.prob[i] >= 0 && s.prob[i] <= 1, `word ${w} bit ${b}`);
+      loose.free();
+    }
+  }
+  table.free();
+  assert.equal(thrown(() => table.sample(0.5)).constructor, TypeError, 'freed');
+});
+
+test('light-selection errors carry the C code', () => {
+  const code = (f) => thrown(f).code;
+  assert.equal(code(() => wc.lightsAlias(f32())), 'WC_ERR_EMPTY');
+  assert.equal(code(() => wc.lightsAlias(f32(1, NaN))), 'WC_ERR_INVALID_WEIGHT');
+  assert.equal(code(() => wc.lightsAlias(f32(1, -2))), 'WC_ERR_INVALID_WEIGHT');
+  assert.equal(code(() => wc.lightsAlias(f32(0, -0))), 'WC_ERR_ALL_ZERO');
+  assert.equal(code(() => wc.lightsTree(f32())), 'WC_ERR_EMPTY');
+  assert.equal(code(() => wc.lightsTree(bound(1, 6, -1))), 'WC_ERR_INVALID_WEIGHT');
+  assert.equal(code(() => wc.lightsTree(bound(0, 0, 9))), 'WC_ERR_INVALID_BOUNDS', 'min > max');
+  assert.equal(code(() => wc.lightsTree(bound(0, 4, NaN))), 'WC_ERR_INVALID_BOUNDS', 'a NaN corner');
+  assert.equal(code(() => wc.lightsTree(bound(1, 12 - 1, 1.5))), 'WC_ERR_INVALID_BOUNDS', 'a cosine above 1');
+  assert.equal(code(() => wc.lightsTree(bound(0, 6, 0, 19, 0))), 'WC_ERR_ALL_ZERO');
+  assert.equal(code(() => wc.lightsAliasFromStorage(TREE_STORAGE)), 'WC_ERR_WRONG_FORMAT');
+  assert.equal(code(() => wc.lightsTreeFromStorage(TREE_STORAGE.subarray(0, 5))), 'WC_ERR_STORAGE_TOO_SMALL');
+});
+
+test('LightTree: sample == pmf bit for bit, pmfs sum to 1 for point lights, frequencies', (t) => {
+  const next = lcg(11);
+  const n = 40;
+  const lights = new Float32Array(13 * n);
+  for (let k = 0; k < n; k++) {
+    const c = [next() * 20 - 10, next() * 20 - 10, next() * 4];
+    lights.set([...c, ...c, k % 13 === 6 ? 0 : 0.5 + next() * 5, 0, 0, 1, -1, 0, 0], 13 * k);
+  }
+  const tree = wc.lightsTree(lights);
+  assert.equal(tree.count, n);
+  const P = 200;
+  const p = new Float32Array(3 * P);
+  const nrm = new Float32Array(3 * P);
+  const u = new Float32Array(P);
+  for (let i = 0; i < P; i++) {
+    p.set([next() * 24 - 12, next() * 24 - 12, next() * 6 - 1], 3 * i);
+    if (i % 4 !== 0) {
+      const z = next() * 2 - 1;
+      const phi = 2 * Math.PI * next();
+      const r = Math.sqrt(1 - z * z);
+      nrm.set([r * Math.cos(phi), r * Math.sin(phi), z], 3 * i);
+    }
+    u[i] = next();
+  }
+  // Points in a medium (zero normal) see every point light: the pmfs sum to 1.
+  let worstSum = 0;
+  for (let i = 0; i < P; i += 4) {
+    const pi = p.subarray(3 * i, 3 * i + 3);
+    const ni = nrm.subarray(3 * i, 3 * i + 3);
+    const all = tree.pmf(new Float32Array(3 * n).map((_, j) => pi[j % 3]), new Float32Array(3 * n), Uint32Array.from({ length: n }, (_, k) => k));
+    let sum = 0;
+    for (let k = 0; k < n; k++) {
+      sum += all[k];
+      assert.equal(all[k] > 0, lights[13 * k + 6] > 0, `point ${i}, light ${k}`);
+      assert.equal(tree.pmf(pi, ni, k), all[k], 'the scalar pmf');
+    }
+    worstSum = Math.max(worstSum, Math.abs(sum - 1));
+  }
+  t.diagnostic(`largest |sum of pmf - 1| at 50 points in a medium: ${worstSum.toExponential(2)}`);
+  assert.ok(worstSum < 1e-5);
+  const s = tree.sample(p, nrm, u);
+  const q = tree.pmf(p, nrm, s.index);
+  for (let i = 0; i < P; i++) {
+    if (s.index[i] === 0xffffffff) {
+      assert.equal(s.prob[i], 0);
+      continue;
+    }
+    assert.ok(s.prob[i] > 0);
+    assert.equal(bits(s.prob[i]), bits(q[i]), `point ${i}`);
+    const one = tree.sample(p.subarray(3 * i, 3 * i + 3), nrm.subarray(3 * i, 3 * i + 3), u[i]);
+    assert.deepEqual(one, { index: s.index[i], prob: s.prob[i] }, 'the scalar sample');
+  }
+  // Frequencies at one shading point: chi-square against pmf over 100,000 u.
+  const N = 100_000;
+  const pt = f32(0.5, -1, 0.5);
+  const nt = f32(0, 0.6, 0.8);
+  const pN = new Float32Array(3 * N).map((_, j) => pt[j % 3]);
+  const nN = new Float32Array(3 * N).map((_, j) => nt[j % 3]);
+  const uN = new Float32Array(N).map(() => next());
+  const sN = tree.sample(pN, nN, uN);
+  const cells = new Float64Array(n + 1);
+  for (let i = 0; i < N; i++) cells[sN.index[i] === 0xffffffff ? n : sN.index[i]]++;
+  const probs = new Float64Array(n + 1);
+  const pk = tree.pmf(pN.subarray(0, 3 * n), nN.subarray(0, 3 * n), Uint32Array.from({ length: n }, (_, k) => k));
+  let sum = 0;
+  for (let k = 0; k < n; k++) sum += probs[k] = pk[k];
+  probs[n] = Math.max(0, 1 - sum); // None: a dead end (counted as a cell of its own)
+  if (probs[n] < 1e-6) probs[n] = 0;
+  const { chi, df } = chiSquare(cells, probs, N);
+  t.diagnostic(`tree chi-square ${chi.toFixed(1)} on ${df} df (0.1% point ${chi999(df).toFixed(1)}), ${N} samples`);
+  assert.ok(chi < chi999(df), `chi-square ${chi}`);
+  // Hostile p, n, u: valid results, never a throw.
+  const H = [NaN, Infinity, -Infinity, 0, -0, 1e-40, 3e38, -1];
+  const hp = new Float32Array(3 * 64).map((_, j) => H[(j * 7) % 8]);
+  const hn = new Float32Array(3 * 64).map((_, j) => H[(j * 5 + 1) % 8]);
+  const hu = new Float32Array(64).map((_, j) => H[(j * 3 + 2) % 8]);
+  const hs = tree.sample(hp, hn, hu);
+  const hq = tree.pmf(hp, hn, hs.index);
+  for (let i = 0; i < 64; i++) {
+    assert.ok((hs.index[i] < n && hs.prob[i] > 0 && hs.prob[i] <= 1) || (hs.index[i] === 0xffffffff && hs.prob[i] === 0));
+    if (hs.index[i] < n) assert.equal(bits(hs.prob[i]), bits(hq[i]));
+  }
+  tree.free();
+});
+
+test('LightTree: twoSided encoding, argument lengths, storage round trip and bit flips', () => {
+  // One area light facing +z at z = 0 and a point light; the shading point is below the area.
+  const make = (twoSided) => f32(0, 0, 0, 1, 1, 0, 4, 0, 0, 1, 1, 0, twoSided, 5, 5, 5, 5, 5, 5, 1, 0, 0, 1, -1, 0, 0);
+  const p = f32(0.5, 0.5, -1);
+  const n = f32(0, 0, 1);
+  const pmf0 = (twoSided) => {
+    const tr = wc.lightsTree(make(twoSided));
+    const q = tr.pmf(p, n, 0);
+    tr.free();
+    return q;
+  };
+  assert.equal(pmf0(0), 0, 'one-sided: facing away');
+  assert.equal(pmf0(-0), 0, '-0 is one-sided');
+  const two = pmf0(1);
+  assert.ok(two > 0, 'two-sided');
+  assert.equal(pmf0(0.5), two, 'any nonzero value is two-sided');
+  const tree = wc.lightsTree(make(1));
+  assert.equal(thrown(() => tree.sample(p, f32(0, 0), 0.5)).constructor, RangeError);
+  assert.equal(thrown(() => tree.sample(p, n, f32(0.1, 0.2))).constructor, RangeError);
+  assert.equal(thrown(() => tree.sample(f32(0, 0, 0, 1, 1, 1), f32(0, 0, 1, 0, 0, 1), 0.5)).constructor, RangeError, 'a number u with two points');
+  assert.equal(thrown(() => tree.pmf(p, n, -1)).constructor, RangeError);
+  assert.equal(thrown(() => tree.pmf(p, n, 1.5)).constructor, RangeError);
+  assert.equal(thrown(() => tree.pmf(p, n, 1, new Float32Array(1))).constructor, TypeError, 'out with a number');
+  assert.equal(thrown(() => tree.pmf(p, n, Uint32Array.of(0), new Float32Array(2))).constructor, RangeError);
+  const out = new Float32Array(1);
+  assert.equal(tree.pmf(p, n, Uint32Array.of(0), out), out);
+  assert.equal(out[0], two);
+  const words = tree.storage();
+  const copy = wc.lightsTreeFromStorage(words);
+  assert.deepEqual(copy.sample(p, n, 0.25), tree.sample(p, n, 0.25));
+  copy.free();
+  for (let w = 0; w < words.length; w += 3) {
+    const flipped = words.slice();
+    flipped[w] ^= 1 << (w % 32);
+    assert.equal(thrown(() => wc.lightsTreeFromStorage(flipped), `word ${w}`).constructor, RangeError);
+  }
+  tree.free();
 });

@@ -341,6 +341,61 @@ function jsExtras() {
     h.words(env.storage());
     env.free();
   });
+  // lights (registry/src/fingerprint.rs `lights_alias`, `light_set`, `lights_tree`): every
+  // float operation of the Rust inputs rounded to f32 as it is there.
+  const r = Math.fround;
+  hash('lights::AliasTable::sample', (h) => {
+    const ab = inputs(3000, 97, 2);
+    const weights = new Float32Array(97);
+    for (let k = 0; k < 97; k++) {
+      const [a, b] = [ab[2 * k], ab[2 * k + 1]];
+      weights[k] = k % 7 === 3 ? 0 : k % 5 === 0 ? r(r(a * 1000) + b) : r(r(a * r(0.01)) + r(b * 0.5));
+    }
+    const table = wc.lightsAlias(weights);
+    h.word(table.storageLength);
+    h.words(table.storage());
+    const s = table.sample(inputs(0, N, 1));
+    for (let i = 0; i < N; i++) {
+      h.word(s.index[i]);
+      h.floats(s.prob.subarray(i, i + 1));
+    }
+    h.floats(table.pmf(Uint32Array.from({ length: 98 }, (_, k) => k)));
+    table.free();
+  });
+  hash('lights::LightTree::sample', (h) => {
+    const x = inputs(1000, 24, 8);
+    const lights = new Float32Array(13 * 24);
+    for (let k = 0; k < 24; k++) {
+      const [cx, cy, cz, s, a0, a1, a2, q] = x.subarray(8 * k, 8 * k + 8);
+      const c = [r(r(cx * 8) - 4), r(r(cy * 4) - 2), r(cz * 2)];
+      const hh = r(s * 0.25);
+      const cone = [[1, 0, 0], [1, 0, 1], [r(0.8), r(0.6), 0], [-1, 0, 0]][k % 4];
+      const power = k % 11 === 5 ? 0 : r(r(0.1) + r(q * 10));
+      lights.set([r(c[0] - hh), r(c[1] - hh), c[2], r(c[0] + hh), r(c[1] + hh), r(c[2] + hh), power, r(a0 - 0.5), r(a1 - 0.5), r(a2 - 0.25), ...cone], 13 * k);
+    }
+    const tree = wc.lightsTree(lights);
+    h.word(tree.storageLength);
+    h.words(tree.storage());
+    const pin = inputs(2000, 64, 7);
+    const p = new Float32Array(3 * 64);
+    const n = new Float32Array(3 * 64);
+    const u = new Float32Array(64);
+    const index = new Uint32Array(64);
+    for (let k = 0; k < 64; k++) {
+      const [px, py, pz, nx, ny, nz, uk] = pin.subarray(7 * k, 7 * k + 7);
+      p.set([r(r(px * 10) - 5), r(r(py * 6) - 3), r(r(pz * 4) - 1)], 3 * k);
+      if (k % 3 !== 0) n.set([r(nx - 0.5), r(ny - 0.5), r(nz - 0.5)], 3 * k);
+      u[k] = uk;
+      index[k] = k % 25;
+    }
+    const s = tree.sample(p, n, u);
+    const q = tree.pmf(p, n, index);
+    for (let k = 0; k < 64; k++) {
+      h.word(s.index[k]);
+      h.floats(new Float32Array([s.prob[k], q[k]]));
+    }
+    tree.free();
+  });
   const { width, height, rgb } = readPfm(readFileSync(root + ENVMAP));
   const weights = wc.envmapEquirectSolidAngleWeights(wc.envmapLuminance(rgb), width, height);
   const u = wc.pmj02bnSample(0, 7, 4096);
@@ -366,6 +421,6 @@ test('functions outside the fingerprint equal their registry hashes', () => {
   const got = jsExtras();
   const want = { hierarchical: data.envmap.hierarchical, marginalConditional: data.envmap.marginalConditional };
   for (const e of data.entries) if (e.name in got) want[e.name] = e.hash;
-  assert.equal(Object.keys(want).length, 11);
+  assert.equal(Object.keys(want).length, 13);
   assert.deepEqual(got, want);
 });

@@ -224,6 +224,22 @@ const STORAGE = (() => {
   return words;
 })();
 
+// Light selection: weights, and 13-float light bounds (min, max, power, axis, cosThetaO,
+// cosThetaE, twoSided): an area light facing +z, a point light, a two-sided quad.
+const ALIAS_WEIGHTS = [1, 0, 3, 4, 2];
+const BOUNDS = [0, 0, 0, 1, 1, 0, 10, 0, 0, 1, 1, 0, 0, 3, 0, 1, 3, 0, 1, 2, 0, 0, 1, -1, 0, 0, -2, 1, 0, -1, 2, 1, 5, 1, 0, 0, 0.9, 0.2, 1];
+const { ALIAS_STORAGE, TREE_STORAGE } = (() => {
+  const a = wc.lightsAlias(new Float32Array(ALIAS_WEIGHTS));
+  const t = wc.lightsTree(new Float32Array(BOUNDS));
+  const r = { ALIAS_STORAGE: a.storage(), TREE_STORAGE: t.storage() };
+  a.free();
+  t.free();
+  return r;
+})();
+const P_PROBE = new Float32Array([0.5, 0.5, 2, 0, 0, 0, 4, -1, 1, -3, 2, -2]);
+const N_PROBE = new Float32Array([0, 0, -1, 0, 0, 0, 0, 1, 0, 0.6, 0, 0.8]);
+const U4 = new Float32Array([0.1, 0.5, 0.7, 0.99]);
+const I4 = new Uint32Array([0, 2, 1, 7]);
 const vec = (T, d, n = 3) => ({ T, d, good: () => new T(d * n).map((_, i) => (i % 7) * 0.125) });
 const NUM = (v) => ({ num: true, good: () => v });
 const STR = (v) => ({ str: true, good: () => v });
@@ -276,10 +292,14 @@ const SPEC = {
   // Uint32Array as its bytes, read with the intrinsic getters only; a DataView of zeros is a
   // RangeError: not a storage).
   envmapFromStorage: [{ T: Uint32Array, d: 1, good: () => STORAGE.slice(), bytes: { subclass: null, 'another realm': null, DataView: RangeError } }],
+  lightsAlias: [FIXED(Float32Array, ALIAS_WEIGHTS)],
+  lightsTree: [FIXED(Float32Array, BOUNDS)],
+  lightsAliasFromStorage: [{ T: Uint32Array, d: 1, good: () => ALIAS_STORAGE.slice(), bytes: { subclass: null, 'another realm': null, DataView: RangeError } }],
+  lightsTreeFromStorage: [{ T: Uint32Array, d: 1, good: () => TREE_STORAGE.slice(), bytes: { subclass: null, 'another realm': null, DataView: RangeError } }],
 };
 // Functions whose last argument is an optional `out` of this type and length (for the good
 // arguments).
-const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapHierarchicalCompensated', 'envmapMarginalConditionalCompensated', 'envmapFromStorage', 'envmapEquirectSolidAngleWeights', 'envmapEquirectToEqualArea', 'sphericalTriangleSolidAngle', 'sphericalRectangleSolidAngle', 'sphericalConeSolidAngle', 'samplerPath', 'memoryStats']);
+const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapHierarchicalCompensated', 'envmapMarginalConditionalCompensated', 'envmapFromStorage', 'envmapEquirectSolidAngleWeights', 'envmapEquirectToEqualArea', 'sphericalTriangleSolidAngle', 'sphericalRectangleSolidAngle', 'sphericalConeSolidAngle', 'samplerPath', 'memoryStats', 'lightsAlias', 'lightsTree', 'lightsAliasFromStorage', 'lightsTreeFromStorage']);
 const OUT = {};
 for (const [name, specs] of Object.entries(SPEC)) {
   if (NO_OUT.has(name)) continue;
@@ -288,19 +308,28 @@ for (const [name, specs] of Object.entries(SPEC)) {
   OUT[name] = { T: { Float32Array, Uint32Array, Int32Array }[r[Symbol.toStringTag]], length: r.length, at: specs.length };
 }
 
+/** The base class of EnvMap, AliasTable and LightTree (storage, free, dispose). */
+const Stored = Object.getPrototypeOf(wc.EnvMap);
 const free = (r) => {
-  if (r instanceof wc.EnvMap) r.free();
+  if (r instanceof Stored) r.free();
 };
 /** The plain result of a call (for comparing), with EnvMaps reduced to their samples. */
 const TAG = Object.getOwnPropertyDescriptor(TypedArray, Symbol.toStringTag).get;
 const TYPES = { Float32Array, Uint32Array, Int32Array };
 const plain = (r) => {
-  if (r instanceof wc.EnvMap) return envSummary(r);
+  if (r instanceof Stored) return summary(r);
   if (ArrayBuffer.isView(r)) return new TYPES[TAG.call(r)](r); // a plain copy (`r` may be a caller's odd array)
   return r;
 };
 const U_PROBE = new Float32Array([0.1, 0.2, 0.7, 0.4, 0.95, 0.99, 0, 0]);
 const envSummary = (env) => ({ kind: env.kind, width: env.width, height: env.height, sample: env.sample(U_PROBE) });
+/** What a Stored object samples (an EnvMap, an AliasTable or a LightTree). */
+const summary = (r) =>
+  r instanceof wc.EnvMap
+    ? envSummary(r)
+    : r instanceof wc.AliasTable
+      ? { count: r.count, sample: r.sample(U4), pmf: r.pmf(I4), storage: r.storage() }
+      : { count: r.count, sample: r.sample(P_PROBE, N_PROBE, U4), pmf: r.pmf(P_PROBE, N_PROBE, I4), storage: r.storage() };
 
 // Hostile stand-ins for a typed array of type T holding `source`; `Want` is the error each
 // must throw (null: must succeed with the plain result).
@@ -458,56 +487,85 @@ test('hostile arguments: exact errors, no user code, no wasm memory view', (t) =
     }
   }
   for (const name in SPEC) COVERED.add(name);
-  // EnvMap methods: every argument (and `out`) hostile, and `this` not an EnvMap.
+  // EnvMap, AliasTable and LightTree methods: every argument (and `out`) hostile, and `this`
+  // not an object of the class (another Stored included).
   const DIRS = new Float32Array([0, 0, 1, 0.6, 0, 0.8, 0, -1, 0, 0.48, 0.6, -0.64]);
-  const ENV = {
-    sample: [{ T: Float32Array, good: () => U_PROBE.slice() }],
-    pdf: [{ T: Float32Array, good: () => U_PROBE.slice() }, { T: Float32Array, out: true, good: () => new Float32Array(4) }],
-    sampleDirection: [STR('equal-area'), { T: Float32Array, good: () => U_PROBE.slice() }],
-    pdfDirection: [STR('equirect'), { T: Float32Array, good: () => DIRS.slice() }, { T: Float32Array, out: true, good: () => new Float32Array(4) }],
-    storage: [],
-  };
-  for (const method in ENV) {
-    const specs = ENV[method];
-    const good = () => specs.map((s) => s.good());
-    const want = rApply(wc.EnvMap.prototype[method], kept, good());
-    const goodArgs = good();
-    expectSame(() => rApply(wc.EnvMap.prototype[method], kept, goodArgs), want, `EnvMap.${method}`);
-    for (let k = 0; k < specs.length; k++) {
-      const spec = specs[k];
-      const variants = spec.str ? hostileStrings(spec.good()) : hostileArrays(spec.T, spec.good());
-      for (const [what, value, Want] of variants) {
-        const args = good();
-        args[k] = value;
-        const label = `EnvMap.${method} argument ${k}: ${what}`;
-        if (Want) expectError(() => rApply(wc.EnvMap.prototype[method], kept, args), Want, label);
-        else if (!spec.out) expectSame(() => rApply(wc.EnvMap.prototype[method], kept, args), want, label);
+  const F32 = (a) => ({ T: Float32Array, good: () => a.slice() });
+  const U32s = (a) => ({ T: Uint32Array, good: () => a.slice() });
+  const OUT4 = { T: Float32Array, out: true, good: () => new Float32Array(4) };
+  const alias = wc.lightsAlias(new Float32Array(ALIAS_WEIGHTS));
+  const tree = wc.lightsTree(new Float32Array(BOUNDS));
+  const other = wc.lightsTree(new Float32Array(BOUNDS));
+  const CLASSES = [
+    ['EnvMap', wc.EnvMap, kept, {
+      sample: [F32(U_PROBE)],
+      pdf: [F32(U_PROBE), OUT4],
+      sampleDirection: [STR('equal-area'), F32(U_PROBE)],
+      pdfDirection: [STR('equirect'), F32(DIRS), OUT4],
+    }],
+    ['AliasTable', wc.AliasTable, alias, { sample: [F32(U4)], pmf: [U32s(I4), OUT4] }],
+    ['LightTree', wc.LightTree, tree, { sample: [F32(P_PROBE), F32(N_PROBE), F32(U4)], pmf: [F32(P_PROBE), F32(N_PROBE), U32s(I4), OUT4] }],
+    // The base's methods, on each class's object.
+    ['Stored', Stored, kept, { storage: [] }],
+    ['Stored', Stored, alias, { storage: [] }],
+    ['Stored', Stored, tree, { storage: [] }],
+  ];
+  for (const [name, C, obj, methods] of CLASSES) {
+    for (const method in methods) {
+      const f = C.prototype[method];
+      const specs = methods[method];
+      const good = () => specs.map((s) => s.good());
+      const want = rApply(f, obj, good());
+      const goodArgs = good();
+      expectSame(() => rApply(f, obj, goodArgs), want, `${name}.${method}`);
+      for (let k = 0; k < specs.length; k++) {
+        const spec = specs[k];
+        const variants = spec.str ? hostileStrings(spec.good()) : hostileArrays(spec.T, spec.good());
+        for (const [what, value, Want] of variants) {
+          const args = good();
+          args[k] = value;
+          const label = `${name}.${method} argument ${k}: ${what}`;
+          if (Want) expectError(() => rApply(f, obj, args), Want, label);
+          else if (!spec.out) expectSame(() => rApply(f, obj, args), want, label);
+          cases++;
+        }
+      }
+      const strangers = [{}, null, Object.create(C.prototype), new Proxy(obj, {})];
+      if (C !== Stored) strangers.push(C === wc.LightTree ? alias : other);
+      for (const self of strangers) {
+        expectError(() => rApply(f, self, goodArgs), TE, `${name}.${method} on a stranger`);
         cases++;
       }
+      COVERED.add(`${name}.prototype.${method}`);
     }
-    for (const self of [{}, null, Object.create(wc.EnvMap.prototype), new Proxy(kept, {})]) {
-      expectError(() => rApply(wc.EnvMap.prototype[method], self, goodArgs), TE, `EnvMap.${method} on a non-EnvMap`);
-      cases++;
-    }
-    COVERED.add(`EnvMap.prototype.${method}`);
   }
-  const storageLength = Object.getOwnPropertyDescriptor(wc.EnvMap.prototype, 'storageLength').get;
-  expectSame(() => rApply(storageLength, kept, []), kept.storageLength, 'EnvMap.storageLength');
-  expectError(() => rApply(storageLength, {}, []), TE, 'EnvMap.storageLength on a non-EnvMap');
-  COVERED.add('EnvMap.prototype.storageLength');
+  const storageLength = Object.getOwnPropertyDescriptor(Stored.prototype, 'storageLength').get;
+  for (const obj of [kept, alias, tree]) expectSame(() => rApply(storageLength, obj, []), obj.storageLength, 'storageLength');
+  expectError(() => rApply(storageLength, {}, []), TE, 'storageLength on a non-Stored');
+  COVERED.add('Stored.prototype.storageLength');
+  const makers = [() => wc.envmapHierarchical(new Float32Array([1, 2, 3, 4]), 2, 2), () => wc.lightsAlias(new Float32Array([1, 2])), () => wc.lightsTree(new Float32Array(BOUNDS))];
   for (const key of ['free', Symbol.dispose]) {
-    const env = wc.envmapHierarchical(new Float32Array([1, 2, 3, 4]), 2, 2);
-    expectSame(() => env[key](), undefined, `EnvMap.${String(key)}`);
-    expectSame(() => env[key](), undefined, `EnvMap.${String(key)} twice`);
-    expectError(() => env.sample(U_PROBE), TE, `EnvMap.sample after ${String(key)}`);
-    for (const self of [{}, null, Object.create(wc.EnvMap.prototype)]) expectError(() => rApply(wc.EnvMap.prototype[key], self, []), TE, `EnvMap.${String(key)} on a non-EnvMap`);
-    COVERED.add(`EnvMap.prototype.${String(key)}`);
+    for (const make of makers) {
+      const r = make();
+      expectSame(() => r[key](), undefined, `${r.constructor.name}.${String(key)}`);
+      expectSame(() => r[key](), undefined, `${r.constructor.name}.${String(key)} twice`);
+      expectError(() => r.storage(), TE, `storage after ${String(key)}`);
+      if (r instanceof wc.EnvMap) expectError(() => r.sample(U_PROBE), TE, `EnvMap.sample after ${String(key)}`);
+      else if (r instanceof wc.AliasTable) expectError(() => r.sample(0.5), TE, `AliasTable.sample after ${String(key)}`);
+      else expectError(() => r.pmf(P_PROBE, N_PROBE, I4), TE, `LightTree.pmf after ${String(key)}`);
+    }
+    for (const self of [{}, null, Object.create(wc.EnvMap.prototype), Object.create(Stored.prototype)]) expectError(() => rApply(Stored.prototype[key], self, []), TE, `${String(key)} on a non-Stored`);
+    COVERED.add(`Stored.prototype.${String(key)}`);
   }
-  for (const args of [[], [Symbol('EnvMap'), 'hierarchical', 64, 16]]) {
-    expectError(() => rConstruct(wc.EnvMap, args), TE, 'new EnvMap');
-    expectError(() => rApply(wc.EnvMap, undefined, args), TE, 'EnvMap called');
+  for (const [name, C] of [['EnvMap', wc.EnvMap], ['AliasTable', wc.AliasTable], ['LightTree', wc.LightTree], ['Stored', Stored]]) {
+    for (const args of [[], [Symbol('Stored'), 'hierarchical', 64, 16]]) {
+      expectError(() => rConstruct(C, args), TE, `new ${name}`);
+      expectError(() => rApply(C, undefined, args), TE, `${name} called`);
+    }
+    COVERED.add(name);
   }
-  COVERED.add('EnvMap');
+  const aliasBefore = summary(alias);
+  const treeBefore = summary(tree);
   // SamplerPath methods: every argument hostile, `this` not a SamplerPath.
   const root = wc.samplerPath().domain(1);
   const PATH_METHODS = { domain: [NUM(3)], split: [NUM(3), NUM(4), NUM(1)] };
@@ -549,7 +607,13 @@ test('hostile arguments: exact errors, no user code, no wasm memory view', (t) =
   assert.throws(() => Object.defineProperty(wc.EnvMap.prototype, 'kind', { set() {} }), TypeError);
   assert.ok(Object.isFrozen(wc.EnvMap) && Object.isFrozen(wc));
   assert.deepEqual(envSummary(kept), keptBefore, 'the EnvMap still samples what it did');
+  assert.deepEqual(summary(alias), aliasBefore, 'the AliasTable still samples what it did');
+  assert.deepEqual(summary(tree), treeBefore, 'the LightTree still samples what it did');
+  for (const C of [wc.AliasTable, wc.LightTree, Stored]) assert.ok(Object.isFrozen(C) && Object.isFrozen(C.prototype));
   kept.free();
+  alias.free();
+  tree.free();
+  other.free();
   assert.equal(wc.memoryStats().reserved, reserved, 'no memory left reserved');
   t.diagnostic(`${cases} hostile arguments, ${calls} calls so far`);
   assert.ok(cases > 900, `${cases} cases`);
@@ -628,7 +692,7 @@ test('every export has a hostile case', () => {
   const exported = [];
   for (const key of Object.keys(warpcore)) if (typeof warpcore[key] === 'function') exported.push(key);
   for (const key of Object.keys(wc)) if (typeof wc[key] === 'function') exported.push(key);
-  const classes = [['EnvMap', wc.EnvMap.prototype], ['SamplerPath', Object.getPrototypeOf(wc.samplerPath())]];
+  const classes = [['EnvMap', wc.EnvMap.prototype], ['AliasTable', wc.AliasTable.prototype], ['LightTree', wc.LightTree.prototype], ['Stored', Stored.prototype], ['SamplerPath', Object.getPrototypeOf(wc.samplerPath())]];
   for (const [name, proto] of classes) {
     for (const key of Reflect.ownKeys(proto)) if (key !== 'constructor') exported.push(`${name}.prototype.${String(key)}`);
     for (const key of Reflect.ownKeys(proto.constructor)) if (typeof proto.constructor[key] === 'function') exported.push(`${name}.${String(key)}`);
@@ -734,6 +798,16 @@ test('patched built-ins after loading change nothing', (t) => {
   for (const [method, args] of [['sample', [u]], ['pdf', [u]], ['sampleDirection', ['equirect', u]], ['pdfDirection', ['equal-area', DIRS]], ['storage', []]]) {
     jobs.push([`EnvMap.${method}`, wc.EnvMap.prototype[method], env, args]);
   }
+  const alias = wc.lightsAlias(new Float32Array(ALIAS_WEIGHTS));
+  const tree = wc.lightsTree(new Float32Array(BOUNDS));
+  const P1 = P_PROBE.slice(0, 3);
+  const N1 = N_PROBE.slice(0, 3);
+  for (const [method, args] of [['sample', [U4]], ['sample', [0.7]], ['pmf', [I4]], ['pmf', [2]], ['storage', []]]) {
+    jobs.push([`AliasTable.${method}`, wc.AliasTable.prototype[method], alias, args]);
+  }
+  for (const [method, args] of [['sample', [P_PROBE, N_PROBE, U4]], ['sample', [P1, N1, 0.3]], ['pmf', [P_PROBE, N_PROBE, I4]], ['pmf', [P1, N1, 0]], ['storage', []]]) {
+    jobs.push([`LightTree.${method}`, wc.LightTree.prototype[method], tree, args]);
+  }
   jobs.push(['SamplerPath.split', path.split, path, [1, 2, 3]]);
   jobs.push(['samplerDraw on a SamplerPath', wc.samplerDraw, wc, ['pmj02bn', new Uint32Array([1, 2]), 0, 3, 4, path.split(1, 2, 3), 4]]);
   const want = jobs.map(([, f, self, args]) => rApply(f, self, args));
@@ -756,8 +830,8 @@ test('patched built-ins after loading change nothing', (t) => {
   }
   assert.equal(error, undefined, `${jobs[at]?.[0]} used a patched built-in: ${error?.stack}`);
   for (let i = 0; i < jobs.length; i++) {
-    if (want[i] instanceof wc.EnvMap) {
-      assert.deepEqual(envSummary(got[i]), envSummary(want[i]), jobs[i][0]);
+    if (want[i] instanceof Stored) {
+      assert.deepEqual(summary(got[i]), summary(want[i]), jobs[i][0]);
       got[i].free();
       want[i].free();
     } else if (jobs[i][0] === 'memoryStats' || jobs[i][0].startsWith('SamplerPath')) {
@@ -767,6 +841,8 @@ test('patched built-ins after loading change nothing', (t) => {
     }
   }
   env.free();
+  alias.free();
+  tree.free();
   t.diagnostic(`${jobs.length} calls with ${saved.length} built-ins broken`);
 });
 

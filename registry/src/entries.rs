@@ -69,7 +69,7 @@ const LIGHTS: &[Entry] = {
     }
     &[
         Entry::new("lights::AliasTable::sample", Forms::ALL, Kind::Other)
-            .golden(TESTS)
+            .golden(Golden::OwnPiece(fp::lights_alias))
             .named(&[
                 (C, "wc_lights_alias_sample"),
                 (Wgsl, "wc_lights_alias_sample"),
@@ -77,10 +77,13 @@ const LIGHTS: &[Entry] = {
         alias("lights::AliasTable::pmf")
             .named(&[(C, "wc_lights_alias_pmf"), (Wgsl, "wc_lights_alias_pmf")]),
         alias("lights::AliasTable::storage_len").named(&[(C, "wc_lights_alias_storage_len")]),
-        alias("lights::AliasTable::new").named(&[(C, "wc_lights_alias_build")]),
+        alias("lights::AliasTable::new")
+            .named(&[(C, "wc_lights_alias_build"), (Js, "lightsAlias")]),
         alias("lights::AliasTable::from_storage").named(&[(C, "wc_lights_alias_from_storage")]),
-        alias("lights::AliasTable::from_storage_verified")
-            .named(&[(C, "wc_lights_alias_from_storage_verified")]),
+        alias("lights::AliasTable::from_storage_verified").named(&[
+            (C, "wc_lights_alias_from_storage_verified"),
+            (Js, "lightsAliasFromStorage"),
+        ]),
         alias("lights::AliasTable::len"),
         alias("lights::AliasTable::is_empty"),
         alias("lights::AliasTable::storage"),
@@ -965,13 +968,16 @@ const LIGHT_TREE: &[Entry] = {
     &[
         Entry::new("lights::LightTree::sample", Forms::ALL, Kind::Other)
             .golden(Golden::OwnPiece(fp::lights_tree))
-            .named(&[(C, "wc_lights_tree_sample")]),
+            .named(&[
+                (C, "wc_lights_tree_sample"),
+                (Wgsl, "wc_lights_tree_sample"),
+            ]),
         Entry::new("lights::LightTree::pmf", Forms::LANES, Kind::Other)
             .golden(SAMPLE)
-            .named(&[(C, "wc_lights_tree_pmf")]),
+            .named(&[(C, "wc_lights_tree_pmf"), (Wgsl, "wc_lights_tree_pmf")]),
         Entry::new("lights::LightTree::new", Forms::SCALAR, Kind::Other)
             .golden(SAMPLE)
-            .named(&[(C, "wc_lights_tree_build")]),
+            .named(&[(C, "wc_lights_tree_build"), (Js, "lightsTree")]),
         Entry::new("lights::LightTree::new_from_fn", Forms::SCALAR, Kind::Other).golden(TESTS),
         Entry::new("lights::LightTree::storage_len", Forms::SCALAR, Kind::Other)
             .golden(SAMPLE)
@@ -989,7 +995,10 @@ const LIGHT_TREE: &[Entry] = {
             Kind::Other,
         )
         .golden(TESTS)
-        .named(&[(C, "wc_lights_tree_from_storage_verified")]),
+        .named(&[
+            (C, "wc_lights_tree_from_storage_verified"),
+            (Js, "lightsTreeFromStorage"),
+        ]),
         Entry::new("lights::LightTree::len", Forms::SCALAR, Kind::Other).golden(TESTS),
         Entry::new("lights::LightTree::is_empty", Forms::SCALAR, Kind::Other).golden(TESTS),
         Entry::new("lights::LightTree::storage", Forms::SCALAR, Kind::Other).golden(TESTS),

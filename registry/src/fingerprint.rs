@@ -840,6 +840,27 @@ pub fn light_set() -> [warpcore::lights::LightBounds; 24] {
     })
 }
 
+/// Hashes a light-selection storage of `len` words that `build` writes into a buffer of `W`
+/// words: the length, then the words (in their storage order, little-endian), or `0xbad` when
+/// the build fails (or `len > W`); returns the buffer of a build that succeeded.
+#[cfg(feature = "lights")]
+fn stored<const W: usize>(
+    h: &mut Hasher,
+    len: usize,
+    build: impl FnOnce(&mut [u32]) -> bool,
+) -> Option<[u32; W]> {
+    h.word(len as u32);
+    let mut s = [0u32; W];
+    if !s.get_mut(..len).is_some_and(build) {
+        h.word(0xbad);
+        return None;
+    }
+    for w in s.get(..len).unwrap_or(&[]) {
+        h.word(u32::from_le(*w));
+    }
+    Some(s)
+}
+
 /// `lights::LightTree`: the storage words of [`light_set`], then `sample` and `pmf` at 64
 /// shading points (normals, media and special values among them).
 #[cfg(feature = "lights")]
@@ -847,16 +868,12 @@ pub fn lights_tree(h: &mut Hasher) {
     use warpcore::lights::LightTree;
     let lights = light_set();
     let n = LightTree::storage_len(lights.len());
-    h.word(n as u32);
-    let mut s = [0u32; 1024];
-    let s = s.get_mut(..n).unwrap_or(&mut []);
-    let Ok(tree) = LightTree::new(&lights, s) else {
-        h.word(0xbad);
+    let Some(s) = stored::<1024>(h, n, |s| LightTree::new(&lights, s).is_ok()) else {
         return;
     };
-    for w in tree.storage() {
-        h.word(u32::from_le(*w));
-    }
+    let Ok(tree) = LightTree::from_storage(&s) else {
+        return;
+    };
     for k in 0..64usize {
         let [x, y, z, nx, ny, nz, u] = input::<7>(2000 + k);
         let p = [x * 10.0 - 5.0, y * 6.0 - 3.0, z * 4.0 - 1.0];
@@ -868,5 +885,40 @@ pub fn lights_tree(h: &mut Hasher) {
         let (i, q) = tree.sample(p, nrm, u).unwrap_or((u32::MAX, 0.0));
         h.word(i);
         h.floats(&[q, tree.pmf(p, nrm, (k % 25) as u32)]);
+    }
+}
+
+/// `lights::AliasTable`: the storage words of 97 weights (every seventh zero, the others over
+/// five orders of magnitude), then `sample` at the [`N`] one-dimensional inputs (special values
+/// among them: NaN, infinities, negatives, 1) and `pmf` of every index and one past the end.
+#[cfg(feature = "lights")]
+pub fn lights_alias(h: &mut Hasher) {
+    use warpcore::lights::AliasTable;
+    const LIGHTS: usize = 97;
+    let weights: [f32; LIGHTS] = core::array::from_fn(|k| {
+        let [a, b] = input::<2>(3000 + k);
+        if k % 7 == 3 {
+            0.0
+        } else if k % 5 == 0 {
+            a * 1000.0 + b
+        } else {
+            a * 0.01 + b * 0.5
+        }
+    });
+    let n = AliasTable::storage_len(LIGHTS);
+    let Some(s) = stored::<512>(h, n, |s| AliasTable::new(&weights, s).is_ok()) else {
+        return;
+    };
+    let Ok(table) = AliasTable::from_storage(&s) else {
+        return;
+    };
+    for i in 0..N {
+        let [u] = input::<1>(i);
+        let (k, p) = table.sample(u);
+        h.word(k);
+        h.floats(&[p]);
+    }
+    for k in 0..=LIGHTS as u32 {
+        h.floats(&[table.pmf(k)]);
     }
 }

@@ -194,6 +194,7 @@ fn js_methods() -> BTreeSet<String> {
         "envmap",
         "microfacet",
         "sampler",
+        "lights",
     ];
     js.lines()
         .filter(|l| l.starts_with("    ") && !l.starts_with("     "))

@@ -1,6 +1,6 @@
 // Compiled by js/test/package.test.mjs with `tsc --noEmit --strict` against the installed
 // package's types: a user's code must type-check, and misuse must not (@ts-expect-error).
-import { load, MAX_COUNT, type EnvMap, type SamplerPath, type SamplerPattern, type Warpcore } from 'warpcore';
+import { load, MAX_COUNT, type AliasTable, type EnvMap, type LightTree, type SamplerPath, type SamplerPattern, type Warpcore } from 'warpcore';
 
 const wc: Warpcore = await load();
 const u: Float32Array = wc.pmj02bnSample(0, 42, 16);
@@ -50,4 +50,17 @@ wc.samplerDraw('halton', Uint32Array.of(3, 4), 0, 7, 0, path, 2);
 // @ts-expect-error: a domain path is a Uint32Array or a SamplerPath
 wc.samplerDraw('sobol', Uint32Array.of(3, 4), 0, 7, 0, [1, 2], 2);
 
-export { kind, ok, n, point, words, slice };
+const table: AliasTable = wc.lightsAlias(Float32Array.of(1, 0, 3));
+const choice: { index: number; prob: number } = table.sample(0.5);
+const choices: Float32Array = table.sample(u).prob;
+const tableProb: number = table.pmf(choice.index);
+const tree: LightTree = wc.lightsTreeFromStorage(wc.lightsTree(new Float32Array(13)).storage(), { verify: false });
+const treeProb: Float32Array = tree.pmf(new Float32Array(3), new Float32Array(3), Uint32Array.of(0));
+const lightsWords: Uint32Array = tree.storage();
+tree.free();
+// @ts-expect-error: a tree takes a point and a normal
+tree.sample(0.5);
+// @ts-expect-error: read-only
+table.count = 3;
+
+export { kind, ok, n, point, words, slice, choices, tableProb, treeProb, lightsWords };
