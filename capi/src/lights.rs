@@ -2,9 +2,9 @@
 //! to its power, O(1) per sample, with the exact probability of the choice).
 
 use crate::envmap::{
-    WC_ERR_ALL_ZERO, WC_ERR_CORRUPT, WC_ERR_EMPTY, WC_ERR_INVALID_ARGUMENT, WC_ERR_INVALID_WEIGHT,
-    WC_ERR_OTHER, WC_ERR_STORAGE_TOO_SMALL, WC_ERR_TOO_LARGE, WC_ERR_UNSUPPORTED_VERSION,
-    WC_ERR_WRONG_FORMAT, WC_OK,
+    WC_ERR_ALL_ZERO, WC_ERR_CORRUPT, WC_ERR_EMPTY, WC_ERR_INVALID_ARGUMENT, WC_ERR_INVALID_BOUNDS,
+    WC_ERR_INVALID_WEIGHT, WC_ERR_OTHER, WC_ERR_STORAGE_TOO_SMALL, WC_ERR_TOO_LARGE,
+    WC_ERR_UNSUPPORTED_VERSION, WC_ERR_WRONG_FORMAT, WC_OK,
 };
 use crate::ffi::{fits, map, map_each, read_and_fill, slice, span};
 use warpcore::lights::{AliasTable, Error};
@@ -19,13 +19,14 @@ pub struct WcLightChoice {
     pub prob: f32,
 }
 
-/// The `WC_ERR_*` code of a crate error.
-fn code(e: Error) -> i32 {
+/// The `WC_ERR_*` code of a crate error (the alias table's and the light tree's).
+pub(crate) fn code(e: Error) -> i32 {
     match e {
         Error::Empty => WC_ERR_EMPTY,
         Error::TooLarge => WC_ERR_TOO_LARGE,
         Error::StorageTooSmall { .. } => WC_ERR_STORAGE_TOO_SMALL,
         Error::InvalidWeight { .. } => WC_ERR_INVALID_WEIGHT,
+        Error::InvalidBounds { .. } => WC_ERR_INVALID_BOUNDS,
         Error::AllZero => WC_ERR_ALL_ZERO,
         Error::WrongFormat { .. } => WC_ERR_WRONG_FORMAT,
         Error::UnsupportedVersion { .. } => WC_ERR_UNSUPPORTED_VERSION,

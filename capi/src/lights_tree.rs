@@ -3,12 +3,11 @@
 //! exact probability for MIS.
 
 use crate::envmap::{
-    WC_ERR_ALL_ZERO, WC_ERR_CORRUPT, WC_ERR_EMPTY, WC_ERR_INVALID_ARGUMENT, WC_ERR_INVALID_BOUNDS,
-    WC_ERR_INVALID_WEIGHT, WC_ERR_OTHER, WC_ERR_STORAGE_TOO_SMALL, WC_ERR_TOO_LARGE,
-    WC_ERR_UNSUPPORTED_VERSION, WC_ERR_WRONG_FORMAT, WC_OK,
+    WC_ERR_EMPTY, WC_ERR_INVALID_ARGUMENT, WC_ERR_STORAGE_TOO_SMALL, WC_ERR_TOO_LARGE, WC_OK,
 };
 use crate::ffi::{fits, overlap, slice, span};
-use warpcore::lights::{Error, LightBounds, LightTree};
+use crate::lights::code;
+use warpcore::lights::{LightBounds, LightTree};
 
 /// One light's bounds for the tree: the fields of the crate's `LightBounds`, in its order
 /// (box corners, power >= 0, emission axis, then the cosines of the normal spread and of the
@@ -38,21 +37,6 @@ impl WcLightBounds {
             cos_theta_e: self.cos_theta_e,
             two_sided: self.two_sided != 0,
         }
-    }
-}
-
-pub(crate) fn code(e: Error) -> i32 {
-    match e {
-        Error::Empty => WC_ERR_EMPTY,
-        Error::TooLarge => WC_ERR_TOO_LARGE,
-        Error::StorageTooSmall { .. } => WC_ERR_STORAGE_TOO_SMALL,
-        Error::InvalidWeight { .. } => WC_ERR_INVALID_WEIGHT,
-        Error::InvalidBounds { .. } => WC_ERR_INVALID_BOUNDS,
-        Error::AllZero => WC_ERR_ALL_ZERO,
-        Error::WrongFormat { .. } => WC_ERR_WRONG_FORMAT,
-        Error::UnsupportedVersion { .. } => WC_ERR_UNSUPPORTED_VERSION,
-        Error::Corrupt { .. } => WC_ERR_CORRUPT,
-        _ => WC_ERR_OTHER,
     }
 }
 
