@@ -17,7 +17,7 @@
 //! from those weights. Fitted over 4-1024 spp, and over 4-64 and 64-1024 apart.
 
 use super::samplers::{BURLEY_KINDS, Kind, with_sampler};
-use super::scene::Scene;
+use super::scene::{GgxSampler, Scene};
 use super::trace::{Image, MAX_LENGTH, render_by_length};
 use crate::run::Scale;
 use std::fmt::Write as _;
@@ -108,6 +108,28 @@ const S: Kind = Kind::Sobol;
 /// The samplers of the split by path length.
 pub const SPLIT_KINDS: [Kind; 2] = [R, S];
 
+/// The glossy family's roughnesses (`glossy-a<alpha>`, see [`Scene::by_name`]).
+pub const GLOSSY_ALPHAS: [&str; 3] = ["0.05", "0.3", "0.8"];
+
+/// The glossy family's samplers (pixel samplers; the BSDF samplers are the scenes' variants).
+pub const GLOSSY_KINDS: [Kind; 3] = [Kind::Sobol, Kind::Pmj02bn, Kind::Random];
+
+/// The glossy family's sample counts.
+pub const GLOSSY_SPPS: [u32; 3] = [4, 16, 64];
+
+/// The glossy family's scene names: every roughness with every BSDF sampler
+/// (`glossy-a0.3/bounded`, ...).
+pub fn glossy_scenes() -> Vec<String> {
+    GLOSSY_ALPHAS
+        .iter()
+        .flat_map(|a| {
+            GgxSampler::ALL
+                .iter()
+                .map(move |g| format!("glossy-a{a}/{}", g.name()))
+        })
+        .collect()
+}
+
 /// One experiment: a scene at `size` x `size`, samplers, sample counts, frames.
 #[derive(Clone, Debug)]
 pub struct Case {
@@ -155,6 +177,19 @@ pub fn cases(scale: Scale, wants: impl Fn(&str) -> bool) -> Vec<Case> {
                     SPLIT_KINDS.to_vec()
                 },
                 spps: spps.clone(),
+                frames,
+            });
+        }
+    }
+    // The glossy family: 32 x 32 pixels, 5 frames (quick 16 x 16, 2 frames; full 64 x 64, 24).
+    let (size, frames) = scale.pick([(16, 2), (32, 5), (64, 24)]);
+    for scene in glossy_scenes() {
+        if wants(&scene) {
+            out.push(Case {
+                scene,
+                size,
+                kinds: GLOSSY_KINDS.to_vec(),
+                spps: GLOSSY_SPPS.to_vec(),
                 frames,
             });
         }
@@ -406,6 +441,78 @@ fn ratio(a: &Row, b: &Row) -> (f64, f64) {
     (q, q * ((sa / ra).powi(2) + (sb / rb).powi(2)).sqrt())
 }
 
+/// MSE ratio `a / b` and its standard error (independent estimates).
+fn mse_ratio(a: &Row, b: &Row) -> (f64, f64) {
+    let q = a.mse.0 / b.mse.0;
+    (
+        q,
+        q * ((a.mse.1 / a.mse.0).powi(2) + (b.mse.1 / b.mse.0).powi(2)).sqrt(),
+    )
+}
+
+/// `path-glossy.md`: per roughness and pixel sampler, the MSE of `ggx_reflect_bounded` and of
+/// the cosine hemisphere over `ggx_reflect`'s (caps) at each count, standard errors in
+/// brackets; empty without glossy rows.
+pub fn glossy_markdown(rows: &[Row]) -> String {
+    let mut s = String::new();
+    let caps = |a: &str| format!("glossy-a{a}/caps");
+    let Some(first) = GLOSSY_ALPHAS
+        .iter()
+        .find_map(|a| rows.iter().find(|r| r.scene == caps(a)))
+    else {
+        return s;
+    };
+    let side = (first.pixels as f64).sqrt();
+    let _ = writeln!(
+        s,
+        "MSE (variance over {} frames of {side} x {side} pixels, 5 scattering events, NEE + BSDF sampling under MIS) of the BSDF samplers over `ggx_reflect`'s (caps), standard errors in brackets; bold: beyond 2 standard errors from 1. The last columns: the caps sampler's MSE.\n",
+        first.frames
+    );
+    let cols: Vec<String> = GLOSSY_SPPS.iter().map(|n| format!("{n} spp")).collect();
+    let _ = writeln!(
+        s,
+        "| alpha | pixel sampler | bounded / caps: {} | cosine / caps: {} | caps MSE: {} |\n|---:|---|{}",
+        cols.join(" | "),
+        cols.join(" | "),
+        cols.join(" | "),
+        "---:|".repeat(3 * GLOSSY_SPPS.len())
+    );
+    let cell = |a: Option<&Row>, b: Option<&Row>| match (a, b) {
+        (Some(a), Some(b)) => {
+            let q = mse_ratio(a, b);
+            if (q.0 - 1.0).abs() > 2.0 * q.1 {
+                format!(" **{}** |", pm(q, 2))
+            } else {
+                format!(" {} |", pm(q, 2))
+            }
+        }
+        _ => " - |".to_string(),
+    };
+    for a in GLOSSY_ALPHAS {
+        for kind in GLOSSY_KINDS {
+            let c = |g: &str, spp| row(rows, &format!("glossy-a{a}/{g}"), kind, spp);
+            if GLOSSY_SPPS.iter().all(|&n| c("caps", n).is_none()) {
+                continue;
+            }
+            let _ = write!(s, "| {a} | {} |", kind.name());
+            for g in ["bounded", "cosine"] {
+                for &n in &GLOSSY_SPPS {
+                    s.push_str(&cell(c(g, n), c("caps", n)));
+                }
+            }
+            for &n in &GLOSSY_SPPS {
+                let _ = write!(
+                    s,
+                    " {} |",
+                    c("caps", n).map_or("-".into(), |r| format!("{:.2e}", r.mse.0))
+                );
+            }
+            let _ = writeln!(s);
+        }
+    }
+    s
+}
+
 /// Rows for `results.csv` (warp `path`; the MSE is the variance over frames).
 pub fn results_csv_rows(rows: &[Row]) -> String {
     rows.iter()
@@ -624,6 +731,11 @@ pub fn run(
     crate::output::write(&out.join("path-rates.csv"), &rates_csv(&rows))?;
     let md = markdown(&rows);
     crate::output::write(&out.join("path-study.md"), &md)?;
+    let glossy = glossy_markdown(&rows);
+    if !glossy.is_empty() {
+        crate::output::write(&out.join("path-glossy.md"), &glossy)?;
+        print!("{glossy}");
+    }
     // The pictures of Burley's configurations (warpcore `sobol`, 64 spp, one frame).
     let pictures: Vec<Image> = cases
         .iter()

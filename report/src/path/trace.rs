@@ -14,7 +14,9 @@
 //! and Cycles draw it from the sampler), or under [`Roulette::Rnd`] an unstratified one.
 
 use super::samplers::{PathSampler, ROULETTE_DOMAIN};
-use super::scene::{Material, Roulette, Scene, V, add, basis, dot, had, mul, norm, sub};
+use super::scene::{
+    Ggx, GgxSampler, Material, Roulette, Scene, V, add, basis, dot, had, mul, norm, sub,
+};
 use std::f64::consts::FRAC_1_PI;
 
 const EPS: f64 = 1e-7;
@@ -37,11 +39,41 @@ impl Image {
     }
 }
 
+/// `w` in the shading frame of `n` (`z` the normal), as warpcore's microfacet functions take it.
+fn to_local(n: V, w: V) -> [f32; 3] {
+    let (t1, t2) = basis(n);
+    [dot(t1, w) as f32, dot(t2, w) as f32, dot(n, w) as f32]
+}
+
+/// The GGX surface's `f` (Fresnel-free, `albedo D(h) G2 / (4 wo.z wi.z)`) and the density
+/// of its sampler at `wi` (the sampler's `_pdf` function; `cos / pi` for the cosine one), for
+/// `wo`, `wi` above the surface.
+fn eval_ggx(g: &Ggx, albedo: V, n: V, wo: V, wi: V) -> (V, f64) {
+    use warpcore::microfacet as mf;
+    let (cos_o, cos_i) = (dot(n, wo), dot(n, wi));
+    if cos_o <= 0.0 || cos_i <= 0.0 {
+        return ([0.0; 3], 0.0);
+    }
+    let (lo, li) = (to_local(n, wo), to_local(n, wi));
+    let a = [g.alpha; 2];
+    let h = [lo[0] + li[0], lo[1] + li[1], lo[2] + li[2]];
+    let dg = mf::ggx_d(h, a) as f64 * mf::ggx_g2(lo, li, a) as f64;
+    let pdf = match g.sampler {
+        GgxSampler::Cosine => cos_i * FRAC_1_PI,
+        GgxSampler::Caps => mf::ggx_reflect_pdf(lo, li, a) as f64,
+        GgxSampler::Bounded => mf::ggx_reflect_bounded_pdf(lo, li, a) as f64,
+    };
+    (mul(albedo, dg / (4.0 * cos_o * cos_i)), pdf)
+}
+
 /// `f`, `pdf` (solid angle) of the material for `wo` -> `wi` about the normal `n`.
 fn eval(m: &Material, n: V, wo: V, wi: V) -> (V, f64) {
     let cos_i = dot(n, wi);
     if cos_i <= 0.0 {
         return ([0.0; 3], 0.0);
+    }
+    if let Some(g) = &m.ggx {
+        return eval_ggx(g, m.albedo, n, wo, wi);
     }
     match m.gloss {
         None => (mul(m.albedo, FRAC_1_PI), cos_i * FRAC_1_PI),
@@ -60,8 +92,28 @@ fn eval(m: &Material, n: V, wo: V, wi: V) -> (V, f64) {
     }
 }
 
-/// A direction for `u`: `(wi, f cos / pdf, pdf)`, `None` below the surface.
+/// A direction for `u`: `(wi, f cos / pdf, pdf)`, `None` below the surface (the sample
+/// still counts: the path ends with nothing more).
 fn sample(m: &Material, n: V, wo: V, u: [f32; 2]) -> Option<(V, V, f64)> {
+    if let Some(g) = &m.ggx {
+        use warpcore::microfacet as mf;
+        let (lo, a) = (to_local(n, wo), [g.alpha; 2]);
+        let l = match g.sampler {
+            GgxSampler::Cosine => warpcore::sphere::cosine_hemisphere(u),
+            GgxSampler::Caps => mf::ggx_reflect(lo, a, u).0,
+            GgxSampler::Bounded => mf::ggx_reflect_bounded(lo, a, u).0,
+        }
+        .map(f64::from);
+        let (t1, t2) = basis(n);
+        let wi = norm(add(add(mul(t1, l[0]), mul(t2, l[1])), mul(n, l[2])));
+        let c = dot(n, wi);
+        if c <= 0.0 {
+            return None;
+        }
+        // The weight's density is the `_pdf` function's at `wi` (as MIS takes it).
+        let (f, pdf) = eval(m, n, wo, wi);
+        return (pdf > 0.0).then(|| (wi, mul(f, c / pdf), pdf));
+    }
     match m.gloss {
         None => {
             let [x, y, z] = warpcore::sphere::cosine_hemisphere(u).map(f64::from);
