@@ -409,7 +409,8 @@ impl Scene {
     /// `rr-sampler`, `rr-production`, `rr-off` (the [`Roulette`]), `clamp` (indirect
     /// contributions clamped to 1, diagnostic), `centre` (a pinhole and every sample at the
     /// pixel's centre: no pixel or lens dimensions, diagnostic); the glossy family
-    /// `glossy-a<alpha>` with `cosine`, `caps` or `bounded` (the GGX surfaces' sampler).
+    /// `glossy-a<alpha>` with `cosine`, `caps` or `bounded` (the GGX surfaces' sampler);
+    /// `direct`: one scattering event (direct lighting: NEE and BSDF sampling under MIS).
     pub fn by_name(name: &str, size: usize) -> Option<Scene> {
         let mut parts = name.split('/');
         let base = parts.next()?;
@@ -437,6 +438,7 @@ impl Scene {
                 "rr-production" => s.roulette = Roulette::Production,
                 "rr-off" => s.roulette = Roulette::Off,
                 "clamp" => s.clamp = Some(1.0),
+                "direct" => s.max_bounces = 1,
                 "frame" => s.camera.crop = [0.0, 0.0, 1.0],
                 "centre" => {
                     s.camera.centre = true;

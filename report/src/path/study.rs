@@ -118,16 +118,18 @@ pub const GLOSSY_KINDS: [Kind; 3] = [Kind::Sobol, Kind::Pmj02bn, Kind::Random];
 pub const GLOSSY_SPPS: [u32; 3] = [4, 16, 64];
 
 /// The glossy family's scene names: every roughness with every BSDF sampler
-/// (`glossy-a0.3/bounded`, ...).
+/// (`glossy-a0.3/bounded`, ...), then the same with one scattering event (`.../direct`, the
+/// full run only: the BSDF samplers' own share of the error).
 pub fn glossy_scenes() -> Vec<String> {
-    GLOSSY_ALPHAS
-        .iter()
-        .flat_map(|a| {
-            GgxSampler::ALL
-                .iter()
-                .map(move |g| format!("glossy-a{a}/{}", g.name()))
-        })
-        .collect()
+    let mut out = Vec::new();
+    for suffix in ["", "/direct"] {
+        for a in GLOSSY_ALPHAS {
+            for g in GgxSampler::ALL {
+                out.push(format!("glossy-a{a}/{}{suffix}", g.name()));
+            }
+        }
+    }
+    out
 }
 
 /// One experiment: a scene at `size` x `size`, samplers, sample counts, frames.
@@ -184,7 +186,7 @@ pub fn cases(scale: Scale, wants: impl Fn(&str) -> bool) -> Vec<Case> {
     // The glossy family: 32 x 32 pixels, 5 frames (quick 16 x 16, 2 frames; full 64 x 64, 24).
     let (size, frames) = scale.pick([(16, 2), (32, 5), (64, 24)]);
     for scene in glossy_scenes() {
-        if wants(&scene) {
+        if wants(&scene) && (scale == Scale::Full || !scene.ends_with("/direct")) {
             out.push(Case {
                 scene,
                 size,
@@ -454,18 +456,24 @@ fn mse_ratio(a: &Row, b: &Row) -> (f64, f64) {
 /// the cosine hemisphere over `ggx_reflect`'s (caps) at each count, standard errors in
 /// brackets; empty without glossy rows.
 pub fn glossy_markdown(rows: &[Row]) -> String {
+    glossy_table(rows, "", "5 scattering events")
+        + &glossy_table(rows, "/direct", "one scattering event (direct lighting)")
+}
+
+/// [`glossy_markdown`]'s table of the scenes `glossy-a<alpha>/<sampler><suffix>`.
+fn glossy_table(rows: &[Row], suffix: &str, what: &str) -> String {
     let mut s = String::new();
-    let caps = |a: &str| format!("glossy-a{a}/caps");
+    let name = |a: &str, g: &str| format!("glossy-a{a}/{g}{suffix}");
     let Some(first) = GLOSSY_ALPHAS
         .iter()
-        .find_map(|a| rows.iter().find(|r| r.scene == caps(a)))
+        .find_map(|a| rows.iter().find(|r| r.scene == name(a, "caps")))
     else {
         return s;
     };
     let side = (first.pixels as f64).sqrt();
     let _ = writeln!(
         s,
-        "MSE (variance over {} frames of {side} x {side} pixels, 5 scattering events, NEE + BSDF sampling under MIS) of the BSDF samplers over `ggx_reflect`'s (caps), standard errors in brackets; bold: beyond 2 standard errors from 1. The last columns: the caps sampler's MSE.\n",
+        "\n`glossy-a<alpha>/<sampler>{suffix}`, {what}: MSE (variance over {} frames of {side} x {side} pixels, NEE and BSDF sampling under MIS) of the BSDF samplers over `ggx_reflect`'s (caps), standard errors in brackets; bold: beyond 2 standard errors from 1. The last columns: the caps sampler's MSE.\n",
         first.frames
     );
     let cols: Vec<String> = GLOSSY_SPPS.iter().map(|n| format!("{n} spp")).collect();
@@ -490,7 +498,7 @@ pub fn glossy_markdown(rows: &[Row]) -> String {
     };
     for a in GLOSSY_ALPHAS {
         for kind in GLOSSY_KINDS {
-            let c = |g: &str, spp| row(rows, &format!("glossy-a{a}/{g}"), kind, spp);
+            let c = |g: &str, spp| row(rows, &name(a, g), kind, spp);
             if GLOSSY_SPPS.iter().all(|&n| c("caps", n).is_none()) {
                 continue;
             }
@@ -501,11 +509,8 @@ pub fn glossy_markdown(rows: &[Row]) -> String {
                 }
             }
             for &n in &GLOSSY_SPPS {
-                let _ = write!(
-                    s,
-                    " {} |",
-                    c("caps", n).map_or("-".into(), |r| format!("{:.2e}", r.mse.0))
-                );
+                let caps = c("caps", n).map_or("-".into(), |r| format!("{:.2e}", r.mse.0));
+                let _ = write!(s, " {caps} |");
             }
             let _ = writeln!(s);
         }

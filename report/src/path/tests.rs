@@ -142,10 +142,11 @@ fn glossy_scenes_parse() {
         assert_eq!(ggx.len(), 11, "{name}");
         let want = GgxSampler::ALL
             .into_iter()
-            .find(|g| name.ends_with(g.name()))
+            .find(|g| name.contains(&format!("/{}", g.name())))
             .unwrap();
         assert!(ggx.iter().all(|g| g.sampler == want), "{name}");
         assert!(s.objects[2].material.ggx.is_some());
+        assert_eq!(s.max_bounces, if name.ends_with("/direct") { 1 } else { 5 });
     }
     assert_eq!(
         Scene::by_name("glossy-a0.3", 4).unwrap().objects[2]
