@@ -211,6 +211,9 @@ pub struct Row {
     /// the whole estimate and of each path length `0..=MAX_LENGTH`.
     pub mse: (f64, f64),
     pub by_length: Vec<(f64, f64)>,
+    /// The variance of the estimate without the emitter seen directly (path lengths 1 and
+    /// up: what a BSDF sampler can change), and its standard error.
+    pub scattered: (f64, f64),
     /// Best single-threaded time of one frame, seconds.
     pub frame_s: f64,
 }
@@ -234,7 +237,10 @@ struct Sums {
     best: f64,
 }
 
-const SLOTS: usize = MAX_LENGTH + 2;
+/// Per pixel and channel: each path length, the whole estimate, the estimate without length 0.
+const SLOTS: usize = MAX_LENGTH + 3;
+const WHOLE: usize = MAX_LENGTH + 1;
+const SCATTERED: usize = MAX_LENGTH + 2;
 
 impl Sums {
     fn new(pixels: usize) -> Sums {
@@ -255,7 +261,11 @@ impl Sums {
                     total += v;
                     self.put((p * 3 + c) * SLOTS + k, v);
                 }
-                self.put((p * 3 + c) * SLOTS + SLOTS - 1, total);
+                self.put((p * 3 + c) * SLOTS + WHOLE, total);
+                self.put(
+                    (p * 3 + c) * SLOTS + SCATTERED,
+                    total - by_length[0].px[i][c],
+                );
             }
         }
         self.frames += 1;
@@ -351,8 +361,9 @@ pub fn measure(cases: &[Case], threads: usize) -> Result<Vec<Row>, String> {
                 spp,
                 frames: s.frames,
                 pixels: cases[ci].size * cases[ci].size,
-                mse: s.variance(SLOTS - 1),
+                mse: s.variance(WHOLE),
                 by_length: (0..=MAX_LENGTH).map(|k| s.variance(k)).collect(),
+                scattered: s.variance(SCATTERED),
                 frame_s: s.best,
             })
         })
@@ -443,13 +454,11 @@ fn ratio(a: &Row, b: &Row) -> (f64, f64) {
     (q, q * ((sa / ra).powi(2) + (sb / rb).powi(2)).sqrt())
 }
 
-/// MSE ratio `a / b` and its standard error (independent estimates).
-fn mse_ratio(a: &Row, b: &Row) -> (f64, f64) {
-    let q = a.mse.0 / b.mse.0;
-    (
-        q,
-        q * ((a.mse.1 / a.mse.0).powi(2) + (b.mse.1 / b.mse.0).powi(2)).sqrt(),
-    )
+/// Ratio `a / b` of two independent estimates `(value, standard error)` and its standard
+/// error.
+fn mse_ratio(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    let q = a.0 / b.0;
+    (q, q * ((a.1 / a.0).powi(2) + (b.1 / b.0).powi(2)).sqrt())
 }
 
 /// `path-glossy.md`: per roughness and pixel sampler, the MSE of `ggx_reflect_bounded` and of
@@ -473,7 +482,7 @@ fn glossy_table(rows: &[Row], suffix: &str, what: &str) -> String {
     let side = (first.pixels as f64).sqrt();
     let _ = writeln!(
         s,
-        "\n`glossy-a<alpha>/<sampler>{suffix}`, {what}: MSE (variance over {} frames of {side} x {side} pixels, NEE and BSDF sampling under MIS) of the BSDF samplers over `ggx_reflect`'s (caps), standard errors in brackets; bold: beyond 2 standard errors from 1. The last columns: the caps sampler's MSE.\n",
+        "\n`glossy-a<alpha>/<sampler>{suffix}`, {what}: MSE of the scattered light (variance over {} frames of {side} x {side} pixels of the estimate without the emitter seen directly, which no BSDF sampler changes; NEE and BSDF sampling under MIS) of the BSDF samplers over `ggx_reflect`'s (caps), standard errors in brackets; bold: beyond 2 standard errors from 1. The last columns: the caps sampler's MSE of the scattered light.\n",
         first.frames
     );
     let cols: Vec<String> = GLOSSY_SPPS.iter().map(|n| format!("{n} spp")).collect();
@@ -487,7 +496,7 @@ fn glossy_table(rows: &[Row], suffix: &str, what: &str) -> String {
     );
     let cell = |a: Option<&Row>, b: Option<&Row>| match (a, b) {
         (Some(a), Some(b)) => {
-            let q = mse_ratio(a, b);
+            let q = mse_ratio(a.scattered, b.scattered);
             if (q.0 - 1.0).abs() > 2.0 * q.1 {
                 format!(" **{}** |", pm(q, 2))
             } else {
@@ -509,7 +518,7 @@ fn glossy_table(rows: &[Row], suffix: &str, what: &str) -> String {
                 }
             }
             for &n in &GLOSSY_SPPS {
-                let caps = c("caps", n).map_or("-".into(), |r| format!("{:.2e}", r.mse.0));
+                let caps = c("caps", n).map_or("-".into(), |r| format!("{:.2e}", r.scattered.0));
                 let _ = write!(s, " {caps} |");
             }
             let _ = writeln!(s);
