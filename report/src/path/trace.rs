@@ -380,3 +380,55 @@ pub fn render_parallel<S: PathSampler>(
     drop(chunks);
     img
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The directional albedo `E[f cos / pdf]` of a white GGX surface, estimated with each
+    /// BSDF sampler (200,000 random `u`; a direction below the horizon counts as 0): the
+    /// three agree within 4 combined standard errors at `wo` normal and at 60 and 85 degrees,
+    /// for `alpha` 0.3 and 0.8 (at 0.05 bounded against caps only: the cosine hemisphere's
+    /// estimate of a sharp lobe is heavy-tailed). A sampler weighted by another's density
+    /// (bounded by the caps `_pdf`) fails at once: 23 standard errors at `alpha` 0.05, normal
+    /// incidence.
+    #[test]
+    fn ggx_samplers_estimate_the_same_albedo() {
+        let est = |alpha: f32, sampler: GgxSampler, wo: V| {
+            let m = Material {
+                albedo: [1.0; 3],
+                emission: [0.0; 3],
+                gloss: None,
+                checker: None,
+                ggx: Some(Ggx { alpha, sampler }),
+            };
+            let mut rng = crate::math::Rng::new(7);
+            let n = 200_000;
+            let (mut s, mut ss) = (0.0, 0.0);
+            for _ in 0..n {
+                let u = [rng.uniform() as f32, rng.uniform() as f32].map(|x| x.min(0.999_999));
+                let w = sample(&m, [0.0, 0.0, 1.0], wo, u).map_or(0.0, |r| r.1[0]);
+                s += w;
+                ss += w * w;
+            }
+            let mean = s / n as f64;
+            (mean, ((ss / n as f64 - mean * mean) / n as f64).sqrt())
+        };
+        for alpha in [0.05f32, 0.3, 0.8] {
+            for deg in [0.0f64, 60.0, 85.0] {
+                let t = deg.to_radians();
+                let wo = [t.sin(), 0.0, t.cos()];
+                let caps = est(alpha, GgxSampler::Caps, wo);
+                assert!(caps.0 > 0.3 && caps.0 < 1.0, "{alpha} {deg}: {caps:?}");
+                let mut others = vec![est(alpha, GgxSampler::Bounded, wo)];
+                if alpha > 0.1 {
+                    others.push(est(alpha, GgxSampler::Cosine, wo));
+                }
+                for o in others {
+                    let z = (o.0 - caps.0) / (o.1 * o.1 + caps.1 * caps.1).sqrt();
+                    assert!(z.abs() < 4.0, "{alpha} {deg}: {o:?} vs caps {caps:?}");
+                }
+            }
+        }
+    }
+}
