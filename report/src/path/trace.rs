@@ -390,7 +390,7 @@ mod tests {
     /// three agree within 4 combined standard errors at `wo` normal and at 60 and 85 degrees,
     /// for `alpha` 0.3 and 0.8 (at 0.05 bounded against caps only: the cosine hemisphere's
     /// estimate of a sharp lobe is heavy-tailed). A sampler weighted by another's density
-    /// (bounded by the caps `_pdf`) fails at once: 23 standard errors at `alpha` 0.05, normal
+    /// (bounded by the caps `_pdf`) fails at once: 22 standard errors at `alpha` 0.05, normal
     /// incidence.
     #[test]
     fn ggx_samplers_estimate_the_same_albedo() {
