@@ -97,6 +97,7 @@ impl Options {
         names.extend(crate::path::scene::Scene::NAMES.map(String::from));
         names.extend(crate::path::study::PAPER.map(|p| p.1.to_string()));
         names.extend(crate::path::study::ABLATIONS.map(|a| a.0.to_string()));
+        names.extend(crate::path::study::glossy_scenes());
         names
     }
 

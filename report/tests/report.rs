@@ -493,7 +493,8 @@ fn quick_run_writes_a_well_formed_csv() {
         // The path study's scenes (warp `path`, Burley 2020's boxes and the ablations): their
         // samplers at 4 to 64 spp in the quick run, a variance (finite, positive).
         let study = path::study::PAPER.iter().any(|p| p.1 == f[0])
-            || path::study::ABLATIONS.iter().any(|a| a.0 == f[0]);
+            || path::study::ABLATIONS.iter().any(|a| a.0 == f[0])
+            || path::study::glossy_scenes().iter().any(|g| g == f[0]);
         if f[2] == "path" && study {
             assert!(path::samplers::Kind::by_name(f[1]).is_some(), "{line}");
             assert!(["4", "16", "64"].contains(&f[3]), "{line}");
@@ -551,8 +552,9 @@ fn quick_run_writes_a_well_formed_csv() {
         .sum();
     assert_eq!(seen.len(), expected);
     assert_eq!(path_rows.len(), 2 * 13 * 5);
-    // Quick: Burley's 5 boxes x 7 columns at one count, 2 ablations x 2 samplers x 3 counts.
-    assert_eq!(study_rows.len(), 5 * 7 + 2 * 2 * 3);
+    // Quick: Burley's 5 boxes x 7 columns at one count, 2 ablations x 2 samplers x 3 counts,
+    // the glossy family's 3 roughnesses x 3 BSDF samplers x 3 pixel samplers x 3 counts.
+    assert_eq!(study_rows.len(), 5 * 7 + 2 * 2 * 3 + 3 * 3 * 3 * 3);
     let filtered = std::fs::read_to_string(out.join("filtered.csv")).unwrap();
     assert_eq!(filtered.lines().next(), Some("scene,sampler,spp,sigma,mse"));
     assert_eq!(filtered.lines().count(), 1 + 2 * 13 * 3 * 5);

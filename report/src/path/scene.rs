@@ -8,6 +8,10 @@
 //!   (radius 0.1) on the right wall facing into the box.
 //! * `burley-direct`, `burley-gi`, `burley-checker`: Burley 2020's three configurations (the
 //!   path study, [`Scene::by_name`]); any scene takes `/`-separated variants.
+//! * `glossy-a0.05`, `glossy-a0.3`, `glossy-a0.8` (any `glossy-a<alpha>`): the `cornell` box with
+//!   the floor and both blocks a tinted GGX reflector of roughness `alpha` (warpcore's
+//!   `microfacet`), each with a variant naming the BSDF sampler: `cosine`, `caps` (the default)
+//!   or `bounded` ([`GgxSampler`]).
 //! * `furnace` (tests only): the empty box, every wall a diffuse emitter of radiance 1 and
 //!   albedo `rho`: a path of at most `K` scattering events sees `sum_{k=0..K} rho^k`.
 
@@ -52,6 +56,42 @@ pub struct Material {
     pub emission: V,
     pub gloss: Option<f64>,
     pub checker: Option<f64>,
+    /// A GGX reflector instead (Fresnel-free: `albedo D G2 / (4 |wo.z| |wi.z|)`), and how
+    /// its directions are sampled.
+    pub ggx: Option<Ggx>,
+}
+
+/// The BSDF sampler of a GGX surface (the densities of MIS are the matching `_pdf`
+/// functions).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GgxSampler {
+    /// `warpcore::sphere::cosine_hemisphere`, density `cos / pi` (the baseline).
+    Cosine,
+    /// `warpcore::microfacet::ggx_reflect` (visible normals by spherical caps: Heitz 2018's
+    /// distribution).
+    Caps,
+    /// `warpcore::microfacet::ggx_reflect_bounded` (Eto and Tokuyoshi 2023).
+    Bounded,
+}
+
+impl GgxSampler {
+    pub const ALL: [GgxSampler; 3] = [GgxSampler::Cosine, GgxSampler::Caps, GgxSampler::Bounded];
+
+    /// The scene variant naming it.
+    pub fn name(self) -> &'static str {
+        match self {
+            GgxSampler::Cosine => "cosine",
+            GgxSampler::Caps => "caps",
+            GgxSampler::Bounded => "bounded",
+        }
+    }
+}
+
+/// A GGX surface: isotropic roughness `alpha` (`= r^2`) and its sampler.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ggx {
+    pub alpha: f32,
+    pub sampler: GgxSampler,
 }
 
 impl Material {
@@ -283,6 +323,7 @@ fn diffuse(albedo: V) -> Material {
         emission: BLACK,
         gloss: None,
         checker: None,
+        ggx: None,
     }
 }
 
@@ -292,6 +333,7 @@ fn emitter(emission: V) -> Material {
         emission,
         gloss: None,
         checker: None,
+        ggx: None,
     }
 }
 
@@ -366,7 +408,9 @@ impl Scene {
     /// `/`-separated variants: `diffuse` (the glossy block made diffuse), `rr-rnd`,
     /// `rr-sampler`, `rr-production`, `rr-off` (the [`Roulette`]), `clamp` (indirect
     /// contributions clamped to 1, diagnostic), `centre` (a pinhole and every sample at the
-    /// pixel's centre: no pixel or lens dimensions, diagnostic).
+    /// pixel's centre: no pixel or lens dimensions, diagnostic); the glossy family
+    /// `glossy-a<alpha>` with `cosine`, `caps` or `bounded` (the GGX surfaces' sampler);
+    /// `direct`: one scattering event (direct lighting: NEE and BSDF sampling under MIS).
     pub fn by_name(name: &str, size: usize) -> Option<Scene> {
         let mut parts = name.split('/');
         let base = parts.next()?;
@@ -374,6 +418,19 @@ impl Scene {
         let glossy = !base.starts_with("burley") && !variants.contains(&"diffuse");
         let mut s = Scene::cornell(base, glossy, size)?;
         for v in variants {
+            if let Some(&sampler) = GgxSampler::ALL.iter().find(|g| g.name() == v) {
+                let mut any = false;
+                for o in &mut s.objects {
+                    if let Some(g) = &mut o.material.ggx {
+                        g.sampler = sampler;
+                        any = true;
+                    }
+                }
+                if !any {
+                    return None;
+                }
+                continue;
+            }
             match v {
                 "diffuse" => {}
                 "rr-rnd" => s.roulette = Roulette::Rnd,
@@ -381,6 +438,7 @@ impl Scene {
                 "rr-production" => s.roulette = Roulette::Production,
                 "rr-off" => s.roulette = Roulette::Off,
                 "clamp" => s.clamp = Some(1.0),
+                "direct" => s.max_bounces = 1,
                 "frame" => s.camera.crop = [0.0, 0.0, 1.0],
                 "centre" => {
                     s.camera.centre = true;
@@ -405,15 +463,34 @@ impl Scene {
     /// wall beside the tall block's top edge (direct, GI), the floor and back wall between
     /// the blocks (checkerboard, about 3 checks per pixel side there); none shows the light
     /// itself. The variant `frame` shows the whole frame instead.
+    ///
+    /// `glossy-a<alpha>` (`alpha` in `(0, 1]`): `cornell`'s box and light, the floor and both
+    /// blocks GGX reflectors of roughness `alpha` (tinted: a warm floor, a bluish short block,
+    /// a golden tall block), 5 scattering events, sampled by `caps` unless a variant says.
     fn cornell(base: &str, glossy: bool, size: usize) -> Option<Scene> {
-        if ![
-            "cornell",
-            "cornell-disk",
-            "burley-direct",
-            "burley-gi",
-            "burley-checker",
-        ]
-        .contains(&base)
+        let ggx_alpha = base
+            .strip_prefix("glossy-a")
+            .and_then(|a| a.parse::<f32>().ok())
+            .filter(|a| *a > 0.0 && *a <= 1.0);
+        let ggx = |albedo: V| Material {
+            albedo,
+            emission: BLACK,
+            gloss: None,
+            checker: None,
+            ggx: ggx_alpha.map(|alpha| Ggx {
+                alpha,
+                sampler: GgxSampler::Caps,
+            }),
+        };
+        if ggx_alpha.is_none()
+            && ![
+                "cornell",
+                "cornell-disk",
+                "burley-direct",
+                "burley-gi",
+                "burley-checker",
+            ]
+            .contains(&base)
         {
             return None;
         }
@@ -432,6 +509,9 @@ impl Scene {
                 if i == 2 || i == 4 {
                     material.checker = checker;
                 }
+                if i == 2 && ggx_alpha.is_some() {
+                    material = ggx([0.85, 0.8, 0.7]);
+                }
                 Object {
                     shape,
                     material,
@@ -440,14 +520,24 @@ impl Scene {
             })
             .collect();
         let mut groups = Vec::new();
-        let tall = Material {
-            albedo: [0.8, 0.75, 0.6],
-            emission: BLACK,
-            gloss: glossy.then_some(40.0),
-            checker: None,
+        let tall = if ggx_alpha.is_some() {
+            ggx([0.9, 0.75, 0.5])
+        } else {
+            Material {
+                albedo: [0.8, 0.75, 0.6],
+                emission: BLACK,
+                gloss: glossy.then_some(40.0),
+                checker: None,
+                ggx: None,
+            }
+        };
+        let short = if ggx_alpha.is_some() {
+            ggx([0.6, 0.7, 0.85])
+        } else {
+            diffuse(WHITE)
         };
         for (faces, material) in [
-            (block(0.68, 0.35, 0.15, 0.3, -0.3), diffuse(WHITE)),
+            (block(0.68, 0.35, 0.15, 0.3, -0.3), short),
             (block(0.32, 0.68, 0.15, 0.6, 0.3), tall),
         ] {
             let first = objects.len();
@@ -509,6 +599,7 @@ impl Scene {
                     emission: [1.0; 3],
                     gloss: None,
                     checker: None,
+                    ggx: None,
                 },
                 light: None,
             })

@@ -17,7 +17,7 @@
 //! from those weights. Fitted over 4-1024 spp, and over 4-64 and 64-1024 apart.
 
 use super::samplers::{BURLEY_KINDS, Kind, with_sampler};
-use super::scene::Scene;
+use super::scene::{GgxSampler, Scene};
 use super::trace::{Image, MAX_LENGTH, render_by_length};
 use crate::run::Scale;
 use std::fmt::Write as _;
@@ -108,6 +108,30 @@ const S: Kind = Kind::Sobol;
 /// The samplers of the split by path length.
 pub const SPLIT_KINDS: [Kind; 2] = [R, S];
 
+/// The glossy family's roughnesses (`glossy-a<alpha>`, see [`Scene::by_name`]).
+pub const GLOSSY_ALPHAS: [&str; 3] = ["0.05", "0.3", "0.8"];
+
+/// The glossy family's samplers (pixel samplers; the BSDF samplers are the scenes' variants).
+pub const GLOSSY_KINDS: [Kind; 3] = [Kind::Sobol, Kind::Pmj02bn, Kind::Random];
+
+/// The glossy family's sample counts.
+pub const GLOSSY_SPPS: [u32; 3] = [4, 16, 64];
+
+/// The glossy family's scene names: every roughness with every BSDF sampler
+/// (`glossy-a0.3/bounded`, ...), then the same with one scattering event (`.../direct`, the
+/// full run only: the BSDF samplers' own share of the error).
+pub fn glossy_scenes() -> Vec<String> {
+    let mut out = Vec::new();
+    for suffix in ["", "/direct"] {
+        for a in GLOSSY_ALPHAS {
+            for g in GgxSampler::ALL {
+                out.push(format!("glossy-a{a}/{}{suffix}", g.name()));
+            }
+        }
+    }
+    out
+}
+
 /// One experiment: a scene at `size` x `size`, samplers, sample counts, frames.
 #[derive(Clone, Debug)]
 pub struct Case {
@@ -159,6 +183,19 @@ pub fn cases(scale: Scale, wants: impl Fn(&str) -> bool) -> Vec<Case> {
             });
         }
     }
+    // The glossy family: 32 x 32 pixels, 5 frames (quick 16 x 16, 2 frames; full 64 x 64, 24).
+    let (size, frames) = scale.pick([(16, 2), (32, 5), (64, 24)]);
+    for scene in glossy_scenes() {
+        if wants(&scene) && (scale == Scale::Full || !scene.ends_with("/direct")) {
+            out.push(Case {
+                scene,
+                size,
+                kinds: GLOSSY_KINDS.to_vec(),
+                spps: GLOSSY_SPPS.to_vec(),
+                frames,
+            });
+        }
+    }
     out
 }
 
@@ -174,6 +211,9 @@ pub struct Row {
     /// the whole estimate and of each path length `0..=MAX_LENGTH`.
     pub mse: (f64, f64),
     pub by_length: Vec<(f64, f64)>,
+    /// The variance of the estimate without the emitter seen directly (path lengths 1 and
+    /// up: what a BSDF sampler can change), and its standard error.
+    pub scattered: (f64, f64),
     /// Best single-threaded time of one frame, seconds.
     pub frame_s: f64,
 }
@@ -197,7 +237,10 @@ struct Sums {
     best: f64,
 }
 
-const SLOTS: usize = MAX_LENGTH + 2;
+/// Per pixel and channel: each path length, the whole estimate, the estimate without length 0.
+const SLOTS: usize = MAX_LENGTH + 3;
+const WHOLE: usize = MAX_LENGTH + 1;
+const SCATTERED: usize = MAX_LENGTH + 2;
 
 impl Sums {
     fn new(pixels: usize) -> Sums {
@@ -218,7 +261,11 @@ impl Sums {
                     total += v;
                     self.put((p * 3 + c) * SLOTS + k, v);
                 }
-                self.put((p * 3 + c) * SLOTS + SLOTS - 1, total);
+                self.put((p * 3 + c) * SLOTS + WHOLE, total);
+                self.put(
+                    (p * 3 + c) * SLOTS + SCATTERED,
+                    total - by_length[0].px[i][c],
+                );
             }
         }
         self.frames += 1;
@@ -314,8 +361,9 @@ pub fn measure(cases: &[Case], threads: usize) -> Result<Vec<Row>, String> {
                 spp,
                 frames: s.frames,
                 pixels: cases[ci].size * cases[ci].size,
-                mse: s.variance(SLOTS - 1),
+                mse: s.variance(WHOLE),
                 by_length: (0..=MAX_LENGTH).map(|k| s.variance(k)).collect(),
+                scattered: s.variance(SCATTERED),
                 frame_s: s.best,
             })
         })
@@ -404,6 +452,79 @@ fn ratio(a: &Row, b: &Row) -> (f64, f64) {
     let ((ra, sa), (rb, sb)) = (a.rmse(), b.rmse());
     let q = ra / rb;
     (q, q * ((sa / ra).powi(2) + (sb / rb).powi(2)).sqrt())
+}
+
+/// Ratio `a / b` of two independent estimates `(value, standard error)` and its standard
+/// error.
+fn mse_ratio(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    let q = a.0 / b.0;
+    (q, q * ((a.1 / a.0).powi(2) + (b.1 / b.0).powi(2)).sqrt())
+}
+
+/// `path-glossy.md`: per roughness and pixel sampler, the MSE of `ggx_reflect_bounded` and of
+/// the cosine hemisphere over `ggx_reflect`'s (caps) at each count, standard errors in
+/// brackets; empty without glossy rows.
+pub fn glossy_markdown(rows: &[Row]) -> String {
+    glossy_table(rows, "", "5 scattering events")
+        + &glossy_table(rows, "/direct", "one scattering event (direct lighting)")
+}
+
+/// [`glossy_markdown`]'s table of the scenes `glossy-a<alpha>/<sampler><suffix>`.
+fn glossy_table(rows: &[Row], suffix: &str, what: &str) -> String {
+    let mut s = String::new();
+    let name = |a: &str, g: &str| format!("glossy-a{a}/{g}{suffix}");
+    let Some(first) = GLOSSY_ALPHAS
+        .iter()
+        .find_map(|a| rows.iter().find(|r| r.scene == name(a, "caps")))
+    else {
+        return s;
+    };
+    let side = (first.pixels as f64).sqrt();
+    let _ = writeln!(
+        s,
+        "\n`glossy-a<alpha>/<sampler>{suffix}`, {what}: MSE of the scattered light (variance over {} frames of {side} x {side} pixels of the estimate without the emitter seen directly, which no BSDF sampler changes; NEE and BSDF sampling under MIS) of the BSDF samplers over `ggx_reflect`'s (caps), standard errors in brackets; bold: beyond 2 standard errors from 1. The last columns: the caps sampler's MSE of the scattered light.\n",
+        first.frames
+    );
+    let cols: Vec<String> = GLOSSY_SPPS.iter().map(|n| format!("{n} spp")).collect();
+    let _ = writeln!(
+        s,
+        "| alpha | pixel sampler | bounded / caps: {} | cosine / caps: {} | caps MSE: {} |\n|---:|---|{}",
+        cols.join(" | "),
+        cols.join(" | "),
+        cols.join(" | "),
+        "---:|".repeat(3 * GLOSSY_SPPS.len())
+    );
+    let cell = |a: Option<&Row>, b: Option<&Row>| match (a, b) {
+        (Some(a), Some(b)) => {
+            let q = mse_ratio(a.scattered, b.scattered);
+            if (q.0 - 1.0).abs() > 2.0 * q.1 {
+                format!(" **{}** |", pm(q, 2))
+            } else {
+                format!(" {} |", pm(q, 2))
+            }
+        }
+        _ => " - |".to_string(),
+    };
+    for a in GLOSSY_ALPHAS {
+        for kind in GLOSSY_KINDS {
+            let c = |g: &str, spp| row(rows, &name(a, g), kind, spp);
+            if GLOSSY_SPPS.iter().all(|&n| c("caps", n).is_none()) {
+                continue;
+            }
+            let _ = write!(s, "| {a} | {} |", kind.name());
+            for g in ["bounded", "cosine"] {
+                for &n in &GLOSSY_SPPS {
+                    s.push_str(&cell(c(g, n), c("caps", n)));
+                }
+            }
+            for &n in &GLOSSY_SPPS {
+                let caps = c("caps", n).map_or("-".into(), |r| format!("{:.2e}", r.scattered.0));
+                let _ = write!(s, " {caps} |");
+            }
+            let _ = writeln!(s);
+        }
+    }
+    s
 }
 
 /// Rows for `results.csv` (warp `path`; the MSE is the variance over frames).
@@ -624,6 +745,11 @@ pub fn run(
     crate::output::write(&out.join("path-rates.csv"), &rates_csv(&rows))?;
     let md = markdown(&rows);
     crate::output::write(&out.join("path-study.md"), &md)?;
+    let glossy = glossy_markdown(&rows);
+    if !glossy.is_empty() {
+        crate::output::write(&out.join("path-glossy.md"), &glossy)?;
+        print!("{glossy}");
+    }
     // The pictures of Burley's configurations (warpcore `sobol`, 64 spp, one frame).
     let pictures: Vec<Image> = cases
         .iter()

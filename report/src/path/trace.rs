@@ -14,7 +14,9 @@
 //! and Cycles draw it from the sampler), or under [`Roulette::Rnd`] an unstratified one.
 
 use super::samplers::{PathSampler, ROULETTE_DOMAIN};
-use super::scene::{Material, Roulette, Scene, V, add, basis, dot, had, mul, norm, sub};
+use super::scene::{
+    Ggx, GgxSampler, Material, Roulette, Scene, V, add, basis, dot, had, mul, norm, sub,
+};
 use std::f64::consts::FRAC_1_PI;
 
 const EPS: f64 = 1e-7;
@@ -37,11 +39,41 @@ impl Image {
     }
 }
 
+/// `w` in the shading frame of `n` (`z` the normal), as warpcore's microfacet functions take it.
+fn to_local(n: V, w: V) -> [f32; 3] {
+    let (t1, t2) = basis(n);
+    [dot(t1, w) as f32, dot(t2, w) as f32, dot(n, w) as f32]
+}
+
+/// The GGX surface's `f` (Fresnel-free, `albedo D(h) G2 / (4 wo.z wi.z)`) and the density
+/// of its sampler at `wi` (the sampler's `_pdf` function; `cos / pi` for the cosine one), for
+/// `wo`, `wi` above the surface.
+fn eval_ggx(g: &Ggx, albedo: V, n: V, wo: V, wi: V) -> (V, f64) {
+    use warpcore::microfacet as mf;
+    let (cos_o, cos_i) = (dot(n, wo), dot(n, wi));
+    if cos_o <= 0.0 || cos_i <= 0.0 {
+        return ([0.0; 3], 0.0);
+    }
+    let (lo, li) = (to_local(n, wo), to_local(n, wi));
+    let a = [g.alpha; 2];
+    let h = [lo[0] + li[0], lo[1] + li[1], lo[2] + li[2]];
+    let dg = mf::ggx_d(h, a) as f64 * mf::ggx_g2(lo, li, a) as f64;
+    let pdf = match g.sampler {
+        GgxSampler::Cosine => cos_i * FRAC_1_PI,
+        GgxSampler::Caps => mf::ggx_reflect_pdf(lo, li, a) as f64,
+        GgxSampler::Bounded => mf::ggx_reflect_bounded_pdf(lo, li, a) as f64,
+    };
+    (mul(albedo, dg / (4.0 * cos_o * cos_i)), pdf)
+}
+
 /// `f`, `pdf` (solid angle) of the material for `wo` -> `wi` about the normal `n`.
 fn eval(m: &Material, n: V, wo: V, wi: V) -> (V, f64) {
     let cos_i = dot(n, wi);
     if cos_i <= 0.0 {
         return ([0.0; 3], 0.0);
+    }
+    if let Some(g) = &m.ggx {
+        return eval_ggx(g, m.albedo, n, wo, wi);
     }
     match m.gloss {
         None => (mul(m.albedo, FRAC_1_PI), cos_i * FRAC_1_PI),
@@ -60,8 +92,28 @@ fn eval(m: &Material, n: V, wo: V, wi: V) -> (V, f64) {
     }
 }
 
-/// A direction for `u`: `(wi, f cos / pdf, pdf)`, `None` below the surface.
+/// A direction for `u`: `(wi, f cos / pdf, pdf)`, `None` below the surface (the sample
+/// still counts: the path ends with nothing more).
 fn sample(m: &Material, n: V, wo: V, u: [f32; 2]) -> Option<(V, V, f64)> {
+    if let Some(g) = &m.ggx {
+        use warpcore::microfacet as mf;
+        let (lo, a) = (to_local(n, wo), [g.alpha; 2]);
+        let l = match g.sampler {
+            GgxSampler::Cosine => warpcore::sphere::cosine_hemisphere(u),
+            GgxSampler::Caps => mf::ggx_reflect(lo, a, u).0,
+            GgxSampler::Bounded => mf::ggx_reflect_bounded(lo, a, u).0,
+        }
+        .map(f64::from);
+        let (t1, t2) = basis(n);
+        let wi = norm(add(add(mul(t1, l[0]), mul(t2, l[1])), mul(n, l[2])));
+        let c = dot(n, wi);
+        if c <= 0.0 {
+            return None;
+        }
+        // The weight's density is the `_pdf` function's at `wi` (as MIS takes it).
+        let (f, pdf) = eval(m, n, wo, wi);
+        return (pdf > 0.0).then(|| (wi, mul(f, c / pdf), pdf));
+    }
     match m.gloss {
         None => {
             let [x, y, z] = warpcore::sphere::cosine_hemisphere(u).map(f64::from);
@@ -327,4 +379,56 @@ pub fn render_parallel<S: PathSampler>(
     });
     drop(chunks);
     img
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The directional albedo `E[f cos / pdf]` of a white GGX surface, estimated with each
+    /// BSDF sampler (200,000 random `u`; a direction below the horizon counts as 0): the
+    /// three agree within 4 combined standard errors at `wo` normal and at 60 and 85 degrees,
+    /// for `alpha` 0.3 and 0.8 (at 0.05 bounded against caps only: the cosine hemisphere's
+    /// estimate of a sharp lobe is heavy-tailed). A sampler weighted by another's density
+    /// (bounded by the caps `_pdf`) fails at once: 22 standard errors at `alpha` 0.05, normal
+    /// incidence.
+    #[test]
+    fn ggx_samplers_estimate_the_same_albedo() {
+        let est = |alpha: f32, sampler: GgxSampler, wo: V| {
+            let m = Material {
+                albedo: [1.0; 3],
+                emission: [0.0; 3],
+                gloss: None,
+                checker: None,
+                ggx: Some(Ggx { alpha, sampler }),
+            };
+            let mut rng = crate::math::Rng::new(7);
+            let n = 200_000;
+            let (mut s, mut ss) = (0.0, 0.0);
+            for _ in 0..n {
+                let u = [rng.uniform() as f32, rng.uniform() as f32].map(|x| x.min(0.999_999));
+                let w = sample(&m, [0.0, 0.0, 1.0], wo, u).map_or(0.0, |r| r.1[0]);
+                s += w;
+                ss += w * w;
+            }
+            let mean = s / n as f64;
+            (mean, ((ss / n as f64 - mean * mean) / n as f64).sqrt())
+        };
+        for alpha in [0.05f32, 0.3, 0.8] {
+            for deg in [0.0f64, 60.0, 85.0] {
+                let t = deg.to_radians();
+                let wo = [t.sin(), 0.0, t.cos()];
+                let caps = est(alpha, GgxSampler::Caps, wo);
+                assert!(caps.0 > 0.3 && caps.0 < 1.0, "{alpha} {deg}: {caps:?}");
+                let mut others = vec![est(alpha, GgxSampler::Bounded, wo)];
+                if alpha > 0.1 {
+                    others.push(est(alpha, GgxSampler::Cosine, wo));
+                }
+                for o in others {
+                    let z = (o.0 - caps.0) / (o.1 * o.1 + caps.1 * caps.1).sqrt();
+                    assert!(z.abs() < 4.0, "{alpha} {deg}: {o:?} vs caps {caps:?}");
+                }
+            }
+        }
+    }
 }
