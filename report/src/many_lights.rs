@@ -24,6 +24,7 @@
 //! single-threaded, best of a few runs); MSE at equal time as `MSE x time per sample`
 //! relative to the alias table's.
 
+use crate::path::scene::{cross, dot, sub};
 use crate::samplers::{SAMPLERS, Sampler};
 use std::fmt::Write as _;
 use std::hint::black_box;
@@ -111,19 +112,6 @@ impl Emitter {
     }
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
 fn normalize(a: [f64; 3]) -> [f64; 3] {
     let l = dot(a, a).sqrt();
     a.map(|x| x / l)
