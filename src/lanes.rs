@@ -98,7 +98,7 @@ pub(crate) trait UintLane:
     /// that a scalar runs the four as one 4-lane vector (the same integer operations, so the
     /// same bits): one vector hash and vector bit reversals instead of four hashes and up to
     /// eight scalar reversals (no bit-reverse instruction on x86). The sampling core's Owen
-    /// scrambles of a 4D point go through it (`crate::hash::scramble4`).
+    /// scrambles of a 4D point go through it (`crate::hash::owen_scramble4`).
     #[cfg(feature = "sampler")]
     #[inline(always)]
     fn map4<K: Kernel4>(words: [Self; 4], keys: [Self; 4], kernel: K) -> [Self; 4] {

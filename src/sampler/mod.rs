@@ -270,7 +270,7 @@ fn pmj02bn_pairs<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
     };
     let a = pair(0);
     let b = if N > 2 { pair(1) } else { a };
-    let [x0, y0, x1, y1] = crate::hash::scramble4::<U, true>([a[0], a[1], b[0], b[1]], scramble);
+    let [x0, y0, x1, y1] = crate::hash::owen_scramble4([a[0], a[1], b[0], b[1]], scramble);
     let (a, b) = ([x0, y0], [x1, y1]);
     core::array::from_fn(|d| [a[0], a[1], b[0], b[1]][d])
 }

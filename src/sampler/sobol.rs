@@ -25,7 +25,7 @@
 //! dimension: the tables below hold `reverse(v_{d,k})`, so their XOR is `reverse(x_d(i))`,
 //! which is exactly what the scramble hashes.
 
-use crate::hash::{lk_hash, to_unit};
+use crate::hash::{lk_hash, owen_scramble_reversed, to_unit};
 use crate::lanes::UintLane;
 use core::num::Wrapping;
 
@@ -132,9 +132,12 @@ pub(super) fn point<U: UintLane, const N: usize>(index: U, seed: U) -> [U; N] {
     // Nested uniform shuffle of the index (Burley 2020, section 4), kept bit-reversed, then
     // the matrices and the scrambles, which work on reversed values.
     let r = lk_hash(index.reverse_bits(), keys[0]);
-    let [_, k1, k2, k3, k4] = keys;
-    let out = crate::hash::scramble4::<U, false>(reversed_dims(r), [k1, k2, k3, k4]);
-    core::array::from_fn(|d| out[d])
+    // One scramble per dimension, each a hash and one reversal. Not through the 4-lane
+    // `owen_scramble4` that pmj02bn uses: with one reversal per word the four multiplies
+    // dominate, and SSE2 has no 32-bit lane multiply (per call 1.3x faster this way with SSE2,
+    // and faster with AVX-512 too; docs/sampler-performance.md).
+    let dims = reversed_dims(r);
+    core::array::from_fn(|d| owen_scramble_reversed(dims[d], keys[d + 1]))
 }
 
 /// The slice form on aligned groups of `LN` consecutive indices (`LN` = 8 or 16), group `g`
@@ -271,3 +274,4 @@ mod tests {
         }
     }
 }
+
