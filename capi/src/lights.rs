@@ -35,6 +35,27 @@ pub(crate) fn code(e: Error) -> i32 {
     }
 }
 
+/// The size checks both light-table builds make before touching memory: `n` lights of `T`
+/// need `storage_len(n)` words (`WC_ERR_EMPTY`, `WC_ERR_TOO_LARGE` when either array's bytes
+/// pass `PTRDIFF_MAX`, `WC_ERR_STORAGE_TOO_SMALL`); the words needed otherwise.
+pub(crate) fn build_sizes<T>(
+    n: usize,
+    storage_len_of: fn(usize) -> usize,
+    storage_len: usize,
+) -> Result<usize, i32> {
+    if n == 0 {
+        return Err(WC_ERR_EMPTY);
+    }
+    let needed = storage_len_of(n);
+    if needed == usize::MAX || !fits::<T>(n) || !fits::<u32>(needed) {
+        return Err(WC_ERR_TOO_LARGE);
+    }
+    if storage_len < needed {
+        return Err(WC_ERR_STORAGE_TOO_SMALL);
+    }
+    Ok(needed)
+}
+
 /// Words of storage `wc_lights_alias_build` needs for `lights` lights: `8 + 4 lights` (16
 /// bytes per light and a 32-byte header); `SIZE_MAX` above 2^26 lights. Any argument; reads
 /// and writes no memory.
@@ -65,16 +86,10 @@ pub unsafe extern "C" fn wc_lights_alias_build(
     storage: *mut u32,
     storage_len: usize,
 ) -> i32 {
-    if n == 0 {
-        return WC_ERR_EMPTY;
-    }
-    let needed = AliasTable::storage_len(n);
-    if needed == usize::MAX || !fits::<f32>(n) || !fits::<u32>(needed) {
-        return WC_ERR_TOO_LARGE;
-    }
-    if storage_len < needed {
-        return WC_ERR_STORAGE_TOO_SMALL;
-    }
+    let needed = match build_sizes::<f32>(n, AliasTable::storage_len, storage_len) {
+        Ok(needed) => needed,
+        Err(code) => return code,
+    };
     // SAFETY: the caller's contract: weights readable for `n` floats and unchanged during the
     // call, storage writable for `storage_len >= needed` words; a zero word is a valid `u32`.
     // `read_and_fill` checks null, alignment, size and overlap first.

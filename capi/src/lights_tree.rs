@@ -2,11 +2,9 @@
 //! array of `WcLightBounds`, then pick lights by their importance at shading points, with the
 //! exact probability for MIS.
 
-use crate::envmap::{
-    WC_ERR_EMPTY, WC_ERR_INVALID_ARGUMENT, WC_ERR_STORAGE_TOO_SMALL, WC_ERR_TOO_LARGE, WC_OK,
-};
-use crate::ffi::{fits, overlap, slice, span};
-use crate::lights::code;
+use crate::envmap::{WC_ERR_INVALID_ARGUMENT, WC_OK};
+use crate::ffi::{overlap, slice, span};
+use crate::lights::{build_sizes, code};
 use warpcore::lights::{LightBounds, LightTree};
 
 /// One light's bounds for the tree: the fields of the crate's `LightBounds`, in its order
@@ -67,16 +65,10 @@ pub unsafe extern "C" fn wc_lights_tree_build(
     storage: *mut u32,
     storage_len: usize,
 ) -> i32 {
-    if n == 0 {
-        return WC_ERR_EMPTY;
-    }
-    let needed = LightTree::storage_len(n);
-    if needed == usize::MAX || !fits::<WcLightBounds>(n) || !fits::<u32>(needed) {
-        return WC_ERR_TOO_LARGE;
-    }
-    if storage_len < needed {
-        return WC_ERR_STORAGE_TOO_SMALL;
-    }
+    let needed = match build_sizes::<WcLightBounds>(n, LightTree::storage_len, storage_len) {
+        Ok(needed) => needed,
+        Err(code) => return code,
+    };
     let Some(writes) = span(storage.cast_const(), needed) else {
         return WC_ERR_INVALID_ARGUMENT;
     };
