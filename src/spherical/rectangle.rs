@@ -273,10 +273,12 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 2], 
     let d2 = x * x + z2;
     let r0 = (d2 + y0 * y0).sqrt();
     let r1 = (d2 + y1 * y1).sqrt();
-    let (i0, i1) = (one / r0, one / r1);
+    // 1 / r0 and 1 / r1 from one division (r0 r1 >= d2 >= z^2).
+    let ir = one / (r0 * r1);
+    let (i0, i1) = (r1 * ir, r0 * ir);
     let (h0, h1) = (y0 * i0, y1 * i1);
-    // 1 -+ h_j without cancellation: the larger is 1 + |h_j|, the smaller (d / r_j)^2 over it;
-    // both smaller ones from one reciprocal.
+    // 1 -+ h_j without cancellation: the larger is 1 + |h_j| (in [1, 2]), the smaller
+    // (d / r_j)^2 over it; both smaller ones from one more division.
     let (big0, big1) = (one + h0.abs(), one + h1.abs());
     let rb = one / (big0 * big1);
     let small0 = d2 * i0 * i0 * (big1 * rb);
