@@ -254,7 +254,12 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 2], 
     let [r00, _, _, r01] = r.radii;
     for _ in 0..NEWTON_STEPS {
         let x = x0 + dx;
-        let radii = [r00, (x * x + y0 * y0 + z2).sqrt(), (x * x + y1 * y1 + z2).sqrt(), r01];
+        let radii = [
+            r00,
+            (x * x + y0 * y0 + z2).sqrt(),
+            (x * x + y1 * y1 + z2).sqrt(),
+            r01,
+        ];
         let res = quad_turns_r(x0, dx, y0, h, z, radii) - target;
         let d2 = x * x + z2;
         // d(turns)/dx = z (y1 / r1 - y0 / r0) / (4 pi d2) with d2 = x^2 + z^2, r_j the
