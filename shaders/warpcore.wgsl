@@ -851,18 +851,21 @@ fn wci_tri_prepare(v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, p: vec3<f32>) ->
     let la = t.len.x;
     let lb = t.len.y;
     let lc = t.len.z;
+    let ia = 1.0f / la;
+    let ib = 1.0f / lb;
+    let ic = 1.0f / lc;
     r.d = wci_chord(t.a0, t.a2, t.e2, la, lc);
     r.dab = wci_chord(t.a0, t.a1, t.e1, la, lb);
     r.d2 = wci_dot3(r.d, r.d);
     r.one_ab = 2.0f - wci_dot3(r.dab, r.dab) * 0.5f;
     r.s = wci_dot3(r.dab, r.d) - r.d2;
-    r.tt = wci_abs(t.det) / (la * lb * lc);
+    r.tt = wci_abs(t.det) * ia * ib * ic;
     r.dl = sqrt(r.d2);
-    r.b = t.a0 * (1.0f / la) + r.dab;
+    r.b = t.a0 * ia + r.dab;
     r.n = wci_cross3(t.e1, t.e2);
     r.c1 = wci_cross3(t.e2, t.a0);
     r.c2 = wci_cross3(t.a0, t.e1);
-    r.det_la = t.det / la;
+    r.det_la = t.det * ia;
     r.area_ok = t.ok && 0.0f < wci_abs(t.det);
     r.arvo = r.area_ok && WCI_FALLBACK_TURNS <= t.turns;
     return r;
@@ -894,12 +897,12 @@ fn wci_tri_sample(pr: WciTriPrepared, u: vec2<f32>) -> vec4<f32> {
     let g2 = wci_dot3(g, g);
     let b = pr.b;
     let wv = g + b * (g2 * 0.5f);
-    let wl = wci_norm3(wv);
-    let w = wv * select(0.0f, 1.0f / wl, 0.0f < wl);
+    let wl2 = wci_dot3(wv, wv);
     let l2 = u1 * g2;
-    let l = sqrt(l2);
-    let sin_l = l * sqrt(wci_clamp0(1.0f - l2 * 0.25f, 1.0f));
-    let op = pr.dab + (b * (-(l2 * 0.5f)) + w * sin_l);
+    // sin(chord l) / |wv| = sqrt(u1 (1 - l2 / 4) (g2 / |wv|^2)): one root.
+    let sw0 = sqrt(u1 * wci_clamp0(1.0f - l2 * 0.25f, 1.0f) * (g2 / wl2));
+    let sw = select(0.0f, sw0, 0.0f < wl2);
+    let op = pr.dab + (b * (-(l2 * 0.5f)) + wv * sw);
     // Barycentrics of the ray's hit, from a^ and the edges.
     let lam1 = wci_dot3(op, pr.c1);
     let lam2 = wci_dot3(op, pr.c2);
@@ -976,6 +979,10 @@ struct WciRect {
     h: f32,
     z: f32,
     turns: f32,
+    iw: f32,
+    ih: f32,
+    // |(x, y, z)| at (x0, y0), (x1, y0), (x1, y1), (x0, y1), with z before the edge-on rule.
+    radii: vec4<f32>,
     ok: bool,
     c: vec3<f32>,
     ex: vec3<f32>,
@@ -984,13 +991,26 @@ struct WciRect {
 
 // Solid angle (turns of 4 pi) of [x0, x0 + dx] x [y0, y0 + dy] at height z.
 fn wci_quad_turns(x0: f32, dx: f32, y0: f32, dy: f32, z: f32) -> f32 {
+    return wci_quad_turns_r(x0, dx, y0, dy, z, wci_corner_radii(x0, dx, y0, dy, z * z));
+}
+
+// |(x, y, z)| at the corners (x0, y0), (x1, y0), (x1, y1), (x0, y1) (`corner_radii`).
+fn wci_corner_radii(x0: f32, dx: f32, y0: f32, dy: f32, z2: f32) -> vec4<f32> {
+    let x1 = x0 + dx;
+    let y1 = y0 + dy;
+    return vec4<f32>(sqrt(x0 * x0 + y0 * y0 + z2), sqrt(x1 * x1 + y0 * y0 + z2),
+        sqrt(x1 * x1 + y1 * y1 + z2), sqrt(x0 * x0 + y1 * y1 + z2));
+}
+
+// wci_quad_turns given the corner radii (`quad_turns_r`).
+fn wci_quad_turns_r(x0: f32, dx: f32, y0: f32, dy: f32, z: f32, radii: vec4<f32>) -> f32 {
     let x1 = x0 + dx;
     let y1 = y0 + dy;
     let z2 = z * z;
-    let r00 = sqrt(x0 * x0 + y0 * y0 + z2);
-    let r10 = sqrt(x1 * x1 + y0 * y0 + z2);
-    let r11 = sqrt(x1 * x1 + y1 * y1 + z2);
-    let r01 = sqrt(x0 * x0 + y1 * y1 + z2);
+    let r00 = radii.x;
+    let r10 = radii.y;
+    let r11 = radii.z;
+    let r01 = radii.w;
     let d00_10 = x0 * x1 + y0 * y0 + z2;
     let d00_11 = x0 * x1 + y0 * y1 + z2;
     let d10_11 = x1 * x1 + y0 * y1 + z2;
@@ -1022,16 +1042,19 @@ fn wci_rect_setup(corner: vec3<f32>, ex0: vec3<f32>, ey0: vec3<f32>, p: vec3<f32
     r.ex = ex1 * k;
     let ey = ey1 * k;
     r.w = wci_norm3(r.ex);
-    let xh = r.ex * (1.0f / r.w);
+    r.iw = 1.0f / r.w;
+    let xh = r.ex * r.iw;
     r.eyp = ey - xh * wci_dot3(ey, xh);
     r.h = wci_norm3(r.eyp);
-    let yh = r.eyp * (1.0f / r.h);
+    r.ih = 1.0f / r.h;
+    let yh = r.eyp * r.ih;
     let nh = wci_cross3(xh, yh);
     r.x0 = wci_dot3(r.c, xh);
     r.y0 = wci_dot3(r.c, yh);
     let z = wci_abs(wci_dot3(r.c, nh));
     r.ok = finite && scaled && 0.0f < r.w && 0.0f < r.h;
-    let turns = wci_quad_turns(r.x0, r.w, r.y0, r.h, z);
+    r.radii = wci_corner_radii(r.x0, r.w, r.y0, r.h, z * z);
+    let turns = wci_quad_turns_r(r.x0, r.w, r.y0, r.h, z, r.radii);
     // Edge-on below the area-sampling threshold: solid angle and density 0 (`FLAT_ZWH`).
     let flat = turns < WCI_FALLBACK_TURNS && z * r.w * r.h < 0x1p-116f;
     r.z = select(z, 0.0f, flat);
@@ -1054,11 +1077,8 @@ fn wci_h_diff(a: f32, ba: f32, d2: f32) -> f32 {
     return num / (ra * rb);
 }
 
-// (1 - y / r, 1 + y / r) with r = sqrt(d2 + y^2), each without cancellation.
-fn wci_one_mp(y: f32, d2: f32) -> vec2<f32> {
-    let r = sqrt(d2 + y * y);
-    let small = d2 / (r * (r + wci_abs(y)));
-    let big = (r + wci_abs(y)) / r;
+// (1 - y / r, 1 + y / r) from small = 1 - |y| / r and big = 1 + |y| / r (`minus_plus`).
+fn wci_minus_plus(y: f32, small: f32, big: f32) -> vec2<f32> {
     let pos = 0.0f < y;
     return vec2<f32>(select(big, small, pos), select(small, big, pos));
 }
@@ -1087,11 +1107,11 @@ fn wci_rect_prepare(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>, p: vec3<f32
     let z2 = z * z;
     pr.y1 = y1;
     pr.z2 = z2;
-    let r00 = sqrt(x0 * x0 + y0 * y0 + z2);
-    let r01 = sqrt(x0 * x0 + y1 * y1 + z2);
+    let r00 = r.radii.x;
+    let r10 = r.radii.y;
+    let r11 = r.radii.z;
+    let r01 = r.radii.w;
     let x1 = x0 + r.w;
-    let r10 = sqrt(x1 * x1 + y0 * y0 + z2);
-    let r11 = sqrt(x1 * x1 + y1 * y1 + z2);
     let zh = z * r.h;
     let yy = y0 * y1 + z2;
     pr.left = wci_atan2_turns(zh, r00 * r01 + (x0 * x0 + yy) - x0 * (r00 + r01));
@@ -1103,13 +1123,19 @@ fn wci_rect_prepare(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>, p: vec3<f32
     return pr;
 }
 
-// One Newton step on quad_turns(x0, dx, ..) = goal.
-fn wci_rect_newton(r: WciRect, z2: f32, goal: f32, dx: f32) -> f32 {
-    let res = wci_quad_turns(r.x0, dx, r.y0, r.h, r.z) - goal;
+// One Newton step on quad_turns(x0, dx, ..) = goal, the step res / slope as one quotient.
+fn wci_rect_newton(r: WciRect, y1: f32, z2: f32, goal: f32, dx: f32) -> f32 {
+    let y0 = r.y0;
     let x = r.x0 + dx;
+    let ra = sqrt(x * x + y0 * y0 + z2);
+    let rb = sqrt(x * x + y1 * y1 + z2);
+    let res = wci_quad_turns_r(r.x0, dx, y0, r.h, r.z, vec4<f32>(r.radii.x, ra, rb, r.radii.w)) - goal;
     let d2 = x * x + z2;
-    let slope = r.z * wci_h_diff(r.y0, r.h, d2) / (d2 * WCI_FOUR_PI);
-    let step = select(0.0f, res / slope, wci_positive_finite(slope));
+    let same = 0.0f < y0 * y1;
+    let d = select(d2, wci_abs(y1 * ra + y0 * rb), same);
+    let num = res * (WCI_FOUR_PI * (ra * rb)) * d;
+    let den = r.z * select(y1 * ra - y0 * rb, r.h * wci_abs(y0 + y1), same);
+    let step = select(0.0f, num / den, wci_positive_finite(den));
     return wci_clamp0(dx - step, r.w);
 }
 
@@ -1136,24 +1162,37 @@ fn wci_rect_sample(pr: WciRectPrepared, u: vec2<f32>) -> vec3<f32> {
     let k = (a.x + a.x) * bb.x;
     let xu = z * sg / sqrt(k * (k + pr.b01 + pr.b01));
     let dx0 = wci_clamp0(xu - x0, w);
-    let dx = wci_rect_newton(r, z2, goal, dx0);
+    let dx = wci_rect_newton(r, y1, z2, goal, dx0);
     // The height: uniform in y / sqrt(d^2 + y^2) between its values at y0 and y1.
     let x = x0 + dx;
     let d2 = x * x + z2;
-    let mp0 = wci_one_mp(y0, d2);
-    let mp1 = wci_one_mp(y1, d2);
-    let v1 = 1.0f - u1;
     let r0 = sqrt(d2 + y0 * y0);
-    let h0 = y0 / r0;
-    let dh = u1 * wci_h_diff(y0, h, d2);
+    let r1 = sqrt(d2 + y1 * y1);
+    let ir = 1.0f / (r0 * r1);
+    let i0 = r1 * ir;
+    let i1 = r0 * ir;
+    let h0 = y0 * i0;
+    let h1 = y1 * i1;
+    let big0 = 1.0f + wci_abs(h0);
+    let big1 = 1.0f + wci_abs(h1);
+    let rb = 1.0f / (big0 * big1);
+    let small0 = d2 * i0 * i0 * (big1 * rb);
+    let small1 = d2 * i1 * i1 * (big0 * rb);
+    let mp0 = wci_minus_plus(y0, small0, big0);
+    let mp1 = wci_minus_plus(y1, small1, big1);
+    let v1 = 1.0f - u1;
+    let same = 0.0f < y0 * y1;
+    let hd = select(h1 - h0, d2 * h * (y1 + y0) * (i0 * i1) / (y1 * r0 + y0 * r1), same);
+    let dh = u1 * hd;
     let hv = h0 + dh;
     let om = v1 * mp0.x + u1 * mp1.x;
     let op = v1 * mp0.y + u1 * mp1.y;
-    let c0 = sqrt(d2) / r0;
+    let dd = sqrt(d2);
+    let c0 = dd * i0;
     let cv = sqrt(om * op);
-    let dy = sqrt(d2) * dh * (1.0f + c0 * cv + h0 * hv) / ((c0 + cv) * cv * c0);
-    let s = wci_clamp0(dx / w, 1.0f);
-    let t = wci_clamp0(dy / h, 1.0f);
+    let dy = dd * dh * (1.0f + c0 * cv + h0 * hv) / ((c0 + cv) * cv * c0);
+    let s = wci_clamp0(dx * r.iw, 1.0f);
+    let t = wci_clamp0(dy * r.ih, 1.0f);
     // Area sampling: density |q|^3 / (z w h).
     let qx = x0 + u0 * w;
     let qy = y0 + u1 * h;

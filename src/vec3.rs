@@ -63,7 +63,14 @@ pub(crate) fn positive_finite<L: Lane>(x: L) -> L::Mask {
 #[inline(always)]
 pub(crate) fn chord<L: Lane>(x: V<L>, y: V<L>, e: V<L>, lx: L, ly: L) -> V<L> {
     let k = dot(e, add(x, y)) / ((lx + ly) * lx);
-    scale(sub(e, scale(x, k)), L::splat(1.0) / ly)
+    chord_k(x, e, k, L::splat(1.0) / ly)
+}
+
+/// [`chord`] given `k = e . (x + y) / ((|x| + |y|) |x|)` and `1 / |y|` (a caller that shares
+/// their divisions).
+#[inline(always)]
+pub(crate) fn chord_k<L: Lane>(x: V<L>, e: V<L>, k: L, inv_ly: L) -> V<L> {
+    scale(sub(e, scale(x, k)), inv_ly)
 }
 
 /// Whether every component of every vector is finite: `x * 0 == 0` fails for NaN and inf.

@@ -41,7 +41,7 @@
 //! and density `1 / omega` within `7.7e-7 kappa` relative (triangle) and `9.8e-7 kappa`
 //! (rectangle), so within 1e-4 for every light seen at more than 0.6 degrees from grazing
 //! (`kappa <= 100`); round trip `inverse(sample(u))` for solid angles `1e-4 .. 2` sr within
-//! 2.0e-5 of `u` (triangle, `kappa <= 100`, `u1 >= 0.01`: at the apex `v1` the map
+//! 2.3e-5 of `u` (triangle, `kappa <= 100`, `u1 >= 0.01`: at the apex `v1` the map
 //! collapses `u0` and its error grows like `1 / sqrt(u1)`) and 6.0e-6 (rectangle,
 //! `kappa <= 100`), and within `3.1e-6 kappa` for every light. Samples are uniform in solid
 //! angle (chi-square over sub-regions whose solid angles are computed in `f64`, 2^21

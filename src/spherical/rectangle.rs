@@ -18,6 +18,12 @@ pub(super) struct Rect<L: Lane> {
     pub z: L,
     /// Solid angle in turns of `4 pi`, `[0, 1/2]`; 0 where `ok` is false.
     pub turns: L,
+    /// `1 / w`, `1 / h`.
+    pub iw: L,
+    pub ih: L,
+    /// The distances from `p` to the corners `(x0, y0)`, `(x1, y0)`, `(x1, y1)`, `(x0, y1)`
+    /// (with the height before the edge-on rule; only used where that rule does not apply).
+    pub radii: [L; 4],
     /// Finite input, nonzero sides.
     pub ok: L::Mask,
     /// `corner - p`, `ex` and `ey`'s component orthogonal to `ex`, scaled as the lengths:
@@ -37,16 +43,19 @@ pub(super) fn setup<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Rect<
     let (k, scaled) = pow2_scale([c, ex, ey]);
     let (c, ex, ey) = (scale(c, k), scale(ex, k), scale(ey, k));
     let w = norm(ex);
-    let xh = scale(ex, one / w);
+    let iw = one / w;
+    let xh = scale(ex, iw);
     let eyp = sub(ey, scale(xh, dot(ey, xh)));
     let h = norm(eyp);
-    let yh = scale(eyp, one / h);
+    let ih = one / h;
+    let yh = scale(eyp, ih);
     let nh = cross(xh, yh);
     let x0 = dot(c, xh);
     let y0 = dot(c, yh);
     let z = dot(c, nh).abs();
     let ok = finite & scaled & zero.simd_lt(w) & zero.simd_lt(h);
-    let turns = quad_turns(x0, w, y0, h, z);
+    let radii = corner_radii(x0, w, y0, h, z * z);
+    let turns = quad_turns_r(x0, w, y0, h, z, radii);
     // Below the area-sampling threshold, z w h below FLAT_ZWH counts as zero (the light seen
     // edge-on, solid angle 0): it bounds the area density |q|^3 / (z w h) (|q| < 6 sqrt 3
     // in this frame) below 2^127.
@@ -59,6 +68,9 @@ pub(super) fn setup<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Rect<
         h,
         z,
         turns: L::select(ok & !flat, turns, zero),
+        iw,
+        ih,
+        radii,
         ok,
         c,
         ex,
@@ -77,11 +89,25 @@ pub(super) const FLAT_ZWH: f32 = 1.0 / (1u128 << 116) as f32;
 /// numbers, so one `atan2`.
 #[inline(always)]
 pub(super) fn quad_turns<L: Lane>(x0: L, dx: L, y0: L, dy: L, z: L) -> L {
+    quad_turns_r(x0, dx, y0, dy, z, corner_radii(x0, dx, y0, dy, z * z))
+}
+
+/// `|(x, y, z)|` at the corners `(x0, y0)`, `(x1, y0)`, `(x1, y1)`, `(x0, y1)` of
+/// `[x0, x0 + dx] x [y0, y0 + dy]`.
+#[inline(always)]
+fn corner_radii<L: Lane>(x0: L, dx: L, y0: L, dy: L, z2: L) -> [L; 4] {
+    let (x1, y1) = (x0 + dx, y0 + dy);
+    let r = |x: L, y: L| (x * x + y * y + z2).sqrt();
+    [r(x0, y0), r(x1, y0), r(x1, y1), r(x0, y1)]
+}
+
+/// [`quad_turns`] given the [`corner_radii`] (shared with the map's set-up and Newton step).
+#[inline(always)]
+fn quad_turns_r<L: Lane>(x0: L, dx: L, y0: L, dy: L, z: L, radii: [L; 4]) -> L {
     let x1 = x0 + dx;
     let y1 = y0 + dy;
     let z2 = z * z;
-    let r = |x: L, y: L| (x * x + y * y + z2).sqrt();
-    let (r00, r10, r11, r01) = (r(x0, y0), r(x1, y0), r(x1, y1), r(x0, y1));
+    let [r00, r10, r11, r01] = radii;
     let d = |xa: L, ya: L, xb: L, yb: L| xa * xb + ya * yb + z2;
     let d00_10 = d(x0, y0, x1, y0);
     let d00_11 = d(x0, y0, x1, y1);
@@ -114,14 +140,10 @@ fn h_diff<L: Lane>(a: L, ba: L, d2: L) -> L {
     num / (ra * rb)
 }
 
-/// `(1 - y / r, 1 + y / r)` with `r = sqrt(d2 + y^2)`, each without cancellation.
+/// `(1 - y / r, 1 + y / r)` from `small = 1 - |y| / r` and `big = 1 + |y| / r`.
 #[inline(always)]
-fn one_mp<L: Lane>(y: L, d2: L) -> (L, L) {
-    let r = (d2 + y * y).sqrt();
-    let zero = L::splat(0.0);
-    let small = d2 / (r * (r + y.abs()));
-    let big = (r + y.abs()) / r;
-    let pos = zero.simd_lt(y);
+fn minus_plus<L: Lane>(y: L, small: L, big: L) -> (L, L) {
+    let pos = L::splat(0.0).simd_lt(y);
     (L::select(pos, small, big), L::select(pos, big, small))
 }
 
@@ -172,11 +194,10 @@ pub(super) fn prepare<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Pre
     //   tan psi = sin g / sqrt(k (k + 2 b0 b1)),
     // with no cancellation where Urena's `1 - cu^2` and `k + u0 S` lose it (grazing views,
     // small lights). Angles are in turns of 4 pi (half angles in turns of 2 pi).
-    let r00 = (x0 * x0 + y0 * y0 + z2).sqrt();
-    let r01 = (x0 * x0 + y1 * y1 + z2).sqrt();
+    // The corners' distances from the set-up (where the edge-on rule zeroed `z` they differ,
+    // but the map's result is not used there).
+    let [r00, r10, r11, r01] = r.radii;
     let x1 = x0 + w;
-    let r10 = (x1 * x1 + y0 * y0 + z2).sqrt();
-    let r11 = (x1 * x1 + y1 * y1 + z2).sqrt();
     let zh = z * h;
     let yy = y0 * y1 + z2;
     let left = atan2_turns(zh, r00 * r01 + (x0 * x0 + yy) - x0 * (r00 + r01));
@@ -230,34 +251,65 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 2], 
     let k = (sa + sa) * sb;
     let xu = z * sg / (k * (k + b01 + b01)).sqrt();
     let mut dx = clamp0(xu - x0, w);
+    let [r00, _, _, r01] = r.radii;
     for _ in 0..NEWTON_STEPS {
-        let res = quad_turns(x0, dx, y0, h, z) - target;
         let x = x0 + dx;
+        let radii = [
+            r00,
+            (x * x + y0 * y0 + z2).sqrt(),
+            (x * x + y1 * y1 + z2).sqrt(),
+            r01,
+        ];
+        let res = quad_turns_r(x0, dx, y0, h, z, radii) - target;
         let d2 = x * x + z2;
-        // d(turns)/dx = z (y1 / r1 - y0 / r0) / (4 pi (x^2 + z^2)).
-        let slope = z * h_diff(y0, h, d2) / (d2 * L::splat(FOUR_PI));
-        let step = L::select(positive_finite(slope), res / slope, zero);
+        // d(turns)/dx = z (y1 / r1 - y0 / r0) / (4 pi d2) with d2 = x^2 + z^2, r_j the
+        // distances to (x, y_j); for y0, y1 of one sign y1 / r1 - y0 / r0 = d2 h (y0 + y1) /
+        // ((y1 r0 + y0 r1) r0 r1) (no cancellation), so the step res / slope is one quotient.
+        let (ra, rb) = (radii[1], radii[2]);
+        let same = zero.simd_lt(y0 * y1);
+        let d = L::select(same, (y1 * ra + y0 * rb).abs(), d2);
+        let num = res * (L::splat(FOUR_PI) * (ra * rb)) * d;
+        let den = z * L::select(same, h * (y0 + y1).abs(), y1 * ra - y0 * rb);
+        let step = L::select(positive_finite(den), num / den, zero);
         dx = clamp0(dx - step, w);
     }
     // The height: uniform in y / sqrt(d^2 + y^2) between its values at y0 and y1.
     let x = x0 + dx;
     let d2 = x * x + z2;
-    let (m0, p0) = one_mp(y0, d2);
-    let (m1, p1) = one_mp(y1, d2);
-    let v1 = one - u1;
     let r0 = (d2 + y0 * y0).sqrt();
-    let h0 = y0 / r0;
-    let dh = u1 * h_diff(y0, h, d2);
+    let r1 = (d2 + y1 * y1).sqrt();
+    // 1 / r0 and 1 / r1 from one division (r0 r1 >= d2 >= z^2).
+    let ir = one / (r0 * r1);
+    let (i0, i1) = (r1 * ir, r0 * ir);
+    let (h0, h1) = (y0 * i0, y1 * i1);
+    // 1 -+ h_j without cancellation: the larger is 1 + |h_j| (in [1, 2]), the smaller
+    // (d / r_j)^2 over it; both smaller ones from one more division.
+    let (big0, big1) = (one + h0.abs(), one + h1.abs());
+    let rb = one / (big0 * big1);
+    let small0 = d2 * i0 * i0 * (big1 * rb);
+    let small1 = d2 * i1 * i1 * (big0 * rb);
+    let (m0, p0) = minus_plus(y0, small0, big0);
+    let (m1, p1) = minus_plus(y1, small1, big1);
+    let v1 = one - u1;
+    // h1 - h0, for y0, y1 of one sign as d2 h (y0 + y1) / ((y1 r0 + y0 r1) r0 r1).
+    let same = zero.simd_lt(y0 * y1);
+    let hd = L::select(
+        same,
+        d2 * h * (y1 + y0) * (i0 * i1) / (y1 * r0 + y0 * r1),
+        h1 - h0,
+    );
+    let dh = u1 * hd;
     let hv = h0 + dh;
     let om = v1 * m0 + u1 * m1; // 1 - hv
     let op = v1 * p0 + u1 * p1; // 1 + hv
     // With h = sin phi, y = d tan phi: y - y0 = d sin(phi - phi0) / (cos phi cos phi0) and
     // sin(phi - phi0) = dh (1 + cos(phi - phi0)) / (cos phi0 + cos phi): no cancellation.
-    let c0 = d2.sqrt() / r0;
+    let dd = d2.sqrt();
+    let c0 = dd * i0;
     let cv = (om * op).sqrt();
-    let dy = d2.sqrt() * dh * (one + c0 * cv + h0 * hv) / ((c0 + cv) * cv * c0);
-    let s = clamp0(dx / w, one);
-    let t = clamp0(dy / h, one);
+    let dy = dd * dh * (one + c0 * cv + h0 * hv) / ((c0 + cv) * cv * c0);
+    let s = clamp0(dx * r.iw, one);
+    let t = clamp0(dy * r.ih, one);
     let exact = pr.exact;
     let pdf = L::splat(INV_4PI) / r.turns;
     // The area fallback only where some lane takes it (the scalar form skips it otherwise).

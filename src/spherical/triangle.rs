@@ -119,19 +119,21 @@ pub(super) fn prepare<L: Lane>(v: [V<L>; 3], p: V<L>) -> Prepared<L> {
     let t = setup(v, p);
     let [la, lb, lc] = t.len;
     let [va, vb, vc] = t.a;
-    // Chords c^ - a^ and b^ - a^ from the edges.
-    let d = chord(va, vc, t.e2, la, lc);
-    let dab = chord(va, vb, t.e1, la, lb);
+    let (ia, ib, ic) = (one / la, one / lb, one / lc);
+    // Chords c^ - a^ and b^ - a^ from the edges ([`chord`] with the shared `1 / |y|`).
+    let d = chord_k(va, t.e2, dot(t.e2, add(va, vc)) / ((la + lc) * la), ic);
+    let dab = chord_k(va, t.e1, dot(t.e1, add(va, vb)) / ((la + lb) * la), ib);
     let d2 = dot(d, d);
     let one_ab = L::splat(2.0) - dot(dab, dab) * half; // 1 + a.b
     let s = dot(dab, d) - d2; // (a + b) . (c - a)
-    let tt = t.det.abs() / (la * lb * lc); // |a . (b x c)|
+    // |a^ . (b^ x c^)|: each partial product is bounded (|det| / la <= |e1| |e2|, ...).
+    let tt = t.det.abs() * ia * ib * ic;
     let dl = d2.sqrt();
-    let b = add(scale(va, one / la), dab); // b^, only in terms of second order below
+    let b = add(scale(va, ia), dab); // b^, only in terms of second order below
     let n = cross(t.e1, t.e2);
     let c1 = cross(t.e2, va);
     let c2 = cross(va, t.e1);
-    let det_la = t.det / la;
+    let det_la = t.det * ia;
     let area_ok = t.ok & zero.simd_lt(t.det.abs());
     let arvo = area_ok & L::splat(FALLBACK_TURNS).simd_le(t.turns);
     Prepared {
@@ -192,13 +194,14 @@ pub(super) fn sample_prepared<L: Lane>(pr: &Prepared<L>, u: [L; 2]) -> ([L; 3], 
     let g2 = dot(g, g);
     let b = pr.b;
     let wv = add(g, scale(b, g2 * half));
-    let wl = norm(wv);
-    let w = scale(wv, L::select(zero.simd_lt(wl), one / wl, zero));
+    let wl2 = dot(wv, wv);
     let l2 = u1 * g2;
-    let l = l2.sqrt();
-    let sin_l = l * clamp0(one - l2 * L::splat(0.25), one).sqrt();
+    // The chord l = sqrt(l2) from b^ has sine sin_l = l sqrt(1 - l2 / 4) along the unit
+    // w = wv / |wv|: sin_l / |wv| = sqrt(u1 (1 - l2 / 4) (g2 / |wv|^2)), one root.
+    let sw = (u1 * clamp0(one - l2 * L::splat(0.25), one) * (g2 / wl2)).sqrt();
+    let sw = L::select(zero.simd_lt(wl2), sw, zero);
     // op = (the point's direction) - a^.
-    let op = add(dab, add(scale(b, -(l2 * half)), scale(w, sin_l)));
+    let op = add(dab, add(scale(b, -(l2 * half)), scale(wv, sw)));
     // Barycentrics of the ray's hit: lambda_i = det with the direction in slot i, from a^
     // and the edges only (det(a^, b, c) = det / |v0 - p| and so on).
     let l1 = dot(op, pr.c1);
