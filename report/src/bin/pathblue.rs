@@ -1,0 +1,74 @@
+//! Blue noise over a whole path (issue 34, item 3): blurred MSE over many seeds on the path
+//! scenes, ratios with standard errors, and which path length carries the blurred error.
+//!
+//! ```text
+//! cargo run --release -p warpcore-report --bin pathblue -- [seeds] [threads] [what]
+//! ```
+
+use std::marker::PhantomData as PD;
+use warpcore::sampler::{Blue, Pmj02bn, Sobol};
+use warpcore_report::path::frames::{Bench, Camera4, WarpcorePairs, blurred_mses, by_length, mean_se, ratio};
+use warpcore_report::path::samplers::{PathSampler, Warpcore};
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let seeds: u32 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(32);
+    let threads: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(2);
+    let what = args.get(3).cloned().unwrap_or_else(|| "ratios".into());
+    let sigma = 2.0;
+    for name in ["cornell", "cornell-disk"] {
+        let b = Bench::new(name, 64).expect("reference");
+        if what == "lens" {
+            let mut pin = b.scene.clone();
+            pin.camera.aperture = 0.0;
+            for (sc, sl) in [(&b.scene, "lens 0.02"), (&pin, "pinhole")] {
+                for (label, l) in [
+                    ("sobol", by_length(sc, &Warpcore::<Sobol>(PD), 1, seeds, sigma, threads)),
+                    ("blue_sobol", by_length(sc, &Warpcore::<Blue<Sobol>>(PD), 1, seeds, sigma, threads)),
+                    ("blue_sobol camera4", by_length(sc, &Camera4(Warpcore::<Blue<Sobol>>(PD)), 1, seeds, sigma, threads)),
+                    ("blue_pmj02bn camera4", by_length(sc, &Camera4(Warpcore::<Blue<Pmj02bn>>(PD)), 1, seeds, sigma, threads)),
+                ] {
+                    let v = l[0];
+                    println!("{name} {sl} {label}: len 0 {:.3e} {:.3e} {:.4}", v[0], v[1], v[1] / v[0]);
+                }
+            }
+            continue;
+        }
+        if what == "lengths" {
+            for (label, l) in [
+                ("sobol", by_length(&b.scene, &Warpcore::<Sobol>(PD), 1, seeds, sigma, threads)),
+                ("blue_sobol", by_length(&b.scene, &Warpcore::<Blue<Sobol>>(PD), 1, seeds, sigma, threads)),
+                ("blue_sobol pairs", by_length(&b.scene, &WarpcorePairs::<Blue<Sobol>>(PD), 1, seeds, sigma, threads)),
+                ("blue_pmj02bn", by_length(&b.scene, &Warpcore::<Blue<Pmj02bn>>(PD), 1, seeds, sigma, threads)),
+            ] {
+                println!("{name} {label}: per length [var, blurred var, blurred/var]");
+                for (k, v) in l.iter().enumerate() {
+                    println!("  len {k}: {:.3e} {:.3e} {:.4}", v[0], v[1], v[1] / v[0]);
+                }
+            }
+            continue;
+        }
+        for spp in [1u32, 4] {
+            let run = |label: &str, s: &dyn Fn(u32) -> Vec<f64>| {
+                let v = s(spp);
+                let m = mean_se(&v);
+                println!("{name} {spp} spp {label:<24} {:.4e} +- {:.1e}", m.0, m.1);
+                m
+            };
+            fn go<S: PathSampler>(b: &Bench, s: S, spp: u32, seeds: u32, salt: u32, t: usize) -> Vec<f64> {
+                blurred_mses(b, &s, spp, seeds, salt, 2.0, t)
+            }
+            let so = run("sobol", &|spp| go(&b, Warpcore::<Sobol>(PD), spp, seeds, 1, threads));
+            let bso = run("blue_sobol", &|spp| go(&b, Warpcore::<Blue<Sobol>>(PD), spp, seeds, 2, threads));
+            let pm = run("pmj02bn", &|spp| go(&b, Warpcore::<Pmj02bn>(PD), spp, seeds, 3, threads));
+            let bpm = run("blue_pmj02bn", &|spp| go(&b, Warpcore::<Blue<Pmj02bn>>(PD), spp, seeds, 4, threads));
+            let bsop = run("blue_sobol pairs", &|spp| go(&b, WarpcorePairs::<Blue<Sobol>>(PD), spp, seeds, 5, threads));
+            let bpmp = run("blue_pmj02bn pairs", &|spp| go(&b, WarpcorePairs::<Blue<Pmj02bn>>(PD), spp, seeds, 6, threads));
+            let show = |l: &str, r: (f64, f64)| println!("{name} {spp} spp   {l:<36} {:.3} +- {:.3}", r.0, r.1);
+            show("blue_sobol / sobol", ratio(bso, so));
+            show("blue_pmj02bn / pmj02bn", ratio(bpm, pm));
+            show("blue_sobol pairs / sobol", ratio(bsop, so));
+            show("blue_pmj02bn pairs / pmj02bn", ratio(bpmp, pm));
+        }
+    }
+}
