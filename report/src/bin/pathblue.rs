@@ -7,7 +7,7 @@
 
 use std::marker::PhantomData as PD;
 use warpcore::sampler::{Blue, Pmj02bn, Sobol};
-use warpcore_report::path::frames::{Bench, Camera4, WarpcorePairs, blurred_mses, by_length, mean_se, ratio};
+use warpcore_report::path::frames::{Bench, Camera4, frame_rows, frame_table, frames_markdown, WarpcorePairs, blurred_mses, by_length, mean_se, ratio};
 use warpcore_report::path::samplers::{PathSampler, Warpcore};
 
 fn main() {
@@ -16,6 +16,60 @@ fn main() {
     let threads: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(2);
     let what = args.get(3).cloned().unwrap_or_else(|| "ratios".into());
     let sigma = 2.0;
+    if what == "line" {
+        // The 2D edge test's error kept on a rectangle's outline only (a light's silhouette):
+        // how much of the blue-noise gain survives on a line feature.
+        use warpcore_report::bluenoise::{SIZE, SPP, blur, error_images, ours};
+        let masks: [(&str, fn(usize, usize) -> bool); 2] = [
+            ("whole image", |_, _| true),
+            ("outline of a 12 x 10 rectangle", |x, y| {
+                let inx = (26..38).contains(&x);
+                let iny = (27..37).contains(&y);
+                (inx && (y == 27 || y == 36)) || (iny && (x == 26 || x == 37))
+            }),
+        ];
+        for (label, keep) in masks {
+            let e = |d: warpcore_report::bluenoise::Draw| -> Vec<f64> {
+                let mut sum = vec![0.0; SPP.len()];
+                for frame in 0..seeds {
+                    for (k, img) in error_images(d, frame).iter().enumerate() {
+                        let m: Vec<f64> = (0..SIZE * SIZE)
+                            .map(|i| if keep(i % SIZE, i / SIZE) { img[i] } else { 0.0 })
+                            .collect();
+                        sum[k] += blur(&m).iter().map(|v| v * v).sum::<f64>();
+                    }
+                }
+                sum
+            };
+            let (a, bl) = (e(ours::<Sobol>), e(ours::<Blue<Sobol>>));
+            let (c, bc) = (e(ours::<Pmj02bn>), e(ours::<Blue<Pmj02bn>>));
+            for k in 0..SPP.len() {
+                println!(
+                    "{label}: {} spp blurred MSE ratio Blue<Sobol>/Sobol {:.3}, Blue<Pmj02bn>/Pmj02bn {:.3}",
+                    SPP[k], bl[k] / a[k], bc[k] / c[k]
+                );
+            }
+        }
+        return;
+    }
+    if what == "frames" {
+        // [seeds] [threads] frames [size] [out file]
+        let size: usize = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(32);
+        let counts = [32u32, 64];
+        let mut md = String::new();
+        for name in ["cornell", "cornell-disk"] {
+            let b = Bench::new(name, size).expect("reference");
+            let rows = frame_rows(&b, &counts, threads);
+            let table = frame_table(&rows, seeds);
+            let part = frames_markdown(name, b.mean.width, seeds, &counts, &table);
+            print!("{part}");
+            md += &part;
+        }
+        if let Some(out) = args.get(5) {
+            std::fs::write(out, md).expect("write the table");
+        }
+        return;
+    }
     for name in ["cornell", "cornell-disk"] {
         let b = Bench::new(name, 64).expect("reference");
         if what == "lens" {
