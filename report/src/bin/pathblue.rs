@@ -7,8 +7,10 @@
 
 use std::marker::PhantomData as PD;
 use warpcore::sampler::{Blue, Pmj02bn, Sobol};
-use warpcore_report::path::frames::{Bench, Camera4, frame_rows, frame_table, frames_markdown, WarpcorePairs, blurred_mses, by_length, mean_se, ratio};
-use warpcore_report::path::samplers::{PathSampler, Warpcore};
+use warpcore_report::path::frames::{
+    Bench, Camera4, blurred_mses, by_length, frame_rows, frame_table, frames_markdown, mean_se, ratio,
+};
+use warpcore_report::path::samplers::{PathSampler, Warpcore, WarpcorePairs};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();

@@ -16,7 +16,7 @@
 
 use super::metrics::{blur, diff, squares};
 use super::reference::Reference;
-use super::samplers::{PathSampler, ROULETTE_DOMAIN, Random, Warpcore, hash32};
+use super::samplers::{PathSampler, ROULETTE_DOMAIN, Random, Warpcore, WarpcorePairs, hash32};
 use super::scene::Scene;
 use super::trace::{self, Image, MAX_LENGTH};
 use std::marker::PhantomData;
@@ -147,29 +147,6 @@ pub fn by_length<S: PathSampler>(
         .collect()
 }
 
-/// warpcore's sampler with the path's light point and BSDF direction from two 2D domains
-/// of the vertex's domain (`domain(2 + d).domain(0)` and `.domain(1)`), each a `draw::<2>()`
-/// (the draw the blue-noise tiles are optimised for), instead of one `draw::<4>()`.
-pub struct WarpcorePairs<P>(pub PhantomData<fn() -> P>);
-
-impl<P: Pattern> PathSampler for WarpcorePairs<P> {
-    type Sample = Sampler<P>;
-    fn sample(&self, pixel: [u32; 2], index: u32, _spp: u32, seed: u32) -> Sampler<P> {
-        Sampler::<P>::new(pixel, 0, index, seed)
-    }
-    fn draw2(&self, s: &Sampler<P>, domain: u32) -> [f32; 2] {
-        s.domain(domain).draw::<2>()
-    }
-    fn draw4(&self, s: &Sampler<P>, domain: u32) -> [f32; 4] {
-        let v = s.domain(domain);
-        let ([a, b], [c, d]) = (v.domain(0).draw::<2>(), v.domain(1).draw::<2>());
-        [a, b, c, d]
-    }
-    fn rnd(&self, s: &Sampler<P>, domain: u32) -> f32 {
-        s.domain(0x100 + domain).rnd::<1>()[0]
-    }
-}
-
 /// Any sampler with the dimensions of vertices `>= depth` (and every roulette decision)
 /// taken from `rest`: what the blue noise of the first vertices is worth alone.
 pub struct Prefix<A, B> {
@@ -245,14 +222,14 @@ impl<S: PathSampler> PathSampler for Camera4<S> {
 /// warpcore's sampler as a real-time renderer calls it frame after frame:
 /// `Sampler::new_frame(pixel, frame, spp, index, seed)` (the frames continue one sequence per
 /// pixel), or with `fresh`, `Sampler::new(pixel, frame, index, seed)` (a fresh randomisation
-/// per frame). The draws are [`Warpcore`]'s.
-pub struct WarpcoreFrame<P> {
+/// per frame). The draws are `draws`'s ([`Warpcore`] or [`WarpcorePairs`]).
+pub struct WarpcoreFrame<S> {
     pub frame: u32,
     pub fresh: bool,
-    pub pattern: PhantomData<fn() -> P>,
+    pub draws: S,
 }
 
-impl<P: Pattern> PathSampler for WarpcoreFrame<P> {
+impl<P: Pattern, S: PathSampler<Sample = Sampler<P>>> PathSampler for WarpcoreFrame<S> {
     type Sample = Sampler<P>;
     fn sample(&self, pixel: [u32; 2], index: u32, spp: u32, seed: u32) -> Sampler<P> {
         if self.fresh {
@@ -262,13 +239,13 @@ impl<P: Pattern> PathSampler for WarpcoreFrame<P> {
         }
     }
     fn draw2(&self, s: &Sampler<P>, domain: u32) -> [f32; 2] {
-        Warpcore::<P>(PhantomData).draw2(s, domain)
+        self.draws.draw2(s, domain)
     }
     fn draw4(&self, s: &Sampler<P>, domain: u32) -> [f32; 4] {
-        Warpcore::<P>(PhantomData).draw4(s, domain)
+        self.draws.draw4(s, domain)
     }
     fn rnd(&self, s: &Sampler<P>, domain: u32) -> f32 {
-        Warpcore::<P>(PhantomData).rnd(s, domain)
+        self.draws.rnd(s, domain)
     }
 }
 
@@ -425,18 +402,20 @@ pub type FrameRow<'a> = (&'static str, Box<dyn Fn(u32) -> Vec<FrameErrors> + Syn
 #[cfg(feature = "blue-noise")]
 pub fn frame_rows<'a>(b: &'a Bench, counts: &'a [u32], threads: usize) -> Vec<FrameRow<'a>> {
     use super::samplers::OpenQmc;
+    use std::marker::PhantomData as PD;
     use warpcore::sampler::{Blue, Pmj02bn, Sobol};
-    fn ours<'a, P: Pattern>(
+    fn ours<'a, P: Pattern, S: PathSampler<Sample = Sampler<P>> + Copy + Sync + 'a>(
         name: &'static str,
         fresh: bool,
+        draws: S,
         b: &'a Bench,
         counts: &'a [u32],
         t: usize,
     ) -> FrameRow<'a> {
-        let at = move |frame| WarpcoreFrame::<P> {
+        let at = move |frame| WarpcoreFrame {
             frame,
             fresh,
-            pattern: PhantomData,
+            draws,
         };
         (
             name,
@@ -478,12 +457,12 @@ pub fn frame_rows<'a>(b: &'a Bench, counts: &'a [u32], threads: usize) -> Vec<Fr
     };
     vec![
         peer("white noise", false, |_| Random, b, counts, threads),
-        ours::<Pmj02bn>("pmj02bn", false, b, counts, threads),
-        ours::<Sobol>("sobol", false, b, counts, threads),
-        ours::<Blue<Pmj02bn>>("blue_pmj02bn", false, b, counts, threads),
-        ours::<Blue<Sobol>>("blue_sobol", false, b, counts, threads),
-        ours::<Blue<Pmj02bn>>("blue_pmj02bn, fresh frames", true, b, counts, threads),
-        ours::<Blue<Sobol>>("blue_sobol, fresh frames", true, b, counts, threads),
+        ours("pmj02bn", false, Warpcore::<Pmj02bn>(PD), b, counts, threads),
+        ours("sobol", false, Warpcore::<Sobol>(PD), b, counts, threads),
+        ours("blue_pmj02bn", false, WarpcorePairs::<Blue<Pmj02bn>>(PD), b, counts, threads),
+        ours("blue_sobol", false, WarpcorePairs::<Blue<Sobol>>(PD), b, counts, threads),
+        ours("blue_pmj02bn, fresh frames", true, WarpcorePairs::<Blue<Pmj02bn>>(PD), b, counts, threads),
+        ours("blue_sobol, fresh frames", true, WarpcorePairs::<Blue<Sobol>>(PD), b, counts, threads),
         peer("openqmc_sobol", true, oq::<SobolSampler>, b, counts, threads),
         peer("openqmc_pmj", true, oq::<PmjSampler>, b, counts, threads),
         peer("openqmc_lattice", true, oq::<LatticeSampler>, b, counts, threads),
