@@ -126,7 +126,7 @@ fn path_frames_continue_one_sequence() {
     use warpcore_report::path::frames::{
         Bench, FrameErrors, PeerFrame, WarpcoreFrame, frame_errors,
     };
-    use warpcore_report::path::samplers::Random;
+    use warpcore_report::path::samplers::{Random, Warpcore};
     let b = Bench::new("cornell", 32).expect("the committed reference");
     let counts = [32u32];
     let seed = 0x2545_f491;
@@ -143,15 +143,18 @@ fn path_frames_continue_one_sequence() {
         2,
     )[0];
     fn run<P: Pattern>(b: &Bench, counts: &[u32], seed: u32, fresh: bool) -> FrameErrors {
-        let at = move |frame| WarpcoreFrame::<P> {
+        let at = move |frame| WarpcoreFrame {
             frame,
             fresh,
-            pattern: PhantomData,
+            draws: Warpcore::<P>(PhantomData),
         };
         frame_errors(b, counts, seed, at, |_| at(0), 2)[0]
     }
     fn both<P: Pattern>(b: &Bench, counts: &[u32], seed: u32) -> [FrameErrors; 2] {
-        [run::<P>(b, counts, seed, false), run::<P>(b, counts, seed, true)]
+        [
+            run::<P>(b, counts, seed, false),
+            run::<P>(b, counts, seed, true),
+        ]
     }
     for (name, [cont, fresh]) in [
         ("Sobol", both::<Sobol>(&b, &counts, seed)),

@@ -8,7 +8,7 @@
 use std::marker::PhantomData as PD;
 use warpcore::sampler::{Blue, Pmj02bn, Sobol};
 use warpcore_report::path::frames::{
-    Bench, Camera4, blurred_mses, by_length, frame_rows, frame_table, frames_markdown, mean_se, ratio,
+    Bench, Camera4, blurred_mses, by_length, mean_se, ratio, run_frames,
 };
 use warpcore_report::path::samplers::{PathSampler, Warpcore, WarpcorePairs};
 
@@ -22,7 +22,8 @@ fn main() {
         // The 2D edge test's error kept on a rectangle's outline only (a light's silhouette):
         // how much of the blue-noise gain survives on a line feature.
         use warpcore_report::bluenoise::{SIZE, SPP, blur, error_images, ours};
-        let masks: [(&str, fn(usize, usize) -> bool); 2] = [
+        type Mask = fn(usize, usize) -> bool;
+        let masks: [(&str, Mask); 2] = [
             ("whole image", |_, _| true),
             ("outline of a 12 x 10 rectangle", |x, y| {
                 let inx = (26..38).contains(&x);
@@ -36,7 +37,13 @@ fn main() {
                 for frame in 0..seeds {
                     for (k, img) in error_images(d, frame).iter().enumerate() {
                         let m: Vec<f64> = (0..SIZE * SIZE)
-                            .map(|i| if keep(i % SIZE, i / SIZE) { img[i] } else { 0.0 })
+                            .map(|i| {
+                                if keep(i % SIZE, i / SIZE) {
+                                    img[i]
+                                } else {
+                                    0.0
+                                }
+                            })
                             .collect();
                         sum[k] += blur(&m).iter().map(|v| v * v).sum::<f64>();
                     }
@@ -48,25 +55,20 @@ fn main() {
             for k in 0..SPP.len() {
                 println!(
                     "{label}: {} spp blurred MSE ratio Blue<Sobol>/Sobol {:.3}, Blue<Pmj02bn>/Pmj02bn {:.3}",
-                    SPP[k], bl[k] / a[k], bc[k] / c[k]
+                    SPP[k],
+                    bl[k] / a[k],
+                    bc[k] / c[k]
                 );
             }
         }
         return;
     }
     if what == "frames" {
-        // [seeds] [threads] frames [size] [out file]
+        // [seeds] [threads] frames [size] [out file]: what `cargo run-report` writes.
         let size: usize = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(32);
-        let counts = [32u32, 64];
-        let mut md = String::new();
-        for name in ["cornell", "cornell-disk"] {
-            let b = Bench::new(name, size).expect("reference");
-            let rows = frame_rows(&b, &counts, threads);
-            let table = frame_table(&rows, seeds);
-            let part = frames_markdown(name, b.mean.width, seeds, &counts, &table);
-            print!("{part}");
-            md += &part;
-        }
+        let scenes = ["cornell", "cornell-disk"].map(String::from);
+        let md = run_frames(&scenes, size, &[32, 64], seeds, threads).expect("references");
+        print!("{md}");
         if let Some(out) = args.get(5) {
             std::fs::write(out, md).expect("write the table");
         }
@@ -79,23 +81,87 @@ fn main() {
             pin.camera.aperture = 0.0;
             for (sc, sl) in [(&b.scene, "lens 0.02"), (&pin, "pinhole")] {
                 for (label, l) in [
-                    ("sobol", by_length(sc, &Warpcore::<Sobol>(PD), 1, seeds, sigma, threads)),
-                    ("blue_sobol", by_length(sc, &Warpcore::<Blue<Sobol>>(PD), 1, seeds, sigma, threads)),
-                    ("blue_sobol camera4", by_length(sc, &Camera4(Warpcore::<Blue<Sobol>>(PD)), 1, seeds, sigma, threads)),
-                    ("blue_pmj02bn camera4", by_length(sc, &Camera4(Warpcore::<Blue<Pmj02bn>>(PD)), 1, seeds, sigma, threads)),
+                    (
+                        "sobol",
+                        by_length(sc, &Warpcore::<Sobol>(PD), 1, seeds, sigma, threads),
+                    ),
+                    (
+                        "blue_sobol",
+                        by_length(sc, &Warpcore::<Blue<Sobol>>(PD), 1, seeds, sigma, threads),
+                    ),
+                    (
+                        "blue_sobol camera4",
+                        by_length(
+                            sc,
+                            &Camera4(Warpcore::<Blue<Sobol>>(PD)),
+                            1,
+                            seeds,
+                            sigma,
+                            threads,
+                        ),
+                    ),
+                    (
+                        "blue_pmj02bn camera4",
+                        by_length(
+                            sc,
+                            &Camera4(Warpcore::<Blue<Pmj02bn>>(PD)),
+                            1,
+                            seeds,
+                            sigma,
+                            threads,
+                        ),
+                    ),
                 ] {
                     let v = l[0];
-                    println!("{name} {sl} {label}: len 0 {:.3e} {:.3e} {:.4}", v[0], v[1], v[1] / v[0]);
+                    println!(
+                        "{name} {sl} {label}: len 0 {:.3e} {:.3e} {:.4}",
+                        v[0],
+                        v[1],
+                        v[1] / v[0]
+                    );
                 }
             }
             continue;
         }
         if what == "lengths" {
             for (label, l) in [
-                ("sobol", by_length(&b.scene, &Warpcore::<Sobol>(PD), 1, seeds, sigma, threads)),
-                ("blue_sobol", by_length(&b.scene, &Warpcore::<Blue<Sobol>>(PD), 1, seeds, sigma, threads)),
-                ("blue_sobol pairs", by_length(&b.scene, &WarpcorePairs::<Blue<Sobol>>(PD), 1, seeds, sigma, threads)),
-                ("blue_pmj02bn", by_length(&b.scene, &Warpcore::<Blue<Pmj02bn>>(PD), 1, seeds, sigma, threads)),
+                (
+                    "sobol",
+                    by_length(&b.scene, &Warpcore::<Sobol>(PD), 1, seeds, sigma, threads),
+                ),
+                (
+                    "blue_sobol",
+                    by_length(
+                        &b.scene,
+                        &Warpcore::<Blue<Sobol>>(PD),
+                        1,
+                        seeds,
+                        sigma,
+                        threads,
+                    ),
+                ),
+                (
+                    "blue_sobol pairs",
+                    by_length(
+                        &b.scene,
+                        &WarpcorePairs::<Blue<Sobol>>(PD),
+                        1,
+                        seeds,
+                        sigma,
+                        threads,
+                    ),
+                ),
+                (
+                    "blue_pmj02bn",
+                    by_length(
+                        &b.scene,
+                        &Warpcore::<Blue<Pmj02bn>>(PD),
+                        1,
+                        seeds,
+                        sigma,
+                        threads,
+                    ),
+                ),
             ] {
                 println!("{name} {label}: per length [var, blurred var, blurred/var]");
                 for (k, v) in l.iter().enumerate() {
@@ -111,16 +177,44 @@ fn main() {
                 println!("{name} {spp} spp {label:<24} {:.4e} +- {:.1e}", m.0, m.1);
                 m
             };
-            fn go<S: PathSampler>(b: &Bench, s: S, spp: u32, seeds: u32, salt: u32, t: usize) -> Vec<f64> {
+            fn go<S: PathSampler>(
+                b: &Bench,
+                s: S,
+                spp: u32,
+                seeds: u32,
+                salt: u32,
+                t: usize,
+            ) -> Vec<f64> {
                 blurred_mses(b, &s, spp, seeds, salt, 2.0, t)
             }
-            let so = run("sobol", &|spp| go(&b, Warpcore::<Sobol>(PD), spp, seeds, 1, threads));
-            let bso = run("blue_sobol", &|spp| go(&b, Warpcore::<Blue<Sobol>>(PD), spp, seeds, 2, threads));
-            let pm = run("pmj02bn", &|spp| go(&b, Warpcore::<Pmj02bn>(PD), spp, seeds, 3, threads));
-            let bpm = run("blue_pmj02bn", &|spp| go(&b, Warpcore::<Blue<Pmj02bn>>(PD), spp, seeds, 4, threads));
-            let bsop = run("blue_sobol pairs", &|spp| go(&b, WarpcorePairs::<Blue<Sobol>>(PD), spp, seeds, 5, threads));
-            let bpmp = run("blue_pmj02bn pairs", &|spp| go(&b, WarpcorePairs::<Blue<Pmj02bn>>(PD), spp, seeds, 6, threads));
-            let show = |l: &str, r: (f64, f64)| println!("{name} {spp} spp   {l:<36} {:.3} +- {:.3}", r.0, r.1);
+            let so = run("sobol", &|spp| {
+                go(&b, Warpcore::<Sobol>(PD), spp, seeds, 1, threads)
+            });
+            let bso = run("blue_sobol", &|spp| {
+                go(&b, Warpcore::<Blue<Sobol>>(PD), spp, seeds, 2, threads)
+            });
+            let pm = run("pmj02bn", &|spp| {
+                go(&b, Warpcore::<Pmj02bn>(PD), spp, seeds, 3, threads)
+            });
+            let bpm = run("blue_pmj02bn", &|spp| {
+                go(&b, Warpcore::<Blue<Pmj02bn>>(PD), spp, seeds, 4, threads)
+            });
+            let bsop = run("blue_sobol pairs", &|spp| {
+                go(&b, WarpcorePairs::<Blue<Sobol>>(PD), spp, seeds, 5, threads)
+            });
+            let bpmp = run("blue_pmj02bn pairs", &|spp| {
+                go(
+                    &b,
+                    WarpcorePairs::<Blue<Pmj02bn>>(PD),
+                    spp,
+                    seeds,
+                    6,
+                    threads,
+                )
+            });
+            let show = |l: &str, r: (f64, f64)| {
+                println!("{name} {spp} spp   {l:<36} {:.3} +- {:.3}", r.0, r.1)
+            };
             show("blue_sobol / sobol", ratio(bso, so));
             show("blue_pmj02bn / pmj02bn", ratio(bpm, pm));
             show("blue_sobol pairs / sobol", ratio(bsop, so));

@@ -69,7 +69,10 @@ pub fn mean_se(v: &[f64]) -> (f64, f64) {
 /// `a / b` of two independent means `(m, se)`, with its standard error (delta method).
 pub fn ratio(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
     let q = a.0 / b.0;
-    (q, q.abs() * ((a.1 / a.0).powi(2) + (b.1 / b.0).powi(2)).sqrt())
+    (
+        q,
+        q.abs() * ((a.1 / a.0).powi(2) + (b.1 / b.0).powi(2)).sqrt(),
+    )
 }
 
 /// Runs `f(k)` for `k in 0..n` on `threads` threads, results in order.
@@ -135,7 +138,10 @@ pub fn by_length<S: PathSampler>(
             .zip(&b)
             .map(|(a, b)| {
                 let d = diff(a, b);
-                [mean(&squares(&d)) / 2.0, mean(&squares(&blur(&d, sigma))) / 2.0]
+                [
+                    mean(&squares(&d)) / 2.0,
+                    mean(&squares(&blur(&d, sigma))) / 2.0,
+                ]
             })
             .collect()
     });
@@ -266,7 +272,8 @@ impl<S: PathSampler> PathSampler for PeerFrame<S> {
             let i = self.frame.wrapping_mul(spp.max(1)).wrapping_add(index);
             self.inner.sample(pixel, i, spp, seed)
         } else {
-            self.inner.sample(pixel, index, spp, seed ^ hash32(self.frame ^ 0xf4a3_e001))
+            self.inner
+                .sample(pixel, index, spp, seed ^ hash32(self.frame ^ 0xf4a3_e001))
         }
     }
     fn draw2(&self, s: &S::Sample, domain: u32) -> [f32; 2] {
@@ -392,7 +399,10 @@ pub fn frame_errors<S: PathSampler, T: PathSampler>(
 }
 
 /// One row of the frames table: its name and how a run of frames is measured for a seed.
-pub type FrameRow<'a> = (&'static str, Box<dyn Fn(u32) -> Vec<FrameErrors> + Sync + 'a>);
+pub type FrameRow<'a> = (
+    &'static str,
+    Box<dyn Fn(u32) -> Vec<FrameErrors> + Sync + 'a>,
+);
 
 /// The rows of the frames table on `b` (`counts` ascending; ZSobol's pixels hold the top
 /// count): white noise, every warpcore pattern through `new_frame` (and the blue ones with
@@ -457,20 +467,104 @@ pub fn frame_rows<'a>(b: &'a Bench, counts: &'a [u32], threads: usize) -> Vec<Fr
     };
     vec![
         peer("white noise", false, |_| Random, b, counts, threads),
-        ours("pmj02bn", false, Warpcore::<Pmj02bn>(PD), b, counts, threads),
+        ours(
+            "pmj02bn",
+            false,
+            Warpcore::<Pmj02bn>(PD),
+            b,
+            counts,
+            threads,
+        ),
         ours("sobol", false, Warpcore::<Sobol>(PD), b, counts, threads),
-        ours("blue_pmj02bn", false, WarpcorePairs::<Blue<Pmj02bn>>(PD), b, counts, threads),
-        ours("blue_sobol", false, WarpcorePairs::<Blue<Sobol>>(PD), b, counts, threads),
-        ours("blue_pmj02bn, fresh frames", true, WarpcorePairs::<Blue<Pmj02bn>>(PD), b, counts, threads),
-        ours("blue_sobol, fresh frames", true, WarpcorePairs::<Blue<Sobol>>(PD), b, counts, threads),
-        peer("openqmc_sobol", true, oq::<SobolSampler>, b, counts, threads),
+        ours(
+            "blue_pmj02bn",
+            false,
+            WarpcorePairs::<Blue<Pmj02bn>>(PD),
+            b,
+            counts,
+            threads,
+        ),
+        ours(
+            "blue_sobol",
+            false,
+            WarpcorePairs::<Blue<Sobol>>(PD),
+            b,
+            counts,
+            threads,
+        ),
+        ours(
+            "blue_pmj02bn, fresh frames",
+            true,
+            WarpcorePairs::<Blue<Pmj02bn>>(PD),
+            b,
+            counts,
+            threads,
+        ),
+        ours(
+            "blue_sobol, fresh frames",
+            true,
+            WarpcorePairs::<Blue<Sobol>>(PD),
+            b,
+            counts,
+            threads,
+        ),
+        peer(
+            "openqmc_sobol",
+            true,
+            oq::<SobolSampler>,
+            b,
+            counts,
+            threads,
+        ),
         peer("openqmc_pmj", true, oq::<PmjSampler>, b, counts, threads),
-        peer("openqmc_lattice", true, oq::<LatticeSampler>, b, counts, threads),
-        peer("openqmc_sobolbn", true, oq::<SobolBnSampler>, b, counts, threads),
-        peer("openqmc_pmjbn", true, oq::<PmjBnSampler>, b, counts, threads),
-        peer("openqmc_latticebn", true, oq::<LatticeBnSampler>, b, counts, threads),
-        peer("openqmc_sobolbn, frame", false, oq::<SobolBnSampler>, b, counts, threads),
-        peer("openqmc_pmjbn, frame", false, oq::<PmjBnSampler>, b, counts, threads),
+        peer(
+            "openqmc_lattice",
+            true,
+            oq::<LatticeSampler>,
+            b,
+            counts,
+            threads,
+        ),
+        peer(
+            "openqmc_sobolbn",
+            true,
+            oq::<SobolBnSampler>,
+            b,
+            counts,
+            threads,
+        ),
+        peer(
+            "openqmc_pmjbn",
+            true,
+            oq::<PmjBnSampler>,
+            b,
+            counts,
+            threads,
+        ),
+        peer(
+            "openqmc_latticebn",
+            true,
+            oq::<LatticeBnSampler>,
+            b,
+            counts,
+            threads,
+        ),
+        peer(
+            "openqmc_sobolbn, frame",
+            false,
+            oq::<SobolBnSampler>,
+            b,
+            counts,
+            threads,
+        ),
+        peer(
+            "openqmc_pmjbn, frame",
+            false,
+            oq::<PmjBnSampler>,
+            b,
+            counts,
+            threads,
+        ),
         peer("zsobol", true, zs, b, counts, threads),
     ]
 }
@@ -483,7 +577,8 @@ pub fn frame_table(rows: &[FrameRow<'_>], seeds: u32) -> Vec<(&'static str, Vec<
             let n = runs.len().max(1) as f64;
             let avg = (0..runs.first().map_or(0, |r| r.len()))
                 .map(|k| {
-                    let m = |f: fn(&FrameErrors) -> f64| runs.iter().map(|r| f(&r[k])).sum::<f64>() / n;
+                    let m =
+                        |f: fn(&FrameErrors) -> f64| runs.iter().map(|r| f(&r[k])).sum::<f64>() / n;
                     FrameErrors {
                         frame_mean: m(|e| e.frame_mean),
                         frame_worst: m(|e| e.frame_worst),
@@ -539,4 +634,25 @@ pub fn frames_markdown(
         }
     }
     s
+}
+
+/// The frames tables of `scenes` (`path-frames.md`): `size x size` pixels, `counts` frames,
+/// the mean over `seeds` runs. `cargo run-report` writes it at 32 x 32 pixels over 2 seeds
+/// (quick: 32 frames, 1 seed; `--full`: 64 x 64 over 4 seeds, into `docs/report`).
+#[cfg(feature = "blue-noise")]
+pub fn run_frames(
+    scenes: &[String],
+    size: usize,
+    counts: &[u32],
+    seeds: u32,
+    threads: usize,
+) -> Result<String, String> {
+    let mut md = String::new();
+    for name in scenes.iter().filter(|n| !n.contains('/')) {
+        let b = Bench::new(name, size)?;
+        let rows = frame_rows(&b, counts, threads);
+        let table = frame_table(&rows, seeds);
+        md += &frames_markdown(name, b.mean.width, seeds, counts, &table);
+    }
+    Ok(md)
 }
