@@ -60,14 +60,8 @@ fn unit(x: u32) -> f32 {
 }
 
 /// warpcore's sampling core with pattern `P`.
+#[derive(Clone, Copy)]
 pub struct Warpcore<P>(pub std::marker::PhantomData<fn() -> P>);
-
-impl<P> Clone for Warpcore<P> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-impl<P> Copy for Warpcore<P> {}
 
 impl<P: Pattern> PathSampler for Warpcore<P> {
     type Sample = Sampler<P>;
@@ -90,14 +84,8 @@ impl<P: Pattern> PathSampler for Warpcore<P> {
 /// optimised for — the light point and the BSDF direction of vertex `d` from
 /// `root.domain(2 + d).domain(0)` and `.domain(1)` instead of one `draw::<4>()`, whose
 /// dimensions 2-3 are not blue across pixels. Otherwise [`Warpcore`]'s.
+#[derive(Clone, Copy)]
 pub struct WarpcorePairs<P>(pub std::marker::PhantomData<fn() -> P>);
-
-impl<P> Clone for WarpcorePairs<P> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-impl<P> Copy for WarpcorePairs<P> {}
 
 impl<P: Pattern> PathSampler for WarpcorePairs<P> {
     type Sample = Sampler<P>;
