@@ -18,6 +18,38 @@ fn main() {
     let threads: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(2);
     let what = args.get(3).cloned().unwrap_or_else(|| "ratios".into());
     let sigma = 2.0;
+    if what == "roulette" {
+        // The blurred error summed over path lengths with and without the roulette.
+        use warpcore_report::path::scene::Scene;
+        for name in ["cornell", "cornell/rr-off"] {
+            let sc = Scene::by_name(name, 64).expect("scene");
+            let total =
+                |l: Vec<[f64; 2]>| l.iter().fold([0.0, 0.0], |a, v| [a[0] + v[0], a[1] + v[1]]);
+            let so = total(by_length(
+                &sc,
+                &Warpcore::<Sobol>(PD),
+                1,
+                seeds,
+                sigma,
+                threads,
+            ));
+            let bl = total(by_length(
+                &sc,
+                &WarpcorePairs::<Blue<Sobol>>(PD),
+                1,
+                seeds,
+                sigma,
+                threads,
+            ));
+            println!(
+                "{name}: 1 spp blurred variance sobol {:.3e}, blue_sobol {:.3e}, ratio {:.3}",
+                so[1],
+                bl[1],
+                bl[1] / so[1]
+            );
+        }
+        return;
+    }
     if what == "line" {
         // The 2D edge test's error kept on a rectangle's outline only (a light's silhouette):
         // how much of the blue-noise gain survives on a line feature.
