@@ -156,17 +156,25 @@ fn main() {
             continue;
         }
         if what == "lengths" {
+            let lspp: u32 = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(1);
             for (label, l) in [
                 (
                     "sobol",
-                    by_length(&b.scene, &Warpcore::<Sobol>(PD), 1, seeds, sigma, threads),
+                    by_length(
+                        &b.scene,
+                        &Warpcore::<Sobol>(PD),
+                        lspp,
+                        seeds,
+                        sigma,
+                        threads,
+                    ),
                 ),
                 (
                     "blue_sobol",
                     by_length(
                         &b.scene,
                         &Warpcore::<Blue<Sobol>>(PD),
-                        1,
+                        lspp,
                         seeds,
                         sigma,
                         threads,
@@ -177,7 +185,7 @@ fn main() {
                     by_length(
                         &b.scene,
                         &WarpcorePairs::<Blue<Sobol>>(PD),
-                        1,
+                        lspp,
                         seeds,
                         sigma,
                         threads,
@@ -188,14 +196,14 @@ fn main() {
                     by_length(
                         &b.scene,
                         &Warpcore::<Blue<Pmj02bn>>(PD),
-                        1,
+                        lspp,
                         seeds,
                         sigma,
                         threads,
                     ),
                 ),
             ] {
-                println!("{name} {label}: per length [var, blurred var, blurred/var]");
+                println!("{name} {lspp} spp {label}: per length [var, blurred var, blurred/var]");
                 for (k, v) in l.iter().enumerate() {
                     println!("  len {k}: {:.3e} {:.3e} {:.4}", v[0], v[1], v[1] / v[0]);
                 }
