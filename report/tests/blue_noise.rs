@@ -184,38 +184,31 @@ fn path_frames_continue_one_sequence() {
 #[test]
 fn path_blue_noise_pays_at_one_sample_per_pixel() {
     use std::marker::PhantomData as PD;
+    use warpcore::sampler::{Base, Pattern};
     use warpcore_report::path::frames::{Bench, blurred_mses, mean_se, ratio};
     use warpcore_report::path::samplers::{Warpcore, WarpcorePairs};
     let b = Bench::new("cornell", 32).expect("the committed reference");
-    let n = 512;
-    let m = |v: Vec<f64>| mean_se(&v);
-    for (name, base, blue) in [
-        (
-            "Sobol",
-            m(blurred_mses(&b, &Warpcore::<Sobol>(PD), 1, n, 11, 2.0, 2)),
-            m(blurred_mses(
-                &b,
-                &WarpcorePairs::<Blue<Sobol>>(PD),
+    fn run<P: Base>(b: &Bench, salt: u32) -> [(f64, f64); 2]
+    where
+        Blue<P>: Pattern,
+    {
+        let n = 512;
+        [
+            mean_se(&blurred_mses(b, &Warpcore::<P>(PD), 1, n, salt, 2.0, 2)),
+            mean_se(&blurred_mses(
+                b,
+                &WarpcorePairs::<Blue<P>>(PD),
                 1,
                 n,
-                12,
+                salt + 1,
                 2.0,
                 2,
             )),
-        ),
-        (
-            "Pmj02bn",
-            m(blurred_mses(&b, &Warpcore::<Pmj02bn>(PD), 1, n, 13, 2.0, 2)),
-            m(blurred_mses(
-                &b,
-                &WarpcorePairs::<Blue<Pmj02bn>>(PD),
-                1,
-                n,
-                14,
-                2.0,
-                2,
-            )),
-        ),
+        ]
+    }
+    for (name, [base, blue]) in [
+        ("Sobol", run::<Sobol>(&b, 11)),
+        ("Pmj02bn", run::<Pmj02bn>(&b, 13)),
     ] {
         let (q, se) = ratio(blue, base);
         eprintln!("{name}: Blue<P> / P after the blur {q:.3} +- {se:.3}");

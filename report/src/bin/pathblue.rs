@@ -41,11 +41,9 @@ fn main() {
                 sigma,
                 threads,
             ));
-            println!(
-                "{name}: 1 spp blurred variance sobol {:.3e}, blue_sobol {:.3e}, ratio {:.3}",
-                so[1],
-                bl[1],
-                bl[1] / so[1]
+            show(
+                &format!("{name}: 1 spp blurred variance, sobol and blue_sobol"),
+                [so[1], bl[1]],
             );
         }
         return;
@@ -144,13 +142,7 @@ fn main() {
                         ),
                     ),
                 ] {
-                    let v = l[0];
-                    println!(
-                        "{name} {sl} {label}: len 0 {:.3e} {:.3e} {:.4}",
-                        v[0],
-                        v[1],
-                        v[1] / v[0]
-                    );
+                    show(&format!("{name} {sl} {label}: len 0"), l[0]);
                 }
             }
             continue;
@@ -205,7 +197,7 @@ fn main() {
             ] {
                 println!("{name} {lspp} spp {label}: per length [var, blurred var, blurred/var]");
                 for (k, v) in l.iter().enumerate() {
-                    println!("  len {k}: {:.3e} {:.3e} {:.4}", v[0], v[1], v[1] / v[0]);
+                    show(&format!("  len {k}:"), *v);
                 }
             }
             continue;
@@ -261,4 +253,9 @@ fn main() {
             show("blue_pmj02bn pairs / pmj02bn", ratio(bpmp, pm));
         }
     }
+}
+
+/// `label a b b/a`.
+fn show(label: &str, v: [f64; 2]) {
+    println!("{label} {:.3e} {:.3e} {:.4}", v[0], v[1], v[1] / v[0]);
 }
