@@ -503,6 +503,24 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         opts.reference,
     );
     let path_results = crate::path::run(&path_cfg, &opts.out)?;
+    // Frames of 1 spp on the path scenes (issue 34): running mean, EMA, per-frame error.
+    #[cfg(feature = "blue-noise")]
+    if !path_results.is_empty() {
+        let counts: &[u32] = if scale == Scale::Quick {
+            &[32]
+        } else {
+            &[32, 64]
+        };
+        let md = crate::path::frames::run_frames(
+            &path_cfg.scenes,
+            path_cfg.size,
+            counts,
+            scale.pick([1, 2, 4]),
+            opts.threads.max(1),
+        )?;
+        print!("{md}");
+        output::write(&opts.out.join("path-frames.md"), &md)?;
+    }
     // The path study (Burley 2020's boxes, the ablations, the rates): its rows join too.
     let study = crate::path::study::run(&opts.study_cases(), opts.threads, &opts.out)?;
     let csv = opts.out.join("results.csv");

@@ -285,7 +285,8 @@ pub fn frame_errors(draw: FrameDraw, frames: u32) -> [f64; 5] {
 /// `2^10`), whose base-4 digits are each permuted, from the most significant down, by one of
 /// the 24 permutations of `0..4` chosen by a hash of the digits above and of `dim` (with an
 /// odd `log2_spp` the lowest digit is binary and is flipped by one hash bit); the point is
-/// dimensions 0-1 of Owen-scrambled Sobol' (`sobol_burley`, seeded by `dim`) at that index.
+/// dimensions 0-1 of Sobol' (the report's Joe-Kuo directions, [`crate::path::qmc::sobol`],
+/// all 2^32 indices) at that index, Owen-scrambled by the Laine-Karras hash keyed by `dim`.
 /// So each pixel's samples are an aligned block of one sequence (a net), and the pixels of
 /// every aligned Morton quad take 4 blocks that together form a net: neighbouring pixels'
 /// errors cancel. Needs the sample count in advance (not progressive). A report peer, not a
@@ -335,12 +336,17 @@ pub fn zsobol(x: u32, y: u32, log2_spp: u32, index: u32, dim: u32) -> [f32; 2] {
         out |= u64::from(permuted) << shift;
         done += width;
     }
+    // Sobol' over all 2^32 indices (`sobol_burley` takes indices below 2^16 only, and the
+    // permuted index here has 2 x 10 + log2_spp bits).
     let i = out as u32;
-    let seed = key;
-    [
-        sobol_burley::sample(i, 0, seed),
-        sobol_burley::sample(i, 1, seed),
-    ]
+    let owen = |d: usize| {
+        let x = crate::path::qmc::lk_scramble(
+            crate::path::qmc::sobol(i, d),
+            key ^ (d as u32 + 1).wrapping_mul(0x9e37_79b9),
+        );
+        (x >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
+    };
+    [owen(0), owen(1)]
 }
 
 /// RMS of the blurred error of [`zsobol`] at `spp` samples per pixel over `frames` frames

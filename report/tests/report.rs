@@ -419,6 +419,19 @@ fn quick_run_writes_a_well_formed_csv() {
     let t = std::time::Instant::now();
     let results = app::run(&opts).expect("the quick run");
     println!("quick run: {:.1} s", t.elapsed().as_secs_f64());
+    // Frames of 1 spp on the path scenes (issue 34): one table per scene, every sampler.
+    #[cfg(feature = "blue-noise")]
+    {
+        let frames = std::fs::read_to_string(out.join("path-frames.md")).unwrap();
+        for row in [
+            "| white noise |",
+            "| blue_sobol |",
+            "| openqmc_pmjbn |",
+            "| zsobol |",
+        ] {
+            assert_eq!(frames.matches(row).count(), 2, "{row} in path-frames.md");
+        }
+    }
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     let mut lines = csv.lines();
     assert_eq!(

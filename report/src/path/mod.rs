@@ -13,6 +13,7 @@
 //! * **time per frame**: the whole render (sampling, tracing, shading) of one frame,
 //!   single-threaded, the best over the frames of that count.
 
+pub mod frames;
 pub mod metrics;
 pub mod pictures;
 pub mod qmc;

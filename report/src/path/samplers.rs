@@ -7,7 +7,9 @@
 //! dimension), and [`PathSampler::rnd`] an unstratified number (the `/rr-rnd` variant's
 //! roulette). Each core maps that onto its own interface:
 //!
-//! * warpcore `Sampler<P>` (and `Blue<P>`): `root.domain(k).draw::<N>()`, `rnd` for `rnd`;
+//! * warpcore `Sampler<P>`: `root.domain(k).draw::<N>()`, `rnd` for `rnd`; `Blue<P>` the
+//!   same but a 4D request as two 2D draws of sub-domains ([`WarpcorePairs`]: the draw the
+//!   blue-noise tiles are optimised for, docs/sampler.md "Over a whole path");
 //! * openqmc-rs (`X::new(x, y, frame, index).new_domain(k).draw_sample_f32::<N>()`), the frame
 //!   carrying the seed, `draw_rnd_f32` for `rnd`;
 //! * `sobol_burley::sample_4d(index, k, seed)`: domain `k` is the 4D dimension set `k`,
@@ -58,6 +60,7 @@ fn unit(x: u32) -> f32 {
 }
 
 /// warpcore's sampling core with pattern `P`.
+#[derive(Clone, Copy)]
 pub struct Warpcore<P>(pub std::marker::PhantomData<fn() -> P>);
 
 impl<P: Pattern> PathSampler for Warpcore<P> {
@@ -73,6 +76,32 @@ impl<P: Pattern> PathSampler for Warpcore<P> {
     }
     fn rnd(&self, s: &Sampler<P>, domain: u32) -> f32 {
         s.domain(RND_DOMAIN + domain).rnd::<1>()[0]
+    }
+}
+
+/// warpcore's sampling core as `Blue<P>` wants it (docs/sampler.md, "Over a whole path"):
+/// each 2D decision from its own domain with `draw::<2>()`, the draw the blue-noise tiles are
+/// optimised for — the light point and the BSDF direction of vertex `d` from
+/// `root.domain(2 + d).domain(0)` and `.domain(1)` instead of one `draw::<4>()`, whose
+/// dimensions 2-3 are not blue across pixels. Otherwise [`Warpcore`]'s.
+#[derive(Clone, Copy)]
+pub struct WarpcorePairs<P>(pub std::marker::PhantomData<fn() -> P>);
+
+impl<P: Pattern> PathSampler for WarpcorePairs<P> {
+    type Sample = Sampler<P>;
+    fn sample(&self, pixel: [u32; 2], index: u32, spp: u32, seed: u32) -> Sampler<P> {
+        Warpcore::<P>(std::marker::PhantomData).sample(pixel, index, spp, seed)
+    }
+    fn draw2(&self, s: &Sampler<P>, domain: u32) -> [f32; 2] {
+        s.domain(domain).draw::<2>()
+    }
+    fn draw4(&self, s: &Sampler<P>, domain: u32) -> [f32; 4] {
+        let v = s.domain(domain);
+        let ([a, b], [c, d]) = (v.domain(0).draw::<2>(), v.domain(1).draw::<2>());
+        [a, b, c, d]
+    }
+    fn rnd(&self, s: &Sampler<P>, domain: u32) -> f32 {
+        Warpcore::<P>(std::marker::PhantomData).rnd(s, domain)
     }
 }
 
@@ -361,8 +390,8 @@ macro_rules! with_sampler {
         $crate::path::samplers::with_sampler!(@match $kind, $s, $body,
             Pmj02bn => Warpcore::<Pmj02bn>(PD),
             Sobol => Warpcore::<Sobol>(PD),
-            BluePmj02bn => Warpcore::<Blue<Pmj02bn>>(PD),
-            BlueSobol => Warpcore::<Blue<Sobol>>(PD),
+            BluePmj02bn => WarpcorePairs::<Blue<Pmj02bn>>(PD),
+            BlueSobol => WarpcorePairs::<Blue<Sobol>>(PD),
             OpenqmcSobol => OpenQmc::<openqmc::SobolSampler>(PD),
             OpenqmcSobolbn => OpenQmc::<openqmc::SobolBnSampler>(PD),
             OpenqmcPmj => OpenQmc::<openqmc::PmjSampler>(PD),
