@@ -167,9 +167,10 @@ impl<L: Lane> Chooser<L> for ByU<L> {
         let u = self.0;
         let right = !u.simd_lt(p_left);
         let one = L::splat(1.0);
-        // `u / P` or `(u - P) / (1 - P)`; a zero denominator (a side never taken) gives
-        // inf or NaN, replaced by the clamp below.
-        let v = L::select(right, (u - p_left) / (one - p_left), u / p_left);
+        // `u / P` or `(u - P) / (1 - P)`, one division of the side's operands (no branch on
+        // `u`); a zero denominator (a side never taken) gives inf or NaN, replaced by the
+        // clamp below.
+        let v = L::select(right, u - p_left, u) / L::select(right, one - p_left, p_left);
         let top = L::splat(ONE_MINUS_EPSILON);
         let zero = L::splat(0.0);
         self.0 = L::select(zero.simd_lt(v), L::select(v.simd_lt(top), v, top), zero);
@@ -310,17 +311,30 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
 /// of the four children as one `u32x4`.
 const QUAD_WORDS: usize = 4 * NODE_WORDS;
 
-/// The importances of a quad's four children. One lane-generic body ([`importance`]); a
-/// scalar walk evaluates the four children as the four lanes of one `f32x4` (the same IEEE
-/// operations lane by lane, so the same bits as four scalar evaluations), a SIMD walk
-/// evaluates them one after the other.
+/// The importances of a quad's four children and their last words (leaf flag and index).
+/// One lane-generic body ([`importance`]); a scalar walk loads each field of the four
+/// children as one `u32x4` straight from the quad and evaluates them as the four lanes of
+/// one `f32x4` (the same IEEE operations lane by lane, so the same bits as four scalar
+/// evaluations), a SIMD walk gathers its lanes' quads and evaluates the children one after
+/// the other.
 pub(super) trait Children: Lane {
-    fn importance4(pt: &Point<Self>, rec: &[Self::U; QUAD_WORDS]) -> [Self; 4];
+    fn quad(
+        pt: &Point<Self>,
+        quads: &[[u32; QUAD_WORDS]],
+        quad: Self::U,
+    ) -> ([Self; 4], [Self::U; 4]);
 }
+
+/// A quad of zeros: what a quad index past the end reads (never in a storage `new` wrote).
+const ZERO_QUAD: [u32; QUAD_WORDS] = [0; QUAD_WORDS];
 
 impl Children for f32 {
     #[inline(always)]
-    fn importance4(pt: &Point<f32>, rec: &[Wrapping<u32>; QUAD_WORDS]) -> [f32; 4] {
+    fn quad(
+        pt: &Point<f32>,
+        quads: &[[u32; QUAD_WORDS]],
+        quad: Wrapping<u32>,
+    ) -> ([f32; 4], [Wrapping<u32>; 4]) {
         let mask = |b: bool| UintLane::simd_eq(u32x4::splat(u32::from(b)), u32x4::splat(1));
         let wide_pt = Point {
             p: pt.p.map(f32x4::splat),
@@ -328,12 +342,13 @@ impl Children for f32 {
             has_n: mask(pt.has_n),
             valid: mask(pt.valid),
         };
+        let rec = quads.get(quad.0 as usize).unwrap_or(&ZERO_QUAD);
+        let rows = rec.as_chunks::<4>().0;
         let words: [u32x4; NODE_WORDS] = core::array::from_fn(|k| {
-            u32x4::new(core::array::from_fn(|c| {
-                rec.get(4 * k + c).map_or(0, |w| w.0)
-            }))
+            from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4])))
         });
-        importance::<f32x4>(&wide_pt, &words).to_array()
+        let info = words[NODE_WORDS - 1].to_array().map(Wrapping);
+        (importance::<f32x4>(&wide_pt, &words).to_array(), info)
     }
 }
 
@@ -341,13 +356,20 @@ macro_rules! children_one_by_one {
     ($($l:ty),*) => {$(
         impl Children for $l {
             #[inline(always)]
-            fn importance4(pt: &Point<$l>, rec: &[<$l as Lane>::U; QUAD_WORDS]) -> [$l; 4] {
-                core::array::from_fn(|c| {
-                    let w: [_; NODE_WORDS] = core::array::from_fn(|k| {
-                        rec.get(4 * k + c).copied().unwrap_or(<$l as Lane>::U::splat(0))
-                    });
+            fn quad(
+                pt: &Point<$l>,
+                quads: &[[u32; QUAD_WORDS]],
+                quad: <$l as Lane>::U,
+            ) -> ([$l; 4], [<$l as Lane>::U; 4]) {
+                let rec = <$l as Lane>::U::gather(quads, quad).map(from_storage_order);
+                let word = |k: usize, c: usize| {
+                    rec.get(4 * k + c).copied().unwrap_or(<$l as Lane>::U::splat(0))
+                };
+                let imp = core::array::from_fn(|c| {
+                    let w: [_; NODE_WORDS] = core::array::from_fn(|k| word(k, c));
                     importance::<$l>(pt, &w)
-                })
+                });
+                (imp, core::array::from_fn(|c| word(NODE_WORDS - 1, c)))
             }
         }
     )*};
@@ -377,8 +399,7 @@ fn walk<L: Children, C: Chooser<L>>(
     let mut done = uzero.simd_eq(L::U::splat(1));
     let mut dead = !pt.valid;
     for level in 0..levels.min(MAX_LEVELS) {
-        let rec = L::U::gather(quads, quad).map(from_storage_order);
-        let [i0, i1, i2, i3] = L::importance4(pt, &rec);
+        let ([i0, i1, i2, i3], info) = L::quad(pt, quads, quad);
         let (s01, s23) = (i0 + i1, i2 + i3);
         let sum = s01 + s23;
         let live = zero.simd_lt(sum);
@@ -395,9 +416,9 @@ fn walk<L: Children, C: Chooser<L>>(
         let active = active & live;
         prob = L::select(active, prob * p_pair * p_child, prob);
         let info = {
-            let pick = |a: usize, b: usize| L::U::select(second, rec[b], rec[a]);
-            let info = 4 * (NODE_WORDS - 1);
-            L::U::select(high, pick(info + 2, info + 3), pick(info, info + 1))
+            let [w0, w1, w2, w3] = info;
+            let pick = |a, b| L::U::select(second, b, a);
+            L::U::select(high, pick(w2, w3), pick(w0, w1))
         };
         let target = info & L::U::splat(INDEX_MASK);
         let leaf = !(info & L::U::splat(LEAF)).simd_eq(uzero);
