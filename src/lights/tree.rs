@@ -58,8 +58,8 @@ const INDEX_MASK: u32 = (1 << 30) - 1;
 /// Most levels a walk takes (the root pair's level included); a balanced tree of
 /// `MAX_LIGHTS` lights needs 12; a trail holds 2 bits per level.
 const MAX_LEVELS: u32 = 16;
-/// Importances are clamped to this (`2^126`), so a sum of two stays finite.
-const BIG: f32 = 8.507_059e37;
+/// Importances are clamped to this (`2^125`), so a quad's sum of four stays finite.
+const BIG: f32 = 4.253_529_6e37;
 
 /// A bounding-volume tree over [`LightBounds`]: picks one of `n` lights with probability
 /// proportional to each subtree's *importance* at the shading point, with the exact
@@ -152,29 +152,43 @@ pub struct LightTree<'a> {
 /// The tree's largest number of lights: `2^24` (indices, trails and 32-bit word offsets fit).
 const MAX_LIGHTS: usize = 1 << 24;
 
-/// How a walk picks a side at each level: by `u` (sampling) or by a light's trail (pmf).
+/// How a walk picks a child at each level: by `u` (sampling) or by a light's trail (pmf).
 trait Chooser<L: Lane> {
-    /// Whether to take the right child, given `P(left)`.
-    fn right(&mut self, level: u32, p_left: L) -> L::Mask;
+    /// The child taken among importances `i` (`s01 = I_0 + I_1`, `s23 = I_2 + I_3`, `sum =
+    /// s01 + s23`) at `level`: whether it is in the pair `{2, 3}` and whether it is the
+    /// second of its pair.
+    fn pick(&mut self, level: u32, i: &[L; 4], s01: L, s23: L, sum: L) -> (L::Mask, L::Mask);
 }
 
-/// Picks by `u`, rescaling it into the side taken.
+/// Picks by `u`: `t = u S` falls in one of the four children's intervals `[I_0 + ... +
+/// I_(c-1), I_0 + ... + I_c)` (compares against the three bounds, no division on the way
+/// down; a child of importance 0 is never taken, whatever `t`'s rounding), and `u` for the
+/// next level is where `t` lies in the chosen interval, `(t - start) / I_c`.
 struct ByU<L>(L);
 
 impl<L: Lane> Chooser<L> for ByU<L> {
     #[inline(always)]
-    fn right(&mut self, _level: u32, p_left: L) -> L::Mask {
-        let u = self.0;
-        let right = !u.simd_lt(p_left);
-        let one = L::splat(1.0);
-        // `u / P` or `(u - P) / (1 - P)`, one division of the side's operands (no branch on
-        // `u`); a zero denominator (a side never taken) gives inf or NaN, replaced by the
-        // clamp below.
-        let v = L::select(right, u - p_left, u) / L::select(right, one - p_left, p_left);
-        let top = L::splat(ONE_MINUS_EPSILON);
+    fn pick(&mut self, _level: u32, i: &[L; 4], s01: L, s23: L, sum: L) -> (L::Mask, L::Mask) {
         let zero = L::splat(0.0);
+        let [i0, i1, i2, i3] = *i;
+        let s012 = s01 + i2;
+        let t = self.0 * sum;
+        // The bound `at` past which `t` takes a side of weight `w`; never if `w` is 0.
+        let bound = |w: L, at: L| L::select(zero.simd_lt(w), at, L::splat(f32::INFINITY));
+        let high = !t.simd_lt(bound(s23, s01));
+        let second = !t.simd_lt(L::select(high, bound(i3, s012), bound(i1, i0)));
+        let start = L::select(
+            high,
+            L::select(second, s012, s01),
+            L::select(second, i0, zero),
+        );
+        let chosen = L::select(high, L::select(second, i3, i2), L::select(second, i1, i0));
+        // `(t - start) / I_c` in [0, 1 - 2^-24]; a dead end (`I_c = 0`) gives NaN, replaced
+        // by 0 (the walk stops there anyway).
+        let v = (t - start) / chosen;
+        let top = L::splat(ONE_MINUS_EPSILON);
         self.0 = L::select(zero.simd_lt(v), L::select(v.simd_lt(top), v, top), zero);
-        right
+        (high, second)
     }
 }
 
@@ -183,9 +197,10 @@ struct ByTrail<U>(U);
 
 impl<L: Lane> Chooser<L> for ByTrail<L::U> {
     #[inline(always)]
-    fn right(&mut self, level: u32, _p_left: L) -> L::Mask {
+    fn pick(&mut self, level: u32, _i: &[L; 4], _: L, _: L, _: L) -> (L::Mask, L::Mask) {
         let one = L::U::splat(1);
-        !(self.0.shr(level) & one).simd_eq(L::U::splat(0))
+        let bit = |b: u32| !(self.0.shr(b) & one).simd_eq(L::U::splat(0));
+        (bit(2 * level), bit(2 * level + 1))
     }
 }
 
@@ -195,20 +210,10 @@ fn pos<L: Lane>(x: L) -> L {
     L::select(L::splat(0.0).simd_lt(x), x, L::splat(0.0))
 }
 
-/// `cos(max(0, a - b))` from the cosines and sines of `a` and `b` in `[0, pi]`.
+/// The axis stored in a node word (octahedral, two 16-bit fixed-point coordinates
+/// `q / 2^15 - 1`, exact) before normalisation, and its squared length.
 #[inline(always)]
-fn cos_sub<L: Lane>(cos_a: L, sin_a: L, cos_b: L, sin_b: L) -> L {
-    L::select(
-        cos_b.simd_lt(cos_a),
-        L::splat(1.0),
-        cos_a * cos_b + sin_a * sin_b,
-    )
-}
-
-/// The unit axis stored in a node word (octahedral, two 16-bit fixed-point coordinates
-/// `q / 2^15 - 1`, exact).
-#[inline(always)]
-pub(super) fn oct_decode<L: Lane>(w: L::U) -> [L; 3] {
+fn oct_raw<L: Lane>(w: L::U) -> ([L; 3], L) {
     let k = L::splat(1.0 / 32768.0);
     let one = L::splat(1.0);
     let x = L::from_uint(w & L::U::splat(0xffff)) * k - one;
@@ -219,8 +224,15 @@ pub(super) fn oct_decode<L: Lane>(w: L::U) -> [L; 3] {
     let fy = (one - x.abs()).flip_sign(y.sign_bit());
     let x = L::select(lower, fx, x);
     let y = L::select(lower, fy, y);
-    let inv = one / (x * x + y * y + z * z).sqrt();
-    [x * inv, y * inv, z * inv]
+    ([x, y, z], x * x + y * y + z * z)
+}
+
+/// The unit axis stored in a node word (see [`oct_raw`]).
+#[inline(always)]
+pub(super) fn oct_decode<L: Lane>(w: L::U) -> [L; 3] {
+    let (v, q) = oct_raw::<L>(w);
+    let inv = L::splat(1.0) / q.sqrt();
+    v.map(|x| x * inv)
 }
 
 /// A 16-bit fixed-point cosine `q / 2^15 - 1` (exact).
@@ -254,7 +266,13 @@ fn point<L: Lane>(p: [L; 3], n: [L; 3]) -> Point<L> {
 }
 
 /// The importance of one stored node at the point (see [`LightTree`]): finite, in
-/// `[0, 2^126]`, whatever the words hold.
+/// `[0, 2^125]`, whatever the words hold.
+///
+/// The cosines and sines of the angles are carried multiplied by the distance `d` (by
+/// `d^2` for `cos(theta')` and the incidence factor), so that the three square roots
+/// (`d sin(theta_w)`, `d cos(theta_b)`, `d sin(theta_i)`) run side by side and one division
+/// (`1 / d^2`) ends the chain: `d cos(theta_w) = w . (p - c)`, `d sin(theta_w) =
+/// sqrt(d^2 - (w . (p - c))^2)`, `d cos(theta_b) = sqrt(d^2 - r^2)`, `d sin(theta_b) = r`.
 #[inline(always)]
 fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
     let word = |k: usize| w.get(k).copied().unwrap_or(L::U::splat(0));
@@ -266,37 +284,48 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
     let r = f(3);
     let r2 = r * r;
     let phi = f(4);
-    let inside = d2.simd_lt(r2);
-    let dist = d2.sqrt();
-    let inv = L::select(zero.simd_lt(d2), one / dist, zero);
-    let wi = d.map(|x| x * inv);
-    let axis = oct_decode::<L>(word(5));
-    let cos_w = (axis[0] * d[0] + axis[1] * d[1] + axis[2] * d[2]) * inv;
+    // Inside the sphere (or on it): the cone of directions to it is the whole sphere.
+    let outside = r2.simd_lt(d2);
+    // The stored axis `v` is not unit: with `l = |v|`, the quantities of the axis's cone
+    // carry a factor `l` (no division on the way from the axis word to `cos(theta')`):
+    // `l d cos(theta_w) = v . (p - c)` (folded for two-sided nodes), `l d sin(theta_w)`.
+    let (v, q) = oct_raw::<L>(word(5));
+    let a = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
     let info = word(7);
     let two_sided = !(info & L::U::splat(TWO_SIDED)).simd_eq(L::U::splat(0));
-    let cos_w = L::select(two_sided, cos_w.abs(), cos_w);
-    let sin_w = pos(one - cos_w * cos_w).sqrt();
+    let a = L::select(two_sided, a.abs(), a);
+    let qd2 = q * d2;
+    let sw = pos(qd2 - a * a).sqrt();
+    let ldist = qd2.sqrt();
     let oe = word(6);
     let cos_o = cos16::<L>(oe);
     let cos_e = cos16::<L>(oe.shr(16));
     let sin_o = pos(one - cos_o * cos_o).sqrt();
-    // The cone the sphere subtends: sin = r / d (the whole sphere inside).
-    let sin_b = pos(r * inv);
-    let cos_b = L::select(inside, -one, pos(one - sin_b * sin_b).sqrt());
-    let sin_b = L::select(inside, zero, sin_b);
-    let cos_x = cos_sub(cos_w, sin_w, cos_o, sin_o);
-    let sin_x = L::select(cos_o.simd_lt(cos_w), zero, sin_w * cos_o - cos_w * sin_o);
-    let cos_p = cos_sub(cos_x, sin_x, cos_b, sin_b);
-    let cos_i = (wi[0] * pt.n[0] + wi[1] * pt.n[1] + wi[2] * pt.n[2]).abs();
-    let sin_i = pos(one - cos_i * cos_i).sqrt();
-    let cos_pi = L::select(pt.has_n, cos_sub(cos_i, sin_i, cos_b, sin_b), one);
-    let dc = L::select(inside, r2, d2);
+    // l d cos(theta_x), l d sin(theta_x) for theta_x = max(0, theta_w - theta_o).
+    let within = (cos_o * ldist).simd_lt(a);
+    let cx = L::select(within, ldist, a * cos_o + sw * sin_o);
+    let sx = L::select(within, zero, sw * cos_o - a * sin_o);
+    // d cos(theta_b) and l d cos(theta_b); d sin(theta_b) is r.
+    let cb = pos(d2 - r2).sqrt();
+    let l = q.sqrt();
+    let (lcb, lr) = (cb * l, r * l);
+    // d^2 cos(theta') for theta' = max(0, theta_x - theta_b), and the incidence factor
+    // d^2 cos(max(0, theta_i - theta_b)) from d cos(theta_i) = |n . (p - c)|.
+    let ci = (d[0] * pt.n[0] + d[1] * pt.n[1] + d[2] * pt.n[2]).abs();
+    let si = pos(d2 - ci * ci).sqrt();
+    let cp = L::select(lcb.simd_lt(cx), qd2, cx * lcb + sx * lr);
+    let cpi = L::select(cb.simd_lt(ci), d2, ci * cb + si * r);
+    let dc = L::select(outside, d2, r2);
     let dc = L::select(
         L::splat(f32::MIN_POSITIVE).simd_lt(dc),
         dc,
         L::splat(f32::MIN_POSITIVE),
     );
-    let imp = phi * cos_p * (one / dc) * cos_pi;
+    let inv = one / dc;
+    let inv_q = one / q;
+    let cos_p = L::select(outside, cp * (inv * inv_q), one);
+    let cos_pi = L::select(outside & pt.has_n, cpi * inv, one);
+    let imp = phi * inv * cos_pi * cos_p;
     let alive = cos_e.simd_lt(cos_p) & pt.valid;
     let imp = L::select(alive, imp, zero);
     L::select(
@@ -311,50 +340,88 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
 /// of the four children as one `u32x4`.
 const QUAD_WORDS: usize = 4 * NODE_WORDS;
 
-/// The importances of a quad's four children and their last words (leaf flag and index).
-/// One lane-generic body ([`importance`]); a scalar walk loads each field of the four
-/// children as one `u32x4` straight from the quad and evaluates them as the four lanes of
-/// one `f32x4` (the same IEEE operations lane by lane, so the same bits as four scalar
-/// evaluations), a SIMD walk gathers its lanes' quads and evaluates the children one after
-/// the other.
+/// The lanes a walk runs in, and a quad's children at the point. One lane-generic body
+/// ([`importance`], [`walk`]). A scalar walk runs in `f32x4` lanes holding four copies of
+/// the sample: it loads each field of a quad's four children as one `u32x4` straight from
+/// the storage, evaluates the four children as the four lanes of one `f32x4`, broadcasts
+/// each importance to its own vector, and makes its choices with vector compares and blends
+/// (which a compiler cannot turn into branches on `u`). Every lane runs the same IEEE
+/// operations in the same order, so the bits are those of the SIMD walks, which gather
+/// their lanes' quads and evaluate the children one after the other.
 pub(super) trait Children: Lane {
+    /// The walk's lane type: `f32x4` for the scalar, `Self` otherwise.
+    type W: Lane;
+    fn widen(x: Self) -> Self::W;
+    fn widen_u(x: Self::U) -> <Self::W as Lane>::U;
+    fn narrow(x: Self::W) -> Self;
+    fn narrow_u(x: <Self::W as Lane>::U) -> Self::U;
+    /// The importances of quad `quad`'s four children and their last words (leaf flag and
+    /// index).
     fn quad(
-        pt: &Point<Self>,
+        pt: &Point<Self::W>,
         quads: &[[u32; QUAD_WORDS]],
-        quad: Self::U,
-    ) -> ([Self; 4], [Self::U; 4]);
+        quad: <Self::W as Lane>::U,
+    ) -> ([Self::W; 4], [<Self::W as Lane>::U; 4]);
 }
 
 /// A quad of zeros: what a quad index past the end reads (never in a storage `new` wrote).
 const ZERO_QUAD: [u32; QUAD_WORDS] = [0; QUAD_WORDS];
 
 impl Children for f32 {
+    type W = f32x4;
+    #[inline(always)]
+    fn widen(x: f32) -> f32x4 {
+        f32x4::splat(x)
+    }
+    #[inline(always)]
+    fn widen_u(x: Wrapping<u32>) -> u32x4 {
+        u32x4::splat(x.0)
+    }
+    #[inline(always)]
+    fn narrow(x: f32x4) -> f32 {
+        x.to_array()[0]
+    }
+    #[inline(always)]
+    fn narrow_u(x: u32x4) -> Wrapping<u32> {
+        Wrapping(x.to_array()[0])
+    }
     #[inline(always)]
     fn quad(
-        pt: &Point<f32>,
+        pt: &Point<f32x4>,
         quads: &[[u32; QUAD_WORDS]],
-        quad: Wrapping<u32>,
-    ) -> ([f32; 4], [Wrapping<u32>; 4]) {
-        let mask = |b: bool| UintLane::simd_eq(u32x4::splat(u32::from(b)), u32x4::splat(1));
-        let wide_pt = Point {
-            p: pt.p.map(f32x4::splat),
-            n: pt.n.map(f32x4::splat),
-            has_n: mask(pt.has_n),
-            valid: mask(pt.valid),
-        };
-        let rec = quads.get(quad.0 as usize).unwrap_or(&ZERO_QUAD);
+        quad: u32x4,
+    ) -> ([f32x4; 4], [u32x4; 4]) {
+        let rec = quads.get(quad.to_array()[0] as usize).unwrap_or(&ZERO_QUAD);
         let rows = rec.as_chunks::<4>().0;
         let words: [u32x4; NODE_WORDS] = core::array::from_fn(|k| {
             from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4])))
         });
-        let info = words[NODE_WORDS - 1].to_array().map(Wrapping);
-        (importance::<f32x4>(&wide_pt, &words).to_array(), info)
+        let imp = importance::<f32x4>(pt, &words).to_array();
+        let info = words[NODE_WORDS - 1].to_array();
+        (imp.map(f32x4::splat), info.map(u32x4::splat))
     }
 }
 
 macro_rules! children_one_by_one {
     ($($l:ty),*) => {$(
         impl Children for $l {
+            type W = $l;
+            #[inline(always)]
+            fn widen(x: $l) -> $l {
+                x
+            }
+            #[inline(always)]
+            fn widen_u(x: <$l as Lane>::U) -> <$l as Lane>::U {
+                x
+            }
+            #[inline(always)]
+            fn narrow(x: $l) -> $l {
+                x
+            }
+            #[inline(always)]
+            fn narrow_u(x: <$l as Lane>::U) -> <$l as Lane>::U {
+                x
+            }
             #[inline(always)]
             fn quad(
                 pt: &Point<$l>,
@@ -376,18 +443,19 @@ macro_rules! children_one_by_one {
 }
 children_one_by_one!(f32x8, f32x16);
 
-/// The walk: `levels` steps from quad 0, each picking one of four children by two binary
-/// choices (`choose`): the pair `{0, 1}` or `{2, 3}` with probability `(I0 + I1) / S`, then
-/// a child of the pair with probability `I0 / (I0 + I1)` (or `I2 / (I2 + I3)`). Returns the
-/// light reached (`u32::MAX` if none) and its probability (0 if none): the product of the
-/// choices' probabilities in root-to-leaf order.
+/// The walk: `levels` steps from quad 0, each picking one of four children `c` with
+/// probability `I_c / S` (`S = I_0 + I_1 + I_2 + I_3`) by two binary choices (`choose`): the
+/// pair `{0, 1}` or `{2, 3}` by the pairs' sums, then a child of the pair by its two
+/// importances. Returns the light reached (`u32::MAX` if none) and its probability (0 if
+/// none): the product of the levels' `I_c / S` in root-to-leaf order.
 #[inline(always)]
-fn walk<L: Children, C: Chooser<L>>(
+fn walk<L: Lane, C: Chooser<L>>(
     quads: &[[u32; QUAD_WORDS]],
     len: u32,
     levels: u32,
     pt: &Point<L>,
     choose: &mut C,
+    quad_at: impl Fn(&Point<L>, &[[u32; QUAD_WORDS]], L::U) -> ([L; 4], [L::U; 4]),
 ) -> (L::U, L) {
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
@@ -399,22 +467,19 @@ fn walk<L: Children, C: Chooser<L>>(
     let mut done = uzero.simd_eq(L::U::splat(1));
     let mut dead = !pt.valid;
     for level in 0..levels.min(MAX_LEVELS) {
-        let ([i0, i1, i2, i3], info) = L::quad(pt, quads, quad);
+        let (imp, info) = quad_at(pt, quads, quad);
+        let [i0, i1, i2, i3] = imp;
         let (s01, s23) = (i0 + i1, i2 + i3);
         let sum = s01 + s23;
+        let (high, second) = choose.pick(level, &imp, s01, s23, sum);
+        let chosen = L::select(high, L::select(second, i3, i2), L::select(second, i1, i0));
         let live = zero.simd_lt(sum);
-        let p_low = L::select(live, s01 / sum, zero);
-        let high = choose.right(2 * level, p_low);
-        let p_pair = L::select(high, one - p_low, p_low);
-        // Both pairs' splits, computed before the pair is known (off the critical path).
-        let split = |a: L, s: L| L::select(zero.simd_lt(s), a / s, zero);
-        let p_first = L::select(high, split(i2, s23), split(i0, s01));
-        let second = choose.right(2 * level + 1, p_first);
-        let p_child = L::select(second, one - p_first, p_first);
         let active = !(done | dead);
         dead = dead | (active & !live);
         let active = active & live;
-        prob = L::select(active, prob * p_pair * p_child, prob);
+        // `chosen / sum` in [0, 1] (0 for a trail through a child of importance 0).
+        let p_child = L::select(live, chosen / sum, zero);
+        prob = L::select(active, prob * p_child, prob);
         let info = {
             let [w0, w1, w2, w3] = info;
             let pick = |a, b| L::U::select(second, b, a);
@@ -557,23 +622,28 @@ impl<'a> LightTree<'a> {
 
     #[inline(always)]
     fn sample_lanes<L: Children>(&self, p: [L; 3], n: [L; 3], u: L) -> (L::U, L) {
-        let pt = point(p, n);
-        let mut by_u = ByU(unit_interval(u));
-        walk(self.quads(), self.len as u32, self.levels, &pt, &mut by_u)
+        let pt = point(p.map(L::widen), n.map(L::widen));
+        let mut by_u = ByU(unit_interval(L::widen(u)));
+        let quads = self.quads();
+        let (i, q) = walk(quads, self.len as u32, self.levels, &pt, &mut by_u, L::quad);
+        (L::narrow_u(i), L::narrow(q))
     }
 
     #[inline(always)]
     fn pmf_lanes<L: Children>(&self, p: [L; 3], n: [L; 3], index: L::U) -> L {
-        let pt = point(p, n);
+        let pt = point(p.map(L::widen), n.map(L::widen));
         let [trail] = L::U::gather(self.trails(), index);
-        let mut by_trail = ByTrail(from_storage_order(trail));
+        let mut by_trail = ByTrail(from_storage_order(L::widen_u(trail)));
+        let quads = self.quads();
         let (reached, prob) = walk(
-            self.quads(),
+            quads,
             self.len as u32,
             self.levels,
             &pt,
             &mut by_trail,
+            L::quad,
         );
+        let (reached, prob) = (L::narrow_u(reached), L::narrow(prob));
         L::select(reached.simd_eq(index), prob, L::splat(0.0))
     }
 
