@@ -351,24 +351,54 @@ const QUAD_WORDS: usize = 4 * NODE_WORDS;
 pub(super) trait Children: Lane {
     /// The walk's lane type: `f32x4` for the scalar, `Self` otherwise.
     type W: Lane;
+    /// The walk's handle on its current quad: its index (SIMD walks) or its words (the
+    /// scalar walk).
+    type Q: Copy;
     fn widen(x: Self) -> Self::W;
     fn widen_u(x: Self::U) -> <Self::W as Lane>::U;
     fn narrow(x: Self::W) -> Self;
     fn narrow_u(x: <Self::W as Lane>::U) -> Self::U;
-    /// The importances of quad `quad`'s four children and their last words (leaf flag and
-    /// index).
-    fn quad(
+    /// The root's quad.
+    fn root(quads: &[[u32; QUAD_WORDS]]) -> Self::Q;
+    /// The importances of a quad's four children, their last words (leaf flag and index),
+    /// and the handles of their quads (meaningless for leaves).
+    fn open(
         pt: &Point<Self::W>,
         quads: &[[u32; QUAD_WORDS]],
-        quad: <Self::W as Lane>::U,
-    ) -> ([Self::W; 4], [<Self::W as Lane>::U; 4]);
+        quad: &Self::Q,
+    ) -> ([Self::W; 4], [<Self::W as Lane>::U; 4], [Self::Q; 4]);
+    /// The quad of the child taken (`high`: in the pair `{2, 3}`, `second`: the second of
+    /// its pair) where `step`, else `quad`.
+    fn advance(
+        quad: Self::Q,
+        children: [Self::Q; 4],
+        high: <Self::W as Lane>::Mask,
+        second: <Self::W as Lane>::Mask,
+        step: <Self::W as Lane>::Mask,
+    ) -> Self::Q;
 }
 
 /// A quad of zeros: what a quad index past the end reads (never in a storage `new` wrote).
 const ZERO_QUAD: [u32; QUAD_WORDS] = [0; QUAD_WORDS];
 
+/// A quad's words as eight `u32x4` (word `k` of the four children), zeros past the end.
+#[inline(always)]
+fn quad_rows(quads: &[[u32; QUAD_WORDS]], index: u32) -> [u32x4; NODE_WORDS] {
+    let rec = quads.get(index as usize).unwrap_or(&ZERO_QUAD);
+    let rows = rec.as_chunks::<4>().0;
+    core::array::from_fn(|k| from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4]))))
+}
+
+/// One of four values by the two choices.
+#[inline(always)]
+fn pick4<U: UintLane>(v: [U; 4], high: U::Mask, second: U::Mask) -> U {
+    let [a, b, c, d] = v;
+    U::select(high, U::select(second, d, c), U::select(second, b, a))
+}
+
 impl Children for f32 {
     type W = f32x4;
+    type Q = [u32x4; NODE_WORDS];
     #[inline(always)]
     fn widen(x: f32) -> f32x4 {
         f32x4::splat(x)
@@ -386,19 +416,32 @@ impl Children for f32 {
         Wrapping(x.to_array()[0])
     }
     #[inline(always)]
-    fn quad(
+    fn root(quads: &[[u32; QUAD_WORDS]]) -> Self::Q {
+        quad_rows(quads, 0)
+    }
+    /// Loads the four children's quads before the choice is made (the next level's words
+    /// then wait on two blends, not on a load).
+    #[inline(always)]
+    fn open(
         pt: &Point<f32x4>,
         quads: &[[u32; QUAD_WORDS]],
-        quad: u32x4,
-    ) -> ([f32x4; 4], [u32x4; 4]) {
-        let rec = quads.get(quad.to_array()[0] as usize).unwrap_or(&ZERO_QUAD);
-        let rows = rec.as_chunks::<4>().0;
-        let words: [u32x4; NODE_WORDS] = core::array::from_fn(|k| {
-            from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4])))
-        });
-        let imp = importance::<f32x4>(pt, &words).to_array();
-        let info = words[NODE_WORDS - 1].to_array();
-        (imp.map(f32x4::splat), info.map(u32x4::splat))
+        rows: &Self::Q,
+    ) -> ([f32x4; 4], [u32x4; 4], [Self::Q; 4]) {
+        let info = rows[NODE_WORDS - 1].to_array();
+        let children = info.map(|w| quad_rows(quads, w & INDEX_MASK));
+        let imp = importance::<f32x4>(pt, rows).to_array();
+        (imp.map(f32x4::splat), info.map(u32x4::splat), children)
+    }
+    #[inline(always)]
+    fn advance(
+        _quad: Self::Q,
+        children: [Self::Q; 4],
+        high: <f32x4 as Lane>::Mask,
+        second: <f32x4 as Lane>::Mask,
+        _step: <f32x4 as Lane>::Mask,
+    ) -> Self::Q {
+        // Once the walk has stopped, what it reads no longer matters.
+        core::array::from_fn(|k| pick4(children.map(|c| c[k]), high, second))
     }
 }
 
@@ -406,6 +449,7 @@ macro_rules! children_one_by_one {
     ($($l:ty),*) => {$(
         impl Children for $l {
             type W = $l;
+            type Q = <$l as Lane>::U;
             #[inline(always)]
             fn widen(x: $l) -> $l {
                 x
@@ -423,12 +467,16 @@ macro_rules! children_one_by_one {
                 x
             }
             #[inline(always)]
-            fn quad(
+            fn root(_quads: &[[u32; QUAD_WORDS]]) -> Self::Q {
+                <$l as Lane>::U::splat(0)
+            }
+            #[inline(always)]
+            fn open(
                 pt: &Point<$l>,
                 quads: &[[u32; QUAD_WORDS]],
-                quad: <$l as Lane>::U,
-            ) -> ([$l; 4], [<$l as Lane>::U; 4]) {
-                let rec = <$l as Lane>::U::gather(quads, quad).map(from_storage_order);
+                quad: &Self::Q,
+            ) -> ([$l; 4], [<$l as Lane>::U; 4], [Self::Q; 4]) {
+                let rec = <$l as Lane>::U::gather(quads, *quad).map(from_storage_order);
                 let word = |k: usize, c: usize| {
                     rec.get(4 * k + c).copied().unwrap_or(<$l as Lane>::U::splat(0))
                 };
@@ -436,7 +484,18 @@ macro_rules! children_one_by_one {
                     let w: [_; NODE_WORDS] = core::array::from_fn(|k| word(k, c));
                     importance::<$l>(pt, &w)
                 });
-                (imp, core::array::from_fn(|c| word(NODE_WORDS - 1, c)))
+                let info: [_; 4] = core::array::from_fn(|c| word(NODE_WORDS - 1, c));
+                (imp, info, info.map(|w| w & <$l as Lane>::U::splat(INDEX_MASK)))
+            }
+            #[inline(always)]
+            fn advance(
+                quad: Self::Q,
+                children: [Self::Q; 4],
+                high: <$l as Lane>::Mask,
+                second: <$l as Lane>::Mask,
+                step: <$l as Lane>::Mask,
+            ) -> Self::Q {
+                UintLane::select(step, pick4(children, high, second), quad)
             }
         }
     )*};
@@ -449,25 +508,24 @@ children_one_by_one!(f32x8, f32x16);
 /// importances. Returns the light reached (`u32::MAX` if none) and its probability (0 if
 /// none): the product of the levels' `I_c / S` in root-to-leaf order.
 #[inline(always)]
-fn walk<L: Lane, C: Chooser<L>>(
+fn walk<L: Lane, K: Children<W = L>, C: Chooser<L>>(
     quads: &[[u32; QUAD_WORDS]],
     len: u32,
     levels: u32,
     pt: &Point<L>,
     choose: &mut C,
-    quad_at: impl Fn(&Point<L>, &[[u32; QUAD_WORDS]], L::U) -> ([L; 4], [L::U; 4]),
 ) -> (L::U, L) {
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
     let uzero = L::U::splat(0);
-    let mut quad = uzero;
+    let mut quad = K::root(quads);
     let mut prob = one;
     let mut index = L::U::splat(u32::MAX);
     // `done`: reached a leaf; `dead`: stopped where the children have importance 0.
     let mut done = uzero.simd_eq(L::U::splat(1));
     let mut dead = !pt.valid;
     for level in 0..levels.min(MAX_LEVELS) {
-        let (imp, info) = quad_at(pt, quads, quad);
+        let (imp, info, children) = K::open(pt, quads, &quad);
         let [i0, i1, i2, i3] = imp;
         let (s01, s23) = (i0 + i1, i2 + i3);
         let sum = s01 + s23;
@@ -480,17 +538,13 @@ fn walk<L: Lane, C: Chooser<L>>(
         // `chosen / sum` in [0, 1] (0 for a trail through a child of importance 0).
         let p_child = L::select(live, chosen / sum, zero);
         prob = L::select(active, prob * p_child, prob);
-        let info = {
-            let [w0, w1, w2, w3] = info;
-            let pick = |a, b| L::U::select(second, b, a);
-            L::U::select(high, pick(w2, w3), pick(w0, w1))
-        };
+        let info = pick4(info, high, second);
         let target = info & L::U::splat(INDEX_MASK);
         let leaf = !(info & L::U::splat(LEAF)).simd_eq(uzero);
         let reached = active & leaf;
         index = L::U::select(reached, target, index);
         done = done | reached;
-        quad = L::U::select(active & !leaf, target, quad);
+        quad = K::advance(quad, children, high, second, active & !leaf);
     }
     // A leaf naming a light past the end (only in a corrupt storage), a walk cut short, a
     // dead end or a probability that underflowed: no light.
@@ -625,7 +679,7 @@ impl<'a> LightTree<'a> {
         let pt = point(p.map(L::widen), n.map(L::widen));
         let mut by_u = ByU(unit_interval(L::widen(u)));
         let quads = self.quads();
-        let (i, q) = walk(quads, self.len as u32, self.levels, &pt, &mut by_u, L::quad);
+        let (i, q) = walk::<L::W, L, _>(quads, self.len as u32, self.levels, &pt, &mut by_u);
         (L::narrow_u(i), L::narrow(q))
     }
 
@@ -635,14 +689,8 @@ impl<'a> LightTree<'a> {
         let [trail] = L::U::gather(self.trails(), index);
         let mut by_trail = ByTrail(from_storage_order(L::widen_u(trail)));
         let quads = self.quads();
-        let (reached, prob) = walk(
-            quads,
-            self.len as u32,
-            self.levels,
-            &pt,
-            &mut by_trail,
-            L::quad,
-        );
+        let (reached, prob) =
+            walk::<L::W, L, _>(quads, self.len as u32, self.levels, &pt, &mut by_trail);
         let (reached, prob) = (L::narrow_u(reached), L::narrow(prob));
         L::select(reached.simd_eq(index), prob, L::splat(0.0))
     }
