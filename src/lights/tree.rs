@@ -389,14 +389,6 @@ pub(super) trait Children: Lane {
 /// A quad of zeros: what a quad index past the end reads (never in a storage `new` wrote).
 const ZERO_QUAD: [u32; QUAD_WORDS] = [0; QUAD_WORDS];
 
-/// A quad's words as eight `u32x4` (word `k` of the four children), zeros past the end.
-#[inline(always)]
-fn quad_rows(quads: &[[u32; QUAD_WORDS]], index: u32) -> [u32x4; NODE_WORDS] {
-    let rec = quads.get(index as usize).unwrap_or(&ZERO_QUAD);
-    let rows = rec.as_chunks::<4>().0;
-    core::array::from_fn(|k| from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4]))))
-}
-
 /// One of four values by the two choices.
 #[inline(always)]
 fn pick4<U: UintLane>(v: [U; 4], high: U::Mask, second: U::Mask) -> U {
@@ -404,9 +396,31 @@ fn pick4<U: UintLane>(v: [U; 4], high: U::Mask, second: U::Mask) -> U {
     U::select(high, U::select(second, d, c), U::select(second, b, a))
 }
 
+/// The scalar walk's handle on a quad: its index, and its words 0 and 4 (word `k` of the
+/// four children), one from each of its two cache lines, loaded ahead of the choice.
+#[derive(Clone, Copy)]
+pub(super) struct Ahead {
+    index: u32x4,
+    first: u32x4,
+    fifth: u32x4,
+}
+
+/// [`Ahead`] of quad `index`.
+#[inline(always)]
+fn ahead(quads: &[[u32; QUAD_WORDS]], index: u32) -> Ahead {
+    let rec = quads.get(index as usize).unwrap_or(&ZERO_QUAD);
+    let rows = rec.as_chunks::<4>().0;
+    let row = |k: usize| from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4])));
+    Ahead {
+        index: u32x4::splat(index),
+        first: row(0),
+        fifth: row(4),
+    }
+}
+
 impl Children for f32 {
     type W = f32x4;
-    type Q = [u32x4; NODE_WORDS];
+    type Q = Ahead;
     #[inline(always)]
     fn widen(x: f32) -> f32x4 {
         f32x4::splat(x)
@@ -425,19 +439,28 @@ impl Children for f32 {
     }
     #[inline(always)]
     fn root(quads: &[[u32; QUAD_WORDS]]) -> Self::Q {
-        quad_rows(quads, 0)
+        ahead(quads, 0)
     }
-    /// Loads the four children's quads before the choice is made (the next level's words
-    /// then wait on two blends, not on a load).
+    /// Reads one word from each cache line of the four children's quads before the choice
+    /// is made (the next level's loads then hit the first-level cache).
     #[inline(always)]
     fn open(
         pt: &Point<f32x4>,
         quads: &[[u32; QUAD_WORDS]],
-        rows: &Self::Q,
+        quad: &Self::Q,
     ) -> ([f32x4; 4], [u32x4; 4], [Self::Q; 4]) {
-        let info = rows[NODE_WORDS - 1].to_array();
-        let children = info.map(|w| quad_rows(quads, w & INDEX_MASK));
-        let imp = importance::<f32x4>(pt, rows).to_array();
+        let rec = quads
+            .get(quad.index.to_array()[0] as usize)
+            .unwrap_or(&ZERO_QUAD);
+        let rows = rec.as_chunks::<4>().0;
+        let words: [u32x4; NODE_WORDS] = core::array::from_fn(|k| match k {
+            0 => quad.first,
+            4 => quad.fifth,
+            _ => from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4]))),
+        });
+        let info = words[NODE_WORDS - 1].to_array();
+        let children = info.map(|w| ahead(quads, w & INDEX_MASK));
+        let imp = importance::<f32x4>(pt, &words).to_array();
         (imp.map(f32x4::splat), info.map(u32x4::splat), children)
     }
     #[inline(always)]
@@ -449,7 +472,11 @@ impl Children for f32 {
         _step: <f32x4 as Lane>::Mask,
     ) -> Self::Q {
         // Once the walk has stopped, what it reads no longer matters.
-        core::array::from_fn(|k| pick4(children.map(|c| c[k]), high, second))
+        Ahead {
+            index: pick4(children.map(|c| c.index), high, second),
+            first: pick4(children.map(|c| c.first), high, second),
+            fifth: pick4(children.map(|c| c.fifth), high, second),
+        }
     }
 }
 
