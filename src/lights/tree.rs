@@ -374,7 +374,7 @@ pub(super) trait Children: Lane {
         pt: &Point<Self::W>,
         quads: &[[u32; QUAD_WORDS]],
         quad: &Self::Q,
-    ) -> ([Self::W; 4], [<Self::W as Lane>::U; 4], [Self::Q; 4]);
+    ) -> Opened<Self::W, Self::Q>;
     /// The quad of the child taken (`high`: in the pair `{2, 3}`, `second`: the second of
     /// its pair) where `step`, else `quad`.
     fn advance(
@@ -384,6 +384,14 @@ pub(super) trait Children: Lane {
         second: <Self::W as Lane>::Mask,
         step: <Self::W as Lane>::Mask,
     ) -> Self::Q;
+}
+
+/// A quad opened at the point: its four children's importances, last words (leaf flag and
+/// index) and quad handles.
+pub(super) struct Opened<L: Lane, Q> {
+    imp: [L; 4],
+    info: [L::U; 4],
+    children: [Q; 4],
 }
 
 /// A quad of zeros: what a quad index past the end reads (never in a storage `new` wrote).
@@ -448,7 +456,7 @@ impl Children for f32 {
         pt: &Point<f32x4>,
         quads: &[[u32; QUAD_WORDS]],
         quad: &Self::Q,
-    ) -> ([f32x4; 4], [u32x4; 4], [Self::Q; 4]) {
+    ) -> Opened<f32x4, Self::Q> {
         let rec = quads
             .get(quad.index.to_array()[0] as usize)
             .unwrap_or(&ZERO_QUAD);
@@ -461,7 +469,11 @@ impl Children for f32 {
         let info = words[NODE_WORDS - 1].to_array();
         let children = info.map(|w| ahead(quads, w & INDEX_MASK));
         let imp = importance::<f32x4>(pt, &words).to_array();
-        (imp.map(f32x4::splat), info.map(u32x4::splat), children)
+        Opened {
+            imp: imp.map(f32x4::splat),
+            info: info.map(u32x4::splat),
+            children,
+        }
     }
     #[inline(always)]
     fn advance(
@@ -510,7 +522,7 @@ macro_rules! children_one_by_one {
                 pt: &Point<$l>,
                 quads: &[[u32; QUAD_WORDS]],
                 quad: &Self::Q,
-            ) -> ([$l; 4], [<$l as Lane>::U; 4], [Self::Q; 4]) {
+            ) -> Opened<$l, Self::Q> {
                 let rec = <$l as Lane>::U::gather(quads, *quad).map(from_storage_order);
                 let word = |k: usize, c: usize| {
                     rec.get(4 * k + c).copied().unwrap_or(<$l as Lane>::U::splat(0))
@@ -520,7 +532,8 @@ macro_rules! children_one_by_one {
                     importance::<$l>(pt, &w)
                 });
                 let info: [_; 4] = core::array::from_fn(|c| word(NODE_WORDS - 1, c));
-                (imp, info, info.map(|w| w & <$l as Lane>::U::splat(INDEX_MASK)))
+                let children = info.map(|w| w & <$l as Lane>::U::splat(INDEX_MASK));
+                Opened { imp, info, children }
             }
             #[inline(always)]
             fn advance(
@@ -560,7 +573,11 @@ fn walk<L: Lane, K: Children<W = L>, C: Chooser<L>>(
     let mut done = uzero.simd_eq(L::U::splat(1));
     let mut dead = !pt.valid;
     for level in 0..levels.min(MAX_LEVELS) {
-        let (imp, info, children) = K::open(pt, quads, &quad);
+        let Opened {
+            imp,
+            info,
+            children,
+        } = K::open(pt, quads, &quad);
         let [i0, i1, i2, i3] = imp;
         let (s01, s23) = (i0 + i1, i2 + i3);
         let sum = s01 + s23;
