@@ -91,8 +91,8 @@ const WCLI_TREE_LEAF: u32 = 0x80000000u;
 const WCLI_TREE_TWO_SIDED: u32 = 0x40000000u;
 const WCLI_TREE_INDEX_MASK: u32 = 0x3fffffffu;
 const WCLI_TREE_MAX_LEVELS: u32 = 16u;
-// Importances are clamped to 2^126, so a sum of two stays finite.
-const WCLI_TREE_BIG: f32 = 0x1p126f;
+// Importances are clamped to 2^125, so a quad's sum of four stays finite.
+const WCLI_TREE_BIG: f32 = 0x1p125f;
 const WCLI_F32_MAX: f32 = 0x1.fffffep127f;
 const WCLI_F32_MIN_POSITIVE: f32 = 0x1p-126f;
 
@@ -110,11 +110,6 @@ fn wcli_pos(x: f32) -> f32 {
     return select(0.0f, x, 0.0f < x);
 }
 
-// cos(max(0, a - b)) from the cosines and sines of a and b in [0, pi].
-fn wcli_cos_sub(cos_a: f32, sin_a: f32, cos_b: f32, sin_b: f32) -> f32 {
-    return select(cos_a * cos_b + sin_a * sin_b, 1.0f, cos_b < cos_a);
-}
-
 // `a` with its sign bit xor-ed with the sign bit of `s` (`flip_sign(sign_bit)`).
 fn wcli_flip_sign(a: f32, s: f32) -> f32 {
     return bitcast<f32>(bitcast<u32>(a) ^ (bitcast<u32>(s) & 0x80000000u));
@@ -125,8 +120,9 @@ fn wcli_cos16(q: u32) -> f32 {
     return f32(q & 0xffffu) * 0x1p-15f - 1.0f;
 }
 
-// The unit axis of an octahedral node word (`tree::oct_decode`).
-fn wcli_oct_decode(w: u32) -> vec3<f32> {
+// The axis of an octahedral node word before normalisation (`tree::oct_raw`); its squared
+// length is wcli_len2.
+fn wcli_oct_raw(w: u32) -> vec3<f32> {
     let x0 = f32(w & 0xffffu) * 0x1p-15f - 1.0f;
     let y0 = f32(w >> 16u) * 0x1p-15f - 1.0f;
     let z = 1.0f - abs(x0) - abs(y0);
@@ -135,8 +131,12 @@ fn wcli_oct_decode(w: u32) -> vec3<f32> {
     let fy = wcli_flip_sign(1.0f - abs(x0), y0);
     let x = select(x0, fx, lower);
     let y = select(y0, fy, lower);
-    let inv = 1.0f / sqrt(x * x + y * y + z * z);
-    return vec3<f32>(x * inv, y * inv, z * inv);
+    return vec3<f32>(x, y, z);
+}
+
+// x.x * x.x + x.y * x.y + x.z * x.z, in that order.
+fn wcli_len2(v: vec3<f32>) -> f32 {
+    return v.x * v.x + v.y * v.y + v.z * v.z;
 }
 
 fn wcli_point(p: vec3<f32>, n: vec3<f32>) -> WcliPoint {
@@ -156,51 +156,61 @@ fn wcli_tree_word(base: u32, quads: u32, quad: u32, k: u32, c: u32) -> u32 {
 }
 
 // The importance of child c of a quad at the point (`tree::importance`): finite, in
-// [0, 2^126], whatever the words hold.
+// [0, 2^125], whatever the words hold. Cosines and sines carry the distance d (and the
+// stored axis's length l): three square roots side by side, one division at the end.
 fn wcli_tree_importance(pt: WcliPoint, base: u32, quads: u32, quad: u32, c: u32) -> f32 {
     let d = vec3<f32>(
         pt.p.x - bitcast<f32>(wcli_tree_word(base, quads, quad, 0u, c)),
         pt.p.y - bitcast<f32>(wcli_tree_word(base, quads, quad, 1u, c)),
         pt.p.z - bitcast<f32>(wcli_tree_word(base, quads, quad, 2u, c)),
     );
-    let d2 = d.x * d.x + d.y * d.y + d.z * d.z;
+    let d2 = wcli_len2(d);
     let r = bitcast<f32>(wcli_tree_word(base, quads, quad, 3u, c));
     let r2 = r * r;
     let phi = bitcast<f32>(wcli_tree_word(base, quads, quad, 4u, c));
-    let inside = d2 < r2;
-    let dist = sqrt(d2);
-    let inv = select(0.0f, 1.0f / dist, 0.0f < d2);
-    let wi = vec3<f32>(d.x * inv, d.y * inv, d.z * inv);
-    let axis = wcli_oct_decode(wcli_tree_word(base, quads, quad, 5u, c));
-    let cos_w0 = (axis.x * d.x + axis.y * d.y + axis.z * d.z) * inv;
+    let outside = r2 < d2;
+    // l d cos(theta_w) (folded for two-sided nodes) and l d sin(theta_w).
+    let v = wcli_oct_raw(wcli_tree_word(base, quads, quad, 5u, c));
+    let q = wcli_len2(v);
+    let a0 = v.x * d.x + v.y * d.y + v.z * d.z;
     let info = wcli_tree_word(base, quads, quad, 7u, c);
     let two_sided = (info & WCLI_TREE_TWO_SIDED) != 0u;
-    let cos_w = select(cos_w0, abs(cos_w0), two_sided);
-    let sin_w = sqrt(wcli_pos(1.0f - cos_w * cos_w));
+    let a = select(a0, abs(a0), two_sided);
+    let qd2 = q * d2;
+    let sw = sqrt(wcli_pos(qd2 - a * a));
+    let ldist = sqrt(qd2);
     let oe = wcli_tree_word(base, quads, quad, 6u, c);
     let cos_o = wcli_cos16(oe);
     let cos_e = wcli_cos16(oe >> 16u);
     let sin_o = sqrt(wcli_pos(1.0f - cos_o * cos_o));
-    // The cone the sphere subtends: sin = r / d (the whole sphere inside).
-    let sin_b0 = wcli_pos(r * inv);
-    let cos_b = select(sqrt(wcli_pos(1.0f - sin_b0 * sin_b0)), -1.0f, inside);
-    let sin_b = select(sin_b0, 0.0f, inside);
-    let cos_x = wcli_cos_sub(cos_w, sin_w, cos_o, sin_o);
-    let sin_x = select(sin_w * cos_o - cos_w * sin_o, 0.0f, cos_o < cos_w);
-    let cos_p = wcli_cos_sub(cos_x, sin_x, cos_b, sin_b);
-    let cos_i = abs(wi.x * pt.n.x + wi.y * pt.n.y + wi.z * pt.n.z);
-    let sin_i = sqrt(wcli_pos(1.0f - cos_i * cos_i));
-    let cos_pi = select(1.0f, wcli_cos_sub(cos_i, sin_i, cos_b, sin_b), pt.has_n);
-    let dc0 = select(d2, r2, inside);
+    // l d cos(theta_x), l d sin(theta_x).
+    let within = cos_o * ldist < a;
+    let cx = select(a * cos_o + sw * sin_o, ldist, within);
+    let sx = select(sw * cos_o - a * sin_o, 0.0f, within);
+    // d cos(theta_b), l d cos(theta_b), l r.
+    let cb = sqrt(wcli_pos(d2 - r2));
+    let l = sqrt(q);
+    let lcb = cb * l;
+    let lr = r * l;
+    let ci = abs(d.x * pt.n.x + d.y * pt.n.y + d.z * pt.n.z);
+    let si = sqrt(wcli_pos(d2 - ci * ci));
+    let cp = select(cx * lcb + sx * lr, qd2, lcb < cx);
+    let cpi = select(ci * cb + si * r, d2, cb < ci);
+    let dc0 = select(r2, d2, outside);
     let dc = select(WCLI_F32_MIN_POSITIVE, dc0, WCLI_F32_MIN_POSITIVE < dc0);
-    let imp0 = phi * cos_p * (1.0f / dc) * cos_pi;
+    let inv = 1.0f / dc;
+    let inv_q = 1.0f / q;
+    let cos_p = select(1.0f, cp * (inv * inv_q), outside);
+    let cos_pi = select(1.0f, cpi * inv, outside && pt.has_n);
+    let imp0 = phi * inv * cos_pi * cos_p;
     let alive = cos_e < cos_p && pt.valid;
     let imp = select(0.0f, imp0, alive);
     return select(0.0f, select(WCLI_TREE_BIG, imp, imp < WCLI_TREE_BIG), 0.0f < imp);
 }
 
-// The walk (`tree::walk`): from quad 0, `levels` steps, each two binary choices, by `u`
-// (`by_u`; rescaled into the side taken) or by the bits of `trail`.
+// The walk (`tree::walk`): from quad 0, `levels` steps, each picking child c with
+// probability I_c / S by two binary choices, by `u` (t = u S against the cumulative bounds,
+// then u = (t - start) / I_c) or by the bits of `trail`.
 fn wcli_tree_walk(base: u32, pt: WcliPoint, u0: f32, trail: u32, by_u: bool) -> WcLightChoice {
     let len = wc_lights[base + 2u];
     let levels = min(wc_lights[base + 4u], WCLI_TREE_MAX_LEVELS);
@@ -219,35 +229,26 @@ fn wcli_tree_walk(base: u32, pt: WcliPoint, u0: f32, trail: u32, by_u: bool) -> 
         let s01 = i0 + i1;
         let s23 = i2 + i3;
         let sum = s01 + s23;
+        var high = ((trail >> (2u * level)) & 1u) != 0u;
+        var second = ((trail >> (2u * level + 1u)) & 1u) != 0u;
+        if by_u {
+            // A side of weight 0 is never taken (`ByU`'s infinite bound).
+            let s012 = s01 + i2;
+            let t = u * sum;
+            high = !(t < s01) && 0.0f < s23;
+            second = select(!(t < i0) && 0.0f < i1, !(t < s012) && 0.0f < i3, high);
+            let start = select(select(0.0f, i0, second), select(s01, s012, second), high);
+            let chosen_u = select(select(i0, i1, second), select(i2, i3, second), high);
+            let v = (t - start) / chosen_u;
+            u = select(0.0f, select(WCLI_ONE_MINUS_EPSILON, v, v < WCLI_ONE_MINUS_EPSILON), 0.0f < v);
+        }
+        let chosen = select(select(i0, i1, second), select(i2, i3, second), high);
         let live = 0.0f < sum;
-        let p_low = select(0.0f, s01 / sum, live);
-        // The pair: by u (rescaled), or trail bit 2 level.
-        var high = !(u < p_low);
-        if by_u {
-            let v = select(u / p_low, (u - p_low) / (1.0f - p_low), high);
-            u = select(0.0f, select(WCLI_ONE_MINUS_EPSILON, v, v < WCLI_ONE_MINUS_EPSILON), 0.0f < v);
-        } else {
-            high = ((trail >> (2u * level)) & 1u) != 0u;
-        }
-        let p_pair = select(p_low, 1.0f - p_low, high);
-        let p_first = select(
-            select(0.0f, i0 / s01, 0.0f < s01),
-            select(0.0f, i2 / s23, 0.0f < s23),
-            high,
-        );
-        // The child of the pair: trail bit 2 level + 1.
-        var second = !(u < p_first);
-        if by_u {
-            let v = select(u / p_first, (u - p_first) / (1.0f - p_first), second);
-            u = select(0.0f, select(WCLI_ONE_MINUS_EPSILON, v, v < WCLI_ONE_MINUS_EPSILON), 0.0f < v);
-        } else {
-            second = ((trail >> (2u * level + 1u)) & 1u) != 0u;
-        }
-        let p_child = select(p_first, 1.0f - p_first, second);
         let was_going = !(done || dead);
         dead = dead || (was_going && !live);
         let going = was_going && live;
-        prob = select(prob, prob * p_pair * p_child, going);
+        let p_child = select(0.0f, chosen / sum, live);
+        prob = select(prob, prob * p_child, going);
         let child = select(0u, 2u, high) + select(0u, 1u, second);
         let info = wcli_tree_word(base, quads, quad, 7u, child);
         let next = info & WCLI_TREE_INDEX_MASK;

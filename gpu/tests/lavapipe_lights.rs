@@ -353,14 +353,14 @@ const MUTATIONS: [(&str, usize, &str, &str); 5] = [
     (
         "tree: product order",
         2,
-        "let imp0 = phi * cos_p * (1.0f / dc) * cos_pi;",
+        "let imp0 = phi * inv * cos_pi * cos_p;",
         "let imp0 = phi * cos_p * cos_pi / dc;",
     ),
     (
-        "tree: the probability's product regrouped",
+        "tree: the level's probability by a reciprocal",
         2,
-        "prob = select(prob, prob * p_pair * p_child, going);",
-        "prob = select(prob, prob * (p_pair * p_child), going);",
+        "let p_child = select(0.0f, chosen / sum, live);",
+        "let p_child = select(0.0f, chosen * (1.0f / sum), live);",
     ),
     (
         "tree pmf: trail bits swapped",
@@ -371,8 +371,8 @@ const MUTATIONS: [(&str, usize, &str, &str); 5] = [
 ];
 
 /// The check is sharp: a threshold test with `<=` instead of `<`, a float product for the
-/// column, the importance's products in another order, the walk's probability product regrouped, or a trail read
-/// wrong changes outputs.
+/// column, the importance's products in another order, a level's probability by a
+/// reciprocal, or a trail read wrong changes outputs.
 #[test]
 fn a_subtle_change_is_detected() {
     let Some(gpu) = lavapipe() else { return };

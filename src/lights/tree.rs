@@ -58,8 +58,8 @@ const INDEX_MASK: u32 = (1 << 30) - 1;
 /// Most levels a walk takes (the root pair's level included); a balanced tree of
 /// `MAX_LIGHTS` lights needs 12; a trail holds 2 bits per level.
 const MAX_LEVELS: u32 = 16;
-/// Importances are clamped to this (`2^126`), so a sum of two stays finite.
-const BIG: f32 = 8.507_059e37;
+/// Importances are clamped to this (`2^125`), so a quad's sum of four stays finite.
+const BIG: f32 = 4.253_529_6e37;
 
 /// A bounding-volume tree over [`LightBounds`]: picks one of `n` lights with probability
 /// proportional to each subtree's *importance* at the shading point, with the exact
@@ -68,14 +68,17 @@ const BIG: f32 = 8.507_059e37;
 /// # Sampling
 ///
 /// A walk from the root of a 4-ary tree: at each inner node the four children's importances
-/// `I_0..I_3` at `(p, n)` make two binary choices, the pair `{0, 1}` with probability
-/// `(I_0 + I_1) / S`, then a child of the pair (`I_0 / (I_0 + I_1)`, or `I_2 / (I_2 + I_3)`).
-/// At each choice `u` picks a side and is rescaled into it (`u / P` or `(u - P) / (1 - P)`,
-/// clamped below 1), so a stratified `u` stays stratified across the leaves as far as the
-/// tree's order allows. The probability returned is the product of the choices'
-/// probabilities, in root-to-leaf order. [`pmf`](Self::pmf) walks the light's stored path
-/// (its *bit trail*: one word per light, 2 bits per level; O(depth), no hash map) through
-/// the same code, so `sample(p, n, u) == Some((i, pmf(p, n, i)))` bit for bit.
+/// `I_0..I_3` at `(p, n)` (sum `S`) pick child `c` with probability `I_c / S`, as two binary
+/// choices (the pair `{0, 1}` or `{2, 3}`, then a child of the pair; the bit trail below
+/// records both). By `u`: `t = u S` is compared with the cumulative bounds `I_0`, `I_0 +
+/// I_1`, `I_0 + I_1 + I_2` (compares and selects only, no division on the way down; a child
+/// of importance 0 is never taken, whatever the rounding of `t`), and `u` for the next level
+/// is where `t` lies in the chosen interval (`(t - start) / I_c`, clamped below 1), so sorted
+/// `u` visit the leaves in order and a stratified `u` stays stratified across the leaves as
+/// far as the tree's order allows. The probability returned is the product of the levels'
+/// `I_c / S`, in root-to-leaf order. [`pmf`](Self::pmf) walks the light's stored path (its
+/// *bit trail*: one word per light, 2 bits per level; O(depth), no hash map) through the
+/// same code, so `sample(p, n, u) == Some((i, pmf(p, n, i)))` bit for bit.
 ///
 /// **Importance** (our transcription of the bound of pbrt-v4's `LightBounds::Importance`,
 /// after Conty Estevez and Kulla 2018): for a node with bounding sphere (centre `c`, radius
@@ -87,7 +90,12 @@ const BIG: f32 = 8.507_059e37;
 /// `cos(theta') > cos(theta_e)`, else 0, where `theta_i` is the angle between `n` and `p - c`
 /// folded onto `[0, 90]` degrees (both sides of a surface: transmission), and the last factor
 /// is 1 for `n = [0, 0, 0]` (a point in a medium). Angles are never formed: the cosines and
-/// sines of differences come from products and `sqrt` only (no libm transcendental). pbrt-v4
+/// sines of differences come from products and `sqrt` only (no libm transcendental), carried
+/// multiplied by the distance (`d cos(theta_w) = w . (p - c)`, `d cos(theta_b) = sqrt(d^2 -
+/// r^2)`, `d sin(theta_b) = r`), so the three square roots are independent and one division
+/// (`1 / max(d^2, r^2)`) ends the evaluation; the stored axis is used without normalising it
+/// (its length `l` multiplies the axis's terms, and `1 / l^2` is divided out with the
+/// distance). pbrt-v4
 /// clamps `d^2` below by the box's half *diagonal length*; we use the bounding radius
 /// *squared* (the same units as `d^2`). `n` need not be unit (it is normalised; NaN, infinite
 /// or zero means a medium). A non-finite `p` gives no light.
@@ -152,28 +160,43 @@ pub struct LightTree<'a> {
 /// The tree's largest number of lights: `2^24` (indices, trails and 32-bit word offsets fit).
 const MAX_LIGHTS: usize = 1 << 24;
 
-/// How a walk picks a side at each level: by `u` (sampling) or by a light's trail (pmf).
+/// How a walk picks a child at each level: by `u` (sampling) or by a light's trail (pmf).
 trait Chooser<L: Lane> {
-    /// Whether to take the right child, given `P(left)`.
-    fn right(&mut self, level: u32, p_left: L) -> L::Mask;
+    /// The child taken among importances `i` (`s01 = I_0 + I_1`, `s23 = I_2 + I_3`, `sum =
+    /// s01 + s23`) at `level`: whether it is in the pair `{2, 3}` and whether it is the
+    /// second of its pair.
+    fn pick(&mut self, level: u32, i: &[L; 4], s01: L, s23: L, sum: L) -> (L::Mask, L::Mask);
 }
 
-/// Picks by `u`, rescaling it into the side taken.
+/// Picks by `u`: `t = u S` falls in one of the four children's intervals `[I_0 + ... +
+/// I_(c-1), I_0 + ... + I_c)` (compares against the three bounds, no division on the way
+/// down; a child of importance 0 is never taken, whatever `t`'s rounding), and `u` for the
+/// next level is where `t` lies in the chosen interval, `(t - start) / I_c`.
 struct ByU<L>(L);
 
 impl<L: Lane> Chooser<L> for ByU<L> {
     #[inline(always)]
-    fn right(&mut self, _level: u32, p_left: L) -> L::Mask {
-        let u = self.0;
-        let right = !u.simd_lt(p_left);
-        let one = L::splat(1.0);
-        // `u / P` or `(u - P) / (1 - P)`; a zero denominator (a side never taken) gives
-        // inf or NaN, replaced by the clamp below.
-        let v = L::select(right, (u - p_left) / (one - p_left), u / p_left);
-        let top = L::splat(ONE_MINUS_EPSILON);
+    fn pick(&mut self, _level: u32, i: &[L; 4], s01: L, s23: L, sum: L) -> (L::Mask, L::Mask) {
         let zero = L::splat(0.0);
+        let [i0, i1, i2, i3] = *i;
+        let s012 = s01 + i2;
+        let t = self.0 * sum;
+        // The bound `at` past which `t` takes a side of weight `w`; never if `w` is 0.
+        let bound = |w: L, at: L| L::select(zero.simd_lt(w), at, L::splat(f32::INFINITY));
+        let high = !t.simd_lt(bound(s23, s01));
+        let second = !t.simd_lt(L::select(high, bound(i3, s012), bound(i1, i0)));
+        let start = L::select(
+            high,
+            L::select(second, s012, s01),
+            L::select(second, i0, zero),
+        );
+        let chosen = L::select(high, L::select(second, i3, i2), L::select(second, i1, i0));
+        // `(t - start) / I_c` in [0, 1 - 2^-24]; a dead end (`I_c = 0`) gives NaN, replaced
+        // by 0 (the walk stops there anyway).
+        let v = (t - start) / chosen;
+        let top = L::splat(ONE_MINUS_EPSILON);
         self.0 = L::select(zero.simd_lt(v), L::select(v.simd_lt(top), v, top), zero);
-        right
+        (high, second)
     }
 }
 
@@ -182,9 +205,10 @@ struct ByTrail<U>(U);
 
 impl<L: Lane> Chooser<L> for ByTrail<L::U> {
     #[inline(always)]
-    fn right(&mut self, level: u32, _p_left: L) -> L::Mask {
+    fn pick(&mut self, level: u32, _i: &[L; 4], _: L, _: L, _: L) -> (L::Mask, L::Mask) {
         let one = L::U::splat(1);
-        !(self.0.shr(level) & one).simd_eq(L::U::splat(0))
+        let bit = |b: u32| !(self.0.shr(b) & one).simd_eq(L::U::splat(0));
+        (bit(2 * level), bit(2 * level + 1))
     }
 }
 
@@ -194,20 +218,10 @@ fn pos<L: Lane>(x: L) -> L {
     L::select(L::splat(0.0).simd_lt(x), x, L::splat(0.0))
 }
 
-/// `cos(max(0, a - b))` from the cosines and sines of `a` and `b` in `[0, pi]`.
+/// The axis stored in a node word (octahedral, two 16-bit fixed-point coordinates
+/// `q / 2^15 - 1`, exact) before normalisation, and its squared length.
 #[inline(always)]
-fn cos_sub<L: Lane>(cos_a: L, sin_a: L, cos_b: L, sin_b: L) -> L {
-    L::select(
-        cos_b.simd_lt(cos_a),
-        L::splat(1.0),
-        cos_a * cos_b + sin_a * sin_b,
-    )
-}
-
-/// The unit axis stored in a node word (octahedral, two 16-bit fixed-point coordinates
-/// `q / 2^15 - 1`, exact).
-#[inline(always)]
-pub(super) fn oct_decode<L: Lane>(w: L::U) -> [L; 3] {
+fn oct_raw<L: Lane>(w: L::U) -> ([L; 3], L) {
     let k = L::splat(1.0 / 32768.0);
     let one = L::splat(1.0);
     let x = L::from_uint(w & L::U::splat(0xffff)) * k - one;
@@ -218,8 +232,15 @@ pub(super) fn oct_decode<L: Lane>(w: L::U) -> [L; 3] {
     let fy = (one - x.abs()).flip_sign(y.sign_bit());
     let x = L::select(lower, fx, x);
     let y = L::select(lower, fy, y);
-    let inv = one / (x * x + y * y + z * z).sqrt();
-    [x * inv, y * inv, z * inv]
+    ([x, y, z], x * x + y * y + z * z)
+}
+
+/// The unit axis stored in a node word (see [`oct_raw`]).
+#[inline(always)]
+pub(super) fn oct_decode<L: Lane>(w: L::U) -> [L; 3] {
+    let (v, q) = oct_raw::<L>(w);
+    let inv = L::splat(1.0) / q.sqrt();
+    v.map(|x| x * inv)
 }
 
 /// A 16-bit fixed-point cosine `q / 2^15 - 1` (exact).
@@ -253,7 +274,13 @@ fn point<L: Lane>(p: [L; 3], n: [L; 3]) -> Point<L> {
 }
 
 /// The importance of one stored node at the point (see [`LightTree`]): finite, in
-/// `[0, 2^126]`, whatever the words hold.
+/// `[0, 2^125]`, whatever the words hold.
+///
+/// The cosines and sines of the angles are carried multiplied by the distance `d` (by
+/// `d^2` for `cos(theta')` and the incidence factor), so that the three square roots
+/// (`d sin(theta_w)`, `d cos(theta_b)`, `d sin(theta_i)`) run side by side and one division
+/// (`1 / d^2`) ends the chain: `d cos(theta_w) = w . (p - c)`, `d sin(theta_w) =
+/// sqrt(d^2 - (w . (p - c))^2)`, `d cos(theta_b) = sqrt(d^2 - r^2)`, `d sin(theta_b) = r`.
 #[inline(always)]
 fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
     let word = |k: usize| w.get(k).copied().unwrap_or(L::U::splat(0));
@@ -265,37 +292,48 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
     let r = f(3);
     let r2 = r * r;
     let phi = f(4);
-    let inside = d2.simd_lt(r2);
-    let dist = d2.sqrt();
-    let inv = L::select(zero.simd_lt(d2), one / dist, zero);
-    let wi = d.map(|x| x * inv);
-    let axis = oct_decode::<L>(word(5));
-    let cos_w = (axis[0] * d[0] + axis[1] * d[1] + axis[2] * d[2]) * inv;
+    // Inside the sphere (or on it): the cone of directions to it is the whole sphere.
+    let outside = r2.simd_lt(d2);
+    // The stored axis `v` is not unit: with `l = |v|`, the quantities of the axis's cone
+    // carry a factor `l` (no division on the way from the axis word to `cos(theta')`):
+    // `l d cos(theta_w) = v . (p - c)` (folded for two-sided nodes), `l d sin(theta_w)`.
+    let (v, q) = oct_raw::<L>(word(5));
+    let a = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
     let info = word(7);
     let two_sided = !(info & L::U::splat(TWO_SIDED)).simd_eq(L::U::splat(0));
-    let cos_w = L::select(two_sided, cos_w.abs(), cos_w);
-    let sin_w = pos(one - cos_w * cos_w).sqrt();
+    let a = L::select(two_sided, a.abs(), a);
+    let qd2 = q * d2;
+    let sw = pos(qd2 - a * a).sqrt();
+    let ldist = qd2.sqrt();
     let oe = word(6);
     let cos_o = cos16::<L>(oe);
     let cos_e = cos16::<L>(oe.shr(16));
     let sin_o = pos(one - cos_o * cos_o).sqrt();
-    // The cone the sphere subtends: sin = r / d (the whole sphere inside).
-    let sin_b = pos(r * inv);
-    let cos_b = L::select(inside, -one, pos(one - sin_b * sin_b).sqrt());
-    let sin_b = L::select(inside, zero, sin_b);
-    let cos_x = cos_sub(cos_w, sin_w, cos_o, sin_o);
-    let sin_x = L::select(cos_o.simd_lt(cos_w), zero, sin_w * cos_o - cos_w * sin_o);
-    let cos_p = cos_sub(cos_x, sin_x, cos_b, sin_b);
-    let cos_i = (wi[0] * pt.n[0] + wi[1] * pt.n[1] + wi[2] * pt.n[2]).abs();
-    let sin_i = pos(one - cos_i * cos_i).sqrt();
-    let cos_pi = L::select(pt.has_n, cos_sub(cos_i, sin_i, cos_b, sin_b), one);
-    let dc = L::select(inside, r2, d2);
+    // l d cos(theta_x), l d sin(theta_x) for theta_x = max(0, theta_w - theta_o).
+    let within = (cos_o * ldist).simd_lt(a);
+    let cx = L::select(within, ldist, a * cos_o + sw * sin_o);
+    let sx = L::select(within, zero, sw * cos_o - a * sin_o);
+    // d cos(theta_b) and l d cos(theta_b); d sin(theta_b) is r.
+    let cb = pos(d2 - r2).sqrt();
+    let l = q.sqrt();
+    let (lcb, lr) = (cb * l, r * l);
+    // d^2 cos(theta') for theta' = max(0, theta_x - theta_b), and the incidence factor
+    // d^2 cos(max(0, theta_i - theta_b)) from d cos(theta_i) = |n . (p - c)|.
+    let ci = (d[0] * pt.n[0] + d[1] * pt.n[1] + d[2] * pt.n[2]).abs();
+    let si = pos(d2 - ci * ci).sqrt();
+    let cp = L::select(lcb.simd_lt(cx), qd2, cx * lcb + sx * lr);
+    let cpi = L::select(cb.simd_lt(ci), d2, ci * cb + si * r);
+    let dc = L::select(outside, d2, r2);
     let dc = L::select(
         L::splat(f32::MIN_POSITIVE).simd_lt(dc),
         dc,
         L::splat(f32::MIN_POSITIVE),
     );
-    let imp = phi * cos_p * (one / dc) * cos_pi;
+    let inv = one / dc;
+    let inv_q = one / q;
+    let cos_p = L::select(outside, cp * (inv * inv_q), one);
+    let cos_pi = L::select(outside & pt.has_n, cpi * inv, one);
+    let imp = phi * inv * cos_pi * cos_p;
     let alive = cos_e.simd_lt(cos_p) & pt.valid;
     let imp = L::select(alive, imp, zero);
     L::select(
@@ -310,57 +348,215 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
 /// of the four children as one `u32x4`.
 const QUAD_WORDS: usize = 4 * NODE_WORDS;
 
-/// The importances of a quad's four children. One lane-generic body ([`importance`]); a
-/// scalar walk evaluates the four children as the four lanes of one `f32x4` (the same IEEE
-/// operations lane by lane, so the same bits as four scalar evaluations), a SIMD walk
-/// evaluates them one after the other.
+/// The lanes a walk runs in, and a quad's children at the point. One lane-generic body
+/// ([`importance`], [`walk`]). A scalar walk runs in `f32x4` lanes holding four copies of
+/// the sample: it loads each field of a quad's four children as one `u32x4` straight from
+/// the storage, evaluates the four children as the four lanes of one `f32x4`, broadcasts
+/// each importance to its own vector, and makes its choices with vector compares and blends
+/// (which a compiler cannot turn into branches on `u`). Every lane runs the same IEEE
+/// operations in the same order, so the bits are those of the SIMD walks, which gather
+/// their lanes' quads and evaluate the children one after the other.
 pub(super) trait Children: Lane {
-    fn importance4(pt: &Point<Self>, rec: &[Self::U; QUAD_WORDS]) -> [Self; 4];
+    /// The walk's lane type: `f32x4` for the scalar, `Self` otherwise.
+    type W: Lane;
+    /// The walk's handle on its current quad: its index (SIMD walks) or its words (the
+    /// scalar walk).
+    type Q: Copy;
+    fn widen(x: Self) -> Self::W;
+    fn widen_u(x: Self::U) -> <Self::W as Lane>::U;
+    fn narrow(x: Self::W) -> Self;
+    fn narrow_u(x: <Self::W as Lane>::U) -> Self::U;
+    /// The root's quad.
+    fn root(quads: &[[u32; QUAD_WORDS]]) -> Self::Q;
+    /// The importances of a quad's four children, their last words (leaf flag and index),
+    /// and the handles of their quads (meaningless for leaves).
+    fn open(
+        pt: &Point<Self::W>,
+        quads: &[[u32; QUAD_WORDS]],
+        quad: &Self::Q,
+    ) -> Opened<Self::W, Self::Q>;
+    /// The quad of the child taken (`high`: in the pair `{2, 3}`, `second`: the second of
+    /// its pair) where `step`, else `quad`.
+    fn advance(
+        quad: Self::Q,
+        children: [Self::Q; 4],
+        high: <Self::W as Lane>::Mask,
+        second: <Self::W as Lane>::Mask,
+        step: <Self::W as Lane>::Mask,
+    ) -> Self::Q;
+}
+
+/// A quad opened at the point: its four children's importances, last words (leaf flag and
+/// index) and quad handles.
+pub(super) struct Opened<L: Lane, Q> {
+    imp: [L; 4],
+    info: [L::U; 4],
+    children: [Q; 4],
+}
+
+/// A quad of zeros: what a quad index past the end reads (never in a storage `new` wrote).
+const ZERO_QUAD: [u32; QUAD_WORDS] = [0; QUAD_WORDS];
+
+/// One of four values by the two choices.
+#[inline(always)]
+fn pick4<U: UintLane>(v: [U; 4], high: U::Mask, second: U::Mask) -> U {
+    let [a, b, c, d] = v;
+    U::select(high, U::select(second, d, c), U::select(second, b, a))
+}
+
+/// The scalar walk's handle on a quad: its index, and its words 0 and 4 (word `k` of the
+/// four children), one from each of its two cache lines, loaded ahead of the choice.
+#[derive(Clone, Copy)]
+pub(super) struct Ahead {
+    index: u32x4,
+    first: u32x4,
+    fifth: u32x4,
+}
+
+/// [`Ahead`] of quad `index`.
+#[inline(always)]
+fn ahead(quads: &[[u32; QUAD_WORDS]], index: u32) -> Ahead {
+    let rec = quads.get(index as usize).unwrap_or(&ZERO_QUAD);
+    let rows = rec.as_chunks::<4>().0;
+    let row = |k: usize| from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4])));
+    Ahead {
+        index: u32x4::splat(index),
+        first: row(0),
+        fifth: row(4),
+    }
 }
 
 impl Children for f32 {
+    type W = f32x4;
+    type Q = Ahead;
     #[inline(always)]
-    fn importance4(pt: &Point<f32>, rec: &[Wrapping<u32>; QUAD_WORDS]) -> [f32; 4] {
-        let mask = |b: bool| UintLane::simd_eq(u32x4::splat(u32::from(b)), u32x4::splat(1));
-        let wide_pt = Point {
-            p: pt.p.map(f32x4::splat),
-            n: pt.n.map(f32x4::splat),
-            has_n: mask(pt.has_n),
-            valid: mask(pt.valid),
-        };
-        let words: [u32x4; NODE_WORDS] = core::array::from_fn(|k| {
-            u32x4::new(core::array::from_fn(|c| {
-                rec.get(4 * k + c).map_or(0, |w| w.0)
-            }))
+    fn widen(x: f32) -> f32x4 {
+        f32x4::splat(x)
+    }
+    #[inline(always)]
+    fn widen_u(x: Wrapping<u32>) -> u32x4 {
+        u32x4::splat(x.0)
+    }
+    #[inline(always)]
+    fn narrow(x: f32x4) -> f32 {
+        x.to_array()[0]
+    }
+    #[inline(always)]
+    fn narrow_u(x: u32x4) -> Wrapping<u32> {
+        Wrapping(x.to_array()[0])
+    }
+    #[inline(always)]
+    fn root(quads: &[[u32; QUAD_WORDS]]) -> Self::Q {
+        ahead(quads, 0)
+    }
+    /// Reads one word from each cache line of the four children's quads before the choice
+    /// is made (the next level's loads then hit the first-level cache).
+    #[inline(always)]
+    fn open(
+        pt: &Point<f32x4>,
+        quads: &[[u32; QUAD_WORDS]],
+        quad: &Self::Q,
+    ) -> Opened<f32x4, Self::Q> {
+        let rec = quads
+            .get(quad.index.to_array()[0] as usize)
+            .unwrap_or(&ZERO_QUAD);
+        let rows = rec.as_chunks::<4>().0;
+        let words: [u32x4; NODE_WORDS] = core::array::from_fn(|k| match k {
+            0 => quad.first,
+            4 => quad.fifth,
+            _ => from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4]))),
         });
-        importance::<f32x4>(&wide_pt, &words).to_array()
+        let info = words[NODE_WORDS - 1].to_array();
+        let children = info.map(|w| ahead(quads, w & INDEX_MASK));
+        let imp = importance::<f32x4>(pt, &words).to_array();
+        Opened {
+            imp: imp.map(f32x4::splat),
+            info: info.map(u32x4::splat),
+            children,
+        }
+    }
+    #[inline(always)]
+    fn advance(
+        _quad: Self::Q,
+        children: [Self::Q; 4],
+        high: <f32x4 as Lane>::Mask,
+        second: <f32x4 as Lane>::Mask,
+        _step: <f32x4 as Lane>::Mask,
+    ) -> Self::Q {
+        // Once the walk has stopped, what it reads no longer matters.
+        Ahead {
+            index: pick4(children.map(|c| c.index), high, second),
+            first: pick4(children.map(|c| c.first), high, second),
+            fifth: pick4(children.map(|c| c.fifth), high, second),
+        }
     }
 }
 
 macro_rules! children_one_by_one {
     ($($l:ty),*) => {$(
         impl Children for $l {
+            type W = $l;
+            type Q = <$l as Lane>::U;
             #[inline(always)]
-            fn importance4(pt: &Point<$l>, rec: &[<$l as Lane>::U; QUAD_WORDS]) -> [$l; 4] {
-                core::array::from_fn(|c| {
-                    let w: [_; NODE_WORDS] = core::array::from_fn(|k| {
-                        rec.get(4 * k + c).copied().unwrap_or(<$l as Lane>::U::splat(0))
-                    });
+            fn widen(x: $l) -> $l {
+                x
+            }
+            #[inline(always)]
+            fn widen_u(x: <$l as Lane>::U) -> <$l as Lane>::U {
+                x
+            }
+            #[inline(always)]
+            fn narrow(x: $l) -> $l {
+                x
+            }
+            #[inline(always)]
+            fn narrow_u(x: <$l as Lane>::U) -> <$l as Lane>::U {
+                x
+            }
+            #[inline(always)]
+            fn root(_quads: &[[u32; QUAD_WORDS]]) -> Self::Q {
+                <$l as Lane>::U::splat(0)
+            }
+            #[inline(always)]
+            fn open(
+                pt: &Point<$l>,
+                quads: &[[u32; QUAD_WORDS]],
+                quad: &Self::Q,
+            ) -> Opened<$l, Self::Q> {
+                let rec = <$l as Lane>::U::gather(quads, *quad).map(from_storage_order);
+                let word = |k: usize, c: usize| {
+                    rec.get(4 * k + c).copied().unwrap_or(<$l as Lane>::U::splat(0))
+                };
+                let imp = core::array::from_fn(|c| {
+                    let w: [_; NODE_WORDS] = core::array::from_fn(|k| word(k, c));
                     importance::<$l>(pt, &w)
-                })
+                });
+                let info: [_; 4] = core::array::from_fn(|c| word(NODE_WORDS - 1, c));
+                let children = info.map(|w| w & <$l as Lane>::U::splat(INDEX_MASK));
+                Opened { imp, info, children }
+            }
+            #[inline(always)]
+            fn advance(
+                quad: Self::Q,
+                children: [Self::Q; 4],
+                high: <$l as Lane>::Mask,
+                second: <$l as Lane>::Mask,
+                step: <$l as Lane>::Mask,
+            ) -> Self::Q {
+                UintLane::select(step, pick4(children, high, second), quad)
             }
         }
     )*};
 }
 children_one_by_one!(f32x8, f32x16);
 
-/// The walk: `levels` steps from quad 0, each picking one of four children by two binary
-/// choices (`choose`): the pair `{0, 1}` or `{2, 3}` with probability `(I0 + I1) / S`, then
-/// a child of the pair with probability `I0 / (I0 + I1)` (or `I2 / (I2 + I3)`). Returns the
-/// light reached (`u32::MAX` if none) and its probability (0 if none): the product of the
-/// choices' probabilities in root-to-leaf order.
+/// The walk: `levels` steps from quad 0, each picking one of four children `c` with
+/// probability `I_c / S` (`S = I_0 + I_1 + I_2 + I_3`) by two binary choices (`choose`): the
+/// pair `{0, 1}` or `{2, 3}` by the pairs' sums, then a child of the pair by its two
+/// importances. Returns the light reached (`u32::MAX` if none) and its probability (0 if
+/// none): the product of the levels' `I_c / S` in root-to-leaf order.
 #[inline(always)]
-fn walk<L: Children, C: Chooser<L>>(
+fn walk<L: Lane, K: Children<W = L>, C: Chooser<L>>(
     quads: &[[u32; QUAD_WORDS]],
     len: u32,
     levels: u32,
@@ -370,41 +566,37 @@ fn walk<L: Children, C: Chooser<L>>(
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
     let uzero = L::U::splat(0);
-    let mut quad = uzero;
+    let mut quad = K::root(quads);
     let mut prob = one;
     let mut index = L::U::splat(u32::MAX);
     // `done`: reached a leaf; `dead`: stopped where the children have importance 0.
     let mut done = uzero.simd_eq(L::U::splat(1));
     let mut dead = !pt.valid;
     for level in 0..levels.min(MAX_LEVELS) {
-        let rec = L::U::gather(quads, quad).map(from_storage_order);
-        let [i0, i1, i2, i3] = L::importance4(pt, &rec);
+        let Opened {
+            imp,
+            info,
+            children,
+        } = K::open(pt, quads, &quad);
+        let [i0, i1, i2, i3] = imp;
         let (s01, s23) = (i0 + i1, i2 + i3);
         let sum = s01 + s23;
+        let (high, second) = choose.pick(level, &imp, s01, s23, sum);
+        let chosen = L::select(high, L::select(second, i3, i2), L::select(second, i1, i0));
         let live = zero.simd_lt(sum);
-        let p_low = L::select(live, s01 / sum, zero);
-        let high = choose.right(2 * level, p_low);
-        let p_pair = L::select(high, one - p_low, p_low);
-        // Both pairs' splits, computed before the pair is known (off the critical path).
-        let split = |a: L, s: L| L::select(zero.simd_lt(s), a / s, zero);
-        let p_first = L::select(high, split(i2, s23), split(i0, s01));
-        let second = choose.right(2 * level + 1, p_first);
-        let p_child = L::select(second, one - p_first, p_first);
         let active = !(done | dead);
         dead = dead | (active & !live);
         let active = active & live;
-        prob = L::select(active, prob * p_pair * p_child, prob);
-        let info = {
-            let pick = |a: usize, b: usize| L::U::select(second, rec[b], rec[a]);
-            let info = 4 * (NODE_WORDS - 1);
-            L::U::select(high, pick(info + 2, info + 3), pick(info, info + 1))
-        };
+        // `chosen / sum` in [0, 1] (0 for a trail through a child of importance 0).
+        let p_child = L::select(live, chosen / sum, zero);
+        prob = L::select(active, prob * p_child, prob);
+        let info = pick4(info, high, second);
         let target = info & L::U::splat(INDEX_MASK);
         let leaf = !(info & L::U::splat(LEAF)).simd_eq(uzero);
         let reached = active & leaf;
         index = L::U::select(reached, target, index);
         done = done | reached;
-        quad = L::U::select(active & !leaf, target, quad);
+        quad = K::advance(quad, children, high, second, active & !leaf);
     }
     // A leaf naming a light past the end (only in a corrupt storage), a walk cut short, a
     // dead end or a probability that underflowed: no light.
@@ -536,23 +728,22 @@ impl<'a> LightTree<'a> {
 
     #[inline(always)]
     fn sample_lanes<L: Children>(&self, p: [L; 3], n: [L; 3], u: L) -> (L::U, L) {
-        let pt = point(p, n);
-        let mut by_u = ByU(unit_interval(u));
-        walk(self.quads(), self.len as u32, self.levels, &pt, &mut by_u)
+        let pt = point(p.map(L::widen), n.map(L::widen));
+        let mut by_u = ByU(unit_interval(L::widen(u)));
+        let quads = self.quads();
+        let (i, q) = walk::<L::W, L, _>(quads, self.len as u32, self.levels, &pt, &mut by_u);
+        (L::narrow_u(i), L::narrow(q))
     }
 
     #[inline(always)]
     fn pmf_lanes<L: Children>(&self, p: [L; 3], n: [L; 3], index: L::U) -> L {
-        let pt = point(p, n);
+        let pt = point(p.map(L::widen), n.map(L::widen));
         let [trail] = L::U::gather(self.trails(), index);
-        let mut by_trail = ByTrail(from_storage_order(trail));
-        let (reached, prob) = walk(
-            self.quads(),
-            self.len as u32,
-            self.levels,
-            &pt,
-            &mut by_trail,
-        );
+        let mut by_trail = ByTrail(from_storage_order(L::widen_u(trail)));
+        let quads = self.quads();
+        let (reached, prob) =
+            walk::<L::W, L, _>(quads, self.len as u32, self.levels, &pt, &mut by_trail);
+        let (reached, prob) = (L::narrow_u(reached), L::narrow(prob));
         L::select(reached.simd_eq(index), prob, L::splat(0.0))
     }
 
@@ -624,9 +815,8 @@ impl<'a> LightTree<'a> {
     /// 0 for an index `>= len`, a light of power 0, and a light of importance 0 at `p`.
     ///
     /// Error against the same walk in `f64` (measured, `tests/lights/tree.rs`, 600,000
-    /// probabilities of a 300-light scene): at most `7.3e-8` absolute, `5e-5` relative where
-    /// the probability is at least `1e-3` (a side's `1 - P` near `P = 1` carries the `f32`
-    /// spacing of 1 as its absolute error). The probability is exact for what `sample` does:
+    /// probabilities of a 300-light scene): at most `6.8e-8` absolute, `1.6e-5` relative where
+    /// the probability is at least `1e-3`. The probability is exact for what `sample` does:
     /// it is the product `sample` reports.
     #[inline]
     pub fn pmf(&self, p: [f32; 3], n: [f32; 3], index: u32) -> f32 {
