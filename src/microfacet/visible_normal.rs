@@ -1,8 +1,8 @@
 //! Visible normals of GGX by spherical caps (Dupuy and Benyoub 2023), and their density.
 
-use super::{cap_normal, outgoing, outgoing_scaled, rough, scaled, slice_form, split322, split332};
+use super::{cap_normal, exact, outgoing, outgoing_scaled, rough, scaled, slice_form, split322, split332};
 use crate::lanes::Lane;
-use crate::vec3::{V, dot, norm};
+use crate::vec3::{V, norm};
 
 #[inline(always)]
 fn sample_body<L: Lane>(wo: V<L>, alpha: [L; 2], u: [L; 2]) -> V<L> {
@@ -10,15 +10,19 @@ fn sample_body<L: Lane>(wo: V<L>, alpha: [L; 2], u: [L; 2]) -> V<L> {
 }
 
 /// `D_wo(m) = 2 max(0, w.m) D(m) / ((w.z + |stretch(w)|) |m|)` for the unit outgoing `w`
-/// (`G1(w) / w.z = 2 / (w.z + |stretch(w)|)`, finite at grazing).
+/// (`G1(w) / w.z = 2 / (w.z + |stretch(w)|)`, finite at grazing), with `w.m = (s . m) / |s|`
+/// of the exact scaled `s` and `m`, the dot product in double-`f32` (it cancels where `m` is
+/// nearly perpendicular to `wo`).
 #[inline(always)]
 fn pdf_body<L: Lane>(wo: V<L>, m: V<L>, alpha: [L; 2]) -> L {
     let zero = L::splat(0.0);
     let r = rough(alpha);
-    let w = outgoing(wo);
+    let o = outgoing(wo);
+    let w = o.w;
     let (m, ok) = scaled(m);
     let (d, _) = r.d(m);
-    let wm = dot(w, m);
+    let (hi, lo) = exact::dot2(o.s, m);
+    let wm = (hi + lo) * o.inv;
     let den = (w[2] + r.stretched_len(w)) * norm(m);
     L::select(ok & zero.simd_lt(wm), (wm + wm) * d / den, zero)
 }
