@@ -266,7 +266,7 @@ fn cap_normal<L: Lane>(r: &Rough<L>, w: V<L>, u: [L; 2], k: Option<Shrink<L>>) -
 /// `h = o.s + (|o.s| / |wi|) wi` (`k = 1` for the full visible distribution), and for the
 /// bounded one 0 where `h` lies outside the image of the cap: the standard-space reflection
 /// of `i` about `h`'s standard normal has height below `-b`, which is
-/// `2 (w.h) h.z < (1 - k) w.z |unstretch(h)|^2`, with `2 w.h = |h|^2 / |o.s|`. A zero or
+/// `2 (w.h) h.z < (1 - k) w.z |unstretch(h)|^2`. A zero or
 /// non-finite `wi` has density 0. `h` is formed in double-`f32` ([`exact::half_direction`]):
 /// its components cancel where `wi` is near the mirror image of `wo` (every lobe at small
 /// `alpha`) or near `-wo`, and `D` magnifies their error by `1 / alpha` there. The samplers
@@ -287,7 +287,7 @@ fn reflect_density<L: Lane>(r: &Rough<L>, o: &Outgoing<L>, t: L, wi: V<L>, bound
     let (den, inside) = if bounded {
         let (k, omk) = shrink(r, w);
         // A relative slack of 2^-16 at the rim keeps the cap's own samples inside it.
-        let lhs = hh * o.inv * h[2];
+        let lhs = L::splat(2.0) * dot(w, h) * h[2];
         let rhs = w[2] * omk * q * L::splat(1.0 - 1.0 / 65536.0);
         (k * w[2] + t, rhs.simd_le(lhs))
     } else {
