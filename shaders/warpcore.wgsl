@@ -1478,7 +1478,14 @@ fn wci_sum3_2(p0: vec2<f32>, p1: vec2<f32>, p2: vec2<f32>, z: u32) -> vec2<f32> 
     return vec2<f32>(s1.x, wci_fence(s0.y + s1.y, z) + e);
 }
 
-fn wci_dot2(a: vec3<f32>, b: vec3<f32>, z: u32) -> vec2<f32> {
+// v with its components below 2^-40 made 0 (`coarse`): no partial product is subnormal.
+fn wci_coarse(v: vec3<f32>) -> vec3<f32> {
+    return select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(0x1p-40f));
+}
+
+fn wci_dot2(a0: vec3<f32>, b0: vec3<f32>, z: u32) -> vec2<f32> {
+    let a = wci_coarse(a0);
+    let b = wci_coarse(b0);
     return wci_sum3_2(wci_two_prod(a.x, b.x, z), wci_two_prod(a.y, b.y, z), wci_two_prod(a.z, b.z, z), z);
 }
 
@@ -1495,7 +1502,9 @@ fn wci_half_component(a: f32, b: f32, rho: vec2<f32>, z: u32) -> f32 {
 }
 
 // The direction of a / |a| + b / |b| as a + (|a| / |b|) b (`half_direction`).
-fn wci_half_direction(a: vec3<f32>, b: vec3<f32>, z: u32) -> vec3<f32> {
+fn wci_half_direction(a0: vec3<f32>, b0: vec3<f32>, z: u32) -> vec3<f32> {
+    let a = wci_coarse(a0);
+    let b = wci_coarse(b0);
     let a2 = wci_norm2(a, z);
     let b2 = wci_norm2(b, z);
     let inv = 1.0f / b2.x;
@@ -1646,7 +1655,9 @@ fn wc_microfacet_ggx_visible_normal_pdf(wo: vec3<f32>, m0: vec3<f32>, alpha: vec
     let wm2 = wci_dot2(o.s, m, wci_zero_of(w.z));
     let wm = (wm2.x + wm2.y) * o.inv;
     let den = (w.z + wci_norm3(wci_stretch(r, w))) * wci_norm3(m);
-    return select(0.0f, (wm + wm) * d / den, s.w == 1.0f && 0.0f < wm);
+    // No subnormal operand or result: wo.m and a density below 2^-126 count as 0.
+    let p = (wm + wm) * (d / den);
+    return select(0.0f, p, s.w == 1.0f && 0x1p-126f <= wm && 0x1p-126f <= p);
 }
 
 // Reflection by visible normals: wi and its density (that of wc_microfacet_ggx_reflect_pdf at wi).

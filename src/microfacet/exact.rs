@@ -8,8 +8,10 @@
 //! the written order (Rust never reassociates; the WGSL transcription fences them).
 //!
 //! Range: the inputs are power-of-two-scaled vectors (largest component in `[1, 2)`), so the
-//! splitter's `4097 x` never overflows; products that underflow lose only what is below
-//! `2^-126` of an `O(1)` result.
+//! splitter's `4097 x` never overflows, and their components below `2^-40` count as zero
+//! ([`coarse`]): every remaining component has an ulp of at least `2^-63`, so every product
+//! of halves, error term and partial sum is a multiple of `2^-126`, never subnormal. Devices
+//! that flush subnormals (Mesa lavapipe does) then compute the same bits.
 
 use crate::lanes::Lane;
 use crate::vec3::V;
@@ -48,10 +50,19 @@ fn two_square<L: Lane>(a: L) -> (L, L) {
     (p, ((ah * ah - p) + (t + t)) + al * al)
 }
 
-/// `a . b` as `hi + lo`, with an error of a few `2^-48 sum |a_i b_i|` (Ogita, Rump and
-/// Oishi's `Dot2`).
+/// `v` with its components below `2^-40` in magnitude made 0 (see the module docs). For
+/// the scaled vectors this moves a direction by less than `2^-40`.
+#[inline(always)]
+fn coarse<L: Lane>(v: V<L>) -> V<L> {
+    let small = L::splat(1.0 / (1u64 << 40) as f32);
+    v.map(|x| L::select(x.abs().simd_lt(small), L::splat(0.0), x))
+}
+
+/// `a . b` (components below `2^-40` read as 0) as `hi + lo`, with an error of a few
+/// `2^-48 sum |a_i b_i|` (Ogita, Rump and Oishi's `Dot2`).
 #[inline(always)]
 pub(super) fn dot2<L: Lane>(a: V<L>, b: V<L>) -> (L, L) {
+    let (a, b) = (coarse(a), coarse(b));
     let (p0, e0) = two_prod(a[0], b[0]);
     let (p1, e1) = two_prod(a[1], b[1]);
     let (p2, e2) = two_prod(a[2], b[2]);
@@ -71,7 +82,8 @@ fn norm2<L: Lane>(a: V<L>) -> (L, L) {
     (s, (t0 + t1) + ((e0 + e1) + e2))
 }
 
-/// The direction of `a / |a| + b / |b|` (nonzero `a`, `b` of the scaled range), as
+/// The direction of `a / |a| + b / |b|` (nonzero `a`, `b` of the scaled range, components
+/// below `2^-40` read as 0), as
 /// `a + (|a| / |b|) b` rounded once per component from double-`f32`: `|a| / |b|` is the
 /// square root of `|a|^2 / |b|^2` to about `2^-46` relative (a quotient and a square root
 /// each corrected by its exact remainder), so each component's error is a few ulps of itself
@@ -79,6 +91,7 @@ fn norm2<L: Lane>(a: V<L>) -> (L, L) {
 /// `a . h = |h|^2 / 2` for the result `h`: its projection needs no (cancelling) dot product.
 #[inline(always)]
 pub(super) fn half_direction<L: Lane>(a: V<L>, b: V<L>) -> V<L> {
+    let (a, b) = (coarse(a), coarse(b));
     let (a2, a2l) = norm2(a);
     let (b2, b2l) = norm2(b);
     // r = |a|^2 / |b|^2: a2 - r b2 is exact (Sterbenz), corrected by both low parts.

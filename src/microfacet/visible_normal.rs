@@ -24,7 +24,11 @@ fn pdf_body<L: Lane>(wo: V<L>, m: V<L>, alpha: [L; 2]) -> L {
     let (hi, lo) = exact::dot2(o.s, m);
     let wm = (hi + lo) * o.inv;
     let den = (w[2] + r.stretched_len(w)) * norm(m);
-    L::select(ok & zero.simd_lt(wm), (wm + wm) * d / den, zero)
+    // No subnormal operand or result (flush-to-zero devices agree): wo.m below 2^-126 and a
+    // density below 2^-126 count as 0; d / den is a normal number.
+    let tiny = L::splat(f32::MIN_POSITIVE);
+    let p = (wm + wm) * (d / den);
+    L::select(ok & tiny.simd_le(wm) & tiny.simd_le(p), p, zero)
 }
 
 lane_forms! {
