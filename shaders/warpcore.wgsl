@@ -1379,6 +1379,8 @@ fn wc_spherical_cone_solid_angle(centre: vec3<f32>, radius: f32, p: vec3<f32>) -
 const WCI_ALPHA_MIN: f32 = 0x1.a36e2ep-14f;
 const WCI_HALF_FRAC_1_PI: f32 = 0x1.45f306p-3f;
 const WCI_CAP_SLACK: f32 = 0x1.fffep-1f;
+// 4 (1/8)^2: the plain half vector is used where alpha_min^2 |h|^2 >= 4 (1/8)^2 |wi|^2.
+const WCI_PLAIN_BOUND: f32 = 0x1p-4f;
 
 // The reflection's result: the direction and its density per steradian.
 struct WcDirectionPdf {
@@ -1575,26 +1577,40 @@ fn wci_cap_normal(r: WciRough, w: vec3<f32>, u: vec2<f32>, kp: vec3<f32>, bounde
     return vec4<f32>(m * (1.0f / wci_norm3(m)), l);
 }
 
-// The reflection density at wi for the outgoing o with t = |stretch(o.w)|; the half vector
-// in double-f32 (wci_half_direction).
-fn wci_reflect_density(r: WciRough, o: WciOutgoing, t: f32, wi0: vec3<f32>, bounded: bool) -> f32 {
-    let w = o.w;
-    let s = wci_scaled(wi0);
-    let wi = vec3<f32>(s.x, s.y, select(1.0f, s.z, s.w == 1.0f));
-    let z = wci_zero_of(w.z);
-    let h0 = wci_half_direction(o.s, wi, z);
+// The reflection density at the half vector h0 (any length), den = k w.z + t, omk = 1 - k.
+fn wci_density_at(r: WciRough, w: vec3<f32>, h0: vec3<f32>, den: f32, omk: f32, valid: bool, bounded: bool) -> f32 {
     let h = h0 * wci_pow2_lift(h0.x, h0.y, h0.z);
     let hh = wci_dot3(h, h);
     let uh = wci_unstretch(r, h);
     let q = wci_dot3(uh, uh);
-    let km = wci_shrink(r, w);
     let lhs = 2.0f * wci_dot3(w, h) * h.z;
-    let rhs = wci_fence(w.z * km.y * q, z) * WCI_CAP_SLACK;
-    let den = select(w.z + t, km.x * w.z + t, bounded);
+    let z = wci_zero_of(w.z);
+    let rhs = wci_fence(w.z * omk * q, z) * WCI_CAP_SLACK;
     let inside = !bounded || rhs <= lhs;
     let c = wci_fence(wci_fence(r.inv.x * r.inv.y, z) * WCI_HALF_FRAC_1_PI, z);
     let pdf = wci_fence(hh * hh, z) * c / (q * q * den);
-    return select(0.0f, pdf, s.w == 1.0f && inside && 0.0f < h.z && 0.0f < q);
+    return select(0.0f, pdf, valid && inside && 0.0f < h.z && 0.0f < q);
+}
+
+// The reflection density at wi for the outgoing o with t = |stretch(o.w)|: the half vector
+// |wi| w + wi where alpha_min wo.h >= 1/8, else in double-f32 (wci_half_direction).
+fn wci_reflect_density(r: WciRough, o: WciOutgoing, t: f32, wi0: vec3<f32>, bounded: bool) -> f32 {
+    let w = o.w;
+    let s = wci_scaled(wi0);
+    let valid = s.w == 1.0f;
+    let wi = vec3<f32>(s.x, s.y, select(1.0f, s.z, valid));
+    let km = wci_shrink(r, w);
+    let den = select(w.z + t, km.x * w.z + t, bounded);
+    let omk = select(0.0f, km.y, bounded);
+    let l = wci_norm3(wi);
+    let plain = vec3<f32>(w.x * l + wi.x, w.y * l + wi.y, w.z * l + wi.z);
+    let amin = select(r.a.y, r.a.x, r.a.x < r.a.y);
+    let z = wci_zero_of(w.z);
+    let bound = wci_fence(WCI_PLAIN_BOUND * l, z) * l;
+    let use_plain = bound <= amin * amin * wci_dot3(plain, plain);
+    let p = wci_density_at(r, w, plain, den, omk, valid, bounded);
+    let e = wci_density_at(r, w, wci_half_direction(o.s, wi, z), den, omk, valid, bounded);
+    return select(e, p, use_plain);
 }
 
 fn wci_reflect_sample(wo: vec3<f32>, alpha: vec2<f32>, u: vec2<f32>, bounded: bool) -> WcDirectionPdf {

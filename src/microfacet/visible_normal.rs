@@ -58,11 +58,11 @@ lane_forms! {
     /// `2 max(0, wo.m) D(m) / (wo.z + |(ax wox, ay woy, woz)|)` (finite as `wo.z -> 0`).
     ///
     /// `m` may have any length (its direction counts); a zero or non-finite `m` has density
-    /// 0, and so has `m.z <= 0`. `wo` as [`ggx_visible_normal`](super::ggx_visible_normal) reads it. Error against
-    /// `f64` (on the same `f32` inputs): the product `wo.m` carries an absolute rounding of
-    /// about `6e-8`, so the relative error is within `5.7e-7 / (wo.m)` (measured): 1e-5 for
-    /// `wo.m >= 0.057` (all but one of 130,560 sampled normals in the sweep of
-    /// `docs/warps.md`).
+    /// 0, and so has `m.z <= 0`. `wo` as [`ggx_visible_normal`](super::ggx_visible_normal) reads it. `wo.m` is
+    /// `(s . m) / |s|` of the scaled `wo` and `m`, the dot product in double `f32` (it
+    /// cancels for `m` nearly perpendicular to `wo`); `wo.m` and densities below `2^-126`
+    /// count as 0. Error against `f64` (on the same `f32` inputs): within 6.9e-7 relative
+    /// (measured over 130,560 sampled normals, the sweep of `docs/warps.md`).
     pub fn ggx_visible_normal_pdf, ggx_visible_normal_pdf_x8, ggx_visible_normal_pdf_x16
         ["(direction, normal, roughness) triples"]
         (wo: [L; 3], m: [L; 3], alpha: [L; 2]) -> L = pdf_body;
