@@ -1,6 +1,8 @@
 //! Visible normals of GGX by spherical caps (Dupuy and Benyoub 2023), and their density.
 
-use super::{cap_normal, exact, outgoing, outgoing_scaled, rough, scaled, slice_form, split322, split332};
+use super::{
+    cap_normal, exact, outgoing, outgoing_scaled, rough, scaled, slice_form, split322, split332,
+};
 use crate::lanes::Lane;
 use crate::vec3::{V, norm};
 
