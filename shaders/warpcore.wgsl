@@ -1482,7 +1482,11 @@ fn wci_sum3_2(p0: vec2<f32>, p1: vec2<f32>, p2: vec2<f32>, z: u32) -> vec2<f32> 
 
 // v with its components below 2^-40 made 0 (`coarse`): no partial product is subnormal.
 fn wci_coarse(v: vec3<f32>) -> vec3<f32> {
-    return select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(0x1p-40f));
+    return vec3<f32>(
+        select(v.x, 0.0f, wci_abs(v.x) < 0x1p-40f),
+        select(v.y, 0.0f, wci_abs(v.y) < 0x1p-40f),
+        select(v.z, 0.0f, wci_abs(v.z) < 0x1p-40f),
+    );
 }
 
 fn wci_dot2(a0: vec3<f32>, b0: vec3<f32>, z: u32) -> vec2<f32> {
