@@ -1574,11 +1574,16 @@ fn wci_cap_normal(r: WciRough, w: vec3<f32>, u: vec2<f32>, kp: vec3<f32>, bounde
     let vp = (1.0f - u1) * p;
     let sn = sqrt(u1 * p * (vp + q));
     let sc = wci_sin_cos_turns(u0);
-    let hx = sn * sc.y + wd.x;
-    let hy = sn * sc.x + wd.y;
     let hz = select(vp, vp + rim, bounded);
-    let m = vec3<f32>(r.a.x * hx, r.a.y * hy, hz);
-    return vec4<f32>(m * (1.0f / wci_norm3(m)), l);
+    // (ax cos, ay sin) fenced: the compiler would reassociate sin (ax cos) as (sin ax) cos.
+    let z = wci_zero_of(u.y);
+    let m = vec3<f32>(
+        sn * wci_fence(r.a.x * sc.y, z) + r.a.x * wd.x,
+        sn * wci_fence(r.a.y * sc.x, z) + r.a.y * wd.y,
+        hz,
+    );
+    let n = wci_norm3(m);
+    return vec4<f32>(m.x / n, m.y / n, m.z / n, l);
 }
 
 // The reflection density at the half vector h0 (any length), den = k w.z + t, omk = 1 - k.

@@ -34,7 +34,7 @@ reflection_forms! {
     /// [`ggx_reflect_pdf`](super::ggx_reflect_pdf) is.
     ///
     /// Arguments as [`ggx_reflect_pdf`](super::ggx_reflect_pdf), and its half vector (double `f32` where
-    /// `alpha_min wo.h < 1/8`); error against `f64` within 1.1e-6 relative (measured over
+    /// `alpha_min wo.h < 1/8`); error against `f64` within 1.3e-6 relative (measured over
     /// the sweep of `docs/warps.md`).
     pub fn ggx_reflect_bounded_pdf, ggx_reflect_bounded_pdf_x8, ggx_reflect_bounded_pdf_x16 [density];
     pub fn ggx_reflect_bounded_pdf_slice [density];

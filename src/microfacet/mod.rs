@@ -258,11 +258,16 @@ fn cap_normal<L: Lane>(r: &Rough<L>, w: V<L>, u: [L; 2], k: Option<Shrink<L>>) -
     let sin = (u1 * p * (vp + q)).sqrt();
     let (sn, cs) = sin_cos_turns(u0);
     // (i + c) l d; its height (1 - u1)(1 + b) l d + (i.z - b) l d is positive.
-    let hx = sin * cs + wd[0];
-    let hy = sin * sn + wd[1];
     let hz = if k.is_some() { vp + rim } else { vp };
-    let m = [r.ax * hx, r.ay * hy, hz];
-    (scale(m, one / norm(m)), l)
+    // Unstretched as (ax (i + c).x, ay (i + c).y, (i + c).z), with ax cos and ax wd.x off the
+    // path from the square roots; normalised by three divisions (no reciprocal on the path).
+    let m = [
+        sin * (r.ax * cs) + r.ax * wd[0],
+        sin * (r.ay * sn) + r.ay * wd[1],
+        hz,
+    ];
+    let n = norm(m);
+    ([m[0] / n, m[1] / n, m[2] / n], l)
 }
 
 /// `alpha_min wo.h` from which the plain `f32` half vector is used: its density error is
