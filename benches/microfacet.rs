@@ -1,7 +1,7 @@
 //! GGX microfacet sampling: warpcore's visible normals (spherical caps), reflection and bounded
 //! reflection, in every form, against a textbook `f32` transcription of Heitz 2018's sampler
 //! (the orthonormal frame around the stretched view direction, a polar disk sample warped onto
-//! the projected hemisphere, `libm` sin/cos/sqrt) in the same group. `wo` and `alpha` vary per
+//! the projected hemisphere, `std` sin/cos/sqrt) in the same group. `wo` and `alpha` vary per
 //! call (pre-generated arrays of varied inputs, walked behind `black_box`), as a renderer
 //! calls it: nothing is hoisted.
 //!
@@ -16,9 +16,11 @@ use std::hint::black_box;
 use warpcore::microfacet as mf;
 
 /// Heitz 2018, "Sampling the GGX Distribution of Visible Normals" (JCGT 7(4)), written from
-/// the paper's description in plain `f32` with `libm`.
+/// the paper's description in plain `f32` with `std`'s `sqrt` (the hardware instruction, as
+/// a renderer's code gets it; `libm::sqrtf` is an opaque inline-asm `sqrtss` on x86, which
+/// would handicap the peer) and `sin_cos` (the platform's `sinf`/`cosf`).
 fn heitz2018(wo: [f32; 3], alpha: [f32; 2], u: [f32; 2]) -> [f32; 3] {
-    let norm = |v: [f32; 3]| libm::sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    let norm = |v: [f32; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     // The view direction in the hemisphere configuration.
     let vh = [alpha[0] * wo[0], alpha[1] * wo[1], wo[2]];
     let l = norm(vh);
@@ -26,7 +28,7 @@ fn heitz2018(wo: [f32; 3], alpha: [f32; 2], u: [f32; 2]) -> [f32; 3] {
     // An orthonormal basis around it.
     let lensq = vh[0] * vh[0] + vh[1] * vh[1];
     let t1 = if lensq > 0.0 {
-        let inv = 1.0 / libm::sqrtf(lensq);
+        let inv = 1.0 / lensq.sqrt();
         [-vh[1] * inv, vh[0] * inv, 0.0]
     } else {
         [1.0, 0.0, 0.0]
@@ -37,13 +39,13 @@ fn heitz2018(wo: [f32; 3], alpha: [f32; 2], u: [f32; 2]) -> [f32; 3] {
         vh[0] * t1[1] - vh[1] * t1[0],
     ];
     // A point on the disk, warped onto the visible half.
-    let r = libm::sqrtf(u[0]);
-    let phi = TAU * u[1];
-    let p1 = r * libm::cosf(phi);
-    let p2 = r * libm::sinf(phi);
+    let r = u[0].sqrt();
+    let (sin, cos) = (TAU * u[1]).sin_cos();
+    let p1 = r * cos;
+    let p2 = r * sin;
     let s = 0.5 * (1.0 + vh[2]);
-    let p2 = (1.0 - s) * libm::sqrtf(1.0 - p1 * p1) + s * p2;
-    let pz = libm::sqrtf((1.0 - p1 * p1 - p2 * p2).max(0.0));
+    let p2 = (1.0 - s) * (1.0 - p1 * p1).sqrt() + s * p2;
+    let pz = (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt();
     let nh = [
         p1 * t1[0] + p2 * t2[0] + pz * vh[0],
         p1 * t1[1] + p2 * t2[1] + pz * vh[1],

@@ -1418,6 +1418,8 @@ fn wc_spherical_cone_solid_angle(centre: vec3<f32>, radius: f32, p: vec3<f32>) -
 const WCI_ALPHA_MIN: f32 = 0x1.a36e2ep-14f;
 const WCI_HALF_FRAC_1_PI: f32 = 0x1.45f306p-3f;
 const WCI_CAP_SLACK: f32 = 0x1.fffep-1f;
+// 4 (1/8)^2: the plain half vector is used where alpha_min^2 |h|^2 >= 4 (1/8)^2 |wi|^2.
+const WCI_PLAIN_BOUND: f32 = 0x1p-4f;
 
 // The reflection's result: the direction and its density per steradian.
 struct WcDirectionPdf {
@@ -1454,11 +1456,116 @@ fn wci_scaled(v: vec3<f32>) -> vec4<f32> {
     return vec4<f32>(select(vec3<f32>(0.0f), s, ok), select(0.0f, 1.0f, ok));
 }
 
-// The unit outgoing direction, mirrored into z >= 0, +z when not a direction.
-fn wci_outgoing(wo: vec3<f32>) -> vec3<f32> {
+// The outgoing direction scaled by a power of two, mirrored into z >= 0, +z when not a
+// direction (`outgoing_scaled`).
+fn wci_outgoing_scaled(wo: vec3<f32>) -> vec3<f32> {
     let s = wci_scaled(vec3<f32>(wo.x, wo.y, wci_abs(wo.z)));
-    let inv = 1.0f / wci_norm3(s.xyz);
-    return select(vec3<f32>(0.0f, 0.0f, 1.0f), s.xyz * inv, s.w == 1.0f);
+    return vec3<f32>(s.x, s.y, select(1.0f, s.z, s.w == 1.0f));
+}
+
+// The outgoing direction as every function reads it (`Outgoing`): s scaled, inv = 1 / |s|,
+// the unit w = s inv.
+struct WciOutgoing {
+    s: vec3<f32>,
+    inv: f32,
+    w: vec3<f32>,
+}
+
+fn wci_outgoing(wo: vec3<f32>) -> WciOutgoing {
+    let s = wci_outgoing_scaled(wo);
+    let inv = 1.0f / wci_norm3(s);
+    return WciOutgoing(s, inv, s * inv);
+}
+
+// Double-f32 error-free transformations (src/microfacet/exact.rs: Veltkamp's split, Knuth's
+// two-sum, Dekker's product), pairs (hi, lo). Every step is fenced with the runtime zero z:
+// the shader compiler would otherwise fold c - (c - x) to x or (a - (s - bb)) to 0.
+fn wci_split(x: f32, z: u32) -> vec2<f32> {
+    let c = wci_fence(4097.0f * x, z);
+    let hi = wci_fence(c - wci_fence(c - x, z), z);
+    return vec2<f32>(hi, wci_fence(x - hi, z));
+}
+
+fn wci_two_sum(a: f32, b: f32, z: u32) -> vec2<f32> {
+    let s = wci_fence(a + b, z);
+    let bb = wci_fence(s - a, z);
+    return vec2<f32>(s, wci_fence(a - wci_fence(s - bb, z), z) + wci_fence(b - bb, z));
+}
+
+fn wci_two_prod(a: f32, b: f32, z: u32) -> vec2<f32> {
+    let p = wci_fence(a * b, z);
+    let x = wci_split(a, z);
+    let y = wci_split(b, z);
+    let e0 = wci_fence(wci_fence(x.x * y.x, z) - p, z);
+    let e1 = wci_fence(e0 + wci_fence(x.x * y.y, z), z);
+    let e2 = wci_fence(e1 + wci_fence(x.y * y.x, z), z);
+    return vec2<f32>(p, e2 + wci_fence(x.y * y.y, z));
+}
+
+fn wci_two_square(a: f32, z: u32) -> vec2<f32> {
+    let p = wci_fence(a * a, z);
+    let x = wci_split(a, z);
+    let t = wci_fence(x.x * x.y, z);
+    let e0 = wci_fence(wci_fence(x.x * x.x, z) - p, z);
+    let e1 = wci_fence(e0 + wci_fence(t + t, z), z);
+    return vec2<f32>(p, e1 + wci_fence(x.y * x.y, z));
+}
+
+// The sum of three exact products (p, e) as (hi, lo) (`dot2`, `norm2`).
+fn wci_sum3_2(p0: vec2<f32>, p1: vec2<f32>, p2: vec2<f32>, z: u32) -> vec2<f32> {
+    let s0 = wci_two_sum(p0.x, p1.x, z);
+    let s1 = wci_two_sum(s0.x, p2.x, z);
+    let e = wci_fence(wci_fence(p0.y + p1.y, z) + p2.y, z);
+    return vec2<f32>(s1.x, wci_fence(s0.y + s1.y, z) + e);
+}
+
+// v with its components below 2^-40 made 0 (`coarse`): no partial product is subnormal.
+fn wci_coarse(v: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(
+        select(v.x, 0.0f, wci_abs(v.x) < 0x1p-40f),
+        select(v.y, 0.0f, wci_abs(v.y) < 0x1p-40f),
+        select(v.z, 0.0f, wci_abs(v.z) < 0x1p-40f),
+    );
+}
+
+fn wci_dot2(a0: vec3<f32>, b0: vec3<f32>, z: u32) -> vec2<f32> {
+    let a = wci_coarse(a0);
+    let b = wci_coarse(b0);
+    return wci_sum3_2(wci_two_prod(a.x, b.x, z), wci_two_prod(a.y, b.y, z), wci_two_prod(a.z, b.z, z), z);
+}
+
+fn wci_norm2(a: vec3<f32>, z: u32) -> vec2<f32> {
+    return wci_sum3_2(wci_two_square(a.x, z), wci_two_square(a.y, z), wci_two_square(a.z, z), z);
+}
+
+// One component of the half direction: a + rho b rounded once from double-f32.
+fn wci_half_component(a: f32, b: f32, rho: vec2<f32>, z: u32) -> f32 {
+    let pe = wci_two_prod(b, rho.x, z);
+    let st = wci_two_sum(a, pe.x, z);
+    let lo = wci_fence(wci_fence(st.y + pe.y, z) + wci_fence(b * rho.y, z), z);
+    return st.x + lo;
+}
+
+// The direction of a / |a| + b / |b| as a + (|a| / |b|) b (`half_direction`).
+fn wci_half_direction(a0: vec3<f32>, b0: vec3<f32>, z: u32) -> vec3<f32> {
+    let a = wci_coarse(a0);
+    let b = wci_coarse(b0);
+    let a2 = wci_norm2(a, z);
+    let b2 = wci_norm2(b, z);
+    let inv = 1.0f / b2.x;
+    let r = wci_fence(a2.x * inv, z);
+    let pe = wci_two_prod(r, b2.x, z);
+    let r0 = wci_fence(wci_fence(wci_fence(a2.x - pe.x, z) - pe.y, z) + a2.y, z);
+    let rl = wci_fence(r0 - wci_fence(r * b2.y, z), z) * inv;
+    let rho = wci_fence(sqrt(r), z);
+    let qe = wci_two_square(rho, z);
+    let rhol = wci_fence(wci_fence(wci_fence(r - qe.x, z) - qe.y, z) + rl, z) / (rho + rho);
+    let rr = vec2<f32>(rho, rhol);
+    return vec3<f32>(
+        wci_half_component(a.x, b.x, rr, z),
+        wci_half_component(a.y, b.y, rr, z),
+        wci_half_component(a.z, b.z, rr, z),
+    );
 }
 
 // D(m) of a scaled m, and |unstretch(m)|^2.
@@ -1506,49 +1613,70 @@ fn wci_cap_normal(r: WciRough, w: vec3<f32>, u: vec2<f32>, kp: vec3<f32>, bounde
     let vp = (1.0f - u1) * p;
     let sn = sqrt(u1 * p * (vp + q));
     let sc = wci_sin_cos_turns(u0);
-    let hx = sn * sc.y + wd.x;
-    let hy = sn * sc.x + wd.y;
     let hz = select(vp, vp + rim, bounded);
-    let m = vec3<f32>(r.a.x * hx, r.a.y * hy, hz);
-    return vec4<f32>(m * (1.0f / wci_norm3(m)), l);
+    // (ax cos, ay sin) fenced: the compiler would reassociate sin (ax cos) as (sin ax) cos.
+    let z = wci_zero_of(u.y);
+    let m = vec3<f32>(
+        sn * wci_fence(r.a.x * sc.y, z) + r.a.x * wd.x,
+        sn * wci_fence(r.a.y * sc.x, z) + r.a.y * wd.y,
+        hz,
+    );
+    let n = wci_norm3(m);
+    return vec4<f32>(m.x / n, m.y / n, m.z / n, l);
 }
 
-// The reflection density at wi for the unit outgoing w with t = |stretch(w)|.
-fn wci_reflect_density(r: WciRough, w: vec3<f32>, t: f32, wi0: vec3<f32>, bounded: bool) -> f32 {
-    let s = wci_scaled(wi0);
-    let wi = s.xyz;
-    let l = wci_norm3(wi);
-    let h0 = vec3<f32>(w.x * l + wi.x, w.y * l + wi.y, w.z * l + wi.z);
+// The reflection density at the half vector h0 (any length), den = k w.z + t, omk = 1 - k.
+fn wci_density_at(r: WciRough, w: vec3<f32>, h0: vec3<f32>, den: f32, omk: f32, valid: bool, bounded: bool) -> f32 {
     let h = h0 * wci_pow2_lift(h0.x, h0.y, h0.z);
     let hh = wci_dot3(h, h);
     let uh = wci_unstretch(r, h);
     let q = wci_dot3(uh, uh);
-    let km = wci_shrink(r, w);
     let lhs = 2.0f * wci_dot3(w, h) * h.z;
     let z = wci_zero_of(w.z);
-    let rhs = wci_fence(w.z * km.y * q, z) * WCI_CAP_SLACK;
-    let den = select(w.z + t, km.x * w.z + t, bounded);
+    let rhs = wci_fence(w.z * omk * q, z) * WCI_CAP_SLACK;
     let inside = !bounded || rhs <= lhs;
     let c = wci_fence(wci_fence(r.inv.x * r.inv.y, z) * WCI_HALF_FRAC_1_PI, z);
     let pdf = wci_fence(hh * hh, z) * c / (q * q * den);
-    return select(0.0f, pdf, s.w == 1.0f && inside && 0.0f < h.z && 0.0f < q);
+    return select(0.0f, pdf, valid && inside && 0.0f < h.z && 0.0f < q);
+}
+
+// The reflection density at wi for the outgoing o with t = |stretch(o.w)|: the half vector
+// |wi| w + wi where alpha_min wo.h >= 1/8, else in double-f32 (wci_half_direction).
+fn wci_reflect_density(r: WciRough, o: WciOutgoing, t: f32, wi0: vec3<f32>, bounded: bool) -> f32 {
+    let w = o.w;
+    let s = wci_scaled(wi0);
+    let valid = s.w == 1.0f;
+    let wi = vec3<f32>(s.x, s.y, select(1.0f, s.z, valid));
+    let km = wci_shrink(r, w);
+    let den = select(w.z + t, km.x * w.z + t, bounded);
+    let omk = select(0.0f, km.y, bounded);
+    let l = wci_norm3(wi);
+    let plain = vec3<f32>(w.x * l + wi.x, w.y * l + wi.y, w.z * l + wi.z);
+    let amin = select(r.a.y, r.a.x, r.a.x < r.a.y);
+    let z = wci_zero_of(w.z);
+    let bound = wci_fence(WCI_PLAIN_BOUND * l, z) * l;
+    let use_plain = bound <= amin * amin * wci_dot3(plain, plain);
+    let p = wci_density_at(r, w, plain, den, omk, valid, bounded);
+    let e = wci_density_at(r, w, wci_half_direction(o.s, wi, z), den, omk, valid, bounded);
+    return select(e, p, use_plain);
 }
 
 fn wci_reflect_sample(wo: vec3<f32>, alpha: vec2<f32>, u: vec2<f32>, bounded: bool) -> WcDirectionPdf {
     let r = wci_rough(alpha);
-    let w = wci_outgoing(wo);
+    let o = wci_outgoing(wo);
+    let w = o.w;
     let mt = wci_cap_normal(r, w, u, wci_shrink_parts(r, w), bounded);
     let m = mt.xyz;
     let wm = wci_dot3(w, m);
     let t2 = wm + wm;
     let wi = vec3<f32>(t2 * m.x - w.x, t2 * m.y - w.y, t2 * m.z - w.z);
-    return WcDirectionPdf(wi, wci_reflect_density(r, w, mt.w, wi, bounded));
+    return WcDirectionPdf(wi, wci_reflect_density(r, o, mt.w, wi, bounded));
 }
 
 fn wci_reflect_pdf(wo: vec3<f32>, wi: vec3<f32>, alpha: vec2<f32>, bounded: bool) -> f32 {
     let r = wci_rough(alpha);
-    let w = wci_outgoing(wo);
-    return wci_reflect_density(r, w, wci_norm3(wci_stretch(r, w)), wi, bounded);
+    let o = wci_outgoing(wo);
+    return wci_reflect_density(r, o, wci_norm3(wci_stretch(r, o.w)), wi, bounded);
 }
 
 // |stretch(w)| / |w.z| of the scale-free w (inf at w.z = 0; 1 for an invalid w).
@@ -1576,21 +1704,24 @@ fn wc_microfacet_ggx_g2(wo: vec3<f32>, wi: vec3<f32>, alpha: vec2<f32>) -> f32 {
 
 // A GGX normal visible from wo (spherical caps).
 fn wc_microfacet_ggx_visible_normal(wo: vec3<f32>, alpha: vec2<f32>, u: vec2<f32>) -> vec3<f32> {
-    let s = wci_scaled(vec3<f32>(wo.x, wo.y, wci_abs(wo.z)));
-    let w = vec3<f32>(s.x, s.y, select(1.0f, s.z, s.w == 1.0f));
-    return wci_cap_normal(wci_rough(alpha), w, u, vec3<f32>(0.0f), false).xyz;
+    return wci_cap_normal(wci_rough(alpha), wci_outgoing_scaled(wo), u, vec3<f32>(0.0f), false).xyz;
 }
 
 // The density of wc_microfacet_ggx_visible_normal per steradian of m.
 fn wc_microfacet_ggx_visible_normal_pdf(wo: vec3<f32>, m0: vec3<f32>, alpha: vec2<f32>) -> f32 {
     let r = wci_rough(alpha);
-    let w = wci_outgoing(wo);
+    let o = wci_outgoing(wo);
+    let w = o.w;
     let s = wci_scaled(m0);
     let m = s.xyz;
     let d = wci_ggx_d(r, m).x;
-    let wm = wci_dot3(w, m);
+    // w.m = (s . m) / |s| with the dot product in double-f32.
+    let wm2 = wci_dot2(o.s, m, wci_zero_of(w.z));
+    let wm = (wm2.x + wm2.y) * o.inv;
     let den = (w.z + wci_norm3(wci_stretch(r, w))) * wci_norm3(m);
-    return select(0.0f, (wm + wm) * d / den, s.w == 1.0f && 0.0f < wm);
+    // No subnormal operand or result: wo.m and a density below 2^-126 count as 0.
+    let p = (wm + wm) * (d / den);
+    return select(0.0f, p, s.w == 1.0f && 0x1p-126f <= wm && 0x1p-126f <= p);
 }
 
 // Reflection by visible normals: wi and its density (that of wc_microfacet_ggx_reflect_pdf at wi).

@@ -46,7 +46,11 @@
 //!   at the horizon) means the sample carries no weight.
 //!
 //! **Precision** against `f64` transcriptions of the textbook formulas on the same `f32`
-//! inputs (`tests/microfacet.rs`; the table is in `docs/warps.md`): see each function.
+//! inputs (`tests/microfacet.rs`; the table is in `docs/warps.md`): every density within
+//! 1.3e-6 relative over `alpha` in `[1e-4, 1]` and `wo.z` in `[1e-6, 1]`. Where a sum of
+//! products cancels (the reflections' half vector at small `alpha`, `wo.m` of the visible
+//! density) it is formed in double `f32` by error-free transformations (Dekker 1971; Knuth's
+//! two-sum), without FMA; see each function.
 //!
 //! ```
 //! use warpcore::microfacet;
@@ -63,6 +67,7 @@
 
 mod bounded;
 mod distribution;
+mod exact;
 mod reflect;
 mod visible_normal;
 
@@ -112,26 +117,25 @@ fn scaled<L: Lane>(v: V<L>) -> (V<L>, L::Mask) {
     (scale(v, k).map(|x| L::select(ok, x, zero)), ok)
 }
 
-/// The unit vector along `v` (or `+z` where `v` is zero or not finite, see [`scaled`]), and
-/// whether `v` was valid.
-#[inline(always)]
-fn unit<L: Lane>(v: V<L>) -> (V<L>, L::Mask) {
-    let (s, ok) = scaled(v);
-    let inv = L::splat(1.0) / norm(s);
-    let zero = L::splat(0.0);
-    let u = [
-        L::select(ok, s[0] * inv, zero),
-        L::select(ok, s[1] * inv, zero),
-        L::select(ok, s[2] * inv, L::splat(1.0)),
-    ];
-    (u, ok)
+/// The outgoing direction as every function reads it: `s`, the exact power-of-two-scaled
+/// `wo` mirrored into `z >= 0` ([`outgoing_scaled`]), `inv = 1 / |s|` and the unit `w = s inv`
+/// (`+z` where `wo` is not a direction).
+#[derive(Clone, Copy)]
+struct Outgoing<L> {
+    s: V<L>,
+    inv: L,
+    w: V<L>,
 }
 
-/// The outgoing direction as every function reads it: unit, mirrored into `z >= 0`, `+z` when
-/// not a direction.
 #[inline(always)]
-fn outgoing<L: Lane>(wo: V<L>) -> V<L> {
-    unit([wo[0], wo[1], wo[2].abs()]).0
+fn outgoing<L: Lane>(wo: V<L>) -> Outgoing<L> {
+    let s = outgoing_scaled(wo);
+    let inv = L::splat(1.0) / norm(s);
+    Outgoing {
+        s,
+        inv,
+        w: scale(s, inv),
+    }
 }
 
 /// The outgoing direction for the visible-normal sampler, which needs only its direction:
@@ -254,39 +258,84 @@ fn cap_normal<L: Lane>(r: &Rough<L>, w: V<L>, u: [L; 2], k: Option<Shrink<L>>) -
     let sin = (u1 * p * (vp + q)).sqrt();
     let (sn, cs) = sin_cos_turns(u0);
     // (i + c) l d; its height (1 - u1)(1 + b) l d + (i.z - b) l d is positive.
-    let hx = sin * cs + wd[0];
-    let hy = sin * sn + wd[1];
     let hz = if k.is_some() { vp + rim } else { vp };
-    let m = [r.ax * hx, r.ay * hy, hz];
-    (scale(m, one / norm(m)), l)
+    // Unstretched as (ax (i + c).x, ay (i + c).y, (i + c).z), with ax cos and ax wd.x off the
+    // path from the square roots; normalised by three divisions (no reciprocal on the path).
+    let m = [
+        sin * (r.ax * cs) + r.ax * wd[0],
+        sin * (r.ay * sn) + r.ay * wd[1],
+        hz,
+    ];
+    let n = norm(m);
+    ([m[0] / n, m[1] / n, m[2] / n], l)
 }
 
-/// The reflection density at `wi` (any length; its direction counts) for the unit outgoing
-/// `w` (`z >= 0`) with `t = |stretch(w)|`: `D(h) / (2 (k w.z + t))` with `h = |wi| w + wi`
-/// (`k = 1` for the full visible distribution), and for the bounded one 0 where `h` lies
+/// `alpha_min wo.h` from which the plain `f32` half vector is used: its density error is
+/// within `6.9e-7 / (alpha_min wo.h)` (measured, `tests/microfacet.rs`), `5.5e-6` here.
+const PLAIN_FROM: f32 = 0.125;
+
+/// The reflection density at `wi` (any length; its direction counts) for the outgoing `o`
+/// with `t = |stretch(o.w)|`: `D(h) / (2 (k w.z + t))` with the half vector `h` of `wo` and
+/// `wi` (`k = 1` for the full visible distribution), and for the bounded one 0 where `h` lies
 /// outside the image of the cap: the standard-space reflection of `i` about `h`'s standard
-/// normal has height below `-b`, which is `2 (w.h) h.z < (1 - k) w.z |unstretch(h)|^2`. A zero
-/// or non-finite `wi` has density 0. The samplers call it on the direction they return (with
-/// the same `t`), so their density is the density function's at that direction, bit for bit
-/// (the scaling of `wi` is exact).
+/// normal has height below `-b`, which is `2 (w.h) h.z < (1 - k) w.z |unstretch(h)|^2`. A
+/// zero or non-finite `wi` has density 0.
+///
+/// The half vector: `|wi| w + wi` in plain `f32` where `alpha_min wo.h >= 1/8` (judged on
+/// it: `wo.h = |h| / (2 |wi|)`), else `o.s + (|o.s| / |wi|) wi` in double-`f32`
+/// ([`exact::half_direction`]): its components cancel where `wi` is near the mirror image
+/// of `wo` (every lobe at small `alpha`) or near `-wo`, and `D` magnifies their error by
+/// `1 / alpha` there. The scalar form computes the double-`f32` one only where it is used.
+/// The samplers call this on the direction they return (with the same `t`), so their
+/// density is the density function's at that direction, bit for bit.
 #[inline(always)]
-fn reflect_density<L: Lane>(r: &Rough<L>, w: V<L>, t: L, wi: V<L>, bounded: bool) -> L {
-    let zero = L::splat(0.0);
+fn reflect_density<L: Lane>(r: &Rough<L>, o: &Outgoing<L>, t: L, wi: V<L>, bounded: bool) -> L {
+    let w = o.w;
     let (wi, valid) = scaled(wi);
+    // An invalid wi (scaled to zero) is read as +z for the arithmetic; its density is 0.
+    let wi = [wi[0], wi[1], L::select(valid, wi[2], L::splat(1.0))];
+    let (den, omk) = if bounded {
+        let (k, omk) = shrink(r, w);
+        (k * w[2] + t, omk)
+    } else {
+        (w[2] + t, L::splat(0.0))
+    };
     let l = norm(wi);
-    let h = [w[0] * l + wi[0], w[1] * l + wi[1], w[2] * l + wi[2]];
+    let plain = [w[0] * l + wi[0], w[1] * l + wi[1], w[2] * l + wi[2]];
+    let amin = L::select(r.ax.simd_lt(r.ay), r.ax, r.ay);
+    let bound = L::splat(PLAIN_FROM * PLAIN_FROM * 4.0) * l * l;
+    let use_plain = bound.simd_le(amin * amin * dot(plain, plain));
+    let at = |h: V<L>| density_at(r, w, h, den, omk, valid, bounded);
+    let p = at(plain);
+    L::unless(use_plain, p, || {
+        L::select(use_plain, p, at(exact::half_direction(o.s, wi)))
+    })
+}
+
+/// [`reflect_density`] at the half vector `h` (any length), with `den = k w.z + t` and, for
+/// the bounded cap, `omk = 1 - k`.
+#[inline(always)]
+fn density_at<L: Lane>(
+    r: &Rough<L>,
+    w: V<L>,
+    h: V<L>,
+    den: L,
+    omk: L,
+    valid: L::Mask,
+    bounded: bool,
+) -> L {
+    let zero = L::splat(0.0);
     // h is tiny where wi is nearly -w: lift it by a power of two (D is scale-free).
     let h = scale(h, pow2_lift(h));
     let hh = dot(h, h);
     let q = dot(r.unstretch(h), r.unstretch(h));
-    let (den, inside) = if bounded {
-        let (k, omk) = shrink(r, w);
+    let inside = if bounded {
         // A relative slack of 2^-16 at the rim keeps the cap's own samples inside it.
         let lhs = L::splat(2.0) * dot(w, h) * h[2];
         let rhs = w[2] * omk * q * L::splat(1.0 - 1.0 / 65536.0);
-        (k * w[2] + t, rhs.simd_le(lhs))
+        rhs.simd_le(lhs)
     } else {
-        (w[2] + t, valid)
+        valid
     };
     // D(h) / (2 den) = (hh / q)^2 / (pi ax ay 2 den), with one division; q = 0 (every square
     // underflowed) and h.z <= 0 give 0.
@@ -301,7 +350,8 @@ fn reflect_density<L: Lane>(r: &Rough<L>, w: V<L>, t: L, wi: V<L>, bounded: bool
 #[inline(always)]
 fn reflect_sample<L: Lane>(wo: V<L>, alpha: [L; 2], u: [L; 2], bounded: bool) -> (V<L>, L) {
     let r = rough(alpha);
-    let w = outgoing(wo);
+    let o = outgoing(wo);
+    let w = o.w;
     let k = if bounded {
         Some(shrink_parts(&r, w))
     } else {
@@ -311,15 +361,15 @@ fn reflect_sample<L: Lane>(wo: V<L>, alpha: [L; 2], u: [L; 2], bounded: bool) ->
     let wm = dot(w, m);
     let t2 = wm + wm;
     let wi = [t2 * m[0] - w[0], t2 * m[1] - w[1], t2 * m[2] - w[2]];
-    (wi, reflect_density(&r, w, t, wi, bounded))
+    (wi, reflect_density(&r, &o, t, wi, bounded))
 }
 
 /// The reflection density function: `wo` read as the samplers read it.
 #[inline(always)]
 fn reflect_pdf<L: Lane>(wo: V<L>, wi: V<L>, alpha: [L; 2], bounded: bool) -> L {
     let r = rough(alpha);
-    let w = outgoing(wo);
-    reflect_density(&r, w, norm(r.stretch(w)), wi, bounded)
+    let o = outgoing(wo);
+    reflect_density(&r, &o, norm(r.stretch(o.w)), wi, bounded)
 }
 
 /// Splits a packed `[a, b, c]` of 3, 3 and 2 floats (the densities' and `G2`'s arguments).

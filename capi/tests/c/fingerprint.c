@@ -109,8 +109,11 @@ static void call(struct warp w, const float *in, float *out, size_t n) {
     }
 }
 
+/* Up to 8 floats in or out per point (the microfacet densities take 8). */
+#define MAX_DIM 8
+
 static void warp(struct warp w) {
-    float in[37 * 3], buf[1 + 37 * 3], one[3];
+    float in[37 * MAX_DIM], buf[1 + 37 * MAX_DIM], one[MAX_DIM];
     float *out = buf + 1; /* odd offset */
     for (size_t i = 0; i < N; i += 37) {
         size_t n = N - i < 37 ? N - i : 37;
@@ -124,7 +127,7 @@ static void warp(struct warp w) {
         }
     }
     for (size_t g = 0; g + 8 <= N; g += 8) {
-        float in8[8 * 3], out8[8 * 3];
+        float in8[8 * MAX_DIM], out8[8 * MAX_DIM];
         inputs(in8, g, 8, w.I);
         call(w, in8, out8, 8);
         for (int c = 0; c < w.O; c++)
@@ -568,6 +571,29 @@ static void extras(void) {
     word((uint32_t)wc_envmap_storage_len(WC_ENVMAP_KIND_HIERARCHICAL, 13, 7));
     word((uint32_t)wc_envmap_storage_len(WC_ENVMAP_KIND_HIERARCHICAL, 4096, 2048));
     line("envmap::MarginalConditional::storage_len");
+
+    /* microfacet: each function's map piece (slice in chunks of 37 against one-point calls,
+       then groups of 8), as registry/src/fingerprint.rs `map` hashes its entry. */
+    static const struct {
+        const char *name;
+        warp_fn f;
+        int I, O;
+    } MICROFACET[] = {
+        {"microfacet::ggx_d", wc_microfacet_ggx_d, 5, 1},
+        {"microfacet::ggx_g1", wc_microfacet_ggx_g1, 5, 1},
+        {"microfacet::ggx_g2", wc_microfacet_ggx_g2, 8, 1},
+        {"microfacet::ggx_visible_normal", wc_microfacet_ggx_visible_normal, 7, 3},
+        {"microfacet::ggx_visible_normal_pdf", wc_microfacet_ggx_visible_normal_pdf, 8, 1},
+        {"microfacet::ggx_reflect", wc_microfacet_ggx_reflect, 7, 4},
+        {"microfacet::ggx_reflect_pdf", wc_microfacet_ggx_reflect_pdf, 8, 1},
+        {"microfacet::ggx_reflect_bounded", wc_microfacet_ggx_reflect_bounded, 7, 4},
+        {"microfacet::ggx_reflect_bounded_pdf", wc_microfacet_ggx_reflect_bounded_pdf, 8, 1},
+    };
+    for (size_t k = 0; k < sizeof MICROFACET / sizeof MICROFACET[0]; k++) {
+        h = UINT64_C(0xcbf29ce484222325);
+        warp(W(MICROFACET[k].f, MICROFACET[k].I, MICROFACET[k].O));
+        line(MICROFACET[k].name);
+    }
 }
 
 int main(void) {
