@@ -10,9 +10,10 @@
 //!   blurred error, running mean (blurred and per pixel), exponential moving average (alpha
 //!   0.1) after a sigma-1 blur, and the per-pixel MSE of the one-frame render at `F` spp.
 //!
-//! The samplers are [`PathSampler`]s; the frame drivers ([`FrameSource`]) say how each
-//! library is asked for frame `t` (warpcore's `Sampler::new_frame`, openqmc-rs's index
-//! counting on across frames, ZSobol's `F`-sample pixel, white noise).
+//! The samplers are [`PathSampler`]s; the frame drivers ([`WarpcoreFrame`], [`PeerFrame`],
+//! [`ZSobolPath`]) say how each library is asked for frame `t` (warpcore's
+//! `Sampler::new_frame`, openqmc-rs's index counting on across frames, ZSobol's `F`-sample
+//! pixel, white noise).
 
 use super::metrics::{blur, diff, squares};
 use super::reference::Reference;
