@@ -1133,7 +1133,7 @@ fn wci_rect_newton(r: WciRect, y1: f32, z2: f32, goal: f32, dx: f32) -> f32 {
     let d2 = x * x + z2;
     let same = 0.0f < y0 * y1;
     let d = select(d2, wci_abs(y1 * ra + y0 * rb), same);
-    let num = res * (WCI_FOUR_PI * (ra * rb)) * d;
+    let num = res * (WCI_FOUR_PI * wci_opaque(ra * rb)) * d;
     let den = r.z * select(y1 * ra - y0 * rb, r.h * wci_abs(y0 + y1), same);
     let step = select(0.0f, num / den, wci_positive_finite(den));
     return wci_clamp0(dx - step, r.w);

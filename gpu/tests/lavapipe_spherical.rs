@@ -31,7 +31,7 @@ fn small_changes_are_detected() {
         (
             "wc_spherical_rectangle",
             "no Newton step",
-            "    let dx = wci_rect_newton(r, z2, goal, dx0);",
+            "    let dx = wci_rect_newton(r, y1, z2, goal, dx0);",
             "    let dx = dx0;",
             10,
         ),
