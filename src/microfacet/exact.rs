@@ -63,20 +63,20 @@ fn coarse<L: Lane>(v: V<L>) -> V<L> {
 #[inline(always)]
 pub(super) fn dot2<L: Lane>(a: V<L>, b: V<L>) -> (L, L) {
     let (a, b) = (coarse(a), coarse(b));
-    let (p0, e0) = two_prod(a[0], b[0]);
-    let (p1, e1) = two_prod(a[1], b[1]);
-    let (p2, e2) = two_prod(a[2], b[2]);
-    let (s, t0) = two_sum(p0, p1);
-    let (s, t1) = two_sum(s, p2);
-    (s, (t0 + t1) + ((e0 + e1) + e2))
+    sum3([0, 1, 2].map(|i| two_prod(a[i], b[i])))
 }
 
 /// `|a|^2` as `hi + lo` (squares need one split each).
 #[inline(always)]
 fn norm2<L: Lane>(a: V<L>) -> (L, L) {
-    let (p0, e0) = two_square(a[0]);
-    let (p1, e1) = two_square(a[1]);
-    let (p2, e2) = two_square(a[2]);
+    sum3(a.map(two_square))
+}
+
+/// The sum of three exact products `p_i + e_i` as `hi + lo`: the `p_i` added with two
+/// error-free sums, every error term added in plain `f32` (Ogita, Rump and Oishi's `Sum2`).
+#[inline(always)]
+fn sum3<L: Lane>(terms: [(L, L); 3]) -> (L, L) {
+    let [(p0, e0), (p1, e1), (p2, e2)] = terms;
     let (s, t0) = two_sum(p0, p1);
     let (s, t1) = two_sum(s, p2);
     (s, (t0 + t1) + ((e0 + e1) + e2))
