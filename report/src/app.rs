@@ -413,7 +413,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
             results.extend(area_light(lit, penumbra, &opts.config(area_pixels)));
         }
     }
-    // Lights by solid angle against by area (issue 22): lit and penumbra at three distances;
+    // Lights by solid angle against by area: lit and penumbra at three distances;
     // 8192 pixels per class (default 2048, quick 256).
     #[cfg(feature = "spherical")]
     {
@@ -432,7 +432,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
             }
         }
     }
-    // Many lights (issue 33): light selection for next-event estimation in a city at night.
+    // Many lights: light selection for next-event estimation in a city at night.
     #[cfg(feature = "lights")]
     if opts.wants("many_lights") {
         many_lights(opts)?;
@@ -464,7 +464,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
                 results.push(l);
             }
         }
-        // The variance split per layout (issue 25): 256 pixels per class, 128 x 128 points
+        // The variance split per layout: 256 pixels per class, 128 x 128 points
         // (without --full: 16 and 32).
         if !envs.is_empty() {
             let (pixels, grid) = opts.split_sizes();
@@ -494,7 +494,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         eprintln!("report: built without the envmap feature: no environment-map scenes");
     }
 
-    // The path-traced scenes (issue 21): their own CSVs, tables and pictures; their rows
+    // The path-traced scenes: their own CSVs, tables and pictures; their rows
     // join results.csv.
     let path_cfg = crate::path::PathConfig::new(
         opts.path_scenes(),
@@ -503,7 +503,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
         opts.reference,
     );
     let path_results = crate::path::run(&path_cfg, &opts.out)?;
-    // Frames of 1 spp on the path scenes (issue 34): running mean, EMA, per-frame error.
+    // Frames of 1 spp on the path scenes: running mean, EMA, per-frame error.
     #[cfg(feature = "blue-noise")]
     if !path_results.is_empty() {
         let counts: &[u32] = if scale == Scale::Quick {

@@ -209,7 +209,7 @@ pub fn picture(path: &Path) -> std::io::Result<()> {
     writer.finish().map_err(std::io::Error::other)
 }
 
-/// Frames of 1 sample per pixel, accumulated (issue 34): a frame's 2D point for pixel `(x,
+/// Frames of 1 sample per pixel, accumulated: a frame's 2D point for pixel `(x,
 /// y)` at frame `t` (sample index 0 of the frame).
 pub type FrameDraw = fn(u32, u32, u32) -> [f32; 2];
 

@@ -1,4 +1,4 @@
-//! The variance split of the environment-map integrands (issue 25): why the equal-area
+//! The variance split of the environment-map integrands: why the equal-area
 //! octahedral layout loses to lat-long with Owen-scrambled (0,2) points.
 //!
 //! For one pixel and one warp, the integrand seen in the sample square is

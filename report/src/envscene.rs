@@ -33,7 +33,7 @@
 //! solid-angle density (a sample whose density converts to 0 — only exactly at the lat-long
 //! pole — contributes 0, as in pbrt and Mitsuba).
 //!
-//! **MIS warps** (`hierarchical_equirect_mis`, `hierarchical_equal_area_mis`; issue 25; for
+//! **MIS warps** (`hierarchical_equirect_mis`, `hierarchical_equal_area_mis`; for
 //! random points, pmj02bn and Sobol' only, the report's time budget): the hierarchical
 //! distribution built from MIS-compensated
 //! weights (`Compensation::Equirect` / `Compensation::Uniform` with fraction 1: the map minus
@@ -258,12 +258,12 @@ pub fn rasterize<P: Param>(
 /// A rotation of the sphere, row-major.
 pub type Rotation = [[f64; 3]; 3];
 
-/// The map rotations the report averages over (issue 25): rotation 0 is the identity, the
+/// The map rotations the report averages over: rotation 0 is the identity, the
 /// others are uniformly distributed rotations (Shoemake's unit quaternions) from a fixed
 /// stream, the same for every scene. The layout a map is stored in decides where its bright
 /// features fall relative to the sample square's split lines and the octahedral folds, so
 /// one orientation can flatter or penalize a layout (the sun's position alone moved the
-/// equal-area / lat-long MSE ratio from 1.05 to 2.00 over 12 rotations in the issue's study).
+/// equal-area / lat-long MSE ratio from 1.05 to 2.00 over 12 rotations in the first layout study).
 pub fn rotations(count: usize) -> Vec<Rotation> {
     let mut rng = Rng::new(0x726f_7461_7465);
     (0..count.max(1))

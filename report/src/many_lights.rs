@@ -1,4 +1,4 @@
-//! The many-light scene (issue 33): which light a next-event estimate picks, among thousands.
+//! The many-light scene: which light a next-event estimate picks, among thousands.
 //!
 //! **Scene.** A procedural city at night: a grid of buildings whose four facades carry a
 //! grid of windows, some lit (one-sided emissive quads, two triangles each, radiance spread

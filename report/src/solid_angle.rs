@@ -10,7 +10,7 @@
 //! omega` from `spherical::triangle` / `spherical::rectangle` and `cos(theta) = h / r`: the
 //! `cos' / r^2` factor is gone, only the receiver's cosine and the visibility remain.
 //!
-//! **Cosine-aware variant** (`solid_angle_cos`, issue 22 item 3): `u` is first warped by the
+//! **Cosine-aware variant** (`solid_angle_cos`): `u` is first warped by the
 //! bilinear density whose corner values are the receiver's clamped cosine `max(0, n . w)`
 //! towards the light's corners (the idea of Hart, Pharr, Mueller, Lopes, McGuire and Shirley
 //! 2020, "Practical Product Sampling by Fitting and Composing Warps", EGSR, which pbrt-v4's

@@ -1,4 +1,4 @@
-//! Blue noise over a whole path (issue 34, item 3): blurred MSE over many seeds on the path
+//! Blue noise over a whole path: blurred MSE over many seeds on the path
 //! scenes, ratios with standard errors, and which path length carries the blurred error.
 //!
 //! ```text

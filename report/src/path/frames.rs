@@ -1,5 +1,4 @@
-//! Blue noise over a whole path, and frames of 1 sample per pixel on the path scenes
-//! (issue 34, items 3 and 5).
+//! Blue noise over a whole path, and frames of 1 sample per pixel on the path scenes.
 //!
 //! * [`blurred_mses`]: the MSE after a Gaussian blur of independent renders (one per seed),
 //!   minus the reference's own variance after the same blur, so ratios between samplers come
