@@ -1099,13 +1099,10 @@ struct WciRectPrepared {
     area_ok: bool,
 }
 
-// The half-infinite strip x' < x, y0 < y' < y1 in turns of 4 pi (`half_strip`): r - x as
-// (y^2 + z^2) / (r + x) for x > 0.
-fn wci_half_strip(zh: f32, yy: f32, qa: f32, qb: f32, x: f32, ra: f32, rb: f32) -> f32 {
-    let far = 0.0f < x;
-    let fa = select(ra - x, qa / (ra + x), far);
-    let fb = select(rb - x, qb / (rb + x), far);
-    return wci_atan2_turns(zh, fa * fb + yy);
+// The half-infinite strip beyond one side of the light in turns of 4 pi (`half_strip`): the
+// factors r - x as they are (na, nb), or beyond p's foot from the far forms (fa, fb).
+fn wci_half_strip(zh: f32, yy: f32, far: bool, fa: f32, fb: f32, na: f32, nb: f32) -> f32 {
+    return wci_atan2_turns(zh, select(na, fa, far) * select(nb, fb, far) + yy);
 }
 
 fn wci_rect_prepare(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>, p: vec3<f32>) -> WciRectPrepared {
@@ -1128,8 +1125,14 @@ fn wci_rect_prepare(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>, p: vec3<f32
     let yy = y0 * y1 + z2;
     let qa = y0 * y0 + z2;
     let qb = y1 * y1 + z2;
-    pr.left = wci_half_strip(zh, yy, qa, qb, x0, r00, r01);
-    pr.right = wci_half_strip(zh, yy, qa, qb, -x1, r10, r11);
+    // At most one side is beyond p's foot: one pair of divisions serves it.
+    let far_l = 0.0f < x0;
+    let far_r = x1 < 0.0f;
+    let xf = select(-x1, x0, far_l);
+    let fa = qa / (select(r10, r00, far_l) + xf);
+    let fb = qb / (select(r11, r01, far_l) + xf);
+    pr.left = wci_half_strip(zh, yy, far_l, fa, fb, r00 - x0, r01 - x0);
+    pr.right = wci_half_strip(zh, yy, far_r, fa, fb, r10 + x1, r11 + x1);
     pr.b01 = z2 / (sqrt(qa) * sqrt(qb));
     pr.area_ok = r.ok && 0.0f < z;
     pr.exact = pr.area_ok && WCI_FALLBACK_TURNS <= r.turns;

@@ -205,10 +205,18 @@ pub(super) fn prepare<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Pre
     let x1 = x0 + w;
     let zh = z * h;
     let yy = y0 * y1 + z2;
-    let q = [y0 * y0 + z2, y1 * y1 + z2];
-    let left = half_strip(zh, yy, q, x0, r00, r01);
-    let right = half_strip(zh, yy, q, -x1, r10, r11);
-    let b01 = z2 / (q[0].sqrt() * q[1].sqrt());
+    let (qa, qb) = (y0 * y0 + z2, y1 * y1 + z2);
+    // At most one side is beyond p's foot (x0 > 0 or x1 < 0): one pair of divisions serves
+    // whichever it is.
+    let (far_l, far_r) = (zero.simd_lt(x0), x1.simd_lt(zero));
+    let xf = L::select(far_l, x0, -x1);
+    let far = [
+        qa / (L::select(far_l, r00, r10) + xf),
+        qb / (L::select(far_l, r01, r11) + xf),
+    ];
+    let left = half_strip(zh, yy, far_l, far, [r00 - x0, r01 - x0]);
+    let right = half_strip(zh, yy, far_r, far, [r10 + x1, r11 + x1]);
+    let b01 = z2 / (qa.sqrt() * qb.sqrt());
     let area_ok = r.ok & zero.simd_lt(z);
     let exact = area_ok & L::splat(FALLBACK_TURNS).simd_le(r.turns);
     // The farthest corner within 16 z (seen within about 86 degrees of the normal).
@@ -231,17 +239,15 @@ pub(super) fn prepare<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Pre
     }
 }
 
-/// The solid angle (turns of `4 pi`) of the half-infinite strip `x' < x`, `y0 < y' < y1` at
-/// height `z`, given `zh = z h`, `yy = y0 y1 + z^2`, `qa = y0^2 + z^2`, `qb = y1^2 + z^2`
-/// and the distances `ra`, `rb` to `(x, y0)`, `(x, y1)`: Van Oosterom-Strackee's half angle
-/// `atan2(z h, (ra - x)(rb - x) + yy)`, with `r - x = (y^2 + z^2) / (r + x)` for `x > 0`
+/// The solid angle (turns of `4 pi`) of the half-infinite strip beyond one side of the
+/// light, `y0 < y' < y1` at height `z`, given `zh = z h`, `yy = y0 y1 + z^2` and the two
+/// factors `ra - x`, `rb - x` of Van Oosterom-Strackee's half angle `atan2(z h, (ra - x)(rb -
+/// x) + yy)` (`x` the side's distance from `p`'s foot, outwards; `ra`, `rb` its corners'
+/// distances): as they are where `x <= 0`, else from the `far` forms `(y^2 + z^2) / (r + x)`
 /// (no cancellation on either side of the light).
 #[inline(always)]
-fn half_strip<L: Lane>(zh: L, yy: L, [qa, qb]: [L; 2], x: L, ra: L, rb: L) -> L {
-    let far = L::splat(0.0).simd_lt(x);
-    let fa = L::select(far, qa / (ra + x), ra - x);
-    let fb = L::select(far, qb / (rb + x), rb - x);
-    atan2_turns(zh, fa * fb + yy)
+fn half_strip<L: Lane>(zh: L, yy: L, far: L::Mask, [fa, fb]: [L; 2], [na, nb]: [L; 2]) -> L {
+    atan2_turns(zh, L::select(far, fa, na) * L::select(far, fb, nb) + yy)
 }
 
 #[inline(always)]
