@@ -1136,12 +1136,12 @@ fn wci_rect_prepare(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>, p: vec3<f32
     pr.b01 = z2 / (sqrt(qa) * sqrt(qb));
     pr.area_ok = r.ok && 0.0f < z;
     pr.exact = pr.area_ok && WCI_FALLBACK_TURNS <= r.turns;
-    // The closed-form start is the point from 1e-2 to 2 sr within kappa 16 (`closed`).
+    // The closed-form start is the point from 1e-2 to 2 sr within kappa 16, aspect 16 (`closed`).
     let m0 = select(r00, r10, r00 < r10);
     let m1 = select(r11, r01, r11 < r01);
     let far = select(m0, m1, m0 < m1);
     pr.closed = WCI_NEWTON_FROM_TURNS <= r.turns && r.turns <= WCI_NEWTON_UP_TO_TURNS
-        && far <= z * 16.0f;
+        && far <= z * 16.0f && r.w <= r.h * 16.0f && r.h <= r.w * 16.0f;
     return pr;
 }
 

@@ -30,7 +30,8 @@
 //! point on the chord (a quadratic with no `acos`), his second by chord lengths; the
 //! rectangle's `x` comes from a closed form written with the half-infinite strips beside
 //! the light (each accurate on either side of it), which is the point for lights of
-//! `1e-2 .. 2` sr seen within `kappa <= 16` (below); other lights take one Newton step on
+//! `1e-2 .. 2` sr seen within `kappa <= 16` (below) with sides within a factor 16; other
+//! lights take one Newton step on
 //! the strip's solid angle computed by Van Oosterom-Strackee (relative, not absolute,
 //! accuracy); its `y` uses `1 -+ y/r` forms. Every square root and inverse sine/cosine argument is clamped,
 //! every `0/0` selected away.
@@ -195,7 +196,8 @@ lane_forms! {
     /// angle, `1 / omega`.
     ///
     /// `u0` picks `s` so that the strip `[0, s] x [0, 1]` subtends `u0 omega` (closed form;
-    /// one Newton step after it below `1e-2` sr, above `2` sr and beyond `kappa = 16`), `u1` picks `t` uniformly in `y / sqrt(d^2 + y^2)` along that
+    /// one Newton step after it below `1e-2` sr, above `2` sr, beyond `kappa = 16` or an
+    /// aspect ratio of 16), `u1` picks `t` uniformly in `y / sqrt(d^2 + y^2)` along that
     /// line. Compact strata of the square stay compact. See the [module docs](self) for the
     /// precision (density 1e-4 relative, round trip 1e-4 for `1e-4 .. 2` sr, away from grazing)
     /// and the out-of-domain rule.
