@@ -695,6 +695,9 @@ fn wc_sphere_equirect_pdf_to_solid_angle(pdf: f32, d: vec3<f32>) -> f32 {
 const WCI_INV_4PI: f32 = 0x1.45f306p-4f;
 const WCI_FOUR_PI: f32 = 0x1.921fb6p+3f;
 const WCI_FALLBACK_TURNS: f32 = 0x1.b57b56p-31f;
+// 1e-2 sr and 2 sr in turns of 4 pi: the rectangle's closed-form window (`NEWTON_FROM_TURNS`).
+const WCI_NEWTON_FROM_TURNS: f32 = 0x1.a13714p-11f;
+const WCI_NEWTON_UP_TO_TURNS: f32 = 0x1.45f306p-3f;
 
 fn wci_dot3(a: vec3<f32>, b: vec3<f32>) -> f32 {
     return a.x * b.x + a.y * b.y + a.z * b.z;
@@ -1090,10 +1093,16 @@ struct WciRectPrepared {
     z2: f32,
     left: f32,
     right: f32,
-    both: f32,
     b01: f32,
     exact: bool,
+    closed: bool,
     area_ok: bool,
+}
+
+// The half-infinite strip beyond one side of the light in turns of 4 pi (`half_strip`): the
+// factors r - x as they are (na, nb), or beyond p's foot from the far forms (fa, fb).
+fn wci_half_strip(zh: f32, yy: f32, far: bool, fa: f32, fb: f32, na: f32, nb: f32) -> f32 {
+    return wci_atan2_turns(zh, select(na, fa, far) * select(nb, fb, far) + yy);
 }
 
 fn wci_rect_prepare(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>, p: vec3<f32>) -> WciRectPrepared {
@@ -1114,12 +1123,25 @@ fn wci_rect_prepare(corner: vec3<f32>, ex: vec3<f32>, ey: vec3<f32>, p: vec3<f32
     let x1 = x0 + r.w;
     let zh = z * r.h;
     let yy = y0 * y1 + z2;
-    pr.left = wci_atan2_turns(zh, r00 * r01 + (x0 * x0 + yy) - x0 * (r00 + r01));
-    pr.right = wci_atan2_turns(zh, r10 * r11 + (x1 * x1 + yy) + x1 * (r10 + r11));
-    pr.both = wci_atan2_turns(zh, yy);
-    pr.b01 = z2 / (sqrt(y0 * y0 + z2) * sqrt(y1 * y1 + z2));
+    let qa = y0 * y0 + z2;
+    let qb = y1 * y1 + z2;
+    // At most one side is beyond p's foot: one pair of divisions serves it.
+    let far_l = 0.0f < x0;
+    let far_r = x1 < 0.0f;
+    let xf = select(-x1, x0, far_l);
+    let fa = qa / (select(r10, r00, far_l) + xf);
+    let fb = qb / (select(r11, r01, far_l) + xf);
+    pr.left = wci_half_strip(zh, yy, far_l, fa, fb, r00 - x0, r01 - x0);
+    pr.right = wci_half_strip(zh, yy, far_r, fa, fb, r10 + x1, r11 + x1);
+    pr.b01 = z2 / (sqrt(qa) * sqrt(qb));
     pr.area_ok = r.ok && 0.0f < z;
     pr.exact = pr.area_ok && WCI_FALLBACK_TURNS <= r.turns;
+    // The closed-form start is the point from 1e-2 to 2 sr within kappa 16, aspect 16 (`closed`).
+    let m0 = select(r00, r10, r00 < r10);
+    let m1 = select(r11, r01, r11 < r01);
+    let far = select(m0, m1, m0 < m1);
+    pr.closed = WCI_NEWTON_FROM_TURNS <= r.turns && r.turns <= WCI_NEWTON_UP_TO_TURNS
+        && far <= z * 16.0f && r.w <= r.h * 16.0f && r.h <= r.w * 16.0f;
     return pr;
 }
 
@@ -1150,19 +1172,19 @@ fn wci_rect_sample(pr: WciRectPrepared, u: vec2<f32>) -> vec3<f32> {
     let z = r.z;
     let y1 = pr.y1;
     let z2 = pr.z2;
-    let x1 = x0 + w;
     let goal = u0 * r.turns;
-    let tl0 = pr.left + goal;
-    let tr0 = pr.right + (r.turns - goal);
-    let tl = select(tl0, pr.both - tr0, 0.0f < x0);
-    let tr = select(tr0, pr.both - tl0, x1 < 0.0f);
+    let tl = pr.left + goal;
+    let tr = pr.right + (r.turns - goal);
     let a = wci_sin_cos_turns(wci_clamp0(tl, 0.5f));
     let bb = wci_sin_cos_turns(wci_clamp0(tr, 0.5f));
     let sg = a.x * bb.y - a.y * bb.x;
     let k = (a.x + a.x) * bb.x;
     let xu = z * sg / sqrt(k * (k + pr.b01 + pr.b01));
     let dx0 = wci_clamp0(xu - x0, w);
-    let dx = wci_rect_newton(r, y1, z2, goal, dx0);
+    var dx = dx0;
+    if (!pr.closed) {
+        dx = wci_rect_newton(r, y1, z2, goal, dx0);
+    }
     // The height: uniform in y / sqrt(d^2 + y^2) between its values at y0 and y1.
     let x = x0 + dx;
     let d2 = x * x + z2;

@@ -16,7 +16,7 @@ fn every_solid_angle_function_is_bit_identical_on_lavapipe() {
 /// The comparison is sharp on these functions too: a one-ulp change of `1 / (4 pi)` moves
 /// the density of every sample that Arvo's map takes (about half of the test points: the
 /// others are degenerate, non-finite or area-sampled lights), and leaving out the Newton step
-/// moves the rectangle's points.
+/// moves the points of the rectangles that take it (outside the closed-form window).
 #[test]
 fn small_changes_are_detected() {
     let Some(gpu) = lavapipe() else { return };
@@ -31,8 +31,8 @@ fn small_changes_are_detected() {
         (
             "wc_spherical_rectangle",
             "no Newton step",
-            "    let dx = wci_rect_newton(r, y1, z2, goal, dx0);",
-            "    let dx = dx0;",
+            "        dx = wci_rect_newton(r, y1, z2, goal, dx0);",
+            "        dx = dx0;",
             10,
         ),
     ] {

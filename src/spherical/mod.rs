@@ -28,9 +28,12 @@
 //! crate's own `atan` kernel; chords between directions come from edges (`|x| - |y| =
 //! -(y - x).(x + y) / (|x| + |y|)`); Arvo's first step is solved in closed form for the
 //! point on the chord (a quadratic with no `acos`), his second by chord lengths; the
-//! rectangle's `x` starts from a closed form and takes one Newton step on the strip's
-//! solid angle computed by Van Oosterom-Strackee (relative, not absolute, accuracy), its
-//! `y` uses `1 -+ y/r` forms. Every square root and inverse sine/cosine argument is clamped,
+//! rectangle's `x` comes from a closed form written with the half-infinite strips beside
+//! the light (each accurate on either side of it), which is the point for lights of
+//! `1e-2 .. 2` sr seen within `kappa <= 16` (below) with sides within a factor 16; other
+//! lights take one Newton step on
+//! the strip's solid angle computed by Van Oosterom-Strackee (relative, not absolute,
+//! accuracy); its `y` uses `1 -+ y/r` forms. Every square root and inverse sine/cosine argument is clamped,
 //! every `0/0` selected away.
 //!
 //! **Precision** (`tests/spherical.rs`, 20 000 random lights per shape from `1e-8` sr to
@@ -42,7 +45,7 @@
 //! (rectangle), so within 1e-4 for every light seen at more than 0.6 degrees from grazing
 //! (`kappa <= 100`); round trip `inverse(sample(u))` for solid angles `1e-4 .. 2` sr within
 //! 2.3e-5 of `u` (triangle, `kappa <= 100`, `u1 >= 0.01`: at the apex `v1` the map
-//! collapses `u0` and its error grows like `1 / sqrt(u1)`) and 6.0e-6 (rectangle,
+//! collapses `u0` and its error grows like `1 / sqrt(u1)`) and 6.5e-6 (rectangle,
 //! `kappa <= 100`), and within `3.1e-6 kappa` for every light. Samples are uniform in solid
 //! angle (chi-square over sub-regions whose solid angles are computed in `f64`, 2^21
 //! samples per light).
@@ -192,8 +195,9 @@ lane_forms! {
     /// (Urena, Fajardo and King 2013): returns `(s, t)` and the density with respect to solid
     /// angle, `1 / omega`.
     ///
-    /// `u0` picks `s` so that the strip `[0, s] x [0, 1]` subtends `u0 omega` (closed-form
-    /// start, one Newton step), `u1` picks `t` uniformly in `y / sqrt(d^2 + y^2)` along that
+    /// `u0` picks `s` so that the strip `[0, s] x [0, 1]` subtends `u0 omega` (closed form;
+    /// one Newton step after it below `1e-2` sr, above `2` sr, beyond `kappa = 16` or an
+    /// aspect ratio of 16), `u1` picks `t` uniformly in `y / sqrt(d^2 + y^2)` along that
     /// line. Compact strata of the square stay compact. See the [module docs](self) for the
     /// precision (density 1e-4 relative, round trip 1e-4 for `1e-4 .. 2` sr, away from grazing)
     /// and the out-of-domain rule.
