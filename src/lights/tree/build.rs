@@ -5,10 +5,10 @@ use super::{
     CHECKSUM_WORD, HEADER_WORDS, INDEX_MASK, LEAF, LightBounds, MAX_LIGHTS, NODE_WORDS, QUAD_WORDS,
     TAG, TWO_SIDED, VERSION, levels_for, quads_bound,
 };
+use crate::lanes::Lane;
 use crate::lights::Error;
 use crate::storage::{seal, to_storage_order};
 use core::f64::consts::PI;
-use crate::lanes::Lane;
 
 /// The bounds of a subtree during the build, in `f64` where unions need it.
 #[derive(Clone, Copy)]
