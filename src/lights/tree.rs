@@ -183,8 +183,9 @@ impl<L: Lane> Chooser<L> for ByU<L> {
         let t = self.0 * sum;
         // The bound `at` past which `t` takes a side of weight `w`; never if `w` is 0.
         let bound = |w: L, at: L| L::select(zero.simd_lt(w), at, L::splat(f32::INFINITY));
-        let high = !t.simd_lt(bound(s23, s01));
-        let second = !t.simd_lt(L::select(high, bound(i3, s012), bound(i1, i0)));
+        // `t` is finite (`u` in [0, 1), `S` at most 2^127), so `!(t < b)` is `b <= t`.
+        let high = bound(s23, s01).simd_le(t);
+        let second = L::select(high, bound(i3, s012), bound(i1, i0)).simd_le(t);
         let start = L::select(
             high,
             L::select(second, s012, s01),
@@ -269,7 +270,9 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
     let a = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
     let info = word(NODE_WORDS - 1);
     let two_sided = !(info & L::U::splat(TWO_SIDED)).simd_eq(L::U::splat(0));
-    let a = L::select(two_sided, a.abs(), a);
+    // `|a|` for two-sided nodes: the sign bit cleared by a mask made off the critical path.
+    let keep = L::U::select(two_sided, L::U::splat(0x7fff_ffff), L::U::splat(u32::MAX));
+    let a = L::from_bits(a.to_bits() & keep);
     let sw = pos(d2 - a * a).sqrt();
     let dist = d2.sqrt();
     let (cos_o, sin_o, cos_e) = (f(8), f(9), f(10));
