@@ -323,8 +323,7 @@ const QUAD_WORDS: usize = 4 * NODE_WORDS;
 pub(super) trait Children: Lane {
     /// The walk's lane type: `f32x4` for the scalar, `Self` otherwise.
     type W: Lane;
-    /// The walk's handle on its current quad: its index (SIMD walks) or its words (the
-    /// scalar walk).
+    /// The walk's handle on its current quad: its index (in every lane).
     type Q: Copy;
     fn widen(x: Self) -> Self::W;
     fn widen_u(x: Self::U) -> <Self::W as Lane>::U;
