@@ -572,7 +572,7 @@ size_t wc_lights_alias_pmf(const uint32_t *storage,
                            size_t n);
 
 // Words of storage `wc_lights_tree_build` needs for `lights` lights
-// (`16 + 32 (lights / 3 + 14) + lights`, about 47 bytes per light), `SIZE_MAX` above 2^24
+// (`16 + 48 (lights / 3 + 14) + lights`, about 68 bytes per light), `SIZE_MAX` above 2^24
 // lights. Any argument; reads and writes no memory.
 size_t wc_lights_tree_storage_len(size_t lights);
 

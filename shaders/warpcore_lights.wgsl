@@ -75,18 +75,21 @@ fn wc_lights_alias_pmf(base: u32, index: u32) -> f32 {
     return select(0.0f, bitcast<f32>(bits), index < n);
 }
 
-// ---- The light tree (`lights::LightTree`, format version 1) ----
+// ---- The light tree (`lights::LightTree`, format version 2) ----
 //
 // Storage: 16 header words (tag "wcLT", version, n, m, levels, 0, 0, 0, checksum, 0 ...),
-// then n / 3 + 14 quads of 32 words (the four children of an inner node, field-major: word k
-// of child c at 4 k + c; a node: bounding-sphere centre and radius, power, octahedral axis,
-// two 16-bit cosines, and a word with the leaf flag, the two-sided flag and an index), then
+// then n / 3 + 14 quads of 48 words (the four children of an inner node, field-major: word k
+// of child c at 4 k + c; a node, f32 words: bounding-sphere centre and radius, power, unit
+// axis, cos theta_o, sin theta_o, cos theta_e, then a word with the leaf flag, the two-sided
+// flag and an index), then
 // one bit trail per light. The walk is src/lights/tree.rs's, operation by operation (the
 // same IEEE operations in the same order: +, -, *, /, sqrt, compares and selects only), so
 // a GPU that rounds them as IEEE 754 says returns the crate's bits (proved on lavapipe).
 
 const WCLI_TREE_HEADER: u32 = 16u;
-const WCLI_TREE_QUAD_WORDS: u32 = 32u;
+const WCLI_TREE_QUAD_WORDS: u32 = 48u;
+// The node word holding the flags and the index.
+const WCLI_TREE_INFO: u32 = 11u;
 const WCLI_TREE_LEAF: u32 = 0x80000000u;
 const WCLI_TREE_TWO_SIDED: u32 = 0x40000000u;
 const WCLI_TREE_INDEX_MASK: u32 = 0x3fffffffu;
@@ -108,30 +111,6 @@ struct WcliPoint {
 // `x` if 0 < x, else 0 (NaN too).
 fn wcli_pos(x: f32) -> f32 {
     return select(0.0f, x, 0.0f < x);
-}
-
-// `a` with its sign bit xor-ed with the sign bit of `s` (`flip_sign(sign_bit)`).
-fn wcli_flip_sign(a: f32, s: f32) -> f32 {
-    return bitcast<f32>(bitcast<u32>(a) ^ (bitcast<u32>(s) & 0x80000000u));
-}
-
-// A 16-bit fixed-point cosine q / 2^15 - 1 (exact).
-fn wcli_cos16(q: u32) -> f32 {
-    return f32(q & 0xffffu) * 0x1p-15f - 1.0f;
-}
-
-// The axis of an octahedral node word before normalisation (`tree::oct_raw`); its squared
-// length is wcli_len2.
-fn wcli_oct_raw(w: u32) -> vec3<f32> {
-    let x0 = f32(w & 0xffffu) * 0x1p-15f - 1.0f;
-    let y0 = f32(w >> 16u) * 0x1p-15f - 1.0f;
-    let z = 1.0f - abs(x0) - abs(y0);
-    let lower = z < 0.0f;
-    let fx = wcli_flip_sign(1.0f - abs(y0), x0);
-    let fy = wcli_flip_sign(1.0f - abs(x0), y0);
-    let x = select(x0, fx, lower);
-    let y = select(y0, fy, lower);
-    return vec3<f32>(x, y, z);
 }
 
 // x.x * x.x + x.y * x.y + x.z * x.z, in that order.
@@ -156,8 +135,8 @@ fn wcli_tree_word(base: u32, quads: u32, quad: u32, k: u32, c: u32) -> u32 {
 }
 
 // The importance of child c of a quad at the point (`tree::importance`): finite, in
-// [0, 2^125], whatever the words hold. Cosines and sines carry the distance d (and the
-// stored axis's length l): three square roots side by side, one division at the end.
+// [0, 2^125], whatever the words hold. Cosines and sines carry the distance d (the stored
+// axis is taken as unit): three square roots side by side, one division at the end.
 fn wcli_tree_importance(pt: WcliPoint, base: u32, quads: u32, quad: u32, c: u32) -> f32 {
     let d = vec3<f32>(
         pt.p.x - bitcast<f32>(wcli_tree_word(base, quads, quad, 0u, c)),
@@ -169,38 +148,35 @@ fn wcli_tree_importance(pt: WcliPoint, base: u32, quads: u32, quad: u32, c: u32)
     let r2 = r * r;
     let phi = bitcast<f32>(wcli_tree_word(base, quads, quad, 4u, c));
     let outside = r2 < d2;
-    // l d cos(theta_w) (folded for two-sided nodes) and l d sin(theta_w).
-    let v = wcli_oct_raw(wcli_tree_word(base, quads, quad, 5u, c));
-    let q = wcli_len2(v);
+    // d cos(theta_w) (folded for two-sided nodes) and d sin(theta_w).
+    let v = vec3<f32>(
+        bitcast<f32>(wcli_tree_word(base, quads, quad, 5u, c)),
+        bitcast<f32>(wcli_tree_word(base, quads, quad, 6u, c)),
+        bitcast<f32>(wcli_tree_word(base, quads, quad, 7u, c)),
+    );
     let a0 = v.x * d.x + v.y * d.y + v.z * d.z;
-    let info = wcli_tree_word(base, quads, quad, 7u, c);
+    let info = wcli_tree_word(base, quads, quad, WCLI_TREE_INFO, c);
     let two_sided = (info & WCLI_TREE_TWO_SIDED) != 0u;
     let a = select(a0, abs(a0), two_sided);
-    let qd2 = q * d2;
-    let sw = sqrt(wcli_pos(qd2 - a * a));
-    let ldist = sqrt(qd2);
-    let oe = wcli_tree_word(base, quads, quad, 6u, c);
-    let cos_o = wcli_cos16(oe);
-    let cos_e = wcli_cos16(oe >> 16u);
-    let sin_o = sqrt(wcli_pos(1.0f - cos_o * cos_o));
-    // l d cos(theta_x), l d sin(theta_x).
-    let within = cos_o * ldist < a;
-    let cx = select(a * cos_o + sw * sin_o, ldist, within);
+    let sw = sqrt(wcli_pos(d2 - a * a));
+    let dist = sqrt(d2);
+    let cos_o = bitcast<f32>(wcli_tree_word(base, quads, quad, 8u, c));
+    let sin_o = bitcast<f32>(wcli_tree_word(base, quads, quad, 9u, c));
+    let cos_e = bitcast<f32>(wcli_tree_word(base, quads, quad, 10u, c));
+    // d cos(theta_x), d sin(theta_x).
+    let within = cos_o * dist < a;
+    let cx = select(a * cos_o + sw * sin_o, dist, within);
     let sx = select(sw * cos_o - a * sin_o, 0.0f, within);
-    // d cos(theta_b), l d cos(theta_b), l r.
+    // d cos(theta_b).
     let cb = sqrt(wcli_pos(d2 - r2));
-    let l = sqrt(q);
-    let lcb = cb * l;
-    let lr = r * l;
     let ci = abs(d.x * pt.n.x + d.y * pt.n.y + d.z * pt.n.z);
     let si = sqrt(wcli_pos(d2 - ci * ci));
-    let cp = select(cx * lcb + sx * lr, qd2, lcb < cx);
+    let cp = select(cx * cb + sx * r, d2, cb < cx);
     let cpi = select(ci * cb + si * r, d2, cb < ci);
     let dc0 = select(r2, d2, outside);
     let dc = select(WCLI_F32_MIN_POSITIVE, dc0, WCLI_F32_MIN_POSITIVE < dc0);
     let inv = 1.0f / dc;
-    let inv_q = 1.0f / q;
-    let cos_p = select(1.0f, cp * (inv * inv_q), outside);
+    let cos_p = select(1.0f, cp * inv, outside);
     let cos_pi = select(1.0f, cpi * inv, outside && pt.has_n);
     let imp0 = phi * inv * cos_pi * cos_p;
     let alive = cos_e < cos_p && pt.valid;
@@ -250,7 +226,7 @@ fn wcli_tree_walk(base: u32, pt: WcliPoint, u0: f32, trail: u32, by_u: bool) -> 
         let p_child = select(0.0f, chosen / sum, live);
         prob = select(prob, prob * p_child, going);
         let child = select(0u, 2u, high) + select(0u, 1u, second);
-        let info = wcli_tree_word(base, quads, quad, 7u, child);
+        let info = wcli_tree_word(base, quads, quad, WCLI_TREE_INFO, child);
         let next = info & WCLI_TREE_INDEX_MASK;
         let leaf = (info & WCLI_TREE_LEAF) != 0u;
         let reached = going && leaf;

@@ -39,7 +39,7 @@ impl WcLightBounds {
 }
 
 /// Words of storage `wc_lights_tree_build` needs for `lights` lights
-/// (`16 + 32 (lights / 3 + 14) + lights`, about 47 bytes per light), `SIZE_MAX` above 2^24
+/// (`16 + 48 (lights / 3 + 14) + lights`, about 68 bytes per light), `SIZE_MAX` above 2^24
 /// lights. Any argument; reads and writes no memory.
 #[unsafe(no_mangle)]
 pub extern "C" fn wc_lights_tree_storage_len(lights: usize) -> usize {

@@ -868,7 +868,7 @@ pub fn lights_tree(h: &mut Hasher) {
     use warpcore::lights::LightTree;
     let lights = light_set();
     let n = LightTree::storage_len(lights.len());
-    let Some(s) = stored::<1024>(h, n, |s| LightTree::new(&lights, s).is_ok()) else {
+    let Some(s) = stored::<2048>(h, n, |s| LightTree::new(&lights, s).is_ok()) else {
         return;
     };
     let Ok(tree) = LightTree::from_storage(&s) else {

@@ -41,14 +41,15 @@ pub struct LightBounds {
 
 /// Format tag of a light tree's storage: the bytes `wcLT`.
 const TAG: u32 = u32::from_le_bytes(*b"wcLT");
-/// The storage format version this build writes and reads.
-const VERSION: u32 = 1;
+/// The storage format version this build writes and reads (1: 8-word nodes with an
+/// octahedral axis and 16-bit cosines, no longer read).
+const VERSION: u32 = 2;
 /// Header words (64 bytes), as the environment maps.
 const HEADER_WORDS: usize = 16;
 /// The header word holding the content checksum.
 const CHECKSUM_WORD: usize = 8;
 /// Words of one node record.
-const NODE_WORDS: usize = 8;
+const NODE_WORDS: usize = 12;
 /// Flag of a node's last word: the node is a leaf, the low bits are the light's index.
 const LEAF: u32 = 1 << 31;
 /// Flag of a node's last word: some light below emits on both sides.
@@ -93,10 +94,8 @@ const BIG: f32 = 4.253_529_6e37;
 /// sines of differences come from products and `sqrt` only (no libm transcendental), carried
 /// multiplied by the distance (`d cos(theta_w) = w . (p - c)`, `d cos(theta_b) = sqrt(d^2 -
 /// r^2)`, `d sin(theta_b) = r`), so the three square roots are independent and one division
-/// (`1 / max(d^2, r^2)`) ends the evaluation; the stored axis is used without normalising it
-/// (its length `l` multiplies the axis's terms, and `1 / l^2` is divided out with the
-/// distance). pbrt-v4
-/// clamps `d^2` below by the box's half *diagonal length*; we use the bounding radius
+/// (`1 / max(d^2, r^2)`) ends the evaluation; the node stores its unit axis and the cosine
+/// and sine of `theta_o` ready as `f32`, so a visit decodes nothing. pbrt-v4 clamps `d^2` below by the box's half *diagonal length*; we use the bounding radius
 /// *squared* (the same units as `d^2`). `n` need not be unit (it is normalised; NaN, infinite
 /// or zero means a medium). A non-finite `p` gives no light.
 ///
@@ -128,23 +127,24 @@ const BIG: f32 = 4.253_529_6e37;
 /// | words | contents |
 /// |---|---|
 /// | 0 | format tag, the bytes `wcLT` |
-/// | 1 | format version (1) |
+/// | 1 | format version (2; version 1 is refused with [`Error::UnsupportedVersion`]) |
 /// | 2 | `n`, the number of lights |
 /// | 3 | `m`, the lights of positive power (the tree's leaves) |
 /// | 4 | levels of the walk (`ceil(log4 m)`, at least 1) |
 /// | 8 | content checksum of every other word |
 /// | 5..8, 9..16 | 0 |
-/// | 16.. | `n / 3 + 14` quads of 32 words: the four children of an inner node (quad 0: the root's) |
+/// | 16.. | `n / 3 + 14` quads of 48 words: the four children of an inner node (quad 0: the root's) |
 /// | then | `n` bit trails (bits `2l`, `2l + 1`: the pair and the child taken at level `l`) |
 ///
-/// A node is 8 words: its bounding sphere's centre (3 `f32`) and radius, its power, its
-/// axis (octahedral, 2 x 16 bits), `cos_theta_o` and `cos_theta_e` (16 bits each, rounded
-/// down: the stored cone is never narrower), and a word holding a leaf flag, a two-sided
-/// flag and a child quad's or a light's index. The axis's rounding error is added to
-/// `theta_o`, and the radius is rounded up, so the stored bounds contain the given ones. A
-/// quad is field-major (word `k` of child `c` at `4 k + c`): a scalar walk evaluates the
-/// four children as one `f32x4`. **About 47 bytes per light**
-/// (`storage_len(n) = 16 + 32 (n / 3 + 14) + n` words).
+/// A node is 12 words, all `f32` but the last: its bounding sphere's centre (3) and radius,
+/// its power, its unit axis (3), `cos_theta_o` and `sin_theta_o` (the walk's own `sqrt(1 -
+/// cos^2)` of the stored cosine), `cos_theta_e` (the cosines rounded down: the stored cone
+/// is never narrower), and a word holding a leaf flag, a two-sided flag and a child quad's
+/// or a light's index. The axis's rounding error is added to `theta_o`, and the radius is
+/// rounded up, so the stored bounds contain the given ones. A quad is field-major (word `k`
+/// of child `c` at `4 k + c`, 192 bytes: three cache lines): a scalar walk evaluates the
+/// four children as one `f32x4`. **About 68 bytes per light**
+/// (`storage_len(n) = 16 + 48 (n / 3 + 14) + n` words).
 ///
 /// `from_storage` (O(1)) checks the header; sampling any storage that passed it never panics
 /// and returns valid outputs (an index below `n`, a probability in `[0, 1]`), whatever the
@@ -183,8 +183,9 @@ impl<L: Lane> Chooser<L> for ByU<L> {
         let t = self.0 * sum;
         // The bound `at` past which `t` takes a side of weight `w`; never if `w` is 0.
         let bound = |w: L, at: L| L::select(zero.simd_lt(w), at, L::splat(f32::INFINITY));
-        let high = !t.simd_lt(bound(s23, s01));
-        let second = !t.simd_lt(L::select(high, bound(i3, s012), bound(i1, i0)));
+        // `t` is finite (`u` in [0, 1), `S` at most 2^127), so `!(t < b)` is `b <= t`.
+        let high = bound(s23, s01).simd_le(t);
+        let second = L::select(high, bound(i3, s012), bound(i1, i0)).simd_le(t);
         let start = L::select(
             high,
             L::select(second, s012, s01),
@@ -216,37 +217,6 @@ impl<L: Lane> Chooser<L> for ByTrail<L::U> {
 #[inline(always)]
 fn pos<L: Lane>(x: L) -> L {
     L::select(L::splat(0.0).simd_lt(x), x, L::splat(0.0))
-}
-
-/// The axis stored in a node word (octahedral, two 16-bit fixed-point coordinates
-/// `q / 2^15 - 1`, exact) before normalisation, and its squared length.
-#[inline(always)]
-fn oct_raw<L: Lane>(w: L::U) -> ([L; 3], L) {
-    let k = L::splat(1.0 / 32768.0);
-    let one = L::splat(1.0);
-    let x = L::from_uint(w & L::U::splat(0xffff)) * k - one;
-    let y = L::from_uint(w.shr(16)) * k - one;
-    let z = one - x.abs() - y.abs();
-    let lower = z.simd_lt(L::splat(0.0));
-    let fx = (one - y.abs()).flip_sign(x.sign_bit());
-    let fy = (one - x.abs()).flip_sign(y.sign_bit());
-    let x = L::select(lower, fx, x);
-    let y = L::select(lower, fy, y);
-    ([x, y, z], x * x + y * y + z * z)
-}
-
-/// The unit axis stored in a node word (see [`oct_raw`]).
-#[inline(always)]
-pub(super) fn oct_decode<L: Lane>(w: L::U) -> [L; 3] {
-    let (v, q) = oct_raw::<L>(w);
-    let inv = L::splat(1.0) / q.sqrt();
-    v.map(|x| x * inv)
-}
-
-/// A 16-bit fixed-point cosine `q / 2^15 - 1` (exact).
-#[inline(always)]
-fn cos16<L: Lane>(q: L::U) -> L {
-    L::from_uint(q & L::U::splat(0xffff)) * L::splat(1.0 / 32768.0) - L::splat(1.0)
 }
 
 /// The shading point as the walk sees it: `p`, the unit normal (or zeros), whether there is
@@ -294,34 +264,29 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
     let phi = f(4);
     // Inside the sphere (or on it): the cone of directions to it is the whole sphere.
     let outside = r2.simd_lt(d2);
-    // The stored axis `v` is not unit: with `l = |v|`, the quantities of the axis's cone
-    // carry a factor `l` (no division on the way from the axis word to `cos(theta')`):
-    // `l d cos(theta_w) = v . (p - c)` (folded for two-sided nodes), `l d sin(theta_w)`.
-    let (v, q) = oct_raw::<L>(word(5));
+    // The stored axis `v` is unit (to f32 rounding): `d cos(theta_w) = v . (p - c)` (folded
+    // for two-sided nodes), `d sin(theta_w)`, `d`.
+    let v = [f(5), f(6), f(7)];
     let a = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
-    let info = word(7);
+    let info = word(NODE_WORDS - 1);
     let two_sided = !(info & L::U::splat(TWO_SIDED)).simd_eq(L::U::splat(0));
-    let a = L::select(two_sided, a.abs(), a);
-    let qd2 = q * d2;
-    let sw = pos(qd2 - a * a).sqrt();
-    let ldist = qd2.sqrt();
-    let oe = word(6);
-    let cos_o = cos16::<L>(oe);
-    let cos_e = cos16::<L>(oe.shr(16));
-    let sin_o = pos(one - cos_o * cos_o).sqrt();
-    // l d cos(theta_x), l d sin(theta_x) for theta_x = max(0, theta_w - theta_o).
-    let within = (cos_o * ldist).simd_lt(a);
-    let cx = L::select(within, ldist, a * cos_o + sw * sin_o);
+    // `|a|` for two-sided nodes: the sign bit cleared by a mask made off the critical path.
+    let keep = L::U::select(two_sided, L::U::splat(0x7fff_ffff), L::U::splat(u32::MAX));
+    let a = L::from_bits(a.to_bits() & keep);
+    let sw = pos(d2 - a * a).sqrt();
+    let dist = d2.sqrt();
+    let (cos_o, sin_o, cos_e) = (f(8), f(9), f(10));
+    // d cos(theta_x), d sin(theta_x) for theta_x = max(0, theta_w - theta_o).
+    let within = (cos_o * dist).simd_lt(a);
+    let cx = L::select(within, dist, a * cos_o + sw * sin_o);
     let sx = L::select(within, zero, sw * cos_o - a * sin_o);
-    // d cos(theta_b) and l d cos(theta_b); d sin(theta_b) is r.
+    // d cos(theta_b); d sin(theta_b) is r.
     let cb = pos(d2 - r2).sqrt();
-    let l = q.sqrt();
-    let (lcb, lr) = (cb * l, r * l);
     // d^2 cos(theta') for theta' = max(0, theta_x - theta_b), and the incidence factor
     // d^2 cos(max(0, theta_i - theta_b)) from d cos(theta_i) = |n . (p - c)|.
     let ci = (d[0] * pt.n[0] + d[1] * pt.n[1] + d[2] * pt.n[2]).abs();
     let si = pos(d2 - ci * ci).sqrt();
-    let cp = L::select(lcb.simd_lt(cx), qd2, cx * lcb + sx * lr);
+    let cp = L::select(cb.simd_lt(cx), d2, cx * cb + sx * r);
     let cpi = L::select(cb.simd_lt(ci), d2, ci * cb + si * r);
     let dc = L::select(outside, d2, r2);
     let dc = L::select(
@@ -330,8 +295,7 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
         L::splat(f32::MIN_POSITIVE),
     );
     let inv = one / dc;
-    let inv_q = one / q;
-    let cos_p = L::select(outside, cp * (inv * inv_q), one);
+    let cos_p = L::select(outside, cp * inv, one);
     let cos_pi = L::select(outside & pt.has_n, cpi * inv, one);
     let imp = phi * inv * cos_pi * cos_p;
     let alive = cos_e.simd_lt(cos_p) & pt.valid;
@@ -343,7 +307,7 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
     )
 }
 
-/// Words of one quad: the four children of an inner node (128 bytes, two cache lines),
+/// Words of one quad: the four children of an inner node (192 bytes, three cache lines),
 /// field-major: word `k` of child `c` at `4 k + c`, so that a scalar walk loads each field
 /// of the four children as one `u32x4`.
 const QUAD_WORDS: usize = 4 * NODE_WORDS;
@@ -359,8 +323,7 @@ const QUAD_WORDS: usize = 4 * NODE_WORDS;
 pub(super) trait Children: Lane {
     /// The walk's lane type: `f32x4` for the scalar, `Self` otherwise.
     type W: Lane;
-    /// The walk's handle on its current quad: its index (SIMD walks) or its words (the
-    /// scalar walk).
+    /// The walk's handle on its current quad: its index (in every lane).
     type Q: Copy;
     fn widen(x: Self) -> Self::W;
     fn widen_u(x: Self::U) -> <Self::W as Lane>::U;
@@ -404,31 +367,18 @@ fn pick4<U: UintLane>(v: [U; 4], high: U::Mask, second: U::Mask) -> U {
     U::select(high, U::select(second, d, c), U::select(second, b, a))
 }
 
-/// The scalar walk's handle on a quad: its index, and its words 0 and 4 (word `k` of the
-/// four children), one from each of its two cache lines, loaded ahead of the choice.
-#[derive(Clone, Copy)]
-pub(super) struct Ahead {
-    index: u32x4,
-    first: u32x4,
-    fifth: u32x4,
-}
-
-/// [`Ahead`] of quad `index`.
+/// Touches one word of each of quad `index`'s three cache lines, so that the lines are on
+/// their way to the first-level cache while the walk is still choosing (the loaded values
+/// are not used: `black_box` only keeps the loads).
 #[inline(always)]
-fn ahead(quads: &[[u32; QUAD_WORDS]], index: u32) -> Ahead {
+fn touch(quads: &[[u32; QUAD_WORDS]], index: u32) {
     let rec = quads.get(index as usize).unwrap_or(&ZERO_QUAD);
-    let rows = rec.as_chunks::<4>().0;
-    let row = |k: usize| from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4])));
-    Ahead {
-        index: u32x4::splat(index),
-        first: row(0),
-        fifth: row(4),
-    }
+    core::hint::black_box(rec[0] ^ rec[QUAD_WORDS / 3] ^ rec[2 * QUAD_WORDS / 3]);
 }
 
 impl Children for f32 {
     type W = f32x4;
-    type Q = Ahead;
+    type Q = u32x4;
     #[inline(always)]
     fn widen(x: f32) -> f32x4 {
         f32x4::splat(x)
@@ -446,8 +396,8 @@ impl Children for f32 {
         Wrapping(x.to_array()[0])
     }
     #[inline(always)]
-    fn root(quads: &[[u32; QUAD_WORDS]]) -> Self::Q {
-        ahead(quads, 0)
+    fn root(_quads: &[[u32; QUAD_WORDS]]) -> Self::Q {
+        u32x4::splat(0)
     }
     /// Reads one word from each cache line of the four children's quads before the choice
     /// is made (the next level's loads then hit the first-level cache).
@@ -457,17 +407,16 @@ impl Children for f32 {
         quads: &[[u32; QUAD_WORDS]],
         quad: &Self::Q,
     ) -> Opened<f32x4, Self::Q> {
-        let rec = quads
-            .get(quad.index.to_array()[0] as usize)
-            .unwrap_or(&ZERO_QUAD);
+        let rec = quads.get(quad.to_array()[0] as usize).unwrap_or(&ZERO_QUAD);
         let rows = rec.as_chunks::<4>().0;
-        let words: [u32x4; NODE_WORDS] = core::array::from_fn(|k| match k {
-            0 => quad.first,
-            4 => quad.fifth,
-            _ => from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4]))),
+        let words: [u32x4; NODE_WORDS] = core::array::from_fn(|k| {
+            from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4])))
         });
         let info = words[NODE_WORDS - 1].to_array();
-        let children = info.map(|w| ahead(quads, w & INDEX_MASK));
+        let children = info.map(|w| {
+            touch(quads, w & INDEX_MASK);
+            u32x4::splat(w & INDEX_MASK)
+        });
         let imp = importance::<f32x4>(pt, &words).to_array();
         Opened {
             imp: imp.map(f32x4::splat),
@@ -484,11 +433,7 @@ impl Children for f32 {
         _step: <f32x4 as Lane>::Mask,
     ) -> Self::Q {
         // Once the walk has stopped, what it reads no longer matters.
-        Ahead {
-            index: pick4(children.map(|c| c.index), high, second),
-            first: pick4(children.map(|c| c.first), high, second),
-            fifth: pick4(children.map(|c| c.fifth), high, second),
-        }
+        pick4(children, high, second)
     }
 }
 
@@ -608,8 +553,8 @@ fn walk<L: Lane, K: Children<W = L>, C: Chooser<L>>(
 }
 
 impl<'a> LightTree<'a> {
-    /// Words of storage `new` needs for `n` lights: `16 + 32 (n / 3 + 14) + n` (about 47
-    /// bytes per light, after a 64-byte header and 1,792 bytes of slack for the partial
+    /// Words of storage `new` needs for `n` lights: `16 + 48 (n / 3 + 14) + n` (about 68
+    /// bytes per light, after a 64-byte header and 2,688 bytes of slack for the partial
     /// quads); `usize::MAX` above `2^24` lights (the format's limit, see
     /// [`Error::TooLarge`]).
     pub const fn storage_len(n: usize) -> usize {
@@ -815,7 +760,7 @@ impl<'a> LightTree<'a> {
     /// 0 for an index `>= len`, a light of power 0, and a light of importance 0 at `p`.
     ///
     /// Error against the same walk in `f64` (measured, `tests/lights/tree.rs`, 600,000
-    /// probabilities of a 300-light scene): at most `6.8e-8` absolute, `1.6e-5` relative where
+    /// probabilities of a 300-light scene): at most `1.4e-7` absolute, `1.9e-5` relative where
     /// the probability is at least `1e-3`. The probability is exact for what `sample` does:
     /// it is the product `sample` reports.
     #[inline]

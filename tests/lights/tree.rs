@@ -442,12 +442,15 @@ fn garbage_storage_never_panics_and_stays_valid() {
         LightTree::from_storage(&g),
         Err(Error::WrongFormat { .. })
     ));
-    let mut g = s.clone();
-    g[1] = 9;
-    assert!(matches!(
-        LightTree::from_storage(&g),
-        Err(Error::UnsupportedVersion { found: 9 })
-    ));
+    // Version 1 (8-word nodes, octahedral axis) and later versions are refused.
+    for version in [1, 3, 9] {
+        let mut g = s.clone();
+        g[1] = version;
+        assert_eq!(
+            LightTree::from_storage(&g).err(),
+            Some(Error::UnsupportedVersion { found: version })
+        );
+    }
     for (word, value) in [(2, 0), (2, 41), (3, 0), (3, 41), (4, 9), (5, 1), (15, 1)] {
         let mut g = s.clone();
         g[word] = value;
@@ -590,7 +593,7 @@ fn pmf_f64(s: &[u32], p: [f32; 3], n: [f32; 3], index: u32) -> f64 {
     let len = s[2] as usize;
     let levels = s[4];
     let quads = 16;
-    let trails = 16 + 32 * (len / 3 + 14);
+    let trails = 16 + 48 * (len / 3 + 14);
     let trail = s[trails + index as usize];
     let p = p.map(f64::from);
     let n = {
@@ -603,29 +606,22 @@ fn pmf_f64(s: &[u32], p: [f32; 3], n: [f32; 3], index: u32) -> f64 {
         }
     };
     let has_n = n != [0.0; 3];
-    let importance = |w: [u32; 8]| -> f64 {
+    let importance = |w: [u32; 12]| -> f64 {
         let f = |k: usize| f64::from(f32::from_bits(w[k]));
         let d = [p[0] - f(0), p[1] - f(1), p[2] - f(2)];
         let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         let (r, phi) = (f(3), f(4));
         let inside = d2 < r * r;
         let inv = if d2 > 0.0 { 1.0 / d2.sqrt() } else { 0.0 };
-        let q = |x: u32| f64::from(x & 0xffff) / 32768.0 - 1.0;
-        let (mut x, mut y) = (q(w[5]), q(w[5] >> 16));
-        let z = 1.0 - x.abs() - y.abs();
-        if z < 0.0 {
-            let (ax, ay) = (x.abs(), y.abs());
-            x = (1.0 - ay).copysign(x);
-            y = (1.0 - ax).copysign(y);
-        }
+        let (x, y, z) = (f(5), f(6), f(7));
         let l = (x * x + y * y + z * z).sqrt();
         let axis = [x / l, y / l, z / l];
         let mut cos_w = (axis[0] * d[0] + axis[1] * d[1] + axis[2] * d[2]) * inv;
-        if w[7] & (1 << 30) != 0 {
+        if w[11] & (1 << 30) != 0 {
             cos_w = cos_w.abs();
         }
         let sin_w = (1.0 - cos_w * cos_w).max(0.0).sqrt();
-        let (cos_o, cos_e) = (q(w[6]), q(w[6] >> 16));
+        let (cos_o, cos_e) = (f(8), f(10));
         let sin_o = (1.0 - cos_o * cos_o).max(0.0).sqrt();
         let sin_b0 = (r * inv).max(0.0);
         let (cos_b, sin_b) = if inside {
@@ -659,7 +655,7 @@ fn pmf_f64(s: &[u32], p: [f32; 3], n: [f32; 3], index: u32) -> f64 {
     let mut quad = 0usize;
     let mut prob = 1.0f64;
     for level in 0..levels {
-        let rec = &s[quads + 32 * quad..quads + 32 * quad + 32];
+        let rec = &s[quads + 48 * quad..quads + 48 * quad + 48];
         let i: Vec<f64> = (0..4)
             .map(|c| importance(core::array::from_fn(|k| rec[4 * k + c])))
             .collect();
@@ -681,7 +677,7 @@ fn pmf_f64(s: &[u32], p: [f32; 3], n: [f32; 3], index: u32) -> f64 {
             first / pair
         };
         let slot = 2 * usize::from(high) + usize::from(second);
-        let info = rec[28 + slot];
+        let info = rec[44 + slot];
         if info & (1 << 31) != 0 {
             return if info & ((1 << 30) - 1) == index {
                 prob

@@ -3,12 +3,12 @@
 
 use super::{
     CHECKSUM_WORD, HEADER_WORDS, INDEX_MASK, LEAF, LightBounds, MAX_LIGHTS, NODE_WORDS, QUAD_WORDS,
-    TAG, TWO_SIDED, VERSION, levels_for, oct_decode, quads_bound,
+    TAG, TWO_SIDED, VERSION, levels_for, quads_bound,
 };
+use crate::lanes::Lane;
 use crate::lights::Error;
 use crate::storage::{seal, to_storage_order};
 use core::f64::consts::PI;
-use core::num::Wrapping;
 
 /// The bounds of a subtree during the build, in `f64` where unions need it.
 #[derive(Clone, Copy)]
@@ -111,8 +111,11 @@ impl Bounds {
     }
 
     /// The node record (native byte order): centre, radius (rounded up to contain the box
-    /// around the rounded centre), power, octahedral axis, 16-bit cosines rounded down (the
-    /// axis's rounding error added to `theta_o`), and `info` with the two-sided flag.
+    /// around the rounded centre), power, the axis in `f32` (scaled so that its length is
+    /// at least 1: the walk, which takes it as unit, then overestimates `cos(theta_w)`, the
+    /// conservative side), `cos_theta_o` (the axis's rounding error added to `theta_o`) and
+    /// `cos_theta_e` rounded down to `f32`, the sine of the stored `theta_o`, and `info` with
+    /// the two-sided flag.
     fn record(&self, info: u32) -> [u32; NODE_WORDS] {
         let centre: [f32; 3] = core::array::from_fn(|i| self.min[i] / 2.0 + self.max[i] / 2.0);
         let mut r2 = 0.0f64;
@@ -128,9 +131,14 @@ impl Bounds {
             r32 = r32.next_up();
         }
         let phi = self.phi.min(f64::from(f32::MAX)) as f32;
-        let oct = oct_encode(self.w);
-        let decoded = oct_decode::<f32>(Wrapping(oct)).map(f64::from);
-        // The axis's rounding error `err` (about 1e-4) widens the cone: a lower bound of
+        // Each component's rounding is below 2^-24 relative, so `|axis| > 1`.
+        let axis = self.w.map(|x| (x * (1.0 + 1.0 / 4_194_304.0)) as f32);
+        let decoded = {
+            let v = axis.map(f64::from);
+            let l = libm::sqrt(dot(v, v));
+            v.map(|x| x / l)
+        };
+        // The axis's rounding error `err` (about 1e-7) widens the cone: a lower bound of
         // `cos(theta_o + err)` from `cos(err) >= 1 - err^2 / 2` and `sin(err) <= err`, without
         // a transcendental function (`asin(s) <= 1.0001 s` for the sine `s < 0.02` of the
         // error; `atan2` otherwise).
@@ -152,7 +160,19 @@ impl Bounds {
         } else {
             co - so * err
         };
-        let q = |c: f64| libm::floor((c + 1.0) * 32768.0).clamp(0.0, 65535.0) as u32;
+        // Cosines rounded down to f32 (the stored cone is never narrower); the sine is the
+        // walk's own `sqrt(1 - cos^2)` of the stored cosine.
+        let down = |c: f64| {
+            let c32 = c as f32;
+            let c32 = if f64::from(c32) > c {
+                c32.next_down()
+            } else {
+                c32
+            };
+            c32.clamp(-1.0, 1.0)
+        };
+        let cos_o = down(cos_o);
+        let sin_o = Lane::sqrt((1.0 - cos_o * cos_o).max(0.0));
         let info = info | if self.two_sided { TWO_SIDED } else { 0 };
         [
             centre[0].to_bits(),
@@ -160,24 +180,15 @@ impl Bounds {
             centre[2].to_bits(),
             r32.to_bits(),
             phi.to_bits(),
-            oct,
-            q(cos_o) | q(self.cos_e) << 16,
+            axis[0].to_bits(),
+            axis[1].to_bits(),
+            axis[2].to_bits(),
+            cos_o.to_bits(),
+            sin_o.to_bits(),
+            down(self.cos_e).to_bits(),
             info,
         ]
     }
-}
-
-/// A unit vector as two 16-bit fixed-point octahedral coordinates (rounded to nearest).
-fn oct_encode(w: [f64; 3]) -> u32 {
-    let s = w[0].abs() + w[1].abs() + w[2].abs();
-    let (mut x, mut y) = (w[0] / s, w[1] / s);
-    if w[2] < 0.0 {
-        let (ax, ay) = (x.abs(), y.abs());
-        x = (1.0 - ay).copysign(x);
-        y = (1.0 - ax).copysign(y);
-    }
-    let q = |v: f64| libm::round((v + 1.0) * 32768.0).clamp(0.0, 65535.0) as u32;
-    q(x) | q(y) << 16
 }
 
 /// Checks one light (see `LightTree::new`'s errors).
