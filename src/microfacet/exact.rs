@@ -63,7 +63,11 @@ fn coarse<L: Lane>(v: V<L>) -> V<L> {
 #[inline(always)]
 pub(super) fn dot2<L: Lane>(a: V<L>, b: V<L>) -> (L, L) {
     let (a, b) = (coarse(a), coarse(b));
-    sum3([0, 1, 2].map(|i| two_prod(a[i], b[i])))
+    sum3([
+        two_prod(a[0], b[0]),
+        two_prod(a[1], b[1]),
+        two_prod(a[2], b[2]),
+    ])
 }
 
 /// `|a|^2` as `hi + lo` (squares need one split each).
