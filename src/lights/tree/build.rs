@@ -222,53 +222,13 @@ impl<F: Fn(usize) -> LightBounds> Builder<'_, '_, F> {
         (self.lights)(i as usize)
     }
 
-    /// Reorders `perm` so that its first `at` lights lie below the rest along the longest
-    /// axis of their centroids' box ([`select`], O(len) expected).
-    fn split(&self, perm: &mut [u32], at: usize) {
-        if at == 0 || at >= perm.len() {
-            return;
-        }
-        let centroid = |l: &LightBounds, k: usize| {
-            l.min.get(k).copied().unwrap_or(0.0) / 2.0 + l.max.get(k).copied().unwrap_or(0.0) / 2.0
-        };
-        let mut lo = [f32::INFINITY; 3];
-        let mut hi = [f32::NEG_INFINITY; 3];
-        for &i in perm.iter() {
-            let l = self.light(i);
-            for (k, (lo, hi)) in lo.iter_mut().zip(hi.iter_mut()).enumerate() {
-                let c = centroid(&l, k);
-                *lo = lo.min(c);
-                *hi = hi.max(c);
-            }
-        }
-        let ext = |k: usize| f64::from(hi[k]) - f64::from(lo[k]);
-        let axis = if ext(0) >= ext(1) && ext(0) >= ext(2) {
-            0
-        } else if ext(1) >= ext(2) {
-            1
-        } else {
-            2
-        };
-        let lights = self.lights;
-        let key = |i: &u32| centroid(&lights(*i as usize), axis);
-        select(perm, at, |i| key(&i));
-    }
-
-    /// Writes the children of the subtree over `perm` (at least one light) into quad `q`
-    /// and returns the subtree's bounds. The children hold `4^(levels - 1)` lights each,
-    /// filled in order (full subtrees but one), split in two along one axis and each half
-    /// in two along its own.
+    /// Writes the children of the subtree over `perm` (at least one light, ordered by
+    /// [`order`]) into quad `q` and returns the subtree's bounds.
     fn quad(&mut self, q: usize, perm: &mut [u32]) -> Bounds {
-        let m = perm.len();
-        let cap = 1usize << (2 * (levels_for(m) - 1));
-        let size = |i: usize| m.saturating_sub(i * cap).min(cap);
-        let (c0, c1, c2) = (size(0), size(1), size(2));
-        self.split(perm, c0 + c1);
+        let [c0, c1, c2] = group_sizes(perm.len());
         let (low, high) = perm
             .split_at_mut_checked(c0 + c1)
             .unwrap_or((&mut [], &mut []));
-        self.split(low, c0);
-        self.split(high, c2);
         let (g0, g1) = low.split_at_mut_checked(c0).unwrap_or((&mut [], &mut []));
         let (g2, g3) = high.split_at_mut_checked(c2).unwrap_or((&mut [], &mut []));
         let mut total: Option<Bounds> = None;
@@ -299,8 +259,81 @@ impl<F: Fn(usize) -> LightBounds> Builder<'_, '_, F> {
     }
 }
 
+/// The sizes of the first three of a quad's four groups over `m` lights: `4^(levels - 1)`
+/// lights each, filled in order (full subtrees but one).
+fn group_sizes(m: usize) -> [usize; 3] {
+    let cap = 1usize << (2 * (levels_for(m) - 1));
+    let size = |i: usize| m.saturating_sub(i * cap).min(cap);
+    [size(0), size(1), size(2)]
+}
+
+/// A light while the build orders them: its centroid's coordinates (`f32` bits) and its
+/// index, side by side, so that the median splits read their keys in order instead of
+/// fetching the caller's lights in a random one (at 10^6 lights those fetches missed every
+/// cache and were most of the build).
+type Rec = [u32; 4];
+
+/// The record of light `index`: the centroid `min / 2 + max / 2` per axis.
+fn rec(l: &LightBounds, index: u32) -> Rec {
+    let c = |k: usize| {
+        let at = |v: &[f32; 3]| v.get(k).copied().unwrap_or(0.0);
+        (at(&l.min) / 2.0 + at(&l.max) / 2.0).to_bits()
+    };
+    [c(0), c(1), c(2), index]
+}
+
+/// Orders the lights of one subtree as [`Builder::quad`] will cut them into its four
+/// groups: the first two groups below the other two along the longest axis of the
+/// centroids' box, each half split the same way along its own, and every group of two or
+/// more ordered in turn. Each split keeps the `at` smallest by (centroid, index), a strict
+/// total order, so the groups (and the tree) do not depend on how the selection runs.
+fn order(recs: &mut [Rec]) {
+    if recs.len() < 2 {
+        return;
+    }
+    let [c0, c1, c2] = group_sizes(recs.len());
+    split(recs, c0 + c1);
+    let (low, high) = recs
+        .split_at_mut_checked(c0 + c1)
+        .unwrap_or((&mut [], &mut []));
+    split(low, c0);
+    split(high, c2);
+    let (g0, g1) = low.split_at_mut_checked(c0).unwrap_or((&mut [], &mut []));
+    let (g2, g3) = high.split_at_mut_checked(c2).unwrap_or((&mut [], &mut []));
+    for group in [g0, g1, g2, g3] {
+        order(group);
+    }
+}
+
+/// Reorders `recs` so that its first `at` lights lie below the rest along the longest
+/// axis of their centroids' box ([`select`], O(len) expected).
+fn split(recs: &mut [Rec], at: usize) {
+    if at == 0 || at >= recs.len() {
+        return;
+    }
+    let coord = |r: &Rec, k: usize| f32::from_bits(r.get(k).copied().unwrap_or(0));
+    let mut lo = [f32::INFINITY; 3];
+    let mut hi = [f32::NEG_INFINITY; 3];
+    for r in recs.iter() {
+        for (k, (lo, hi)) in lo.iter_mut().zip(hi.iter_mut()).enumerate() {
+            let c = coord(r, k);
+            *lo = lo.min(c);
+            *hi = hi.max(c);
+        }
+    }
+    let ext = |k: usize| f64::from(hi[k]) - f64::from(lo[k]);
+    let axis = if ext(0) >= ext(1) && ext(0) >= ext(2) {
+        0
+    } else if ext(1) >= ext(2) {
+        1
+    } else {
+        2
+    };
+    select(recs, at, |r| (coord(&r, axis), r[3]));
+}
+
 /// Swaps `v[i]` and `v[j]` (nothing out of range: no panic path).
-fn swap(v: &mut [u32], i: usize, j: usize) {
+fn swap<T: Copy>(v: &mut [T], i: usize, j: usize) {
     if let (Some(&a), Some(&b)) = (v.get(i), v.get(j)) {
         if let Some(x) = v.get_mut(i) {
             *x = b;
@@ -316,12 +349,12 @@ fn swap(v: &mut [u32], i: usize, j: usize) {
 /// Lomuto partitions, O(len) expected; after `2 log2(len) + 8` rounds the rest is
 /// heap-sorted, so O(len log len) at worst. Our own (`select_nth_unstable` keeps panic paths
 /// the no-panic wasm build cannot have).
-fn select(v: &mut [u32], k: usize, key: impl Fn(u32) -> f32) {
-    let at = |v: &[u32], i: usize| v.get(i).copied().unwrap_or(0);
+fn select<T: Copy + Default>(v: &mut [T], k: usize, key: impl Fn(T) -> (f32, u32)) {
+    let at = |v: &[T], i: usize| v.get(i).copied().unwrap_or_default();
     // By key, ties by index: a strict total order, so the groups do not depend on the
     // algorithm.
     let lt = |a: (f32, u32), b: (f32, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).is_lt();
-    let less = |a: u32, b: u32| lt((key(a), a), (key(b), b));
+    let less = |a: T, b: T| lt(key(a), key(b));
     let (mut lo, mut hi) = (0, v.len());
     let mut budget = 2 * (usize::BITS - v.len().leading_zeros()) + 8;
     while hi - lo > 1 && (lo..hi).contains(&k) {
@@ -342,11 +375,11 @@ fn select(v: &mut [u32], k: usize, key: impl Fn(u32) -> f32) {
             swap(v, mid, last);
         }
         let pivot = at(v, last);
-        let pk = (key(pivot), pivot);
+        let pk = key(pivot);
         let mut store = lo;
         for i in lo..last {
             let x = at(v, i);
-            if lt((key(x), x), pk) {
+            if lt(key(x), pk) {
                 swap(v, i, store);
                 store += 1;
             }
@@ -364,9 +397,9 @@ fn select(v: &mut [u32], k: usize, key: impl Fn(u32) -> f32) {
 }
 
 /// Sorts `v` by `less` in place (heapsort; no panic path).
-fn heapsort(v: &mut [u32], less: &impl Fn(u32, u32) -> bool) {
-    let at = |v: &[u32], i: usize| v.get(i).copied().unwrap_or(0);
-    let sift = |v: &mut [u32], mut root: usize, end: usize| loop {
+fn heapsort<T: Copy + Default>(v: &mut [T], less: &impl Fn(T, T) -> bool) {
+    let at = |v: &[T], i: usize| v.get(i).copied().unwrap_or_default();
+    let sift = |v: &mut [T], mut root: usize, end: usize| loop {
         let mut child = 2 * root + 1;
         if child >= end {
             break;
@@ -438,7 +471,6 @@ pub(super) fn build(
     let (quads, trail) = rest
         .split_at_mut_checked(QUAD_WORDS * quads_bound(n))
         .ok_or(Error::StorageTooSmall { needed, got })?;
-    let quads = quads.as_chunks_mut::<QUAD_WORDS>().0;
     // The permutation of the lights of positive power, in the trails' place.
     let mut m = 0;
     for i in 0..n {
@@ -452,6 +484,18 @@ pub(super) fn build(
     if m == 0 {
         return Err(Error::AllZero);
     }
+    // The order of the lights in the tree, with the quads' words as scratch (4 words per
+    // light of the 16 or more the quads have per light).
+    let recs = quads.as_chunks_mut::<4>().0;
+    let recs = recs.get_mut(..m).unwrap_or(&mut []);
+    for (r, &i) in recs.iter_mut().zip(trail.iter()) {
+        *r = rec(&lights(i as usize), i);
+    }
+    order(recs);
+    for (t, r) in trail.iter_mut().zip(recs.iter()) {
+        *t = r[3];
+    }
+    let quads = quads.as_chunks_mut::<QUAD_WORDS>().0;
     for q in quads.iter_mut() {
         *q = [0; QUAD_WORDS];
     }
