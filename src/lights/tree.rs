@@ -95,8 +95,8 @@ const BIG: f32 = 4.253_529_6e37;
 /// multiplied by the distance (`d cos(theta_w) = w . (p - c)`, `d cos(theta_b) = sqrt(d^2 -
 /// r^2)`, `d sin(theta_b) = r`), so the three square roots are independent and one division
 /// (`1 / max(d^2, r^2)`) ends the evaluation; the node stores its unit axis and the cosine
-/// and sine of `theta_o` ready as `f32`, so a visit decodes nothing. pbrt-v4 clamps `d^2` below by the box's half *diagonal length*; we use the bounding radius
-/// *squared* (the same units as `d^2`). `n` need not be unit (it is normalised; NaN, infinite
+/// and sine of `theta_o` ready as `f32`, so a visit decodes nothing. pbrt-v4 clamps `d^2`
+/// below by the box's half *diagonal length*; we use the bounding radius *squared* (the same units as `d^2`). `n` need not be unit (it is normalised; NaN, infinite
 /// or zero means a medium). A non-finite `p` gives no light.
 ///
 /// **What sums to 1.** A walk can reach a node whose two children both have importance 0 at
@@ -330,7 +330,7 @@ pub(super) trait Children: Lane {
     fn narrow(x: Self::W) -> Self;
     fn narrow_u(x: <Self::W as Lane>::U) -> Self::U;
     /// The root's quad.
-    fn root(quads: &[[u32; QUAD_WORDS]]) -> Self::Q;
+    fn root() -> Self::Q;
     /// The importances of a quad's four children, their last words (leaf flag and index),
     /// and the handles of their quads (meaningless for leaves).
     fn open(
@@ -396,7 +396,7 @@ impl Children for f32 {
         Wrapping(x.to_array()[0])
     }
     #[inline(always)]
-    fn root(_quads: &[[u32; QUAD_WORDS]]) -> Self::Q {
+    fn root() -> Self::Q {
         u32x4::splat(0)
     }
     /// Reads one word from each cache line of the four children's quads before the choice
@@ -459,7 +459,7 @@ macro_rules! children_one_by_one {
                 x
             }
             #[inline(always)]
-            fn root(_quads: &[[u32; QUAD_WORDS]]) -> Self::Q {
+            fn root() -> Self::Q {
                 <$l as Lane>::U::splat(0)
             }
             #[inline(always)]
@@ -511,7 +511,7 @@ fn walk<L: Lane, K: Children<W = L>, C: Chooser<L>>(
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
     let uzero = L::U::splat(0);
-    let mut quad = K::root(quads);
+    let mut quad = K::root();
     let mut prob = one;
     let mut index = L::U::splat(u32::MAX);
     // `done`: reached a leaf; `dead`: stopped where the children have importance 0.

@@ -31,10 +31,9 @@
 //! rectangle's `x` comes from a closed form written with the half-infinite strips beside
 //! the light (each accurate on either side of it), which is the point for lights of
 //! `1e-2 .. 2` sr seen within `kappa <= 16` (below) with sides within a factor 16; other
-//! lights take one Newton step on
-//! the strip's solid angle computed by Van Oosterom-Strackee (relative, not absolute,
-//! accuracy); its `y` uses `1 -+ y/r` forms. Every square root and inverse sine/cosine argument is clamped,
-//! every `0/0` selected away.
+//! lights take one Newton step on the strip's solid angle computed by Van Oosterom-Strackee
+//! (relative, not absolute, accuracy); its `y` uses `1 -+ y/r` forms. Every square root and
+//! inverse sine/cosine argument is clamped, every `0/0` selected away.
 //!
 //! **Precision** (`tests/spherical.rs`, 20 000 random lights per shape from `1e-8` sr to
 //! nearly `2 pi`, distances `1e-6 .. 1e6`, against `f64` on the same `f32` input). The

@@ -153,12 +153,12 @@ pub(super) fn solid_angle_body<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L
 }
 
 /// Lights of `1e-2 .. 2` sr (in turns of `4 pi` here) whose farthest corner is within `16 z`
-/// (`kappa <= 16`) and whose sides are within a factor 16 take the closed form as the point (a fast path: the scalar form branches,
-/// the wide forms select per lane). Its round-trip error grows like `1 / omega` (measured
-/// 5.8e-5 at `1e-4` sr, 7.0e-6 from `1e-2` sr up, 400 000 random lights; thinner lights
-/// reached 7.5e-5, 6.9e-6 with the step); elsewhere one
-/// Newton step on the strip's solid angle (accurate relative to the strip, not to the light's
-/// neighbours) brings it to 4.8e-7 below `1e-2` sr. `tests/spherical.rs` measures the whole
+/// (`kappa <= 16`) and whose sides are within a factor 16 take the closed form as the point
+/// (a fast path: the scalar form branches, the wide forms select per lane). Its round-trip
+/// error grows like `1 / omega` (measured 5.8e-5 at `1e-4` sr, 7.0e-6 from `1e-2` sr up,
+/// 400 000 random lights; thinner lights reached 7.5e-5, 6.9e-6 with the step); elsewhere
+/// one Newton step on the strip's solid angle (accurate relative to the strip, not to the
+/// light's neighbours) brings it to 4.8e-7 below `1e-2` sr. `tests/spherical.rs` measures the whole
 /// round trip at `kappa <= 100`: 6.44e-6 (5.30e-6 with the step everywhere).
 const NEWTON_FROM_TURNS: f32 = (1e-2 * 0.25 * core::f64::consts::FRAC_1_PI) as f32;
 const NEWTON_UP_TO_TURNS: f32 = (2.0 * 0.25 * core::f64::consts::FRAC_1_PI) as f32;
@@ -224,11 +224,11 @@ pub(super) fn prepare<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Pre
     // sides within a factor 16 (thinner lights lose a factor 10 in the round trip).
     let [ra, rb, rc, rd] = r.radii;
     let max = |a: L, b: L| L::select(a.simd_lt(b), b, a);
-    let far = max(max(ra, rb), max(rc, rd));
+    let farthest = max(max(ra, rb), max(rc, rd));
     let sixteen = L::splat(16.0);
     let closed = L::splat(NEWTON_FROM_TURNS).simd_le(r.turns)
         & r.turns.simd_le(L::splat(NEWTON_UP_TO_TURNS))
-        & far.simd_le(z * sixteen)
+        & farthest.simd_le(z * sixteen)
         & w.simd_le(h * sixteen)
         & h.simd_le(w * sixteen);
     Prepared {

@@ -225,14 +225,8 @@ impl<F: Fn(usize) -> LightBounds> Builder<'_, '_, F> {
     /// Writes the children of the subtree over `perm` (at least one light, ordered by
     /// [`order`]) into quad `q` and returns the subtree's bounds.
     fn quad(&mut self, q: usize, perm: &mut [u32]) -> Bounds {
-        let [c0, c1, c2] = group_sizes(perm.len());
-        let (low, high) = perm
-            .split_at_mut_checked(c0 + c1)
-            .unwrap_or((&mut [], &mut []));
-        let (g0, g1) = low.split_at_mut_checked(c0).unwrap_or((&mut [], &mut []));
-        let (g2, g3) = high.split_at_mut_checked(c2).unwrap_or((&mut [], &mut []));
         let mut total: Option<Bounds> = None;
-        for (slot, group) in [g0, g1, g2, g3].into_iter().enumerate() {
+        for (slot, group) in groups(perm).into_iter().enumerate() {
             let (b, rec) = match *group {
                 [] => continue,
                 [i] => {
@@ -267,6 +261,17 @@ fn group_sizes(m: usize) -> [usize; 3] {
     [size(0), size(1), size(2)]
 }
 
+/// The four groups of a quad over `v` (see [`group_sizes`]), in order.
+fn groups<T>(v: &mut [T]) -> [&mut [T]; 4] {
+    let [c0, c1, c2] = group_sizes(v.len());
+    let (low, high) = v
+        .split_at_mut_checked(c0 + c1)
+        .unwrap_or((&mut [], &mut []));
+    let (g0, g1) = low.split_at_mut_checked(c0).unwrap_or((&mut [], &mut []));
+    let (g2, g3) = high.split_at_mut_checked(c2).unwrap_or((&mut [], &mut []));
+    [g0, g1, g2, g3]
+}
+
 /// A light while the build orders them: its centroid's coordinates (`f32` bits) and its
 /// index, side by side, so that the median splits read their keys in order instead of
 /// fetching the caller's lights in a random one (at 10^6 lights those fetches missed every
@@ -293,14 +298,11 @@ fn order(recs: &mut [Rec]) {
     }
     let [c0, c1, c2] = group_sizes(recs.len());
     split(recs, c0 + c1);
-    let (low, high) = recs
-        .split_at_mut_checked(c0 + c1)
-        .unwrap_or((&mut [], &mut []));
-    split(low, c0);
-    split(high, c2);
-    let (g0, g1) = low.split_at_mut_checked(c0).unwrap_or((&mut [], &mut []));
-    let (g2, g3) = high.split_at_mut_checked(c2).unwrap_or((&mut [], &mut []));
-    for group in [g0, g1, g2, g3] {
+    if let Some((low, high)) = recs.split_at_mut_checked(c0 + c1) {
+        split(low, c0);
+        split(high, c2);
+    }
+    for group in groups(recs) {
         order(group);
     }
 }
@@ -344,8 +346,8 @@ fn swap<T: Copy>(v: &mut [T], i: usize, j: usize) {
     }
 }
 
-/// Reorders `v` so that `v[k]` is the element a sort by `less` (a strict total order) would
-/// put there, with the smaller ones before it: quickselect with a median-of-three pivot and
+/// Reorders `v` so that `v[k]` is the element a sort by `key` (pairs compared value first,
+/// then index: a strict total order) would put there, with the smaller ones before it: quickselect with a median-of-three pivot and
 /// Lomuto partitions, O(len) expected; after `2 log2(len) + 8` rounds the rest is
 /// heap-sorted, so O(len log len) at worst. Our own (`select_nth_unstable` keeps panic paths
 /// the no-panic wasm build cannot have).
