@@ -23,8 +23,19 @@ use crate::lanes::UintLane;
 /// Tile side in pixels.
 pub const TILE: u32 = 64;
 
-/// Bytes of blue-noise tables in this build (two base patterns).
-pub const TABLE_BYTES: usize = 2 * 4 * (TILE * TILE) as usize;
+/// Spatiotemporal domain slots: the root's domains `0..SLOTS` of a `Blue<P>` sampler.
+pub const SLOTS: usize = 6;
+
+/// The fixed scramble key of each slot: every pixel of slot `s` draws `P` keyed by
+/// `SLOT_KEYS[s]` at its own index offset (the slot tile), the arrangement `tools/bluegen`
+/// optimises. Arbitrary odd constants.
+pub const SLOT_KEYS: [u32; SLOTS] = [
+    0x8a2f_0c4b, 0x3d6e_91a7, 0xc51b_7e23, 0x6f94_d2c9, 0x1be7_4a35, 0xe403_b86d,
+];
+
+/// Bytes of blue-noise tables in this build (two base patterns): per pattern a tile of
+/// 32-bit keys and [`SLOTS`] tiles of 16-bit index offsets.
+pub const TABLE_BYTES: usize = 2 * (4 + 2 * SLOTS) * (TILE * TILE) as usize;
 
 #[repr(C, align(64))]
 struct Aligned<T>(T);
@@ -33,6 +44,10 @@ static SOBOL_TILE: Aligned<[u8; 4 * (TILE * TILE) as usize]> =
     Aligned(*include_bytes!("../tables/blue_sobol_64.bin"));
 static PMJ02BN_TILE: Aligned<[u8; 4 * (TILE * TILE) as usize]> =
     Aligned(*include_bytes!("../tables/blue_pmj02bn_64.bin"));
+static SOBOL_SLOTS: Aligned<[u8; 2 * SLOTS * (TILE * TILE) as usize]> =
+    Aligned(*include_bytes!("../tables/blue_slots_sobol_64.bin"));
+static PMJ02BN_SLOTS: Aligned<[u8; 2 * SLOTS * (TILE * TILE) as usize]> =
+    Aligned(*include_bytes!("../tables/blue_slots_pmj02bn_64.bin"));
 
 /// The key tile of a base pattern as words (decoded little endian on every target).
 #[inline(always)]

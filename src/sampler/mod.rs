@@ -94,7 +94,10 @@ mod simd;
 mod sobol;
 
 #[cfg(feature = "blue-noise")]
-pub use blue::{TABLE_BYTES as BLUE_TABLE_BYTES, TILE as BLUE_TILE};
+pub use blue::{SLOTS as BLUE_SLOTS, TABLE_BYTES as BLUE_TABLE_BYTES, TILE as BLUE_TILE};
+#[cfg(feature = "blue-noise")]
+#[doc(hidden)]
+pub use blue::SLOT_KEYS as BLUE_SLOT_KEYS;
 pub use simd::{SamplerX8, SamplerX16};
 
 mod sealed {
