@@ -18,7 +18,10 @@
 //      or the C ABI's `wc_pmj02bn_raw` over every set and index;
 //   2. the Sobol' generator matrices by bytes of the bit-reversed index: 1024 rows of 4 words;
 //   3. the blue-noise key tiles, 64 x 64 words each, Sobol' then pmj02bn: exactly the bytes of
-//      src/tables/blue_sobol_64.bin and src/tables/blue_pmj02bn_64.bin.
+//      src/tables/blue_sobol_64.bin and src/tables/blue_pmj02bn_64.bin;
+//   4. the blue-noise slot tiles (WC_BLUE_SLOTS tiles of 64 x 64 16-bit index offsets, two per
+//      word, low half first), Sobol' then pmj02bn: exactly the bytes of
+//      src/tables/blue_slots_sobol_64.bin and src/tables/blue_slots_pmj02bn_64.bin.
 // `shaders/warpcore_tables.bin` is the whole buffer for the default build, and
 // `warpcore_gpu::tables::table_bytes()` builds it from the crate (docs/gpu.md shows how to
 // upload it from Rust, C and JS). wc_pmj02bn_sample reads part 1 only: a renderer that uses
@@ -38,9 +41,13 @@ const WC_TABLES_PMJ02BN: u32 = 0u;
 const WC_TABLES_SOBOL: u32 = 2u * WC_PMJ02BN_SETS * WC_PMJ02BN_POINTS;
 const WC_TABLES_BLUE_SOBOL: u32 = WC_TABLES_SOBOL + 4096u;
 const WC_TABLES_BLUE_PMJ02BN: u32 = WC_TABLES_BLUE_SOBOL + 4096u;
-const WC_TABLES_WORDS: u32 = WC_TABLES_BLUE_PMJ02BN + 4096u;
-// Side of the blue-noise key tiles.
+const WC_TABLES_SLOTS_SOBOL: u32 = WC_TABLES_BLUE_PMJ02BN + 4096u;
+const WC_TABLES_SLOTS_PMJ02BN: u32 = WC_TABLES_SLOTS_SOBOL + WC_BLUE_SLOTS * 2048u;
+const WC_TABLES_WORDS: u32 = WC_TABLES_SLOTS_PMJ02BN + WC_BLUE_SLOTS * 2048u;
+// Side of the blue-noise key tiles, and the spatiotemporal slots (the root's domains
+// 0..WC_BLUE_SLOTS of a blue-noise sampler; their keys are `wcti_keyed`'s).
 const WC_BLUE_TILE: u32 = 64u;
+const WC_BLUE_SLOTS: u32 = 6u;
 
 // The sampler patterns (the C ABI's values).
 const WC_PATTERN_PMJ02BN: u32 = 0u;
@@ -152,7 +159,8 @@ fn wc_sampler_new(pattern: u32, pixel: vec2<u32>, frame: u32, index: u32, seed: 
     let root = wcti_mix(wcti_mix(seed ^ 0x3c6ef372u) ^ (frame * 0x9e3779b9u));
     let packed = (pixel.x & 0xffffu) | (pixel.y << 16u);
     let pixel_domain = wcti_mix1(root ^ pixel.x ^ ((pixel.y << 16u) | (pixel.y >> 16u)));
-    let domain = select(pixel_domain, root, wcti_is_blue(pattern));
+    // A blue-noise root is tagged 2 in its low two bits (`blue_tagged`).
+    let domain = select(pixel_domain, (root & ~3u) | 2u, wcti_is_blue(pattern));
     return WcSampler(pattern, packed, domain, index);
 }
 
@@ -179,7 +187,13 @@ fn wc_sampler_domain(s: WcSampler, key: u32) -> WcSampler {
     if (!wcti_known(s.pattern)) {
         return s;
     }
-    return WcSampler(s.pattern, s.pixel, wcti_mix1(s.domain + key * 0xc2b2ae35u), s.index);
+    let h = wcti_mix1(s.domain + key * 0xc2b2ae35u);
+    // Blue noise: the root's children 0..WC_BLUE_SLOTS are its slots (tag 1, the slot in bits
+    // 2..4), every other domain is tagged 0 (`blue::tag_child`).
+    let slot = (h & ~0x1fu) | 1u | (key << 2u);
+    let is_slot = (s.domain & 3u) == 2u && key < WC_BLUE_SLOTS;
+    let blue = select(h & ~3u, slot, is_slot);
+    return WcSampler(s.pattern, s.pixel, select(h, blue, wcti_is_blue(s.pattern)), s.index);
 }
 
 // Sub-sample `sub` of `size` per sample: child index `index * size + sub` (wrapping) in a
@@ -188,12 +202,13 @@ fn wc_sampler_split(s: WcSampler, key: u32, size: u32, sub: u32) -> WcSampler {
     if (!wcti_known(s.pattern)) {
         return s;
     }
-    let domain = wcti_mix((s.domain ^ 0x27d4eb2fu) + key * 0xc2b2ae35u);
+    let h = wcti_mix((s.domain ^ 0x27d4eb2fu) + key * 0xc2b2ae35u);
+    let domain = select(h, h & ~3u, wcti_is_blue(s.pattern));
     return WcSampler(s.pattern, s.pixel, domain, s.index * max(size, 1u) + sub);
 }
 
-// The blue-noise tile key of the pixel in this domain (src/sampler/blue.rs).
-fn wcti_blue_key(tile: u32, pixel: u32, domain: u32) -> u32 {
+// The blue-noise tile position of the pixel in this domain (src/sampler/blue.rs).
+fn wcti_blue_position(pixel: u32, domain: u32) -> u32 {
     let m = WC_BLUE_TILE - 1u;
     let x0 = pixel & m;
     let y0 = (pixel >> 16u) & m;
@@ -202,20 +217,30 @@ fn wcti_blue_key(tile: u32, pixel: u32, domain: u32) -> u32 {
     let y1 = select(y0, x0, t);
     let fx = 0u - ((domain >> 30u) & 1u);
     let fy = 0u - (domain >> 31u);
-    let x = (x1 ^ (fx & m)) + domain;
+    let x = (x1 ^ (fx & m)) + (domain >> 6u);
     let y = (y1 ^ (fy & m)) + (domain >> 12u);
-    return wc_tables[tile + (y & m) * WC_BLUE_TILE + (x & m)];
+    return (y & m) * WC_BLUE_TILE + (x & m);
 }
 
-// The key of the base pattern's draw: the domain hash, or the blue-noise tile key.
-fn wcti_seed(s: WcSampler) -> u32 {
-    if (s.pattern == WC_PATTERN_BLUE_SOBOL) {
-        return wcti_blue_key(WC_TABLES_BLUE_SOBOL, s.pixel, s.domain);
+// The key and the index of the base pattern's draw: the domain hash and the index; under blue
+// noise the pixel's tile key and the index, or in a slot the slot's key and the index XOR the
+// pixel's offset (`blue::keyed`).
+fn wcti_keyed(s: WcSampler) -> vec2<u32> {
+    if (!wcti_is_blue(s.pattern)) {
+        return vec2<u32>(s.domain, s.index);
     }
-    if (s.pattern == WC_PATTERN_BLUE_PMJ02BN) {
-        return wcti_blue_key(WC_TABLES_BLUE_PMJ02BN, s.pixel, s.domain);
+    let sobol = (s.pattern & 1u) == 1u;
+    let at = wcti_blue_position(s.pixel, s.domain);
+    let slot = (s.domain >> 2u) & 7u;
+    if ((s.domain & 3u) == 1u && slot < WC_BLUE_SLOTS) {
+        let base = select(WC_TABLES_SLOTS_PMJ02BN, WC_TABLES_SLOTS_SOBOL, sobol);
+        let i = slot * 4096u + at;
+        let offset = (wc_tables[base + (i >> 1u)] >> (16u * (i & 1u))) & 0xffffu;
+        var keys = array<u32, 6>(0x8a2f0c4bu, 0x3d6e91a7u, 0xc51b7e23u, 0x6f94d2c9u, 0x1be74a35u, 0xe403b86du);
+        return vec2<u32>(keys[slot], s.index ^ offset);
     }
-    return s.domain;
+    let tile = select(WC_TABLES_BLUE_PMJ02BN, WC_TABLES_BLUE_SOBOL, sobol);
+    return vec2<u32>(wc_tables[tile + at], s.index);
 }
 
 // Owen-scrambled Sobol' dimensions 0..3 of point `index` keyed by `seed` (src/sampler/sobol.rs).
@@ -253,18 +278,20 @@ fn wcti_bits(s: WcSampler, four: bool) -> vec4<u32> {
     if (!wcti_known(s.pattern)) {
         return vec4<u32>(0u);
     }
-    let seed = wcti_seed(s);
+    let keyed = wcti_keyed(s);
+    let seed = keyed.x;
+    let index = keyed.y;
     if ((s.pattern & 1u) == 1u) {
-        return wcti_sobol(s.index, seed);
+        return wcti_sobol(index, seed);
     }
-    let k = wcti_pmj02bn_block(s.index, seed);
-    let a = wcti_pmj02bn_pair(s.index, seed, k, 0u);
+    let k = wcti_pmj02bn_block(index, seed);
+    let a = wcti_pmj02bn_pair(index, seed, k, 0u);
     let x0 = wcti_owen(a.x, k);
     let y0 = wcti_owen(a.y, wcti_rotr(k, 8u));
     if (!four) {
         return vec4<u32>(x0, y0, 0u, 0u);
     }
-    let b = wcti_pmj02bn_pair(s.index, seed, k, 1u);
+    let b = wcti_pmj02bn_pair(index, seed, k, 1u);
     return vec4<u32>(x0, y0, wcti_owen(b.x, wcti_rotr(k, 16u)), wcti_owen(b.y, wcti_rotr(k, 24u)));
 }
 

@@ -21,12 +21,17 @@ pub const BLUE_TILE: usize = warpcore::sampler::BLUE_TILE as usize;
 /// The blue-noise key tiles of the crate (`src/tables/blue_*_64.bin`), Sobol' then pmj02bn.
 const BLUE_SOBOL: &[u8] = include_bytes!("../../src/tables/blue_sobol_64.bin");
 const BLUE_PMJ02BN: &[u8] = include_bytes!("../../src/tables/blue_pmj02bn_64.bin");
+/// The blue-noise slot tiles (16-bit index offsets), Sobol' then pmj02bn.
+const SLOTS_SOBOL: &[u8] = include_bytes!("../../src/tables/blue_slots_sobol_64.bin");
+const SLOTS_PMJ02BN: &[u8] = include_bytes!("../../src/tables/blue_slots_pmj02bn_64.bin");
 
 /// Word offsets of the buffer's parts, for this build of the crate (`WC_TABLES_*` in the
 /// WGSL file, which assumes the default build: 4096 points, 4 sets).
 pub const PMJ02BN_WORDS: usize = 2 * pmj02bn::POINTS * pmj02bn::SETS;
 pub const SOBOL_WORDS: usize = 4 * 1024;
 pub const BLUE_WORDS: usize = BLUE_TILE * BLUE_TILE;
+/// Words of one pattern's slot tiles (two 16-bit offsets per word).
+pub const SLOT_WORDS: usize = warpcore::sampler::BLUE_SLOTS * BLUE_WORDS / 2;
 
 /// Sobol' direction numbers of dimension `d` (1..=3) as 0.32 fixed point: the primitive
 /// polynomials `x + 1`, `x^2 + x + 1`, `x^3 + x + 1` with Joe and Kuo's initial `m` values
@@ -75,16 +80,16 @@ pub fn sobol_rows() -> Vec<u32> {
 
 /// The words of `shaders/warpcore_tables.wgsl`'s storage buffer for this build of the crate:
 /// the pmj02bn sets (`pmj02bn::raw` over every set and index, x then y), the Sobol' rows and
-/// the two blue-noise key tiles.
+/// the two blue-noise key tiles and the two patterns' slot tiles.
 pub fn table_words() -> Vec<u32> {
-    let mut w = Vec::with_capacity(PMJ02BN_WORDS + SOBOL_WORDS + 2 * BLUE_WORDS);
+    let mut w = Vec::with_capacity(PMJ02BN_WORDS + SOBOL_WORDS + 2 * BLUE_WORDS + 2 * SLOT_WORDS);
     for set in 0..pmj02bn::SETS {
         for i in 0..pmj02bn::POINTS {
             w.extend(pmj02bn::raw(set, i));
         }
     }
     w.extend(sobol_rows());
-    for tile in [BLUE_SOBOL, BLUE_PMJ02BN] {
+    for tile in [BLUE_SOBOL, BLUE_PMJ02BN, SLOTS_SOBOL, SLOTS_PMJ02BN] {
         w.extend(
             tile.chunks_exact(4)
                 .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])),
@@ -441,7 +446,9 @@ pub fn table_inputs(domain: TableDomain, random: usize, seed: u64) -> Vec<u32> {
             ];
             // Whole blocks of indices at fixed pixels, seeds and domain paths.
             for (n, px) in pixels.iter().enumerate().take(3) {
-                let (frame, s, k1, k2) = (n as u32, seeds_fixed[n], rng.next_u32(), 7);
+                // Domain 5 and 2 of the root are blue-noise slots, a random key is not.
+                let k1 = [5, rng.next_u32(), 2][n];
+                let (frame, s, k2) = (n as u32, seeds_fixed[n], 7);
                 for i in 0..p + 64 {
                     v.extend([pat(&mut rng), px[0], px[1], frame, i, s, k1, k2, 4, i % 4]);
                 }
@@ -464,7 +471,8 @@ pub fn table_inputs(domain: TableDomain, random: usize, seed: u64) -> Vec<u32> {
                     for size in sizes {
                         let sub = [0, 1, size.wrapping_sub(1), size, u32::MAX]
                             [(rng.next_u32() % 5) as usize];
-                        let key = [0, 1, u32::MAX, rng.next_u32()][(rng.next_u32() % 4) as usize];
+                        let key =
+                            [0, 1, 5, 6, u32::MAX, rng.next_u32()][(rng.next_u32() % 6) as usize];
                         let frame = [0, u32::MAX, rng.next_u32()][(rng.next_u32() % 3) as usize];
                         let s = seeds_fixed[(rng.next_u32() % 4) as usize];
                         v.extend([
@@ -491,6 +499,9 @@ pub fn table_inputs(domain: TableDomain, random: usize, seed: u64) -> Vec<u32> {
                     w[8] >>= 24 + k % 8;
                     w[9] %= w[8].max(1);
                 }
+                if k % 4 == 1 {
+                    w[6] %= 8; // a blue-noise slot (or one past the last)
+                }
                 v.extend(w);
             }
         }
@@ -503,7 +514,7 @@ mod tests {
     use super::*;
 
     /// The pmj02bn part of the buffer is the bytes of `src/tables/pmj02bn_<points>_<set>.bin`,
-    /// set after set, and the blue tiles end it: what docs/gpu.md tells a C or JS renderer to
+    /// set after set, and the blue key and slot tiles end it: what docs/gpu.md tells a C or JS renderer to
     /// upload from the files.
     #[test]
     fn the_buffer_is_the_table_files() {
@@ -517,7 +528,12 @@ mod tests {
         }
         assert_eq!(at, 4 * PMJ02BN_WORDS);
         at += 4 * SOBOL_WORDS;
-        for name in ["blue_sobol_64.bin", "blue_pmj02bn_64.bin"] {
+        for name in [
+            "blue_sobol_64.bin",
+            "blue_pmj02bn_64.bin",
+            "blue_slots_sobol_64.bin",
+            "blue_slots_pmj02bn_64.bin",
+        ] {
             let f = std::fs::read(format!("{root}/{name}")).unwrap();
             assert_eq!(&bytes[at..at + f.len()], &f[..], "{name}");
             at += f.len();
@@ -540,7 +556,7 @@ mod tests {
         );
         assert_eq!(
             file.len(),
-            4 * (PMJ02BN_WORDS + SOBOL_WORDS + 2 * BLUE_WORDS)
+            4 * (PMJ02BN_WORDS + SOBOL_WORDS + 2 * BLUE_WORDS + 2 * SLOT_WORDS)
         );
     }
 

@@ -448,55 +448,67 @@ pub fn of_light(h: &mut Hasher, m: &OfLight) {
 
 /// The sampling core for one pattern: 4D draws (scalar, 8 and 16 lanes, slices) through a
 /// domain path and a split, with the pixel taken from the seed so every lane has its own;
-/// then `draw_u32` and `rnd` of the same states.
+/// then `draw_u32` and `rnd` of the same states; then the same draws of domain 3 of the root
+/// alone (under `Blue<P>` a spatiotemporal slot), without the split.
 #[cfg(feature = "sampler")]
 fn sampler_pattern<P: warpcore::sampler::Pattern>(h: &mut Hasher) {
-    use warpcore::sampler::{Sampler, SamplerX8, SamplerX16};
-    let at = |index: u32, seed: u32| {
-        Sampler::<P>::new([seed % 641, seed >> 20], seed ^ 5, index, seed)
-            .domain(3)
-            .split(7, 4, index & 3)
-    };
-    let wide = |index: [u32; 16], seed: [u32; 16]| {
-        let lanes: [Sampler<P>; 16] = core::array::from_fn(|j| {
-            Sampler::<P>::new(
-                [seed[j] % 641, seed[j] >> 20],
-                seed[j] ^ 5,
-                index[j],
-                seed[j],
-            )
-            .domain(3)
-        });
-        (lanes, index.map(|i| i & 3))
-    };
-    indexed(
-        h,
-        |i, s| at(i, s).draw::<4>(),
-        |i, s| {
-            let (lanes, sub) = wide(pad(i.to_array()), pad(s.to_array()));
-            let sub = u32x8::new(core::array::from_fn(|j| sub[j]));
-            let x8 = SamplerX8::from_lanes(core::array::from_fn(|j| lanes[j]));
-            x8.split(7, 4, sub).draw::<4>()
-        },
-        |i, s| {
-            let (lanes, sub) = wide(i.to_array(), s.to_array());
-            SamplerX16::from_lanes(lanes)
-                .split(7, 4, u32x16::new(sub))
-                .draw::<4>()
-        },
-        |start, s, out| {
-            Sampler::<P>::new([s % 641, s >> 20], s ^ 5, start, s)
-                .domain(3)
-                .draw_slice(out)
-        },
-    );
+    use warpcore::sampler::Sampler;
+    sampler_draws::<P>(h, 4);
     for k in 0..64u32 {
-        let s = at(k.wrapping_mul(0x9e37_79b9), k);
+        let s = Sampler::<P>::new([k % 641, k >> 20], k ^ 5, k.wrapping_mul(0x9e37_79b9), k)
+            .domain(3)
+            .split(7, 4, k.wrapping_mul(0x9e37_79b9) & 3);
         for w in s.draw_u32::<4>() {
             h.word(w);
         }
         h.floats(&s.rnd::<4>());
     }
+    sampler_draws::<P>(h, 1);
+}
+
+/// [`sampler_pattern`]'s 4D draws of domain 3, split `size` ways below it (`size = 1`: no
+/// split).
+#[cfg(feature = "sampler")]
+fn sampler_draws<P: warpcore::sampler::Pattern>(h: &mut Hasher, size: u32) {
+    use warpcore::sampler::{Sampler, SamplerX8, SamplerX16};
+    let root =
+        |index: u32, seed: u32| Sampler::<P>::new([seed % 641, seed >> 20], seed ^ 5, index, seed);
+    let below = |s: Sampler<P>, index: u32| {
+        if size == 1 {
+            s
+        } else {
+            s.split(7, size, index & (size - 1))
+        }
+    };
+    let wide = |index: [u32; 16], seed: [u32; 16]| {
+        let lanes: [Sampler<P>; 16] = core::array::from_fn(|j| root(index[j], seed[j]).domain(3));
+        (lanes, index.map(|i| i & (size - 1)))
+    };
+    indexed(
+        h,
+        |i, s| below(root(i, s).domain(3), i).draw::<4>(),
+        |i, s| {
+            let (lanes, sub) = wide(pad(i.to_array()), pad(s.to_array()));
+            let x8 = SamplerX8::from_lanes(core::array::from_fn(|j| lanes[j]));
+            let x8 = if size == 1 {
+                x8
+            } else {
+                x8.split(7, size, u32x8::new(core::array::from_fn(|j| sub[j])))
+            };
+            x8.draw::<4>()
+        },
+        |i, s| {
+            let (lanes, sub) = wide(i.to_array(), s.to_array());
+            let x16 = SamplerX16::from_lanes(lanes);
+            let x16 = if size == 1 {
+                x16
+            } else {
+                x16.split(7, size, u32x16::new(sub))
+            };
+            x16.draw::<4>()
+        },
+        |start, s, out| root(start, s).domain(3).draw_slice(out),
+    );
 }
 
 /// Eight lanes padded to sixteen (zeros).

@@ -94,10 +94,10 @@ mod simd;
 mod sobol;
 
 #[cfg(feature = "blue-noise")]
-pub use blue::{SLOTS as BLUE_SLOTS, TABLE_BYTES as BLUE_TABLE_BYTES, TILE as BLUE_TILE};
-#[cfg(feature = "blue-noise")]
 #[doc(hidden)]
 pub use blue::SLOT_KEYS as BLUE_SLOT_KEYS;
+#[cfg(feature = "blue-noise")]
+pub use blue::{SLOTS as BLUE_SLOTS, TABLE_BYTES as BLUE_TABLE_BYTES, TILE as BLUE_TILE};
 pub use simd::{SamplerX8, SamplerX16};
 
 mod sealed {
@@ -188,7 +188,7 @@ impl<U: UintLane> State<U> {
         // (the draw's Laine-Karras keys mix again).
         let packed = (pixel[0] & U::splat(0xffff)) | pixel[1].shl(16);
         let domain = if id & BLUE != 0 {
-            root
+            blue_tagged(root, TAG_ROOT)
         } else {
             mix1(root ^ pixel[0] ^ pixel[1].rotr(16))
         };
@@ -201,49 +201,55 @@ impl<U: UintLane> State<U> {
     }
 
     #[inline(always)]
-    fn domain(self, key: u32) -> Self {
-        State {
-            domain: mix1(self.domain + U::splat(key.wrapping_mul(K_DOMAIN))),
-            ..self
-        }
+    fn domain(self, id: u8, key: u32) -> Self {
+        let h = mix1(self.domain + U::splat(key.wrapping_mul(K_DOMAIN)));
+        #[cfg(feature = "blue-noise")]
+        let h = if id & BLUE != 0 {
+            blue::tag_child(self.domain, key, h)
+        } else {
+            h
+        };
+        #[cfg(not(feature = "blue-noise"))]
+        let _ = id;
+        State { domain: h, ..self }
     }
 
     #[inline(always)]
-    fn split(self, key: u32, size: u32, sub: U) -> Self {
+    fn split(self, id: u8, key: u32, size: u32, sub: U) -> Self {
+        let h = mix((self.domain ^ U::splat(K_SPLIT)) + U::splat(key.wrapping_mul(K_DOMAIN)));
         State {
-            domain: mix((self.domain ^ U::splat(K_SPLIT)) + U::splat(key.wrapping_mul(K_DOMAIN))),
+            domain: if id & BLUE != 0 {
+                blue_tagged(h, TAG_OTHER)
+            } else {
+                h
+            },
             index: self.index * U::splat(size.max(1)) + sub,
             ..self
         }
     }
 
-    /// The key of the base pattern's draw: the domain hash, or under [`Blue`] the tile key
-    /// of the pixel in this domain.
+    /// The key and the index of the base pattern's draw: the domain hash and the index, or
+    /// under [`Blue`] the pixel's tile key and the index (or in a spatiotemporal slot, the
+    /// slot's key and the index moved by the pixel's offset).
     #[inline(always)]
-    fn seed(self, id: u8) -> U {
+    fn keyed(self, id: u8) -> (U, U) {
         #[cfg(feature = "blue-noise")]
-        let seed = if id & BLUE != 0 {
-            blue::key(id & !BLUE, self.pixel, self.domain)
-        } else {
-            self.domain
-        };
-        #[cfg(not(feature = "blue-noise"))]
-        let seed = {
-            let _ = id;
-            self.domain
-        };
-        seed
+        if id & BLUE != 0 {
+            return blue::keyed(id & !BLUE, self.pixel, self.domain, self.index);
+        }
+        let _ = id;
+        (self.domain, self.index)
     }
 
     /// The stratified point, dimensions `0..N`, 0.32 fixed point.
     #[inline(always)]
     fn bits<const N: usize>(self, id: u8) -> [U; N] {
         const { assert!(N >= 1 && N <= 4, "a draw has 1 to 4 dimensions") };
-        let seed = self.seed(id);
+        let (seed, index) = self.keyed(id);
         if id & !BLUE == SOBOL {
-            sobol::point(self.index, seed)
+            sobol::point(index, seed)
         } else {
-            pmj02bn_pairs(self.index, seed)
+            pmj02bn_pairs(index, seed)
         }
     }
 
@@ -485,7 +491,7 @@ impl<P: Pattern> Sampler<P> {
     /// (lens, light, BSDF, one per bounce...). Different keys never give the same child.
     #[inline]
     pub fn domain(self, key: u32) -> Self {
-        Self::from_state(self.state.domain(key))
+        Self::from_state(self.state.domain(P::ID, key))
     }
 
     /// Sub-sample `sub` of `size` per sample: the child index is `index * size + sub` in a
@@ -498,7 +504,7 @@ impl<P: Pattern> Sampler<P> {
     /// modulo `2^32`.
     #[inline]
     pub fn split(self, key: u32, size: u32, sub: u32) -> Self {
-        Self::from_state(self.state.split(key, size, Wrapping(sub)))
+        Self::from_state(self.state.split(P::ID, key, size, Wrapping(sub)))
     }
 
     /// The same domain at another sample index.
@@ -592,6 +598,19 @@ impl<P: Base> Sampler<P> {
 fn frame_sample(frame: u32, spp: u32, index: u32) -> [u32; 2] {
     let n = u64::from(frame) * u64::from(spp.max(1)) + u64::from(index);
     [(n >> 32) as u32, n as u32]
+}
+
+/// The tag of a `Blue<P>` domain hash (its low two bits): a root, one of the root's
+/// spatiotemporal slots (the slot in bits 2..4), or any other domain.
+const TAG_MASK: u32 = 3;
+const TAG_OTHER: u32 = 0;
+const TAG_SLOT: u32 = 1;
+const TAG_ROOT: u32 = 2;
+
+/// A `Blue<P>` domain hash with its tag (the low two bits; see `blue::TAG_MASK`).
+#[inline(always)]
+fn blue_tagged<U: UintLane>(h: U, tag: u32) -> U {
+    (h & U::splat(!TAG_MASK)) | U::splat(tag)
 }
 
 /// `to_unit` over any lane type (the conversion of [`Sampler::draw`]).

@@ -104,12 +104,12 @@ macro_rules! wide_sampler {
             #[doc = doc_same!()]
             #[inline]
             pub fn domain(self, key: u32) -> Self {
-                Self::from_state(self.state.domain(key))
+                Self::from_state(self.state.domain(P::ID, key))
             }
             /// [`Sampler::split`] lane by lane, with a sub-sample number per lane.
             #[inline]
             pub fn split(self, key: u32, size: u32, sub: $u) -> Self {
-                Self::from_state(self.state.split(key, size, sub))
+                Self::from_state(self.state.split(P::ID, key, size, sub))
             }
             #[doc = doc_same!()]
             #[inline]
@@ -158,12 +158,24 @@ pub(super) fn draw_slice<P: Pattern, L: Rows<LN>, const LN: usize, const N: usiz
         })
     };
     let start = s.index.0;
+    // The draw's key, and the pixel's index offset in a `Blue<P>` slot (0 elsewhere): an
+    // offset moves every index by an XOR, not along the aligned groups below, so such a
+    // slice is drawn lane by lane (the same bits either way).
+    let (seed, offset) = State {
+        index: Wrapping(0),
+        ..s
+    }
+    .keyed(P::ID);
+    if offset.0 != 0 {
+        lanes(start, out);
+        return n;
+    }
     let head = (start.wrapping_neg() as usize % LN).min(n);
     let (head_out, rest) = out.split_at_mut(head);
     lanes(start, head_out);
     let first = start.wrapping_add(head as u32);
     let (groups, tail) = rest.as_chunks_mut::<LN>();
-    let seed = s.seed(P::ID).0;
+    let seed = seed.0;
     if P::ID & !super::BLUE == super::SOBOL {
         super::sobol::fill_groups::<L, LN, N>(first, seed, groups);
     } else {

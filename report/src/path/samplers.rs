@@ -81,9 +81,11 @@ impl<P: Pattern> PathSampler for Warpcore<P> {
 
 /// warpcore's sampling core as `Blue<P>` wants it (docs/sampler.md, "Over a whole path"):
 /// each 2D decision from its own domain with `draw::<2>()`, the draw the blue-noise tiles are
-/// optimised for — the light point and the BSDF direction of vertex `d` from
-/// `root.domain(2 + d).domain(0)` and `.domain(1)` instead of one `draw::<4>()`, whose
-/// dimensions 2-3 are not blue across pixels. Otherwise [`Warpcore`]'s.
+/// optimised for, and the first decisions from the root's spatiotemporal slots (domains
+/// `0..BLUE_SLOTS`): the pixel position (domain 0), the lens (1), and the light point and the
+/// BSDF direction of vertex `d` from `root.domain(2 + 2 d)` and `root.domain(3 + 2 d)` —
+/// slots for vertices 0 and 1, other domains of the root after them — instead of one
+/// `draw::<4>()`, whose dimensions 2-3 are not blue across pixels. Otherwise [`Warpcore`]'s.
 #[derive(Clone, Copy)]
 pub struct WarpcorePairs<P>(pub std::marker::PhantomData<fn() -> P>);
 
@@ -96,8 +98,10 @@ impl<P: Pattern> PathSampler for WarpcorePairs<P> {
         s.domain(domain).draw::<2>()
     }
     fn draw4(&self, s: &Sampler<P>, domain: u32) -> [f32; 4] {
-        let v = s.domain(domain);
-        let ([a, b], [c, d]) = (v.domain(0).draw::<2>(), v.domain(1).draw::<2>());
+        // Vertex d = domain - 2 (the path's 4D draws start at domain 2): root domains
+        // 2 + 2 d and 3 + 2 d, below ROULETTE_DOMAIN for every depth the tracer reaches.
+        let light = 2 * domain.wrapping_sub(1);
+        let ([a, b], [c, d]) = (s.domain(light).draw::<2>(), s.domain(light + 1).draw::<2>());
         [a, b, c, d]
     }
     fn rnd(&self, s: &Sampler<P>, domain: u32) -> f32 {
