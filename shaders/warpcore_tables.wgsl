@@ -159,8 +159,8 @@ fn wc_sampler_new(pattern: u32, pixel: vec2<u32>, frame: u32, index: u32, seed: 
     let root = wcti_mix(wcti_mix(seed ^ 0x3c6ef372u) ^ (frame * 0x9e3779b9u));
     let packed = (pixel.x & 0xffffu) | (pixel.y << 16u);
     let pixel_domain = wcti_mix1(root ^ pixel.x ^ ((pixel.y << 16u) | (pixel.y >> 16u)));
-    // A blue-noise root is tagged 2 in its low two bits (`blue_tagged`).
-    let domain = select(pixel_domain, (root & ~3u) | 2u, wcti_is_blue(pattern));
+    // A blue-noise root is tagged 0 in its low two bits (`blue_tagged`; 2 from new_frame).
+    let domain = select(pixel_domain, root & ~3u, wcti_is_blue(pattern));
     return WcSampler(pattern, packed, domain, index);
 }
 
@@ -179,7 +179,10 @@ fn wc_sampler_new_frame(pattern: u32, pixel: vec2<u32>, frame: u32, spp: u32, in
     let lo = (p00 & 0xffffu) | (mid << 16u);
     let hi = a.y * c.y + (p01 >> 16u) + (p10 >> 16u) + (mid >> 16u);
     let n = lo + index;
-    return wc_sampler_new(pattern, pixel, hi + select(0u, 1u, n < lo), n, seed);
+    let s = wc_sampler_new(pattern, pixel, hi + select(0u, 1u, n < lo), n, seed);
+    // Under blue noise the root is tagged 2: its domains 0..WC_BLUE_SLOTS are the slots.
+    let root = select(s.domain, (s.domain & ~3u) | 2u, wcti_known(s.pattern) && wcti_is_blue(s.pattern));
+    return WcSampler(s.pattern, s.pixel, root, s.index);
 }
 
 // An independent child pattern for `key`, same index (`Sampler::domain`).

@@ -140,7 +140,7 @@ const SAMPLER_FUNCTIONS: &[&str] = &[
 ];
 
 /// Words per sampler path (see the `wc_sampler_*` checks of [`TABLE_FUNCTIONS`]).
-pub const SAMPLER_OUT: usize = 44;
+pub const SAMPLER_OUT: usize = 48;
 
 /// Every check of `shaders/warpcore_tables.wgsl`.
 pub const TABLE_FUNCTIONS: &[TableFunc] = &[
@@ -222,8 +222,8 @@ pub const TABLE_FUNCTIONS: &[TableFunc] = &[
 /// sub]`: the root `s`, `s1 = domain(s, k1)`, `s2 = split(s1, k2, size, sub)`, `s3 =
 /// domain(s2, k1 ^ k2)`; out: the words of `s`, `draw4_u32(s)`, `draw2(s)`, `draw4(s)`,
 /// `rnd4(s)`, `draw4_u32(s1)`, the words of `s2`, `draw4(s2)`, `draw2(s2)`, `draw4_u32(s3)`,
-/// `rnd4(s3)`, the words of `wc_sampler_new_frame(pattern, pixel, frame, size, index, seed)`
-/// (44 words).
+/// `rnd4(s3)`, the words of `sf = wc_sampler_new_frame(pattern, pixel, frame, size, index,
+/// seed)`, `draw4_u32(domain(sf, k1))` (under blue noise a slot when `k1 < 6`; 48 words).
 fn sampler_wgsl() -> String {
     let mut s = String::from(
         "let s = wc_sampler_new(wc_in[b], vec2<u32>(wc_in[b + 1u], wc_in[b + 2u]), \
@@ -265,6 +265,10 @@ fn sampler_wgsl() -> String {
     all.extend(u("wc_sampler_draw4_u32(s3)", 4));
     all.extend(f("wc_sampler_rnd4(s3)", 4));
     all.extend(words("sf"));
+    all.extend(u(
+        "wc_sampler_draw4_u32(wc_sampler_domain(sf, wc_in[b + 6u]))",
+        4,
+    ));
     assert_eq!(all.len(), SAMPLER_OUT);
     for e in all {
         put(&mut s, e);
@@ -312,13 +316,9 @@ fn sampler_path<P: Pattern>(i: &[u32], o: &mut [u32]) {
     w.extend(bits(&s2.draw::<2>()));
     w.extend(s3.draw_u32::<4>());
     w.extend(bits(&s3.rnd::<4>()));
-    w.extend(words(Sampler::<P>::new_frame(
-        [i[1], i[2]],
-        i[3],
-        i[8],
-        i[4],
-        i[5],
-    )));
+    let sf = Sampler::<P>::new_frame([i[1], i[2]], i[3], i[8], i[4], i[5]);
+    w.extend(words(sf));
+    w.extend(sf.domain(i[6]).draw_u32::<4>());
     o.copy_from_slice(&w);
 }
 

@@ -448,8 +448,8 @@ pub fn of_light(h: &mut Hasher, m: &OfLight) {
 
 /// The sampling core for one pattern: 4D draws (scalar, 8 and 16 lanes, slices) through a
 /// domain path and a split, with the pixel taken from the seed so every lane has its own;
-/// then `draw_u32` and `rnd` of the same states; then the same draws of domain 3 of the root
-/// alone (under `Blue<P>` a spatiotemporal slot), without the split.
+/// then `draw_u32` and `rnd` of the same states; then the same draws of domain 3 of a
+/// `new_frame` root (under `Blue<P>` a spatiotemporal slot), without the split.
 #[cfg(feature = "sampler")]
 fn sampler_pattern<P: warpcore::sampler::Pattern>(h: &mut Hasher) {
     use warpcore::sampler::Sampler;
@@ -471,8 +471,15 @@ fn sampler_pattern<P: warpcore::sampler::Pattern>(h: &mut Hasher) {
 #[cfg(feature = "sampler")]
 fn sampler_draws<P: warpcore::sampler::Pattern>(h: &mut Hasher, size: u32) {
     use warpcore::sampler::{Sampler, SamplerX8, SamplerX16};
-    let root =
-        |index: u32, seed: u32| Sampler::<P>::new([seed % 641, seed >> 20], seed ^ 5, index, seed);
+    // Without a split: the root of `new_frame` (under `Blue<P>` its domain 3 is a slot).
+    let root = |index: u32, seed: u32| {
+        let pixel = [seed % 641, seed >> 20];
+        if size == 1 {
+            Sampler::<P>::new_frame(pixel, seed ^ 5, 1, index, seed)
+        } else {
+            Sampler::<P>::new(pixel, seed ^ 5, index, seed)
+        }
+    };
     let below = |s: Sampler<P>, index: u32| {
         if size == 1 {
             s

@@ -201,7 +201,8 @@ mod tests {
                 [next(), next()]
             };
             let (frame, seed, index) = (next(), next(), next() >> (trial % 32));
-            let root = Sampler::<Blue<P>>::new(pixel, frame, index, seed);
+            let root = Sampler::<Blue<P>>::new_frame(pixel, frame, 1, index, seed);
+            let fresh = Sampler::<Blue<P>>::new(pixel, frame, index, seed);
             let (a, b) = (next(), next());
             let slot = trial % SLOTS as u32;
             let cases = [
@@ -212,6 +213,8 @@ mod tests {
                 (root.domain(a).domain(b % 8), None),
                 (root.split(slot, 4, 3), None),
                 (root.split(a, 4, 3).domain(b), None),
+                (fresh.domain(slot), None),
+                (fresh, None),
             ];
             for (s, want_slot) in cases {
                 // The tile position uses the pixel modulo 2^16 (then modulo the tile).

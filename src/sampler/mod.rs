@@ -188,7 +188,7 @@ impl<U: UintLane> State<U> {
         // (the draw's Laine-Karras keys mix again).
         let packed = (pixel[0] & U::splat(0xffff)) | pixel[1].shl(16);
         let domain = if id & BLUE != 0 {
-            blue_tagged(root, TAG_ROOT)
+            blue_tagged(root, TAG_OTHER)
         } else {
             mix1(root ^ pixel[0] ^ pixel[1].rotr(16))
         };
@@ -476,7 +476,15 @@ impl<P: Pattern> Sampler<P> {
     #[inline]
     pub fn new_frame(pixel: [u32; 2], frame: u32, spp: u32, index: u32, seed: u32) -> Self {
         let [epoch, index] = frame_sample(frame, spp, index);
-        Self::new(pixel, epoch, index, seed)
+        let root = Self::new(pixel, epoch, index, seed).state;
+        Self::from_state(State {
+            domain: if P::ID & BLUE != 0 {
+                blue_tagged(root.domain, TAG_ROOT)
+            } else {
+                root.domain
+            },
+            ..root
+        })
     }
 
     #[inline(always)]
