@@ -1,0 +1,291 @@
+//! The slot tiles: per-pixel index offsets that make `Blue<P>`'s errors blue noise in space
+//! *and* time.
+//!
+//! # What is optimised
+//!
+//! In spatiotemporal slot `s`, pixel `x` of the `TILE x TILE` torus draws sample `n` as
+//! `Sampler::<P>::from_domain_hash(BLUE_SLOT_KEYS[s], n ^ o_s[x]).draw::<2>()` (see
+//! `src/sampler/blue.rs`): every pixel walks the *same* scrambled sequence, from its own
+//! offset `o_s[x]`, and `o_s` is a permutation of `0..TILE^2`. Two things follow.
+//!
+//! * In time: for `n < 2^k <= TILE^2`, the indices `n ^ o` of one pixel run over the aligned
+//!   block of `2^k` indices that contains `o` — a `(0, k, 2)`-net for both base patterns — so
+//!   each pixel's running mean converges like the sequence itself, however the offsets are
+//!   arranged.
+//! * In space: frame `f` (1 spp, `n = f`) gives pixel `x` point `f ^ o[x]`. The map
+//!   `o -> f ^ o` is a fixed permutation of the offsets, so every frame shows the *whole*
+//!   sequence's first `TILE^2` points, rearranged by a transform of frame 0's arrangement
+//!   that we know in advance. So each frame's arrangement can be optimised at once, rather
+//!   than only the first few, which is what "blue noise in every frame" needs.
+//!
+//! This is the goal of spatiotemporal blue noise — Wolfe, Morrical, Akenine-Möller and
+//! Ramamoorthi, "Spatiotemporal Blue Noise Masks" (EGSR 2022), and Donnelly, Wolfe, Bösch
+//! and Novák, "Filter-adapted spatiotemporal sampling for real-time rendering" (FAST noise,
+//! I3D 2024): every frame's mask blue in space, each pixel's sequence well spread in time —
+//! but, as in Heitz, Belcour, Ostromoukhov, Coeurjolly and Iehl, "A Low-Discrepancy Sampler
+//! that Distributes Monte Carlo Errors as a Blue Noise in Screen Space" (2019) and Belcour and
+//! Heitz, "Lessons learned and improvements when building screen-space samplers with
+//! blue-noise error distribution" (2021), for the *errors* of a low-discrepancy sampler on
+//! test integrands rather than for the values of a mask, and with the time axis handled by
+//! the net structure of the XOR offsets (Heitz et al.'s retargeting idea — per-pixel
+//! sequence offsets — with the offsets of one scrambled sequence instead of per-pixel
+//! scrambles).
+//!
+//! # The energy
+//!
+//! The same quadratic energy as the key tiles ([`crate::opt`]): the test integrands are
+//! half-planes of the pixel square ([`Edge::lattice`]), the error image of integrand `t` in
+//! frame `f` is `e_{f,t}(x) = [p_{f ^ o[x]} in t] - area_t`, and
+//!
+//! ```text
+//! E = sum_{f,t} w_f |g * e_{f,t}|^2 = sum_{x,y} G(x - y) e_x . e_y,
+//! ```
+//!
+//! a Gaussian low-pass `g` on the torus (the library shifts the tile toroidally and applies
+//! one of the 8 symmetries of the square, so the kernel is isotropic and periodic). Each
+//! offset `o` is a "key" of [`crate::opt`]'s pool whose error vector stacks its 32 frames
+//! (and, with weight `--st-quad`, the 8-frame-apart 4-spp means `n = 4f .. 4f + 3`), so the
+//! pool, the filtered field `F = G * e` and the swap's `dE = 2 d . (F_a - F_b) + 2 |d|^2 (G(0)
+//! - G(a - b))` are that module's code: a swap costs `O(frames x edges)` to evaluate and
+//! `O(taps x frames x edges)` to apply. Only swaps: the offsets stay a permutation.
+//!
+//! # The search
+//!
+//! From a random permutation, random proposals swap a pixel's offset with one in a window
+//! around it (most useful swaps are local: the field is local) and are taken when they lower
+//! the energy. The settings (sigma of the energy, edges, proposals, window, weight of the
+//! 4-spp frames) were chosen on held-out half-planes (random lines, not the lattice): see
+//! [`measure`] and the report this module's tool prints.
+//!
+//! # Determinism
+//!
+//! One SplitMix64 stream per tile (seeded by the pattern and the slot), swaps in a fixed
+//! order, the arithmetic of [`crate::opt`]: the bytes do not depend on threads or machine.
+
+use crate::opt::{Base, Edge, Kernel, PIXELS, Pool, State, exp_small};
+use pmjgen::Rng;
+use std::time::Instant;
+use warpcore::sampler::BLUE_SLOT_KEYS;
+
+/// Frames optimised and measured (1 spp each, `n = f`).
+pub const FRAMES: usize = 32;
+/// Held-out half-planes for the measurement.
+const HELD_OUT: usize = 32;
+/// The EMA's weight of the new frame.
+const ALPHA: f64 = 0.1;
+
+/// The slot search's settings (recorded in the manifest's command line).
+#[derive(Clone, Debug)]
+pub struct SlotParams {
+    pub seed: u64,
+    /// Sigma of the energy's low-pass, pixels.
+    pub sigma: f64,
+    /// Training half-planes (a multiple of 8).
+    pub edges: usize,
+    /// Swap proposals per tile.
+    pub swaps: usize,
+    /// Side of the (odd) window a swap partner is drawn from.
+    pub window: usize,
+    /// Weight of the 4-spp frames (0: none).
+    pub quad: f64,
+}
+
+/// Held-out figures of one tile: RMS of the blurred error relative to white noise.
+#[derive(Clone, Copy, Debug)]
+pub struct Measure {
+    /// Per frame (1 spp), sigma-1 blur: mean and worst of the [`FRAMES`] frames.
+    pub mean1: f64,
+    pub worst1: f64,
+    /// The same after a sigma-1.5 blur (the report's figure).
+    pub mean15: f64,
+    pub worst15: f64,
+    /// The EMA (alpha 0.1) of the frames after a sigma-1 blur, relative to the EMA of white
+    /// noise in space and time.
+    pub ema: f64,
+}
+
+/// What one slot tile's search did.
+pub struct SlotReport {
+    pub seconds: f64,
+    pub accepted: usize,
+    pub before: Measure,
+    pub after: Measure,
+}
+
+/// The slot's first `TILE^2` points (every index `n ^ o` of the optimised frames is below).
+fn points(base: Base, slot: usize) -> Vec<[f32; 2]> {
+    (0..PIXELS as u32)
+        .map(|n| base.point(BLUE_SLOT_KEYS[slot], n))
+        .collect()
+}
+
+/// The half-planes the measurement uses: random lines (angle and offset uniform), none from
+/// the training lattice, the same for every tile.
+fn held_out() -> Vec<Edge> {
+    let mut rng = Rng::new(0x5eed_0f_0e1d_0ff5);
+    let mut unit = || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+    (0..HELD_OUT)
+        .map(|_| {
+            let angle = core::f64::consts::PI * unit();
+            Edge::new(angle, unit())
+        })
+        .collect()
+}
+
+/// The normalised 1D Gaussian of sigma `sigma` truncated at `4 sigma`.
+fn gauss(sigma: f64) -> Vec<f64> {
+    let r = (4.0 * sigma).ceil() as i64;
+    let q = exp_small(-1.0 / (2.0 * sigma * sigma));
+    let w: Vec<f64> = (-r..=r)
+        .map(|d| (0..d * d).fold(1.0, |w, _| w * q))
+        .collect();
+    let sum: f64 = w.iter().sum();
+    w.iter().map(|w| w / sum).collect()
+}
+
+/// `|g * img|^2` on the torus, `g` separable (`w` from [`gauss`]).
+fn blurred_energy(img: &[f64], w: &[f64]) -> f64 {
+    let r = (w.len() / 2) as i32;
+    let pass = |src: &[f64], dx: i32, dy: i32| -> Vec<f64> {
+        (0..PIXELS)
+            .map(|p| {
+                (-r..=r)
+                    .zip(w)
+                    .map(|(d, w)| w * src[State::neighbour(p, d * dx, d * dy)])
+                    .sum()
+            })
+            .collect()
+    };
+    pass(&pass(img, 1, 0), 0, 1).iter().map(|b| b * b).sum()
+}
+
+/// The held-out figures of the offsets `o` (see [`Measure`]): per half-plane and frame the
+/// error image, its blurred energy against `sum g^2 * TILE^2 * area (1 - area)` (the
+/// expectation for independent uniform points); the EMA's reference carries the EMA's
+/// `sum_f w_f^2`.
+pub fn measure(pts: &[[f32; 2]], o: &[usize]) -> Measure {
+    let (g1, g15) = (gauss(1.0), gauss(1.5));
+    let norm = |w: &[f64]| {
+        let s: f64 = w.iter().map(|w| w * w).sum();
+        s * s
+    };
+    let (n1, n15) = (norm(&g1), norm(&g15));
+    let mut frame1 = [0.0f64; FRAMES];
+    let mut frame15 = [0.0f64; FRAMES];
+    let (mut white, mut ema_energy) = (0.0, 0.0);
+    for edge in held_out() {
+        let a = edge.area();
+        white += PIXELS as f64 * a * (1.0 - a);
+        let mut ema = vec![0.0f64; PIXELS];
+        for f in 0..FRAMES {
+            let e: Vec<f64> = o
+                .iter()
+                .map(|&o| edge.inside(pts[f ^ o]) as u32 as f64 - a)
+                .collect();
+            frame1[f] += blurred_energy(&e, &g1) / n1;
+            frame15[f] += blurred_energy(&e, &g15) / n15;
+            for (m, e) in ema.iter_mut().zip(&e) {
+                *m = if f == 0 {
+                    *e
+                } else {
+                    (1.0 - ALPHA) * *m + ALPHA * e
+                };
+            }
+        }
+        ema_energy += blurred_energy(&ema, &g1) / n1;
+    }
+    // The EMA's weights: (1 - alpha)^(F-1) for frame 0, alpha (1 - alpha)^(F-1-f) after.
+    let sum_w2: f64 = (0..FRAMES)
+        .map(|f| {
+            let decay = (f + 1..FRAMES).fold(1.0, |w, _| w * (1.0 - ALPHA));
+            let w = if f == 0 { decay } else { ALPHA * decay };
+            w * w
+        })
+        .sum();
+    let ratio = |e: f64| (e / white).sqrt();
+    let stats = |v: &[f64]| {
+        let r: Vec<f64> = v.iter().map(|&e| ratio(e)).collect();
+        (
+            r.iter().sum::<f64>() / r.len() as f64,
+            r.iter().fold(0.0f64, |m, &x| m.max(x)),
+        )
+    };
+    let (mean1, worst1) = stats(&frame1);
+    let (mean15, worst15) = stats(&frame15);
+    Measure {
+        mean1,
+        worst1,
+        mean15,
+        worst15,
+        ema: (ema_energy / (white * sum_w2)).sqrt(),
+    }
+}
+
+/// The pool: offset `o`'s row holds, per training edge, the hit of point `f ^ o` for each
+/// frame `f`, then (when `quad > 0`) the hits of the four points `(4f .. 4f + 3) ^ o`.
+fn pool(pts: &[[f32; 2]], edges: &[Edge], quad: f64) -> Pool {
+    let groups = if quad > 0.0 { 2 * FRAMES } else { FRAMES };
+    let t = edges.len();
+    let mut hits = vec![0u8; PIXELS * groups * t];
+    for (o, row) in hits.chunks_exact_mut(groups * t).enumerate() {
+        for (g, level) in row.chunks_exact_mut(t).enumerate() {
+            let indices = if g < FRAMES {
+                g..g + 1
+            } else {
+                4 * (g - FRAMES)..4 * (g - FRAMES) + 4
+            };
+            for n in indices {
+                let p = pts[n ^ o];
+                for (h, e) in level.iter_mut().zip(edges) {
+                    *h += e.inside(p) as u8;
+                }
+            }
+        }
+    }
+    let counts: Vec<u32> = (0..groups)
+        .map(|g| if g < FRAMES { 1 } else { 4 })
+        .collect();
+    let weights: Vec<f64> = (0..groups)
+        .map(|g| if g < FRAMES { 1.0 } else { quad })
+        .collect();
+    Pool::from_hits(hits, &counts, edges, &weights)
+}
+
+/// Optimises slot `slot` of `base`: `TILE * TILE` offsets, row-major.
+pub fn optimise(base: Base, slot: usize, p: &SlotParams) -> (Vec<u16>, SlotReport) {
+    let start = Instant::now();
+    let tag = (base as u64) << 8 | slot as u64;
+    let mut rng = Rng::new(p.seed ^ (tag + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+    let pts = points(base, slot);
+    let mut o: Vec<usize> = (0..PIXELS).collect();
+    for k in (1..PIXELS).rev() {
+        o.swap(k, rng.below(k + 1));
+    }
+    let before = measure(&pts, &o);
+    let edges: Vec<Edge> = (0..p.edges).map(|k| Edge::lattice(k, p.edges)).collect();
+    let pool = pool(&pts, &edges, p.quad);
+    let mut s = State::new(&pool, Kernel::new(p.sigma), o, Vec::new());
+    let half = (p.window / 2) as i32;
+    let mut accepted = 0;
+    for _ in 0..p.swaps {
+        let a = rng.below(PIXELS);
+        let dx = rng.below(p.window) as i32 - half;
+        let dy = rng.below(p.window) as i32 - half;
+        let b = State::neighbour(a, dx, dy);
+        if a != b && s.swap_delta(a, b) < 0.0 {
+            s.apply_swap(a, b);
+            accepted += 1;
+        }
+    }
+    let after = measure(&pts, &s.tile);
+    let tile = s.tile.iter().map(|&o| o as u16).collect();
+    (
+        tile,
+        SlotReport {
+            seconds: start.elapsed().as_secs_f64(),
+            accepted,
+            before,
+            after,
+        },
+    )
+}
