@@ -4,7 +4,8 @@
 //! cargo run --release -p bluegen -- [--check] [--out DIR]
 //!     [--only sobol|pmj02bn] [--seed S] [--pool N] [--edges T] [--levels L] [--sweeps S] [--rounds R]
 //!     [--threshold X] [--weights W1,W2,..]
-//!     [--st-seed S] [--st-sigma S] [--st-edges T] [--st-swaps N] [--st-window W] [--st-quad X]
+//!     [--st-seed S] [--st-sigma S] [--st-edges T] [--st-swaps N] [--st-window W] [--st-quad X] [--st-runs X]
+//!     [--st-threshold X]
 //!     [--st-only [--st-slots K]]
 //! ```
 //!
@@ -59,11 +60,13 @@ fn parse() -> Result<Args, String> {
         },
         st: SlotParams {
             seed: 20220808,
-            sigma: 1.0,
-            edges: 64,
-            swaps: 200_000,
-            window: 17,
+            sigma: 1.25,
+            edges: 32,
+            swaps: 1_500_000,
+            window: 7,
             quad: 0.0,
+            runs: 0.25,
+            threshold: 0.0,
         },
         st_only: false,
         st_slots: warpcore::sampler::BLUE_SLOTS,
@@ -108,6 +111,8 @@ fn parse() -> Result<Args, String> {
             "--st-swaps" => st.swaps = num(&flag, value()?)?,
             "--st-window" => st.window = num(&flag, value()?)?,
             "--st-quad" => st.quad = num(&flag, value()?)?,
+            "--st-runs" => st.runs = num(&flag, value()?)?,
+            "--st-threshold" => st.threshold = num(&flag, value()?)?,
             "--st-only" => a.st_only = true,
             "--st-slots" => a.st_slots = num(&flag, value()?)?,
             "--check" => a.check = true,
@@ -133,8 +138,8 @@ fn parse() -> Result<Args, String> {
     {
         return Err("--st-slots: at most BLUE_SLOTS, fewer only with --st-only".into());
     }
-    if !(0.0..=16.0).contains(&st.quad) {
-        return Err("--st-quad must be in 0..=16".into());
+    if !(0.0..=16.0).contains(&st.quad) || !(0.0..=16.0).contains(&st.runs) {
+        return Err("--st-quad and --st-runs must be in 0..=16".into());
     }
     Ok(a)
 }
@@ -150,7 +155,7 @@ fn slot_file(base: Base, st: &SlotParams, count: usize) -> (Vec<u8>, String) {
         log += &format!(
             "{} slot {slot}: {:.1} s, {} swaps accepted; blurred error / white noise on held-out \
              half-planes, {} frames at 1 spp, mean (worst): sigma 1 {:.3} ({:.3}) -> {:.3} \
-             ({:.3}), sigma 1.5 {:.3} ({:.3}) -> {:.3} ({:.3}); EMA sigma 1 {:.3} -> {:.3}\n",
+             ({:.3}), sigma 1.5 {:.3} ({:.3}) -> {:.3} ({:.3}); 4 spp mean sigma 1 {:.3} -> {:.3}; EMA sigma 1 {:.3} -> {:.3}\n",
             base.name(),
             r.seconds,
             r.accepted,
@@ -163,6 +168,8 @@ fn slot_file(base: Base, st: &SlotParams, count: usize) -> (Vec<u8>, String) {
             b.worst15,
             a.mean15,
             a.worst15,
+            b.mean4,
+            a.mean4,
             b.ema,
             a.ema
         );
@@ -182,7 +189,7 @@ fn main() -> ExitCode {
     let settings = format!(
         "--seed {} --pool {} --edges {} --levels {} --sweeps {} --rounds {} --threshold {} \
          --weights {} --st-seed {} --st-sigma {} --st-edges {} --st-swaps {} --st-window {} \
-         --st-quad {}",
+         --st-quad {} --st-runs {} --st-threshold {}",
         p.seed,
         p.pool,
         p.edges,
@@ -200,7 +207,9 @@ fn main() -> ExitCode {
         st.edges,
         st.swaps,
         st.window,
-        st.quad
+        st.quad,
+        st.runs,
+        st.threshold
     );
     let mut manifest = format!(
         "# warpcore blue-noise tiles: blue_{{pattern}}_64.bin 64 x 64 little-endian u32 keys, \

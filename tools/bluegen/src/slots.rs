@@ -44,7 +44,8 @@
 //! a Gaussian low-pass `g` on the torus (the library shifts the tile toroidally and applies
 //! one of the 8 symmetries of the square, so the kernel is isotropic and periodic). Each
 //! offset `o` is a "key" of [`crate::opt`]'s pool whose error vector stacks its 32 frames
-//! (and, with weight `--st-quad`, the 8-frame-apart 4-spp means `n = 4f .. 4f + 3`), so the
+//! (and, with weight `--st-quad`, the 32 frames at 4 spp, `n = 4f .. 4f + 3`; with weight
+//! `--st-runs`, the means over aligned windows of 4 to 32 frames), so the
 //! pool, the filtered field `F = G * e` and the swap's `dE = 2 d . (F_a - F_b) + 2 |d|^2 (G(0)
 //! - G(a - b))` are that module's code: a swap costs `O(frames x edges)` to evaluate and
 //! `O(taps x frames x edges)` to apply. Only swaps: the offsets stay a permutation.
@@ -62,7 +63,7 @@
 //! One SplitMix64 stream per tile (seeded by the pattern and the slot), swaps in a fixed
 //! order, the arithmetic of [`crate::opt`]: the bytes do not depend on threads or machine.
 
-use crate::opt::{Base, Edge, Kernel, PIXELS, Pool, State, exp_small};
+use crate::opt::{Base, Edge, Kernel, PIXELS, Pool, State, TILE, exp_small};
 use pmjgen::Rng;
 use std::time::Instant;
 use warpcore::sampler::BLUE_SLOT_KEYS;
@@ -88,6 +89,10 @@ pub struct SlotParams {
     pub window: usize,
     /// Weight of the 4-spp frames (0: none).
     pub quad: f64,
+    /// Weight of the running means over aligned windows of 4 .. 32 frames (0: none).
+    pub runs: f64,
+    /// The starting threshold of threshold accepting, a fraction of an offset's `|e|^2`.
+    pub threshold: f64,
 }
 
 /// Held-out figures of one tile: RMS of the blurred error relative to white noise.
@@ -99,6 +104,9 @@ pub struct Measure {
     /// The same after a sigma-1.5 blur (the report's figure).
     pub mean15: f64,
     pub worst15: f64,
+    /// Per frame at 4 spp (`n = 4f .. 4f + 3`), sigma-1 blur, mean of the frames, relative to
+    /// white noise at 4 spp.
+    pub mean4: f64,
     /// The EMA (alpha 0.1) of the frames after a sigma-1 blur, relative to the EMA of white
     /// noise in space and time.
     pub ema: f64,
@@ -145,18 +153,27 @@ fn gauss(sigma: f64) -> Vec<f64> {
 
 /// `|g * img|^2` on the torus, `g` separable (`w` from [`gauss`]).
 fn blurred_energy(img: &[f64], w: &[f64]) -> f64 {
-    let r = (w.len() / 2) as i32;
-    let pass = |src: &[f64], dx: i32, dy: i32| -> Vec<f64> {
+    let r = w.len() / 2;
+    // Pixel `(x + d - r, y)` (or `(x, y + d - r)`) of `src`, wrapped (TILE is a power of two).
+    let pass = |src: &[f64], stride: usize| -> Vec<f64> {
         (0..PIXELS)
             .map(|p| {
-                (-r..=r)
-                    .zip(w)
-                    .map(|(d, w)| w * src[State::neighbour(p, d * dx, d * dy)])
+                let (x, y) = (p % TILE, p / TILE);
+                w.iter()
+                    .enumerate()
+                    .map(|(d, w)| {
+                        let q = if stride == 1 {
+                            y * TILE + ((x + TILE + d - r) & (TILE - 1))
+                        } else {
+                            ((y + TILE + d - r) & (TILE - 1)) * TILE + x
+                        };
+                        w * src[q]
+                    })
                     .sum()
             })
             .collect()
     };
-    pass(&pass(img, 1, 0), 0, 1).iter().map(|b| b * b).sum()
+    pass(&pass(img, 1), TILE).iter().map(|b| b * b).sum()
 }
 
 /// The held-out figures of the offsets `o` (see [`Measure`]): per half-plane and frame the
@@ -172,6 +189,7 @@ pub fn measure(pts: &[[f32; 2]], o: &[usize]) -> Measure {
     let (n1, n15) = (norm(&g1), norm(&g15));
     let mut frame1 = [0.0f64; FRAMES];
     let mut frame15 = [0.0f64; FRAMES];
+    let mut frame4 = 0.0;
     let (mut white, mut ema_energy) = (0.0, 0.0);
     for edge in held_out() {
         let a = edge.area();
@@ -193,6 +211,19 @@ pub fn measure(pts: &[[f32; 2]], o: &[usize]) -> Measure {
             }
         }
         ema_energy += blurred_energy(&ema, &g1) / n1;
+        for f in 0..FRAMES {
+            let e: Vec<f64> = o
+                .iter()
+                .map(|&o| {
+                    let hits: u32 = (4 * f..4 * f + 4)
+                        .map(|n| edge.inside(pts[n ^ o]) as u32)
+                        .sum();
+                    hits as f64 / 4.0 - a
+                })
+                .collect();
+            // White noise at 4 spp: a quarter of the variance.
+            frame4 += 4.0 * blurred_energy(&e, &g1) / n1 / FRAMES as f64;
+        }
     }
     // The EMA's weights: (1 - alpha)^(F-1) for frame 0, alpha (1 - alpha)^(F-1-f) after.
     let sum_w2: f64 = (0..FRAMES)
@@ -217,24 +248,36 @@ pub fn measure(pts: &[[f32; 2]], o: &[usize]) -> Measure {
         worst1,
         mean15,
         worst15,
+        mean4: ratio(frame4),
         ema: (ema_energy / (white * sum_w2)).sqrt(),
     }
 }
 
-/// The pool: offset `o`'s row holds, per training edge, the hit of point `f ^ o` for each
-/// frame `f`, then (when `quad > 0`) the hits of the four points `(4f .. 4f + 3) ^ o`.
-fn pool(pts: &[[f32; 2]], edges: &[Edge], quad: f64) -> Pool {
-    let groups = if quad > 0.0 { 2 * FRAMES } else { FRAMES };
+/// The index ranges of the energy's groups and their weights: the [`FRAMES`] frames at 1 spp
+/// (`n = f`, weight 1); with `quad > 0` the frames at 4 spp (`n = 4f .. 4f + 3`); with
+/// `runs > 0` the means of the 1-spp frames over the aligned windows of 4, 8, 16 and 32
+/// frames (what accumulation and the EMA see: their errors' cross terms between frames).
+fn groups(p: &SlotParams) -> Vec<(core::ops::Range<usize>, f64)> {
+    let mut g: Vec<_> = (0..FRAMES).map(|f| (f..f + 1, 1.0)).collect();
+    if p.quad > 0.0 {
+        g.extend((0..FRAMES).map(|f| (4 * f..4 * f + 4, p.quad)));
+    }
+    if p.runs > 0.0 {
+        for size in [4, 8, 16, 32] {
+            g.extend((0..FRAMES / size).map(|k| (k * size..(k + 1) * size, p.runs)));
+        }
+    }
+    g
+}
+
+/// The pool: offset `o`'s row holds, per group of [`groups`] and training edge, how many of
+/// the points `n ^ o` (`n` in the group's range) fall in the edge.
+fn pool(pts: &[[f32; 2]], edges: &[Edge], groups: &[(core::ops::Range<usize>, f64)]) -> Pool {
     let t = edges.len();
-    let mut hits = vec![0u8; PIXELS * groups * t];
-    for (o, row) in hits.chunks_exact_mut(groups * t).enumerate() {
-        for (g, level) in row.chunks_exact_mut(t).enumerate() {
-            let indices = if g < FRAMES {
-                g..g + 1
-            } else {
-                4 * (g - FRAMES)..4 * (g - FRAMES) + 4
-            };
-            for n in indices {
+    let mut hits = vec![0u8; PIXELS * groups.len() * t];
+    for (o, row) in hits.chunks_exact_mut(groups.len() * t).enumerate() {
+        for ((range, _), level) in groups.iter().zip(row.chunks_exact_mut(t)) {
+            for n in range.clone() {
                 let p = pts[n ^ o];
                 for (h, e) in level.iter_mut().zip(edges) {
                     *h += e.inside(p) as u8;
@@ -242,12 +285,8 @@ fn pool(pts: &[[f32; 2]], edges: &[Edge], quad: f64) -> Pool {
             }
         }
     }
-    let counts: Vec<u32> = (0..groups)
-        .map(|g| if g < FRAMES { 1 } else { 4 })
-        .collect();
-    let weights: Vec<f64> = (0..groups)
-        .map(|g| if g < FRAMES { 1.0 } else { quad })
-        .collect();
+    let counts: Vec<u32> = groups.iter().map(|(r, _)| r.len() as u32).collect();
+    let weights: Vec<f64> = groups.iter().map(|g| g.1).collect();
     Pool::from_hits(hits, &counts, edges, &weights)
 }
 
@@ -263,16 +302,22 @@ pub fn optimise(base: Base, slot: usize, p: &SlotParams) -> (Vec<u16>, SlotRepor
     }
     let before = measure(&pts, &o);
     let edges: Vec<Edge> = (0..p.edges).map(|k| Edge::lattice(k, p.edges)).collect();
-    let pool = pool(&pts, &edges, p.quad);
+    let groups = groups(p);
+    let pool = pool(&pts, &edges, &groups);
     let mut s = State::new(&pool, Kernel::new(p.sigma), o, Vec::new());
     let half = (p.window / 2) as i32;
+    // Threshold accepting (Dueck and Scheuer 1990), as in `opt`: a swap is taken when `dE` is
+    // below a threshold falling linearly to zero; `|e|^2` of an offset is about `dim`.
+    let dim = p.edges * groups.len();
+    let t0 = p.threshold * dim as f64;
     let mut accepted = 0;
-    for _ in 0..p.swaps {
+    for step in 0..p.swaps {
+        let threshold = (t0 * (1.0 - step as f64 / p.swaps as f64)) as f32;
         let a = rng.below(PIXELS);
         let dx = rng.below(p.window) as i32 - half;
         let dy = rng.below(p.window) as i32 - half;
         let b = State::neighbour(a, dx, dy);
-        if a != b && s.swap_delta(a, b) < 0.0 {
+        if a != b && s.swap_delta(a, b) < threshold {
             s.apply_swap(a, b);
             accepted += 1;
         }
