@@ -92,6 +92,12 @@ fn parse() -> Result<Args, String> {
                     other => return Err(format!("--only: unknown pattern {other}")),
                 })
             }
+            "--weights" => {
+                p.weights = value()?
+                    .split(',')
+                    .map(|w| num(&flag, w.to_string()))
+                    .collect::<Result<_, _>>()?
+            }
             "--seed" => p.seed = num(&flag, value()?)?,
             "--pool" => p.pool = num(&flag, value()?)?,
             "--edges" => p.edges = num(&flag, value()?)?,
@@ -99,12 +105,6 @@ fn parse() -> Result<Args, String> {
             "--sweeps" => p.sweeps = num(&flag, value()?)?,
             "--rounds" => p.rounds = num(&flag, value()?)?,
             "--threshold" => p.threshold = num(&flag, value()?)?,
-            "--weights" => {
-                p.weights = value()?
-                    .split(',')
-                    .map(|w| num(&flag, w.to_string()))
-                    .collect::<Result<_, _>>()?
-            }
             "--st-seed" => st.seed = num(&flag, value()?)?,
             "--st-sigma" => st.sigma = num(&flag, value()?)?,
             "--st-edges" => st.edges = num(&flag, value()?)?,
@@ -213,8 +213,9 @@ fn main() -> ExitCode {
     );
     let mut manifest = format!(
         "# warpcore blue-noise tiles: blue_{{pattern}}_64.bin 64 x 64 little-endian u32 keys, \
-         row-major; blue_slots_{{pattern}}_64.bin 6 x 64 x 64 little-endian u16 index offsets, \
-         slot-major, row-major.\n\
+         row-major;\n\
+         # blue_slots_{{pattern}}_64.bin 6 x 64 x 64 little-endian u16 index offsets, slot-major, \
+         row-major.\n\
          # Written by `cargo run --release -p bluegen -- {settings}`.\n\
          # file bytes fnv1a64\n"
     );
