@@ -150,6 +150,12 @@ fn slot_file(base: Base, st: &SlotParams, count: usize) -> (Vec<u8>, String) {
     let (mut bytes, mut log) = (Vec::new(), String::new());
     for slot in 0..count {
         let (tile, r) = slots::optimise(base, slot, st);
+        let mut sorted = tile.clone();
+        sorted.sort_unstable();
+        assert!(
+            sorted.iter().enumerate().all(|(k, &o)| k == o as usize),
+            "slot tile is not a permutation"
+        );
         bytes.extend(tile.iter().flat_map(|o| o.to_le_bytes()));
         let (b, a) = (r.before, r.after);
         log += &format!(

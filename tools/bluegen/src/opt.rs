@@ -631,7 +631,13 @@ impl<'a> State<'a> {
 
     /// Per level `sqrt(E_level / E_white)`: `E = sum_p e_p . F_p`, `E_white = G(0) sum_p |e_p|^2`
     /// (its expectation for independent keys).
-    pub(crate) fn ratios(&self) -> Vec<f64> {
+    fn ratios(&self) -> Vec<f64> {
+        let (e, white) = self.energies();
+        e.iter().zip(&white).map(|(e, w)| (e / w).sqrt()).collect()
+    }
+
+    /// Per level `E = sum_p e_p . F_p` (from the field as it stands) and `sum_p |e_p|^2`.
+    pub(crate) fn energies(&self) -> (Vec<f64>, Vec<f64>) {
         let (levels, t) = (self.pool.levels, self.pool.edges);
         let (mut e, mut white) = (vec![0.0f64; levels], vec![0.0f64; levels]);
         for p in 0..PIXELS {
@@ -642,7 +648,7 @@ impl<'a> State<'a> {
                 white[l] += ep * ep;
             }
         }
-        e.iter().zip(&white).map(|(e, w)| (e / w).sqrt()).collect()
+        (e, white)
     }
 }
 

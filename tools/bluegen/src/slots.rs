@@ -360,3 +360,61 @@ pub fn optimise(base: Base, slot: usize, p: &SlotParams) -> (Vec<u16>, SlotRepor
         },
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The swap's predicted energy change (`swap_delta`) and the field it updates
+    /// (`apply_swap`) against the energy recomputed from scratch, for partners inside the
+    /// kernel (where the `G(a - b)` term matters) and outside it, with frames and running
+    /// means. A wrong term in `dE` (e.g. without `G(a - b)`) is off by `2 |d|^2 G(a - b)`, of
+    /// the order of `dE` itself.
+    #[test]
+    fn swap_delta_matches_recomputed_energy() {
+        let p = SlotParams {
+            seed: 1,
+            sigma: 1.0,
+            edges: 8,
+            swaps: 0,
+            window: 7,
+            quad: 0.0,
+            runs: 0.5,
+            threshold: 0.0,
+        };
+        let pts = points(Base::Sobol, 0);
+        let edges: Vec<Edge> = (0..p.edges).map(|k| Edge::lattice(k, p.edges)).collect();
+        let pool = pool(&pts, &edges, &groups(&p));
+        let mut rng = Rng::new(7);
+        let mut o: Vec<usize> = (0..PIXELS).collect();
+        for k in (1..PIXELS).rev() {
+            o.swap(k, rng.below(k + 1));
+        }
+        let mut s = State::new(&pool, Kernel::new(p.sigma), o, Vec::new());
+        let energy = |s: &State| s.energies().0.iter().sum::<f64>();
+        for (dx, dy) in [(1, 0), (0, -2), (2, 3), (20, 5)] {
+            let a = rng.below(PIXELS);
+            let b = State::neighbour(a, dx, dy);
+            let before = energy(&s);
+            let predicted = s.swap_delta(a, b) as f64;
+            s.apply_swap(a, b);
+            let incremental = energy(&s);
+            s.recompute_field();
+            let after = energy(&s);
+            let tol = 1e-3 * predicted.abs() + 1e-2;
+            assert!(
+                predicted.abs() > 1.0,
+                "a swap that changes nothing tests nothing"
+            );
+            assert!(
+                (after - before - predicted).abs() < tol,
+                "({dx}, {dy}): dE {predicted} predicted, {} recomputed",
+                after - before
+            );
+            assert!(
+                (incremental - after).abs() < tol,
+                "({dx}, {dy}): field drift"
+            );
+        }
+    }
+}
