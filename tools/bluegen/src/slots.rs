@@ -417,4 +417,31 @@ mod tests {
             );
         }
     }
+
+    /// What the doc claims for time: every aligned block of `2^k` indices (the frames
+    /// `0..2^k` of a pixel, whatever its offset) is a `(0, k, 2)`-net: each elementary
+    /// interval of area `2^-k` holds exactly one point. Both patterns, every slot, `k <= 6`,
+    /// every block among the first `TILE^2` points.
+    #[test]
+    fn aligned_blocks_are_nets() {
+        for base in [Base::Sobol, Base::Pmj02bn] {
+            for slot in 0..BLUE_SLOT_KEYS.len() {
+                let pts = points(base, slot);
+                for k in 1..=6u32 {
+                    for block in pts.chunks_exact(1 << k) {
+                        for a in 0..=k {
+                            let mut seen = vec![false; 1 << k];
+                            for p in block {
+                                let cx = (p[0] * (1u32 << a) as f32) as usize;
+                                let cy = (p[1] * (1u32 << (k - a)) as f32) as usize;
+                                let cell = cy << a | cx;
+                                assert!(!seen[cell], "{base:?} slot {slot}: 2^{k} block not a net");
+                                seen[cell] = true;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
 }
