@@ -4,8 +4,8 @@
 //! cargo run --release -p bluegen -- [--check] [--out DIR]
 //!     [--only sobol|pmj02bn] [--seed S] [--pool N] [--edges T] [--levels L] [--sweeps S] [--rounds R]
 //!     [--threshold X] [--weights W1,W2,..]
-//!     [--st-seed S] [--st-sigma S] [--st-edges T] [--st-swaps N] [--st-window W] [--st-quad X] [--st-runs X]
-//!     [--st-threshold X]
+//!     [--st-seed S] [--st-sigma S] [--st-edges T] [--st-swaps N] [--st-window W]
+//!     [--st-quad X] [--st-runs X] [--st-threshold X]
 //!     [--st-only [--st-slots K]]
 //! ```
 //!
@@ -15,9 +15,10 @@
 //! offsets (see [`slots`]), `DIR/blue_slots_{pattern}_64.bin`: little-endian `u16`,
 //! slot-major, row-major within a slot. `DIR/blue_MANIFEST` records the command and each
 //! file's size and FNV-1a 64 hash. `--st-only` (for experiments) optimises and writes only the
-//! slot tiles, without the manifest (and
-//! `--st-slots K` only the first `K` slots of each pattern). The slot tiles are optimised on two threads (one per
-//! pattern, each tile its own random stream: the bytes do not depend on scheduling).
+//! slot tiles, without the manifest (and `--st-slots K` only the first `K` slots of each
+//! pattern). The slot tiles are optimised on two threads, one per pattern, while the main
+//! thread optimises the key tiles; each tile has its own random stream, so the bytes do not
+//! depend on scheduling.
 //!
 //! `--check` regenerates everything in memory and compares it byte for byte with `DIR`
 //! (exit status 1 on any difference): CI runs this, so the committed tiles are exactly what
@@ -144,8 +145,8 @@ fn parse() -> Result<Args, String> {
     Ok(a)
 }
 
-/// The slot tiles of `base` (all [`warpcore::sampler::BLUE_SLOTS`]), as the file's bytes, and
-/// one line per tile for the log.
+/// The first `count` slot tiles of `base` (all [`warpcore::sampler::BLUE_SLOTS`] for the
+/// file), as the file's bytes, and one line per tile for the log.
 fn slot_file(base: Base, st: &SlotParams, count: usize) -> (Vec<u8>, String) {
     let (mut bytes, mut log) = (Vec::new(), String::new());
     for slot in 0..count {

@@ -9,7 +9,8 @@
 //! offset `o_s[x]`, and `o_s` is a permutation of `0..TILE^2`. Two things follow.
 //!
 //! * In time: for `n < 2^k <= TILE^2`, the indices `n ^ o` of one pixel run over the aligned
-//!   block of `2^k` indices that contains `o` — a `(0, k, 2)`-net for both base patterns — so
+//!   block of `2^k` indices that contains `o` — a `(0, k, 2)`-net for both base patterns (a
+//!   test checks `k <= 6` for every slot) — so
 //!   each pixel's running mean converges like the sequence itself, however the offsets are
 //!   arranged.
 //! * In space: frame `f` (1 spp, `n = f`) gives pixel `x` point `f ^ o[x]`. The map
@@ -27,9 +28,8 @@
 //! Heitz, "Lessons learned and improvements when building screen-space samplers with
 //! blue-noise error distribution" (2021), for the *errors* of a low-discrepancy sampler on
 //! test integrands rather than for the values of a mask, and with the time axis handled by
-//! the net structure of the XOR offsets (Heitz et al.'s retargeting idea — per-pixel
-//! sequence offsets — with the offsets of one scrambled sequence instead of per-pixel
-//! scrambles).
+//! the net structure of the XOR offsets into one scrambled sequence (rather than by
+//! per-pixel scrambles or seeds, whose sequences are unrelated between pixels).
 //!
 //! # The energy
 //!
@@ -45,9 +45,9 @@
 //! one of the 8 symmetries of the square, so the kernel is isotropic and periodic). Each
 //! offset `o` is a "key" of [`crate::opt`]'s pool whose error vector stacks its 32 frames
 //! (and, with weight `--st-quad`, the 32 frames at 4 spp, `n = 4f .. 4f + 3`; with weight
-//! `--st-runs`, the means over aligned windows of 4 to 32 frames), so the
-//! pool, the filtered field `F = G * e` and the swap's `dE = 2 d . (F_a - F_b) + 2 |d|^2 (G(0)
-//! - G(a - b))` are that module's code: a swap costs `O(frames x edges)` to evaluate and
+//! `--st-runs`, the means over aligned windows of 4 to 32 frames), so the pool, the
+//! filtered field `F = G * e` and the swap's `dE = 2 d . (F_a - F_b) + 2 |d|^2 (G(0) -
+//! G(a - b))` are that module's code: a swap costs `O(frames x edges)` to evaluate and
 //! `O(taps x frames x edges)` to apply. Only swaps: the offsets stay a permutation.
 //!
 //! # The search
@@ -62,29 +62,32 @@
 //! The figures are RMS ratios (blurred error over what independent uniform points give), on
 //! 32 random half-planes that are not in the training lattice, per frame at 1 spp (mean and
 //! worst of the 32 frames); random offsets give about 1.0 (0.47 for the EMA, alpha 0.1,
-//! over the 32 frames: the per-pixel net already helps in time). One tile, 1.5M proposals:
+//! over the 32 frames: the per-pixel net already helps in time). Sobol' slot 0, 1.5M
+//! proposals in a 7 x 7 window, 32 edges unless said:
 //!
-//! | energy                          | sigma-1 blur  | sigma-1.5 blur | EMA (sigma 1) |
-//! |---------------------------------|---------------|----------------|---------------|
-//! | sigma 1, 64 edges (window 9)    | 0.790 (0.800) | 0.747 (0.768)  | 0.446         |
-//! | sigma 1.25, 32 edges            | 0.786 (0.796) | 0.724 (0.742)  | 0.433         |
-//! | sigma 1.5, 32 edges             | 0.791 (0.803) | 0.705 (0.725)  | 0.435         |
-//! | sigma 1.5, runs 0.6 (chosen)    | 0.795 (0.808) | 0.709 (0.726)  | 0.414         |
-//! | sigma 1.5, runs 1               | 0.812 (0.822) | 0.731 (0.746)  | 0.398         |
-//! | sigma 1.5, runs 0.6, quad 0.5   | 0.802 (0.811) | 0.721 (0.742)  | 0.411         |
+//! | energy                                  | sigma-1 blur  | sigma-1.5 blur | EMA (sigma 1) |
+//! |-----------------------------------------|---------------|----------------|---------------|
+//! | sigma 1, 64 edges, 1M in 9 x 9          | 0.790 (0.800) | 0.747 (0.768)  | 0.446         |
+//! | sigma 1.25, runs 0.25                   | 0.786 (0.796) | 0.724 (0.742)  | 0.433         |
+//! | sigma 1.5, runs 0.25                    | 0.791 (0.803) | 0.705 (0.725)  | 0.435         |
+//! | sigma 1.5, runs 0.6 (chosen)            | 0.795 (0.808) | 0.709 (0.726)  | 0.414         |
+//! | sigma 1.5, runs 0.6, 64 edges           | 0.794 (0.803) | 0.706 (0.720)  | 0.416         |
+//! | sigma 1.5, runs 1                       | 0.812 (0.822) | 0.731 (0.746)  | 0.398         |
+//! | sigma 1.5, runs 0.6, quad 0.5           | 0.802 (0.811) | 0.721 (0.742)  | 0.411         |
 //!
 //! * Sigma 1.5 (the report's blur) costs the sigma-1 figure half a percent and buys 3-6% at
 //!   sigma 1.5, where the target (every frame at most 0.75) is tightest.
-//! * 32 training edges generalise as well as 64 or 128 (0.786-0.790 at sigma 1 either way)
-//!   at half the cost.
+//! * 32 training edges generalise as well as 64 or 128 (0.786-0.790 at sigma 1 either way
+//!   with sigma-1 energy; 0.795 against 0.794 in the table) at half the cost.
 //! * The running means (`--st-runs`) are what lowers the EMA: the per-frame energy alone
-//!   ignores the cross terms between frames. Weight 0.6 takes the EMA from 0.435 to 0.414
-//!   for under 1% per frame; weight 1 reaches 0.398 but brings the worst frame to 0.746.
+//!   ignores the cross terms between frames. At sigma 1.5, weights 0.25 / 0.6 / 1 give an
+//!   EMA of 0.435 / 0.414 / 0.398 (without them about 0.445), for under 1% per frame up to
+//!   0.6; weight 1 brings the worst frame to 0.746, too near the 0.75 target.
 //! * The 4-spp frames (`--st-quad 0.5`) take 4 spp from 0.606 to 0.579 x white noise (random
-//!   offsets: 0.63) for 1-2% at 1 spp and twice the time: off by default.
+//!   offsets: 0.63) for 1-2% at 1 spp and up to twice the time: off by default.
 //! * Proposals: 1M -> 3M gains under 0.5%; a 7 x 7 window converges faster than 17 x 17.
 //!
-//! //! # Determinism
+//! # Determinism
 //!
 //! One SplitMix64 stream per tile (seeded by the pattern and the slot), swaps in a fixed
 //! order, the arithmetic of [`crate::opt`]: the bytes do not depend on threads or machine.
