@@ -4,12 +4,21 @@
 //! cargo run --release -p bluegen -- [--check] [--out DIR]
 //!     [--only sobol|pmj02bn] [--seed S] [--pool N] [--edges T] [--levels L] [--sweeps S] [--rounds R]
 //!     [--threshold X] [--weights W1,W2,..]
+//!     [--st-seed S] [--st-sigma S] [--st-edges T] [--st-swaps N] [--st-window W]
+//!     [--st-quad X] [--st-runs X] [--st-threshold X]
+//!     [--st-only [--st-slots K]]
 //! ```
 //!
 //! For each base pattern (`Sobol`, `Pmj02bn`) it optimises a 64 x 64 tile of 32-bit keys (see
 //! [`opt`] for the method) and writes `DIR/blue_{pattern}_64.bin`: little-endian `u32`,
-//! row-major, the layout `src/sampler/blue.rs` embeds. `DIR/blue_MANIFEST` records the command
-//! and each file's size and FNV-1a 64 hash.
+//! row-major, the layout `src/sampler/blue.rs` embeds; and `BLUE_SLOTS` tiles of 16-bit index
+//! offsets (see [`slots`]), `DIR/blue_slots_{pattern}_64.bin`: little-endian `u16`,
+//! slot-major, row-major within a slot. `DIR/blue_MANIFEST` records the command and each
+//! file's size and FNV-1a 64 hash. `--st-only` (for experiments) optimises and writes only the
+//! slot tiles, without the manifest (and `--st-slots K` only the first `K` slots of each
+//! pattern). The slot tiles are optimised on two threads, one per pattern, while the main
+//! thread optimises the key tiles; each tile has its own random stream, so the bytes do not
+//! depend on scheduling.
 //!
 //! `--check` regenerates everything in memory and compares it byte for byte with `DIR`
 //! (exit status 1 on any difference): CI runs this, so the committed tiles are exactly what
@@ -17,9 +26,11 @@
 //! `--out src/tables` (run from the repository root) and the settings of [`Params`] below.
 
 mod opt;
+mod slots;
 
 use opt::{Base, Params};
 use pmjgen::tool::{fnv1a64, write_or_check};
+use slots::SlotParams;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -28,6 +39,9 @@ struct Args {
     out: PathBuf,
     only: Option<Base>,
     params: Params,
+    st: SlotParams,
+    st_only: bool,
+    st_slots: usize,
     check: bool,
 }
 
@@ -45,12 +59,25 @@ fn parse() -> Result<Args, String> {
             threshold: 0.0,
             weights: vec![1.0, 1.0, 1.0, 0.85, 0.7],
         },
+        st: SlotParams {
+            seed: 20220808,
+            sigma: 1.5,
+            edges: 32,
+            swaps: 1_500_000,
+            window: 7,
+            quad: 0.0,
+            runs: 0.6,
+            threshold: 0.0,
+        },
+        st_only: false,
+        st_slots: warpcore::sampler::BLUE_SLOTS,
         check: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
         let mut value = || it.next().ok_or(format!("{flag} needs a value"));
         let p = &mut a.params;
+        let st = &mut a.st;
         fn num<T: std::str::FromStr>(flag: &str, v: String) -> Result<T, String>
         where
             T::Err: std::fmt::Display,
@@ -66,6 +93,12 @@ fn parse() -> Result<Args, String> {
                     other => return Err(format!("--only: unknown pattern {other}")),
                 })
             }
+            "--weights" => {
+                p.weights = value()?
+                    .split(',')
+                    .map(|w| num(&flag, w.to_string()))
+                    .collect::<Result<_, _>>()?
+            }
             "--seed" => p.seed = num(&flag, value()?)?,
             "--pool" => p.pool = num(&flag, value()?)?,
             "--edges" => p.edges = num(&flag, value()?)?,
@@ -73,12 +106,16 @@ fn parse() -> Result<Args, String> {
             "--sweeps" => p.sweeps = num(&flag, value()?)?,
             "--rounds" => p.rounds = num(&flag, value()?)?,
             "--threshold" => p.threshold = num(&flag, value()?)?,
-            "--weights" => {
-                p.weights = value()?
-                    .split(',')
-                    .map(|w| num(&flag, w.to_string()))
-                    .collect::<Result<_, _>>()?
-            }
+            "--st-seed" => st.seed = num(&flag, value()?)?,
+            "--st-sigma" => st.sigma = num(&flag, value()?)?,
+            "--st-edges" => st.edges = num(&flag, value()?)?,
+            "--st-swaps" => st.swaps = num(&flag, value()?)?,
+            "--st-window" => st.window = num(&flag, value()?)?,
+            "--st-quad" => st.quad = num(&flag, value()?)?,
+            "--st-runs" => st.runs = num(&flag, value()?)?,
+            "--st-threshold" => st.threshold = num(&flag, value()?)?,
+            "--st-only" => a.st_only = true,
+            "--st-slots" => a.st_slots = num(&flag, value()?)?,
             "--check" => a.check = true,
             _ => return Err(format!("unknown argument {flag}")),
         }
@@ -90,7 +127,61 @@ fn parse() -> Result<Args, String> {
     if p.pool < opt::TILE * opt::TILE || p.levels == 0 || p.levels > 8 {
         return Err("--pool must be at least 4096, --levels in 1..=8".into());
     }
+    let st = &a.st;
+    if st.edges == 0 || !st.edges.is_multiple_of(8) {
+        return Err("--st-edges must be a positive multiple of 8".into());
+    }
+    if !(0.25..=4.0).contains(&st.sigma) || st.window.is_multiple_of(2) || st.window > 63 {
+        return Err("--st-sigma must be in 0.25..=4, --st-window odd and below 64".into());
+    }
+    if a.st_slots > warpcore::sampler::BLUE_SLOTS
+        || (a.st_slots < warpcore::sampler::BLUE_SLOTS && !a.st_only)
+    {
+        return Err("--st-slots: at most BLUE_SLOTS, fewer only with --st-only".into());
+    }
+    if !(0.0..=16.0).contains(&st.quad) || !(0.0..=16.0).contains(&st.runs) {
+        return Err("--st-quad and --st-runs must be in 0..=16".into());
+    }
     Ok(a)
+}
+
+/// The first `count` slot tiles of `base` (all [`warpcore::sampler::BLUE_SLOTS`] for the
+/// file), as the file's bytes, and one line per tile for the log.
+fn slot_file(base: Base, st: &SlotParams, count: usize) -> (Vec<u8>, String) {
+    let (mut bytes, mut log) = (Vec::new(), String::new());
+    for slot in 0..count {
+        let (tile, r) = slots::optimise(base, slot, st);
+        let mut sorted = tile.clone();
+        sorted.sort_unstable();
+        assert!(
+            sorted.iter().enumerate().all(|(k, &o)| k == o as usize),
+            "slot tile is not a permutation"
+        );
+        bytes.extend(tile.iter().flat_map(|o| o.to_le_bytes()));
+        let (b, a) = (r.before, r.after);
+        log += &format!(
+            "{} slot {slot}: {:.1} s, {} swaps accepted; blurred error / white noise on held-out \
+             half-planes, {} frames at 1 spp, mean (worst): sigma 1 {:.3} ({:.3}) -> {:.3} \
+             ({:.3}), sigma 1.5 {:.3} ({:.3}) -> {:.3} ({:.3}); 4 spp mean sigma 1 {:.3} -> {:.3}; EMA sigma 1 {:.3} -> {:.3}\n",
+            base.name(),
+            r.seconds,
+            r.accepted,
+            slots::FRAMES,
+            b.mean1,
+            b.worst1,
+            a.mean1,
+            a.worst1,
+            b.mean15,
+            b.worst15,
+            a.mean15,
+            a.worst15,
+            b.mean4,
+            a.mean4,
+            b.ema,
+            a.ema
+        );
+    }
+    (bytes, log)
 }
 
 fn main() -> ExitCode {
@@ -101,10 +192,11 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let p = &args.params;
+    let (p, st) = (&args.params, &args.st);
     let settings = format!(
         "--seed {} --pool {} --edges {} --levels {} --sweeps {} --rounds {} --threshold {} \
-         --weights {}",
+         --weights {} --st-seed {} --st-sigma {} --st-edges {} --st-swaps {} --st-window {} \
+         --st-quad {} --st-runs {} --st-threshold {}",
         p.seed,
         p.pool,
         p.edges,
@@ -116,43 +208,76 @@ fn main() -> ExitCode {
             .iter()
             .map(|w| w.to_string())
             .collect::<Vec<_>>()
-            .join(",")
+            .join(","),
+        st.seed,
+        st.sigma,
+        st.edges,
+        st.swaps,
+        st.window,
+        st.quad,
+        st.runs,
+        st.threshold
     );
     let mut manifest = format!(
-        "# warpcore blue-noise key tiles: 64 x 64 little-endian u32 keys, row-major.\n\
+        "# warpcore blue-noise tiles: blue_{{pattern}}_64.bin 64 x 64 little-endian u32 keys, \
+         row-major;\n\
+         # blue_slots_{{pattern}}_64.bin 6 x 64 x 64 little-endian u16 index offsets, slot-major, \
+         row-major.\n\
          # Written by `cargo run --release -p bluegen -- {settings}`.\n\
          # file bytes fnv1a64\n"
     );
     let mut files = Vec::new();
     let start = Instant::now();
-    for base in [Base::Sobol, Base::Pmj02bn] {
-        if args.only.is_some_and(|o| o != base) {
-            continue;
-        }
-        let t = Instant::now();
-        let (tile, report) = opt::optimise(base, p);
-        let show = |r: &[f64]| {
-            r.iter()
-                .map(|x| format!("{x:.3}"))
-                .collect::<Vec<_>>()
-                .join(" ")
-        };
-        eprintln!(
-            "{}: {:.1} s, {} moves accepted ({} from the pool); blurred error / white noise \
+    let bases: Vec<Base> = [Base::Sobol, Base::Pmj02bn]
+        .into_iter()
+        .filter(|&b| args.only.is_none_or(|o| o == b))
+        .collect();
+    // The slot tiles on their own threads (one per pattern, joined in order) while this one
+    // optimises the key tiles.
+    let slot_files: Vec<(Vec<u8>, String)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = bases
+            .iter()
+            .map(|&base| {
+                let count = args.st_slots;
+                scope.spawn(move || slot_file(base, st, count))
+            })
+            .collect();
+        for &base in bases.iter().filter(|_| !args.st_only) {
+            let t = Instant::now();
+            let (tile, report) = opt::optimise(base, p);
+            let show = |r: &[f64]| {
+                r.iter()
+                    .map(|x| format!("{x:.3}"))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            };
+            eprintln!(
+                "{}: {:.1} s, {} moves accepted ({} from the pool); blurred error / white noise \
              per level (1, 2, 4.. spp): {} -> {}",
-            base.name(),
-            t.elapsed().as_secs_f64(),
-            report.accepted,
-            report.replaced,
-            show(&report.before),
-            show(&report.after)
-        );
-        let bytes: Vec<u8> = tile.iter().flat_map(|k| k.to_le_bytes()).collect();
-        let name = format!("blue_{}_64.bin", base.name());
+                base.name(),
+                t.elapsed().as_secs_f64(),
+                report.accepted,
+                report.replaced,
+                show(&report.before),
+                show(&report.after)
+            );
+            let bytes: Vec<u8> = tile.iter().flat_map(|k| k.to_le_bytes()).collect();
+            let name = format!("blue_{}_64.bin", base.name());
+            manifest += &format!("{name} {} {:016x}\n", bytes.len(), fnv1a64(&bytes));
+            files.push((name, bytes));
+        }
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("a slot thread panicked"))
+            .collect()
+    });
+    for (&base, (bytes, log)) in bases.iter().zip(slot_files) {
+        eprint!("{log}");
+        let name = format!("blue_slots_{}_64.bin", base.name());
         manifest += &format!("{name} {} {:016x}\n", bytes.len(), fnv1a64(&bytes));
         files.push((name, bytes));
     }
-    if args.only.is_none() {
+    if args.only.is_none() && !args.st_only {
         files.push(("blue_MANIFEST".to_string(), manifest.into_bytes()));
     }
     eprintln!(

@@ -74,11 +74,9 @@ use warpcore::sampler::{Pmj02bn, Sampler, Sobol};
 
 /// Tile side (must equal `warpcore::sampler::BLUE_TILE`).
 pub const TILE: usize = 64;
-const PIXELS: usize = TILE * TILE;
+pub(crate) const PIXELS: usize = TILE * TILE;
 /// Sigma of the low-pass filter the energy measures, in pixels.
 pub const SIGMA: f64 = 1.5;
-/// Kernel support: offsets with `dx^2 + dy^2 <= RADIUS2` (`G` falls to 1% at the rim).
-const RADIUS2: i32 = 42;
 
 /// Dimensions of the random projection that shortlists replacement candidates.
 const SKETCH: usize = 64;
@@ -112,7 +110,7 @@ impl Base {
 
 /// `exp(x)` for `|x| <= 1` by its Taylor series (to the last bit of f64 within 20 terms):
 /// basic arithmetic only, so the same bits everywhere.
-fn exp_small(x: f64) -> f64 {
+pub(crate) fn exp_small(x: f64) -> f64 {
     let (mut term, mut sum) = (1.0, 1.0);
     for k in 1..20 {
         term = term * x / k as f64;
@@ -154,11 +152,16 @@ impl Edge {
     /// error is the negation), offset at the golden-ratio fraction `frac(1/2 + k phi)` of its
     /// range. A stratified family approximates "all edges" far better than random lines, so
     /// the optimiser cannot fit the accidents of a random few.
-    fn lattice(k: usize, count: usize) -> Edge {
+    pub(crate) fn lattice(k: usize, count: usize) -> Edge {
         let angle = core::f64::consts::PI * (k as f64 + 0.5) / count as f64;
-        let n = cos_sin(angle);
         let golden = 0.618_033_988_749_894_9;
-        let u = (0.5 + k as f64 * golden).fract();
+        Edge::new(angle, (0.5 + k as f64 * golden).fract())
+    }
+
+    /// The line of normal angle `angle` (in `[0, pi]`) at the fraction `u` of the offsets
+    /// whose lines cross the square.
+    pub(crate) fn new(angle: f64, u: f64) -> Edge {
+        let n = cos_sin(angle);
         let half = 0.5 * (n[0].abs() + n[1].abs());
         let c = half * (2.0 * u - 1.0);
         let mut e = Edge { n, c, area: 0.0 };
@@ -166,11 +169,15 @@ impl Edge {
         e
     }
 
-    fn inside(&self, p: [f32; 2]) -> bool {
+    pub(crate) fn inside(&self, p: [f32; 2]) -> bool {
         (p[0] as f64 - 0.5) * self.n[0] + (p[1] as f64 - 0.5) * self.n[1] < self.c
     }
 
-    /// The exact area of the half-plane in the square.
+    /// The exact area of the half-plane in the square (computed once, by [`Edge::new`]).
+    pub(crate) fn area(&self) -> f64 {
+        self.area
+    }
+
     fn exact_area(&self) -> f64 {
         square_area_below(|p| (p[0] - 0.5) * self.n[0] + (p[1] - 0.5) * self.n[1] - self.c)
     }
@@ -206,12 +213,12 @@ pub struct Report {
     pub replaced: usize,
 }
 
-/// The pool's errors: for key `j`, level `l` (`n = 2^l` samples) and edge `t`, the error is
-/// `(hits - n area_t) / n`, scaled by `1 / rms_l` (the level's RMS over the pool, so every
-/// level weighs the same). Only `hits` depends on the key: it is stored as one byte (levels
+/// The pool's errors: for key `j`, level `l` (`n_l` samples, `n_l = 2^l` for the key tiles) and
+/// edge `t`, the error is `(hits - n_l area_t) / n_l`, scaled by `weight_l / rms_l` (the level's
+/// RMS over the pool, so every level weighs the same before its weight). Only `hits` depends on the key: it is stored as one byte (levels
 /// up to 128 samples), which makes a move's cost mostly a read of `dim` bytes per key; the
 /// difference of two keys' errors is exactly `(hits_b - hits_a) * unit_l`.
-struct Pool {
+pub(crate) struct Pool {
     hits: Vec<u8>,
     levels: usize,
     edges: usize,
@@ -245,8 +252,23 @@ impl Pool {
                 }
             }
         }
+        let counts: Vec<u32> = (0..levels).map(|l| 1 << l).collect();
+        Pool::from_hits(hits, &counts, edges, weights)
+    }
+
+    /// The pool of the rows of `hits`: row `j`, level `l`, edge `t` at `j dim + l T + t` is
+    /// how many of the level's `counts[l]` points (at most 255) fall in edge `t`.
+    pub(crate) fn from_hits(
+        hits: Vec<u8>,
+        counts: &[u32],
+        edges: &[Edge],
+        weights: &[f64],
+    ) -> Pool {
+        let (t, levels) = (edges.len(), counts.len());
+        let dim = levels * t;
+        assert!(t.is_multiple_of(8) && hits.len().is_multiple_of(dim));
         let zero: Vec<f64> = (0..dim)
-            .map(|k| (1u32 << (k / t)) as f64 * edges[k % t].area)
+            .map(|k| counts[k / t] as f64 * edges[k % t].area)
             .collect();
         // The RMS error of each level over the pool (f64, in a fixed order).
         let mut square = vec![0.0f64; levels];
@@ -258,8 +280,8 @@ impl Pool {
         }
         let unit = (0..levels)
             .map(|l| {
-                let n = (1u32 << l) as f64;
-                let rms = (square[l] / (keys.len() * t) as f64).sqrt() / n;
+                let n = counts[l] as f64;
+                let rms = (square[l] / (hits.len() / dim * t) as f64).sqrt() / n;
                 (weights.get(l).copied().unwrap_or(1.0) / (n * rms)) as f32
             })
             .collect();
@@ -286,28 +308,36 @@ impl Pool {
     }
 }
 
-/// `(dx, dy, G(dx, dy))` over the kernel's support, `G = exp(-|d|^2 / (4 sigma^2))`.
-fn kernel() -> Vec<(i32, i32, f32)> {
-    let g = g_table();
-    let r = (RADIUS2 as f64).sqrt() as i32;
-    let mut taps = Vec::new();
-    for dy in -r..=r {
-        for dx in -r..=r {
-            let d2 = dx * dx + dy * dy;
-            if d2 <= RADIUS2 {
-                taps.push((dx, dy, g[d2 as usize]));
-            }
-        }
-    }
-    taps
+/// The energy's kernel `G = exp(-|d|^2 / (4 sigma^2))` (the autocorrelation of a Gaussian
+/// low-pass of sigma `sigma`), on the offsets with `|d|^2 <= radius2`, where `G` has fallen to
+/// 1%: `radius2 = ceil(4 sigma^2 ln 100)` (42 for sigma 1.5, 19 for sigma 1).
+pub(crate) struct Kernel {
+    /// `(dx, dy, G(dx, dy))` over the support.
+    taps: Vec<(i32, i32, f32)>,
+    /// `G` by squared distance, `0..=radius2`.
+    g_table: Vec<f32>,
 }
 
-/// `G` by squared distance, `0..=RADIUS2`.
-fn g_table() -> Vec<f32> {
-    let q = exp_small(-1.0 / (4.0 * SIGMA * SIGMA));
-    (0..=RADIUS2)
-        .map(|d2| (0..d2).fold(1.0f64, |w, _| w * q) as f32)
-        .collect()
+impl Kernel {
+    pub(crate) fn new(sigma: f64) -> Kernel {
+        let ln100 = 4.605_170_185_988_091;
+        let radius2 = (4.0 * sigma * sigma * ln100).ceil() as i32;
+        let q = exp_small(-1.0 / (4.0 * sigma * sigma));
+        let g_table: Vec<f32> = (0..=radius2)
+            .map(|d2| (0..d2).fold(1.0f64, |w, _| w * q) as f32)
+            .collect();
+        let r = (radius2 as f64).sqrt() as i32;
+        let mut taps = Vec::new();
+        for dy in -r..=r {
+            for dx in -r..=r {
+                let d2 = dx * dx + dy * dy;
+                if d2 <= radius2 {
+                    taps.push((dx, dy, g_table[d2 as usize]));
+                }
+            }
+        }
+        Kernel { taps, g_table }
+    }
 }
 
 /// `G` between two pixels on the torus (0 outside the support).
@@ -367,12 +397,12 @@ fn dots3(u: &[u8], v: &[u8], y: &[f32], z: &[f32]) -> (f32, i32) {
 }
 
 /// The tile being optimised and its filtered field.
-struct State<'a> {
+pub(crate) struct State<'a> {
     pool: &'a Pool,
     taps: Vec<(i32, i32, f32)>,
     g_table: Vec<f32>,
     /// Pool index of each pixel's key.
-    tile: Vec<usize>,
+    pub(crate) tile: Vec<usize>,
     used: Vec<bool>,
     /// `F_p = sum_q G(p - q) e_q` in hits (divided by the level's unit, so that a move adds
     /// `G` times a difference of hits and `d . F` is `unit^2 sum (hits_b - hits_a) field`):
@@ -383,14 +413,41 @@ struct State<'a> {
     delta: Vec<f32>,
     /// A random projection of every pool key's error vector to [`SKETCH`] dimensions, their
     /// squared norms, and the same projection of the field: the cheap approximate distances
-    /// that shortlist replacement candidates.
+    /// that shortlist replacement candidates (empty when the search only swaps).
     sketch: Vec<f32>,
     sketch_norm: Vec<f32>,
     sketch_field: Vec<f32>,
 }
 
-impl State<'_> {
-    fn neighbour(p: usize, dx: i32, dy: i32) -> usize {
+impl<'a> State<'a> {
+    /// The state of `tile` (pool rows, the rest of the pool unused), its field computed; a
+    /// sketch (from [`project`]) or none.
+    pub(crate) fn new(pool: &'a Pool, kernel: Kernel, tile: Vec<usize>, sketch: Vec<f32>) -> Self {
+        let rows = pool.hits.len() / pool.dim;
+        let mut used = vec![false; rows];
+        tile.iter().for_each(|&j| used[j] = true);
+        let mut s = State {
+            pool,
+            taps: kernel.taps,
+            g_table: kernel.g_table,
+            tile,
+            used,
+            field: Vec::new(),
+            unit2: pool.unit.iter().map(|u| u * u).collect(),
+            delta: vec![0.0; pool.dim],
+            sketch_norm: sketch
+                .chunks_exact(SKETCH)
+                .map(|s| s.iter().map(|x| x * x).sum())
+                .collect(),
+            sketch,
+            sketch_field: Vec::new(),
+        };
+        s.recompute_field();
+        s.recompute_sketch_field();
+        s
+    }
+
+    pub(crate) fn neighbour(p: usize, dx: i32, dy: i32) -> usize {
         let x = (p % TILE) as i32 + dx;
         let y = (p / TILE) as i32 + dy;
         (y.rem_euclid(TILE as i32) as usize) * TILE + x.rem_euclid(TILE as i32) as usize
@@ -401,7 +458,7 @@ impl State<'_> {
     }
 
     /// The filtered field from scratch (in f64, then rounded).
-    fn recompute_field(&mut self) {
+    pub(crate) fn recompute_field(&mut self) {
         let (dim, t) = (self.pool.dim, self.pool.edges);
         let mut f = vec![0.0f64; PIXELS * dim];
         for p in 0..PIXELS {
@@ -436,7 +493,7 @@ impl State<'_> {
 
     /// The change of the energy if `a` and `b` swapped keys:
     /// `2 d . (F_a - F_b) + 2 |d|^2 (G(0) - G(a - b))`, `d = e_b - e_a`.
-    fn swap_delta(&self, a: usize, b: usize) -> f32 {
+    pub(crate) fn swap_delta(&self, a: usize, b: usize) -> f32 {
         let (pool, t) = (self.pool, self.pool.edges);
         let (eb, ea) = (pool.row(self.tile[b]), pool.row(self.tile[a]));
         let (fa, fb) = (self.field_of(a), self.field_of(b));
@@ -479,6 +536,9 @@ impl State<'_> {
 
     /// The sketched field from scratch.
     fn recompute_sketch_field(&mut self) {
+        if self.sketch.is_empty() {
+            return;
+        }
         let mut f = vec![0.0f32; PIXELS * SKETCH];
         for p in 0..PIXELS {
             let j = self.tile[p];
@@ -499,6 +559,9 @@ impl State<'_> {
     fn move_fields(&mut self, a: usize, new: usize, old: usize) {
         self.set_delta(new, old);
         self.spread(a, 1.0);
+        if self.sketch.is_empty() {
+            return;
+        }
         let d: [f32; SKETCH] =
             core::array::from_fn(|m| self.sketch[new * SKETCH + m] - self.sketch[old * SKETCH + m]);
         for &(dx, dy, w) in &self.taps {
@@ -512,7 +575,7 @@ impl State<'_> {
         }
     }
 
-    fn apply_swap(&mut self, a: usize, b: usize) {
+    pub(crate) fn apply_swap(&mut self, a: usize, b: usize) {
         let (ja, jb) = (self.tile[a], self.tile[b]);
         self.move_fields(a, jb, ja);
         self.move_fields(b, ja, jb);
@@ -569,6 +632,12 @@ impl State<'_> {
     /// Per level `sqrt(E_level / E_white)`: `E = sum_p e_p . F_p`, `E_white = G(0) sum_p |e_p|^2`
     /// (its expectation for independent keys).
     fn ratios(&self) -> Vec<f64> {
+        let (e, white) = self.energies();
+        e.iter().zip(&white).map(|(e, w)| (e / w).sqrt()).collect()
+    }
+
+    /// Per level `E = sum_p e_p . F_p` (from the field as it stands) and `sum_p |e_p|^2`.
+    pub(crate) fn energies(&self) -> (Vec<f64>, Vec<f64>) {
         let (levels, t) = (self.pool.levels, self.pool.edges);
         let (mut e, mut white) = (vec![0.0f64; levels], vec![0.0f64; levels]);
         for p in 0..PIXELS {
@@ -579,7 +648,7 @@ impl State<'_> {
                 white[l] += ep * ep;
             }
         }
-        e.iter().zip(&white).map(|(e, w)| (e / w).sqrt()).collect()
+        (e, white)
     }
 }
 
@@ -615,24 +684,7 @@ pub fn optimise(base: Base, p: &Params) -> (Vec<u32>, Report) {
     let edges: Vec<Edge> = (0..p.edges).map(|k| Edge::lattice(k, p.edges)).collect();
     let pool = Pool::new(base, &keys, &edges, p.levels, &p.weights);
     let sketch = project(&pool, &mut rng);
-    let mut s = State {
-        pool: &pool,
-        taps: kernel(),
-        g_table: g_table(),
-        tile: (0..PIXELS).collect(),
-        used: (0..p.pool).map(|j| j < PIXELS).collect(),
-        field: Vec::new(),
-        unit2: pool.unit.iter().map(|u| u * u).collect(),
-        delta: vec![0.0; pool.dim],
-        sketch_norm: sketch
-            .chunks_exact(SKETCH)
-            .map(|s| s.iter().map(|x| x * x).sum())
-            .collect(),
-        sketch,
-        sketch_field: Vec::new(),
-    };
-    s.recompute_field();
-    s.recompute_sketch_field();
+    let mut s = State::new(&pool, Kernel::new(SIGMA), (0..PIXELS).collect(), sketch);
     let before = s.ratios();
     let (mut accepted, mut replaced) = (0, 0);
 

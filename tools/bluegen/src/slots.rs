@@ -1,0 +1,450 @@
+//! The slot tiles: per-pixel index offsets that make `Blue<P>`'s errors blue noise in space
+//! *and* time.
+//!
+//! # What is optimised
+//!
+//! In spatiotemporal slot `s`, pixel `x` of the `TILE x TILE` torus draws sample `n` as
+//! `Sampler::<P>::from_domain_hash(BLUE_SLOT_KEYS[s], n ^ o_s[x]).draw::<2>()` (see
+//! `src/sampler/blue.rs`): every pixel walks the *same* scrambled sequence, from its own
+//! offset `o_s[x]`, and `o_s` is a permutation of `0..TILE^2`. Two things follow.
+//!
+//! * In time: for `n < 2^k <= TILE^2`, the indices `n ^ o` of one pixel run over the aligned
+//!   block of `2^k` indices that contains `o` — a `(0, k, 2)`-net for both base patterns (a
+//!   test checks `k <= 6` for every slot) — so
+//!   each pixel's running mean converges like the sequence itself, however the offsets are
+//!   arranged.
+//! * In space: frame `f` (1 spp, `n = f`) gives pixel `x` point `f ^ o[x]`. The map
+//!   `o -> f ^ o` is a fixed permutation of the offsets, so every frame shows the *whole*
+//!   sequence's first `TILE^2` points, rearranged by a transform of frame 0's arrangement
+//!   that we know in advance. So each frame's arrangement can be optimised at once, rather
+//!   than only the first few, which is what "blue noise in every frame" needs.
+//!
+//! This is the goal of spatiotemporal blue noise — Wolfe, Morrical, Akenine-Möller and
+//! Ramamoorthi, "Spatiotemporal Blue Noise Masks" (EGSR 2022), and Donnelly, Wolfe, Bösch
+//! and Novák, "Filter-adapted spatiotemporal sampling for real-time rendering" (FAST noise,
+//! I3D 2024): every frame's mask blue in space, each pixel's sequence well spread in time —
+//! but, as in Heitz, Belcour, Ostromoukhov, Coeurjolly and Iehl, "A Low-Discrepancy Sampler
+//! that Distributes Monte Carlo Errors as a Blue Noise in Screen Space" (2019) and Belcour and
+//! Heitz, "Lessons learned and improvements when building screen-space samplers with
+//! blue-noise error distribution" (2021), for the *errors* of a low-discrepancy sampler on
+//! test integrands rather than for the values of a mask, and with the time axis handled by
+//! the net structure of the XOR offsets into one scrambled sequence (rather than by
+//! per-pixel scrambles or seeds, whose sequences are unrelated between pixels).
+//!
+//! # The energy
+//!
+//! The same quadratic energy as the key tiles ([`crate::opt`]): the test integrands are
+//! half-planes of the pixel square ([`Edge::lattice`]), the error image of integrand `t` in
+//! frame `f` is `e_{f,t}(x) = [p_{f ^ o[x]} in t] - area_t`, and
+//!
+//! ```text
+//! E = sum_{f,t} w_f |g * e_{f,t}|^2 = sum_{x,y} G(x - y) e_x . e_y,
+//! ```
+//!
+//! a Gaussian low-pass `g` on the torus (the library shifts the tile toroidally and applies
+//! one of the 8 symmetries of the square, so the kernel is isotropic and periodic). Each
+//! offset `o` is a "key" of [`crate::opt`]'s pool whose error vector stacks its 32 frames
+//! (and, with weight `--st-quad`, the 32 frames at 4 spp, `n = 4f .. 4f + 3`; with weight
+//! `--st-runs`, the means over aligned windows of 4 to 32 frames), so the pool, the
+//! filtered field `F = G * e` and the swap's `dE = 2 d . (F_a - F_b) + 2 |d|^2 (G(0) -
+//! G(a - b))` are that module's code: a swap costs `O(frames x edges)` to evaluate and
+//! `O(taps x frames x edges)` to apply. Only swaps: the offsets stay a permutation.
+//!
+//! # The search
+//!
+//! From a random permutation, random proposals swap a pixel's offset with one in a window
+//! around it (most useful swaps are local: the field is local) and are taken when they lower
+//! the energy (an optional threshold accepting schedule, as in [`crate::opt`], did not help:
+//! off by default).
+//!
+//! # Settings, measured on held-out half-planes
+//!
+//! The figures are RMS ratios (blurred error over what independent uniform points give), on
+//! 32 random half-planes that are not in the training lattice, per frame at 1 spp (mean and
+//! worst of the 32 frames); random offsets give about 1.0 (0.47 for the EMA, alpha 0.1,
+//! over the 32 frames: the per-pixel net already helps in time). Sobol' slot 0, 1.5M
+//! proposals in a 7 x 7 window, 32 edges unless said:
+//!
+//! | energy                                  | sigma-1 blur  | sigma-1.5 blur | EMA (sigma 1) |
+//! |-----------------------------------------|---------------|----------------|---------------|
+//! | sigma 1, 64 edges, 1M in 9 x 9          | 0.790 (0.800) | 0.747 (0.768)  | 0.446         |
+//! | sigma 1.25, runs 0.25                   | 0.786 (0.796) | 0.724 (0.742)  | 0.433         |
+//! | sigma 1.5, runs 0.25                    | 0.791 (0.803) | 0.705 (0.725)  | 0.435         |
+//! | sigma 1.5, runs 0.6 (chosen)            | 0.795 (0.808) | 0.709 (0.726)  | 0.414         |
+//! | sigma 1.5, runs 0.6, 64 edges           | 0.794 (0.803) | 0.706 (0.720)  | 0.416         |
+//! | sigma 1.5, runs 1                       | 0.812 (0.822) | 0.731 (0.746)  | 0.398         |
+//! | sigma 1.5, runs 0.6, quad 0.5           | 0.802 (0.811) | 0.721 (0.742)  | 0.411         |
+//!
+//! * Sigma 1.5 (the report's blur) costs the sigma-1 figure half a percent and buys 3-6% at
+//!   sigma 1.5, where the target (every frame at most 0.75) is tightest.
+//! * 32 training edges generalise as well as 64 or 128 (0.786-0.790 at sigma 1 either way
+//!   with sigma-1 energy; 0.795 against 0.794 in the table) at half the cost.
+//! * The running means (`--st-runs`) are what lowers the EMA: the per-frame energy alone
+//!   ignores the cross terms between frames. At sigma 1.5, weights 0.25 / 0.6 / 1 give an
+//!   EMA of 0.435 / 0.414 / 0.398 (without them about 0.445), for under 1% per frame up to
+//!   0.6; weight 1 brings the worst frame to 0.746, too near the 0.75 target.
+//! * The 4-spp frames (`--st-quad 0.5`) take 4 spp from 0.606 to 0.579 x white noise (random
+//!   offsets: 0.63) for 1-2% at 1 spp and up to twice the time: off by default.
+//! * Proposals: 1M -> 3M gains under 0.5%; a 7 x 7 window converges faster than 17 x 17.
+//!
+//! # Determinism
+//!
+//! One SplitMix64 stream per tile (seeded by the pattern and the slot), swaps in a fixed
+//! order, the arithmetic of [`crate::opt`]: the bytes do not depend on threads or machine.
+
+use crate::opt::{Base, Edge, Kernel, PIXELS, Pool, State, TILE, exp_small};
+use pmjgen::Rng;
+use std::time::Instant;
+use warpcore::sampler::BLUE_SLOT_KEYS;
+
+/// Frames optimised and measured (1 spp each, `n = f`).
+pub const FRAMES: usize = 32;
+/// Held-out half-planes for the measurement.
+const HELD_OUT: usize = 32;
+/// The EMA's weight of the new frame.
+const ALPHA: f64 = 0.1;
+
+/// The slot search's settings (recorded in the manifest's command line).
+#[derive(Clone, Debug)]
+pub struct SlotParams {
+    pub seed: u64,
+    /// Sigma of the energy's low-pass, pixels.
+    pub sigma: f64,
+    /// Training half-planes (a multiple of 8).
+    pub edges: usize,
+    /// Swap proposals per tile.
+    pub swaps: usize,
+    /// Side of the (odd) window a swap partner is drawn from.
+    pub window: usize,
+    /// Weight of the 4-spp frames (0: none).
+    pub quad: f64,
+    /// Weight of the running means over aligned windows of 4 .. 32 frames (0: none).
+    pub runs: f64,
+    /// The starting threshold of threshold accepting, a fraction of an offset's `|e|^2`.
+    pub threshold: f64,
+}
+
+/// Held-out figures of one tile: RMS of the blurred error relative to white noise.
+#[derive(Clone, Copy, Debug)]
+pub struct Measure {
+    /// Per frame (1 spp), sigma-1 blur: mean and worst of the [`FRAMES`] frames.
+    pub mean1: f64,
+    pub worst1: f64,
+    /// The same after a sigma-1.5 blur (the report's figure).
+    pub mean15: f64,
+    pub worst15: f64,
+    /// Per frame at 4 spp (`n = 4f .. 4f + 3`), sigma-1 blur, mean of the frames, relative to
+    /// white noise at 4 spp.
+    pub mean4: f64,
+    /// The EMA (alpha 0.1) of the frames after a sigma-1 blur, relative to the EMA of white
+    /// noise in space and time.
+    pub ema: f64,
+}
+
+/// What one slot tile's search did.
+pub struct SlotReport {
+    pub seconds: f64,
+    pub accepted: usize,
+    pub before: Measure,
+    pub after: Measure,
+}
+
+/// The slot's first `TILE^2` points (every index `n ^ o` of the optimised frames is below).
+fn points(base: Base, slot: usize) -> Vec<[f32; 2]> {
+    (0..PIXELS as u32)
+        .map(|n| base.point(BLUE_SLOT_KEYS[slot], n))
+        .collect()
+}
+
+/// The half-planes the measurement uses: random lines (angle and offset uniform), none from
+/// the training lattice, the same for every tile.
+fn held_out() -> Vec<Edge> {
+    let mut rng = Rng::new(0x005e_ed0f_0e1d_0ff5);
+    let mut unit = || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+    (0..HELD_OUT)
+        .map(|_| {
+            let angle = core::f64::consts::PI * unit();
+            Edge::new(angle, unit())
+        })
+        .collect()
+}
+
+/// The normalised 1D Gaussian of sigma `sigma` truncated at `4 sigma`.
+fn gauss(sigma: f64) -> Vec<f64> {
+    let r = (4.0 * sigma).ceil() as i64;
+    let q = exp_small(-1.0 / (2.0 * sigma * sigma));
+    let w: Vec<f64> = (-r..=r)
+        .map(|d| (0..d * d).fold(1.0, |w, _| w * q))
+        .collect();
+    let sum: f64 = w.iter().sum();
+    w.iter().map(|w| w / sum).collect()
+}
+
+/// `|g * img|^2` on the torus, `g` separable (`w` from [`gauss`]).
+fn blurred_energy(img: &[f64], w: &[f64]) -> f64 {
+    let r = w.len() / 2;
+    // Pixel `(x + d - r, y)` (or `(x, y + d - r)`) of `src`, wrapped (TILE is a power of two).
+    let pass = |src: &[f64], stride: usize| -> Vec<f64> {
+        (0..PIXELS)
+            .map(|p| {
+                let (x, y) = (p % TILE, p / TILE);
+                w.iter()
+                    .enumerate()
+                    .map(|(d, w)| {
+                        let q = if stride == 1 {
+                            y * TILE + ((x + TILE + d - r) & (TILE - 1))
+                        } else {
+                            ((y + TILE + d - r) & (TILE - 1)) * TILE + x
+                        };
+                        w * src[q]
+                    })
+                    .sum()
+            })
+            .collect()
+    };
+    pass(&pass(img, 1), TILE).iter().map(|b| b * b).sum()
+}
+
+/// The held-out figures of the offsets `o` (see [`Measure`]): per half-plane and frame the
+/// error image, its blurred energy against `sum g^2 * TILE^2 * area (1 - area)` (the
+/// expectation for independent uniform points); the EMA's reference carries the EMA's
+/// `sum_f w_f^2`.
+pub fn measure(pts: &[[f32; 2]], o: &[usize]) -> Measure {
+    let (g1, g15) = (gauss(1.0), gauss(1.5));
+    let norm = |w: &[f64]| {
+        let s: f64 = w.iter().map(|w| w * w).sum();
+        s * s
+    };
+    let (n1, n15) = (norm(&g1), norm(&g15));
+    let mut frame1 = [0.0f64; FRAMES];
+    let mut frame15 = [0.0f64; FRAMES];
+    let mut frame4 = 0.0;
+    let (mut white, mut ema_energy) = (0.0, 0.0);
+    for edge in held_out() {
+        let a = edge.area();
+        white += PIXELS as f64 * a * (1.0 - a);
+        let mut ema = vec![0.0f64; PIXELS];
+        for f in 0..FRAMES {
+            let e: Vec<f64> = o
+                .iter()
+                .map(|&o| edge.inside(pts[f ^ o]) as u32 as f64 - a)
+                .collect();
+            frame1[f] += blurred_energy(&e, &g1) / n1;
+            frame15[f] += blurred_energy(&e, &g15) / n15;
+            for (m, e) in ema.iter_mut().zip(&e) {
+                *m = if f == 0 {
+                    *e
+                } else {
+                    (1.0 - ALPHA) * *m + ALPHA * e
+                };
+            }
+        }
+        ema_energy += blurred_energy(&ema, &g1) / n1;
+        for f in 0..FRAMES {
+            let e: Vec<f64> = o
+                .iter()
+                .map(|&o| {
+                    let hits: u32 = (4 * f..4 * f + 4)
+                        .map(|n| edge.inside(pts[n ^ o]) as u32)
+                        .sum();
+                    hits as f64 / 4.0 - a
+                })
+                .collect();
+            // White noise at 4 spp: a quarter of the variance.
+            frame4 += 4.0 * blurred_energy(&e, &g1) / n1 / FRAMES as f64;
+        }
+    }
+    // The EMA's weights: (1 - alpha)^(F-1) for frame 0, alpha (1 - alpha)^(F-1-f) after.
+    let sum_w2: f64 = (0..FRAMES)
+        .map(|f| {
+            let decay = (f + 1..FRAMES).fold(1.0, |w, _| w * (1.0 - ALPHA));
+            let w = if f == 0 { decay } else { ALPHA * decay };
+            w * w
+        })
+        .sum();
+    let ratio = |e: f64| (e / white).sqrt();
+    let stats = |v: &[f64]| {
+        let r: Vec<f64> = v.iter().map(|&e| ratio(e)).collect();
+        (
+            r.iter().sum::<f64>() / r.len() as f64,
+            r.iter().fold(0.0f64, |m, &x| m.max(x)),
+        )
+    };
+    let (mean1, worst1) = stats(&frame1);
+    let (mean15, worst15) = stats(&frame15);
+    Measure {
+        mean1,
+        worst1,
+        mean15,
+        worst15,
+        mean4: ratio(frame4),
+        ema: (ema_energy / (white * sum_w2)).sqrt(),
+    }
+}
+
+/// The index ranges of the energy's groups and their weights: the [`FRAMES`] frames at 1 spp
+/// (`n = f`, weight 1); with `quad > 0` the frames at 4 spp (`n = 4f .. 4f + 3`); with
+/// `runs > 0` the means of the 1-spp frames over the aligned windows of 4, 8, 16 and 32
+/// frames (what accumulation and the EMA see: their errors' cross terms between frames).
+fn groups(p: &SlotParams) -> Vec<(core::ops::Range<usize>, f64)> {
+    let mut g: Vec<_> = (0..FRAMES).map(|f| (f..f + 1, 1.0)).collect();
+    if p.quad > 0.0 {
+        g.extend((0..FRAMES).map(|f| (4 * f..4 * f + 4, p.quad)));
+    }
+    if p.runs > 0.0 {
+        for size in [4, 8, 16, 32] {
+            g.extend((0..FRAMES / size).map(|k| (k * size..(k + 1) * size, p.runs)));
+        }
+    }
+    g
+}
+
+/// The pool: offset `o`'s row holds, per group of [`groups`] and training edge, how many of
+/// the points `n ^ o` (`n` in the group's range) fall in the edge.
+fn pool(pts: &[[f32; 2]], edges: &[Edge], groups: &[(core::ops::Range<usize>, f64)]) -> Pool {
+    let t = edges.len();
+    let mut hits = vec![0u8; PIXELS * groups.len() * t];
+    for (o, row) in hits.chunks_exact_mut(groups.len() * t).enumerate() {
+        for ((range, _), level) in groups.iter().zip(row.chunks_exact_mut(t)) {
+            for n in range.clone() {
+                let p = pts[n ^ o];
+                for (h, e) in level.iter_mut().zip(edges) {
+                    *h += e.inside(p) as u8;
+                }
+            }
+        }
+    }
+    let counts: Vec<u32> = groups.iter().map(|(r, _)| r.len() as u32).collect();
+    let weights: Vec<f64> = groups.iter().map(|g| g.1).collect();
+    Pool::from_hits(hits, &counts, edges, &weights)
+}
+
+/// Optimises slot `slot` of `base`: `TILE * TILE` offsets, row-major.
+pub fn optimise(base: Base, slot: usize, p: &SlotParams) -> (Vec<u16>, SlotReport) {
+    let start = Instant::now();
+    let tag = (base as u64) << 8 | slot as u64;
+    let mut rng = Rng::new(p.seed ^ (tag + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+    let pts = points(base, slot);
+    let mut o: Vec<usize> = (0..PIXELS).collect();
+    for k in (1..PIXELS).rev() {
+        o.swap(k, rng.below(k + 1));
+    }
+    let before = measure(&pts, &o);
+    let edges: Vec<Edge> = (0..p.edges).map(|k| Edge::lattice(k, p.edges)).collect();
+    let groups = groups(p);
+    let pool = pool(&pts, &edges, &groups);
+    let mut s = State::new(&pool, Kernel::new(p.sigma), o, Vec::new());
+    let half = (p.window / 2) as i32;
+    // Threshold accepting (Dueck and Scheuer 1990), as in `opt`: a swap is taken when `dE` is
+    // below a threshold falling linearly to zero; `|e|^2` of an offset is about `dim`.
+    let dim = p.edges * groups.len();
+    let t0 = p.threshold * dim as f64;
+    let mut accepted = 0;
+    for step in 0..p.swaps {
+        let threshold = (t0 * (1.0 - step as f64 / p.swaps as f64)) as f32;
+        let a = rng.below(PIXELS);
+        let dx = rng.below(p.window) as i32 - half;
+        let dy = rng.below(p.window) as i32 - half;
+        let b = State::neighbour(a, dx, dy);
+        if a != b && s.swap_delta(a, b) < threshold {
+            s.apply_swap(a, b);
+            accepted += 1;
+        }
+    }
+    let after = measure(&pts, &s.tile);
+    let tile = s.tile.iter().map(|&o| o as u16).collect();
+    (
+        tile,
+        SlotReport {
+            seconds: start.elapsed().as_secs_f64(),
+            accepted,
+            before,
+            after,
+        },
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The swap's predicted energy change (`swap_delta`) and the field it updates
+    /// (`apply_swap`) against the energy recomputed from scratch, for partners inside the
+    /// kernel (where the `G(a - b)` term matters) and outside it, with frames and running
+    /// means. A wrong term in `dE` (e.g. without `G(a - b)`) is off by `2 |d|^2 G(a - b)`, of
+    /// the order of `dE` itself.
+    #[test]
+    fn swap_delta_matches_recomputed_energy() {
+        let p = SlotParams {
+            seed: 1,
+            sigma: 1.0,
+            edges: 8,
+            swaps: 0,
+            window: 7,
+            quad: 0.0,
+            runs: 0.5,
+            threshold: 0.0,
+        };
+        let pts = points(Base::Sobol, 0);
+        let edges: Vec<Edge> = (0..p.edges).map(|k| Edge::lattice(k, p.edges)).collect();
+        let pool = pool(&pts, &edges, &groups(&p));
+        let mut rng = Rng::new(7);
+        let mut o: Vec<usize> = (0..PIXELS).collect();
+        for k in (1..PIXELS).rev() {
+            o.swap(k, rng.below(k + 1));
+        }
+        let mut s = State::new(&pool, Kernel::new(p.sigma), o, Vec::new());
+        let energy = |s: &State| s.energies().0.iter().sum::<f64>();
+        for (dx, dy) in [(1, 0), (0, -2), (2, 3), (20, 5)] {
+            let a = rng.below(PIXELS);
+            let b = State::neighbour(a, dx, dy);
+            let before = energy(&s);
+            let predicted = s.swap_delta(a, b) as f64;
+            s.apply_swap(a, b);
+            let incremental = energy(&s);
+            s.recompute_field();
+            let after = energy(&s);
+            let tol = 1e-3 * predicted.abs() + 1e-2;
+            assert!(
+                predicted.abs() > 1.0,
+                "a swap that changes nothing tests nothing"
+            );
+            assert!(
+                (after - before - predicted).abs() < tol,
+                "({dx}, {dy}): dE {predicted} predicted, {} recomputed",
+                after - before
+            );
+            assert!(
+                (incremental - after).abs() < tol,
+                "({dx}, {dy}): field drift"
+            );
+        }
+    }
+
+    /// What the doc claims for time: every aligned block of `2^k` indices (the frames
+    /// `0..2^k` of a pixel, whatever its offset) is a `(0, k, 2)`-net: each elementary
+    /// interval of area `2^-k` holds exactly one point. Both patterns, every slot, `k <= 6`,
+    /// every block among the first `TILE^2` points.
+    #[test]
+    fn aligned_blocks_are_nets() {
+        for base in [Base::Sobol, Base::Pmj02bn] {
+            for slot in 0..BLUE_SLOT_KEYS.len() {
+                let pts = points(base, slot);
+                for k in 1..=6u32 {
+                    for block in pts.chunks_exact(1 << k) {
+                        for a in 0..=k {
+                            let mut seen = vec![false; 1 << k];
+                            for p in block {
+                                let cx = (p[0] * (1u32 << a) as f32) as usize;
+                                let cy = (p[1] * (1u32 << (k - a)) as f32) as usize;
+                                let cell = cy << a | cx;
+                                assert!(!seen[cell], "{base:?} slot {slot}: 2^{k} block not a net");
+                                seen[cell] = true;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
