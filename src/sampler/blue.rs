@@ -9,6 +9,15 @@
 //! different keys (they coincide for all pixels at once only when two domains draw the same
 //! shift and symmetry: probability `1 / (8 TILE^2)` per pair of domains).
 //!
+//! **Spatiotemporal slots.** Below a root made by `Sampler::new_frame`, the domains
+//! `0..SLOTS` are slots: all pixels of slot `s` draw `P` keyed by [`SLOT_KEYS`]`[s]` (one
+//! scramble for the whole screen), at the sample number XOR a 16-bit offset read from the
+//! slot's tile at the pixel's (shifted, turned) position. A pixel's frames are then an
+//! aligned block of one sequence (a net), and the offsets are optimised so that each of
+//! frames 0..32 is blue noise across pixels. The domain hash carries a two-bit tag (low
+//! bits): 2 for such a root, 1 for a slot (the slot in bits 2..4), 0 for every other
+//! `Blue<P>` domain; the tile shift reads bits 6 and up.
+//!
 //! The tiles are the output of `tools/bluegen` (CI regenerates them and compares the bytes;
 //! `src/tables/blue_MANIFEST` holds the command): keys chosen from a pool so that the errors
 //! of neighbouring pixels cancel under a Gaussian blur, for half-plane integrands at 1, 2, 4,

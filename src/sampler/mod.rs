@@ -135,6 +135,8 @@ pub struct Sobol;
 /// `P` with screen-space blue-noise error: each pixel's keys come from a tile optimised
 /// offline, so that neighbouring pixels' errors are negatively correlated at every
 /// power-of-two sample count. Each pixel's own points are exactly `P`'s (nets as `P`).
+/// Below a [`Sampler::new_frame`] root, domains `0..BLUE_SLOTS` are spatiotemporal slots:
+/// blue noise in every frame while the frames continue one net per pixel.
 /// Feature `blue-noise`; see the `blue` section of `docs/sampler.md`.
 #[cfg(feature = "blue-noise")]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -465,9 +467,15 @@ impl<P: Pattern> Sampler<P> {
     /// spp` frames) the sequence continues in a fresh randomisation (`new`'s next frame),
     /// which keeps the mean converging. A render whose `spp` changes between frames passes
     /// the pixel's running sample count as `frame` and `spp = 1`: `new_frame(pixel, count,
-    /// 1, index, seed)`. Under [`Blue`] each pixel keeps its tile key across frames (its
-    /// randomisation depends on `n >> 32` only), so the running mean at 1, 2, 4, 8 and 16
-    /// samples is what the tile was optimised for.
+    /// 1, index, seed)`.
+    ///
+    /// Under [`Blue`] the root's domains `0..BLUE_SLOTS` (six) are **spatiotemporal slots**
+    /// (the one difference from `new`'s bits): each pixel of slot `s` draws `P` under the
+    /// slot's fixed scramble at the sample number XOR the pixel's offset from the slot's
+    /// tile, so every frame is blue noise across the screen (the tiles are optimised for
+    /// frames 0 to 31) and the frames still continue one net per pixel. Other domains keep
+    /// the per-pixel key tile (the pixel's key constant across frames: converging, white per
+    /// frame). See `docs/sampler.md`, "In space and time: the slots".
     ///
     /// [`new`](Self::new) with `index` in `0..spp` and a new `frame` each frame is the other
     /// choice, named in its docs: a fresh randomisation per frame (frames independent, their
