@@ -345,6 +345,14 @@ export interface Warpcore {
   /** The empty domain path (the root), to extend with `.domain(key)` and `.split(...)`. */
   samplerPath(): SamplerPath;
   /**
+   * The root of Rust's `Sampler::new_frame` for a render of `spp` samples per pixel per frame
+   * (0 acts as 1): with it, a draw's `frame` and `index` are the frame number and the sample
+   * within the frame, and the frames continue one sequence per pixel; under the blue-noise
+   * patterns its domains 0 to 5 are spatiotemporal slots (blue in every frame). Extend it with
+   * `.domain(key)` and `.split(...)` like `samplerPath()`.
+   */
+  samplerFramePath(spp: number): SamplerPath;
+  /**
    * `n` (1 to 4) stratified dimensions in [0, 1 - 2^-24] of sample `index` of `pixel`
    * (`[x, y]`) in `frame`, for `seed`, in the domain reached from the root by `domainPath`
    * (keys: one child domain per key, in order; empty: the root; or a `SamplerPath`, which
@@ -407,6 +415,6 @@ export interface SamplerPath {
    * the child domain for `key`): globally stratified across samples. `size = 0` acts as 1.
    */
   split(key: number, size: number, sub: number): SamplerPath;
-  /** Steps (domains and splits). */
+  /** Steps (domains and splits; the root of `samplerFramePath` is not one). */
   readonly length: number;
 }

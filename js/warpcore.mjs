@@ -1192,9 +1192,11 @@ function samplerInteger(v, name, min, max, what) {
 }
 const samplerU32 = (v, name, what) => samplerInteger(v, name, 0, 0xffff_ffff, what);
 
-// Steps of a domain path: four words each, [DOMAIN, key, 0, 0] or [SPLIT, key, size, sub].
+// Steps of a domain path: four words each, [DOMAIN, key, 0, 0] or [SPLIT, key, size, sub];
+// a path from samplerFramePath(spp) starts with [FRAMES, spp, 0, 0] (the root of new_frame).
 const DOMAIN = 0;
 const SPLIT = 1;
+const FRAMES = 2;
 const PATH_SECRET = Symbol('SamplerPath');
 
 /** The steps of a SamplerPath (never handed out: the module only reads them), else null. */
@@ -1242,10 +1244,11 @@ class SamplerPath {
     return this.#then(what, SPLIT, samplerU32(key, 'key', what), samplerU32(size, 'size', what), samplerU32(sub, 'sub', what));
   }
 
-  /** Steps (domains and splits). */
+  /** Steps (domains and splits; a frame path's root is not one). */
   get length() {
     if (!(#steps in this)) throw samplerError(TypeError_, 'SamplerPath.length', 'this must be a SamplerPath');
-    return TA_LENGTH(this.#steps) / 4;
+    const n = TA_LENGTH(this.#steps);
+    return (n > 0 && this.#steps[0] === FRAMES ? n - 4 : n) / 4;
   }
 }
 freeze(SamplerPath.prototype);
@@ -1257,7 +1260,7 @@ function samplerApi(x, memory, heap) {
   if (typeof x.wc_sampler_new !== 'function') return {};
   // The standard wasm32 C ABI (rustc 1.89 and later): a `WcSampler` argument is passed as a
   // pointer to a copy, a returned one through a pointer first argument.
-  const arity = { __proto__: null, wc_sampler_new: 7, wc_sampler_domain: 3, wc_sampler_split: 5, wc_sampler_draw: 3, wc_sampler_draw_u32: 3, wc_sampler_rnd: 3, wc_sampler_draw_slice: 4 };
+  const arity = { __proto__: null, wc_sampler_new: 7, wc_sampler_new_frame: 8, wc_sampler_domain: 3, wc_sampler_split: 5, wc_sampler_draw: 3, wc_sampler_draw_u32: 3, wc_sampler_rnd: 3, wc_sampler_draw_slice: 4 };
   for (const name in arity) {
     if (x[name].length !== arity[name]) throw new Error_(`warpcore: ${name} has an unexpected signature: rebuild warpcore.wasm (js/build.sh)`);
   }
@@ -1323,8 +1326,11 @@ function samplerApi(x, memory, heap) {
     try {
       let s = base;
       let t = base + 16;
-      x.wc_sampler_new(s, id, px, py, frame, index, seed);
-      for (let k = 0; k < TA_LENGTH(steps); k += 4) {
+      // A frame path's root is new_frame's, with its samples per frame.
+      const frames = TA_LENGTH(steps) > 0 && steps[0] === FRAMES;
+      if (frames) x.wc_sampler_new_frame(s, id, px, py, frame, steps[1], index, seed);
+      else x.wc_sampler_new(s, id, px, py, frame, index, seed);
+      for (let k = frames ? 4 : 0; k < TA_LENGTH(steps); k += 4) {
         if (steps[k] === SPLIT) x.wc_sampler_split(t, s, steps[k + 1], steps[k + 2], steps[k + 3]);
         else x.wc_sampler_domain(t, s, steps[k + 1]);
         const next = t;
@@ -1358,6 +1364,12 @@ function samplerApi(x, memory, heap) {
 
   return {
     samplerPath: () => ROOT_PATH,
+    samplerFramePath(spp) {
+      const steps = new U32(4);
+      steps[0] = FRAMES;
+      steps[1] = u32(spp, 'spp', 'samplerFramePath');
+      return new SamplerPath(PATH_SECRET, steps);
+    },
     samplerDraw: one(x.wc_sampler_draw, F, 'samplerDraw'),
     samplerDrawU32: one(x.wc_sampler_draw_u32, U, 'samplerDrawU32'),
     samplerRnd: one(x.wc_sampler_rnd, F, 'samplerRnd'),

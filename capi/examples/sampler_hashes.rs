@@ -11,7 +11,11 @@
 //!   dimensions);
 //! * `sampler_<pattern>_split`: three paths with splits (`size` 0, `sub >= size`, wrapping
 //!   child indices), the draws, `draw_u32`, `rnd` and slices above in one hash;
-//!   `sampler_<pattern>_split_state` their `WcSampler` words.
+//!   `sampler_<pattern>_split_state` their `WcSampler` words;
+//! * `sampler_<pattern>_frames`: `new_frame` roots (`spp` per root from [`FRAME_SPP`]) and
+//!   three paths below them (under `Blue<P>` the root's domains 0 and 5 are spatiotemporal
+//!   slots, 6 is not): the draws, `draw_u32`, `rnd` and slices in one hash
+//!   (JavaScript's `samplerFramePath(spp)`).
 //!
 //! Run: `cargo run -p warpcore-capi --example sampler_hashes`.
 
@@ -66,6 +70,19 @@ fn split_paths<P: Pattern>(root: Sampler<P>) -> [Sampler<P>; 3] {
         root.split(3, 4, 1),
         root.split(9, 0, 5).domain(2),
         root.domain(1).split(0xffff_ffff, 0xffff_ffff, 0xffff_fffe),
+    ]
+}
+
+/// Samples per frame of each root's `new_frame` (0 acts as 1; 3 is not a power of two).
+const FRAME_SPP: [u32; 6] = [1, 4, 1, 3, 0, 4];
+
+/// The three paths below a `new_frame` root: `domain(0)`, `domain(5).split(3, 4, 1)`,
+/// `domain(6).domain(0)`.
+fn frame_paths<P: Pattern>(root: Sampler<P>) -> [Sampler<P>; 3] {
+    [
+        root.domain(0),
+        root.domain(5).split(3, 4, 1),
+        root.domain(6).domain(0),
     ]
 }
 
@@ -140,6 +157,17 @@ fn pattern<P: Pattern>(pattern: u32, out: &mut Vec<(String, String)>) {
     }
     out.push((format!("sampler_{name}_split"), h.hex()));
     out.push((format!("sampler_{name}_split_state"), st.hex()));
+    let mut h = Fnv::new();
+    for ([x, y, frame, index, seed], spp) in ROOTS.into_iter().zip(FRAME_SPP) {
+        let root = Sampler::<P>::new_frame([x, y], frame, spp, index, seed);
+        for s in frame_paths(root) {
+            draws(&mut h, s);
+            draws_u32(&mut h, s);
+            rnds(&mut h, s);
+            slices(&mut h, s);
+        }
+    }
+    out.push((format!("sampler_{name}_frames"), h.hex()));
 }
 
 /// Every line, in a fixed order.

@@ -128,6 +128,7 @@ const SPEC = {
   memoryStats: [],
   // The sampler (js/test/sampler.test.mjs tests its arguments in depth).
   samplerPath: [],
+  samplerFramePath: [U32],
   ...Object.fromEntries(['samplerDraw', 'samplerDrawU32', 'samplerRnd', 'samplerDrawSlice'].map((name) => [name, [
     { good: () => 'sobol', bad: [['Sobol', RangeError], [0, TypeError], [null, TypeError], [undefined, TypeError]] },
     { T: Uint32Array, d: 2, good: () => Uint32Array.of(3, 4) },

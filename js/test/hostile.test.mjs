@@ -283,6 +283,7 @@ const SPEC = {
   sphericalConeInverse: [FIXED(Float32Array, [0, 0, 3, 1, 0.1, 0.2, 0]), vec(Float32Array, 3)],
   sphericalConeSolidAngle: [FIXED(Float32Array, [0, 0, 3, 1, 0.1, 0.2, 0])],
   samplerPath: [],
+  samplerFramePath: [NUM(4)],
   samplerDraw: [STR('sobol'), PIXEL, NUM(1), NUM(7), NUM(9), PATH, NUM(4)],
   samplerDrawU32: [STR('pmj02bn'), PIXEL, NUM(1), NUM(7), NUM(9), PATH, NUM(3)],
   samplerRnd: [STR('blueSobol'), PIXEL, NUM(1), NUM(7), NUM(9), PATH, NUM(2)],
@@ -299,7 +300,7 @@ const SPEC = {
 };
 // Functions whose last argument is an optional `out` of this type and length (for the good
 // arguments).
-const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapHierarchicalCompensated', 'envmapMarginalConditionalCompensated', 'envmapFromStorage', 'envmapEquirectSolidAngleWeights', 'envmapEquirectToEqualArea', 'sphericalTriangleSolidAngle', 'sphericalRectangleSolidAngle', 'sphericalConeSolidAngle', 'samplerPath', 'memoryStats', 'lightsAlias', 'lightsTree', 'lightsAliasFromStorage', 'lightsTreeFromStorage']);
+const NO_OUT = new Set(['diskPolar4Inverse', 'diskConcentric4Inverse', 'envmapHierarchical', 'envmapMarginalConditional', 'envmapHierarchicalCompensated', 'envmapMarginalConditionalCompensated', 'envmapFromStorage', 'envmapEquirectSolidAngleWeights', 'envmapEquirectToEqualArea', 'sphericalTriangleSolidAngle', 'sphericalRectangleSolidAngle', 'sphericalConeSolidAngle', 'samplerPath', 'samplerFramePath', 'memoryStats', 'lightsAlias', 'lightsTree', 'lightsAliasFromStorage', 'lightsTreeFromStorage']);
 const OUT = {};
 for (const [name, specs] of Object.entries(SPEC)) {
   if (NO_OUT.has(name)) continue;

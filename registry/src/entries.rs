@@ -240,7 +240,11 @@ const SAMPLER: &[Entry] = {
             .named(&[(C, "wc_sampler_new"), (Wgsl, "wc_sampler_new")]),
         Entry::new("sampler::Sampler::new_frame", Forms::SCALAR, Kind::Other)
             .golden(TESTS)
-            .named(&[(C, "wc_sampler_new_frame"), (Wgsl, "wc_sampler_new_frame")]),
+            .named(&[
+                (C, "wc_sampler_new_frame"),
+                (Js, "samplerFramePath"),
+                (Wgsl, "wc_sampler_new_frame"),
+            ]),
         Entry::new("sampler::Sampler::domain", Forms::LANES, Kind::Other)
             .golden(DRAW)
             .named(&[(C, "wc_sampler_domain"), (Wgsl, "wc_sampler_domain")]),

@@ -74,6 +74,20 @@ static WcSampler split_path(WcSampler s, int p) {
     return wc_sampler_split(wc_sampler_domain(s, 1), 0xffffffffu, 0xffffffffu, 0xfffffffeu);
 }
 
+/* The new_frame roots (samples per frame per root) and the paths below them. */
+static const uint32_t FRAME_SPP[6] = {1, 4, 1, 3, 0, 4};
+
+static WcSampler frame_root(uint32_t pattern, int r) {
+    const uint32_t *a = ROOTS[r];
+    return wc_sampler_new_frame(pattern, a[0], a[1], a[2], FRAME_SPP[r], a[3], a[4]);
+}
+
+static WcSampler frame_path(WcSampler s, int p) {
+    if (p == 0) return wc_sampler_domain(s, 0);
+    if (p == 1) return wc_sampler_split(wc_sampler_domain(s, 5), 3, 4, 1);
+    return wc_sampler_domain(wc_sampler_domain(s, 6), 0);
+}
+
 static void state(WcSampler s) {
     word(s.pattern);
     word(s.pixel);
@@ -142,6 +156,17 @@ static void hashes(void) {
             }
             printf("sampler_%s_split%s %016" PRIx64 "\n", PATTERNS[pattern], st ? "_state" : "", h);
         }
+        h = UINT64_C(0xcbf29ce484222325);
+        for (int r = 0; r < NROOTS; r++) {
+            for (int p = 0; p < 3; p++) {
+                WcSampler s = frame_path(frame_root(pattern, r), p);
+                draws(s, wc_sampler_draw);
+                draws_u32(s);
+                draws(s, wc_sampler_rnd);
+                slices(s);
+            }
+        }
+        printf("sampler_%s_frames %016" PRIx64 "\n", PATTERNS[pattern], h);
     }
 }
 
