@@ -779,7 +779,9 @@ WcSampler wc_sampler_new(uint32_t pattern,
 // that accumulates frames of `spp` samples per pixel: the frames continue one sequence per
 // pixel (`Sampler::new_frame`). It is `wc_sampler_new` of the 64-bit sample number `n =
 // frame * spp + index` (`spp = 0` acts as 1), with `n >> 32` as `frame` and the low word as
-// `index`: frame 0 is `wc_sampler_new`'s frame 0. Every `uint32_t` is valid. An unknown
+// `index`: frame 0 is `wc_sampler_new`'s frame 0, except that under the blue-noise patterns
+// this root's domains 0 to 5 are spatiotemporal slots (blue noise in every frame while the
+// frames continue one net; docs/sampler.md). Every `uint32_t` is valid. An unknown
 // `pattern` gives `{pattern, 0, 0, 0}`, a sampler every draw refuses.
 WcSampler wc_sampler_new_frame(uint32_t pattern,
                                uint32_t x,

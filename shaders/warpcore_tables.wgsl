@@ -167,7 +167,8 @@ fn wc_sampler_new(pattern: u32, pixel: vec2<u32>, frame: u32, index: u32, seed: 
 // The root sampler of sample `index` (in `0..spp`) of `pixel` in `frame` of a render that
 // accumulates frames: the frames continue one sequence per pixel (`Sampler::new_frame`). It is
 // `wc_sampler_new` of the 64-bit sample number `frame * max(spp, 1) + index`, high word as
-// `frame`, low word as `index` (the product from 16-bit halves: WGSL has no u64).
+// `frame`, low word as `index` (the product from 16-bit halves: WGSL has no u64); under the
+// blue-noise patterns its domains 0..WC_BLUE_SLOTS are spatiotemporal slots.
 fn wc_sampler_new_frame(pattern: u32, pixel: vec2<u32>, frame: u32, spp: u32, index: u32, seed: u32) -> WcSampler {
     let m = max(spp, 1u);
     let a = vec2<u32>(frame & 0xffffu, frame >> 16u);
