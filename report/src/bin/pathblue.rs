@@ -93,6 +93,10 @@ fn main() {
         }
         return;
     }
+    if what == "silhouette" {
+        silhouette(seeds);
+        return;
+    }
     if what == "frames" {
         // [seeds] [threads] frames [size] [out file]: what `cargo run-report` writes.
         let size: usize = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(32);
@@ -258,4 +262,104 @@ fn main() {
 /// `label a b b/a`.
 fn show(label: &str, v: [f64; 2]) {
     println!("{label} {:.3e} {:.3e} {:.4}", v[0], v[1], v[1] / v[0]);
+}
+
+/// The silhouette test: per frame a rotated 22 x 14 rectangle and a disk of radius 10 at
+/// random positions (a light seen directly), each pixel's error the pixel-position draw's
+/// coverage error of the union (zero inside and outside, so only the one-pixel outline
+/// carries error, and each outline pixel's edge runs along the outline), blurred with sigma
+/// 2; blurred MSE ratios `Blue<P> / P` over `frames` frames with standard errors.
+fn silhouette(frames: u32) {
+    use warpcore_report::bluenoise::{SIZE, SPP, blur_sigma, ours};
+    let shape = |f: u32| {
+        // A small hash of the frame: the shapes' positions and angle.
+        let h = |k: u32| {
+            let mut z = (f as u64) << 8 | k as u64;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (rx, ry, angle) = (18.0 + 6.0 * h(0), 26.0 + 12.0 * h(1), std::f64::consts::PI * h(2));
+        let (dx, dy) = (46.0 + 6.0 * h(3), 26.0 + 12.0 * h(4));
+        let (c, s) = (angle.cos(), angle.sin());
+        move |x: f64, y: f64| {
+            let (u, v) = (x - rx, y - ry);
+            let (a, b) = (c * u + s * v, -s * u + c * v);
+            (a.abs() < 11.0 && b.abs() < 7.0) || (x - dx).powi(2) + (y - dy).powi(2) < 100.0
+        }
+    };
+    // Per frame: the outline pixels and their exact coverage (a 64 x 64 grid per pixel).
+    let outlines: Vec<Vec<(usize, usize, f64)>> = (0..frames)
+        .map(|f| {
+            let inside = shape(f);
+            let mut out = Vec::new();
+            for y in 0..SIZE {
+                for x in 0..SIZE {
+                    let corners = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0), (0.5, 0.5)]
+                        .map(|(u, v)| inside(x as f64 + u, y as f64 + v));
+                    // Shapes far larger than a pixel: a pixel without a boundary point at a
+                    // corner or centre within 1.5 px holds no boundary.
+                    let near = (-2..=2).any(|j| {
+                        (-2..=2).any(|i| {
+                            inside(x as f64 + 0.5 + 0.75 * i as f64, y as f64 + 0.5 + 0.75 * j as f64)
+                                != corners[4]
+                        })
+                    });
+                    if !near && corners.iter().all(|&c| c == corners[4]) {
+                        continue;
+                    }
+                    let g = 64;
+                    let mut cov = 0u32;
+                    for j in 0..g {
+                        for i in 0..g {
+                            let u = x as f64 + (i as f64 + 0.5) / g as f64;
+                            let v = y as f64 + (j as f64 + 0.5) / g as f64;
+                            cov += inside(u, v) as u32;
+                        }
+                    }
+                    if cov != 0 && cov != g * g {
+                        out.push((x, y, cov as f64 / (g * g) as f64));
+                    }
+                }
+            }
+            out
+        })
+        .collect();
+    type Draw = warpcore_report::bluenoise::Draw;
+    let errors = |draw: Draw| -> Vec<Vec<f64>> {
+        // Per frame, per count: the blurred MSE.
+        (0..frames)
+            .map(|f| {
+                let inside = shape(f);
+                let mut img = vec![vec![0.0; SIZE * SIZE]; SPP.len()];
+                for &(x, y, exact) in &outlines[f as usize] {
+                    let (mut hits, mut level) = (0u32, 0);
+                    for i in 0..SPP[SPP.len() - 1] {
+                        let p = draw(x as u32, y as u32, f, i);
+                        hits += inside(x as f64 + p[0] as f64, y as f64 + p[1] as f64) as u32;
+                        if i + 1 == SPP[level] {
+                            img[level][y * SIZE + x] = hits as f64 / SPP[level] as f64 - exact;
+                            level += 1;
+                        }
+                    }
+                }
+                img.iter()
+                    .map(|m| blur_sigma(m, 2.0).iter().map(|v| v * v).sum::<f64>())
+                    .collect()
+            })
+            .collect()
+    };
+    let column = |v: &[Vec<f64>], k: usize| {
+        mean_se(&v.iter().map(|r| r[k]).collect::<Vec<_>>())
+    };
+    let (so, bso) = (errors(ours::<Sobol>), errors(ours::<Blue<Sobol>>));
+    let (pm, bpm) = (errors(ours::<Pmj02bn>), errors(ours::<Blue<Pmj02bn>>));
+    for (k, spp) in SPP.iter().enumerate() {
+        let a = ratio(column(&bso, k), column(&so, k));
+        let b = ratio(column(&bpm, k), column(&pm, k));
+        println!(
+            "silhouette {spp} spp, {frames} frames: Blue<Sobol>/Sobol {:.3} +- {:.3}, Blue<Pmj02bn>/Pmj02bn {:.3} +- {:.3}",
+            a.0, a.1, b.0, b.1
+        );
+    }
 }

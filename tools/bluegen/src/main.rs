@@ -3,7 +3,7 @@
 //! ```text
 //! cargo run --release -p bluegen -- [--check] [--out DIR]
 //!     [--only sobol|pmj02bn] [--seed S] [--pool N] [--edges T] [--levels L] [--sweeps S] [--rounds R]
-//!     [--threshold X] [--weights W1,W2,..]
+//!     [--threshold X] [--weights W1,W2,..] [--line-weight X] [--line-width W] [--keys-only]
 //!     [--st-seed S] [--st-sigma S] [--st-edges T] [--st-swaps N] [--st-window W]
 //!     [--st-quad X] [--st-runs X] [--st-threshold X]
 //!     [--st-only [--st-slots K]]
@@ -16,7 +16,7 @@
 //! slot-major, row-major within a slot. `DIR/blue_MANIFEST` records the command and each
 //! file's size and FNV-1a 64 hash. `--st-only` (for experiments) optimises and writes only the
 //! slot tiles, without the manifest (and `--st-slots K` only the first `K` slots of each
-//! pattern). The slot tiles are optimised on two threads, one per pattern, while the main
+//! pattern); `--keys-only` (for experiments) writes only the key tiles. The slot tiles are optimised on two threads, one per pattern, while the main
 //! thread optimises the key tiles; each tile has its own random stream, so the bytes do not
 //! depend on scheduling.
 //!
@@ -58,6 +58,8 @@ fn parse() -> Result<Args, String> {
             rounds: 0,
             threshold: 0.0,
             weights: vec![1.0, 1.0, 1.0, 0.85, 0.7],
+            line_weight: 0.0,
+            line_width: 1.0,
         },
         st: SlotParams {
             seed: 20220808,
@@ -106,6 +108,8 @@ fn parse() -> Result<Args, String> {
             "--sweeps" => p.sweeps = num(&flag, value()?)?,
             "--rounds" => p.rounds = num(&flag, value()?)?,
             "--threshold" => p.threshold = num(&flag, value()?)?,
+            "--line-weight" => p.line_weight = num(&flag, value()?)?,
+            "--line-width" => p.line_width = num(&flag, value()?)?,
             "--st-seed" => st.seed = num(&flag, value()?)?,
             "--st-sigma" => st.sigma = num(&flag, value()?)?,
             "--st-edges" => st.edges = num(&flag, value()?)?,
@@ -115,6 +119,7 @@ fn parse() -> Result<Args, String> {
             "--st-runs" => st.runs = num(&flag, value()?)?,
             "--st-threshold" => st.threshold = num(&flag, value()?)?,
             "--st-only" => a.st_only = true,
+            "--keys-only" => a.st_slots = 0,
             "--st-slots" => a.st_slots = num(&flag, value()?)?,
             "--check" => a.check = true,
             _ => return Err(format!("unknown argument {flag}")),
@@ -123,6 +128,9 @@ fn parse() -> Result<Args, String> {
     let p = &a.params;
     if p.edges == 0 || !p.edges.is_multiple_of(8) {
         return Err("--edges must be a positive multiple of 8".into());
+    }
+    if !(0.0..=1.0).contains(&p.line_weight) || !(0.25..=8.0).contains(&p.line_width) {
+        return Err("--line-weight must be in 0..=1, --line-width in 0.25..=8".into());
     }
     if p.pool < opt::TILE * opt::TILE || p.levels == 0 || p.levels > 8 {
         return Err("--pool must be at least 4096, --levels in 1..=8".into());
@@ -135,7 +143,7 @@ fn parse() -> Result<Args, String> {
         return Err("--st-sigma must be in 0.25..=4, --st-window odd and below 64".into());
     }
     if a.st_slots > warpcore::sampler::BLUE_SLOTS
-        || (a.st_slots < warpcore::sampler::BLUE_SLOTS && !a.st_only)
+        || (a.st_slots < warpcore::sampler::BLUE_SLOTS && !a.st_only && a.st_slots > 0)
     {
         return Err("--st-slots: at most BLUE_SLOTS, fewer only with --st-only".into());
     }
@@ -195,7 +203,7 @@ fn main() -> ExitCode {
     let (p, st) = (&args.params, &args.st);
     let settings = format!(
         "--seed {} --pool {} --edges {} --levels {} --sweeps {} --rounds {} --threshold {} \
-         --weights {} --st-seed {} --st-sigma {} --st-edges {} --st-swaps {} --st-window {} \
+         --weights {} --line-weight {} --line-width {} --st-seed {} --st-sigma {} --st-edges {} --st-swaps {} --st-window {} \
          --st-quad {} --st-runs {} --st-threshold {}",
         p.seed,
         p.pool,
@@ -209,6 +217,8 @@ fn main() -> ExitCode {
             .map(|w| w.to_string())
             .collect::<Vec<_>>()
             .join(","),
+        p.line_weight,
+        p.line_width,
         st.seed,
         st.sigma,
         st.edges,
@@ -272,6 +282,9 @@ fn main() -> ExitCode {
             .collect()
     });
     for (&base, (bytes, log)) in bases.iter().zip(slot_files) {
+        if args.st_slots == 0 {
+            continue;
+        }
         eprint!("{log}");
         let name = format!("blue_slots_{}_64.bin", base.name());
         manifest += &format!("{name} {} {:016x}\n", bytes.len(), fnv1a64(&bytes));

@@ -201,6 +201,11 @@ pub struct Params {
     pub threshold: f64,
     /// Weight of each level in the energy (missing entries: 1).
     pub weights: Vec<f64>,
+    /// Share of the energy measured on lines (see [`Kernel::lines`]): 0 is the full-plane
+    /// energy alone.
+    pub line_weight: f64,
+    /// Width of those lines, in pixels.
+    pub line_width: f64,
 }
 
 /// What one optimisation did.
@@ -316,6 +321,8 @@ pub(crate) struct Kernel {
     taps: Vec<(i32, i32, f32)>,
     /// `G` by squared distance, `0..=radius2`.
     g_table: Vec<f32>,
+    /// Empty, or per tap the kernel of each test edge (`taps x edges`, see [`Kernel::lines`]).
+    per_edge: Vec<f32>,
 }
 
 impl Kernel {
@@ -336,7 +343,37 @@ impl Kernel {
                 }
             }
         }
-        Kernel { taps, g_table }
+        Kernel {
+            taps,
+            g_table,
+            per_edge: Vec::new(),
+        }
+    }
+
+    /// The kernel of an energy measured partly on lines. A light's silhouette is a line of
+    /// pixels one or two wide, each covering a half-plane whose edge runs along the line: its
+    /// blurred error is `sum_{p,q on the line} G(p - q) e_p e_q`, and a pixel's error can only
+    /// cancel against its neighbours *along* the line. Averaged over the offsets of straight
+    /// lines of direction `n_t`'s perpendicular (edge `t`'s own), the pair `p, p + d` lies on
+    /// the line with probability `L_t(d) = max(0, 1 - |d . n_t| / (width (|n_x| + |n_y|)))`
+    /// given that `p` does (the band of pixel centres a line of width `width` crosses), so the
+    /// line energy is the quadratic form of the per-edge kernel `G(d) L_t(d)`. Mixed with
+    /// the full-plane energy: `K_t = G ((1 - weight) + weight L_t)`, still 1 at `d = 0`, so
+    /// moves keep their `O(dim)` evaluation with a per-edge field.
+    pub(crate) fn lines(sigma: f64, edges: &[Edge], weight: f64, width: f64) -> Kernel {
+        let mut k = Kernel::new(sigma);
+        if weight == 0.0 {
+            return k;
+        }
+        for &(dx, dy, g) in &k.taps {
+            for e in edges {
+                let band = width * (e.n[0].abs() + e.n[1].abs());
+                let along = (1.0 - (dx as f64 * e.n[0] + dy as f64 * e.n[1]).abs() / band).max(0.0);
+                k.per_edge
+                    .push((g as f64 * ((1.0 - weight) + weight * along)) as f32);
+            }
+        }
+        k
     }
 }
 
@@ -401,6 +438,8 @@ pub(crate) struct State<'a> {
     pool: &'a Pool,
     taps: Vec<(i32, i32, f32)>,
     g_table: Vec<f32>,
+    /// The kernel per tap and edge, or empty (the isotropic `G` of `taps`).
+    per_edge: Vec<f32>,
     /// Pool index of each pixel's key.
     pub(crate) tile: Vec<usize>,
     used: Vec<bool>,
@@ -412,17 +451,28 @@ pub(crate) struct State<'a> {
     unit2: Vec<f32>,
     delta: Vec<f32>,
     /// A random projection of every pool key's error vector to [`SKETCH`] dimensions, their
-    /// squared norms, and the same projection of the field: the cheap approximate distances
-    /// that shortlist replacement candidates (empty when the search only swaps).
+    /// squared norms, and the projection's matrix (`dim x SKETCH`, applied to the field of
+    /// the pixel being visited): the cheap approximate distances that shortlist replacement
+    /// candidates (empty when the search only swaps).
     sketch: Vec<f32>,
     sketch_norm: Vec<f32>,
-    sketch_field: Vec<f32>,
+    signs: Vec<f32>,
 }
 
 impl<'a> State<'a> {
     /// The state of `tile` (pool rows, the rest of the pool unused), its field computed; a
     /// sketch (from [`project`]) or none.
     pub(crate) fn new(pool: &'a Pool, kernel: Kernel, tile: Vec<usize>, sketch: Vec<f32>) -> Self {
+        State::guided(pool, kernel, tile, (sketch, Vec::new()))
+    }
+
+    /// As [`State::new`] with the projection's matrix (from [`project`]).
+    fn guided(
+        pool: &'a Pool,
+        kernel: Kernel,
+        tile: Vec<usize>,
+        (sketch, signs): (Vec<f32>, Vec<f32>),
+    ) -> Self {
         let rows = pool.hits.len() / pool.dim;
         let mut used = vec![false; rows];
         tile.iter().for_each(|&j| used[j] = true);
@@ -430,6 +480,7 @@ impl<'a> State<'a> {
             pool,
             taps: kernel.taps,
             g_table: kernel.g_table,
+            per_edge: kernel.per_edge,
             tile,
             used,
             field: Vec::new(),
@@ -440,10 +491,9 @@ impl<'a> State<'a> {
                 .map(|s| s.iter().map(|x| x * x).sum())
                 .collect(),
             sketch,
-            sketch_field: Vec::new(),
+            signs,
         };
         s.recompute_field();
-        s.recompute_sketch_field();
         s
     }
 
@@ -463,10 +513,11 @@ impl<'a> State<'a> {
         let mut f = vec![0.0f64; PIXELS * dim];
         for p in 0..PIXELS {
             let e: Vec<f64> = self.pool.error(self.tile[p]).collect();
-            for &(dx, dy, w) in &self.taps {
+            for (i, &(dx, dy, _)) in self.taps.iter().enumerate() {
                 let q = Self::neighbour(p, dx, dy);
-                for (f, e) in f[q * dim..(q + 1) * dim].iter_mut().zip(&e) {
-                    *f += w as f64 * e;
+                let w = self.tap_weights(i);
+                for (k, (f, e)) in f[q * dim..(q + 1) * dim].iter_mut().zip(&e).enumerate() {
+                    *f += w[k % t] as f64 * e;
                 }
             }
         }
@@ -475,6 +526,16 @@ impl<'a> State<'a> {
             .enumerate()
             .map(|(i, &x)| (x / self.pool.unit[(i % dim) / t] as f64) as f32)
             .collect();
+    }
+
+    /// Tap `i`'s kernel for each edge (`edges` entries).
+    fn tap_weights(&self, i: usize) -> std::borrow::Cow<'_, [f32]> {
+        let t = self.pool.edges;
+        if self.per_edge.is_empty() {
+            std::borrow::Cow::Owned(vec![self.taps[i].2; t])
+        } else {
+            std::borrow::Cow::Borrowed(&self.per_edge[i * t..(i + 1) * t])
+        }
     }
 
     /// The change of the energy if the key of `a` became pool key `j`:
@@ -497,12 +558,34 @@ impl<'a> State<'a> {
         let (pool, t) = (self.pool, self.pool.edges);
         let (eb, ea) = (pool.row(self.tile[b]), pool.row(self.tile[a]));
         let (fa, fb) = (self.field_of(a), self.field_of(b));
+        if !self.per_edge.is_empty() {
+            return self.swap_delta_per_edge(a, b);
+        }
         let g = g_between(a, b, &self.g_table);
         let mut de = 0.0;
         for l in 0..pool.levels {
             let r = l * t..(l + 1) * t;
             let (df, d2) = dots3(&eb[r.clone()], &ea[r.clone()], &fa[r.clone()], &fb[r]);
             de += self.unit2[l] * (2.0 * df + 2.0 * d2 as f32 * (1.0 - g));
+        }
+        de
+    }
+
+    /// [`State::swap_delta`] under a per-edge kernel: `2 d . (F_a - F_b) + 2 sum_k d_k^2
+    /// (1 - K_k(a - b))` (a plain loop: swaps are rare in the key tiles' search).
+    fn swap_delta_per_edge(&self, a: usize, b: usize) -> f32 {
+        let (pool, t) = (self.pool, self.pool.edges);
+        let (eb, ea) = (pool.row(self.tile[b]), pool.row(self.tile[a]));
+        let (fa, fb) = (self.field_of(a), self.field_of(b));
+        let tap = self
+            .taps
+            .iter()
+            .position(|&(dx, dy, _)| Self::neighbour(a, dx, dy) == b);
+        let mut de = 0.0;
+        for k in 0..pool.dim {
+            let d = eb[k] as f32 - ea[k] as f32;
+            let g = tap.map_or(0.0, |i| self.per_edge[i * t + k % t]);
+            de += self.unit2[k / t] * (2.0 * d * (fa[k] - fb[k]) + 2.0 * d * d * (1.0 - g));
         }
         de
     }
@@ -517,62 +600,30 @@ impl<'a> State<'a> {
 
     /// Adds `sign G(q - p) delta` to the field around `p`.
     fn spread(&mut self, p: usize, sign: f32) {
-        let dim = self.pool.dim;
-        for &(dx, dy, w) in &self.taps {
+        let (dim, t) = (self.pool.dim, self.pool.edges);
+        for (i, &(dx, dy, w)) in self.taps.iter().enumerate() {
             let q = Self::neighbour(p, dx, dy);
-            let w = w * sign;
-            for (f, d) in self.field[q * dim..(q + 1) * dim]
-                .iter_mut()
-                .zip(&self.delta)
-            {
-                *f += w * d;
-            }
-        }
-    }
-
-    fn sketch_of(&self, j: usize) -> &[f32] {
-        &self.sketch[j * SKETCH..(j + 1) * SKETCH]
-    }
-
-    /// The sketched field from scratch.
-    fn recompute_sketch_field(&mut self) {
-        if self.sketch.is_empty() {
-            return;
-        }
-        let mut f = vec![0.0f32; PIXELS * SKETCH];
-        for p in 0..PIXELS {
-            let j = self.tile[p];
-            for &(dx, dy, w) in &self.taps {
-                let q = Self::neighbour(p, dx, dy);
-                for (f, s) in f[q * SKETCH..(q + 1) * SKETCH]
-                    .iter_mut()
-                    .zip(&self.sketch[j * SKETCH..(j + 1) * SKETCH])
-                {
-                    *f += w * s;
+            let field = &mut self.field[q * dim..(q + 1) * dim];
+            if self.per_edge.is_empty() {
+                let w = w * sign;
+                for (f, d) in field.iter_mut().zip(&self.delta) {
+                    *f += w * d;
+                }
+            } else {
+                let w = &self.per_edge[i * t..(i + 1) * t];
+                for (f, d) in field.chunks_exact_mut(t).zip(self.delta.chunks_exact(t)) {
+                    for ((f, d), w) in f.iter_mut().zip(d).zip(w) {
+                        *f += sign * w * d;
+                    }
                 }
             }
         }
-        self.sketch_field = f;
     }
 
-    /// Moves pixel `a` from pool key `old` to `new` in both fields.
+    /// Moves pixel `a` from pool key `old` to `new` in the field.
     fn move_fields(&mut self, a: usize, new: usize, old: usize) {
         self.set_delta(new, old);
         self.spread(a, 1.0);
-        if self.sketch.is_empty() {
-            return;
-        }
-        let d: [f32; SKETCH] =
-            core::array::from_fn(|m| self.sketch[new * SKETCH + m] - self.sketch[old * SKETCH + m]);
-        for &(dx, dy, w) in &self.taps {
-            let q = Self::neighbour(a, dx, dy);
-            for (f, d) in self.sketch_field[q * SKETCH..(q + 1) * SKETCH]
-                .iter_mut()
-                .zip(&d)
-            {
-                *f += w * d;
-            }
-        }
     }
 
     pub(crate) fn apply_swap(&mut self, a: usize, b: usize) {
@@ -594,9 +645,19 @@ impl<'a> State<'a> {
     /// energy by more than `-threshold`: the sketch shortlists [`SHORTLIST`] candidates
     /// (`min |s_j + s(F_a - e_a)|^2`), the exact change decides.
     fn best_replacement(&self, a: usize, threshold: f32) -> Option<usize> {
-        let own = self.sketch_of(self.tile[a]);
-        let f = &self.sketch_field[a * SKETCH..(a + 1) * SKETCH];
-        let u: [f32; SKETCH] = core::array::from_fn(|m| 2.0 * (f[m] - own[m]));
+        // u = 2 R^T (F_a - e_a), in error units: the field is in hits, `e_a` is
+        // `hits - zero`, both times the level's unit.
+        let (pool, t) = (self.pool, self.pool.edges);
+        let (f, own) = (self.field_of(a), pool.row(self.tile[a]));
+        let mut u = [0.0f32; SKETCH];
+        for (k, r) in self.signs.chunks_exact(SKETCH).enumerate() {
+            let x = 2.0
+                * pool.unit[k / t]
+                * (f[k] - (own[k] as f64 - pool.zero[k]) as f32);
+            for (u, r) in u.iter_mut().zip(r) {
+                *u += x * r;
+            }
+        }
         let mut best = [(f32::INFINITY, usize::MAX); SHORTLIST];
         for (j, s) in self.sketch.chunks_exact(SKETCH).enumerate() {
             let mut acc = [0.0f32; 8];
@@ -655,7 +716,7 @@ impl<'a> State<'a> {
 /// Every pool key's error vector times a random `+-1 / sqrt(SKETCH)` matrix (a
 /// Johnson-Lindenstrauss projection: distances are kept to within a few tens of percent,
 /// enough to shortlist).
-fn project(pool: &Pool, rng: &mut Rng) -> Vec<f32> {
+fn project(pool: &Pool, rng: &mut Rng) -> (Vec<f32>, Vec<f32>) {
     let scale = 1.0 / (SKETCH as f32).sqrt();
     let signs: Vec<[f32; SKETCH]> = (0..pool.dim)
         .map(|_| {
@@ -673,7 +734,7 @@ fn project(pool: &Pool, rng: &mut Rng) -> Vec<f32> {
             }
         }
     }
-    out
+    (out, signs.into_iter().flatten().collect())
 }
 
 /// Optimises the tile of `base`: `TILE * TILE` keys, row-major.
@@ -684,7 +745,8 @@ pub fn optimise(base: Base, p: &Params) -> (Vec<u32>, Report) {
     let edges: Vec<Edge> = (0..p.edges).map(|k| Edge::lattice(k, p.edges)).collect();
     let pool = Pool::new(base, &keys, &edges, p.levels, &p.weights);
     let sketch = project(&pool, &mut rng);
-    let mut s = State::new(&pool, Kernel::new(SIGMA), (0..PIXELS).collect(), sketch);
+    let kernel = Kernel::lines(SIGMA, &edges, p.line_weight, p.line_width);
+    let mut s = State::guided(&pool, kernel, (0..PIXELS).collect(), sketch);
     let before = s.ratios();
     let (mut accepted, mut replaced) = (0, 0);
 
