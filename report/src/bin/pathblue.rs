@@ -4,6 +4,9 @@
 //! ```text
 //! cargo run --release -p warpcore-report --bin pathblue -- [seeds] [threads] [what]
 //! ```
+//!
+//! `what`: `ratios` (default), `pairs` (only the recommended `WarpcorePairs` usage),
+//! `lengths [spp]`, `lens`, `roulette`, `line`, `silhouette`, `frames [size] [out]`.
 
 use std::marker::PhantomData as PD;
 use warpcore::sampler::{Blue, Pmj02bn, Sobol};
@@ -226,14 +229,20 @@ fn main() {
             let so = run("sobol", &|spp| {
                 go(&b, Warpcore::<Sobol>(PD), spp, seeds, 1, threads)
             });
-            let bso = run("blue_sobol", &|spp| {
-                go(&b, Warpcore::<Blue<Sobol>>(PD), spp, seeds, 2, threads)
+            // `pairs`: only the recommended usage (`WarpcorePairs`) against its base.
+            let all = what != "pairs";
+            let bso = all.then(|| {
+                run("blue_sobol", &|spp| {
+                    go(&b, Warpcore::<Blue<Sobol>>(PD), spp, seeds, 2, threads)
+                })
             });
             let pm = run("pmj02bn", &|spp| {
                 go(&b, Warpcore::<Pmj02bn>(PD), spp, seeds, 3, threads)
             });
-            let bpm = run("blue_pmj02bn", &|spp| {
-                go(&b, Warpcore::<Blue<Pmj02bn>>(PD), spp, seeds, 4, threads)
+            let bpm = all.then(|| {
+                run("blue_pmj02bn", &|spp| {
+                    go(&b, Warpcore::<Blue<Pmj02bn>>(PD), spp, seeds, 4, threads)
+                })
             });
             let bsop = run("blue_sobol pairs", &|spp| {
                 go(&b, WarpcorePairs::<Blue<Sobol>>(PD), spp, seeds, 5, threads)
@@ -251,8 +260,10 @@ fn main() {
             let show = |l: &str, r: (f64, f64)| {
                 println!("{name} {spp} spp   {l:<36} {:.3} +- {:.3}", r.0, r.1)
             };
-            show("blue_sobol / sobol", ratio(bso, so));
-            show("blue_pmj02bn / pmj02bn", ratio(bpm, pm));
+            if let (Some(bso), Some(bpm)) = (bso, bpm) {
+                show("blue_sobol / sobol", ratio(bso, so));
+                show("blue_pmj02bn / pmj02bn", ratio(bpm, pm));
+            }
             show("blue_sobol pairs / sobol", ratio(bsop, so));
             show("blue_pmj02bn pairs / pmj02bn", ratio(bpmp, pm));
         }

@@ -3,7 +3,7 @@
 //! ```text
 //! cargo run --release -p bluegen -- [--check] [--out DIR]
 //!     [--only sobol|pmj02bn] [--seed S] [--pool N] [--edges T] [--levels L] [--sweeps S] [--rounds R]
-//!     [--threshold X] [--weights W1,W2,..] [--line-weight X] [--line-width W] [--keys-only]
+//!     [--threshold X] [--weights W1,W2,..] [--line-weight X] [--line-offsets C] [--keys-only]
 //!     [--st-seed S] [--st-sigma S] [--st-edges T] [--st-swaps N] [--st-window W]
 //!     [--st-quad X] [--st-runs X] [--st-threshold X]
 //!     [--st-only [--st-slots K]]
@@ -59,7 +59,7 @@ fn parse() -> Result<Args, String> {
             threshold: 0.0,
             weights: vec![1.0, 1.0, 1.0, 0.85, 0.7],
             line_weight: 0.0,
-            line_width: 1.0,
+            line_offsets: 8,
         },
         st: SlotParams {
             seed: 20220808,
@@ -109,7 +109,7 @@ fn parse() -> Result<Args, String> {
             "--rounds" => p.rounds = num(&flag, value()?)?,
             "--threshold" => p.threshold = num(&flag, value()?)?,
             "--line-weight" => p.line_weight = num(&flag, value()?)?,
-            "--line-width" => p.line_width = num(&flag, value()?)?,
+            "--line-offsets" => p.line_offsets = num(&flag, value()?)?,
             "--st-seed" => st.seed = num(&flag, value()?)?,
             "--st-sigma" => st.sigma = num(&flag, value()?)?,
             "--st-edges" => st.edges = num(&flag, value()?)?,
@@ -129,8 +129,11 @@ fn parse() -> Result<Args, String> {
     if p.edges == 0 || !p.edges.is_multiple_of(8) {
         return Err("--edges must be a positive multiple of 8".into());
     }
-    if !(0.0..=1.0).contains(&p.line_weight) || !(0.25..=8.0).contains(&p.line_width) {
-        return Err("--line-weight must be in 0..=1, --line-width in 0.25..=8".into());
+    if !(0.0..=1.0).contains(&p.line_weight)
+        || p.line_offsets == 0
+        || !p.edges.is_multiple_of(p.line_offsets)
+    {
+        return Err("--line-weight must be in 0..=1, --line-offsets divide --edges".into());
     }
     if p.pool < opt::TILE * opt::TILE || p.levels == 0 || p.levels > 8 {
         return Err("--pool must be at least 4096, --levels in 1..=8".into());
@@ -203,7 +206,7 @@ fn main() -> ExitCode {
     let (p, st) = (&args.params, &args.st);
     let settings = format!(
         "--seed {} --pool {} --edges {} --levels {} --sweeps {} --rounds {} --threshold {} \
-         --weights {} --line-weight {} --line-width {} --st-seed {} --st-sigma {} --st-edges {} --st-swaps {} --st-window {} \
+         --weights {} --line-weight {} --line-offsets {} --st-seed {} --st-sigma {} --st-edges {} --st-swaps {} --st-window {} \
          --st-quad {} --st-runs {} --st-threshold {}",
         p.seed,
         p.pool,
@@ -218,7 +221,7 @@ fn main() -> ExitCode {
             .collect::<Vec<_>>()
             .join(","),
         p.line_weight,
-        p.line_width,
+        p.line_offsets,
         st.seed,
         st.sigma,
         st.edges,

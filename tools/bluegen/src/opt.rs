@@ -158,6 +158,17 @@ impl Edge {
         Edge::new(angle, (0.5 + k as f64 * golden).fract())
     }
 
+    /// `angles x offsets` edges, angle-major: angle `pi (a + 1/2) / angles`, offset fraction
+    /// `(j + 1/2) / offsets` (the family [`Kernel::lines`] pairs across pixels).
+    pub(crate) fn grid(angles: usize, offsets: usize) -> Vec<Edge> {
+        (0..angles * offsets)
+            .map(|k| {
+                let angle = core::f64::consts::PI * ((k / offsets) as f64 + 0.5) / angles as f64;
+                Edge::new(angle, ((k % offsets) as f64 + 0.5) / offsets as f64)
+            })
+            .collect()
+    }
+
     /// The line of normal angle `angle` (in `[0, pi]`) at the fraction `u` of the offsets
     /// whose lines cross the square.
     pub(crate) fn new(angle: f64, u: f64) -> Edge {
@@ -204,8 +215,9 @@ pub struct Params {
     /// Share of the energy measured on lines (see [`Kernel::lines`]): 0 is the full-plane
     /// energy alone.
     pub line_weight: f64,
-    /// Width of those lines, in pixels.
-    pub line_width: f64,
+    /// Offsets per angle of the test edges when `line_weight > 0` (a grid of `edges /
+    /// line_offsets` angles; with 0, the rank-1 lattice of [`Edge::lattice`]).
+    pub line_offsets: usize,
 }
 
 /// What one optimisation did.
@@ -321,8 +333,10 @@ pub(crate) struct Kernel {
     taps: Vec<(i32, i32, f32)>,
     /// `G` by squared distance, `0..=radius2`.
     g_table: Vec<f32>,
-    /// Empty, or per tap the kernel of each test edge (`taps x edges`, see [`Kernel::lines`]).
-    per_edge: Vec<f32>,
+    /// Empty (the isotropic `G` of `taps`), or per tap the pairs of edges it couples, see
+    /// [`Kernel::lines`]: `(k, j, w)` adds `w` times the error of edge `j` of the pixel to
+    /// edge `k` of its neighbour at the tap's offset.
+    gather: Vec<Vec<(u16, u16, f32)>>,
 }
 
 impl Kernel {
@@ -346,32 +360,67 @@ impl Kernel {
         Kernel {
             taps,
             g_table,
-            per_edge: Vec::new(),
+            gather: Vec::new(),
         }
     }
 
     /// The kernel of an energy measured partly on lines. A light's silhouette is a line of
-    /// pixels one or two wide, each covering a half-plane whose edge runs along the line: its
-    /// blurred error is `sum_{p,q on the line} G(p - q) e_p e_q`, and a pixel's error can only
-    /// cancel against its neighbours *along* the line. Averaged over the offsets of straight
-    /// lines of direction `n_t`'s perpendicular (edge `t`'s own), the pair `p, p + d` lies on
-    /// the line with probability `L_t(d) = max(0, 1 - |d . n_t| / (width (|n_x| + |n_y|)))`
-    /// given that `p` does (the band of pixel centres a line of width `width` crosses), so the
-    /// line energy is the quadratic form of the per-edge kernel `G(d) L_t(d)`. Mixed with
-    /// the full-plane energy: `K_t = G ((1 - weight) + weight L_t)`, still 1 at `d = 0`, so
-    /// moves keep their `O(dim)` evaluation with a per-edge field.
-    pub(crate) fn lines(sigma: f64, edges: &[Edge], weight: f64, width: f64) -> Kernel {
+    /// pixels, each covering a half-plane whose edge is the line: its blurred error is
+    /// `sum_{p,q on the line} G(q - p) e_p e_q`, and a pixel's error can only cancel against
+    /// its neighbours along the line. The neighbour `q = p + d` of a pixel crossed by the
+    /// line of normal `n` and offset `c` (edge `(n, c)` in `p`'s square) sees the same line
+    /// as the edge `(n, c - d . n)` of its own square, and carries error only if that edge
+    /// still crosses it. So with test edges on a grid of `angles x offsets` (`edges[a
+    /// offsets + j]`: angle `a`, offset fraction `(j + 1/2) / offsets`), the line energy pairs
+    /// edge `j` of `p` with edge `j - offsets (d . n) / (|n_x| + |n_y|)` (rounded) of `q`, or
+    /// with nothing. The tile reaches the screen under any of the eight symmetries of the
+    /// square (`src/sampler/blue.rs`), which turn the tile offset `d` into the screen offset
+    /// `S d` while the points stay put, so each pair is averaged over the eight. Mixed with
+    /// the full-plane energy (edge `k` with edge `k`): `(1 - weight) G + weight G (line
+    /// pairs)`, still the identity at `d = 0`, so moves keep their `O(dim)` evaluation.
+    pub(crate) fn lines(sigma: f64, edges: &[Edge], offsets: usize, weight: f64) -> Kernel {
         let mut k = Kernel::new(sigma);
         if weight == 0.0 {
             return k;
         }
+        let t = edges.len();
+        assert!(t.is_multiple_of(offsets) && t <= 1 << 16);
         for &(dx, dy, g) in &k.taps {
-            for e in edges {
-                let band = width * (e.n[0].abs() + e.n[1].abs());
-                let along = (1.0 - (dx as f64 * e.n[0] + dy as f64 * e.n[1]).abs() / band).max(0.0);
-                k.per_edge
-                    .push((g as f64 * ((1.0 - weight) + weight * along)) as f32);
+            let mut pairs = std::collections::BTreeMap::<(u16, u16), f64>::new();
+            for kk in 0..t {
+                *pairs.entry((kk as u16, kk as u16)).or_default() += (1.0 - weight) * g as f64;
             }
+            let (dx, dy) = (dx as f64, dy as f64);
+            let symmetries = [
+                (dx, dy),
+                (-dx, dy),
+                (dx, -dy),
+                (-dx, -dy),
+                (dy, dx),
+                (-dy, dx),
+                (dy, -dx),
+                (-dy, -dx),
+            ];
+            for (sx, sy) in symmetries {
+                for (kk, e) in edges.iter().enumerate() {
+                    // q = p + d is tap's neighbour: edge kk of q pairs with edge j of p,
+                    // c_q = c_p - d . n, so j = j_q + offsets (d . n) / (|n_x| + |n_y|).
+                    let shift = offsets as f64 * (sx * e.n[0] + sy * e.n[1])
+                        / (e.n[0].abs() + e.n[1].abs());
+                    let j = (kk % offsets) as i64 + shift.round() as i64;
+                    if (0..offsets as i64).contains(&j) {
+                        let src = (kk - kk % offsets) as i64 + j;
+                        *pairs.entry((kk as u16, src as u16)).or_default() +=
+                            weight * g as f64 / 8.0;
+                    }
+                }
+            }
+            k.gather.push(
+                pairs
+                    .into_iter()
+                    .map(|((a, b), w)| (a, b, w as f32))
+                    .collect(),
+            );
         }
         k
     }
@@ -438,8 +487,8 @@ pub(crate) struct State<'a> {
     pool: &'a Pool,
     taps: Vec<(i32, i32, f32)>,
     g_table: Vec<f32>,
-    /// The kernel per tap and edge, or empty (the isotropic `G` of `taps`).
-    per_edge: Vec<f32>,
+    /// The kernel's edge pairs per tap, or empty (the isotropic `G` of `taps`).
+    gather: Vec<Vec<(u16, u16, f32)>>,
     /// Pool index of each pixel's key.
     pub(crate) tile: Vec<usize>,
     used: Vec<bool>,
@@ -480,7 +529,7 @@ impl<'a> State<'a> {
             pool,
             taps: kernel.taps,
             g_table: kernel.g_table,
-            per_edge: kernel.per_edge,
+            gather: kernel.gather,
             tile,
             used,
             field: Vec::new(),
@@ -513,11 +562,19 @@ impl<'a> State<'a> {
         let mut f = vec![0.0f64; PIXELS * dim];
         for p in 0..PIXELS {
             let e: Vec<f64> = self.pool.error(self.tile[p]).collect();
-            for (i, &(dx, dy, _)) in self.taps.iter().enumerate() {
+            for (i, &(dx, dy, w)) in self.taps.iter().enumerate() {
                 let q = Self::neighbour(p, dx, dy);
-                let w = self.tap_weights(i);
-                for (k, (f, e)) in f[q * dim..(q + 1) * dim].iter_mut().zip(&e).enumerate() {
-                    *f += w[k % t] as f64 * e;
+                let f = &mut f[q * dim..(q + 1) * dim];
+                if self.gather.is_empty() {
+                    for (f, e) in f.iter_mut().zip(&e) {
+                        *f += w as f64 * e;
+                    }
+                    continue;
+                }
+                for (f, e) in f.chunks_exact_mut(t).zip(e.chunks_exact(t)) {
+                    for &(k, j, w) in &self.gather[i] {
+                        f[k as usize] += w as f64 * e[j as usize];
+                    }
                 }
             }
         }
@@ -526,16 +583,6 @@ impl<'a> State<'a> {
             .enumerate()
             .map(|(i, &x)| (x / self.pool.unit[(i % dim) / t] as f64) as f32)
             .collect();
-    }
-
-    /// Tap `i`'s kernel for each edge (`edges` entries).
-    fn tap_weights(&self, i: usize) -> std::borrow::Cow<'_, [f32]> {
-        let t = self.pool.edges;
-        if self.per_edge.is_empty() {
-            std::borrow::Cow::Owned(vec![self.taps[i].2; t])
-        } else {
-            std::borrow::Cow::Borrowed(&self.per_edge[i * t..(i + 1) * t])
-        }
     }
 
     /// The change of the energy if the key of `a` became pool key `j`:
@@ -558,8 +605,8 @@ impl<'a> State<'a> {
         let (pool, t) = (self.pool, self.pool.edges);
         let (eb, ea) = (pool.row(self.tile[b]), pool.row(self.tile[a]));
         let (fa, fb) = (self.field_of(a), self.field_of(b));
-        if !self.per_edge.is_empty() {
-            return self.swap_delta_per_edge(a, b);
+        if !self.gather.is_empty() {
+            return self.swap_delta_gather(a, b);
         }
         let g = g_between(a, b, &self.g_table);
         let mut de = 0.0;
@@ -571,21 +618,29 @@ impl<'a> State<'a> {
         de
     }
 
-    /// [`State::swap_delta`] under a per-edge kernel: `2 d . (F_a - F_b) + 2 sum_k d_k^2
-    /// (1 - K_k(a - b))` (a plain loop: swaps are rare in the key tiles' search).
-    fn swap_delta_per_edge(&self, a: usize, b: usize) -> f32 {
+    /// [`State::swap_delta`] under a kernel of edge pairs: `2 d . (F_a - F_b) + 2 |d|^2 -
+    /// 2 sum_{(k, j, w) of the tap b - a} w d_k d_j` (a plain loop: swaps are rare in the key
+    /// tiles' search).
+    fn swap_delta_gather(&self, a: usize, b: usize) -> f32 {
         let (pool, t) = (self.pool, self.pool.edges);
         let (eb, ea) = (pool.row(self.tile[b]), pool.row(self.tile[a]));
         let (fa, fb) = (self.field_of(a), self.field_of(b));
+        let d = |k: usize| eb[k] as f32 - ea[k] as f32;
+        let mut de = 0.0;
+        for k in 0..pool.dim {
+            de += self.unit2[k / t] * (2.0 * d(k) * (fa[k] - fb[k]) + 2.0 * d(k) * d(k));
+        }
         let tap = self
             .taps
             .iter()
             .position(|&(dx, dy, _)| Self::neighbour(a, dx, dy) == b);
-        let mut de = 0.0;
-        for k in 0..pool.dim {
-            let d = eb[k] as f32 - ea[k] as f32;
-            let g = tap.map_or(0.0, |i| self.per_edge[i * t + k % t]);
-            de += self.unit2[k / t] * (2.0 * d * (fa[k] - fb[k]) + 2.0 * d * d * (1.0 - g));
+        if let Some(i) = tap {
+            for l in 0..pool.levels {
+                for &(k, j, w) in &self.gather[i] {
+                    let (k, j) = (l * t + k as usize, l * t + j as usize);
+                    de -= self.unit2[l] * 2.0 * w * d(k) * d(j);
+                }
+            }
         }
         de
     }
@@ -604,16 +659,15 @@ impl<'a> State<'a> {
         for (i, &(dx, dy, w)) in self.taps.iter().enumerate() {
             let q = Self::neighbour(p, dx, dy);
             let field = &mut self.field[q * dim..(q + 1) * dim];
-            if self.per_edge.is_empty() {
+            if self.gather.is_empty() {
                 let w = w * sign;
                 for (f, d) in field.iter_mut().zip(&self.delta) {
                     *f += w * d;
                 }
             } else {
-                let w = &self.per_edge[i * t..(i + 1) * t];
                 for (f, d) in field.chunks_exact_mut(t).zip(self.delta.chunks_exact(t)) {
-                    for ((f, d), w) in f.iter_mut().zip(d).zip(w) {
-                        *f += sign * w * d;
+                    for &(k, j, w) in &self.gather[i] {
+                        f[k as usize] += sign * w * d[j as usize];
                     }
                 }
             }
@@ -742,10 +796,14 @@ pub fn optimise(base: Base, p: &Params) -> (Vec<u32>, Report) {
     assert!(p.edges.is_multiple_of(8) && p.pool >= PIXELS && (1..=8).contains(&p.levels));
     let mut rng = Rng::new(p.seed ^ (base as u64 + 1).wrapping_mul(0xd1b5_4a32_d192_ed03));
     let keys: Vec<u32> = (0..p.pool).map(|_| (rng.next_u64() >> 32) as u32).collect();
-    let edges: Vec<Edge> = (0..p.edges).map(|k| Edge::lattice(k, p.edges)).collect();
+    let edges: Vec<Edge> = if p.line_weight > 0.0 {
+        Edge::grid(p.edges / p.line_offsets, p.line_offsets)
+    } else {
+        (0..p.edges).map(|k| Edge::lattice(k, p.edges)).collect()
+    };
     let pool = Pool::new(base, &keys, &edges, p.levels, &p.weights);
     let sketch = project(&pool, &mut rng);
-    let kernel = Kernel::lines(SIGMA, &edges, p.line_weight, p.line_width);
+    let kernel = Kernel::lines(SIGMA, &edges, p.line_offsets, p.line_weight);
     let mut s = State::guided(&pool, kernel, (0..PIXELS).collect(), sketch);
     let before = s.ratios();
     let (mut accepted, mut replaced) = (0, 0);
