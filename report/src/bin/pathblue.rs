@@ -209,7 +209,12 @@ fn main() {
             }
             continue;
         }
-        for spp in [1u32, 4] {
+        // `pairs [spp]`: one count only.
+        let counts: Vec<u32> = match args.get(4).and_then(|s| s.parse().ok()) {
+            Some(n) if what == "pairs" => vec![n],
+            _ => vec![1, 4],
+        };
+        for &spp in &counts {
             let run = |label: &str, s: &dyn Fn(u32) -> Vec<f64>| {
                 let v = s(spp);
                 let m = mean_se(&v);

@@ -3,7 +3,7 @@
 //! ```text
 //! cargo run --release -p bluegen -- [--check] [--out DIR]
 //!     [--only sobol|pmj02bn] [--seed S] [--pool N] [--edges T] [--levels L] [--sweeps S] [--rounds R]
-//!     [--threshold X] [--weights W1,W2,..] [--line-weight X] [--line-offsets C] [--keys-only]
+//!     [--threshold X] [--weights W1,W2,..] [--line-weights X1,X2,..] [--line-offsets C] [--keys-only]
 //!     [--st-seed S] [--st-sigma S] [--st-edges T] [--st-swaps N] [--st-window W]
 //!     [--st-quad X] [--st-runs X] [--st-threshold X]
 //!     [--st-only [--st-slots K]]
@@ -58,7 +58,7 @@ fn parse() -> Result<Args, String> {
             rounds: 0,
             threshold: 0.0,
             weights: vec![1.0, 1.0, 1.0, 0.85, 0.7],
-            line_weight: 0.0,
+            line_weights: vec![0.0],
             line_offsets: 8,
         },
         st: SlotParams {
@@ -108,7 +108,12 @@ fn parse() -> Result<Args, String> {
             "--sweeps" => p.sweeps = num(&flag, value()?)?,
             "--rounds" => p.rounds = num(&flag, value()?)?,
             "--threshold" => p.threshold = num(&flag, value()?)?,
-            "--line-weight" => p.line_weight = num(&flag, value()?)?,
+            "--line-weights" => {
+                p.line_weights = value()?
+                    .split(',')
+                    .map(|w| num(&flag, w.to_string()))
+                    .collect::<Result<_, _>>()?
+            }
             "--line-offsets" => p.line_offsets = num(&flag, value()?)?,
             "--st-seed" => st.seed = num(&flag, value()?)?,
             "--st-sigma" => st.sigma = num(&flag, value()?)?,
@@ -129,11 +134,11 @@ fn parse() -> Result<Args, String> {
     if p.edges == 0 || !p.edges.is_multiple_of(8) {
         return Err("--edges must be a positive multiple of 8".into());
     }
-    if !(0.0..=1.0).contains(&p.line_weight)
+    if p.line_weights.iter().any(|w| !(0.0..=1.0).contains(w))
         || p.line_offsets == 0
         || !p.edges.is_multiple_of(p.line_offsets)
     {
-        return Err("--line-weight must be in 0..=1, --line-offsets divide --edges".into());
+        return Err("--line-weights must be in 0..=1, --line-offsets divide --edges".into());
     }
     if p.pool < opt::TILE * opt::TILE || p.levels == 0 || p.levels > 8 {
         return Err("--pool must be at least 4096, --levels in 1..=8".into());
@@ -206,7 +211,7 @@ fn main() -> ExitCode {
     let (p, st) = (&args.params, &args.st);
     let settings = format!(
         "--seed {} --pool {} --edges {} --levels {} --sweeps {} --rounds {} --threshold {} \
-         --weights {} --line-weight {} --line-offsets {} --st-seed {} --st-sigma {} --st-edges {} --st-swaps {} --st-window {} \
+         --weights {} --line-weights {} --line-offsets {} --st-seed {} --st-sigma {} --st-edges {} --st-swaps {} --st-window {} \
          --st-quad {} --st-runs {} --st-threshold {}",
         p.seed,
         p.pool,
@@ -220,7 +225,11 @@ fn main() -> ExitCode {
             .map(|w| w.to_string())
             .collect::<Vec<_>>()
             .join(","),
-        p.line_weight,
+        p.line_weights
+            .iter()
+            .map(|w| w.to_string())
+            .collect::<Vec<_>>()
+            .join(","),
         p.line_offsets,
         st.seed,
         st.sigma,
