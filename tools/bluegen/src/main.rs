@@ -57,8 +57,8 @@ fn parse() -> Result<Args, String> {
             sweeps: 12,
             rounds: 0,
             threshold: 0.0,
-            weights: vec![1.0, 1.0, 1.0, 0.85, 0.7],
-            line_weights: vec![0.0],
+            weights: vec![1.0, 0.8, 1.0, 0.6, 0.4],
+            line_weights: vec![0.8],
             line_offsets: 8,
         },
         st: SlotParams {
