@@ -58,7 +58,7 @@ fn parse() -> Result<Args, String> {
             rounds: 0,
             threshold: 0.0,
             weights: vec![1.0, 0.8, 1.0, 0.6, 0.4],
-            line_weights: vec![0.8],
+            line_weights: vec![0.8, 0.8, 0.4],
             line_offsets: 8,
         },
         st: SlotParams {

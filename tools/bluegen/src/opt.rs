@@ -18,7 +18,9 @@
 //! rendering error), a rank-1 lattice over the lines that cross the square ([`Edge::lattice`]):
 //! with random lines the optimiser fits their accidents (128 random lines: blurred error
 //! 0.59 x white noise at 4 spp on the training lines, 0.75 x on fresh ones), a stratified
-//! family generalises better (256 lattice lines: 0.60 x -> 0.67 x).
+//! family generalises better (256 lattice lines: 0.60 x -> 0.67 x). With the line energy
+//! below, a grid of 32 angles x 8 offsets ([`Edge::grid`]), whose offsets the pairing
+//! across pixels needs.
 //!
 //! # The energy
 //!
@@ -54,10 +56,10 @@
 //! edges on a grid of angles and offsets, a pixel crossed by the line of edge `(n, c)` pairs
 //! with its neighbour `q = p + d` through the edge `(n, c - d . n)` of `q`'s square (the
 //! same line), and with nothing when that edge misses `q`; averaged over the tile's eight
-//! symmetries. Per level (sample count) a weight mixes the two energies: lines at 1 and
-//! 2 spp, the full plane at 4 spp and up (where the path tracer's indirect light, a
-//! full-plane integrand, gains more than the silhouette) — see docs/sampler.md for the
-//! measurements.
+//! symmetries. Per level (sample count) a weight mixes the two energies: 0.8 on lines at 1
+//! and 2 spp, 0.4 from 4 spp up (lines at every count cost the path scenes at 4 spp, where
+//! the indirect light, a full-plane integrand, weighs more, and the edge test's 4-spp
+//! margin) — see docs/sampler.md for the measurements.
 //!
 //! # The search
 //!
@@ -74,7 +76,9 @@
 //!
 //! The level weights trade counts against each other (a key is one choice among the pool for
 //! all levels at once): `1, 1, 1, 0.85, 0.7` for 1, 2, 4, 8, 16 spp buys 1-4 spp a few
-//! percent at 16 spp's expense.
+//! percent at 16 spp's expense (the full-plane tiles); the committed tiles use
+//! `1, 0.8, 1, 0.6, 0.4` with line weights `0.8, 0.8, 0.4` (1 and 4 spp are the counts the
+//! path scenes are measured at).
 //!
 //! # Determinism
 //!
