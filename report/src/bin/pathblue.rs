@@ -295,7 +295,11 @@ fn silhouette(frames: u32) {
             z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
             ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
         };
-        let (rx, ry, angle) = (18.0 + 6.0 * h(0), 26.0 + 12.0 * h(1), std::f64::consts::PI * h(2));
+        let (rx, ry, angle) = (
+            18.0 + 6.0 * h(0),
+            26.0 + 12.0 * h(1),
+            std::f64::consts::PI * h(2),
+        );
         let (dx, dy) = (46.0 + 6.0 * h(3), 26.0 + 12.0 * h(4));
         let (c, s) = (angle.cos(), angle.sin());
         move |x: f64, y: f64| {
@@ -317,8 +321,10 @@ fn silhouette(frames: u32) {
                     // corner or centre within 1.5 px holds no boundary.
                     let near = (-2..=2).any(|j| {
                         (-2..=2).any(|i| {
-                            inside(x as f64 + 0.5 + 0.75 * i as f64, y as f64 + 0.5 + 0.75 * j as f64)
-                                != corners[4]
+                            inside(
+                                x as f64 + 0.5 + 0.75 * i as f64,
+                                y as f64 + 0.5 + 0.75 * j as f64,
+                            ) != corners[4]
                         })
                     });
                     if !near && corners.iter().all(|&c| c == corners[4]) {
@@ -365,9 +371,7 @@ fn silhouette(frames: u32) {
             })
             .collect()
     };
-    let column = |v: &[Vec<f64>], k: usize| {
-        mean_se(&v.iter().map(|r| r[k]).collect::<Vec<_>>())
-    };
+    let column = |v: &[Vec<f64>], k: usize| mean_se(&v.iter().map(|r| r[k]).collect::<Vec<_>>());
     let (so, bso) = (errors(ours::<Sobol>), errors(ours::<Blue<Sobol>>));
     let (pm, bpm) = (errors(ours::<Pmj02bn>), errors(ours::<Blue<Pmj02bn>>));
     for (k, spp) in SPP.iter().enumerate() {

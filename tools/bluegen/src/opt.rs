@@ -741,9 +741,7 @@ impl<'a> State<'a> {
         let (f, own) = (self.field_of(a), pool.row(self.tile[a]));
         let mut u = [0.0f32; SKETCH];
         for (k, r) in self.signs.chunks_exact(SKETCH).enumerate() {
-            let x = 2.0
-                * pool.unit[k / t]
-                * (f[k] - (own[k] as f64 - pool.zero[k]) as f32);
+            let x = 2.0 * pool.unit[k / t] * (f[k] - (own[k] as f64 - pool.zero[k]) as f32);
             for (u, r) in u.iter_mut().zip(r) {
                 *u += x * r;
             }
