@@ -86,6 +86,10 @@ fn parse() -> Result<Args, String> {
         {
             v.parse().map_err(|e| format!("{flag}: {e}"))
         }
+        // A comma-separated list of numbers.
+        fn list(flag: &str, v: String) -> Result<Vec<f64>, String> {
+            v.split(',').map(|w| num(flag, w.to_string())).collect()
+        }
         match flag.as_str() {
             "--out" => a.out = PathBuf::from(value()?),
             "--only" => {
@@ -95,12 +99,7 @@ fn parse() -> Result<Args, String> {
                     other => return Err(format!("--only: unknown pattern {other}")),
                 })
             }
-            "--weights" => {
-                p.weights = value()?
-                    .split(',')
-                    .map(|w| num(&flag, w.to_string()))
-                    .collect::<Result<_, _>>()?
-            }
+            "--weights" => p.weights = list(&flag, value()?)?,
             "--seed" => p.seed = num(&flag, value()?)?,
             "--pool" => p.pool = num(&flag, value()?)?,
             "--edges" => p.edges = num(&flag, value()?)?,
@@ -108,12 +107,7 @@ fn parse() -> Result<Args, String> {
             "--sweeps" => p.sweeps = num(&flag, value()?)?,
             "--rounds" => p.rounds = num(&flag, value()?)?,
             "--threshold" => p.threshold = num(&flag, value()?)?,
-            "--line-weights" => {
-                p.line_weights = value()?
-                    .split(',')
-                    .map(|w| num(&flag, w.to_string()))
-                    .collect::<Result<_, _>>()?
-            }
+            "--line-weights" => p.line_weights = list(&flag, value()?)?,
             "--line-offsets" => p.line_offsets = num(&flag, value()?)?,
             "--st-seed" => st.seed = num(&flag, value()?)?,
             "--st-sigma" => st.sigma = num(&flag, value()?)?,
@@ -200,6 +194,14 @@ fn slot_file(base: Base, st: &SlotParams, count: usize) -> (Vec<u8>, String) {
     (bytes, log)
 }
 
+/// `1,0.8,..`: a list as `--weights` takes it.
+fn joined(v: &[f64]) -> String {
+    v.iter()
+        .map(|w| w.to_string())
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
 fn main() -> ExitCode {
     let args = match parse() {
         Ok(a) => a,
@@ -220,16 +222,8 @@ fn main() -> ExitCode {
         p.sweeps,
         p.rounds,
         p.threshold,
-        p.weights
-            .iter()
-            .map(|w| w.to_string())
-            .collect::<Vec<_>>()
-            .join(","),
-        p.line_weights
-            .iter()
-            .map(|w| w.to_string())
-            .collect::<Vec<_>>()
-            .join(","),
+        joined(&p.weights),
+        joined(&p.line_weights),
         p.line_offsets,
         st.seed,
         st.sigma,
