@@ -59,7 +59,10 @@
 //! symmetries. Per level (sample count) a weight mixes the two energies: 0.8 on lines at 1
 //! and 2 spp, 0.4 from 4 spp up (lines at every count cost the path scenes at 4 spp, where
 //! the indirect light, a full-plane integrand, weighs more, and the edge test's 4-spp
-//! margin) — see docs/sampler.md for the measurements.
+//! margin) — see docs/sampler.md for the measurements. The line pairs do not see the tile's
+//! mean error, which fresh frames converge to (every frame reads the same 4096 keys at
+//! another shift); without a constant kernel to hold it at zero the running mean of 32
+//! fresh `Blue<P>` frames measured 1.1-1.3x white noise after the blur (0.6-0.7x with it).
 //!
 //! # The search
 //!
@@ -356,6 +359,9 @@ pub(crate) struct Kernel {
     /// couples, see [`Kernel::lines`]: `(k, j, w)` adds `w` times the error of edge `j` of the
     /// pixel to edge `k` of its neighbour at the tap's offset.
     gather: Vec<Vec<Vec<(u16, u16, f32)>>>,
+    /// Empty, or per level the weight of a constant kernel (`|sum_p e_p|^2`, see
+    /// [`Kernel::lines`]).
+    dc: Vec<f32>,
 }
 
 impl Kernel {
@@ -380,6 +386,7 @@ impl Kernel {
             taps,
             g_table,
             gather: Vec::new(),
+            dc: Vec::new(),
         }
     }
 
@@ -406,6 +413,15 @@ impl Kernel {
         k.gather = weights
             .iter()
             .map(|&w| Kernel::line_pairs(&k.taps, edges, offsets, w))
+            .collect();
+        // The line pairs do not see the tile's mean error (the same for every pixel), which
+        // the full-plane kernel holds at zero with its whole mass `sum_d G(d)`; but the mean
+        // over the tile is what fresh frames converge to (each frame reads the tile at
+        // another shift), so a constant kernel gives that weight back.
+        let mass: f64 = k.taps.iter().map(|t| t.2 as f64).sum();
+        k.dc = weights
+            .iter()
+            .map(|&w| (w * mass / PIXELS as f64) as f32)
             .collect();
         k
     }
@@ -524,6 +540,9 @@ pub(crate) struct State<'a> {
     g_table: Vec<f32>,
     /// The kernel's edge pairs per level and tap, or empty (the isotropic `G` of `taps`).
     gather: Vec<Vec<Vec<(u16, u16, f32)>>>,
+    /// The constant kernel's weight per level (or empty) and `sum_p e_p` in hits.
+    dc: Vec<f32>,
+    sum: Vec<f32>,
     /// Pool index of each pixel's key.
     pub(crate) tile: Vec<usize>,
     used: Vec<bool>,
@@ -565,6 +584,8 @@ impl<'a> State<'a> {
             taps: kernel.taps,
             g_table: kernel.g_table,
             gather: kernel.gather,
+            dc: kernel.dc,
+            sum: Vec::new(),
             tile,
             used,
             field: Vec::new(),
@@ -578,6 +599,15 @@ impl<'a> State<'a> {
             signs,
         };
         s.recompute_field();
+        if !s.dc.is_empty() {
+            let mut sum = vec![0.0f64; pool.dim];
+            for &j in &s.tile {
+                for (k, (x, &h)) in sum.iter_mut().zip(pool.row(j)).enumerate() {
+                    *x += h as f64 - pool.zero[k];
+                }
+            }
+            s.sum = sum.iter().map(|&x| x as f32).collect();
+        }
         s
     }
 
@@ -628,8 +658,12 @@ impl<'a> State<'a> {
         let mut de = 0.0;
         for l in 0..pool.levels {
             let r = l * t..(l + 1) * t;
-            let (df, d2) = dots(&new[r.clone()], &old[r.clone()], &f[r]);
+            let (df, d2) = dots(&new[r.clone()], &old[r.clone()], &f[r.clone()]);
             de += self.unit2[l] * (2.0 * df + d2 as f32);
+            if !self.dc.is_empty() {
+                let (ds, _) = dots(&new[r.clone()], &old[r.clone()], &self.sum[r]);
+                de += self.unit2[l] * self.dc[l] * (2.0 * ds + d2 as f32);
+            }
         }
         de
     }
@@ -726,6 +760,11 @@ impl<'a> State<'a> {
     fn apply_replace(&mut self, a: usize, j: usize) {
         let old = self.tile[a];
         self.move_fields(a, j, old);
+        if !self.dc.is_empty() {
+            for (s, d) in self.sum.iter_mut().zip(&self.delta) {
+                *s += d;
+            }
+        }
         self.tile[a] = j;
         self.used[old] = false;
         self.used[j] = true;
