@@ -9,10 +9,10 @@
 //! sample of the same quantity). Deterministic: the same figures on every run.
 //!
 //! Margin: with the committed tiles (optimised partly for error on lines, see
-//! docs/sampler.md) the ratios are about 0.55-0.58, 0.68-0.69 and 0.68 at 1, 2 and 4 spp,
+//! docs/sampler.md) the ratios are about 0.54-0.55, 0.67-0.68 and 0.68-0.69 at 1, 2 and 4 spp,
 //! and they move by about 0.01 between disjoint sets of 32 frames, so the 0.75 bound holds
 //! with some six standard deviations to spare at 2 and 4 spp. Random (unoptimised) tiles
-//! give 0.98-1.02 and fail. 8 and 16 spp (about 0.78 and 0.90) are held to a weaker 0.95. The comparison with OpenQMC's blue-noise samplers (ours 3-6% lower at
+//! give 0.98-1.02 and fail. 8 and 16 spp (about 0.79 and 0.91) are held to a weaker 0.95. The comparison with OpenQMC's blue-noise samplers (ours 3-6% lower at
 //! 1-4 spp) is the example's table, not asserted here.
 //!
 //! A pmj02bn key also picks the table set, and the pmj02bn tile is optimised for the default
@@ -203,8 +203,9 @@ fn path_frames_continue_one_sequence() {
 /// subtracted) of 512 independent renders per sampler; `Blue<P>` with the recommended usage
 /// (two 2D draws per vertex, `WarpcorePairs`) against `P` (one `draw::<4>()` per vertex).
 /// Bound: the ratio of the means plus 3 standard errors at most 1, i.e. `Blue<P>` lower at
-/// three standard errors (measured 0.81 +- 0.04 for `Sobol`, 0.79 +- 0.04 for `Pmj02bn`;
-/// 64 x 64 over 1024 renders, `pathblue`: 0.82 and 0.87 +- 0.02). About 10 s.
+/// three standard errors (measured 0.60 +- 0.03 for `Sobol`, 0.62 +- 0.03 for `Pmj02bn` with
+/// the tiles optimised also for lines, 0.81 and 0.79 +- 0.04 before; 64 x 64 over 1024
+/// renders, `pathblue`: 0.71 and 0.77 +- 0.02). About 10 s.
 #[test]
 fn path_blue_noise_pays_at_one_sample_per_pixel() {
     use std::marker::PhantomData as PD;
