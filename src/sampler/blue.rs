@@ -89,7 +89,7 @@ pub(crate) fn position<U: UintLane>(pixel: U, domain: U) -> U {
     let (x, y) = (U::select(t, y, x), U::select(t, x, y));
     let fx = U::splat(0) - (domain.shr(30) & U::splat(1));
     let fy = U::splat(0) - domain.shr(31);
-    // Shift: bits 6..11 move x, bits 12..17 move y (bits 0..5 are the domain's tag).
+    // Shift: bits 6..11 move x, bits 12..17 move y (bits 0..4 hold the tag and the slot).
     let x = (x ^ (fx & m)) + domain.shr(6);
     let y = (y ^ (fy & m)) + domain.shr(12);
     (y & m) * U::splat(TILE) + (x & m)
