@@ -120,6 +120,10 @@ pub struct SlotParams {
     pub quad: f64,
     /// Weight of the running means over aligned windows of 4 .. 32 frames (0: none).
     pub runs: f64,
+    /// Weight of the EMAs (alpha 0.1) read at the frames of `ema_at` (0: none).
+    pub ema: f64,
+    /// The frames (below [`FRAMES`]) at which the EMA enters the energy.
+    pub ema_at: Vec<usize>,
     /// The starting threshold of threshold accepting, a fraction of an offset's `|e|^2`.
     pub threshold: f64,
 }
@@ -282,39 +286,68 @@ pub fn measure(pts: &[[f32; 2]], o: &[usize]) -> Measure {
     }
 }
 
-/// The index ranges of the energy's groups and their weights: the [`FRAMES`] frames at 1 spp
-/// (`n = f`, weight 1); with `quad > 0` the frames at 4 spp (`n = 4f .. 4f + 3`); with
-/// `runs > 0` the means of the 1-spp frames over the aligned windows of 4, 8, 16 and 32
-/// frames (what accumulation and the EMA see: their errors' cross terms between frames).
-fn groups(p: &SlotParams) -> Vec<(core::ops::Range<usize>, f64)> {
-    let mut g: Vec<_> = (0..FRAMES).map(|f| (f..f + 1, 1.0)).collect();
+/// One group of the energy: the indices `n` it sums with their integer weights (the group's
+/// error on an edge is `sum_n q_n ([p_n in t] - area_t) / sum_n q_n`, `sum_n q_n <= 255`), and
+/// its weight in the energy.
+type Group = (Vec<(usize, u8)>, f64);
+
+/// The EMA (alpha [`ALPHA`]) of the 1-spp frames `0..=last`, started at frame 0's error, as
+/// integer weights summing to at most 255: `(1 - alpha)^last` for frame 0 and
+/// `alpha (1 - alpha)^(last - f)` for frame `f >= 1`, scaled by 255 and rounded (the smallest,
+/// about 1, are off by up to a half: a proxy for the energy, not the measure).
+fn ema_weights(last: usize) -> Vec<(usize, u8)> {
+    let decay = |f: usize| (f..last).fold(1.0f64, |w, _| w * (1.0 - ALPHA));
+    (0..=last)
+        .map(|f| {
+            let w = if f == 0 { decay(0) } else { ALPHA * decay(f) };
+            (f, (254.0 * w).round() as u8)
+        })
+        .filter(|&(_, q)| q > 0)
+        .collect()
+}
+
+/// The energy's groups: the [`FRAMES`] frames at 1 spp (`n = f`, weight 1); with `quad > 0`
+/// the frames at 4 spp (`n = 4f .. 4f + 3`); with `runs > 0` the means of the 1-spp frames over
+/// the aligned windows of 4, 8, 16 and 32 frames (what accumulation sees: their errors' cross
+/// terms between frames); with `ema > 0` the EMA of the frames read at each frame of
+/// `ema_at` (what a renderer's temporal accumulation shows).
+fn groups(p: &SlotParams) -> Vec<Group> {
+    let ones = |r: core::ops::Range<usize>| r.map(|n| (n, 1u8)).collect::<Vec<_>>();
+    let mut g: Vec<Group> = (0..FRAMES).map(|f| (ones(f..f + 1), 1.0)).collect();
     if p.quad > 0.0 {
-        g.extend((0..FRAMES).map(|f| (4 * f..4 * f + 4, p.quad)));
+        g.extend((0..FRAMES).map(|f| (ones(4 * f..4 * f + 4), p.quad)));
     }
     if p.runs > 0.0 {
         for size in [4, 8, 16, 32] {
-            g.extend((0..FRAMES / size).map(|k| (k * size..(k + 1) * size, p.runs)));
+            g.extend((0..FRAMES / size).map(|k| (ones(k * size..(k + 1) * size), p.runs)));
         }
+    }
+    if p.ema > 0.0 {
+        g.extend(p.ema_at.iter().map(|&last| (ema_weights(last), p.ema)));
     }
     g
 }
 
-/// The pool: offset `o`'s row holds, per group of [`groups`] and training edge, how many of
-/// the points `n ^ o` (`n` in the group's range) fall in the edge.
-fn pool(pts: &[[f32; 2]], edges: &[Edge], groups: &[(core::ops::Range<usize>, f64)]) -> Pool {
+/// The pool: offset `o`'s row holds, per group of [`groups`] and training edge, the weighted
+/// count `sum_n q_n [p_{n ^ o} in t]` over the group's indices.
+fn pool(pts: &[[f32; 2]], edges: &[Edge], groups: &[Group]) -> Pool {
     let t = edges.len();
     let mut hits = vec![0u8; PIXELS * groups.len() * t];
     for (o, row) in hits.chunks_exact_mut(groups.len() * t).enumerate() {
-        for ((range, _), level) in groups.iter().zip(row.chunks_exact_mut(t)) {
-            for n in range.clone() {
+        for ((terms, _), level) in groups.iter().zip(row.chunks_exact_mut(t)) {
+            for &(n, q) in terms {
                 let p = pts[n ^ o];
                 for (h, e) in level.iter_mut().zip(edges) {
-                    *h += e.inside(p) as u8;
+                    *h += e.inside(p) as u8 * q;
                 }
             }
         }
     }
-    let counts: Vec<u32> = groups.iter().map(|(r, _)| r.len() as u32).collect();
+    let counts: Vec<u32> = groups
+        .iter()
+        .map(|(terms, _)| terms.iter().map(|&(_, q)| q as u32).sum())
+        .collect();
+    assert!(counts.iter().all(|&c| c <= 255), "a group's weights overflow a byte");
     let weights: Vec<f64> = groups.iter().map(|g| g.1).collect();
     Pool::from_hits(hits, &counts, edges, &weights)
 }
@@ -383,6 +416,8 @@ mod tests {
             window: 7,
             quad: 0.0,
             runs: 0.5,
+            ema: 0.5,
+            ema_at: vec![15, 31],
             threshold: 0.0,
         };
         let pts = points(Base::Sobol, 0);
