@@ -199,6 +199,11 @@ fn slot_file(base: Base, st: &SlotParams, count: usize) -> (Vec<u8>, String) {
     (bytes, log)
 }
 
+/// `v` as the comma-separated list its flag takes.
+fn comma_list<T: ToString>(v: &[T]) -> String {
+    v.iter().map(T::to_string).collect::<Vec<_>>().join(",")
+}
+
 fn main() -> ExitCode {
     let args = match parse() {
         Ok(a) => a,
@@ -219,11 +224,7 @@ fn main() -> ExitCode {
         p.sweeps,
         p.rounds,
         p.threshold,
-        p.weights
-            .iter()
-            .map(|w| w.to_string())
-            .collect::<Vec<_>>()
-            .join(","),
+        comma_list(&p.weights),
         st.seed,
         st.sigma,
         st.edges,
@@ -232,11 +233,7 @@ fn main() -> ExitCode {
         st.quad,
         st.runs,
         st.ema,
-        st.ema_at
-            .iter()
-            .map(|f| f.to_string())
-            .collect::<Vec<_>>()
-            .join(","),
+        comma_list(&st.ema_at),
         st.threshold
     );
     let mut manifest = format!(
