@@ -5,7 +5,7 @@
 //!     [--only sobol|pmj02bn] [--seed S] [--pool N] [--edges T] [--levels L] [--sweeps S] [--rounds R]
 //!     [--threshold X] [--weights W1,W2,..]
 //!     [--st-seed S] [--st-sigma S] [--st-edges T] [--st-swaps N] [--st-window W]
-//!     [--st-quad X] [--st-runs X] [--st-threshold X]
+//!     [--st-quad X] [--st-runs X] [--st-ema X] [--st-ema-at F1,F2,..] [--st-threshold X]
 //!     [--st-only [--st-slots K]]
 //! ```
 //!
@@ -62,11 +62,13 @@ fn parse() -> Result<Args, String> {
         st: SlotParams {
             seed: 20220808,
             sigma: 1.5,
-            edges: 32,
-            swaps: 1_500_000,
+            edges: 128,
+            swaps: 1_000_000,
             window: 7,
             quad: 0.0,
-            runs: 0.6,
+            runs: 0.3,
+            ema: 3.5,
+            ema_at: vec![31],
             threshold: 0.0,
         },
         st_only: false,
@@ -113,6 +115,13 @@ fn parse() -> Result<Args, String> {
             "--st-window" => st.window = num(&flag, value()?)?,
             "--st-quad" => st.quad = num(&flag, value()?)?,
             "--st-runs" => st.runs = num(&flag, value()?)?,
+            "--st-ema" => st.ema = num(&flag, value()?)?,
+            "--st-ema-at" => {
+                st.ema_at = value()?
+                    .split(',')
+                    .map(|f| num(&flag, f.to_string()))
+                    .collect::<Result<_, _>>()?
+            }
             "--st-threshold" => st.threshold = num(&flag, value()?)?,
             "--st-only" => a.st_only = true,
             "--st-slots" => a.st_slots = num(&flag, value()?)?,
@@ -139,8 +148,14 @@ fn parse() -> Result<Args, String> {
     {
         return Err("--st-slots: at most BLUE_SLOTS, fewer only with --st-only".into());
     }
-    if !(0.0..=16.0).contains(&st.quad) || !(0.0..=16.0).contains(&st.runs) {
-        return Err("--st-quad and --st-runs must be in 0..=16".into());
+    if [st.quad, st.runs, st.ema]
+        .iter()
+        .any(|w| !(0.0..=16.0).contains(w))
+    {
+        return Err("--st-quad, --st-runs and --st-ema must be in 0..=16".into());
+    }
+    if st.ema_at.iter().any(|&f| f >= slots::FRAMES) {
+        return Err("--st-ema-at: frames below 32".into());
     }
     Ok(a)
 }
@@ -184,6 +199,11 @@ fn slot_file(base: Base, st: &SlotParams, count: usize) -> (Vec<u8>, String) {
     (bytes, log)
 }
 
+/// `v` as the comma-separated list its flag takes.
+fn comma_list<T: ToString>(v: &[T]) -> String {
+    v.iter().map(T::to_string).collect::<Vec<_>>().join(",")
+}
+
 fn main() -> ExitCode {
     let args = match parse() {
         Ok(a) => a,
@@ -196,7 +216,7 @@ fn main() -> ExitCode {
     let settings = format!(
         "--seed {} --pool {} --edges {} --levels {} --sweeps {} --rounds {} --threshold {} \
          --weights {} --st-seed {} --st-sigma {} --st-edges {} --st-swaps {} --st-window {} \
-         --st-quad {} --st-runs {} --st-threshold {}",
+         --st-quad {} --st-runs {} --st-ema {} --st-ema-at {} --st-threshold {}",
         p.seed,
         p.pool,
         p.edges,
@@ -204,11 +224,7 @@ fn main() -> ExitCode {
         p.sweeps,
         p.rounds,
         p.threshold,
-        p.weights
-            .iter()
-            .map(|w| w.to_string())
-            .collect::<Vec<_>>()
-            .join(","),
+        comma_list(&p.weights),
         st.seed,
         st.sigma,
         st.edges,
@@ -216,6 +232,8 @@ fn main() -> ExitCode {
         st.window,
         st.quad,
         st.runs,
+        st.ema,
+        comma_list(&st.ema_at),
         st.threshold
     );
     let mut manifest = format!(
