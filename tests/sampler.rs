@@ -139,6 +139,12 @@ fn identical<P: Pattern>(a: Sampler<P>, b: Sampler<P>) -> bool {
 /// Returns how many of the checked pairs were the same pattern (possible only for `Blue`,
 /// whose domains of one pixel read one key tile: see `blue_key_collisions_are_rare`).
 fn domains_are_independent<P: Pattern>(name: &str) -> usize {
+    domains_are_independent_below::<P>(name, false)
+}
+
+/// [`domains_are_independent`] below `new` roots or (`frames`) `new_frame` roots, whose
+/// domains 0 to 5 are `Blue<P>`'s spatiotemporal slots: then slot pairs are checked too.
+fn domains_are_independent_below<P: Pattern>(name: &str, frames: bool) -> usize {
     let mut r = common::rng(11);
     let mut same = 0;
     let mut check = |a: Sampler<P>, b: Sampler<P>, da: usize, db: usize, what: &str| {
@@ -156,13 +162,23 @@ fn domains_are_independent<P: Pattern>(name: &str) -> usize {
         );
     };
     for _ in 0..64 {
-        let s = Sampler::<P>::new(
-            [r.random::<u32>() % 512, r.random::<u32>() % 512],
-            r.random(),
-            0,
-            0,
-        );
+        let pixel = [r.random::<u32>() % 512, r.random::<u32>() % 512];
+        let s = if frames {
+            Sampler::<P>::new_frame(pixel, r.random(), 1, 0, 0)
+        } else {
+            Sampler::<P>::new(pixel, r.random(), 0, 0)
+        };
         let (ka, kb) = (r.random::<u32>() % 8, r.random::<u32>() % 8 + 8);
+        let other_slot = (ka + 1 + r.random::<u32>() % 5) % 6;
+        for (da, db) in [(0, 0), (1, 1), (0, 1), (2, 3)] {
+            check(
+                s.domain(ka % 6),
+                s.domain(other_slot),
+                da,
+                db,
+                "two of the root's domains 0..6",
+            );
+        }
         let (a, b) = (s.domain(ka), s.domain(kb));
         for (da, db) in [(0, 0), (1, 1), (0, 1), (2, 2), (3, 3), (2, 0)] {
             check(a, b, da, db, "sibling domains");
@@ -191,10 +207,19 @@ fn domains_are_independent<P: Pattern>(name: &str) -> usize {
 fn domains_do_not_share_an_index_order() {
     assert_eq!(domains_are_independent::<Pmj02bn>("Pmj02bn"), 0);
     assert_eq!(domains_are_independent::<Sobol>("Sobol"), 0);
-    // 2 x 576 pairs, each the same pattern with probability 1 / TILE^2 (0.28 expected).
+    // 2 x 832 pairs, each the same pattern with probability 1 / TILE^2 (0.41 expected).
     let same = domains_are_independent::<Blue<Pmj02bn>>("Blue<Pmj02bn>")
         + domains_are_independent::<Blue<Sobol>>("Blue<Sobol>");
-    assert!(same <= 3, "{same} blue domain pairs drew one pattern");
+    assert!(same <= 4, "{same} blue domain pairs drew one pattern");
+    // Below new_frame roots the root's domains 0..6 are slots: two slots, or a slot and
+    // another domain, never draw one pattern (independent scrambles); the other pairs as
+    // above (4 x 64 slot pairs of the 2 x 832).
+    let same = domains_are_independent_below::<Blue<Pmj02bn>>("Blue<Pmj02bn> frames", true)
+        + domains_are_independent_below::<Blue<Sobol>>("Blue<Sobol> frames", true);
+    assert!(
+        same <= 4,
+        "{same} blue domain pairs below new_frame drew one pattern"
+    );
 }
 
 /// The joint distribution of two domains is uniform: chi-square over a 16 x 16 grid of
@@ -202,9 +227,19 @@ fn domains_do_not_share_an_index_order() {
 /// 2^21 (pixel, index) pairs (128 pixels of 16384 indices each). Significance: the suite's
 /// Sidak-corrected level (see `common::chi2`).
 fn joint_uniform<P: Pattern>(name: &str) {
+    joint_uniform_below::<P>(name, false);
+}
+
+/// [`joint_uniform`] below `new` roots or (`frames`) `new_frame` roots (under `Blue<P>`,
+/// domains 1 and 2 are then two spatiotemporal slots).
+fn joint_uniform_below<P: Pattern>(name: &str, frames: bool) {
     let mut h = chi2::Histogram::new(16, 16);
     for p in 0..128u32 {
-        let s = Sampler::<P>::new([p % 16, p / 16], 1, 0, 99);
+        let s = if frames {
+            Sampler::<P>::new_frame([p % 16, p / 16], 1, 1, 0, 99)
+        } else {
+            Sampler::<P>::new([p % 16, p / 16], 1, 0, 99)
+        };
         let (a, b) = (s.domain(1), s.domain(2));
         for i in 0..16384 {
             let x = a.with_index(i).draw::<1>()[0];
@@ -223,6 +258,8 @@ fn joint_uniform<P: Pattern>(name: &str) {
 fn joint_projections_of_two_domains_are_uniform() {
     joint_uniform::<Pmj02bn>("Pmj02bn");
     joint_uniform::<Sobol>("Sobol");
+    joint_uniform_below::<Blue<Pmj02bn>>("Blue<Pmj02bn> slots", true);
+    joint_uniform_below::<Blue<Sobol>>("Blue<Sobol> slots", true);
 }
 
 /// `split(key, size, sub)`: the `size * n` sub-sample points of parent indices `0..n` form
