@@ -44,6 +44,11 @@
 //!
 //! and `O(taps x dim)` to apply (the field is updated over the kernel's support).
 //!
+//! The energy may filter groups of levels with different kernels ([`Span`]: the slot tiles
+//! measure their EMA channel at sigma 1 and their frames at sigma 1.5): `E` is then a sum of
+//! such quadratic forms, one per span, each level's field is filtered with its span's kernel,
+//! and `G(0)` (1 for every kernel) and `G(a - b)` in the moves are taken per span.
+//!
 //! # The search
 //!
 //! The best replacement for a pixel is the pool key nearest to `-(F_a - G(0) e_a)`, the error
