@@ -5,7 +5,8 @@
 //!     [--only sobol|pmj02bn] [--seed S] [--pool N] [--edges T] [--levels L] [--sweeps S] [--rounds R]
 //!     [--threshold X] [--weights W1,W2,..]
 //!     [--st-seed S] [--st-sigma S] [--st-edges T] [--st-swaps N] [--st-window W]
-//!     [--st-quad X] [--st-runs X] [--st-ema X] [--st-ema-at F1,F2,..] [--st-threshold X]
+//!     [--st-quad X] [--st-runs X] [--st-ema X] [--st-ema-at F1,F2,..] [--st-ema-sigma S]
+//!     [--st-threshold X]
 //!     [--st-only [--st-slots K]]
 //! ```
 //!
@@ -69,6 +70,7 @@ fn parse() -> Result<Args, String> {
             runs: 0.3,
             ema: 3.5,
             ema_at: vec![31],
+            ema_sigma: 1.0,
             threshold: 0.0,
         },
         st_only: false,
@@ -122,6 +124,7 @@ fn parse() -> Result<Args, String> {
                     .map(|f| num(&flag, f.to_string()))
                     .collect::<Result<_, _>>()?
             }
+            "--st-ema-sigma" => st.ema_sigma = num(&flag, value()?)?,
             "--st-threshold" => st.threshold = num(&flag, value()?)?,
             "--st-only" => a.st_only = true,
             "--st-slots" => a.st_slots = num(&flag, value()?)?,
@@ -140,8 +143,16 @@ fn parse() -> Result<Args, String> {
     if st.edges == 0 || !st.edges.is_multiple_of(8) {
         return Err("--st-edges must be a positive multiple of 8".into());
     }
-    if !(0.25..=4.0).contains(&st.sigma) || st.window.is_multiple_of(2) || st.window > 63 {
-        return Err("--st-sigma must be in 0.25..=4, --st-window odd and below 64".into());
+    if ![st.sigma, st.ema_sigma]
+        .iter()
+        .all(|s| (0.25..=4.0).contains(s))
+        || st.window.is_multiple_of(2)
+        || st.window > 63
+    {
+        return Err(
+            "--st-sigma and --st-ema-sigma must be in 0.25..=4, --st-window odd and below 64"
+                .into(),
+        );
     }
     if a.st_slots > warpcore::sampler::BLUE_SLOTS
         || (a.st_slots < warpcore::sampler::BLUE_SLOTS && !a.st_only)
@@ -216,7 +227,7 @@ fn main() -> ExitCode {
     let settings = format!(
         "--seed {} --pool {} --edges {} --levels {} --sweeps {} --rounds {} --threshold {} \
          --weights {} --st-seed {} --st-sigma {} --st-edges {} --st-swaps {} --st-window {} \
-         --st-quad {} --st-runs {} --st-ema {} --st-ema-at {} --st-threshold {}",
+         --st-quad {} --st-runs {} --st-ema {} --st-ema-at {} --st-ema-sigma {} --st-threshold {}",
         p.seed,
         p.pool,
         p.edges,
@@ -234,6 +245,7 @@ fn main() -> ExitCode {
         st.runs,
         st.ema,
         comma_list(&st.ema_at),
+        st.ema_sigma,
         st.threshold
     );
     let mut manifest = format!(

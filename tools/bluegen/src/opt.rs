@@ -44,6 +44,11 @@
 //!
 //! and `O(taps x dim)` to apply (the field is updated over the kernel's support).
 //!
+//! The energy may filter groups of levels with different kernels ([`Span`]: the slot tiles
+//! measure their EMA channel at sigma 1 and their frames at sigma 1.5): `E` is then a sum of
+//! such quadratic forms, one per span, each level's field is filtered with its span's kernel,
+//! and `G(0)` (1 for every kernel) and `G(a - b)` in the moves are taken per span.
+//!
 //! # The search
 //!
 //! The best replacement for a pixel is the pool key nearest to `-(F_a - G(0) e_a)`, the error
@@ -300,7 +305,7 @@ impl Pool {
     }
 
     /// Key `j`'s error vector.
-    fn error(&self, j: usize) -> impl Iterator<Item = f64> + '_ {
+    pub(crate) fn error(&self, j: usize) -> impl Iterator<Item = f64> + '_ {
         self.row(j)
             .iter()
             .enumerate()
@@ -313,9 +318,9 @@ impl Pool {
 /// 1%: `radius2 = ceil(4 sigma^2 ln 100)` (42 for sigma 1.5, 19 for sigma 1).
 pub(crate) struct Kernel {
     /// `(dx, dy, G(dx, dy))` over the support.
-    taps: Vec<(i32, i32, f32)>,
+    pub(crate) taps: Vec<(i32, i32, f32)>,
     /// `G` by squared distance, `0..=radius2`.
-    g_table: Vec<f32>,
+    pub(crate) g_table: Vec<f32>,
 }
 
 impl Kernel {
@@ -341,7 +346,7 @@ impl Kernel {
 }
 
 /// `G` between two pixels on the torus (0 outside the support).
-fn g_between(a: usize, b: usize, table: &[f32]) -> f32 {
+pub(crate) fn g_between(a: usize, b: usize, table: &[f32]) -> f32 {
     let wrap = |d: isize| {
         let d = d.rem_euclid(TILE as isize);
         if d > TILE as isize / 2 {
@@ -396,11 +401,19 @@ fn dots3(u: &[u8], v: &[u8], y: &[f32], z: &[f32]) -> (f32, i32) {
     (sum(s1), s2.iter().sum())
 }
 
+/// The levels `levels` of a pool filtered with one kernel: a state's energy may filter
+/// different groups of levels with different kernels (each group's term is its own quadratic
+/// form `sum_{p,q} G_k(p - q) e_p . e_q` over its levels).
+pub(crate) struct Span {
+    pub(crate) kernel: Kernel,
+    pub(crate) levels: core::ops::Range<usize>,
+}
+
 /// The tile being optimised and its filtered field.
 pub(crate) struct State<'a> {
     pool: &'a Pool,
-    taps: Vec<(i32, i32, f32)>,
-    g_table: Vec<f32>,
+    /// The kernels and the levels each filters, in order, covering `0..levels`.
+    spans: Vec<Span>,
     /// Pool index of each pixel's key.
     pub(crate) tile: Vec<usize>,
     used: Vec<bool>,
@@ -420,16 +433,33 @@ pub(crate) struct State<'a> {
 }
 
 impl<'a> State<'a> {
-    /// The state of `tile` (pool rows, the rest of the pool unused), its field computed; a
-    /// sketch (from [`project`]) or none.
+    /// The state of `tile` (pool rows, the rest of the pool unused) with one kernel for
+    /// every level, its field computed; a sketch (from [`project`]) or none.
     pub(crate) fn new(pool: &'a Pool, kernel: Kernel, tile: Vec<usize>, sketch: Vec<f32>) -> Self {
+        let levels = 0..pool.levels;
+        Self::with_spans(pool, vec![Span { kernel, levels }], tile, sketch)
+    }
+
+    /// As [`State::new`] with a kernel per span of levels (`spans` in order, covering every
+    /// level once); a sketch only with one span (its field is filtered with that kernel).
+    pub(crate) fn with_spans(
+        pool: &'a Pool,
+        spans: Vec<Span>,
+        tile: Vec<usize>,
+        sketch: Vec<f32>,
+    ) -> Self {
+        let mut next = 0;
+        for span in &spans {
+            assert!(span.levels.start == next && span.levels.end > next);
+            next = span.levels.end;
+        }
+        assert!(next == pool.levels && (sketch.is_empty() || spans.len() == 1));
         let rows = pool.hits.len() / pool.dim;
         let mut used = vec![false; rows];
         tile.iter().for_each(|&j| used[j] = true);
         let mut s = State {
             pool,
-            taps: kernel.taps,
-            g_table: kernel.g_table,
+            spans,
             tile,
             used,
             field: Vec::new(),
@@ -463,10 +493,16 @@ impl<'a> State<'a> {
         let mut f = vec![0.0f64; PIXELS * dim];
         for p in 0..PIXELS {
             let e: Vec<f64> = self.pool.error(self.tile[p]).collect();
-            for &(dx, dy, w) in &self.taps {
-                let q = Self::neighbour(p, dx, dy);
-                for (f, e) in f[q * dim..(q + 1) * dim].iter_mut().zip(&e) {
-                    *f += w as f64 * e;
+            for span in &self.spans {
+                let r = span.levels.start * t..span.levels.end * t;
+                for &(dx, dy, w) in &span.kernel.taps {
+                    let q = Self::neighbour(p, dx, dy);
+                    for (f, e) in f[q * dim + r.start..q * dim + r.end]
+                        .iter_mut()
+                        .zip(&e[r.clone()])
+                    {
+                        *f += w as f64 * e;
+                    }
                 }
             }
         }
@@ -497,12 +533,14 @@ impl<'a> State<'a> {
         let (pool, t) = (self.pool, self.pool.edges);
         let (eb, ea) = (pool.row(self.tile[b]), pool.row(self.tile[a]));
         let (fa, fb) = (self.field_of(a), self.field_of(b));
-        let g = g_between(a, b, &self.g_table);
         let mut de = 0.0;
-        for l in 0..pool.levels {
-            let r = l * t..(l + 1) * t;
-            let (df, d2) = dots3(&eb[r.clone()], &ea[r.clone()], &fa[r.clone()], &fb[r]);
-            de += self.unit2[l] * (2.0 * df + 2.0 * d2 as f32 * (1.0 - g));
+        for span in &self.spans {
+            let g = g_between(a, b, &span.kernel.g_table);
+            for l in span.levels.clone() {
+                let r = l * t..(l + 1) * t;
+                let (df, d2) = dots3(&eb[r.clone()], &ea[r.clone()], &fa[r.clone()], &fb[r]);
+                de += self.unit2[l] * (2.0 * df + 2.0 * d2 as f32 * (1.0 - g));
+            }
         }
         de
     }
@@ -515,17 +553,20 @@ impl<'a> State<'a> {
         }
     }
 
-    /// Adds `sign G(q - p) delta` to the field around `p`.
+    /// Adds `sign G(q - p) delta` to the field around `p`, each span with its kernel.
     fn spread(&mut self, p: usize, sign: f32) {
-        let dim = self.pool.dim;
-        for &(dx, dy, w) in &self.taps {
-            let q = Self::neighbour(p, dx, dy);
-            let w = w * sign;
-            for (f, d) in self.field[q * dim..(q + 1) * dim]
-                .iter_mut()
-                .zip(&self.delta)
-            {
-                *f += w * d;
+        let (dim, t) = (self.pool.dim, self.pool.edges);
+        for span in &self.spans {
+            let r = span.levels.start * t..span.levels.end * t;
+            for &(dx, dy, w) in &span.kernel.taps {
+                let q = Self::neighbour(p, dx, dy);
+                let w = w * sign;
+                for (f, d) in self.field[q * dim + r.start..q * dim + r.end]
+                    .iter_mut()
+                    .zip(&self.delta[r.clone()])
+                {
+                    *f += w * d;
+                }
             }
         }
     }
@@ -542,7 +583,7 @@ impl<'a> State<'a> {
         let mut f = vec![0.0f32; PIXELS * SKETCH];
         for p in 0..PIXELS {
             let j = self.tile[p];
-            for &(dx, dy, w) in &self.taps {
+            for &(dx, dy, w) in &self.spans[0].kernel.taps {
                 let q = Self::neighbour(p, dx, dy);
                 for (f, s) in f[q * SKETCH..(q + 1) * SKETCH]
                     .iter_mut()
@@ -564,7 +605,7 @@ impl<'a> State<'a> {
         }
         let d: [f32; SKETCH] =
             core::array::from_fn(|m| self.sketch[new * SKETCH + m] - self.sketch[old * SKETCH + m]);
-        for &(dx, dy, w) in &self.taps {
+        for &(dx, dy, w) in &self.spans[0].kernel.taps {
             let q = Self::neighbour(a, dx, dy);
             for (f, d) in self.sketch_field[q * SKETCH..(q + 1) * SKETCH]
                 .iter_mut()
