@@ -5,7 +5,7 @@
 //!     [--only sobol|pmj02bn] [--seed S] [--pool N] [--edges T] [--levels L] [--sweeps S] [--rounds R]
 //!     [--threshold X] [--weights W1,W2,..]
 //!     [--st-seed S] [--st-sigma S] [--st-edges T] [--st-swaps N] [--st-window W]
-//!     [--st-quad X] [--st-runs X] [--st-ema X] [--st-ema-at F1,F2,..] [--st-ema-sigma S]
+//!     [--st-quad X] [--st-runs X] [--st-ema W or Wsobol,Wpmj02bn] [--st-ema-at F1,F2,..] [--st-ema-sigma S]
 //!     [--st-threshold X]
 //!     [--st-only [--st-slots K]]
 //! ```
@@ -41,6 +41,8 @@ struct Args {
     only: Option<Base>,
     params: Params,
     st: SlotParams,
+    /// The EMA weight per pattern (Sobol', then pmj02bn; one value for both).
+    st_ema: Vec<f64>,
     st_only: bool,
     st_slots: usize,
     check: bool,
@@ -68,11 +70,12 @@ fn parse() -> Result<Args, String> {
             window: 7,
             quad: 0.0,
             runs: 0.3,
-            ema: 3.5,
+            ema: 0.0, // per pattern: `st_ema`
             ema_at: vec![31],
             ema_sigma: 1.0,
             threshold: 0.0,
         },
+        st_ema: vec![4.0, 4.25],
         st_only: false,
         st_slots: warpcore::sampler::BLUE_SLOTS,
         check: false,
@@ -117,7 +120,12 @@ fn parse() -> Result<Args, String> {
             "--st-window" => st.window = num(&flag, value()?)?,
             "--st-quad" => st.quad = num(&flag, value()?)?,
             "--st-runs" => st.runs = num(&flag, value()?)?,
-            "--st-ema" => st.ema = num(&flag, value()?)?,
+            "--st-ema" => {
+                a.st_ema = value()?
+                    .split(',')
+                    .map(|w| num(&flag, w.to_string()))
+                    .collect::<Result<_, _>>()?
+            }
             "--st-ema-at" => {
                 st.ema_at = value()?
                     .split(',')
@@ -159,11 +167,17 @@ fn parse() -> Result<Args, String> {
     {
         return Err("--st-slots: at most BLUE_SLOTS, fewer only with --st-only".into());
     }
-    if [st.quad, st.runs, st.ema]
+    if [st.quad, st.runs]
         .iter()
+        .chain(&a.st_ema)
         .any(|w| !(0.0..=16.0).contains(w))
+        || !(1..=2).contains(&a.st_ema.len())
     {
-        return Err("--st-quad, --st-runs and --st-ema must be in 0..=16".into());
+        return Err(
+            "--st-quad, --st-runs and --st-ema (one weight, or Sobol's and pmj02bn's) must be \
+             in 0..=16"
+                .into(),
+        );
     }
     if st.ema_at.iter().any(|&f| f >= slots::FRAMES) {
         return Err("--st-ema-at: frames below 32".into());
@@ -243,7 +257,7 @@ fn main() -> ExitCode {
         st.window,
         st.quad,
         st.runs,
-        st.ema,
+        comma_list(&args.st_ema),
         comma_list(&st.ema_at),
         st.ema_sigma,
         st.threshold
@@ -269,7 +283,10 @@ fn main() -> ExitCode {
             .iter()
             .map(|&base| {
                 let count = args.st_slots;
-                scope.spawn(move || slot_file(base, st, count))
+                let mut st = st.clone();
+                let k = usize::from(base == Base::Pmj02bn).min(args.st_ema.len() - 1);
+                st.ema = args.st_ema[k];
+                scope.spawn(move || slot_file(base, &st, count))
             })
             .collect();
         for &base in bases.iter().filter(|_| !args.st_only) {
