@@ -124,12 +124,17 @@ fn lane_args(root: [u32; 5], j: u32) -> [u32; 5] {
 fn run<P: Pattern>(root: [u32; 5], steps: &[Step]) {
     let [x, y, frame, index, seed] = root;
     // `new_frame` is `new` of the 64-bit sample number `frame * max(spp, 1) + index` (high
-    // word as `frame`), worked here in 128 bits, for an arbitrary `spp` from the input.
+    // word as `frame`), worked here in 128 bits, for an arbitrary `spp` from the input; under
+    // `Blue<P>` its domain word carries the tag 2 in its low two bits (a root whose domains
+    // 0..6 are slots), `new`'s the tag 0.
     let spp = seed.rotate_left(7) ^ frame;
     let n = u128::from(frame) * u128::from(spp.max(1)) + u128::from(index);
+    let [pixel, domain, sample] =
+        Sampler::<P>::new([x, y], (n >> 32) as u32, n as u32, seed).to_words();
+    let blue = P::ID & 2 != 0;
     assert_eq!(
-        Sampler::<P>::new_frame([x, y], frame, spp, index, seed),
-        Sampler::<P>::new([x, y], (n >> 32) as u32, n as u32, seed),
+        Sampler::<P>::new_frame([x, y], frame, spp, index, seed).to_words(),
+        [pixel, if blue { domain & !3 | 2 } else { domain }, sample],
         "new_frame numbering"
     );
     let mut s = Sampler::<P>::new([x, y], frame, index, seed);
