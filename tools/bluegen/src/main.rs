@@ -91,6 +91,13 @@ fn parse() -> Result<Args, String> {
         {
             v.parse().map_err(|e| format!("{flag}: {e}"))
         }
+        /// A comma-separated list of numbers.
+        fn nums<T: std::str::FromStr>(flag: &str, v: String) -> Result<Vec<T>, String>
+        where
+            T::Err: std::fmt::Display,
+        {
+            v.split(',').map(|w| num(flag, w.to_string())).collect()
+        }
         match flag.as_str() {
             "--out" => a.out = PathBuf::from(value()?),
             "--only" => {
@@ -100,12 +107,7 @@ fn parse() -> Result<Args, String> {
                     other => return Err(format!("--only: unknown pattern {other}")),
                 })
             }
-            "--weights" => {
-                p.weights = value()?
-                    .split(',')
-                    .map(|w| num(&flag, w.to_string()))
-                    .collect::<Result<_, _>>()?
-            }
+            "--weights" => p.weights = nums(&flag, value()?)?,
             "--seed" => p.seed = num(&flag, value()?)?,
             "--pool" => p.pool = num(&flag, value()?)?,
             "--edges" => p.edges = num(&flag, value()?)?,
@@ -120,18 +122,8 @@ fn parse() -> Result<Args, String> {
             "--st-window" => st.window = num(&flag, value()?)?,
             "--st-quad" => st.quad = num(&flag, value()?)?,
             "--st-runs" => st.runs = num(&flag, value()?)?,
-            "--st-ema" => {
-                a.st_ema = value()?
-                    .split(',')
-                    .map(|w| num(&flag, w.to_string()))
-                    .collect::<Result<_, _>>()?
-            }
-            "--st-ema-at" => {
-                st.ema_at = value()?
-                    .split(',')
-                    .map(|f| num(&flag, f.to_string()))
-                    .collect::<Result<_, _>>()?
-            }
+            "--st-ema" => a.st_ema = nums(&flag, value()?)?,
+            "--st-ema-at" => st.ema_at = nums(&flag, value()?)?,
             "--st-ema-sigma" => st.ema_sigma = num(&flag, value()?)?,
             "--st-threshold" => st.threshold = num(&flag, value()?)?,
             "--st-only" => a.st_only = true,
