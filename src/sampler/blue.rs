@@ -33,7 +33,7 @@ use crate::lanes::UintLane;
 /// Tile side in pixels.
 pub const TILE: u32 = 64;
 
-/// Spatiotemporal domain slots: the root's domains `0..SLOTS` of a `Blue<P>` sampler.
+/// Spatiotemporal domain slots: the domains `0..SLOTS` of a `Blue<P>` `new_frame` root.
 pub const SLOTS: usize = 6;
 
 /// The fixed scramble key of each slot: every pixel of slot `s` draws `P` keyed by
@@ -189,8 +189,8 @@ mod tests {
 
     /// A `Blue<P>` pixel draws exactly `P`'s points keyed as [`keyed_at`] says, i.e. what
     /// `tools/bluegen` optimises through `Sampler::<P>::from_domain_hash`: for any pixel,
-    /// frame, seed, domain path and index; the root's domains `0..SLOTS` are slots and no
-    /// other domain is.
+    /// frame, seed, domain path and index; a `new_frame` root's domains `0..SLOTS` are slots
+    /// and no other domain is.
     fn blue_draws_the_keyed_base_pattern<P: Base>()
     where
         Blue<P>: Pattern,
