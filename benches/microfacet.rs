@@ -18,7 +18,9 @@ use warpcore::microfacet as mf;
 /// Heitz 2018, "Sampling the GGX Distribution of Visible Normals" (JCGT 7(4)), written from
 /// the paper's description in plain `f32` with `std`'s `sqrt` (the hardware instruction, as
 /// a renderer's code gets it; `libm::sqrtf` is an opaque inline-asm `sqrtss` on x86, which
-/// would handicap the peer) and `sin_cos` (the platform's `sinf`/`cosf`).
+/// would handicap the peer) and `sin_cos` (the platform's `sinf`/`cosf`); always inlined into
+/// the loop, as a renderer's own code is.
+#[inline(always)]
 fn heitz2018(wo: [f32; 3], alpha: [f32; 2], u: [f32; 2]) -> [f32; 3] {
     let norm = |v: [f32; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     // The view direction in the hemisphere configuration.

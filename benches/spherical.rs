@@ -13,6 +13,11 @@
 //! one-light groups the scalar rows pass the light and the point through `black_box` per
 //! call too (a fixed light would let the compiler hoist the whole set-up out of the loop).
 //!
+//! The transcriptions are `#[inline(always)]`, as a renderer's own code is inlined into its
+//! loop (the library's maps are `#[inline]`): left to LLVM they stayed calls, with spills
+//! around the `libm` calls, and ran 22-29% slower than in a renderer, which flattered the
+//! per-call ratios (docs/warps.md).
+//!
 //! Sphere lights (`spherical::cone`) against a textbook transcription of pbrt-v4's cone
 //! sampling, per call and over a slice.
 //!
@@ -37,6 +42,7 @@ fn ortho(a: V, b: V) -> V {
 /// Arvo 1995 as printed: angles by `acos` of normalised plane normals, the sub-triangle's
 /// new vertex by the cosine `q`, the final point by `z = 1 - u1 (1 - cos)`; barycentrics by
 /// intersecting the ray with the plane (Cramer's rule).
+#[inline(always)]
 fn arvo_textbook(v: [V; 3], p: V, u: [f32; 2]) -> ([f32; 3], f32) {
     let (va, vb, vc) = (sub(v[0], p), sub(v[1], p), sub(v[2], p));
     let (a, b, c) = (normalize(va), normalize(vb), normalize(vc));
@@ -69,6 +75,7 @@ fn arvo_textbook(v: [V; 3], p: V, u: [f32; 2]) -> ([f32; 3], f32) {
 
 /// Urena, Fajardo and King 2013 as printed (their Algorithm 1), for an axis frame given by
 /// `ex`, `ey`.
+#[inline(always)]
 fn urena_textbook(corner: V, ex: V, ey: V, p: V, u: [f32; 2]) -> ([f32; 2], f32) {
     let (w, h) = (libm::sqrtf(dot(ex, ex)), libm::sqrtf(dot(ey, ey)));
     let (x, y) = (scale(ex, 1.0 / w), scale(ey, 1.0 / h));
@@ -116,6 +123,7 @@ fn urena_textbook(corner: V, ex: V, ey: V, p: V, u: [f32; 2]) -> ([f32; 2], f32)
 /// "Physically Based Rendering", 4th ed., `SampleUniformCone` with the sphere's
 /// `sin^2 theta_max = r^2 / d^2`): `cos theta = (1 - u0) + u0 cos theta_max`, `phi = 2 pi
 /// u1`, the frame from `d / |d|` (Duff et al. 2017); `1 - cos` cancels below about 1e-4 sr.
+#[inline(always)]
 fn cone_textbook(c: V, r: f32, p: V, u: [f32; 2]) -> ([f32; 3], f32) {
     let d = sub(c, p);
     let d2 = dot(d, d);

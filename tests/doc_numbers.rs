@@ -466,7 +466,12 @@ fn sampler_table_sizes_are_the_constants() {
     );
     assert_eq!(
         warpcore::sampler::BLUE_TABLE_BYTES as u64,
-        file_len("src/tables/blue_sobol_64.bin") + file_len("src/tables/blue_pmj02bn_64.bin")
+        ["blue", "blue_slots"]
+            .iter()
+            .flat_map(
+                |t| ["sobol", "pmj02bn"].map(|p| file_len(&format!("src/tables/{t}_{p}_64.bin")))
+            )
+            .sum::<u64>()
     );
 }
 

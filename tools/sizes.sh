@@ -26,10 +26,10 @@ probes=(
   "probe-pmj02bn-65536:only \`pmj02bn::sample\`, 65536 points x 1 set:524,288"
   "probe-sampler-sobol:only \`sampler::Sampler<Sobol>\` (domains, 4D draws):16,384 (Sobol' matrices)"
   "probe-sampler-pmj02bn:only \`sampler::Sampler<Pmj02bn>\`, 1024 points x 1 set:8,192"
-  "probe-sampler-blue:only \`sampler::Sampler<Blue<Sobol>>\` (with its 64 x 64 key tile):32,768"
+  "probe-sampler-blue:only \`sampler::Sampler<Blue<Sobol>>\` (with its key tile; it calls \`new\` only, so the slot tiles, reached through \`new_frame\`, are not linked):32,768"
   "probe-spherical-triangle:only \`spherical::triangle\` (Arvo, by solid angle):—"
   "probe-spherical-rectangle:only \`spherical::rectangle\` (Urena et al., by solid angle):—"
-  "all:everything: every family with default features (4096 x 4 pmj02bn sets, the sampler with both blue-noise tiles, the spherical lights), the fingerprint (with its \`_x16\` variant) and demo exports:180,224"
+  "all:everything: every family with default features (4096 x 4 pmj02bn sets, the sampler with the blue-noise key and slot tiles, the spherical lights), the fingerprint (with its \`_x16\` variant) and demo exports:278,528"
 )
 table=$'| build | .wasm bytes | of which table data |\n|---|---|---|'
 for entry in "${probes[@]}"; do

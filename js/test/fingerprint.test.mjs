@@ -204,8 +204,9 @@ function fingerprint() {
   for (const [set, index] of [[0, 0], [1, 1], [3, 4095], [7, 1 << 30]]) h.words(wc.pmj02bnRaw(set, index, 1));
   // sampler (fingerprint.rs `sampler::<P>`): a slice is the points of new(...).domain(3), one
   // point (the scalar and lane forms) adds split(7, 4, index & 3); then draw_u32 and rnd of
-  // 64 split states
+  // 64 split states; then the same draws of domain 3 of a new_frame root without the split
   const domain3 = wc.samplerPath().domain(3);
+  const frames3 = wc.samplerFramePath(1).domain(3);
   const split = [0, 1, 2, 3].map((sub) => domain3.split(7, 4, sub));
   const pixel = (seed) => Uint32Array.of(seed % 641, seed >>> 20);
   for (const pattern of ['pmj02bn', 'sobol', 'bluePmj02bn', 'blueSobol']) {
@@ -219,6 +220,12 @@ function fingerprint() {
       h.words(wc.samplerDrawU32(pattern, pixel(k), k ^ 5, index, k, split[index & 3], 4));
       h.floats(wc.samplerRnd(pattern, pixel(k), k ^ 5, index, k, split[index & 3], 4));
     }
+    // domain 3 of a new_frame root (1 spp), no split: under blue noise a spatiotemporal slot
+    indexed(h, (start, seed, n, out) => {
+      const frame = (seed ^ 5) >>> 0;
+      if (n === 1) return wc.samplerDraw(pattern, pixel(seed), frame, start, seed, frames3, 4, out);
+      return wc.samplerDrawSlice(pattern, pixel(seed), frame, start, n, seed, frames3, 4, out);
+    }, 4);
   }
   // sequence
   indexed(h, wc.sequenceRandom, 2);

@@ -33,7 +33,7 @@ use crate::lanes::UintLane;
 /// Tile side in pixels.
 pub const TILE: u32 = 64;
 
-/// Spatiotemporal domain slots: the root's domains `0..SLOTS` of a `Blue<P>` sampler.
+/// Spatiotemporal domain slots: the domains `0..SLOTS` of a `Blue<P>` `new_frame` root.
 pub const SLOTS: usize = 6;
 
 /// The fixed scramble key of each slot: every pixel of slot `s` draws `P` keyed by
@@ -89,7 +89,7 @@ pub(crate) fn position<U: UintLane>(pixel: U, domain: U) -> U {
     let (x, y) = (U::select(t, y, x), U::select(t, x, y));
     let fx = U::splat(0) - (domain.shr(30) & U::splat(1));
     let fy = U::splat(0) - domain.shr(31);
-    // Shift: bits 6..11 move x, bits 12..17 move y (bits 0..5 are the domain's tag).
+    // Shift: bits 6..11 move x, bits 12..17 move y (bits 0..4 hold the tag and the slot).
     let x = (x ^ (fx & m)) + domain.shr(6);
     let y = (y ^ (fy & m)) + domain.shr(12);
     (y & m) * U::splat(TILE) + (x & m)
@@ -189,8 +189,8 @@ mod tests {
 
     /// A `Blue<P>` pixel draws exactly `P`'s points keyed as [`keyed_at`] says, i.e. what
     /// `tools/bluegen` optimises through `Sampler::<P>::from_domain_hash`: for any pixel,
-    /// frame, seed, domain path and index; the root's domains `0..SLOTS` are slots and no
-    /// other domain is.
+    /// frame, seed, domain path and index; a `new_frame` root's domains `0..SLOTS` are slots
+    /// and no other domain is.
     fn blue_draws_the_keyed_base_pattern<P: Base>()
     where
         Blue<P>: Pattern,

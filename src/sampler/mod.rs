@@ -463,8 +463,9 @@ impl<P: Pattern> Sampler<P> {
     /// The sample's number in the pixel's sequence is the 64-bit `n = frame * spp + index`
     /// (`spp = 0` acts as 1; `index >= spp` reaches a later frame's sample, documented, not
     /// an error): it is [`new`](Self::new)`(pixel, (n >> 32) as u32, n as u32, seed)`, so
-    /// frame 0 is `new`'s frame 0 bit for bit, and after `2^32` samples per pixel (`2^32 /
-    /// spp` frames) the sequence continues in a fresh randomisation (`new`'s next frame),
+    /// frame 0 is `new`'s frame 0 bit for bit (under [`Blue`], but for the root's tag:
+    /// below), and after `2^32` samples per pixel (`2^32 / spp` frames) the sequence
+    /// continues in a fresh randomisation (`new`'s next frame),
     /// which keeps the mean converging. A render whose `spp` changes between frames passes
     /// the pixel's running sample count as `frame` and `spp = 1`: `new_frame(pixel, count,
     /// 1, index, seed)`.

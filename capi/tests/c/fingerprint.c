@@ -177,6 +177,16 @@ static size_t samp(uint32_t a, uint32_t s, float *o, size_t n, uint32_t c) {
     if (n == 1) return wc_sampler_draw(wc_sampler_split(fp_sampler(c, a, s), 7, 4, a & 3), 4, o) / 4;
     return wc_sampler_draw_slice(fp_sampler(c, a, s), 4, o, n);
 }
+/* The second part of the sampler piece: domain 3 of a new_frame root (1 spp), no split (under
+   the blue-noise patterns a spatiotemporal slot), one point or a slice. */
+static WcSampler fp_frame_sampler(uint32_t pattern, uint32_t index, uint32_t seed) {
+    return wc_sampler_domain(wc_sampler_new_frame(pattern, seed % 641, seed >> 20, seed ^ 5, 1, index, seed), 3);
+}
+
+static size_t samp_frames(uint32_t a, uint32_t s, float *o, size_t n, uint32_t c) {
+    if (n == 1) return wc_sampler_draw(fp_frame_sampler(c, a, s), 4, o) / 4;
+    return wc_sampler_draw_slice(fp_frame_sampler(c, a, s), 4, o, n);
+}
 static size_t rnd(uint32_t a, uint32_t s, float *o, size_t n, uint32_t c) {
     (void)c;
     return wc_sequence_random(a, s, o, n);
@@ -417,7 +427,7 @@ static uint64_t fingerprint(void) {
             word(w[1]);
         }
     }
-    /* sampler: every pattern, then draw_u32 and rnd of 64 split states */
+    /* sampler: every pattern, then draw_u32 and rnd of 64 split states, then a new_frame slot */
     for (uint32_t p = 0; p < 4; p++) {
         indexed(samp, 4, p);
         for (uint32_t k = 0; k < 64; k++) {
@@ -428,6 +438,7 @@ static uint64_t fingerprint(void) {
             words4(w);
             floats(r, 4);
         }
+        indexed(samp_frames, 4, p);
     }
     /* sequence */
     indexed(rnd, 2, 0);

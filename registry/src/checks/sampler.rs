@@ -121,26 +121,48 @@ fn lane_args(root: [u32; 5], j: u32) -> [u32; 5] {
     ]
 }
 
-fn run<P: Pattern>(root: [u32; 5], steps: &[Step]) {
+fn run<P: Pattern>(root: [u32; 5], steps: &[Step], frames: bool) {
     let [x, y, frame, index, seed] = root;
     // `new_frame` is `new` of the 64-bit sample number `frame * max(spp, 1) + index` (high
-    // word as `frame`), worked here in 128 bits, for an arbitrary `spp` from the input.
+    // word as `frame`), worked here in 128 bits, for an arbitrary `spp` from the input; under
+    // `Blue<P>` its domain word carries the tag 2 in its low two bits (a root whose domains
+    // 0..6 are slots), `new`'s the tag 0.
     let spp = seed.rotate_left(7) ^ frame;
     let n = u128::from(frame) * u128::from(spp.max(1)) + u128::from(index);
+    let [pixel, domain, sample] =
+        Sampler::<P>::new([x, y], (n >> 32) as u32, n as u32, seed).to_words();
+    let blue = P::ID & 2 != 0;
     assert_eq!(
-        Sampler::<P>::new_frame([x, y], frame, spp, index, seed),
-        Sampler::<P>::new([x, y], (n >> 32) as u32, n as u32, seed),
+        Sampler::<P>::new_frame([x, y], frame, spp, index, seed).to_words(),
+        [pixel, if blue { domain & !3 | 2 } else { domain }, sample],
         "new_frame numbering"
     );
-    let mut s = Sampler::<P>::new([x, y], frame, index, seed);
+    // The root: `new`, or (`frames`) `new_frame` at 1 spp, whose domains 0..6 are `Blue<P>`'s
+    // spatiotemporal slots (the wide forms have no `new_frame`: their lanes are its roots).
+    let make = |[x, y, f, i, sd]: [u32; 5]| {
+        if frames {
+            Sampler::<P>::new_frame([x, y], f, 1, i, sd)
+        } else {
+            Sampler::<P>::new([x, y], f, i, sd)
+        }
+    };
+    let mut s = make(root);
     let args8: [[u32; 5]; 8] = std::array::from_fn(|j| lane_args(root, j as u32));
     let args16: [[u32; 5]; 16] = std::array::from_fn(|j| lane_args(root, j as u32));
-    let mut lanes8 = args8.map(|[x, y, f, i, sd]| Sampler::<P>::new([x, y], f, i, sd));
-    let mut lanes16 = args16.map(|[x, y, f, i, sd]| Sampler::<P>::new([x, y], f, i, sd));
+    let mut lanes8 = args8.map(make);
+    let mut lanes16 = args16.map(make);
     let col8 = |c: usize| u32x8::new(args8.map(|a| a[c]));
     let col16 = |c: usize| u32x16::new(args16.map(|a| a[c]));
-    let mut x8 = SamplerX8::<P>::new([col8(0), col8(1)], col8(2), col8(3), col8(4));
-    let mut x16 = SamplerX16::<P>::new([col16(0), col16(1)], col16(2), col16(3), col16(4));
+    let mut x8 = if frames {
+        SamplerX8::<P>::from_lanes(lanes8)
+    } else {
+        SamplerX8::<P>::new([col8(0), col8(1)], col8(2), col8(3), col8(4))
+    };
+    let mut x16 = if frames {
+        SamplerX16::<P>::from_lanes(lanes16)
+    } else {
+        SamplerX16::<P>::new([col16(0), col16(1)], col16(2), col16(3), col16(4))
+    };
     for k in 0..=steps.len() {
         for (j, lane) in lanes8.iter().enumerate() {
             assert_eq!(x8.lane(j), *lane, "x8 state, lane {j}, step {k}");
@@ -202,19 +224,21 @@ pub fn sampler(data: &[u8]) {
             k += 4;
         }
     }
+    // Bit 2 of the first word: a `new_frame` root (its domains 0..6 are Blue's slots).
+    let frames = get(0) & 4 != 0;
     match get(0) % 4 {
-        0 => run::<Pmj02bn>(root, &steps),
-        1 => run::<Sobol>(root, &steps),
+        0 => run::<Pmj02bn>(root, &steps, frames),
+        1 => run::<Sobol>(root, &steps, frames),
         #[cfg(feature = "blue-noise")]
-        2 => run::<warpcore::sampler::Blue<Pmj02bn>>(root, &steps),
+        2 => run::<warpcore::sampler::Blue<Pmj02bn>>(root, &steps, frames),
         #[cfg(feature = "blue-noise")]
-        _ => run::<warpcore::sampler::Blue<Sobol>>(root, &steps),
+        _ => run::<warpcore::sampler::Blue<Sobol>>(root, &steps, frames),
         #[cfg(not(feature = "blue-noise"))]
         p => {
             if p == 2 {
-                run::<Pmj02bn>(root, &steps)
+                run::<Pmj02bn>(root, &steps, frames)
             } else {
-                run::<Sobol>(root, &steps)
+                run::<Sobol>(root, &steps, frames)
             }
         }
     }

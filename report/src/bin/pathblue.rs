@@ -5,7 +5,9 @@
 //! cargo run --release -p warpcore-report --bin pathblue -- [seeds] [threads] [what]
 //! ```
 //!
-//! `what`: `ratios` (default), `pairs` (only the recommended `WarpcorePairs` usage),
+//! `what`: `ratios` (the default: `Blue<P>` / `P` at 1 and 4 spp), `pairs` (only the
+//! recommended `WarpcorePairs` usage), `peers` (the same ratios for openqmc-rs's blue-noise
+//! samplers against their plain ones, the state of the art the targets are measured against),
 //! `lengths [spp]`, `lens`, `roulette`, `line`, `silhouette`, `frames [size] [out]`.
 
 use std::marker::PhantomData as PD;
@@ -13,7 +15,7 @@ use warpcore::sampler::{Blue, Pmj02bn, Sobol};
 use warpcore_report::path::frames::{
     Bench, Camera4, blurred_mses, by_length, mean_se, ratio, run_frames,
 };
-use warpcore_report::path::samplers::{PathSampler, Warpcore, WarpcorePairs};
+use warpcore_report::path::samplers::{OpenQmc, PathSampler, Warpcore, WarpcorePairs};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -113,6 +115,28 @@ fn main() {
     }
     for name in ["cornell", "cornell-disk"] {
         let b = Bench::new(name, 64).expect("reference");
+        if what == "peers" {
+            use openqmc::{
+                LatticeBnSampler, LatticeSampler, PmjBnSampler, PmjSampler, SobolBnSampler,
+                SobolSampler,
+            };
+            for spp in [1u32, 4] {
+                let so = peer::<SobolSampler>(&b, "openqmc_sobol", spp, 11, seeds, threads);
+                let sb = peer::<SobolBnSampler>(&b, "openqmc_sobolbn", spp, 12, seeds, threads);
+                let pm = peer::<PmjSampler>(&b, "openqmc_pmj", spp, 13, seeds, threads);
+                let pb = peer::<PmjBnSampler>(&b, "openqmc_pmjbn", spp, 14, seeds, threads);
+                let la = peer::<LatticeSampler>(&b, "openqmc_lattice", spp, 15, seeds, threads);
+                let lb = peer::<LatticeBnSampler>(&b, "openqmc_latticebn", spp, 16, seeds, threads);
+                for (l, r) in [
+                    ("openqmc_sobolbn / openqmc_sobol", ratio(sb, so)),
+                    ("openqmc_pmjbn / openqmc_pmj", ratio(pb, pm)),
+                    ("openqmc_latticebn / openqmc_lattice", ratio(lb, la)),
+                ] {
+                    println!("{name} {spp} spp   {l:<36} {:.3} +- {:.3}", r.0, r.1);
+                }
+            }
+            continue;
+        }
         if what == "lens" {
             let mut pin = b.scene.clone();
             pin.camera.aperture = 0.0;
@@ -273,6 +297,21 @@ fn main() {
             show("blue_pmj02bn pairs / pmj02bn", ratio(bpmp, pm));
         }
     }
+}
+
+/// The mean blurred MSE (sigma 2) of an openqmc-rs sampler over `seeds` renders at `spp`, with
+/// its standard error, printed.
+fn peer<S>(b: &Bench, label: &str, spp: u32, salt: u32, seeds: u32, threads: usize) -> (f64, f64)
+where
+    OpenQmc<S>: PathSampler,
+{
+    let v = blurred_mses(b, &OpenQmc::<S>(PD), spp, seeds, salt, 2.0, threads);
+    let m = mean_se(&v);
+    println!(
+        "{} {spp} spp {label:<24} {:.4e} +- {:.1e}",
+        b.scene.name, m.0, m.1
+    );
+    m
 }
 
 /// `label a b b/a`.

@@ -100,8 +100,9 @@ impl<P: Pattern> PathSampler for WarpcorePairs<P> {
     fn draw4(&self, s: &Sampler<P>, domain: u32) -> [f32; 4] {
         // Vertex d = domain - 2 (the path's 4D draws start at domain 2): root domains
         // 2 + 2 d and 3 + 2 d, below ROULETTE_DOMAIN for every depth the tracer reaches.
-        let light = 2 * domain.wrapping_sub(1);
-        let ([a, b], [c, d]) = (s.domain(light).draw::<2>(), s.domain(light + 1).draw::<2>());
+        let light = domain.wrapping_sub(1).wrapping_mul(2);
+        let bsdf = light.wrapping_add(1);
+        let ([a, b], [c, d]) = (s.domain(light).draw::<2>(), s.domain(bsdf).draw::<2>());
         [a, b, c, d]
     }
     fn rnd(&self, s: &Sampler<P>, domain: u32) -> f32 {

@@ -5,7 +5,8 @@
 //!     [--only sobol|pmj02bn] [--seed S] [--pool N] [--edges T] [--levels L] [--sweeps S] [--rounds R]
 //!     [--threshold X] [--weights W1,W2,..] [--line-weights X1,X2,..] [--line-offsets C] [--keys-only]
 //!     [--st-seed S] [--st-sigma S] [--st-edges T] [--st-swaps N] [--st-window W]
-//!     [--st-quad X] [--st-runs X] [--st-threshold X]
+//!     [--st-quad X] [--st-runs X] [--st-ema W or Wsobol,Wpmj02bn] [--st-ema-at F1,F2,..] [--st-ema-sigma S]
+//!     [--st-threshold X]
 //!     [--st-only [--st-slots K]]
 //! ```
 //!
@@ -40,6 +41,8 @@ struct Args {
     only: Option<Base>,
     params: Params,
     st: SlotParams,
+    /// The EMA weight per pattern (Sobol', then pmj02bn; one value for both).
+    st_ema: Vec<f64>,
     st_only: bool,
     st_slots: usize,
     check: bool,
@@ -64,13 +67,17 @@ fn parse() -> Result<Args, String> {
         st: SlotParams {
             seed: 20220808,
             sigma: 1.5,
-            edges: 32,
-            swaps: 1_500_000,
+            edges: 128,
+            swaps: 1_000_000,
             window: 7,
             quad: 0.0,
-            runs: 0.6,
+            runs: 0.3,
+            ema: 0.0, // per pattern: `st_ema`
+            ema_at: vec![31],
+            ema_sigma: 1.0,
             threshold: 0.0,
         },
+        st_ema: vec![4.0, 4.25],
         st_only: false,
         st_slots: warpcore::sampler::BLUE_SLOTS,
         check: false,
@@ -86,8 +93,11 @@ fn parse() -> Result<Args, String> {
         {
             v.parse().map_err(|e| format!("{flag}: {e}"))
         }
-        // A comma-separated list of numbers.
-        fn list(flag: &str, v: String) -> Result<Vec<f64>, String> {
+        /// A comma-separated list of numbers.
+        fn nums<T: std::str::FromStr>(flag: &str, v: String) -> Result<Vec<T>, String>
+        where
+            T::Err: std::fmt::Display,
+        {
             v.split(',').map(|w| num(flag, w.to_string())).collect()
         }
         match flag.as_str() {
@@ -99,7 +109,7 @@ fn parse() -> Result<Args, String> {
                     other => return Err(format!("--only: unknown pattern {other}")),
                 })
             }
-            "--weights" => p.weights = list(&flag, value()?)?,
+            "--weights" => p.weights = nums(&flag, value()?)?,
             "--seed" => p.seed = num(&flag, value()?)?,
             "--pool" => p.pool = num(&flag, value()?)?,
             "--edges" => p.edges = num(&flag, value()?)?,
@@ -107,7 +117,7 @@ fn parse() -> Result<Args, String> {
             "--sweeps" => p.sweeps = num(&flag, value()?)?,
             "--rounds" => p.rounds = num(&flag, value()?)?,
             "--threshold" => p.threshold = num(&flag, value()?)?,
-            "--line-weights" => p.line_weights = list(&flag, value()?)?,
+            "--line-weights" => p.line_weights = nums(&flag, value()?)?,
             "--line-offsets" => p.line_offsets = num(&flag, value()?)?,
             "--st-seed" => st.seed = num(&flag, value()?)?,
             "--st-sigma" => st.sigma = num(&flag, value()?)?,
@@ -116,6 +126,9 @@ fn parse() -> Result<Args, String> {
             "--st-window" => st.window = num(&flag, value()?)?,
             "--st-quad" => st.quad = num(&flag, value()?)?,
             "--st-runs" => st.runs = num(&flag, value()?)?,
+            "--st-ema" => a.st_ema = nums(&flag, value()?)?,
+            "--st-ema-at" => st.ema_at = nums(&flag, value()?)?,
+            "--st-ema-sigma" => st.ema_sigma = num(&flag, value()?)?,
             "--st-threshold" => st.threshold = num(&flag, value()?)?,
             "--st-only" => a.st_only = true,
             "--keys-only" => a.st_slots = 0,
@@ -141,16 +154,36 @@ fn parse() -> Result<Args, String> {
     if st.edges == 0 || !st.edges.is_multiple_of(8) {
         return Err("--st-edges must be a positive multiple of 8".into());
     }
-    if !(0.25..=4.0).contains(&st.sigma) || st.window.is_multiple_of(2) || st.window > 63 {
-        return Err("--st-sigma must be in 0.25..=4, --st-window odd and below 64".into());
+    if ![st.sigma, st.ema_sigma]
+        .iter()
+        .all(|s| (0.25..=4.0).contains(s))
+        || st.window.is_multiple_of(2)
+        || st.window > 63
+    {
+        return Err(
+            "--st-sigma and --st-ema-sigma must be in 0.25..=4, --st-window odd and below 64"
+                .into(),
+        );
     }
     if a.st_slots > warpcore::sampler::BLUE_SLOTS
         || (a.st_slots < warpcore::sampler::BLUE_SLOTS && !a.st_only && a.st_slots > 0)
     {
         return Err("--st-slots: at most BLUE_SLOTS, fewer only with --st-only".into());
     }
-    if !(0.0..=16.0).contains(&st.quad) || !(0.0..=16.0).contains(&st.runs) {
-        return Err("--st-quad and --st-runs must be in 0..=16".into());
+    if [st.quad, st.runs]
+        .iter()
+        .chain(&a.st_ema)
+        .any(|w| !(0.0..=16.0).contains(w))
+        || !(1..=2).contains(&a.st_ema.len())
+    {
+        return Err(
+            "--st-quad, --st-runs and --st-ema (one weight, or Sobol's and pmj02bn's) must be \
+             in 0..=16"
+                .into(),
+        );
+    }
+    if st.ema_at.iter().any(|&f| f >= slots::FRAMES) {
+        return Err("--st-ema-at: frames below 32".into());
     }
     Ok(a)
 }
@@ -194,12 +227,9 @@ fn slot_file(base: Base, st: &SlotParams, count: usize) -> (Vec<u8>, String) {
     (bytes, log)
 }
 
-/// `1,0.8,..`: a list as `--weights` takes it.
-fn joined(v: &[f64]) -> String {
-    v.iter()
-        .map(|w| w.to_string())
-        .collect::<Vec<_>>()
-        .join(",")
+/// `v` as the comma-separated list its flag takes.
+fn comma_list<T: ToString>(v: &[T]) -> String {
+    v.iter().map(T::to_string).collect::<Vec<_>>().join(",")
 }
 
 fn main() -> ExitCode {
@@ -213,8 +243,9 @@ fn main() -> ExitCode {
     let (p, st) = (&args.params, &args.st);
     let settings = format!(
         "--seed {} --pool {} --edges {} --levels {} --sweeps {} --rounds {} --threshold {} \
-         --weights {} --line-weights {} --line-offsets {} --st-seed {} --st-sigma {} --st-edges {} --st-swaps {} --st-window {} \
-         --st-quad {} --st-runs {} --st-threshold {}",
+         --weights {} --line-weights {} --line-offsets {} --st-seed {} --st-sigma {} --st-edges {} \
+         --st-swaps {} --st-window {} --st-quad {} --st-runs {} --st-ema {} --st-ema-at {} \
+         --st-ema-sigma {} --st-threshold {}",
         p.seed,
         p.pool,
         p.edges,
@@ -222,8 +253,8 @@ fn main() -> ExitCode {
         p.sweeps,
         p.rounds,
         p.threshold,
-        joined(&p.weights),
-        joined(&p.line_weights),
+        comma_list(&p.weights),
+        comma_list(&p.line_weights),
         p.line_offsets,
         st.seed,
         st.sigma,
@@ -232,6 +263,9 @@ fn main() -> ExitCode {
         st.window,
         st.quad,
         st.runs,
+        comma_list(&args.st_ema),
+        comma_list(&st.ema_at),
+        st.ema_sigma,
         st.threshold
     );
     let mut manifest = format!(
@@ -255,7 +289,10 @@ fn main() -> ExitCode {
             .iter()
             .map(|&base| {
                 let count = args.st_slots;
-                scope.spawn(move || slot_file(base, st, count))
+                let mut st = st.clone();
+                let k = usize::from(base == Base::Pmj02bn).min(args.st_ema.len() - 1);
+                st.ema = args.st_ema[k];
+                scope.spawn(move || slot_file(base, &st, count))
             })
             .collect();
         for &base in bases.iter().filter(|_| !args.st_only) {

@@ -46,6 +46,11 @@
 //!
 //! and `O(taps x dim)` to apply (the field is updated over the kernel's support).
 //!
+//! The energy may filter groups of levels with different kernels ([`Span`]: the slot tiles
+//! measure their EMA channel at sigma 1 and their frames at sigma 1.5): `E` is then a sum of
+//! such quadratic forms, one per span, each level's field is filtered with its span's kernel,
+//! and `G(0)` (1 for every kernel) and `G(a - b)` in the moves are taken per span.
+//!
 //! # Lines (a light's silhouette)
 //!
 //! On a rendered image the error of the pixel-position draw is not spread over the plane:
@@ -339,7 +344,7 @@ impl Pool {
     }
 
     /// Key `j`'s error vector.
-    fn error(&self, j: usize) -> impl Iterator<Item = f64> + '_ {
+    pub(crate) fn error(&self, j: usize) -> impl Iterator<Item = f64> + '_ {
         self.row(j)
             .iter()
             .enumerate()
@@ -352,9 +357,9 @@ impl Pool {
 /// 1%: `radius2 = ceil(4 sigma^2 ln 100)` (42 for sigma 1.5, 19 for sigma 1).
 pub(crate) struct Kernel {
     /// `(dx, dy, G(dx, dy))` over the support.
-    taps: Vec<(i32, i32, f32)>,
+    pub(crate) taps: Vec<(i32, i32, f32)>,
     /// `G` by squared distance, `0..=radius2`.
-    g_table: Vec<f32>,
+    pub(crate) g_table: Vec<f32>,
     /// Empty (the isotropic `G` of `taps`), or per level and tap the pairs of edges it
     /// couples, see [`Kernel::lines`]: `(k, j, w)` adds `w` times the error of edge `j` of the
     /// pixel to edge `k` of its neighbour at the tap's offset.
@@ -478,7 +483,7 @@ impl Kernel {
 }
 
 /// `G` between two pixels on the torus (0 outside the support).
-fn g_between(a: usize, b: usize, table: &[f32]) -> f32 {
+pub(crate) fn g_between(a: usize, b: usize, table: &[f32]) -> f32 {
     let wrap = |d: isize| {
         let d = d.rem_euclid(TILE as isize);
         if d > TILE as isize / 2 {
@@ -533,15 +538,21 @@ fn dots3(u: &[u8], v: &[u8], y: &[f32], z: &[f32]) -> (f32, i32) {
     (sum(s1), s2.iter().sum())
 }
 
+/// The levels `levels` of a pool filtered with one kernel: a state's energy may filter
+/// different groups of levels with different kernels (each group's term is its own quadratic
+/// form `sum_{p,q} G_k(p - q) e_p . e_q` over its levels).
+pub(crate) struct Span {
+    pub(crate) kernel: Kernel,
+    pub(crate) levels: core::ops::Range<usize>,
+}
+
 /// The tile being optimised and its filtered field.
 pub(crate) struct State<'a> {
     pool: &'a Pool,
-    taps: Vec<(i32, i32, f32)>,
-    g_table: Vec<f32>,
-    /// The kernel's edge pairs per level and tap, or empty (the isotropic `G` of `taps`).
-    gather: Vec<Vec<Vec<(u16, u16, f32)>>>,
-    /// The constant kernel's weight per level (or empty) and `sum_p e_p` in hits.
-    dc: Vec<f32>,
+    /// The kernels and the levels each filters, in order, covering `0..levels`; a kernel of
+    /// edge pairs or with a constant part ([`Kernel::lines`]) only as the one span.
+    spans: Vec<Span>,
+    /// `sum_p e_p` in hits, for the constant kernel (or empty).
     sum: Vec<f32>,
     /// Pool index of each pixel's key.
     pub(crate) tile: Vec<usize>,
@@ -563,28 +574,40 @@ pub(crate) struct State<'a> {
 }
 
 impl<'a> State<'a> {
-    /// The state of `tile` (pool rows, the rest of the pool unused), its field computed; a
-    /// sketch (from [`project`]) or none.
-    pub(crate) fn new(pool: &'a Pool, kernel: Kernel, tile: Vec<usize>, sketch: Vec<f32>) -> Self {
-        State::guided(pool, kernel, tile, (sketch, Vec::new()))
+    /// The state of `tile` (pool rows, the rest of the pool unused) with a kernel per span of
+    /// levels (`spans` in order, covering every level once), its field computed; a sketch
+    /// (from [`project`]) only with one span (its field is filtered with that kernel).
+    pub(crate) fn with_spans(
+        pool: &'a Pool,
+        spans: Vec<Span>,
+        tile: Vec<usize>,
+        sketch: Vec<f32>,
+    ) -> Self {
+        State::guided(pool, spans, tile, (sketch, Vec::new()))
     }
 
-    /// As [`State::new`] with the projection's matrix (from [`project`]).
+    /// As [`State::with_spans`] with the projection's matrix (from [`project`]).
     fn guided(
         pool: &'a Pool,
-        kernel: Kernel,
+        spans: Vec<Span>,
         tile: Vec<usize>,
         (sketch, signs): (Vec<f32>, Vec<f32>),
     ) -> Self {
+        let mut next = 0;
+        for span in &spans {
+            assert!(span.levels.start == next && span.levels.end > next);
+            next = span.levels.end;
+        }
+        let lines = spans
+            .iter()
+            .any(|s| !s.kernel.gather.is_empty() || !s.kernel.dc.is_empty());
+        assert!(next == pool.levels && ((sketch.is_empty() && !lines) || spans.len() == 1));
         let rows = pool.hits.len() / pool.dim;
         let mut used = vec![false; rows];
         tile.iter().for_each(|&j| used[j] = true);
         let mut s = State {
             pool,
-            taps: kernel.taps,
-            g_table: kernel.g_table,
-            gather: kernel.gather,
-            dc: kernel.dc,
+            spans,
             sum: Vec::new(),
             tile,
             used,
@@ -599,7 +622,7 @@ impl<'a> State<'a> {
             signs,
         };
         s.recompute_field();
-        if !s.dc.is_empty() {
+        if !s.dc().is_empty() {
             let mut sum = vec![0.0f64; pool.dim];
             for &j in &s.tile {
                 for (k, (x, &h)) in sum.iter_mut().zip(pool.row(j)).enumerate() {
@@ -617,6 +640,16 @@ impl<'a> State<'a> {
         (y.rem_euclid(TILE as i32) as usize) * TILE + x.rem_euclid(TILE as i32) as usize
     }
 
+    /// The one kernel's edge pairs per level and tap (empty: the isotropic `G`).
+    fn gather(&self) -> &[Vec<Vec<(u16, u16, f32)>>] {
+        &self.spans[0].kernel.gather
+    }
+
+    /// The one kernel's constant part per level (or empty).
+    fn dc(&self) -> &[f32] {
+        &self.spans[0].kernel.dc
+    }
+
     fn field_of(&self, p: usize) -> &[f32] {
         &self.field[p * self.pool.dim..(p + 1) * self.pool.dim]
     }
@@ -627,18 +660,23 @@ impl<'a> State<'a> {
         let mut f = vec![0.0f64; PIXELS * dim];
         for p in 0..PIXELS {
             let e: Vec<f64> = self.pool.error(self.tile[p]).collect();
-            for (i, &(dx, dy, w)) in self.taps.iter().enumerate() {
-                let q = Self::neighbour(p, dx, dy);
-                let f = &mut f[q * dim..(q + 1) * dim];
-                if self.gather.is_empty() {
-                    for (f, e) in f.iter_mut().zip(&e) {
-                        *f += w as f64 * e;
+            for span in &self.spans {
+                let r = span.levels.start * t..span.levels.end * t;
+                let gather = &span.kernel.gather;
+                for (i, &(dx, dy, w)) in span.kernel.taps.iter().enumerate() {
+                    let q = Self::neighbour(p, dx, dy);
+                    let f = &mut f[q * dim + r.start..q * dim + r.end];
+                    if gather.is_empty() {
+                        for (f, e) in f.iter_mut().zip(&e[r.clone()]) {
+                            *f += w as f64 * e;
+                        }
+                        continue;
                     }
-                    continue;
-                }
-                for (l, (f, e)) in f.chunks_exact_mut(t).zip(e.chunks_exact(t)).enumerate() {
-                    for &(k, j, w) in &self.gather[l][i] {
-                        f[k as usize] += w as f64 * e[j as usize];
+                    // Only as the one span: its levels are `0..levels`.
+                    for (l, (f, e)) in f.chunks_exact_mut(t).zip(e.chunks_exact(t)).enumerate() {
+                        for &(k, j, w) in &gather[l][i] {
+                            f[k as usize] += w as f64 * e[j as usize];
+                        }
                     }
                 }
             }
@@ -660,9 +698,9 @@ impl<'a> State<'a> {
             let r = l * t..(l + 1) * t;
             let (df, d2) = dots(&new[r.clone()], &old[r.clone()], &f[r.clone()]);
             de += self.unit2[l] * (2.0 * df + d2 as f32);
-            if !self.dc.is_empty() {
+            if !self.dc().is_empty() {
                 let (ds, _) = dots(&new[r.clone()], &old[r.clone()], &self.sum[r]);
-                de += self.unit2[l] * self.dc[l] * (2.0 * ds + d2 as f32);
+                de += self.unit2[l] * self.dc()[l] * (2.0 * ds + d2 as f32);
             }
         }
         de
@@ -674,15 +712,17 @@ impl<'a> State<'a> {
         let (pool, t) = (self.pool, self.pool.edges);
         let (eb, ea) = (pool.row(self.tile[b]), pool.row(self.tile[a]));
         let (fa, fb) = (self.field_of(a), self.field_of(b));
-        if !self.gather.is_empty() {
+        if !self.gather().is_empty() {
             return self.swap_delta_gather(a, b);
         }
-        let g = g_between(a, b, &self.g_table);
         let mut de = 0.0;
-        for l in 0..pool.levels {
-            let r = l * t..(l + 1) * t;
-            let (df, d2) = dots3(&eb[r.clone()], &ea[r.clone()], &fa[r.clone()], &fb[r]);
-            de += self.unit2[l] * (2.0 * df + 2.0 * d2 as f32 * (1.0 - g));
+        for span in &self.spans {
+            let g = g_between(a, b, &span.kernel.g_table);
+            for l in span.levels.clone() {
+                let r = l * t..(l + 1) * t;
+                let (df, d2) = dots3(&eb[r.clone()], &ea[r.clone()], &fa[r.clone()], &fb[r]);
+                de += self.unit2[l] * (2.0 * df + 2.0 * d2 as f32 * (1.0 - g));
+            }
         }
         de
     }
@@ -699,13 +739,14 @@ impl<'a> State<'a> {
         for k in 0..pool.dim {
             de += self.unit2[k / t] * (2.0 * d(k) * (fa[k] - fb[k]) + 2.0 * d(k) * d(k));
         }
-        let tap = self
+        let tap = self.spans[0]
+            .kernel
             .taps
             .iter()
             .position(|&(dx, dy, _)| Self::neighbour(a, dx, dy) == b);
         if let Some(i) = tap {
             for l in 0..pool.levels {
-                for &(k, j, w) in &self.gather[l][i] {
+                for &(k, j, w) in &self.gather()[l][i] {
                     let (k, j) = (l * t + k as usize, l * t + j as usize);
                     de -= self.unit2[l] * 2.0 * w * d(k) * d(j);
                 }
@@ -722,22 +763,26 @@ impl<'a> State<'a> {
         }
     }
 
-    /// Adds `sign G(q - p) delta` to the field around `p`.
+    /// Adds `sign G(q - p) delta` to the field around `p`, each span with its kernel.
     fn spread(&mut self, p: usize, sign: f32) {
         let (dim, t) = (self.pool.dim, self.pool.edges);
-        for (i, &(dx, dy, w)) in self.taps.iter().enumerate() {
-            let q = Self::neighbour(p, dx, dy);
-            let field = &mut self.field[q * dim..(q + 1) * dim];
-            if self.gather.is_empty() {
-                let w = w * sign;
-                for (f, d) in field.iter_mut().zip(&self.delta) {
-                    *f += w * d;
-                }
-            } else {
-                let levels = field.chunks_exact_mut(t).zip(self.delta.chunks_exact(t));
-                for (l, (f, d)) in levels.enumerate() {
-                    for &(k, j, w) in &self.gather[l][i] {
-                        f[k as usize] += sign * w * d[j as usize];
+        for span in &self.spans {
+            let r = span.levels.start * t..span.levels.end * t;
+            let gather = &span.kernel.gather;
+            for (i, &(dx, dy, w)) in span.kernel.taps.iter().enumerate() {
+                let q = Self::neighbour(p, dx, dy);
+                let field = &mut self.field[q * dim + r.start..q * dim + r.end];
+                if gather.is_empty() {
+                    let w = w * sign;
+                    for (f, d) in field.iter_mut().zip(&self.delta[r.clone()]) {
+                        *f += w * d;
+                    }
+                } else {
+                    let levels = field.chunks_exact_mut(t).zip(self.delta.chunks_exact(t));
+                    for (l, (f, d)) in levels.enumerate() {
+                        for &(k, j, w) in &gather[l][i] {
+                            f[k as usize] += sign * w * d[j as usize];
+                        }
                     }
                 }
             }
@@ -760,7 +805,7 @@ impl<'a> State<'a> {
     fn apply_replace(&mut self, a: usize, j: usize) {
         let old = self.tile[a];
         self.move_fields(a, j, old);
-        if !self.dc.is_empty() {
+        if !self.sum.is_empty() {
             for (s, d) in self.sum.iter_mut().zip(&self.delta) {
                 *s += d;
             }
@@ -883,7 +928,11 @@ pub fn optimise(base: Base, p: &Params) -> (Vec<u32>, Report) {
     let pool = Pool::new(base, &keys, &edges, p.levels, &p.weights);
     let sketch = project(&pool, &mut rng);
     let kernel = Kernel::lines(SIGMA, &edges, p.line_offsets, &line_weights);
-    let mut s = State::guided(&pool, kernel, (0..PIXELS).collect(), sketch);
+    let spans = vec![Span {
+        kernel,
+        levels: 0..pool.levels,
+    }];
+    let mut s = State::guided(&pool, spans, (0..PIXELS).collect(), sketch);
     let before = s.ratios();
     let (mut accepted, mut replaced) = (0, 0);
 
