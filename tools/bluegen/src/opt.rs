@@ -363,7 +363,7 @@ pub(crate) struct Kernel {
     /// Empty (the isotropic `G` of `taps`), or per level and tap the pairs of edges it
     /// couples, see [`Kernel::lines`]: `(k, j, w)` adds `w` times the error of edge `j` of the
     /// pixel to edge `k` of its neighbour at the tap's offset.
-    gather: Vec<Vec<Vec<(u16, u16, f32)>>>,
+    gather: Vec<LinePairs>,
     /// Empty, or per level the weight of a constant kernel (`|sum_p e_p|^2`, see
     /// [`Kernel::lines`]).
     dc: Vec<f32>,
@@ -437,7 +437,7 @@ impl Kernel {
         edges: &[Edge],
         offsets: usize,
         weight: f64,
-    ) -> Vec<Vec<(u16, u16, f32)>> {
+    ) -> LinePairs {
         let t = edges.len();
         assert!(t.is_multiple_of(offsets) && t <= 1 << 16);
         let mut gather = Vec::new();
@@ -481,6 +481,10 @@ impl Kernel {
         gather
     }
 }
+
+/// One level's edge pairs per tap of a line kernel: `(k, j, w)` adds `w` times the error of
+/// edge `j` of a pixel to edge `k` of its neighbour at the tap's offset.
+type LinePairs = Vec<Vec<(u16, u16, f32)>>;
 
 /// `G` between two pixels on the torus (0 outside the support).
 pub(crate) fn g_between(a: usize, b: usize, table: &[f32]) -> f32 {
@@ -641,7 +645,7 @@ impl<'a> State<'a> {
     }
 
     /// The one kernel's edge pairs per level and tap (empty: the isotropic `G`).
-    fn gather(&self) -> &[Vec<Vec<(u16, u16, f32)>>] {
+    fn gather(&self) -> &[LinePairs] {
         &self.spans[0].kernel.gather
     }
 
