@@ -115,24 +115,34 @@ fn main() {
     }
     for name in ["cornell", "cornell-disk"] {
         let b = Bench::new(name, 64).expect("reference");
+        let r = Runs {
+            b: &b,
+            seeds,
+            threads,
+        };
         if what == "peers" {
             use openqmc::{
                 LatticeBnSampler, LatticeSampler, PmjBnSampler, PmjSampler, SobolBnSampler,
                 SobolSampler,
             };
             for spp in [1u32, 4] {
-                let so = peer::<SobolSampler>(&b, "openqmc_sobol", spp, 11, seeds, threads);
-                let sb = peer::<SobolBnSampler>(&b, "openqmc_sobolbn", spp, 12, seeds, threads);
-                let pm = peer::<PmjSampler>(&b, "openqmc_pmj", spp, 13, seeds, threads);
-                let pb = peer::<PmjBnSampler>(&b, "openqmc_pmjbn", spp, 14, seeds, threads);
-                let la = peer::<LatticeSampler>(&b, "openqmc_lattice", spp, 15, seeds, threads);
-                let lb = peer::<LatticeBnSampler>(&b, "openqmc_latticebn", spp, 16, seeds, threads);
+                let so = r.mse(&OpenQmc::<SobolSampler>(PD), "openqmc_sobol", spp, 11);
+                let sb = r.mse(&OpenQmc::<SobolBnSampler>(PD), "openqmc_sobolbn", spp, 12);
+                let pm = r.mse(&OpenQmc::<PmjSampler>(PD), "openqmc_pmj", spp, 13);
+                let pb = r.mse(&OpenQmc::<PmjBnSampler>(PD), "openqmc_pmjbn", spp, 14);
+                let la = r.mse(&OpenQmc::<LatticeSampler>(PD), "openqmc_lattice", spp, 15);
+                let lb = r.mse(
+                    &OpenQmc::<LatticeBnSampler>(PD),
+                    "openqmc_latticebn",
+                    spp,
+                    16,
+                );
                 for (l, r) in [
                     ("openqmc_sobolbn / openqmc_sobol", ratio(sb, so)),
                     ("openqmc_pmjbn / openqmc_pmj", ratio(pb, pm)),
                     ("openqmc_latticebn / openqmc_lattice", ratio(lb, la)),
                 ] {
-                    println!("{name} {spp} spp   {l:<36} {:.3} +- {:.3}", r.0, r.1);
+                    show_ratio(name, spp, l, r);
                 }
             }
             continue;
@@ -239,56 +249,18 @@ fn main() {
             _ => vec![1, 4],
         };
         for &spp in &counts {
-            let run = |label: &str, s: &dyn Fn(u32) -> Vec<f64>| {
-                let v = s(spp);
-                let m = mean_se(&v);
-                println!("{name} {spp} spp {label:<24} {:.4e} +- {:.1e}", m.0, m.1);
-                m
-            };
-            fn go<S: PathSampler>(
-                b: &Bench,
-                s: S,
-                spp: u32,
-                seeds: u32,
-                salt: u32,
-                t: usize,
-            ) -> Vec<f64> {
-                blurred_mses(b, &s, spp, seeds, salt, 2.0, t)
-            }
-            let so = run("sobol", &|spp| {
-                go(&b, Warpcore::<Sobol>(PD), spp, seeds, 1, threads)
-            });
+            // Salts 1..6: the renders of each sampler are independent of the others'.
+            let so = r.mse(&Warpcore::<Sobol>(PD), "sobol", spp, 1);
             // `pairs`: only the recommended usage (`WarpcorePairs`) against its base.
             let all = what != "pairs";
-            let bso = all.then(|| {
-                run("blue_sobol", &|spp| {
-                    go(&b, Warpcore::<Blue<Sobol>>(PD), spp, seeds, 2, threads)
-                })
-            });
-            let pm = run("pmj02bn", &|spp| {
-                go(&b, Warpcore::<Pmj02bn>(PD), spp, seeds, 3, threads)
-            });
-            let bpm = all.then(|| {
-                run("blue_pmj02bn", &|spp| {
-                    go(&b, Warpcore::<Blue<Pmj02bn>>(PD), spp, seeds, 4, threads)
-                })
-            });
-            let bsop = run("blue_sobol pairs", &|spp| {
-                go(&b, WarpcorePairs::<Blue<Sobol>>(PD), spp, seeds, 5, threads)
-            });
-            let bpmp = run("blue_pmj02bn pairs", &|spp| {
-                go(
-                    &b,
-                    WarpcorePairs::<Blue<Pmj02bn>>(PD),
-                    spp,
-                    seeds,
-                    6,
-                    threads,
-                )
-            });
-            let show = |l: &str, r: (f64, f64)| {
-                println!("{name} {spp} spp   {l:<36} {:.3} +- {:.3}", r.0, r.1)
-            };
+            let bso = all.then(|| r.mse(&Warpcore::<Blue<Sobol>>(PD), "blue_sobol", spp, 2));
+            let pm = r.mse(&Warpcore::<Pmj02bn>(PD), "pmj02bn", spp, 3);
+            let bpm = all.then(|| r.mse(&Warpcore::<Blue<Pmj02bn>>(PD), "blue_pmj02bn", spp, 4));
+            let s = WarpcorePairs::<Blue<Sobol>>(PD);
+            let bsop = r.mse(&s, "blue_sobol pairs", spp, 5);
+            let s = WarpcorePairs::<Blue<Pmj02bn>>(PD);
+            let bpmp = r.mse(&s, "blue_pmj02bn pairs", spp, 6);
+            let show = |l: &str, q: (f64, f64)| show_ratio(name, spp, l, q);
             if let (Some(bso), Some(bpm)) = (bso, bpm) {
                 show("blue_sobol / sobol", ratio(bso, so));
                 show("blue_pmj02bn / pmj02bn", ratio(bpm, pm));
@@ -299,19 +271,30 @@ fn main() {
     }
 }
 
-/// The mean blurred MSE (sigma 2) of an openqmc-rs sampler over `seeds` renders at `spp`, with
-/// its standard error, printed.
-fn peer<S>(b: &Bench, label: &str, spp: u32, salt: u32, seeds: u32, threads: usize) -> (f64, f64)
-where
-    OpenQmc<S>: PathSampler,
-{
-    let v = blurred_mses(b, &OpenQmc::<S>(PD), spp, seeds, salt, 2.0, threads);
-    let m = mean_se(&v);
-    println!(
-        "{} {spp} spp {label:<24} {:.4e} +- {:.1e}",
-        b.scene.name, m.0, m.1
-    );
-    m
+/// The blurred-MSE runs on one scene: `seeds` renders per sampler and count on `threads`.
+struct Runs<'a> {
+    b: &'a Bench,
+    seeds: u32,
+    threads: usize,
+}
+
+impl Runs<'_> {
+    /// The mean blurred MSE (sigma 2) of sampler `s` at `spp` (render seeds keyed by `salt`),
+    /// with its standard error, printed as `scene spp label mean +- se`.
+    fn mse<S: PathSampler>(&self, s: &S, label: &str, spp: u32, salt: u32) -> (f64, f64) {
+        let v = blurred_mses(self.b, s, spp, self.seeds, salt, 2.0, self.threads);
+        let m = mean_se(&v);
+        println!(
+            "{} {spp} spp {label:<24} {:.4e} +- {:.1e}",
+            self.b.scene.name, m.0, m.1
+        );
+        m
+    }
+}
+
+/// `scene spp label ratio +- se`.
+fn show_ratio(scene: &str, spp: u32, label: &str, r: (f64, f64)) {
+    println!("{scene} {spp} spp   {label:<36} {:.3} +- {:.3}", r.0, r.1);
 }
 
 /// `label a b b/a`.
