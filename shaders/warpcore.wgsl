@@ -1005,8 +1005,50 @@ fn wci_corner_radii(x0: f32, dx: f32, y0: f32, dy: f32, z2: f32) -> vec4<f32> {
         sqrt(x1 * x1 + y1 * y1 + z2), sqrt(x0 * x0 + y1 * y1 + z2));
 }
 
-// wci_quad_turns given the corner radii (`quad_turns_r`).
+// The squared distance to the nearer of two parallel sides, 0 between them (`quad_turns_r`).
+fn wci_near2(a0: f32, b0: f32, inside: bool) -> f32 {
+    let a = wci_abs(a0);
+    let b = wci_abs(b0);
+    let m = select(b, a, a < b);
+    return select(m * m, 0.0f, inside);
+}
+
+// wci_quad_turns given the corner radii (`quad_turns_r`): a long light seen from beside its
+// middle (-x0 x1 > 32 (y_near^2 + z^2), or the same in y) is cut at p's foot into pieces on
+// one side of it, whose solid angles are added; elsewhere the one pair of triangles.
 fn wci_quad_turns_r(x0: f32, dx: f32, y0: f32, dy: f32, z: f32, radii: vec4<f32>) -> f32 {
+    let whole = wci_vos_quad_turns(x0, dx, y0, dy, z, radii);
+    let x1 = x0 + dx;
+    let y1 = y0 + dy;
+    let z2 = z * z;
+    let sx = x0 < 0.0f && 0.0f < x1;
+    let sy = y0 < 0.0f && 0.0f < y1;
+    let cut_x = sx && 32.0f * (wci_near2(y0, y1, sy) + z2) < -(x0 * x1);
+    let cut_y = sy && 32.0f * (wci_near2(x0, x1, sx) + z2) < -(y0 * y1);
+    // Not where z^2 is below the smallest normal f32 (the pieces' corner at the foot).
+    let cut = (cut_x || cut_y) && 0x1p-126f <= z2;
+    if (!cut) {
+        return whole;
+    }
+    let wa = select(dx, -x0, cut_x);
+    let ha = select(dy, -y0, cut_y);
+    // The pieces' turns are >= 0: adding the ones not cut as 0 (as the crate does) is a no-op.
+    var split = wci_vos_quad_turns(x0, wa, y0, ha, z, wci_corner_radii(x0, wa, y0, ha, z2));
+    if (cut_x) {
+        split = split + wci_vos_quad_turns(0.0f, x1, y0, ha, z, wci_corner_radii(0.0f, x1, y0, ha, z2));
+    }
+    if (cut_y) {
+        split = split + wci_vos_quad_turns(x0, wa, 0.0f, y1, z, wci_corner_radii(x0, wa, 0.0f, y1, z2));
+    }
+    if (cut_x && cut_y) {
+        split = split + wci_vos_quad_turns(0.0f, x1, 0.0f, y1, z, wci_corner_radii(0.0f, x1, 0.0f, y1, z2));
+    }
+    return split;
+}
+
+// The solid angle (turns of 4 pi) as the two triangles (00, 10, 11) and (00, 11, 01), given
+// the corner radii (`vos_quad_turns`).
+fn wci_vos_quad_turns(x0: f32, dx: f32, y0: f32, dy: f32, z: f32, radii: vec4<f32>) -> f32 {
     let x1 = x0 + dx;
     let y1 = y0 + dy;
     let z2 = z * z;

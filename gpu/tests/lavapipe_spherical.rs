@@ -16,7 +16,7 @@ fn every_solid_angle_function_is_bit_identical_on_lavapipe() {
 /// The comparison is sharp on these functions too: a one-ulp change of `1 / (4 pi)` moves
 /// the density of every sample that Arvo's map takes (about half of the test points: the
 /// others are degenerate, non-finite or area-sampled lights), and leaving out the Newton step
-/// moves the points of the rectangles that take it (outside the closed-form window).
+/// moves the points of many rectangles that take it (outside the closed-form window).
 #[test]
 fn small_changes_are_detected() {
     let Some(gpu) = lavapipe() else { return };
@@ -33,7 +33,7 @@ fn small_changes_are_detected() {
             "no Newton step",
             "        dx = wci_rect_newton(r, y1, z2, goal, dx0);",
             "        dx = dx0;",
-            10,
+            20,
         ),
     ] {
         let func = lights().iter().find(|f| f.name == name).unwrap();
@@ -41,7 +41,9 @@ fn small_changes_are_detected() {
         let d = compare_changed(&gpu, func, &WGSL.replace(from, to), &input);
         let (m, n) = (d.mismatches, d.points);
         println!("{what}: {m} of {n} {name} samples differ");
-        // More than a third of the triangle's samples, a tenth of the rectangle's.
+        // More than a third of the triangle's samples, a twentieth of the rectangle's (6.6%
+        // since long lights seen from beside them are cut at the foot: their strips' solid
+        // angles are exact enough that the step no longer moves most of their points).
         assert!(m * at_least > n, "{what}: {m} of {n}");
     }
 }

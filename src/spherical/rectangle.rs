@@ -102,8 +102,62 @@ fn corner_radii<L: Lane>(x0: L, dx: L, y0: L, dy: L, z2: L) -> [L; 4] {
 }
 
 /// [`quad_turns`] given the [`corner_radii`] (shared with the map's set-up and Newton step).
+///
+/// Where `p`'s foot lies inside the rectangle's extent along a side and both ends along it
+/// are far beyond `p`'s distance from the line of the nearer other side (`-x0 x1 >`
+/// [`SPLIT_ABOVE`] `(y_near^2 + z^2)`: a long light seen from beside its middle), two
+/// corners are seen nearly opposite and Van Oosterom-Strackee's denominators cancel (a
+/// `1 x 10^6` light at `kappa = 84` lost 4e-4 of its solid angle). There the rectangle is
+/// cut at the foot into two or four pieces, each on one side of it in both directions, whose
+/// denominators are sums of positive terms, and their solid angles are added. Elsewhere (and
+/// where `z^2` underflows) the one pair of triangles.
 #[inline(always)]
 fn quad_turns_r<L: Lane>(x0: L, dx: L, y0: L, dy: L, z: L, radii: [L; 4]) -> L {
+    let whole = vos_quad_turns(x0, dx, y0, dy, z, radii);
+    let zero = L::splat(0.0);
+    let (x1, y1) = (x0 + dx, y0 + dy);
+    let z2 = z * z;
+    let (sx, sy) = (
+        x0.simd_lt(zero) & zero.simd_lt(x1),
+        y0.simd_lt(zero) & zero.simd_lt(y1),
+    );
+    // The squared distance to the nearer of two parallel sides, 0 between them.
+    let near2 = |a: L, b: L, inside: L::Mask| {
+        let (a, b) = (a.abs(), b.abs());
+        let m = L::select(a.simd_lt(b), a, b);
+        L::select(inside, zero, m * m)
+    };
+    let t = L::splat(SPLIT_ABOVE);
+    let cut_x = sx & (t * (near2(y0, y1, sy) + z2)).simd_lt(-(x0 * x1));
+    let cut_y = sy & (t * (near2(x0, x1, sx) + z2)).simd_lt(-(y0 * y1));
+    // Not where z^2 is below the smallest normal f32 (`z < 2^-63` in the scaled frame, `p`
+    // on the plane to f32's resolution): the pieces' corner at the foot would have radius 0.
+    let cut = (cut_x | cut_y) & L::splat(f32::MIN_POSITIVE).simd_le(z2);
+    L::unless(!cut, whole, || {
+        // Pieces [x0, 0] and [0, x1] where cut in x (else [x0, x1]), likewise in y.
+        let wa = L::select(cut_x, -x0, dx);
+        let ha = L::select(cut_y, -y0, dy);
+        let piece = |xa: L, w: L, ya: L, h: L| {
+            vos_quad_turns(xa, w, ya, h, z, corner_radii(xa, w, ya, h, z2))
+        };
+        let split = piece(x0, wa, y0, ha)
+            + L::select(cut_x, piece(zero, x1, y0, ha), zero)
+            + L::select(cut_y, piece(x0, wa, zero, y1), zero)
+            + L::select(cut_x & cut_y, piece(zero, x1, zero, y1), zero);
+        L::select(cut, split, whole)
+    })
+}
+
+/// Where [`quad_turns_r`] cuts the rectangle at `p`'s foot: `-x0 x1` above this many times
+/// `y_near^2 + z^2`. Below it the one pair of triangles errs at most about `1e-6 kappa`
+/// (measured over 3.6 million random lights with sides up to `10^6 : 1`); at `2^21` it erred
+/// `2.8e-5 kappa`.
+const SPLIT_ABOVE: f32 = 32.0;
+
+/// The solid angle (turns of `4 pi`) of the rectangle as the two triangles `(00, 10, 11)`
+/// and `(00, 11, 01)`, given the [`corner_radii`].
+#[inline(always)]
+fn vos_quad_turns<L: Lane>(x0: L, dx: L, y0: L, dy: L, z: L, radii: [L; 4]) -> L {
     let x1 = x0 + dx;
     let y1 = y0 + dy;
     let z2 = z * z;
