@@ -32,8 +32,12 @@
 //! the light (each accurate on either side of it), which is the point for lights of
 //! `1e-2 .. 2` sr seen within `kappa <= 16` (below) with sides within a factor 16; other
 //! lights take one Newton step on the strip's solid angle computed by Van Oosterom-Strackee
-//! (relative, not absolute, accuracy); its `y` uses `1 -+ y/r` forms. Every square root and
-//! inverse sine/cosine argument is clamped, every `0/0` selected away.
+//! (relative, not absolute, accuracy); its `y` uses `1 -+ y/r` forms. A long rectangle seen
+//! from beside its middle (both ends along a side far beyond `p`'s distance from it, where
+//! two corners are seen nearly opposite and one pair of Van Oosterom-Strackee triangles
+//! cancels) is cut at `p`'s foot into pieces on one side of it, whose solid angles add
+//! without cancellation; this serves the solid angle, the Newton step and the inverse.
+//! Every square root and inverse sine/cosine argument is clamped, every `0/0` selected away.
 //!
 //! **Precision** (`tests/spherical.rs`, 20 000 random lights per shape from `1e-8` sr to
 //! nearly `2 pi`, distances `1e-6 .. 1e6`, against `f64` on the same `f32` input). The
@@ -45,9 +49,16 @@
 //! (`kappa <= 100`); round trip `inverse(sample(u))` for solid angles `1e-4 .. 2` sr within
 //! 2.3e-5 of `u` (triangle, `kappa <= 100`, `u1 >= 0.01`: at the apex `v1` the map
 //! collapses `u0` and its error grows like `1 / sqrt(u1)`) and 6.5e-6 (rectangle,
-//! `kappa <= 100`), and within `3.1e-6 kappa` for every light. Samples are uniform in solid
-//! angle (chi-square over sub-regions whose solid angles are computed in `f64`, 2^21
-//! samples per light).
+//! `kappa <= 100`), and within `3.1e-6 kappa` for every light. Two more conditions: a thin
+//! triangle is only as accurate as its shape (its edges are rounded from the caller's
+//! vertices), so its error also grows with `s = l_max^2 / |e1 x e2|` (1.15 for an
+//! equilateral triangle): slivers measure within `8.2e-8 kappa s` where `kappa s <= 1e5`;
+//! and `f32` barycentrics place a direction no finer than about `3e-7 kappa s / q` when `p`
+//! is near a vertex (`q`, the distance to it over the longest edge, below 1), which bounds the
+//! round trip there. Long rectangles seen from beside them (sides to `10^6 : 1`, ends 3 to
+//! 3000 times `p`'s distance): `3.0e-7 kappa`, their map's `u0` within `1.9e-4`. Samples are
+//! uniform in solid angle (chi-square over sub-regions whose solid angles are computed in
+//! `f64`, 2^21 samples per light).
 //!
 //! **Totality.** Every function accepts any `f32`. `u` is first mapped onto `[0, 1 - 2^-24]`
 //! (NaN, negatives to 0; `>= 1`, `+inf` to `1 - 2^-24`); barycentrics are in the closed
