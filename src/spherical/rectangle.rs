@@ -134,18 +134,35 @@ fn quad_turns_r<L: Lane>(x0: L, dx: L, y0: L, dy: L, z: L, radii: [L; 4]) -> L {
     // on the plane to f32's resolution): the pieces' corner at the foot would have radius 0.
     let cut = (cut_x | cut_y) & L::splat(f32::MIN_POSITIVE).simd_le(z2);
     L::unless(!cut, whole, || {
-        // Pieces [x0, 0] and [0, x1] where cut in x (else [x0, x1]), likewise in y.
-        let wa = L::select(cut_x, -x0, dx);
-        let ha = L::select(cut_y, -y0, dy);
-        let piece = |xa: L, w: L, ya: L, h: L| {
-            vos_quad_turns(xa, w, ya, h, z, corner_radii(xa, w, ya, h, z2))
-        };
-        let split = piece(x0, wa, y0, ha)
-            + L::select(cut_x, piece(zero, x1, y0, ha), zero)
-            + L::select(cut_y, piece(x0, wa, zero, y1), zero)
-            + L::select(cut_x & cut_y, piece(zero, x1, zero, y1), zero);
-        L::select(cut, split, whole)
+        L::select(cut, cut_turns(x0, dx, y0, dy, z, [cut_x, cut_y]), whole)
     })
+}
+
+/// [`quad_turns_r`]'s pieces: `[x0, 0]` and `[0, x1]` where cut in `x` (else `[x0, x1]`),
+/// likewise in `y`, their solid angles added. Out of line: the rare path, one copy for the
+/// set-up, the Newton step and the inverse.
+#[cold]
+#[inline(never)]
+fn cut_turns<L: Lane>(x0: L, dx: L, y0: L, dy: L, z: L, [cut_x, cut_y]: [L::Mask; 2]) -> L {
+    let zero = L::splat(0.0);
+    let (x1, y1, z2) = (x0 + dx, y0 + dy, z * z);
+    let wa = L::select(cut_x, -x0, dx);
+    let ha = L::select(cut_y, -y0, dy);
+    let piece =
+        |xa: L, w: L, ya: L, h: L| vos_quad_turns(xa, w, ya, h, z, corner_radii(xa, w, ya, h, z2));
+    let all = zero.simd_eq(zero);
+    // A loop, not four inlined copies of the pieces (the wide forms' code size); `0 + t` is
+    // `t` for the first piece's turns (never `-0.0`).
+    let mut turns = zero;
+    for (xa, w, ya, h, taken) in [
+        (x0, wa, y0, ha, all),
+        (zero, x1, y0, ha, cut_x),
+        (x0, wa, zero, y1, cut_y),
+        (zero, x1, zero, y1, cut_x & cut_y),
+    ] {
+        turns = turns + L::select(taken, piece(xa, w, ya, h), zero);
+    }
+    turns
 }
 
 /// Where [`quad_turns_r`] cuts the rectangle at `p`'s foot: `-x0 x1` above this many times
