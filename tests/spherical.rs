@@ -41,6 +41,16 @@ fn tri_kappa(v: [[f32; 3]; 3], p: [f32; 3]) -> f64 {
     norm(a) * norm(n) / dot(a, n).abs()
 }
 
+/// A triangle's shape condition `s = l_max^2 / |e1 x e2|` (1.15 for an equilateral
+/// triangle, large for slivers) and its longest edge `l_max`.
+fn tri_shape(v: [[f32; 3]; 3]) -> (f64, f64) {
+    let (e1, e2) = (sub(d3(v[1]), d3(v[0])), sub(d3(v[2]), d3(v[0])));
+    let l2 = dot(e1, e1)
+        .max(dot(e2, e2))
+        .max(dot(sub(e2, e1), sub(e2, e1)));
+    (l2 / norm(cross(e1, e2)), l2.sqrt())
+}
+
 fn rect_kappa(c: [f32; 3], ex: [f32; 3], ey: [f32; 3], p: [f32; 3]) -> f64 {
     let (a, n) = (sub(d3(c), d3(p)), cross(d3(ex), d3(ey)));
     let far = [
@@ -432,11 +442,7 @@ fn slivers_within_kappa_times_shape() {
         ];
         let p = f3(p);
         let om = tri_omega(v, p);
-        let (e1, e2) = (sub(d3(v[1]), d3(v[0])), sub(d3(v[2]), d3(v[0])));
-        let l2 = dot(e1, e1)
-            .max(dot(e2, e2))
-            .max(dot(sub(e2, e1), sub(e2, e1)));
-        let ks = tri_kappa(v, p) * l2 / norm(cross(e1, e2));
+        let ks = tri_kappa(v, p) * tri_shape(v).0;
         if !(om > 1e-8 && om < 6.2 && ks <= 1e5) {
             continue;
         }
@@ -473,12 +479,9 @@ fn round_trip_near_a_vertex() {
         ];
         let p = f3(add(d3(v[0]), scale(dir(&mut r), q * size)));
         let om = tri_omega(v, p);
-        let (e1, e2) = (sub(d3(v[1]), d3(v[0])), sub(d3(v[2]), d3(v[0])));
-        let l2 = dot(e1, e1)
-            .max(dot(e2, e2))
-            .max(dot(sub(e2, e1), sub(e2, e1)));
-        let ks = tri_kappa(v, p) * l2 / norm(cross(e1, e2));
-        let qv = norm(sub(d3(p), d3(v[0]))) / l2.sqrt();
+        let (shape, longest) = tri_shape(v);
+        let ks = tri_kappa(v, p) * shape;
+        let qv = norm(sub(d3(p), d3(v[0]))) / longest;
         let u = unit2(&mut r);
         if !((1e-4..=2.0).contains(&om) && u[1] >= 0.01 && ks.is_finite() && qv > 0.0) {
             continue;
