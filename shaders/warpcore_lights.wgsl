@@ -118,14 +118,33 @@ fn wcli_len2(v: vec3<f32>) -> f32 {
     return v.x * v.x + v.y * v.y + v.z * v.z;
 }
 
+// 2^k with 2^k m in [1, 2) for a normal m below 2^127 (`tree::pow2_down`): [2, 4) above,
+// 2^126 for a smaller m, 2^-126 for inf or NaN; always a normal number.
+fn wcli_pow2_down(m: f32) -> f32 {
+    let e = clamp((bitcast<u32>(m) >> 23u) & 0xffu, 1u, 253u);
+    return bitcast<f32>((254u - e) << 23u);
+}
+
+// m raised to x where m < x <= f32::MAX (`tree::raise`: NaN and infinities never win).
+fn wcli_raise(m: f32, x: f32) -> f32 {
+    return select(m, x, m < x && x <= WCLI_F32_MAX);
+}
+
+fn wcli_finite3(v: vec3<f32>) -> bool {
+    return abs(v.x) <= WCLI_F32_MAX && abs(v.y) <= WCLI_F32_MAX && abs(v.z) <= WCLI_F32_MAX;
+}
+
 fn wcli_point(p: vec3<f32>, n: vec3<f32>) -> WcliPoint {
-    let valid = abs(p.x) <= WCLI_F32_MAX && abs(p.y) <= WCLI_F32_MAX && abs(p.z) <= WCLI_F32_MAX;
+    let valid = wcli_finite3(p);
     let q = vec3<f32>(select(0.0f, p.x, valid), select(0.0f, p.y, valid), select(0.0f, p.z, valid));
-    let len2 = n.x * n.x + n.y * n.y + n.z * n.z;
-    let has_n = 0.0f < len2 && len2 <= WCLI_F32_MAX;
+    // The normal scaled by a power of two before its length is taken.
+    let m = wcli_raise(wcli_raise(wcli_raise(0.0f, abs(n.x)), abs(n.y)), abs(n.z));
+    let has_n = wcli_finite3(n) && WCLI_F32_MIN_POSITIVE <= m;
+    let nk = n * wcli_pow2_down(m);
+    let len2 = nk.x * nk.x + nk.y * nk.y + nk.z * nk.z;
     let inv = select(0.0f, 1.0f / sqrt(len2), has_n);
-    let m = vec3<f32>(select(0.0f, n.x * inv, has_n), select(0.0f, n.y * inv, has_n), select(0.0f, n.z * inv, has_n));
-    return WcliPoint(q, m, has_n, valid);
+    let u = vec3<f32>(select(0.0f, nk.x * inv, has_n), select(0.0f, nk.y * inv, has_n), select(0.0f, nk.z * inv, has_n));
+    return WcliPoint(q, u, has_n, valid);
 }
 
 // Word k of child c of quad `quad` (zeros past the storage's quads, as the crate's gather).
@@ -134,19 +153,33 @@ fn wcli_tree_word(base: u32, quads: u32, quad: u32, k: u32, c: u32) -> u32 {
     return select(0u, wc_lights[at], quad < quads);
 }
 
+// How far child c of a quad reaches at the point and how much it emits (`tree::extent`):
+// the largest of |p - c|'s coordinates and the radius, and the power (0 and 0 for a child
+// of no positive power).
+fn wcli_tree_extent(pt: WcliPoint, base: u32, quads: u32, quad: u32, c: u32) -> vec2<f32> {
+    let phi = wcli_raise(0.0f, bitcast<f32>(wcli_tree_word(base, quads, quad, 4u, c)));
+    var len = wcli_raise(0.0f, bitcast<f32>(wcli_tree_word(base, quads, quad, 3u, c)));
+    len = wcli_raise(len, abs(pt.p.x - bitcast<f32>(wcli_tree_word(base, quads, quad, 0u, c))));
+    len = wcli_raise(len, abs(pt.p.y - bitcast<f32>(wcli_tree_word(base, quads, quad, 1u, c))));
+    len = wcli_raise(len, abs(pt.p.z - bitcast<f32>(wcli_tree_word(base, quads, quad, 2u, c))));
+    return vec2<f32>(select(0.0f, len, 0.0f < phi), phi);
+}
+
 // The importance of child c of a quad at the point (`tree::importance`): finite, in
 // [0, 2^125], whatever the words hold. Cosines and sines carry the distance d (the stored
 // axis is taken as unit): three square roots side by side, one division at the end.
-fn wcli_tree_importance(pt: WcliPoint, base: u32, quads: u32, quad: u32, c: u32) -> f32 {
+// Lengths are multiplied by `ls` and the power by `ps`, the quad's exact power-of-two scales
+// (`tree::with_scales`).
+fn wcli_tree_importance(pt: WcliPoint, ls: f32, ps: f32, base: u32, quads: u32, quad: u32, c: u32) -> f32 {
     let d = vec3<f32>(
-        pt.p.x - bitcast<f32>(wcli_tree_word(base, quads, quad, 0u, c)),
-        pt.p.y - bitcast<f32>(wcli_tree_word(base, quads, quad, 1u, c)),
-        pt.p.z - bitcast<f32>(wcli_tree_word(base, quads, quad, 2u, c)),
+        (pt.p.x - bitcast<f32>(wcli_tree_word(base, quads, quad, 0u, c))) * ls,
+        (pt.p.y - bitcast<f32>(wcli_tree_word(base, quads, quad, 1u, c))) * ls,
+        (pt.p.z - bitcast<f32>(wcli_tree_word(base, quads, quad, 2u, c))) * ls,
     );
     let d2 = wcli_len2(d);
-    let r = bitcast<f32>(wcli_tree_word(base, quads, quad, 3u, c));
+    let r = bitcast<f32>(wcli_tree_word(base, quads, quad, 3u, c)) * ls;
     let r2 = r * r;
-    let phi = bitcast<f32>(wcli_tree_word(base, quads, quad, 4u, c));
+    let phi = bitcast<f32>(wcli_tree_word(base, quads, quad, 4u, c)) * ps;
     let outside = r2 < d2;
     // d cos(theta_w) (folded for two-sided nodes) and d sin(theta_w).
     let v = vec3<f32>(
@@ -198,10 +231,20 @@ fn wcli_tree_walk(base: u32, pt: WcliPoint, u0: f32, trail: u32, by_u: bool) -> 
     var done = false;
     var dead = !pt.valid;
     for (var level = 0u; level < levels; level++) {
-        let i0 = wcli_tree_importance(pt, base, quads, quad, 0u);
-        let i1 = wcli_tree_importance(pt, base, quads, quad, 1u);
-        let i2 = wcli_tree_importance(pt, base, quads, quad, 2u);
-        let i3 = wcli_tree_importance(pt, base, quads, quad, 3u);
+        // The quad's scales: its children's largest extent and power.
+        var len = 0.0f;
+        var power = 0.0f;
+        for (var c = 0u; c < 4u; c++) {
+            let e = wcli_tree_extent(pt, base, quads, quad, c);
+            len = wcli_raise(len, e.x);
+            power = wcli_raise(power, e.y);
+        }
+        let ls = wcli_pow2_down(len);
+        let ps = wcli_pow2_down(power);
+        let i0 = wcli_tree_importance(pt, ls, ps, base, quads, quad, 0u);
+        let i1 = wcli_tree_importance(pt, ls, ps, base, quads, quad, 1u);
+        let i2 = wcli_tree_importance(pt, ls, ps, base, quads, quad, 2u);
+        let i3 = wcli_tree_importance(pt, ls, ps, base, quads, quad, 3u);
         let s01 = i0 + i1;
         let s23 = i2 + i3;
         let sum = s01 + s23;

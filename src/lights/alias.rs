@@ -51,12 +51,13 @@ const COLUMN: u64 = 1 << 32;
 ///
 /// **Exact construction.** Each light's mass is an integer `m_i`, in units of `2^-32` of a
 /// column: `m_i = floor(w_i * n * 2^32 / W)` (in `f64`, `W` the `f64` sum of the weights), at
-/// least 1 for every positive weight (a faint light is oversampled, never dropped), the
+/// least 1 for every positive weight (a faint light keeps a positive `pmf`), the
 /// rounding difference given to the heaviest light so that the masses sum to `n * 2^32`
 /// exactly. Vose's pairing then runs on integers: no rounding, so both worklists empty
 /// together and every remaining column is exactly full (floating-point builds need a
 /// tolerance there). The probability of light `i` is then **exactly** `m_i / (n 2^32)` for a
-/// uniform `u`; [`pmf`](Self::pmf) returns that number rounded once to `f32` (relative error
+/// uniform real `u` and the ideal test (the fraction of `u n` past the column against the
+/// threshold); [`pmf`](Self::pmf) returns that number rounded once to `f32` (relative error
 /// at most `2^-24`), and [`sample`](Self::sample) returns the same stored `f32`, so the two
 /// are equal bit for bit. The difference from `w_i / W` is below `2^-32 / n + 2^-32` absolute
 /// (the floor, the minimum of 1, the heaviest light's correction).
@@ -81,10 +82,16 @@ const COLUMN: u64 = 1 << 32;
 /// number for the threshold — would leave the column stratified but make each column's split
 /// random; one `u` keeps both and frees a dimension.
 ///
-/// **Resolution.** An `f32` `u` in `[1/2, 1)` has 24 bits, so at `n` lights each column sees
-/// about `2^24 / n` distinct values of `u` there (16 at a million lights): the frequency of a
-/// light over all `f32` values of `u` matches its `pmf` only to about `2^-24` absolute, the
-/// same granularity as any inversion of a 24-bit `u` (a CDF inversion has it too).
+/// **Resolution.** The test runs on a key, not on a real `u`: the key is even (`2 floor(u
+/// 2^31)`), so within a column the fractions it produces are `2n` apart in units of `2^-32`
+/// (`2^9 n` for `f32` values of `u` in `[1/2, 1)`, which have 24 bits: about `2^24 / n`
+/// distinct values per column there, 16 at a million lights). The frequency of a light over
+/// all keys (or all `f32` values of `u`) matches its `pmf` to about `2^-31` (`2^-24`) absolute,
+/// the granularity of any inversion of a 24-bit `u` (pbrt-v4's alias table and a CDF
+/// inversion have it too). A light whose share of its column is below that spacing can be
+/// unreachable: a faint light (`pmf` below about `2^-24`, in a column other than the first)
+/// keeps a positive `pmf` but may never be returned, so its contribution, at most its share
+/// of the total weight, is lost.
 ///
 /// # Input outside `[0, 1)`
 ///
@@ -293,7 +300,8 @@ impl<'a> AliasTable<'a> {
     /// column's threshold, its alias otherwise (see the type's docs for stratification and
     /// resolution). `u` outside `[0, 1)` goes through the forward rule (NaN, negatives -> 0,
     /// `>= 1`, `+inf` -> `1 - 2^-24`). Never a light of zero weight; no floating-point
-    /// arithmetic beyond `u * 2^31` (exact), so no error versus `f64`.
+    /// arithmetic beyond `u * 2^31` (exact), so no error versus `f64`; a light of `pmf` below
+    /// about `2^-24` may be unreachable ("Resolution" in the type's docs).
     #[inline]
     pub fn sample(&self, u: f32) -> (u32, f32) {
         let (i, p) = self.sample_body(u);

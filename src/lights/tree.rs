@@ -96,8 +96,24 @@ const BIG: f32 = 4.253_529_6e37;
 /// r^2)`, `d sin(theta_b) = r`), so the three square roots are independent and one division
 /// (`1 / max(d^2, r^2)`) ends the evaluation; the node stores its unit axis and the cosine
 /// and sine of `theta_o` ready as `f32`, so a visit decodes nothing. pbrt-v4 clamps `d^2`
-/// below by the box's half *diagonal length*; we use the bounding radius *squared* (the same units as `d^2`). `n` need not be unit (it is normalised; NaN, infinite
-/// or zero means a medium). A non-finite `p` gives no light.
+/// below by the box's half *diagonal length*; we use the bounding radius *squared* (the same units as `d^2`). `n` need not be unit: it is scaled by a power of two and
+/// normalised, so every finite normal whose largest coordinate is at least `2^-126` counts
+/// (a smaller, zero, NaN or infinite one means a medium). A non-finite `p` gives no light.
+///
+/// **Range.** The four children of a quad are evaluated with their lengths (`p - c`, `r`)
+/// and powers multiplied by exact powers of two, chosen per quad from the children's largest
+/// `|p - c|` coordinate or radius and largest power. Importances are homogeneous (degree -2 in
+/// lengths, 1 in power) and a walk compares only siblings, so the scales change no choice
+/// and no bit where an unscaled evaluation stayed in range; where it did not, nothing
+/// overflows or underflows: a light at `1e20` beside lights at 1, faint lights seen from far
+/// away, a shading point at `1e30`, a scene far from the origin. What remains: siblings whose
+/// distances differ by more than `2^63` (the nearer one's `d^2` is held at `2^-126` of the
+/// farther's scale and takes all but about `2^-126` of the probability), and a light whose
+/// probability falls below `f32`'s normal range may read 0. The build groups lights by
+/// count, not by cost: a far outlier shares a group with its nearest neighbours, whose
+/// bounding sphere then contains `p`, and the group's importance `phi / r^2` starves those
+/// neighbours (probability about `(d / r)^2`, never 0). A cost-based split (pbrt-v4's) would
+/// isolate the outlier.
 ///
 /// **What sums to 1.** A walk can reach a node whose two children both have importance 0 at
 /// `p` although the node itself had some (its bounds are looser than its lights'): the walk
@@ -220,13 +236,38 @@ fn pos<L: Lane>(x: L) -> L {
 }
 
 /// The shading point as the walk sees it: `p`, the unit normal (or zeros), whether there is
-/// one, and whether `p` is finite.
+/// one, whether `p` is finite, and the walk's exact power-of-two scales of lengths and of
+/// powers ([`scaled`]).
 #[derive(Clone, Copy)]
 pub(super) struct Point<L: Lane> {
     p: [L; 3],
     n: [L; 3],
     has_n: L::Mask,
     valid: L::Mask,
+    /// Multiplies every `p - c` and radius: `2^k`, so that the root's children's largest
+    /// `|p - c|` coordinate or radius lies in `[1, 4)`.
+    len_scale: L,
+    /// Multiplies every power: `2^k`, so that the root's children's largest power lies in
+    /// `[1, 4)`.
+    power_scale: L,
+}
+
+/// `2^k` with `2^k m` in `[1, 2)` for a normal `m` below `2^127`, `[2, 4)` from `2^127` to
+/// `f32::MAX`; `2^126` for a smaller `m` (0 included), `2^-126` for `inf` or NaN. Always a
+/// normal number (a device that flushes subnormals reads the same), and multiplying by it is
+/// exact wherever the product stays normal.
+#[inline(always)]
+fn pow2_down<L: Lane>(m: L) -> L {
+    let e = m.to_bits().shr(23) & L::U::splat(0xff);
+    let e = L::U::select(e.simd_lt(L::U::splat(1)), L::U::splat(1), e);
+    let e = L::U::select(e.simd_lt(L::U::splat(254)), e, L::U::splat(253));
+    L::from_bits((L::U::splat(254) - e).shl(23))
+}
+
+/// `m` raised to `x` where `m < x <= f32::MAX` (NaN and infinities never win).
+#[inline(always)]
+fn raise<L: Lane>(m: L, x: L) -> L {
+    L::select(m.simd_lt(x) & x.simd_le(L::splat(f32::MAX)), x, m)
 }
 
 #[inline(always)]
@@ -236,11 +277,61 @@ fn point<L: Lane>(p: [L; 3], n: [L; 3]) -> Point<L> {
     let valid = finite(p[0]) & finite(p[1]) & finite(p[2]);
     let zero = L::splat(0.0);
     let p = p.map(|x| L::select(valid, x, zero));
+    // The normal scaled by a power of two before its length is taken (exact: the unit
+    // normal's bits are those of the unscaled division wherever that did not underflow or
+    // overflow), so that every finite normal whose largest coordinate is at least 2^-126 is
+    // one; smaller coordinates count as zero (as everywhere in the crate).
+    let m = n.iter().fold(zero, |m, &x| raise(m, x.abs()));
+    let has_n = finite(n[0]) & finite(n[1]) & finite(n[2]) & L::splat(f32::MIN_POSITIVE).simd_le(m);
+    let k = pow2_down(m);
+    let n = n.map(|x| x * k);
     let len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    let has_n = zero.simd_lt(len2) & len2.simd_le(big);
     let inv = L::select(has_n, L::splat(1.0) / len2.sqrt(), zero);
     let n = n.map(|x| L::select(has_n, x * inv, zero));
-    Point { p, n, has_n, valid }
+    let one = L::splat(1.0);
+    Point {
+        p,
+        n,
+        has_n,
+        valid,
+        len_scale: one,
+        power_scale: one,
+    }
+}
+
+/// How far one stored child reaches at the point and how much it emits: the largest of `|p -
+/// c|`'s coordinates and the radius, and the power (both 0 for a child of no positive
+/// power; never NaN or infinite).
+#[inline(always)]
+fn extent<L: Lane>(pt: &Point<L>, w: &[L::U]) -> (L, L) {
+    let f = |k: usize| L::from_bits(w.get(k).copied().unwrap_or(L::U::splat(0)));
+    let zero = L::splat(0.0);
+    let phi = raise(zero, f(4));
+    let len = (0..3).fold(raise(zero, f(3)), |m, k| raise(m, (pt.p[k] - f(k)).abs()));
+    let live = zero.simd_lt(phi);
+    (L::select(live, len, zero), phi)
+}
+
+/// The point with a quad's scales ([`Point::len_scale`], [`Point::power_scale`]) from its
+/// four children's [`extent`]s. A walk compares only the importances of siblings, and every
+/// importance is homogeneous (degree -2 in lengths, 1 in power), so a factor common to the
+/// four changes no choice and no probability: the bits are those of the unscaled
+/// evaluation wherever that neither overflowed nor underflowed, and where it did (a light
+/// at `1e20` beside lights at 1: `r^2` overflowed and the group's lights read importance 0;
+/// faint lights seen from far away: `phi / d^2` underflowed) the scaled one does not, as
+/// long as the four siblings' distances lie within `2^63` of each other (beyond that the
+/// nearer one's `d^2` is clamped at `2^-126`: it takes all but `2^-126` of the probability).
+#[inline(always)]
+fn with_scales<L: Lane>(pt: &Point<L>, extents: [(L, L); 4]) -> Point<L> {
+    let zero = L::splat(0.0);
+    let (len, power) = extents.iter().fold((zero, zero), |(l, p), &(el, ep)| {
+        (raise(l, el), raise(p, ep))
+    });
+    Point {
+        len_scale: pow2_down(len),
+        power_scale: pow2_down(power),
+        ..*pt
+    }
 }
 
 /// The importance of one stored node at the point (see [`LightTree`]): finite, in
@@ -257,11 +348,16 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
     let f = |k: usize| L::from_bits(word(k));
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
-    let d = [pt.p[0] - f(0), pt.p[1] - f(1), pt.p[2] - f(2)];
+    let ls = pt.len_scale;
+    let d = [
+        (pt.p[0] - f(0)) * ls,
+        (pt.p[1] - f(1)) * ls,
+        (pt.p[2] - f(2)) * ls,
+    ];
     let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    let r = f(3);
+    let r = f(3) * ls;
     let r2 = r * r;
-    let phi = f(4);
+    let phi = f(4) * pt.power_scale;
     // Inside the sphere (or on it): the cone of directions to it is the whole sphere.
     let outside = r2.simd_lt(d2);
     // The stored axis `v` is unit (to f32 rounding): `d cos(theta_w) = v . (p - c)` (folded
@@ -417,7 +513,11 @@ impl Children for f32 {
             touch(quads, w & INDEX_MASK);
             u32x4::splat(w & INDEX_MASK)
         });
-        let imp = importance::<f32x4>(pt, &words).to_array();
+        // The children are the four lanes: the quad's scales are the lanes' largest.
+        let (len, power) = extent::<f32x4>(pt, &words);
+        let (len, power) = (len.to_array(), power.to_array());
+        let extents = [0, 1, 2, 3].map(|c| (f32x4::splat(len[c]), f32x4::splat(power[c])));
+        let imp = importance::<f32x4>(&with_scales(pt, extents), &words).to_array();
         Opened {
             imp: imp.map(f32x4::splat),
             info: info.map(u32x4::splat),
@@ -472,10 +572,10 @@ macro_rules! children_one_by_one {
                 let word = |k: usize, c: usize| {
                     rec.get(4 * k + c).copied().unwrap_or(<$l as Lane>::U::splat(0))
                 };
-                let imp = core::array::from_fn(|c| {
-                    let w: [_; NODE_WORDS] = core::array::from_fn(|k| word(k, c));
-                    importance::<$l>(pt, &w)
-                });
+                let w: [[_; NODE_WORDS]; 4] =
+                    core::array::from_fn(|c| core::array::from_fn(|k| word(k, c)));
+                let pt = with_scales(pt, [0, 1, 2, 3].map(|c| extent::<$l>(pt, &w[c])));
+                let imp = [0, 1, 2, 3].map(|c| importance::<$l>(&pt, &w[c]));
                 let info: [_; 4] = core::array::from_fn(|c| word(NODE_WORDS - 1, c));
                 let children = info.map(|w| w & <$l as Lane>::U::splat(INDEX_MASK));
                 Opened { imp, info, children }
@@ -574,8 +674,9 @@ impl<'a> LightTree<'a> {
     /// power, [`Error::InvalidBounds`] for a NaN or infinite coordinate, `min > max` on some
     /// axis, a zero, NaN or infinite axis, or a cosine outside `[-1, 1]` or NaN (the first
     /// offending light is named), [`Error::AllZero`] if every power is 0. Never panics.
-    /// Non-unit axes are normalised. Coordinates beyond about `1e18` make distances overflow:
-    /// such lights get importance 0 (they are never chosen).
+    /// Non-unit axes are normalised. Coordinates anywhere in `f32`'s range are sampled (see
+    /// "Range" in the type's docs); only a coordinate difference beyond `f32::MAX` (a light
+    /// and the shading point near opposite ends of the range) gives importance 0.
     pub fn new(lights: &[LightBounds], storage: &'a mut [u32]) -> Result<Self, Error> {
         let light = |i: usize| lights.get(i).copied().unwrap_or_default();
         Self::new_from_fn(lights.len(), light, storage)
@@ -761,8 +862,13 @@ impl<'a> LightTree<'a> {
     ///
     /// Error against the same walk in `f64` (measured, `tests/lights/tree.rs`, 600,000
     /// probabilities of a 300-light scene): at most `1.4e-7` absolute, `1.9e-5` relative where
-    /// the probability is at least `1e-3`. The probability is exact for what `sample` does:
-    /// it is the product `sample` reports.
+    /// the probability is at least `1e-3`. That is typical, not a bound: `d sin(theta_w) =
+    /// sqrt(d^2 - (w . (p - c))^2)` cancels for `p` near a node's axis line, and `d
+    /// cos(theta_b) = sqrt(d^2 - r^2)` near its bounding sphere (where the bound itself jumps),
+    /// so there the `f32` importance can differ from the `f64` one by percents (2.7% for `p`
+    /// `1e-3` off a spot light's axis line at distance 100). The importance only steers the
+    /// choice: the probability is exact for what `sample` does (it is the product `sample`
+    /// reports), so estimates stay unbiased.
     #[inline]
     pub fn pmf(&self, p: [f32; 3], n: [f32; 3], index: u32) -> f32 {
         self.pmf_lanes(p, n, Wrapping(index))

@@ -717,3 +717,115 @@ fn pmf_against_f64() {
     );
     assert!(abs < 1e-6 && rel < 1e-4, "absolute {abs}, relative {rel}");
 }
+
+/// Scenes and points spanning the `f32` range: a light at `1e20` beside lights at 1 (its
+/// group's `r^2` overflowed and the group's lights read importance 0), faint lights seen
+/// from far away (`phi / d^2` underflowed to 0: `None` for a light that contributes), a
+/// shading point at `1e30`, normals scaled by `1e-25` or `1e20` (read as "no normal" when
+/// `|n|^2` underflowed or overflowed). Each against the `f64` walk of the same storage;
+/// every light of positive `f64` probability must have a positive `pmf`.
+#[test]
+fn extreme_scales_drop_no_light() {
+    let omni = |c: [f32; 3], power: f32| LightBounds {
+        min: c,
+        max: c,
+        power,
+        axis: [0.0, 0.0, 1.0],
+        cos_theta_o: -1.0,
+        cos_theta_e: 0.0,
+        two_sided: false,
+    };
+    let check = |name: &str, lights: &[LightBounds], p: [f32; 3], n: [f32; 3]| {
+        let s = build(lights);
+        let t = LightTree::from_storage(&s).unwrap();
+        let mut sum = 0.0f64;
+        for i in 0..lights.len() as u32 {
+            let want = pmf_f64(&s, p, n, i);
+            let got = t.pmf(p, n, i);
+            sum += f64::from(got);
+            assert!(
+                (f64::from(got) - want).abs() <= 1e-5 * want.max(1e-30) + 1e-12,
+                "{name}: light {i} pmf {got:e}, f64 {want:e}"
+            );
+            // (A probability below f32's normal range may round to 0.)
+            assert!(
+                want < f64::from(f32::MIN_POSITIVE) || got > 0.0,
+                "{name}: light {i} dropped (f64 {want:e})"
+            );
+        }
+        assert!((sum - 1.0).abs() < 1e-5, "{name}: pmfs sum to {sum}");
+        let (i, q) = t.sample(p, n, 0.5).expect("a light contributes");
+        assert_eq!(q, t.pmf(p, n, i), "{name}");
+    };
+    // A far light beside five at 1 (the nearest shares its group: the group's bound, not an
+    // overflow, then decides its share).
+    for far in [2.6e19f32, 1e20, 1e30, 3e38] {
+        let mut lights: Vec<_> = (0..5).map(|i| omni([i as f32, 0.0, 0.0], 1.0)).collect();
+        lights.push(omni([far, 0.0, 0.0], 1.0));
+        check("far light", &lights, [4.0, 1.0, 0.0], [0.0; 3]);
+        // The same scene with the shading point's normal facing the near lights.
+        check(
+            "far light, normal",
+            &lights,
+            [4.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+        );
+    }
+    // Twenty unit lights in a box and one at 1e20 (a quarter of them went missing).
+    let mut r = rng(31);
+    let mut lights: Vec<_> = (0..20)
+        .map(|_| omni(core::array::from_fn(|_| r.random::<f32>() * 8.0), 1.0))
+        .collect();
+    lights.push(omni([1e20, -1e20, 0.0], 1.0));
+    for _ in 0..20 {
+        let p: [f32; 3] = core::array::from_fn(|_| r.random::<f32>() * 8.0);
+        check("twenty and a far one", &lights, p, [0.0; 3]);
+    }
+    // A faint light seen from far away; faint lights near and far.
+    check("faint", &[omni([0.0; 3], 1e-30)], [1e8, 0.0, 0.0], [0.0; 3]);
+    let mut lights = vec![omni([1.0, 0.0, 0.0], 1e-10)];
+    for k in 0..5 {
+        let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+        lights.push(omni([sign * 1e18, k as f32, 0.0], 1e-10));
+    }
+    check("faint, near and far", &lights, [0.0; 3], [0.0; 3]);
+    // A shading point far from the scene, and the scene far from the origin.
+    let pair = [omni([0.0; 3], 1.0), omni([0.0, 1.0, 0.0], 2.0)];
+    check("far point", &pair, [1e30, 0.0, 0.0], [0.0; 3]);
+    check("far point", &pair, [3e38, -3e38, 0.0], [1.0, 0.0, 0.0]);
+    let far_scene = [omni([1e25, 0.0, 0.0], 1.0), omni([1e25, 1e9, 0.0], 2.0)];
+    check("far scene", &far_scene, [1e25, 2e9, 0.0], [0.0; 3]);
+    // A normal of any finite length is the unit normal: bit for bit when scaled by a power of
+    // two, to rounding otherwise.
+    let lights = scene(&mut r, 40, false);
+    check(
+        "tiny normal",
+        &lights,
+        [0.5, 0.5, 0.5],
+        [0.0, 0.6e-25, 0.8e-25],
+    );
+    check(
+        "huge normal",
+        &lights,
+        [0.5, 0.5, 0.5],
+        [0.0, 0.6e20, 0.8e20],
+    );
+    let s = build(&lights);
+    let t = LightTree::from_storage(&s).unwrap();
+    for _ in 0..200 {
+        let (p, n) = point(&mut r);
+        if n == [0.0; 3] {
+            continue;
+        }
+        for k in [-83, -100, 66, 120].map(|e: i32| 2f32.powi(e)) {
+            let nk = n.map(|x| x * k);
+            for i in 0..40 {
+                assert_eq!(
+                    t.pmf(p, nk, i).to_bits(),
+                    t.pmf(p, n, i).to_bits(),
+                    "normal scaled by {k:e}"
+                );
+            }
+        }
+    }
+}
