@@ -52,7 +52,7 @@ fn tables() -> (Vec<u32>, Vec<(u32, u32)>) {
 /// Light-tree test sets appended to `buffer` (each at its word offset, with its light
 /// count): one light; 24 of every kind (one- and two-sided areas, spots, points, two of
 /// power 0); 300 clustered lights of ragged power and orientation; 40 lights far from the
-/// origin (1e15) next to tiny ones.
+/// origin (1e15) next to tiny ones; 21 with one at 1e20 and faint powers.
 fn trees(buffer: &mut Vec<u32>) -> Vec<(u32, u32)> {
     let mut rng = Rng::new(0x7ee);
     let light = |k: usize, scale: f32, rng: &mut Rng| {
@@ -95,6 +95,20 @@ fn trees(buffer: &mut Vec<u32>) -> Vec<(u32, u32)> {
             .collect(),
         (0..40)
             .map(|k| light(k, if k % 2 == 0 { 1e15 } else { 1e-6 }, &mut rng))
+            .collect(),
+        // The range the per-quad scales serve: one light at 1e20 among unit ones, and powers
+        // down to 1e-30.
+        (0..21)
+            .map(|k| {
+                let mut l = light(k, 1.0, &mut rng);
+                if k == 20 {
+                    (l.min, l.max) = ([1e20, -1e20, 0.0], [1e20, -1e20, 0.0]);
+                }
+                if k % 3 == 1 {
+                    l.power *= 1e-30;
+                }
+                l
+            })
             .collect(),
     ];
     let mut bases = Vec::new();
