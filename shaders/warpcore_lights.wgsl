@@ -96,6 +96,9 @@ const WCLI_TREE_INDEX_MASK: u32 = 0x3fffffffu;
 const WCLI_TREE_MAX_LEVELS: u32 = 16u;
 // Importances are clamped to 2^125, so a quad's sum of four stays finite.
 const WCLI_TREE_BIG: f32 = 0x1p125f;
+// Unscaled importances are used where phi / max(d^2, r^2) lies in [2^-100, 2^100)
+// (`tree::RANGE`).
+const WCLI_TREE_RANGE: f32 = 0x1p100f;
 const WCLI_F32_MAX: f32 = 0x1.fffffep127f;
 const WCLI_F32_MIN_POSITIVE: f32 = 0x1p-126f;
 
@@ -168,9 +171,10 @@ fn wcli_tree_extent(pt: WcliPoint, base: u32, quads: u32, quad: u32, c: u32) -> 
 // The importance of child c of a quad at the point (`tree::importance`): finite, in
 // [0, 2^125], whatever the words hold. Cosines and sines carry the distance d (the stored
 // axis is taken as unit): three square roots side by side, one division at the end.
-// Lengths are multiplied by `ls` and the power by `ps`, the quad's exact power-of-two scales
-// (`tree::with_scales`).
-fn wcli_tree_importance(pt: WcliPoint, ls: f32, ps: f32, base: u32, quads: u32, quad: u32, c: u32) -> f32 {
+// Lengths are multiplied by `ls` and the power by `ps`: 1 and 1, or the quad's exact
+// power-of-two scales (`tree::with_scales`). Returns the importance and 1 where nothing that
+// decides it came near overflow or underflow (`in_range`), else 0.
+fn wcli_tree_importance(pt: WcliPoint, ls: f32, ps: f32, base: u32, quads: u32, quad: u32, c: u32) -> vec2<f32> {
     let d = vec3<f32>(
         (pt.p.x - bitcast<f32>(wcli_tree_word(base, quads, quad, 0u, c))) * ls,
         (pt.p.y - bitcast<f32>(wcli_tree_word(base, quads, quad, 1u, c))) * ls,
@@ -211,10 +215,13 @@ fn wcli_tree_importance(pt: WcliPoint, ls: f32, ps: f32, base: u32, quads: u32, 
     let inv = 1.0f / dc;
     let cos_p = select(1.0f, cp * inv, outside);
     let cos_pi = select(1.0f, cpi * inv, outside && pt.has_n);
-    let imp0 = phi * inv * cos_pi * cos_p;
+    let q = phi * inv;
+    let imp0 = q * cos_pi * cos_p;
     let alive = cos_e < cos_p && pt.valid;
     let imp = select(0.0f, imp0, alive);
-    return select(0.0f, select(WCLI_TREE_BIG, imp, imp < WCLI_TREE_BIG), 0.0f < imp);
+    let in_range = (q < WCLI_TREE_RANGE && 1.0f / WCLI_TREE_RANGE <= q) || !(0.0f < phi);
+    let clamped = select(0.0f, select(WCLI_TREE_BIG, imp, imp < WCLI_TREE_BIG), WCLI_F32_MIN_POSITIVE <= imp);
+    return vec2<f32>(clamped, select(0.0f, 1.0f, in_range));
 }
 
 // The walk (`tree::walk`): from quad 0, `levels` steps, each picking child c with
@@ -231,20 +238,31 @@ fn wcli_tree_walk(base: u32, pt: WcliPoint, u0: f32, trail: u32, by_u: bool) -> 
     var done = false;
     var dead = !pt.valid;
     for (var level = 0u; level < levels; level++) {
-        // The quad's scales: its children's largest extent and power.
-        var len = 0.0f;
-        var power = 0.0f;
-        for (var c = 0u; c < 4u; c++) {
-            let e = wcli_tree_extent(pt, base, quads, quad, c);
-            len = wcli_raise(len, e.x);
-            power = wcli_raise(power, e.y);
+        var f0 = wcli_tree_importance(pt, 1.0f, 1.0f, base, quads, quad, 0u);
+        var f1 = wcli_tree_importance(pt, 1.0f, 1.0f, base, quads, quad, 1u);
+        var f2 = wcli_tree_importance(pt, 1.0f, 1.0f, base, quads, quad, 2u);
+        var f3 = wcli_tree_importance(pt, 1.0f, 1.0f, base, quads, quad, 3u);
+        if f0.y * f1.y * f2.y * f3.y == 0.0f {
+            // A child out of range: the quad again at its scales, from its children's
+            // largest extent and power.
+            var len = 0.0f;
+            var power = 0.0f;
+            for (var c = 0u; c < 4u; c++) {
+                let e = wcli_tree_extent(pt, base, quads, quad, c);
+                len = wcli_raise(len, e.x);
+                power = wcli_raise(power, e.y);
+            }
+            let ls = wcli_pow2_down(len);
+            let ps = wcli_pow2_down(power);
+            f0 = wcli_tree_importance(pt, ls, ps, base, quads, quad, 0u);
+            f1 = wcli_tree_importance(pt, ls, ps, base, quads, quad, 1u);
+            f2 = wcli_tree_importance(pt, ls, ps, base, quads, quad, 2u);
+            f3 = wcli_tree_importance(pt, ls, ps, base, quads, quad, 3u);
         }
-        let ls = wcli_pow2_down(len);
-        let ps = wcli_pow2_down(power);
-        let i0 = wcli_tree_importance(pt, ls, ps, base, quads, quad, 0u);
-        let i1 = wcli_tree_importance(pt, ls, ps, base, quads, quad, 1u);
-        let i2 = wcli_tree_importance(pt, ls, ps, base, quads, quad, 2u);
-        let i3 = wcli_tree_importance(pt, ls, ps, base, quads, quad, 3u);
+        let i0 = f0.x;
+        let i1 = f1.x;
+        let i2 = f2.x;
+        let i3 = f3.x;
         let s01 = i0 + i1;
         let s23 = i2 + i3;
         let sum = s01 + s23;
@@ -278,8 +296,8 @@ fn wcli_tree_walk(base: u32, pt: WcliPoint, u0: f32, trail: u32, by_u: bool) -> 
         quad = select(quad, next, going && !leaf);
     }
     // A leaf naming a light past the end, a walk cut short, a dead end or a probability
-    // that underflowed: no light.
-    let ok = done && !dead && index < len && 0.0f < prob;
+    // below 2^-126: no light.
+    let ok = done && !dead && index < len && WCLI_F32_MIN_POSITIVE <= prob;
     return WcLightChoice(select(0xffffffffu, index, ok), select(0.0f, prob, ok));
 }
 

@@ -351,7 +351,7 @@ fn every_lights_function_is_bit_identical_on_lavapipe() {
 }
 
 /// Changes of the library that a sharp check must see: `(what, function, text, replacement)`.
-const MUTATIONS: [(&str, usize, &str, &str); 5] = [
+const MUTATIONS: [(&str, usize, &str, &str); 6] = [
     (
         "<=",
         0,
@@ -367,7 +367,7 @@ const MUTATIONS: [(&str, usize, &str, &str); 5] = [
     (
         "tree: product order",
         2,
-        "let imp0 = phi * inv * cos_pi * cos_p;",
+        "let imp0 = q * cos_pi * cos_p;",
         "let imp0 = phi * cos_p * cos_pi / dc;",
     ),
     (
@@ -375,6 +375,12 @@ const MUTATIONS: [(&str, usize, &str, &str); 5] = [
         2,
         "let p_child = select(0.0f, chosen / sum, live);",
         "let p_child = select(0.0f, chosen * (1.0f / sum), live);",
+    ),
+    (
+        "tree: no quad evaluated at its scales",
+        2,
+        "if f0.y * f1.y * f2.y * f3.y == 0.0f {",
+        "if false {",
     ),
     (
         "tree pmf: trail bits swapped",
@@ -385,8 +391,9 @@ const MUTATIONS: [(&str, usize, &str, &str); 5] = [
 ];
 
 /// The check is sharp: a threshold test with `<=` instead of `<`, a float product for the
-/// column, the importance's products in another order, a level's probability by a
-/// reciprocal, or a trail read wrong changes outputs.
+/// column, the importance's products in another order, a quad out of range not evaluated
+/// again at its scales, a level's probability by a reciprocal, or a trail read wrong changes
+/// outputs.
 #[test]
 fn a_subtle_change_is_detected() {
     let Some(gpu) = lavapipe() else { return };

@@ -100,12 +100,12 @@ const BIG: f32 = 4.253_529_6e37;
 /// normalised, so every finite normal whose largest coordinate is at least `2^-126` counts
 /// (a smaller, zero, NaN or infinite one means a medium). A non-finite `p` gives no light.
 ///
-/// **Range.** The four children of a quad are evaluated with their lengths (`p - c`, `r`)
-/// and powers multiplied by exact powers of two, chosen per quad from the children's largest
-/// `|p - c|` coordinate or radius and largest power. Importances are homogeneous (degree -2 in
-/// lengths, 1 in power) and a walk compares only siblings, so the scales change no choice
-/// and no bit where an unscaled evaluation stayed in range; where it did not, nothing
-/// overflows or underflows: a light at `1e20` beside lights at 1, faint lights seen from far
+/// **Range.** A quad whose children's `phi / max(d^2, r^2)` leave `[2^-100, 2^100)` is
+/// evaluated again with their lengths (`p - c`, `r`) and powers multiplied by exact powers
+/// of two, chosen from the children's largest `|p - c|` coordinate or radius and largest
+/// power. Importances are homogeneous (degree -2 in lengths, 1 in power) and a walk compares
+/// only siblings, so the scales change no choice and no bit where the unscaled evaluation
+/// stayed in range; where it did not, nothing overflows or underflows: a light at `1e20` beside lights at 1, faint lights seen from far
 /// away, a shading point at `1e30`, a scene far from the origin. What remains: siblings whose
 /// distances differ by more than `2^63` (the nearer one's `d^2` is held at `2^-126` of the
 /// farther's scale and takes all but about `2^-126` of the probability), and a light whose
@@ -124,8 +124,10 @@ const BIG: f32 = 4.253_529_6e37;
 /// the same way.
 ///
 /// **Never a light with probability 0**: a light of power 0, or whose importance at `p` is
-/// 0, is never returned; `sample` returns `Some((i, q))` only with `q > 0`, and `q` is
-/// `pmf(p, n, i)`. Where nothing contributes, `sample` is `None` and every `pmf` is 0.
+/// 0, is never returned; `sample` returns `Some((i, q))` only with `q >= 2^-126` (so `1 /
+/// q` is finite in `f32`), and `q` is `pmf(p, n, i)`. Importances and probabilities below
+/// `2^-126` count as 0, so a device that flushes subnormals gives the same bits. Where
+/// nothing contributes, `sample` is `None` and every `pmf` is 0.
 ///
 /// # Build
 ///
@@ -343,21 +345,24 @@ fn with_scales<L: Lane>(pt: &Point<L>, extents: [(L, L); 4]) -> Point<L> {
 /// (`1 / d^2`) ends the chain: `d cos(theta_w) = w . (p - c)`, `d sin(theta_w) =
 /// sqrt(d^2 - (w . (p - c))^2)`, `d cos(theta_b) = sqrt(d^2 - r^2)`, `d sin(theta_b) = r`.
 #[inline(always)]
-fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
+fn importance<L: Lane, const SCALED: bool>(pt: &Point<L>, w: &[L::U]) -> (L, L::Mask) {
     let word = |k: usize| w.get(k).copied().unwrap_or(L::U::splat(0));
     let f = |k: usize| L::from_bits(word(k));
     let zero = L::splat(0.0);
     let one = L::splat(1.0);
-    let ls = pt.len_scale;
+    // The quad's scales where it needs them (`SCALED`), else none (the same bits as a
+    // multiplication by 1).
+    let (ls, ps) = (pt.len_scale, pt.power_scale);
+    let by = |x: L, k: L| if SCALED { x * k } else { x };
     let d = [
-        (pt.p[0] - f(0)) * ls,
-        (pt.p[1] - f(1)) * ls,
-        (pt.p[2] - f(2)) * ls,
+        by(pt.p[0] - f(0), ls),
+        by(pt.p[1] - f(1), ls),
+        by(pt.p[2] - f(2), ls),
     ];
     let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    let r = f(3) * ls;
+    let r = by(f(3), ls);
     let r2 = r * r;
-    let phi = f(4) * pt.power_scale;
+    let phi = by(f(4), ps);
     // Inside the sphere (or on it): the cone of directions to it is the whole sphere.
     let outside = r2.simd_lt(d2);
     // The stored axis `v` is unit (to f32 rounding): `d cos(theta_w) = v . (p - c)` (folded
@@ -393,15 +398,30 @@ fn importance<L: Lane>(pt: &Point<L>, w: &[L::U]) -> L {
     let inv = one / dc;
     let cos_p = L::select(outside, cp * inv, one);
     let cos_pi = L::select(outside & pt.has_n, cpi * inv, one);
-    let imp = phi * inv * cos_pi * cos_p;
+    let q = phi * inv;
+    let imp = q * cos_pi * cos_p;
     let alive = cos_e.simd_lt(cos_p) & pt.valid;
     let imp = L::select(alive, imp, zero);
-    L::select(
-        zero.simd_lt(imp),
+    // In range: `phi / max(d^2, r^2)` in `[2^-100, 2^100)` (a child of power 0 always is).
+    // That covers every overflow and underflow the evaluation can meet: an infinite `d^2`
+    // or `r^2` makes it 0, one held at `2^-126` large, and a finite `d^2` keeps every
+    // product below it finite. A quad with a child out of range is evaluated again at its
+    // scales ([`with_scales`]).
+    let in_range =
+        q.simd_lt(L::splat(RANGE)) & L::splat(1.0 / RANGE).simd_le(q) | !zero.simd_lt(phi);
+    // Below `2^-126` an importance counts as 0 (flush-proof: a device that flushes
+    // subnormals sees the same).
+    let imp = L::select(
+        L::splat(f32::MIN_POSITIVE).simd_le(imp),
         L::select(imp.simd_lt(L::splat(BIG)), imp, L::splat(BIG)),
         zero,
-    )
+    );
+    (imp, in_range)
 }
+
+/// Unscaled importances are used where `phi / max(d^2, r^2)` lies below this (`2^100`) and
+/// at least its inverse.
+const RANGE: f32 = (1u128 << 100) as f32;
 
 /// Words of one quad: the four children of an inner node (192 bytes, three cache lines),
 /// field-major: word `k` of child `c` at `4 k + c`, so that a scalar walk loads each field
@@ -513,11 +533,19 @@ impl Children for f32 {
             touch(quads, w & INDEX_MASK);
             u32x4::splat(w & INDEX_MASK)
         });
-        // The children are the four lanes: the quad's scales are the lanes' largest.
-        let (len, power) = extent::<f32x4>(pt, &words);
-        let (len, power) = (len.to_array(), power.to_array());
-        let extents = [0, 1, 2, 3].map(|c| (f32x4::splat(len[c]), f32x4::splat(power[c])));
-        let imp = importance::<f32x4>(&with_scales(pt, extents), &words).to_array();
+        let (imp, in_range) = importance::<f32x4, false>(pt, &words);
+        // A child out of range (rare: a branch on the scene, not on `u`): the quad again at
+        // its scales, the largest of the four lanes' extents.
+        let bad = <u32x4 as UintLane>::select(in_range, u32x4::splat(0), u32x4::splat(u32::MAX));
+        let imp = if bad.to_bitmask() == 0 {
+            imp
+        } else {
+            let (len, power) = extent::<f32x4>(pt, &words);
+            let (len, power) = (len.to_array(), power.to_array());
+            let extents = [0, 1, 2, 3].map(|c| (f32x4::splat(len[c]), f32x4::splat(power[c])));
+            importance::<f32x4, true>(&with_scales(pt, extents), &words).0
+        }
+        .to_array();
         Opened {
             imp: imp.map(f32x4::splat),
             info: info.map(u32x4::splat),
@@ -574,8 +602,22 @@ macro_rules! children_one_by_one {
                 };
                 let w: [[_; NODE_WORDS]; 4] =
                     core::array::from_fn(|c| core::array::from_fn(|k| word(k, c)));
-                let pt = with_scales(pt, [0, 1, 2, 3].map(|c| extent::<$l>(pt, &w[c])));
-                let imp = [0, 1, 2, 3].map(|c| importance::<$l>(&pt, &w[c]));
+                let fast = [0, 1, 2, 3].map(|c| importance::<$l, false>(pt, &w[c]));
+                let ok = fast[0].1 & fast[1].1 & fast[2].1 & fast[3].1;
+                let imp = fast.map(|x| x.0);
+                // A lane with a child out of range (rare): its quad again at its scales.
+                let bad = <<$l as Lane>::U as UintLane>::select(
+                    ok,
+                    <$l as Lane>::U::splat(0),
+                    <$l as Lane>::U::splat(u32::MAX),
+                );
+                let imp = if bad.to_bitmask() == 0 {
+                    imp
+                } else {
+                    let pt = with_scales(pt, [0, 1, 2, 3].map(|c| extent::<$l>(pt, &w[c])));
+                    let scaled = [0, 1, 2, 3].map(|c| importance::<$l, true>(&pt, &w[c]).0);
+                    [0, 1, 2, 3].map(|c| <$l as Lane>::select(ok, imp[c], scaled[c]))
+                };
                 let info: [_; 4] = core::array::from_fn(|c| word(NODE_WORDS - 1, c));
                 let children = info.map(|w| w & <$l as Lane>::U::splat(INDEX_MASK));
                 Opened { imp, info, children }
@@ -644,8 +686,10 @@ fn walk<L: Lane, K: Children<W = L>, C: Chooser<L>>(
         quad = K::advance(quad, children, high, second, active & !leaf);
     }
     // A leaf naming a light past the end (only in a corrupt storage), a walk cut short, a
-    // dead end or a probability that underflowed: no light.
-    let ok = done & !dead & index.simd_lt(L::U::splat(len)) & zero.simd_lt(prob);
+    // dead end or a probability below `2^-126` (its `1 / q` would overflow a renderer's
+    // `f32`, and a device that flushes subnormals sees 0): no light.
+    let ok =
+        done & !dead & index.simd_lt(L::U::splat(len)) & L::splat(f32::MIN_POSITIVE).simd_le(prob);
     (
         L::U::select(ok, index, L::U::splat(u32::MAX)),
         L::select(ok, prob, zero),

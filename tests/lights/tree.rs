@@ -128,7 +128,7 @@ fn pmf_sum_plus_dead_ends_is_one_and_sample_matches_pmf() {
                 let u = r.random::<f32>();
                 if let Some((i, q)) = t.sample(p, nn, u) {
                     assert!((i as usize) < n);
-                    assert!(q > 0.0 && q <= 1.0);
+                    assert!((f32::MIN_POSITIVE..=1.0).contains(&q));
                     assert_eq!(q.to_bits(), t.pmf(p, nn, i).to_bits(), "sample != pmf");
                     assert!(lights[i as usize].power > 0.0, "zero-power light chosen");
                 }
@@ -352,7 +352,7 @@ fn hostile_inputs_to_new() {
     let s = build(&huge);
     let t = LightTree::from_storage(&s).unwrap();
     if let Some((i, q)) = t.sample([0.5; 3], [0.0; 3], 0.5) {
-        assert!(i < 2 && q > 0.0 && q <= 1.0);
+        assert!(i < 2 && (f32::MIN_POSITIVE..=1.0).contains(&q));
     }
 }
 
@@ -369,7 +369,7 @@ fn hostile_points_and_u() {
             let n = [b, 0.0, a];
             for &u in &sp {
                 if let Some((i, q)) = t.sample(p, n, u) {
-                    assert!((i as usize) < lights.len() && q > 0.0 && q <= 1.0);
+                    assert!((i as usize) < lights.len() && (f32::MIN_POSITIVE..=1.0).contains(&q));
                     assert_eq!(q.to_bits(), t.pmf(p, n, i).to_bits());
                 }
             }
@@ -429,7 +429,7 @@ fn garbage_storage_never_panics_and_stays_valid() {
             let (p, n) = point(&mut r);
             if let Some((i, q)) = t.sample(p, n, r.random()) {
                 // Valid, though not necessarily `pmf(i)`: garbage leaves can name one light twice.
-                assert!((i as usize) < lights.len() && q > 0.0 && q <= 1.0);
+                assert!((i as usize) < lights.len() && (f32::MIN_POSITIVE..=1.0).contains(&q));
             }
             let q = t.pmf(p, n, r.random_range(0..45));
             assert!((0.0..=1.0).contains(&q));
