@@ -112,7 +112,7 @@ const BIG: f32 = 4.253_529_6e37;
 /// probability falls below `f32`'s normal range may read 0. The build groups lights by
 /// count, not by cost: a far outlier shares a group with its nearest neighbours, whose
 /// bounding sphere then contains `p`, and the group's importance `phi / r^2` starves those
-/// neighbours (probability about `(d / r)^2`: 0 once that is below `2^-126`, as for five of
+/// neighbours (probability about `(d / r)^2`: 0 once that is below `2^-126`, as for four of
 /// twenty unit lights beside one at `1e20`); where two groups both contain `p`, their
 /// shares follow `phi / r^2`, not their nearest lights. A cost-based split (pbrt-v4's)
 /// would isolate the outlier.
