@@ -217,7 +217,7 @@ fn wcli_tree_importance(pt: WcliPoint, ls: f32, ps: f32, base: u32, quads: u32, 
     let cos_pi = select(1.0f, cpi * inv, outside && pt.has_n);
     let q = phi * inv;
     let imp0 = q * cos_pi * cos_p;
-    let alive = cos_e < cos_p && pt.valid;
+    let alive = cos_e <= cos_p && pt.valid;
     let imp = select(0.0f, imp0, alive);
     let in_range = (q < WCLI_TREE_RANGE && 1.0f / WCLI_TREE_RANGE <= q) || !(0.0f < phi);
     let clamped = select(0.0f, select(WCLI_TREE_BIG, imp, imp < WCLI_TREE_BIG), WCLI_F32_MIN_POSITIVE <= imp);

@@ -19,7 +19,9 @@ use wide::{f32x4, f32x8, f32x16, u32x4, u32x8, u32x16};
 /// A one-sided area light: its triangle's box, `axis` its normal, `cos_theta_o = 1`,
 /// `cos_theta_e = 0` (cosine falloff to 90 degrees). A point light: a degenerate box,
 /// `cos_theta_o = -1` (every direction), `cos_theta_e = 0`. A spot light: `cos_theta_o` the
-/// cosine of the full-intensity angle, `cos_theta_e` the cosine of the falloff angle beyond it.
+/// cosine of the full-intensity angle, `cos_theta_e` the cosine of the falloff angle beyond it
+/// (1 for a hard edge). Beyond 90 degrees from the cone nothing is chosen: a `cos_theta_e`
+/// below 0 acts as 0.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LightBounds {
     /// Lower corner of the box around the emitter.
@@ -88,7 +90,8 @@ const BIG: f32 = 4.253_529_6e37;
 /// nodes), `theta_b = asin(r / d)` (`pi` inside the sphere),
 /// `theta' = max(0, theta_w - theta_o - theta_b)`:
 /// `I = phi cos(theta') / max(d^2, r^2) * cos(max(0, theta_i - theta_b))` if
-/// `cos(theta') > cos(theta_e)`, else 0, where `theta_i` is the angle between `n` and `p - c`
+/// `cos(theta') >= cos(theta_e)`, else 0 (with a strict `>` a hard-edged spot, `cos_theta_e =
+/// 1`, would never be chosen), where `theta_i` is the angle between `n` and `p - c`
 /// folded onto `[0, 90]` degrees (both sides of a surface: transmission), and the last factor
 /// is 1 for `n = [0, 0, 0]` (a point in a medium). Angles are never formed: the cosines and
 /// sines of differences come from products and `sqrt` only (no libm transcendental), carried
@@ -402,7 +405,7 @@ fn importance<L: Lane, const SCALED: bool>(pt: &Point<L>, w: &[L::U]) -> (L, L::
     let cos_pi = L::select(outside & pt.has_n, cpi * inv, one);
     let q = phi * inv;
     let imp = q * cos_pi * cos_p;
-    let alive = cos_e.simd_lt(cos_p) & pt.valid;
+    let alive = cos_e.simd_le(cos_p) & pt.valid;
     let imp = L::select(alive, imp, zero);
     // In range: `phi / max(d^2, r^2)` in `[2^-100, 2^100)` (a child of power 0 always is).
     // That covers every overflow and underflow the evaluation can meet: an infinite `d^2`

@@ -829,3 +829,35 @@ fn extreme_scales_drop_no_light() {
         }
     }
 }
+
+/// A hard-edged spot (`cos_theta_e = 1`: no falloff beyond `theta_o`) is chosen where `p`
+/// lies inside its cone, never outside it (a strict `cos(theta') > cos(theta_e)` test never
+/// chose it at all: a scene of such spots returned `None` everywhere).
+#[test]
+fn hard_edged_spots_are_chosen_inside_their_cone() {
+    let spot = |c: [f32; 3], axis: [f32; 3]| LightBounds {
+        min: c,
+        max: c,
+        power: 1.0,
+        axis,
+        cos_theta_o: 0.9,
+        cos_theta_e: 1.0,
+        two_sided: false,
+    };
+    let lights = [
+        spot([0.0; 3], [0.0, 0.0, 1.0]),
+        spot([4.0, 0.0, 0.0], [0.0, 0.0, -1.0]),
+    ];
+    let s = build(&lights);
+    let t = LightTree::from_storage(&s).unwrap();
+    // On the first spot's axis, below the second: only the first lights it.
+    let (i, q) = t
+        .sample([0.0, 0.0, 3.0], [0.0; 3], 0.5)
+        .expect("inside the first cone");
+    assert_eq!((i, q), (0, 1.0));
+    assert_eq!(t.pmf([0.0, 0.0, 3.0], [0.0; 3], 1), 0.0);
+    // Below the second spot, inside its cone only.
+    assert_eq!(t.sample([4.0, 0.0, -2.0], [0.0; 3], 0.25), Some((1, 1.0)));
+    // Beside both, outside both cones: nothing.
+    assert_eq!(t.sample([2.0, 0.0, 0.0], [0.0; 3], 0.5), None);
+}
