@@ -99,17 +99,19 @@ const BIG: f32 = 4.253_529_6e37;
 /// r^2)`, `d sin(theta_b) = r`), so the three square roots are independent and one division
 /// (`1 / max(d^2, r^2)`) ends the evaluation; the node stores its unit axis and the cosine
 /// and sine of `theta_o` ready as `f32`, so a visit decodes nothing. pbrt-v4 clamps `d^2`
-/// below by the box's half *diagonal length*; we use the bounding radius *squared* (the same units as `d^2`). `n` need not be unit: it is scaled by a power of two and
-/// normalised, so every finite normal whose largest coordinate is at least `2^-126` counts
-/// (a smaller, zero, NaN or infinite one means a medium). A non-finite `p` gives no light.
+/// below by the box's half *diagonal length*; we use the bounding radius *squared* (the same
+/// units as `d^2`). `n` need not be unit: it is scaled by a power of two and normalised, so
+/// every finite normal whose largest coordinate is at least `2^-126` counts (a smaller,
+/// zero, NaN or infinite one means a medium). A non-finite `p` gives no light.
 ///
 /// **Range.** A quad whose children's `phi / max(d^2, r^2)` leave `[2^-100, 2^100)` is
 /// evaluated again with their lengths (`p - c`, `r`) and powers multiplied by exact powers
 /// of two, chosen from the children's largest `|p - c|` coordinate or radius and largest
 /// power. Importances are homogeneous (degree -2 in lengths, 1 in power) and a walk compares
 /// only siblings, so the scales change no choice and no bit where the unscaled evaluation
-/// stayed in range; where it did not, nothing overflows or underflows: a light at `1e20` beside lights at 1, faint lights seen from far
-/// away, a shading point at `1e30`, a scene far from the origin. What remains: siblings whose
+/// stayed in range; where it did not, nothing overflows or underflows: a light at `1e20`
+/// beside lights at 1, faint lights seen from far away, a shading point at `1e30`, a scene
+/// far from the origin. What remains: siblings whose
 /// distances differ by more than `2^63` (the nearer one's `d^2` is held at `2^-126` of the
 /// farther's scale and takes all but about `2^-126` of the probability), and a light whose
 /// probability falls below `f32`'s normal range may read 0. The build groups lights by
@@ -243,18 +245,18 @@ fn pos<L: Lane>(x: L) -> L {
 }
 
 /// The shading point as the walk sees it: `p`, the unit normal (or zeros), whether there is
-/// one, whether `p` is finite, and the walk's exact power-of-two scales of lengths and of
-/// powers ([`scaled`]).
+/// one, whether `p` is finite, and the exact power-of-two scales of lengths and of powers
+/// that a quad out of range is evaluated at ([`with_scales`]; 1 otherwise).
 #[derive(Clone, Copy)]
 pub(super) struct Point<L: Lane> {
     p: [L; 3],
     n: [L; 3],
     has_n: L::Mask,
     valid: L::Mask,
-    /// Multiplies every `p - c` and radius: `2^k`, so that the root's children's largest
+    /// Multiplies every `p - c` and radius: `2^k`, so that the quad's children's largest
     /// `|p - c|` coordinate or radius lies in `[1, 4)`.
     len_scale: L,
-    /// Multiplies every power: `2^k`, so that the root's children's largest power lies in
+    /// Multiplies every power: `2^k`, so that the quad's children's largest power lies in
     /// `[1, 4)`.
     power_scale: L,
 }
