@@ -2,7 +2,8 @@
 # tools/fuzz.sh [seconds per target] [target ...]: a fuzz campaign — every target in
 # fuzz/fuzz_targets (or the ones named) runs as a libFuzzer *search* (cargo-fuzz), starting
 # from its committed corpus fuzz/corpus/<target>, for the given time (default 60 s), one
-# after the other on one core. Then:
+# after the other on one core (WARPCORE_FUZZ_JOBS=N: N targets at a time, each on its own
+# core). Then:
 #
 # * what the search found that adds coverage is merged into fuzz/corpus/<target>
 #   (libFuzzer's -merge=1 -use_counters=0: only inputs that reach an edge the corpus does
@@ -28,7 +29,9 @@
 # toolchain everything runs with `-s none` on stable, and the script says so.
 #
 # Environment: WARPCORE_FUZZ_MERGE (default 1), WARPCORE_FUZZ_ASAN (default 1; 0: no sanitizer
-# anywhere), WARPCORE_FUZZ_ARGS (extra libFuzzer flags).
+# anywhere), WARPCORE_FUZZ_JOBS (default 1: targets searched at once; libFuzzer runs one
+# process per target, so up to the number of cores gives each target the same executions in
+# less wall time), WARPCORE_FUZZ_ARGS (extra libFuzzer flags).
 set -uo pipefail
 cd "$(dirname "$0")/../fuzz" || exit 2
 
@@ -74,6 +77,13 @@ build_start=$SECONDS
 for san in none address; do
   list=()
   for t in "${targets[@]}"; do [ "$(sanitizer "$t")" = "$san" ] && list+=("$t"); done
+  [ "${#list[@]}" -gt 0 ] || continue
+  if [ "${#list[@]}" -eq "$(ls fuzz_targets/*.rs | wc -l)" ]; then
+    # Every target: one cargo invocation builds them in parallel.
+    cargo $toolchain fuzz build -s "$san" --target-dir "target/$san" >"$logs/build-$san.log" 2>&1 \
+      || { cat "$logs/build-$san.log"; echo "build of the fuzz targets failed" >&2; exit 2; }
+    continue
+  fi
   for t in "${list[@]}"; do
     fuzz build "$t" >"$logs/build-$t.log" 2>&1 \
       || { cat "$logs/build-$t.log"; echo "build of $t failed" >&2; exit 2; }
@@ -81,10 +91,10 @@ for san in none address; do
 done
 echo "built ${#targets[@]} targets in $((SECONDS - build_start)) s"
 
-findings=0
-rows=()
-total_execs=0
-for t in "${targets[@]}"; do
+# One target's search, its merge and its table row (in $logs/row-<target>: row, executions,
+# finding flag), so that searches can run side by side.
+search() {
+  local t=$1 new log before rc execs rate finding added artifact
   new=$(mktemp -d)
   log=$logs/$t.log
   before=$(find "corpus/$t" -type f ! -name '.*' | wc -l)
@@ -97,9 +107,7 @@ for t in "${targets[@]}"; do
   [ -n "$execs" ] || execs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#')
   execs=${execs:-0}
   rate=$(sed -n 's/^stat::average_exec_per_sec: *\([0-9]*\).*/\1/p' "$log" | tail -1)
-  total_execs=$((total_execs + execs))
   if [ "$rc" -ne 0 ]; then
-    findings=$((findings + 1))
     artifact=$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | tail -1)
     finding="exit $rc: ${artifact:-no artifact} (log fuzz/$log)"
     grep -m1 -E "panicked at|ERROR: libFuzzer|ERROR: AddressSanitizer" "$log" | sed 's/^/    /'
@@ -113,9 +121,34 @@ for t in "${targets[@]}"; do
     added=$(($(find "corpus/$t" -type f ! -name '.*' | wc -l) - before))
   fi
   rm -rf "$new"
-  rows+=("$(printf '%-16s %-8s %14s %10s %6s  %s' "$t" "$(sanitizer "$t")" "$execs" "${rate:-?}" "$added" "$finding")")
+  printf '%s\n%s\n%s\n' \
+    "$(printf '%-16s %-8s %14s %10s %6s  %s' "$t" "$(sanitizer "$t")" "$execs" "${rate:-?}" "$added" "$finding")" \
+    "$execs" "$([ "$rc" -ne 0 ] && echo 1 || echo 0)" >"$logs/row-$t"
   printf '%s: %s executions in %s s, %s corpus files added, finding: %s\n' \
     "$t" "$execs" "$secs" "$added" "$finding"
+}
+
+parallel=${WARPCORE_FUZZ_JOBS:-1}
+case $parallel in '' | *[!0-9]* | 0) echo "WARPCORE_FUZZ_JOBS must be a positive integer" >&2; exit 2 ;; esac
+for t in "${targets[@]}"; do
+  rm -f "$logs/row-$t"
+  while [ "$(jobs -rp | wc -l)" -ge "$parallel" ]; do wait -n; done
+  search "$t" &
+done
+wait
+
+findings=0
+rows=()
+total_execs=0
+for t in "${targets[@]}"; do
+  if [ -f "$logs/row-$t" ]; then
+    mapfile -t r <"$logs/row-$t"
+  else
+    r=("$(printf '%-16s %-8s %14s %10s %6s  %s' "$t" "$(sanitizer "$t")" 0 '?' 0 "no result")" 0 1)
+  fi
+  rows+=("${r[0]}")
+  total_execs=$((total_execs + r[1]))
+  findings=$((findings + r[2]))
 done
 
 echo
