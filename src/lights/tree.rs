@@ -480,6 +480,23 @@ pub(super) struct Opened<L: Lane, Q> {
     children: [Q; 4],
 }
 
+/// The scalar walk's quad (its four children in the four lanes of `words`) evaluated again
+/// at its scales, the largest of the four lanes' extents ([`with_scales`]). Rare (a branch on
+/// the scene, not on `u`), so out of line: inlined, its registers cost the common path of
+/// every walk.
+#[cold]
+#[inline(never)]
+fn rescaled4(pt: &Point<f32x4>, rec: &[u32; QUAD_WORDS]) -> f32x4 {
+    let rows = rec.as_chunks::<4>().0;
+    let words: &[u32x4; NODE_WORDS] = &core::array::from_fn(|k| {
+        from_storage_order(u32x4::new(rows.get(k).copied().unwrap_or([0; 4])))
+    });
+    let (len, power) = extent::<f32x4>(pt, words);
+    let (len, power) = (len.to_array(), power.to_array());
+    let extents = [0, 1, 2, 3].map(|c| (f32x4::splat(len[c]), f32x4::splat(power[c])));
+    importance::<f32x4, true>(&with_scales(pt, extents), words).0
+}
+
 /// A quad of zeros: what a quad index past the end reads (never in a storage `new` wrote).
 const ZERO_QUAD: [u32; QUAD_WORDS] = [0; QUAD_WORDS];
 
@@ -542,15 +559,12 @@ impl Children for f32 {
         });
         let (imp, in_range) = importance::<f32x4, false>(pt, &words);
         // A child out of range (rare: a branch on the scene, not on `u`): the quad again at
-        // its scales, the largest of the four lanes' extents.
+        // its scales.
         let bad = <u32x4 as UintLane>::select(in_range, u32x4::splat(0), u32x4::splat(u32::MAX));
         let imp = if bad.to_bitmask() == 0 {
             imp
         } else {
-            let (len, power) = extent::<f32x4>(pt, &words);
-            let (len, power) = (len.to_array(), power.to_array());
-            let extents = [0, 1, 2, 3].map(|c| (f32x4::splat(len[c]), f32x4::splat(power[c])));
-            importance::<f32x4, true>(&with_scales(pt, extents), &words).0
+            rescaled4(pt, rec)
         }
         .to_array();
         Opened {
