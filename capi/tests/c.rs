@@ -72,7 +72,10 @@ fn build_staticlib() -> PathBuf {
     {
         let release = profile_dir.file_name().is_some_and(|n| n == "release");
         let mut cargo = Command::new(env!("CARGO"));
-        cargo.args(["build", "-p", "warpcore-capi", "--lib"]);
+        // `-p warpcore` as well: the core crate then resolves with its default features, as
+        // in the workspace's `cargo test`, whose core library this build reuses (alone, capi
+        // names the same families without `default` and the core would be compiled again).
+        cargo.args(["build", "-p", "warpcore-capi", "-p", "warpcore", "--lib"]);
         if release {
             cargo.arg("--release");
         }
