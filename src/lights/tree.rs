@@ -480,10 +480,11 @@ pub(super) struct Opened<L: Lane, Q> {
     children: [Q; 4],
 }
 
-/// The scalar walk's quad (its four children in the four lanes of `words`) evaluated again
-/// at its scales, the largest of the four lanes' extents ([`with_scales`]). Rare (a branch on
-/// the scene, not on `u`), so out of line: inlined, its registers cost the common path of
-/// every walk.
+/// The scalar walk's quad (its storage words `rec`, read again as the four children in the
+/// four lanes) evaluated again at its scales, the largest of the four lanes' extents
+/// ([`with_scales`]). Rare (a branch on the scene, not on `u`), so out of line: inlined, its
+/// registers cost the common path of every walk; and it reads the storage rather than take
+/// the walk's loaded words, which the call would make every quad store first.
 #[cold]
 #[inline(never)]
 fn rescaled4(pt: &Point<f32x4>, rec: &[u32; QUAD_WORDS]) -> f32x4 {
