@@ -38,6 +38,8 @@ cd "$(dirname "$0")/../fuzz" || exit 2
 secs=${1:-60}
 [ "$#" -gt 0 ] && shift
 case $secs in '' | *[!0-9]*) echo "usage: tools/fuzz.sh [seconds per target] [target ...]" >&2; exit 2 ;; esac
+parallel=${WARPCORE_FUZZ_JOBS:-1}
+case $parallel in '' | *[!0-9]* | 0) echo "WARPCORE_FUZZ_JOBS must be a positive integer" >&2; exit 2 ;; esac
 if [ "$#" -gt 0 ]; then
   targets=("$@")
 else
@@ -91,6 +93,9 @@ for san in none address; do
 done
 echo "built ${#targets[@]} targets in $((SECONDS - build_start)) s"
 
+# A target's line of the table: row <target> <executions> <exec/s> <files added> <finding>.
+row() { printf '%-16s %-8s %14s %10s %6s  %s' "$1" "$(sanitizer "$1")" "$2" "$3" "$4" "$5"; }
+
 # One target's search, its merge and its table row (in $logs/row-<target>: row, executions,
 # finding flag), so that searches can run side by side.
 search() {
@@ -121,15 +126,12 @@ search() {
     added=$(($(find "corpus/$t" -type f ! -name '.*' | wc -l) - before))
   fi
   rm -rf "$new"
-  printf '%s\n%s\n%s\n' \
-    "$(printf '%-16s %-8s %14s %10s %6s  %s' "$t" "$(sanitizer "$t")" "$execs" "${rate:-?}" "$added" "$finding")" \
+  printf '%s\n%s\n%s\n' "$(row "$t" "$execs" "${rate:-?}" "$added" "$finding")" \
     "$execs" "$([ "$rc" -ne 0 ] && echo 1 || echo 0)" >"$logs/row-$t"
   printf '%s: %s executions in %s s, %s corpus files added, finding: %s\n' \
     "$t" "$execs" "$secs" "$added" "$finding"
 }
 
-parallel=${WARPCORE_FUZZ_JOBS:-1}
-case $parallel in '' | *[!0-9]* | 0) echo "WARPCORE_FUZZ_JOBS must be a positive integer" >&2; exit 2 ;; esac
 for t in "${targets[@]}"; do
   rm -f "$logs/row-$t"
   while [ "$(jobs -rp | wc -l)" -ge "$parallel" ]; do wait -n; done
@@ -144,7 +146,7 @@ for t in "${targets[@]}"; do
   if [ -f "$logs/row-$t" ]; then
     mapfile -t r <"$logs/row-$t"
   else
-    r=("$(printf '%-16s %-8s %14s %10s %6s  %s' "$t" "$(sanitizer "$t")" 0 '?' 0 "no result")" 0 1)
+    r=("$(row "$t" 0 '?' 0 "no result")" 0 1)
   fi
   rows+=("${r[0]}")
   total_execs=$((total_execs + r[1]))
