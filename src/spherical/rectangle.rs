@@ -39,7 +39,9 @@ pub(super) fn setup<L: Lane>(corner: V<L>, ex: V<L>, ey: V<L>, p: V<L>) -> Rect<
     let one = L::splat(1.0);
     let c = flush_subnormal(sub(corner, p));
     let (ex, ey) = (flush_subnormal(ex), flush_subnormal(ey));
-    let finite = all_finite([c, ex, ey]);
+    // Only `corner - p` needs a finiteness test: infinite `ex` or `ey` fail `scaled`, NaN ones
+    // give a NaN `w` or `h`.
+    let finite = all_finite([c]);
     let (k, scaled) = pow2_scale([c, ex, ey]);
     let (c, ex, ey) = (scale(c, k), scale(ex, k), scale(ey, k));
     let w = norm(ex);

@@ -30,13 +30,16 @@ pub(super) fn setup<L: Lane>(v: [V<L>; 3], p: V<L>) -> Tri<L> {
     let e1 = flush_subnormal(sub(v[1], v[0]));
     let e2 = flush_subnormal(sub(v[2], v[0]));
     let f2 = flush_subnormal(sub(v[2], v[1]));
-    let finite = all_finite([a[0], a[1], a[2], e1, e2, f2]);
     let (k, scaled) = pow2_scale(a);
     let a = [scale(a[0], k), scale(a[1], k), scale(a[2], k)];
     let (e1, e2, f2) = (scale(e1, k), scale(e2, k), scale(f2, k));
     let len = [norm(a[0]), norm(a[1]), norm(a[2])];
     let zero = L::splat(0.0);
-    let ok = finite & scaled & zero.simd_lt(len[0]) & zero.simd_lt(len[1]) & zero.simd_lt(len[2]);
+    // Finite input without a finiteness test: an infinite `v_i - p` fails `scaled`, a NaN one
+    // gives a NaN length, and the edges are finite where the `v_i - p` are below `2^127` (an
+    // edge is then below `2^128 - 2^103`, which rounds to at most `f32::MAX`), NaN only where
+    // some `v_i - p` is NaN or infinite.
+    let ok = scaled & zero.simd_lt(len[0]) & zero.simd_lt(len[1]) & zero.simd_lt(len[2]);
     let det = dot(a[0], cross(e1, e2));
     let turns = half_angle_turns(a, len, det.abs());
     // Below the area-sampling threshold, a triple product below FLAT_DET counts as zero (the
