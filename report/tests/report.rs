@@ -797,7 +797,8 @@ mod env {
         assert!(worst < 1e-12, "{worst}");
     }
 
-    /// Monte Carlo with 10^7 samples per case, importance-sampled by texel power in `f64` and
+    /// Monte Carlo with 2.5 x 10^6 samples per case (relative standard errors 6e-3 for the
+    /// darkest case down to 4e-4), importance-sampled by texel power in `f64` and
     /// uniform in solid angle inside the texel (an estimator independent of the Stokes
     /// machinery), agrees with the reference within the Sidak bound over the 8 cases.
     #[test]
@@ -845,7 +846,7 @@ mod env {
                     let total = acc;
                     let mut rng = Rng::new(1000 + pixel + 10 * side as u64);
                     let (mut s1, mut s2) = (0.0, 0.0);
-                    let count = 10_000_000;
+                    let count = 2_500_000;
                     for _ in 0..count {
                         let x = rng.uniform() * total;
                         let t = cdf.partition_point(|&c| c <= x).clamp(1, w * h) - 1;
