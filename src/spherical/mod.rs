@@ -480,6 +480,10 @@ pub fn rectangle_cosine_slice(
 
 #[cfg(test)]
 mod tests {
+    use crate::vec3::sub;
+    use rand_xoshiro::Xoshiro256PlusPlus;
+    use warpcore_testkit::{rng, unit};
+
     /// Values that probe the finiteness rules: zeros, subnormals (flushed), the largest
     /// difference the scaling accepts (`2^127 - 2^103`) and the smallest it rejects (`2^127`),
     /// `f32::MAX`, infinities and NaN.
@@ -502,27 +506,19 @@ mod tests {
         1e-30,
     ];
 
-    /// Half specials, half ordinary values in `+-[1e-3, 1e3]` (splitmix64).
-    fn value(s: &mut u64) -> f32 {
-        *s = s.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = *s;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        if z & 1 == 0 {
-            SPECIAL[(z >> 1) as usize % SPECIAL.len()]
+    /// Half specials, half ordinary values in `+-[1e-3, 1e3]`.
+    fn value(r: &mut Xoshiro256PlusPlus) -> f32 {
+        let pick = unit(r);
+        if pick < 0.5 {
+            SPECIAL[(pick * 2.0 * SPECIAL.len() as f32) as usize]
         } else {
-            let x = 10f32.powf(((z >> 8) as u32 as f32 / 4_294_967_296.0) * 6.0 - 3.0);
-            if z & 2 == 0 { x } else { -x }
+            let x = 10f32.powf(unit(r) * 6.0 - 3.0);
+            if pick < 0.75 { x } else { -x }
         }
     }
 
     fn finite(v: [f32; 3]) -> bool {
         v.iter().all(|x| x.is_finite())
-    }
-
-    fn diff(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
-        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
     }
 
     /// The set-ups test finiteness only where it is not implied: a light they accept (`ok`)
@@ -531,24 +527,21 @@ mod tests {
     /// just below `2^127` of opposite signs must not round to infinity.
     #[test]
     fn accepted_lights_have_finite_differences() {
-        let mut s = 7u64;
+        let mut r = rng(7);
         let mut accepted = [0u32; 2];
         for _ in 0..400_000 {
-            let mut v3 = || [value(&mut s), value(&mut s), value(&mut s)];
+            let mut v3 = || [value(&mut r), value(&mut r), value(&mut r)];
             let (v, p) = ([v3(), v3(), v3()], v3());
             if super::triangle::setup::<f32>(v, p).ok {
                 accepted[0] += 1;
-                let d = [diff(v[0], p), diff(v[1], p), diff(v[2], p)];
-                let e = [diff(v[1], v[0]), diff(v[2], v[0]), diff(v[2], v[1])];
+                let d = [sub(v[0], p), sub(v[1], p), sub(v[2], p)];
+                let e = [sub(v[1], v[0]), sub(v[2], v[0]), sub(v[2], v[1])];
                 assert!(d.iter().chain(&e).all(|&x| finite(x)), "{v:?} {p:?}");
             }
             let (c, ex, ey) = (v[0], v[1], v[2]);
             if super::rectangle::setup::<f32>(c, ex, ey, p).ok {
                 accepted[1] += 1;
-                assert!(
-                    finite(diff(c, p)) && finite(ex) && finite(ey),
-                    "{v:?} {p:?}"
-                );
+                assert!(finite(sub(c, p)) && finite(ex) && finite(ey), "{v:?} {p:?}");
             }
         }
         // Enough accepted lights for the assertions to mean something.
