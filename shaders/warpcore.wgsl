@@ -1671,7 +1671,12 @@ fn wci_cap_normal(r: WciRough, w: vec3<f32>, u: vec2<f32>, kp: vec3<f32>, bounde
     let wd = select(ws, ws * kp.y, bounded);
     let rim = kp.z * ws.z;
     let p = ld + bl;
-    let q = ld - bl;
+    // ld >= bl in IEEE arithmetic (a correctly rounded |ws| is at least ws.z); a GPU's sqrt
+    // (within its WGSL tolerance) can return l an ulp below ws.z, and a negative q would take
+    // the square root below of a negative number (NaN on the NVIDIA H200). No bits change
+    // where sqrt is correctly rounded.
+    let q0 = ld - bl;
+    let q = select(q0, 0.0f, q0 < 0.0f);
     let u0 = wci_unit_interval(u.x);
     let u1 = wci_unit_interval(u.y);
     let vp = (1.0f - u1) * p;

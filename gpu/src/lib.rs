@@ -600,8 +600,12 @@ impl Gpu {
         }
         let n = input.len() / inw;
         let mut out = Vec::with_capacity(n * outw);
-        for start in (0..n).step_by(CHUNK) {
-            let m = CHUNK.min(n - start);
+        // Also within the device's largest storage binding (128 MiB on the H200's Vulkan
+        // driver: 2^21 points of a light's 17 input words would exceed it).
+        let max_binding = self.device.limits().max_storage_buffer_binding_size as usize;
+        let chunk = CHUNK.min(max_binding / (4 * inw.max(outw))).max(1);
+        for start in (0..n).step_by(chunk) {
+            let m = chunk.min(n - start);
             let words = &input[start * inw..(start + m) * inw];
             let mut reads: Vec<(u32, &[u32])> = bound.to_vec();
             reads.push((in_binding, words));

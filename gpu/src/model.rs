@@ -71,6 +71,9 @@ pub struct Deviations {
     pub fuse: bool,
     /// Reassociate sums, differences and products.
     pub reassociate: bool,
+    /// Flush subnormal operands and results of arithmetic, comparisons and `sqrt` to zero
+    /// (of the same sign), as devices that flush do (the H200's Vulkan driver does).
+    pub flush: bool,
 }
 
 impl Deviations {
@@ -80,6 +83,7 @@ impl Deviations {
         sqrt_ulps: 0,
         fuse: false,
         reassociate: false,
+        flush: false,
     };
     /// What the WGSL accuracy rules allow (see the module docs).
     pub const WGSL: Deviations = Deviations {
@@ -87,6 +91,12 @@ impl Deviations {
         sqrt_ulps: 4,
         fuse: true,
         reassociate: true,
+        flush: false,
+    };
+    /// [`Deviations::WGSL`] on a device that flushes subnormals.
+    pub const WGSL_FLUSH: Deviations = Deviations {
+        flush: true,
+        ..Deviations::WGSL
     };
 }
 
@@ -96,6 +106,8 @@ pub struct Interpreter<'m> {
     by_name: HashMap<String, Handle<naga::Function>>,
     dev: Deviations,
     rng: u64,
+    /// `WARPCORE_MODEL_TRACE_NAN=1`: print where a NaN first arises from non-NaN operands.
+    trace_nan: bool,
 }
 
 enum Flow {
@@ -120,6 +132,15 @@ fn lit(l: &Literal) -> Val {
         Literal::AbstractInt(x) => Val::I(x as i32),
         Literal::AbstractFloat(x) => Val::F(x as f32),
         ref other => panic!("literal {other:?} is not used by the library"),
+    }
+}
+
+/// `x`, or a zero of its sign where `x` is subnormal.
+fn flushed(x: f32) -> f32 {
+    if x != 0.0 && x.abs() < f32::MIN_POSITIVE {
+        0.0f32.copysign(x)
+    } else {
+        x
     }
 }
 
@@ -157,6 +178,7 @@ impl<'m> Interpreter<'m> {
             by_name,
             dev,
             rng: seed | 1,
+            trace_nan: std::env::var("WARPCORE_MODEL_TRACE_NAN").is_ok_and(|v| v == "1"),
         }
     }
 
@@ -481,7 +503,14 @@ impl<'m> Interpreter<'m> {
             } => match self.eval(f, fr, *arg) {
                 Val::F(x) => {
                     let k = self.ulps(self.dev.sqrt_ulps);
-                    Val::F(step(libm::sqrtf(x), k))
+                    if self.trace_nan && x < 0.0 {
+                        eprintln!("NaN: {:?} sqrt({x:e})", f.name);
+                    }
+                    if self.dev.flush {
+                        Val::F(flushed(step(libm::sqrtf(flushed(x)), k)))
+                    } else {
+                        Val::F(step(libm::sqrtf(x), k))
+                    }
                 }
                 v => panic!("sqrt of {v:?}"),
             },
@@ -584,10 +613,20 @@ impl<'m> Interpreter<'m> {
     ) -> Val {
         let op = e.op;
         match (l, r) {
-            (Val::F(a), Val::F(b)) => match comparison(op, a, b) {
-                Some(c) => Val::B(c),
-                None => Val::F(self.float_op(f, fr, e, a, b, at)),
-            },
+            (Val::F(a), Val::F(b)) => {
+                let fl = |x: f32| if self.dev.flush { flushed(x) } else { x };
+                let (a, b) = (fl(a), fl(b));
+                match comparison(op, a, b) {
+                    Some(c) => Val::B(c),
+                    None => {
+                        let r = self.float_op(f, fr, e, a, b, at);
+                        if self.trace_nan && r.is_nan() && !a.is_nan() && !b.is_nan() {
+                            eprintln!("NaN: {:?} {a:e} {:?} {b:e}", f.name, e.op);
+                        }
+                        Val::F(if self.dev.flush { flushed(r) } else { r })
+                    }
+                }
+            }
             (Val::U(a), Val::U(b)) => match op {
                 B::Add => Val::U(a.wrapping_add(b)),
                 B::Subtract => Val::U(a.wrapping_sub(b)),
@@ -714,6 +753,26 @@ pub fn to_words(v: &Val, out: &mut Vec<u32>) {
 
 /// The largest deviation of the interpreted WGSL from the crate for `func` over `input`
 /// (`trials` evaluations per point with fresh random choices).
+/// The points of `input` (`func`'s input words) where the interpreted WGSL under `dev`
+/// returns a NaN or infinite float (integer outputs aside), with its output words.
+pub fn nonfinite(
+    module: &naga::Module,
+    func: &crate::Func,
+    input: &[u32],
+    dev: Deviations,
+    seed: u64,
+) -> Vec<(usize, Vec<u32>)> {
+    let outw = func.out_words();
+    let got = Interpreter::new(module, dev, seed).outputs(func, input);
+    got.chunks_exact(outw)
+        .enumerate()
+        .filter(|(_, g)| {
+            (0..outw).any(|j| !func.is_integer_output(j) && !f32::from_bits(g[j]).is_finite())
+        })
+        .map(|(p, g)| (p, g.to_vec()))
+        .collect()
+}
+
 pub fn deviation(
     module: &naga::Module,
     func: &crate::Func,

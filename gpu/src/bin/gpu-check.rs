@@ -15,6 +15,13 @@
 //! typical points per function (default 65536), `T` times each (default 4), and prints the
 //! largest deviation from the crate per function: the bounds in docs/gpu.md (for the
 //! solid-angle lights on `N / 16` points: coordinates absolute, densities relative).
+//!
+//! `gpu-check --scan [--random N] [--trials T]` needs no GPU either: the points a GPU run sends
+//! (hostile values included; default `N` 4096) through the model with subnormal flushing as
+//! well (`Deviations::WGSL_FLUSH`), listing every point whose output is NaN or infinite; exit
+//! status 1 if any. `WARPCORE_SCAN_ONLY=name` keeps the functions whose name contains `name`,
+//! `WARPCORE_MODEL_TRACE_NAN=1` prints the operation where each NaN first arises and
+//! `WARPCORE_MODEL_WORST=1` the point of the largest move.
 
 use warpcore_gpu::{
     Gpu, compare, compare_words, cpu_outputs, envmaps, inputs, lights, tables, typical_inputs,
@@ -26,6 +33,7 @@ fn main() {
     let mut random: Option<usize> = None;
     let mut strict = false;
     let mut model = false;
+    let mut scan = false;
     let mut trials = 4u32;
     let mut it = args.iter();
     while let Some(a) = it.next() {
@@ -38,6 +46,7 @@ fn main() {
             }
             "--strict" => strict = true,
             "--model" => model = true,
+            "--scan" => scan = true,
             "--trials" => {
                 trials = it.next().and_then(|v| v.parse().ok()).unwrap_or_else(|| {
                     eprintln!("--trials needs a number");
@@ -46,11 +55,14 @@ fn main() {
             }
             _ => {
                 eprintln!(
-                    "usage: gpu-check [--random N] [--strict] | --model [--random N] [--trials T]"
+                    "usage: gpu-check [--random N] [--strict] | --model [--random N] [--trials T] | --scan [--random N] [--trials T]"
                 );
                 std::process::exit(2)
             }
         }
+    }
+    if scan {
+        std::process::exit(run_scan(random.unwrap_or(1 << 12), trials));
     }
     if model {
         run_model(random.unwrap_or(1 << 16), trials);
@@ -231,4 +243,71 @@ fn run_model(random: usize, trials: u32) {
             show(rel, has_density)
         );
     }
+}
+
+/// `--scan`: the CI's points (hostile values included, as `gpu-check` sends them) through the
+/// CPU model with the WGSL freedoms and subnormal flushing; prints, per function, how many
+/// points return a NaN or infinite float, with up to three of them. Exit status 1 if any.
+fn run_scan(random: usize, trials: u32) -> i32 {
+    use warpcore_gpu::model::{Deviations, Interpreter, nonfinite};
+    let module = naga::front::wgsl::parse_str(warpcore_gpu::WGSL).expect("warpcore.wgsl parses");
+    println!(
+        "CPU model ({:?}), {trials} trials per point: non-finite outputs",
+        Deviations::WGSL_FLUSH
+    );
+    let words = |w: &[u32]| -> Vec<String> {
+        w.iter()
+            .map(|x| format!("{:e}", f32::from_bits(*x)))
+            .collect()
+    };
+    let mut bad_total = 0usize;
+    for (funcs, seed) in [(warps(), 0x5eed_0000u64), (lights(), 0x5fe0_0000)] {
+        for (k, func) in funcs.iter().enumerate() {
+            if let Ok(only) = std::env::var("WARPCORE_SCAN_ONLY")
+                && !func.name.contains(only.as_str())
+            {
+                continue;
+            }
+            let input = inputs(func.domain, random, seed + k as u64);
+            let (inw, outw) = (func.in_words(), func.out_words());
+            let want = cpu_outputs(func, &input);
+            let mut bad = 0usize;
+            for t in 0..trials {
+                let trial_seed = 0x5ca9 + k as u64 + 977 * t as u64;
+                let found = nonfinite(&module, func, &input, Deviations::WGSL_FLUSH, trial_seed);
+                for (p, g) in found.iter().take(3) {
+                    println!(
+                        "    {} at {:?}: model {:?}, crate {:?}",
+                        func.name,
+                        words(&input[p * inw..(p + 1) * inw]),
+                        words(g),
+                        words(&want[p * outw..(p + 1) * outw])
+                    );
+                }
+                bad += found.len();
+                if std::env::var("WARPCORE_MODEL_WORST").is_ok() {
+                    let got = Interpreter::new(&module, Deviations::WGSL_FLUSH, trial_seed)
+                        .outputs(func, &input);
+                    let d = compare(func, &got, &want);
+                    if let Some(p) = d.worst {
+                        println!(
+                            "    worst ({:e}) at {:?}: model {:?}, crate {:?}",
+                            d.max_abs,
+                            words(&input[p * inw..(p + 1) * inw]),
+                            words(&got[p * outw..(p + 1) * outw]),
+                            words(&want[p * outw..(p + 1) * outw])
+                        );
+                    }
+                }
+            }
+            println!(
+                "{:<42} {:>9} {:>10}",
+                func.name,
+                want.len() / outw * trials as usize,
+                bad
+            );
+            bad_total += bad;
+        }
+    }
+    i32::from(bad_total > 0)
 }
