@@ -18,9 +18,12 @@
 //!
 //! Each choice is drawn at random per operation and point (half of the moves at the extremes
 //! of the allowed range), over several trials per point: the result is the largest deviation
-//! seen, a measurement under the model, not a proof of a bound. Not modelled: flushing
-//! subnormals to zero (allowed by WGSL; see docs/gpu.md), errors of GPU float-to-int
-//! conversion of out-of-range values (the library converts only in-range values).
+//! seen, a measurement under the model, not a proof of a bound. [`Deviations::WGSL_FLUSH`]
+//! adds flushing subnormals to zero (allowed by WGSL, done by the NVIDIA H200's Vulkan
+//! driver): every subnormal operand and result of an arithmetic operation, comparison or
+//! `sqrt` becomes a zero of its sign (bitcasts and selects pass values unchanged, as on the
+//! device). Not modelled: errors of GPU float-to-int conversion of out-of-range values (the
+//! library converts only in-range values).
 
 use naga::{
     BinaryOperator as B, Expression as E, Handle, Literal, MathFunction, ScalarKind, Statement as S,
@@ -188,6 +191,11 @@ impl<'m> Interpreter<'m> {
         self.rng ^= self.rng << 25;
         self.rng ^= self.rng >> 27;
         self.rng.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+
+    /// `x` as the device holds it: [`flushed`] where the deviations flush subnormals.
+    fn flush(&self, x: f32) -> f32 {
+        if self.dev.flush { flushed(x) } else { x }
     }
 
     fn coin(&mut self) -> bool {
@@ -503,14 +511,11 @@ impl<'m> Interpreter<'m> {
             } => match self.eval(f, fr, *arg) {
                 Val::F(x) => {
                     let k = self.ulps(self.dev.sqrt_ulps);
+                    let x = self.flush(x);
                     if self.trace_nan && x < 0.0 {
                         eprintln!("NaN: {:?} sqrt({x:e})", f.name);
                     }
-                    if self.dev.flush {
-                        Val::F(flushed(step(libm::sqrtf(flushed(x)), k)))
-                    } else {
-                        Val::F(step(libm::sqrtf(x), k))
-                    }
+                    Val::F(self.flush(step(libm::sqrtf(x), k)))
                 }
                 v => panic!("sqrt of {v:?}"),
             },
@@ -614,8 +619,7 @@ impl<'m> Interpreter<'m> {
         let op = e.op;
         match (l, r) {
             (Val::F(a), Val::F(b)) => {
-                let fl = |x: f32| if self.dev.flush { flushed(x) } else { x };
-                let (a, b) = (fl(a), fl(b));
+                let (a, b) = (self.flush(a), self.flush(b));
                 match comparison(op, a, b) {
                     Some(c) => Val::B(c),
                     None => {
@@ -623,7 +627,7 @@ impl<'m> Interpreter<'m> {
                         if self.trace_nan && r.is_nan() && !a.is_nan() && !b.is_nan() {
                             eprintln!("NaN: {:?} {a:e} {:?} {b:e}", f.name, e.op);
                         }
-                        Val::F(if self.dev.flush { flushed(r) } else { r })
+                        Val::F(self.flush(r))
                     }
                 }
             }

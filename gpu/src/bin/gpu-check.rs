@@ -176,17 +176,13 @@ fn run_model(random: usize, trials: u32) {
             && let Some(p) = d.worst
         {
             let w = func.in_words();
-            let pt: Vec<String> = input[p * w..(p + 1) * w]
-                .iter()
-                .map(|x| format!("{:e}", f32::from_bits(*x)))
-                .collect();
             let mut want = vec![0; func.out_words()];
             func.eval(&input[p * w..(p + 1) * w], &mut want);
-            let want: Vec<String> = want
-                .iter()
-                .map(|x| format!("{:e}", f32::from_bits(*x)))
-                .collect();
-            println!("    worst at {pt:?} -> crate {want:?}");
+            println!(
+                "    worst at {:?} -> crate {:?}",
+                floats(&input[p * w..(p + 1) * w]),
+                floats(&want)
+            );
         }
         println!(
             "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
@@ -255,11 +251,6 @@ fn run_scan(random: usize, trials: u32) -> i32 {
         "CPU model ({:?}), {trials} trials per point: non-finite outputs",
         Deviations::WGSL_FLUSH
     );
-    let words = |w: &[u32]| -> Vec<String> {
-        w.iter()
-            .map(|x| format!("{:e}", f32::from_bits(*x)))
-            .collect()
-    };
     let mut bad_total = 0usize;
     for (funcs, seed) in [(warps(), 0x5eed_0000u64), (lights(), 0x5fe0_0000)] {
         for (k, func) in funcs.iter().enumerate() {
@@ -279,9 +270,9 @@ fn run_scan(random: usize, trials: u32) -> i32 {
                     println!(
                         "    {} at {:?}: model {:?}, crate {:?}",
                         func.name,
-                        words(&input[p * inw..(p + 1) * inw]),
-                        words(g),
-                        words(&want[p * outw..(p + 1) * outw])
+                        floats(&input[p * inw..(p + 1) * inw]),
+                        floats(g),
+                        floats(&want[p * outw..(p + 1) * outw])
                     );
                 }
                 bad += found.len();
@@ -293,9 +284,9 @@ fn run_scan(random: usize, trials: u32) -> i32 {
                         println!(
                             "    worst ({:e}) at {:?}: model {:?}, crate {:?}",
                             d.max_abs,
-                            words(&input[p * inw..(p + 1) * inw]),
-                            words(&got[p * outw..(p + 1) * outw]),
-                            words(&want[p * outw..(p + 1) * outw])
+                            floats(&input[p * inw..(p + 1) * inw]),
+                            floats(&got[p * outw..(p + 1) * outw]),
+                            floats(&want[p * outw..(p + 1) * outw])
                         );
                     }
                 }
@@ -310,4 +301,12 @@ fn run_scan(random: usize, trials: u32) -> i32 {
         }
     }
     i32::from(bad_total > 0)
+}
+
+/// Words shown as the `f32` values of their bits.
+fn floats(words: &[u32]) -> Vec<String> {
+    words
+        .iter()
+        .map(|x| format!("{:e}", f32::from_bits(*x)))
+        .collect()
 }
