@@ -2,7 +2,7 @@
 //! crate bit for bit: a check of the transcription that needs no GPU (the warps and the
 //! solid-angle lights). See `src/model.rs`.
 
-use warpcore_gpu::model::{Deviations, deviation, nonfinite};
+use warpcore_gpu::model::{Deviations, Interpreter, deviation, nonfinite};
 use warpcore_gpu::{Func, WGSL, inputs, lights, warps};
 
 /// The functions of `funcs` whose interpreted WGSL differs from the crate on their points
@@ -126,13 +126,9 @@ fn the_flushing_model_returns_finite_outputs() {
                 .flatten()
                 .copied()
                 .collect();
-            let found = nonfinite(
-                &module,
-                func,
-                &input,
-                Deviations::WGSL_FLUSH,
-                0x5ca9 + k as u64,
-            );
+            let got = Interpreter::new(&module, Deviations::WGSL_FLUSH, 0x5ca9 + k as u64)
+                .outputs(func, &input);
+            let found = nonfinite(func, &got);
             println!(
                 "{:<42} {:>8} points, {} non-finite ({:.1} s)",
                 func.name,

@@ -265,29 +265,25 @@ fn run_scan(random: usize, trials: u32) -> i32 {
             let mut bad = 0usize;
             for t in 0..trials {
                 let trial_seed = 0x5ca9 + k as u64 + 977 * t as u64;
-                let found = nonfinite(&module, func, &input, Deviations::WGSL_FLUSH, trial_seed);
-                for (p, g) in found.iter().take(3) {
+                let got = Interpreter::new(&module, Deviations::WGSL_FLUSH, trial_seed)
+                    .outputs(func, &input);
+                let found = nonfinite(func, &got);
+                let shown = |what: &str, p: usize| {
                     println!(
-                        "    {} at {:?}: model {:?}, crate {:?}",
-                        func.name,
+                        "    {what} at {:?}: model {:?}, crate {:?}",
                         floats(&input[p * inw..(p + 1) * inw]),
-                        floats(g),
+                        floats(&got[p * outw..(p + 1) * outw]),
                         floats(&want[p * outw..(p + 1) * outw])
-                    );
+                    )
+                };
+                for &p in found.iter().take(3) {
+                    shown(&func.name, p);
                 }
                 bad += found.len();
                 if std::env::var("WARPCORE_MODEL_WORST").is_ok() {
-                    let got = Interpreter::new(&module, Deviations::WGSL_FLUSH, trial_seed)
-                        .outputs(func, &input);
                     let d = compare(func, &got, &want);
                     if let Some(p) = d.worst {
-                        println!(
-                            "    worst ({:e}) at {:?}: model {:?}, crate {:?}",
-                            d.max_abs,
-                            floats(&input[p * inw..(p + 1) * inw]),
-                            floats(&got[p * outw..(p + 1) * outw]),
-                            floats(&want[p * outw..(p + 1) * outw])
-                        );
+                        shown(&format!("worst ({:e})", d.max_abs), p);
                     }
                 }
             }
