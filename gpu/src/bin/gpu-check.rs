@@ -1,14 +1,17 @@
 //! Runs every function of `shaders/warpcore.wgsl` (the solid-angle lights included),
-//! `shaders/warpcore_tables.wgsl` (with its
-//! tables buffer bound) and `shaders/warpcore_envmap.wgsl` (with test maps bound) on the default GPU adapter and reports, per function, how many points
-//! differ from the crate and by how much (absolute and in ulps; the table file's outputs are
+//! `shaders/warpcore_tables.wgsl` (with its tables buffer bound) and
+//! `shaders/warpcore_envmap.wgsl` (with test maps bound) on the default GPU adapter and
+//! reports, per function, how many points differ from the crate and by how much (absolute and in ulps; the table file's outputs are
 //! integer-derived, so only their mismatch counts are printed).
 //!
 //! `cargo run -p warpcore-gpu --release --bin gpu-check [-- --random N] [-- --strict]`
 //! (add `--features metal` on macOS, `--features dx12` for Direct3D 12 on Windows; Vulkan is
 //! always compiled in). `WGPU_ADAPTER_NAME=...` picks another adapter by name (wgpu's
 //! environment variable), `WGPU_BACKEND=vulkan` a backend. `--strict` exits with status 1 if
-//! any output differs from the crate. See docs/gpu.md for what a conforming GPU may change.
+//! any output differs from the crate; a NaN or infinite output (counted per function) always
+//! does. `--typical` sends the warps and lights the ordinary points of `--model` instead of
+//! the CI's (which include hostile values), for a table to set beside the model's. See
+//! docs/gpu.md for what a conforming GPU may change.
 //!
 //! `gpu-check --model [--random N] [--trials T]` needs no GPU: it evaluates the WGSL source on
 //! the CPU under the deviations the WGSL accuracy rules allow (`warpcore_gpu::model`), over `N`
@@ -34,6 +37,7 @@ fn main() {
     let mut strict = false;
     let mut model = false;
     let mut scan = false;
+    let mut typical = false;
     let mut trials = 4u32;
     let mut it = args.iter();
     while let Some(a) = it.next() {
@@ -47,6 +51,7 @@ fn main() {
             "--strict" => strict = true,
             "--model" => model = true,
             "--scan" => scan = true,
+            "--typical" => typical = true,
             "--trials" => {
                 trials = it.next().and_then(|v| v.parse().ok()).unwrap_or_else(|| {
                     eprintln!("--trials needs a number");
@@ -55,7 +60,7 @@ fn main() {
             }
             _ => {
                 eprintln!(
-                    "usage: gpu-check [--random N] [--strict] | --model [--random N] [--trials T] | --scan [--random N] [--trials T]"
+                    "usage: gpu-check [--random N] [--typical] [--strict] | --model [--random N] [--trials T] | --scan [--random N] [--trials T]"
                 );
                 std::process::exit(2)
             }
@@ -78,24 +83,35 @@ fn main() {
         gpu.info.driver_info
     );
     println!(
-        "{:<42} {:>9} {:>10} {:>12} {:>8}",
-        "function", "points", "mismatches", "max abs", "max ulp"
+        "{:<42} {:>9} {:>10} {:>12} {:>8} {:>10}",
+        "function", "points", "mismatches", "max abs", "max ulp", "non-finite"
     );
     let mut any = false;
-    // The warps, then the solid-angle lights (the points of tests/lavapipe.rs and
-    // tests/lavapipe_spherical.rs).
+    let mut bad = false;
+    // The warps, then the solid-angle lights: the points of tests/lavapipe.rs and
+    // tests/lavapipe_spherical.rs, or with --typical those of --model (ordinary inputs only).
     for (funcs, seed) in [(warps(), 0x5eed_0000), (lights(), 0x5fe0_0000)] {
         for (k, func) in funcs.iter().enumerate() {
-            let input = inputs(func.domain, random.unwrap_or(1 << 16), seed + k as u64);
+            let n = random.unwrap_or(1 << 16);
+            let input = if typical {
+                typical_inputs(func.domain, n, 0x0de1_0000 + k as u64)
+            } else {
+                inputs(func.domain, n, seed + k as u64)
+            };
             let want = cpu_outputs(func, &input);
             let got = or_exit(gpu.run(func, &input));
             let d = compare(func, &got, &want);
+            let nonfinite = warpcore_gpu::model::nonfinite(func, &got).len();
             any |= d.mismatches > 0;
+            bad |= nonfinite > 0;
             println!(
-                "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
-                func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
+                "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1} {:>10}",
+                func.name, d.points, d.mismatches, d.max_abs, d.max_ulp, nonfinite
             );
         }
+    }
+    if bad {
+        println!("some outputs are NaN or infinite: a defect (the crate's never are)");
     }
     // shaders/warpcore_tables.wgsl: integer arithmetic and an exact conversion only, so any
     // conforming device should give the crate's bits; mismatches are counted per check.
@@ -131,6 +147,9 @@ fn main() {
             "{:<42} {:>9} {:>10} {:>12.3e} {:>8.1}",
             func.name, d.points, d.mismatches, d.max_abs, d.max_ulp
         );
+    }
+    if bad {
+        std::process::exit(1);
     }
     if any {
         println!("some outputs differ from the crate: compare with the bounds in docs/gpu.md");
