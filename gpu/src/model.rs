@@ -587,7 +587,7 @@ impl<'m> Interpreter<'m> {
                 None => (l, r),
             };
             if let (Val::F(a), Val::F(b)) = (l, r) {
-                return Some((op, a, b));
+                return Some((op, self.flush(a), self.flush(b)));
             }
         }
         None
@@ -755,8 +755,6 @@ pub fn to_words(v: &Val, out: &mut Vec<u32>) {
     }
 }
 
-/// The largest deviation of the interpreted WGSL from the crate for `func` over `input`
-/// (`trials` evaluations per point with fresh random choices).
 /// The points whose outputs `got` (`func`'s output words, as [`Interpreter::outputs`] returns
 /// them) hold a NaN or infinite float (integer outputs aside).
 pub fn nonfinite(func: &crate::Func, got: &[u32]) -> Vec<usize> {
@@ -770,6 +768,8 @@ pub fn nonfinite(func: &crate::Func, got: &[u32]) -> Vec<usize> {
         .collect()
 }
 
+/// The largest deviation of the interpreted WGSL from the crate for `func` over `input`
+/// (`trials` evaluations per point with fresh random choices).
 pub fn deviation(
     module: &naga::Module,
     func: &crate::Func,
