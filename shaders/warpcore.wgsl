@@ -101,9 +101,10 @@ fn wci_unit_closed(x: f32) -> f32 {
     return select(0.0f, select(1.0f, x, x < 1.0f), 0.0f < x);
 }
 
-// A density made safe: NaN, -0.0 and negatives to +0.0, +inf to f32::MAX.
+// A density made safe: positive values below f32::MAX pass; NaN, -0.0, negatives, f32::MAX
+// and +inf (unbounded) to +0.0.
 fn wci_finite_density(p: f32) -> f32 {
-    return select(0.0f, select(WCI_F32_MAX, p, p < WCI_F32_MAX), 0.0f < p);
+    return select(0.0f, p, 0.0f < p && p < WCI_F32_MAX);
 }
 
 // `u as i32 as f32` (exact below 2^24) and `x as i32 as u32` (0 <= x < 2^31).
@@ -644,9 +645,10 @@ fn wc_sphere_cosine_hemisphere_inverse(d: vec3<f32>) -> vec2<f32> {
     return wci_to_disk(x, y, n);
 }
 
-// The cosine-weighted density cos(theta) / pi (0 below the horizon and for NaN).
+// The cosine-weighted density cos(theta) / pi (0 below the horizon and for NaN; a cosine
+// above 1 counts as 1).
 fn wc_sphere_cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
-    return wci_finite_density(cos_theta * WCI_FRAC_1_PI);
+    return wci_finite_density(select(cos_theta, 1.0f, 1.0f < cos_theta) * WCI_FRAC_1_PI);
 }
 
 // Lat-long: phi = 2 pi u0, theta = pi u1, d = (sin theta cos phi, sin theta sin phi, cos theta).

@@ -1020,24 +1020,38 @@ fn densities_match_the_jacobians() {
         sphere::equirect_pdf_to_solid_angle(1.0, [0.0, 0.0, 1.0]),
         0.0
     );
-    // +inf counts as f32::MAX; a quotient that overflows is clamped to f32::MAX.
-    let big = sphere::equirect_pdf_to_solid_angle(f32::INFINITY, [1.0, 0.0, 0.0]) as f64;
-    assert!(
-        (big * 2.0 * PI * PI / f32::MAX as f64 - 1.0).abs() < 1e-6,
-        "{big}"
+    // Unbounded densities give 0, never a saturated f32::MAX: +inf or f32::MAX in, and a
+    // quotient that would reach f32::MAX (a huge density next to the axis); just below,
+    // the quotient itself.
+    for d in [[1.0, 0.0, 0.0], [0.3, -0.4, 0.5]] {
+        assert_eq!(sphere::equirect_pdf_to_solid_angle(f32::INFINITY, d), 0.0);
+        assert_eq!(sphere::equirect_pdf_to_solid_angle(f32::MAX, d), 0.0);
+    }
+    assert_eq!(
+        sphere::equirect_pdf_to_solid_angle(1e30, [1e-15, 0.0, 1.0]),
+        0.0
+    );
+    let below = f32::from_bits(f32::MAX.to_bits() - 1);
+    let q = sphere::equirect_pdf_to_solid_angle(below, [1.0, 0.0, 0.0]) as f64;
+    assert!((q * 2.0 * PI * PI / below as f64 - 1.0).abs() < 1e-6, "{q}");
+    assert_eq!(
+        sphere::cosine_hemisphere_pdf(f32::INFINITY),
+        std::f32::consts::FRAC_1_PI
     );
     assert_eq!(
-        sphere::equirect_pdf_to_solid_angle(f32::MAX, [1e-15, 0.0, 1.0]),
-        f32::MAX
+        sphere::cosine_hemisphere_pdf(1.5),
+        std::f32::consts::FRAC_1_PI
     );
     // Within about 1e-19 of the axis x^2 + y^2 underflows: that is the axis.
     assert_eq!(
         sphere::equirect_pdf_to_solid_angle(1.0, [1e-30, 0.0, 1.0]),
         0.0
     );
+    assert_eq!(sphere::equal_area_pdf_to_solid_angle(f32::INFINITY), 0.0);
+    assert_eq!(sphere::equal_area_pdf_to_solid_angle(f32::MAX), 0.0);
     assert_eq!(
-        sphere::equal_area_pdf_to_solid_angle(f32::INFINITY),
-        f32::MAX * sphere::UNIFORM_PDF
+        sphere::equal_area_pdf_to_solid_angle(below),
+        below * sphere::UNIFORM_PDF
     );
     assert_eq!(sphere::equal_area_pdf_to_solid_angle(-1.0), 0.0);
     // The equator, any length: pdf / (2 pi^2).

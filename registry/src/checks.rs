@@ -429,7 +429,10 @@ pub fn sphere(data: &[u8]) {
             s::equal_area_pdf_to_solid_angle(pdf),
             s::cosine_hemisphere_pdf(pdf),
         ] {
-            assert!(!v.is_nan(), "pdf conversion of {pdf} at {d:?} is NaN");
+            assert!(
+                (0.0..f32::MAX).contains(&v),
+                "pdf conversion of {pdf} at {d:?}: {v} (NaN, negative or saturated)"
+            );
         }
         let size = w.get(k).copied().unwrap_or(1) % 4097;
         let texel = [d[1].to_bits() as i32, d[2].to_bits() as i32];

@@ -4,7 +4,9 @@
 //! both must give the scalar bits), `_slice` element by element over lengths that leave
 //! padded tails. Inputs: a cross product of special values (signed zeros, NaN with payloads,
 //! infinities, subnormals, values past the ends), uniform points, and arbitrary bit
-//! patterns; lights: the golden set and lights of arbitrary bits.
+//! patterns; lights: the golden set and lights of arbitrary bits. On the same inputs, every
+//! scalar output obeys the domain rule: finite and below `f32::MAX` in magnitude (never NaN,
+//! never infinite, never a saturated density).
 use warpcore::{f32x8, f32x16, u32x8, u32x16};
 use warpcore_registry::{
     Entry, Indexed, Light, LightMap, Map, OfLight, Quadrant, ToQuadrant, Visit, entries,
@@ -19,6 +21,11 @@ struct Source {
     point: Box<dyn Fn(usize, usize) -> f32>,
     word: Box<dyn Fn(usize) -> u32>,
 }
+
+/// Functions whose output is an image weight, not a point, solid angle or density: `+inf`
+/// passes through them by design (documented), so that building a distribution reports the
+/// texel as `Error::InfiniteWeight` instead of dropping it.
+const WEIGHTS: &[&str] = &["envmap::image::luminance"];
 
 fn bits_eq(a: &[f32], b: &[f32]) -> bool {
     a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
@@ -67,6 +74,22 @@ impl Check<'_> {
             std::array::from_fn(|k| std::array::from_fn(|c| l[3 * k + c]))
         })
     }
+    /// The domain rule on the scalar outputs: every value finite and below `f32::MAX` in
+    /// magnitude (no NaN, no infinity, no saturated density). [`WEIGHTS`] are only never NaN
+    /// and never negative.
+    fn total(&self, e: &Entry, input: &dyn std::fmt::Debug, out: &[f32]) {
+        let ok = if WEIGHTS.contains(&e.name) {
+            out.iter().all(|x| *x >= 0.0)
+        } else {
+            out.iter().all(|x| x.abs() < f32::MAX)
+        };
+        if !ok {
+            panic!(
+                "{} returns {out:?} for {input:?} ({} inputs): not finite, or saturated at f32::MAX",
+                e.name, self.src.name
+            );
+        }
+    }
     fn fail(&self, e: &Entry, form: &str, what: String) -> ! {
         panic!(
             "{} {form} differs from the scalar form on {} inputs: {what}",
@@ -92,6 +115,9 @@ impl Visit for Check<'_> {
         for g in 0..self.groups() {
             let p: [[f32; I]; 16] = self.points(g);
             let want: Vec<[f32; O]> = p.iter().map(|u| (m.scalar)(*u)).collect();
+            for (u, w) in p.iter().zip(&want) {
+                self.total(e, u, w);
+            }
             if let Some(x8) = m.x8 {
                 for half in 0..2 {
                     let v = x8(lanes8(&p[8 * half..]));
@@ -130,6 +156,9 @@ impl Visit for Check<'_> {
         for g in 0..self.groups() {
             let (i, seed) = (self.words(g, 0), self.words(g, 7));
             let want: Vec<[f32; O]> = (0..16).map(|j| (s.scalar)(i[j], seed[j])).collect();
+            for (j, w) in want.iter().enumerate() {
+                self.total(e, &(i[j], seed[j]), w);
+            }
             for half in 0..2 {
                 let at = |a: [u32; 16]| u32x8::new(std::array::from_fn(|j| a[8 * half + j]));
                 let v = (s.x8)(at(i), at(seed));
@@ -177,6 +206,7 @@ impl Visit for Check<'_> {
             let v16 = (m.x16)(lanes16(&p), u32x16::new(q));
             for j in 0..16 {
                 let want = (m.scalar)(p[j], q[j]);
+                self.total(e, &(p[j], q[j]), &want);
                 if !bits_eq(&v8[j], &want) || !bits_eq(&l16(v16, j), &want) {
                     self.fail(e, "_x8/_x16", format!("{:?} quadrant {}", p[j], q[j]));
                 }
@@ -193,6 +223,7 @@ impl Visit for Check<'_> {
                 let (u8, q8) = (m.x8)(lanes8(&p[8 * h..]));
                 for j in 0..8 {
                     let (want, wq) = (m.scalar)(p[8 * h + j]);
+                    self.total(e, &p[8 * h + j], &want);
                     if !bits_eq(&l8(u8, j), &want) || q8.to_array()[j] != wq {
                         self.fail(e, "_x8", format!("{:?}", p[8 * h + j]));
                     }
@@ -211,6 +242,9 @@ impl Visit for Check<'_> {
             let ls = self.lights(m.lights, g);
             let p: [[f32; I]; 16] = self.points(g);
             let want: Vec<[f32; O]> = (0..16).map(|j| (m.scalar)(ls[j], p[j])).collect();
+            for j in 0..16 {
+                self.total(e, &(ls[j], p[j]), &want[j]);
+            }
             for h in 0..2 {
                 let v = (m.x8)(light8(&ls[8 * h..8 * h + 8]), lanes8(&p[8 * h..]));
                 for j in 0..8 {
@@ -244,6 +278,7 @@ impl Visit for Check<'_> {
                 let v8 = (m.x8)(light8(&ls[8 * h..8 * h + 8])).to_array();
                 for j in 0..8 {
                     let want = (m.scalar)(ls[8 * h + j]);
+                    self.total(e, &ls[8 * h + j], &[want]);
                     if !bits_eq(&[v8[j], v16[8 * h + j]], &[want, want]) {
                         self.fail(e, "_x8/_x16", format!("{:?}", ls[8 * h + j]));
                     }

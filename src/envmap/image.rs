@@ -115,18 +115,15 @@ pub fn equirect_solid_angle_weights(
 fn equirect_body<L: Lane>(pdf: L, v: L) -> L {
     let zero = L::splat(0.0);
     let max = L::splat(f32::MAX);
-    let p = L::select(
-        zero.simd_lt(pdf),
-        L::select(pdf.simd_lt(max), pdf, max),
-        zero,
-    );
+    // Positive and below f32::MAX, else 0 (NaN, negatives and the unbounded: f32::MAX, +inf).
+    let bounded = |p: L| L::select(zero.simd_lt(p) & p.simd_lt(max), p, zero);
+    let p = bounded(pdf);
     let s = sin_pi(unit_interval(v));
     let pole = s.simd_eq(zero);
     let r = p * L::splat(INV_2_PI_SQ) / L::select(pole, L::splat(1.0), s);
     // At the pole itself (sin theta = 0, only v = 0 can give it) the density is unbounded:
     // 0, the pbrt / Mitsuba convention that `sphere::equirect_pdf_to_solid_angle` follows.
-    let r = L::select(pole, zero, r);
-    L::select(max.simd_lt(r), max, r)
+    bounded(L::select(pole, zero, r))
 }
 
 /// Converts an area pdf on a lat-long map's `[0, 1]^2` to a pdf with respect to solid angle
@@ -144,9 +141,10 @@ fn equirect_body<L: Lane>(pdf: L, v: L) -> L {
 /// towards the pole. (The weights do use the row centre, see
 /// [`equirect_solid_angle_weights`]: there it is the texel's exact solid angle.)
 ///
-/// Total: `v` is clamped by the forward rule; a NaN or negative `pdf` gives 0, `+inf` counts
-/// as `f32::MAX`; at the pole itself (`v = 0`) the result is 0 (the sample should be
-/// discarded, as in pbrt and Mitsuba), and an overflowing result is `f32::MAX`. Error: within
+/// Total: `v` is clamped by the forward rule; a NaN or negative `pdf` gives 0; at the pole
+/// itself (`v = 0`) the result is 0 (the sample should be discarded, as in pbrt and
+/// Mitsuba), and so is every other unbounded case: a `pdf` of `f32::MAX` or `+inf`, and a
+/// result that would reach `f32::MAX` (never a saturated density). Error: within
 /// 3 ulp of the `f64` formula (the sine's 2 ulp plus two roundings).
 #[inline]
 pub fn equirect_pdf_to_solid_angle(pdf: f32, v: f32) -> f32 {

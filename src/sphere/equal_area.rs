@@ -213,7 +213,9 @@ fn equal_area_pdf_to_solid_angle_body<L: Lane>(pdf: L) -> L {
 /// octahedral environment map) into a density over solid angle: `pdf / (4 pi)`, since the map
 /// preserves area and the sphere has area `4 pi`.
 ///
-/// Total: NaN, `-0.0` and negative densities give `0`, and `+inf` counts as `f32::MAX`.
+/// Total: NaN, `-0.0` and negative densities give `0`, and so do `f32::MAX` and `+inf` (a
+/// density `f32` cannot tell from unbounded: discard the sample); the result is always finite
+/// and below `f32::MAX`.
 #[inline]
 pub fn equal_area_pdf_to_solid_angle(pdf: f32) -> f32 {
     equal_area_pdf_to_solid_angle_body(pdf)

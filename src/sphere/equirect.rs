@@ -124,8 +124,9 @@ fn equirect_pdf_to_solid_angle_body<L: Lane>(pdf: L, d: [L; 3]) -> L {
 /// clamped like the inverse's). On the axis itself (`x = y = 0`, a set of measure zero where
 /// the density is unbounded; also within about `1e-19` of it, where `x^2 + y^2` underflows)
 /// the result is `0`, as in pbrt and Mitsuba. NaN, `-0.0` and
-/// negative densities give `0`, `+inf` counts as `f32::MAX`, and a result that would overflow
-/// gives `f32::MAX`. Error: a few ulp (roundings in `sin theta`, the product and the
+/// negative densities give `0`, and so do the unbounded ones: an input of `f32::MAX` or `+inf`,
+/// and a result that would reach `f32::MAX` (a huge density near the axis) — the axis's rule,
+/// never a saturated value. Error: a few ulp (roundings in `sin theta`, the product and the
 /// quotient).
 #[inline]
 pub fn equirect_pdf_to_solid_angle(pdf: f32, d: [f32; 3]) -> f32 {

@@ -72,7 +72,10 @@ fn cosine_hemisphere_inverse_body<L: Lane>(d: [L; 3]) -> [L; 2] {
 
 #[inline(always)]
 fn cosine_hemisphere_pdf_body<L: Lane>(cos_theta: L) -> L {
-    finite_density(cos_theta * L::splat(core::f32::consts::FRAC_1_PI))
+    // A cosine above 1 (`+inf` included) is 1; NaN stays NaN and gives 0.
+    let one = L::splat(1.0);
+    let c = L::select(one.simd_lt(cos_theta), one, cos_theta);
+    finite_density(c * L::splat(core::f32::consts::FRAC_1_PI))
 }
 
 /// Uniform hemisphere (`z >= 0`) through the concentric disk: the disk point `p` of
@@ -218,7 +221,8 @@ pub fn cosine_hemisphere_inverse_slice(d: &[[f32; 3]], out: &mut [[f32; 2]]) -> 
 /// Density of [`cosine_hemisphere`] with respect to solid angle: `cos theta / pi` (pass the
 /// direction's `z` for a unit direction).
 ///
-/// Below the horizon (`cos_theta <= 0`) and for NaN the density is `0`.
+/// Below the horizon (`cos_theta <= 0`) and for NaN the density is `0`; a `cos_theta` above 1
+/// (`+inf` included) counts as 1 (density `1 / pi`).
 #[inline]
 pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
     cosine_hemisphere_pdf_body(cos_theta)

@@ -88,11 +88,13 @@ fn clamped_direction<L: Lane>(d: [L; 3]) -> ([L; 3], L, L) {
     (([x, y, z]), rho2, rho2 + z * z)
 }
 
-/// A density made safe to return: NaN, `-0.0` and negatives become `+0.0`, `+inf` becomes
-/// `f32::MAX`, finite positive values pass unchanged.
+/// A density made safe to return: positive values below `f32::MAX` pass unchanged; NaN,
+/// `-0.0`, negatives, `f32::MAX` and `+inf` become `+0.0`. A density of `f32::MAX` or more is
+/// unbounded as far as `f32` can tell (its square in a power heuristic is infinite): it gets
+/// the rule of the conversions' other unbounded case, the lat-long axis, `0` (discard the
+/// sample, as pbrt and Mitsuba do there), never a saturated value.
 #[inline(always)]
 fn finite_density<L: Lane>(p: L) -> L {
     let zero = L::splat(0.0);
-    let max = L::splat(f32::MAX);
-    L::select(zero.simd_lt(p), L::select(p.simd_lt(max), p, max), zero)
+    L::select(zero.simd_lt(p) & p.simd_lt(L::splat(f32::MAX)), p, zero)
 }
