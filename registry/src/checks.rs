@@ -18,6 +18,41 @@ mod sampler;
 #[cfg(feature = "sampler")]
 pub use sampler::sampler;
 
+/// Every entry with typed bodies, the one the first word picks, through the lane proof of
+/// [`crate::lanes`] on the remaining words' bits: points (coordinate `d` of point `k` is word
+/// `17 k + d`, cycling), words (indices, seeds, quadrants) and, in the third group of 16,
+/// lights of those bits (the first two use the entry's golden lights). Every lane and slice
+/// form must give the scalar form's bits, and every scalar output must be finite and below
+/// `f32::MAX`: the registry's proof, searched instead of enumerated.
+pub fn registry(data: &[u8]) {
+    use crate::{Kind, entries, lanes};
+    let w = words(data);
+    let Some((&pick, rest)) = w.split_first() else {
+        return;
+    };
+    let typed: Vec<_> = entries()
+        .filter(|e| !matches!(e.kind, Kind::Other))
+        .collect();
+    let e = typed[pick as usize % typed.len()];
+    let bits: Vec<u32> = if rest.is_empty() {
+        vec![0]
+    } else {
+        rest.to_vec()
+    };
+    let n = bits.len();
+    let words = bits.clone();
+    let src = lanes::Source {
+        name: "fuzzed",
+        count: 48,
+        point: Box::new(move |k, d| f32::from_bits(bits[(17 * k + d) % n])),
+        word: Box::new(move |k| words[(7 * k + 3) % n]),
+    };
+    e.visit(&mut lanes::Check {
+        src: &src,
+        checked: 0,
+    });
+}
+
 /// The input bytes as 32-bit words (a trailing partial word is zero-padded).
 pub fn words(data: &[u8]) -> Vec<u32> {
     data.chunks(4)

@@ -8,8 +8,10 @@
 //!   identical on every target (the Rust tests natively and under wasm32, the wasm cdylib,
 //!   the C port, the GPU checker), and a golden hash per function
 //!   (`tests/golden/registry.txt`);
-//! - `tests/lanes.rs`: every lane and slice form equals the scalar form bit for bit on special
-//!   values and random bit patterns;
+//! - `lanes` (with the `std` feature): every lane and slice form equals the scalar form bit
+//!   for bit, and every scalar output is finite and below `f32::MAX`; run by `tests/lanes.rs`
+//!   on special values, uniform points and random bit patterns, and by the `registry` fuzz
+//!   target on what it searches;
 //! - `tests/coverage.rs`: every public function of `src/`, every C declaration, JS method
 //!   and WGSL function has an entry, and every entry's names exist;
 //! - `checks` (with the `std` feature): the fuzz targets' definition of "correct on any
@@ -26,6 +28,8 @@ pub mod checks;
 mod entries;
 mod entry;
 pub mod fingerprint;
+#[cfg(feature = "std")]
+pub mod lanes;
 
 pub use entries::{NOT_FUNCTIONS, entries};
 pub use entry::{

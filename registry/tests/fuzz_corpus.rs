@@ -27,7 +27,7 @@ fn replay(target: &str, check: fn(&[u8])) {
 #[test]
 fn every_corpus_replays() {
     type Check = fn(&[u8]);
-    let targets: [(&str, Check); 13] = [
+    let targets: [(&str, Check); 14] = [
         ("disk", checks::disk),
         ("pmj02bn", checks::pmj02bn),
         ("triangle", checks::triangle),
@@ -41,6 +41,7 @@ fn every_corpus_replays() {
         ("lights_tree_build", checks::lights_tree_build),
         ("lights_tree_storage", checks::lights_tree_storage),
         ("microfacet", checks::microfacet),
+        ("registry", checks::registry),
     ];
     for (target, check) in targets {
         replay(target, check);
