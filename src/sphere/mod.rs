@@ -89,10 +89,11 @@ fn clamped_direction<L: Lane>(d: [L; 3]) -> ([L; 3], L, L) {
 }
 
 /// A density made safe to return: positive values below `f32::MAX` pass unchanged; NaN,
-/// `-0.0`, negatives, `f32::MAX` and `+inf` become `+0.0`. A density of `f32::MAX` or more is
-/// unbounded as far as `f32` can tell (its square in a power heuristic is infinite): it gets
-/// the rule of the conversions' other unbounded case, the lat-long axis, `0` (discard the
-/// sample, as pbrt and Mitsuba do there), never a saturated value.
+/// `-0.0`, negatives, `f32::MAX` and `+inf` become `+0.0`. `f32` cannot tell a density of
+/// `f32::MAX` or more from an unbounded one (an overflowing product saturates there), and a
+/// saturated density breaks a renderer's MIS weights (`f32::MAX^2` is `inf`, `inf / inf` is
+/// NaN): it gets the rule of the conversions' other unbounded case, the lat-long axis, `0`
+/// (discard the sample, as pbrt and Mitsuba do there).
 #[inline(always)]
 fn finite_density<L: Lane>(p: L) -> L {
     let zero = L::splat(0.0);
