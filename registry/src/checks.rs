@@ -47,10 +47,7 @@ pub fn registry(data: &[u8]) {
         point: Box::new(move |k, d| f32::from_bits(bits[(17 * k + d) % n])),
         word: Box::new(move |k| words[(7 * k + 3) % n]),
     };
-    e.visit(&mut lanes::Check {
-        src: &src,
-        checked: 0,
-    });
+    lanes::check(e, &src);
 }
 
 /// The input bytes as 32-bit words (a trailing partial word is zero-padded).

@@ -57,10 +57,10 @@ pub fn l16<const N: usize>(v: [f32x16; N], j: usize) -> [f32; N] {
 }
 
 /// The proof over one source, as a [`Visit`].
-pub struct Check<'a> {
-    pub src: &'a Source,
+struct Check<'a> {
+    src: &'a Source,
     /// Points checked so far.
-    pub checked: usize,
+    checked: usize,
 }
 
 impl Check<'_> {
@@ -302,11 +302,13 @@ impl Visit for Check<'_> {
 
 /// Every entry with typed bodies over `src`; returns how many entries that was.
 pub fn check_all(src: &Source) -> usize {
-    let mut typed = 0;
-    for e in entries() {
-        let mut c = Check { src, checked: 0 };
-        e.visit(&mut c);
-        typed += usize::from(c.checked > 0);
-    }
-    typed
+    entries().filter(|e| check(e, src) > 0).count()
+}
+
+/// One entry over `src`; returns how many points were checked (0 for an entry without typed
+/// bodies).
+pub fn check(e: &Entry, src: &Source) -> usize {
+    let mut c = Check { src, checked: 0 };
+    e.visit(&mut c);
+    c.checked
 }

@@ -8,7 +8,7 @@
 //! scalar output obeys the domain rule: finite and below `f32::MAX` in magnitude (never NaN,
 //! never infinite, never a saturated density).
 use warpcore::u32x16;
-use warpcore_registry::lanes::{Check, Source, bits_eq, l16};
+use warpcore_registry::lanes::{Source, bits_eq, check, l16};
 use warpcore_registry::{Entry, Map};
 use warpcore_testkit::{rng, specials};
 
@@ -113,10 +113,7 @@ fn a_wrong_lane_form_is_caught() {
         point: Box::new(move |k, d| vals[2 * k + d]),
         word: Box::new(|k| k as u32),
     };
-    wrong.visit(&mut Check {
-        src: &src,
-        checked: 0,
-    });
+    check(&wrong, &src);
 }
 
 /// The domain rule can fail: a density conversion that saturates `+inf` to `f32::MAX` (what
@@ -144,10 +141,7 @@ fn a_saturated_density_is_caught() {
         point: Box::new(move |k, _| sp[k % n]),
         word: Box::new(|k| k as u32),
     };
-    saturating.visit(&mut Check {
-        src: &src,
-        checked: 0,
-    });
+    check(&saturating, &src);
 }
 
 /// The two lane forms whose entries have no typed body (a stratum count beside the index, an

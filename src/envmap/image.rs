@@ -24,7 +24,7 @@
 
 use super::{Error, MAX_SIDE, check_len};
 use crate::lanes::{Lane, unit_interval};
-use crate::sphere;
+use crate::sphere::{self, finite_density};
 use crate::trig::sin_cos_turns;
 use core::f64::consts::PI;
 use wide::f32x8;
@@ -114,16 +114,13 @@ pub fn equirect_solid_angle_weights(
 #[inline(always)]
 fn equirect_body<L: Lane>(pdf: L, v: L) -> L {
     let zero = L::splat(0.0);
-    let max = L::splat(f32::MAX);
-    // Positive and below f32::MAX, else 0 (NaN, negatives and the unbounded: f32::MAX, +inf).
-    let bounded = |p: L| L::select(zero.simd_lt(p) & p.simd_lt(max), p, zero);
-    let p = bounded(pdf);
+    let p = finite_density(pdf);
     let s = sin_pi(unit_interval(v));
     let pole = s.simd_eq(zero);
     let r = p * L::splat(INV_2_PI_SQ) / L::select(pole, L::splat(1.0), s);
     // At the pole itself (sin theta = 0, only v = 0 can give it) the density is unbounded:
     // 0, the pbrt / Mitsuba convention that `sphere::equirect_pdf_to_solid_angle` follows.
-    bounded(L::select(pole, zero, r))
+    finite_density(L::select(pole, zero, r))
 }
 
 /// Converts an area pdf on a lat-long map's `[0, 1]^2` to a pdf with respect to solid angle

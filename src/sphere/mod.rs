@@ -95,7 +95,7 @@ fn clamped_direction<L: Lane>(d: [L; 3]) -> ([L; 3], L, L) {
 /// NaN): it gets the rule of the conversions' other unbounded case, the lat-long axis, `0`
 /// (discard the sample, as pbrt and Mitsuba do there).
 #[inline(always)]
-fn finite_density<L: Lane>(p: L) -> L {
+pub(crate) fn finite_density<L: Lane>(p: L) -> L {
     let zero = L::splat(0.0);
     L::select(zero.simd_lt(p) & p.simd_lt(L::splat(f32::MAX)), p, zero)
 }
