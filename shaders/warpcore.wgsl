@@ -1045,7 +1045,9 @@ fn wci_quad_turns_r(x0: f32, dx: f32, y0: f32, dy: f32, z: f32, radii: vec4<f32>
     if (cut_x && cut_y) {
         split = split + wci_vos_quad_turns(0.0f, x1, 0.0f, y1, z, wci_corner_radii(0.0f, x1, 0.0f, y1, z2));
     }
-    return split;
+    // Four pieces can round past half a turn (p a hair above the light, inside it): held at
+    // 1/2 (2 pi), as the crate does.
+    return select(0.5f, split, split < 0.5f);
 }
 
 // The solid angle (turns of 4 pi) as the two triangles (00, 10, 11) and (00, 11, 01), given

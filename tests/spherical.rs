@@ -1449,6 +1449,46 @@ fn assert_flat_tri(v: [[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) {
     assert!(o == 0.0 || o == std::f32::consts::TAU, "omega {o}");
 }
 
+/// `p` a hair (`2^-20 .. 2^-60` of the light's size) above a light and inside it, where the
+/// rectangle is cut at `p`'s foot into four pieces of nearly a quarter hemisphere each: their
+/// solid angles, added in `f32`, rounded past `2 pi` (23 of 200 000 positions, by one or
+/// two ulps; found by the `spherical` fuzz search, a light 4e-8 long with `p` 1e-26 above
+/// it). The solid angle stays in `[0, 2 pi]` and the map total; the test also requires that
+/// it reached the top of that range (else it tests nothing).
+#[test]
+fn rectangle_cut_into_four_stays_below_two_pi() {
+    let mut r = rng(52);
+    let mut top = 0.0f32;
+    for k in 0..200_000 {
+        let (a, b) = (
+            0.01 + 0.98 * r.random::<f32>(),
+            0.01 + 0.98 * r.random::<f32>(),
+        );
+        let z = 2f32.powf(-20.0 - 40.0 * r.random::<f32>());
+        let (w, h) = (1.0 + 3.0 * r.random::<f32>(), 1.0 + 3.0 * r.random::<f32>());
+        let (c, ex, ey) = ([-a * w, -b * h, -z], [w, 0.0, 0.0], [0.0, h, 0.0]);
+        let o = spherical::rectangle_solid_angle(c, ex, ey, [0.0; 3]);
+        assert!(
+            (0.0..=std::f32::consts::TAU).contains(&o),
+            "{c:?} {ex:?} {ey:?}: omega {o}"
+        );
+        top = top.max(o);
+        if k % 64 == 0 {
+            assert_total_rect(c, ex, ey, [0.0; 3], unit2(&mut r));
+        }
+    }
+    assert!(top >= std::f32::consts::TAU * (1.0 - 1e-6), "largest {top}");
+    // The fuzz input itself (bits as the search wrote them).
+    let f = f32::from_bits;
+    let (c, ex, ey, p) = (
+        [f(0x8795_1cd9), f(0x0001_22f0), f(0x951c_d92e)],
+        [f(0x0122_f087), f(0x333f_0000), f(0x0d19_b1a7)],
+        [f(0x2998_6931), f(0x0000_00d3), f(0x96eb_1000)],
+        [f(0x1ed8_0b75), f(0x2286_b57f), f(0x00fd_4895)],
+    );
+    assert_total_rect(c, ex, ey, p, [0.5, 0.5]);
+}
+
 /// `p` 2^-149 .. 2^-100 above a unit-sized triangle (self-intersection leaves shading points
 /// there): barycentrics in the closed simplex (not [1, 1, 0] or [1, 1, 1]), density 0 where
 /// the height counts as zero, else 1 / omega.
