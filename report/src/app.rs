@@ -515,7 +515,7 @@ pub fn run(opts: &Options) -> Result<Vec<SceneResult>, Box<dyn std::error::Error
             &path_cfg.scenes,
             path_cfg.size,
             counts,
-            scale.pick([1, 2, 4]),
+            scale.pick([1, 2, 40]),
             opts.threads.max(1),
         )?;
         print!("{md}");
