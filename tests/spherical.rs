@@ -1451,8 +1451,8 @@ fn assert_flat_tri(v: [[f32; 3]; 3], p: [f32; 3], u: [f32; 2]) {
 
 /// `p` a hair (`2^-20 .. 2^-60` of the light's size) above a light and inside it, where the
 /// rectangle is cut at `p`'s foot into four pieces of nearly a quarter hemisphere each: their
-/// solid angles, added in `f32`, rounded past `2 pi` (23 of 200 000 positions, by one or
-/// two ulps; found by the `spherical` fuzz search, a light 4e-8 long with `p` 1e-26 above
+/// solid angles, added in `f32`, rounded past `2 pi` (23 of 200 000 positions, by up to
+/// three ulps; found by the `spherical` fuzz search, a light 4e-8 long with `p` 1e-26 above
 /// it). The solid angle stays in `[0, 2 pi]` and the map total; the test also requires that
 /// it reached the top of that range (else it tests nothing).
 #[test]
