@@ -1047,7 +1047,7 @@ fn wci_quad_turns_r(x0: f32, dx: f32, y0: f32, dy: f32, z: f32, radii: vec4<f32>
     }
     // Four pieces can round past half a turn (p a hair above the light, inside it): held at
     // 1/2 (2 pi), as the crate does.
-    return select(0.5f, split, split < 0.5f);
+    return wci_clamp0(split, 0.5f);
 }
 
 // The solid angle (turns of 4 pi) as the two triangles (00, 10, 11) and (00, 11, 01), given

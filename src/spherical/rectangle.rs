@@ -167,8 +167,7 @@ fn cut_turns<L: Lane>(x0: L, dx: L, y0: L, dy: L, z: L, [cut_x, cut_y]: [L::Mask
     // Each piece is at most half a turn, but four pieces of nearly a quarter hemisphere
     // each (`p` a hair above the light, inside it) can round past it: the sum is held at
     // `1/2` (`2 pi`), the largest solid angle a plane light subtends.
-    let half = L::splat(0.5);
-    L::select(turns.simd_lt(half), turns, half)
+    clamp0(turns, L::splat(0.5))
 }
 
 /// Where [`quad_turns_r`] cuts the rectangle at `p`'s foot: `-x0 x1` above this many times
